@@ -1,0 +1,77 @@
+"""Solutions and their status, shared by every problem family (DESIGN.md, "One pipeline")."""
+
+from __future__ import annotations
+
+import enum
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+import numpy as np
+
+__all__ = ["Status", "Solution"]
+
+
+class Status(str, enum.Enum):
+    """Outcome of a solve.
+
+    ``UNSAT`` is reported only when impossibility is proved (a solver's refutation,
+    ideally with a checked proof); a time limit or an interruption is ``UNKNOWN``.
+    """
+
+    SAT = "sat"
+    UNSAT = "unsat"
+    OPTIMAL = "optimal"
+    UNKNOWN = "unknown"
+
+    @property
+    def exit_code(self) -> int:
+        """CLI exit code: 0 sat/optimal, 1 unsat, 3 unknown."""
+        return {"sat": 0, "optimal": 0, "unsat": 1, "unknown": 3}[self.value]
+
+    @property
+    def has_tiling(self) -> bool:
+        return self in (Status.SAT, Status.OPTIMAL)
+
+
+@dataclass(frozen=True)
+class Solution:
+    """A tiling (or the proof that none exists) plus its provenance.
+
+    Attributes
+    ----------
+    status : Status
+    tiling : numpy.ndarray or None
+        ``tiling[row, col]`` (row 0 at the top), ``None`` unless ``status.has_tiling``.
+    method : str
+        The route that produced it: ``"constructive"``, ``"sat"``, ``"maxsat"``, ``"cpsat"``...
+    solver : str or None
+        Backend name (e.g. ``"cadical153"``, ``"rc2"``, ``"cp-sat"``).
+    seed : int or None
+    time_s : float
+        Wall-clock seconds spent, encoding included.
+    objective : int or None
+        Hamming distance for closest-tiling problems.
+    reason : str or None
+        For ``unsat``: why (e.g. the proof checker's verdict); for ``unknown``: what stopped it.
+    notes : tuple of str
+        Things the user should know (e.g. "constructive route fell back to sat").
+    stats : dict
+        Free-form numbers: variables, clauses, proof size, lower bound...
+    """
+
+    status: Status
+    tiling: np.ndarray | None = None
+    method: str = ""
+    solver: str | None = None
+    seed: int | None = None
+    time_s: float = 0.0
+    objective: int | None = None
+    reason: str | None = None
+    notes: tuple[str, ...] = ()
+    stats: dict[str, Any] = field(default_factory=dict)
+
+    def with_note(self, note: str) -> "Solution":
+        return replace(self, notes=self.notes + (note,))
+
+    def replace(self, **changes: Any) -> "Solution":
+        return replace(self, **changes)

@@ -1,0 +1,5 @@
+"""Independent checkers (numpy only; never import encodings or constructive code)."""
+
+from tilesolve.verify.dappled import Violation, dappled_violations, hamming_distance, is_dappled
+
+__all__ = ["Violation", "dappled_violations", "hamming_distance", "is_dappled"]
