@@ -1,0 +1,157 @@
+"""Option decorators and help texts shared by the commands (rasterio ``rio/options.py`` style).
+
+Choices come from the library's registries (:data:`tilesolve.dappled.METHODS`,
+:data:`tilesolve.dappled.COUNT_METHODS`), so a new method shows up here by itself.
+"""
+
+from __future__ import annotations
+
+from typing import Callable
+
+import click
+
+from tilesolve.dappled import COUNT_METHODS, METHODS
+
+CONTEXT_SETTINGS = {"help_option_names": ["-h", "--help"], "max_content_width": 100}
+
+#: Condition syntax, shown by every dappled command (``\b`` keeps click from re-wrapping).
+CONDITION_HELP = """\b
+Conditions (--cond, repeatable; dappled paper Def. 1.1):
+  H0=2      no horizontal run of tile 0 longer than 2 cells
+  V1=3      no vertical run of tile 1 longer than 3 cells
+  H{0,2}=3  no horizontal run longer than 3 of cells whose tiles are in {0, 2}
+  V1=inf    no limit (the paper's q = infinity)
+Several may share one --cond, separated by commas or spaces: --cond "H0=2,V1=3".
+Quote subsets, or the shell expands the braces: --cond 'H{0,2}=3'."""
+
+#: Exit codes (DESIGN.md, "Errors").
+EXIT_HELP = """\b
+Exit codes:
+  0  sat / optimal / ok
+  1  unsat (proved), or the file has violations
+  2  bad input or usage (one line on stderr, no file written)
+  3  unknown: time limit or interrupted
+  130  interrupted before any result"""
+
+TILING_FILE_HELP = (
+    "a solution JSON file or a text grid (one row per line, top row first, a digit per cell)"
+)
+
+
+def compose(*decorators: Callable) -> Callable:
+    """Apply several option decorators as one (first listed = first in --help)."""
+
+    def wrap(f: Callable) -> Callable:
+        for d in reversed(decorators):
+            f = d(f)
+        return f
+
+    return wrap
+
+
+# ----------------------------------------------------------------------------- problem
+size_opt = click.option("--size", metavar="WxH", help="Grid size: W columns by H rows, e.g. 64x48.")
+cond_opt = click.option(
+    "--cond", "conditions", metavar="COND", multiple=True, help="A condition such as H0=2 (repeatable; see below)."
+)
+tiles_opt = click.option(
+    "--tiles", "n_tiles", type=int, default=None, metavar="K", help="Number of tiles |T| (tiles 0..K-1)  [default: 2]"
+)
+cyclic_opt = click.option(
+    "--cyclic", is_flag=True, help="Runs wrap around both edges: a tiling of the torus (dappled §3.2)."
+)
+fix_opt = click.option(
+    "--fix",
+    type=click.Path(dir_okay=False),
+    metavar="FILE",
+    help="Partial tiling to respect: a problem/solution JSON file or a text grid with '?' or '.' for free cells.",
+)
+closest_opt = click.option(
+    "--closest-to",
+    type=click.Path(dir_okay=False),
+    metavar="FILE",
+    help=f"Find the dappled tiling nearest (Hamming distance) to this tiling: {TILING_FILE_HELP}.",
+)
+count_opt = click.option(
+    "--count",
+    "counts",
+    multiple=True,
+    metavar="T=N",
+    help="Global count of tile T: 1=8 (exactly 8 cells), 1=4..10, 1=..10, 1=4.. (repeatable).",
+)
+problem_file_opt = click.option(
+    "--problem",
+    "problem_file",
+    type=click.Path(dir_okay=False),
+    metavar="FILE",
+    help="Read the problem from a tilesolve problem or solution JSON file instead of --size/--cond/...",
+)
+
+
+def problem_options(*, closest: bool = True, counts: bool = True) -> Callable:
+    """All options that describe a dappled problem (see :func:`tilesolve.cli.common.build_problem`)."""
+    opts = [size_opt, cond_opt, tiles_opt, cyclic_opt, fix_opt]
+    if counts:
+        opts.append(count_opt)
+    if closest:
+        opts.append(closest_opt)
+    opts.append(problem_file_opt)
+    return compose(*opts)
+
+
+# ----------------------------------------------------------------------------- running
+method_opt = click.option(
+    "--method",
+    type=click.Choice(METHODS),
+    default="auto",
+    show_default=True,
+    help="auto: the papers' constructive algorithms when they apply, MaxSAT for --closest-to, SAT otherwise.",
+)
+count_method_opt = click.option(
+    "--method",
+    type=click.Choice(COUNT_METHODS),
+    default="auto",
+    show_default=True,
+    help="transfer: row-by-row transfer matrix (exact, fast); enumerate: solver enumeration (any problem).",
+)
+seed_opt = click.option(
+    "--seed", type=click.IntRange(min=0), default=None, metavar="N", help="Random seed; the same seed gives the same tiling."
+)
+time_limit_opt = click.option(
+    "--time-limit",
+    type=click.FloatRange(min=0, min_open=True),
+    default=None,
+    metavar="S",
+    help="Stop after S seconds with status unknown (exit 3).",
+)
+initial_opt = click.option(
+    "--initial",
+    type=click.Path(dir_okay=False),
+    metavar="FILE",
+    help=f"Initial tiling for the constructive route (Algorithm 1 starts from it): {TILING_FILE_HELP}.",
+)
+
+# ----------------------------------------------------------------------------- outputs
+output_opt = click.option(
+    "-o",
+    "--output",
+    type=click.Path(dir_okay=False, allow_dash=True),
+    metavar="OUT.json",
+    help="Write the solution JSON here ('-' for stdout). Without -o, --svg or --png the tiling is printed.",
+)
+svg_opt = click.option("--svg", type=click.Path(dir_okay=False), metavar="OUT.svg", help="Also draw the tiling as SVG.")
+png_opt = click.option(
+    "--png", type=click.Path(dir_okay=False), metavar="OUT.png", help="Also draw the tiling as PNG (for large grids)."
+)
+repeat_opt = click.option(
+    "--repeat",
+    type=click.IntRange(1, 16),
+    default=1,
+    show_default=True,
+    metavar="N",
+    help="Draw N x N copies (shows how a cyclic tiling wraps).",
+)
+grid_opt = click.option(
+    "--grid/--no-grid", default=None, help="Draw cell borders  [default: when cells are large enough]"
+)
+picture_options = compose(svg_opt, png_opt, repeat_opt, grid_opt)

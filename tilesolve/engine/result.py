@@ -1,0 +1,72 @@
+"""The record every backend returns (DESIGN.md, "One pipeline"; STYLE.md §3, CPMpy's ExitStatus)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from tilesolve.model.solution import Status
+
+__all__ = ["Result", "Deadline"]
+
+
+@dataclass
+class Result:
+    """Outcome of one backend call, before it is turned into a family's Solution.
+
+    Attributes
+    ----------
+    status : Status
+        ``SAT``/``OPTIMAL`` with a model, ``UNSAT`` only when proved, ``UNKNOWN`` on a
+        time limit or an interruption (never ``UNSAT``).
+    model : list of int or None
+        Signed DIMACS literals (SAT and MaxSAT backends) or ``[bool, ...]`` variable values
+        (CP-SAT), ``None`` without a solution.
+    runtime : float
+        Seconds spent in the backend (loading the formula included).
+    proof : list of str or None
+        DRAT proof lines when the solver logged one and the answer is ``UNSAT``.
+    stats : dict
+        Backend numbers (variables, clauses, conflicts, cores, bounds...).
+    cost : int or None
+        Objective value for optimisation backends.
+    solver : str
+        Backend name as the user gave it (e.g. ``"cadical153"``).
+    reason : str or None
+        Why the status is what it is (``"time limit"``, ``"interrupted"``...).
+    """
+
+    status: Status
+    model: list | None = None
+    runtime: float = 0.0
+    proof: list[str] | None = None
+    stats: dict[str, Any] = field(default_factory=dict)
+    cost: int | None = None
+    solver: str = ""
+    reason: str | None = None
+
+
+class Deadline:
+    """A wall-clock deadline shared by the steps of one solve (``None`` = no limit)."""
+
+    def __init__(self, time_limit: float | None) -> None:
+        import time
+
+        if time_limit is not None and time_limit < 0:
+            from tilesolve.errors import InvalidProblem
+
+            raise InvalidProblem(f"time limit must be >= 0 seconds, got {time_limit}")
+        self._clock = time.perf_counter
+        self.start = self._clock()
+        self.time_limit = time_limit
+
+    def elapsed(self) -> float:
+        return self._clock() - self.start
+
+    def remaining(self) -> float | None:
+        if self.time_limit is None:
+            return None
+        return max(0.0, self.time_limit - self.elapsed())
+
+    def expired(self) -> bool:
+        return self.time_limit is not None and self.elapsed() >= self.time_limit

@@ -1,0 +1,427 @@
+"""SAT backend over PySAT: time limits, proofs, enumeration and counting.
+
+Generic over problem families: it takes clauses (a
+:class:`~tilesolve.encodings.ClauseSet`, a :class:`pysat.formula.CNF` or a list of
+lists) and returns :class:`~tilesolve.engine.result.Result` records.
+
+Time limits
+-----------
+PySAT solvers differ in what they can do (checked against ``pysat.solvers`` 1.9):
+
+* MiniSat-family solvers (Glucose, Maple*, MiniSat, MergeSat, Ergo) support
+  ``interrupt()``: a :class:`threading.Timer` interrupts ``solve_limited``.
+* CaDiCaL (all versions) and Kissat cannot be interrupted but accept a conflict budget:
+  the search runs in conflict-budget slices sized from the measured conflict rate, and the
+  deadline is checked between slices (CaDiCaL keeps its learnt clauses across calls).
+* Lingeling supports neither; a time limit is refused for it.
+
+A call stopped by the time limit or by Ctrl-C returns ``Status.UNKNOWN``, never ``UNSAT``.
+
+Proofs
+------
+``with_proof=True`` logs a DRAT proof where the solver can (see :func:`proof_solvers`;
+CaDiCaL 1.0.3/1.5.3/1.9.5/3.0.0, Glucose 3/4/4.2, Gluecard 3/4, Lingeling, MapleChrono,
+MapleCM, MapleSAT and Ergo do; Kissat, MergeSat, Minicard and the MiniSats do not).
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+from dataclasses import dataclass
+from typing import Iterable, Iterator, Sequence
+
+import numpy as np
+
+from tilesolve.engine.result import Deadline, Result
+from tilesolve.errors import BackendUnavailable, InvalidProblem, MethodNotApplicable
+from tilesolve.model.solution import Status
+
+__all__ = [
+    "DEFAULT_SAT_SOLVER",
+    "SatSession",
+    "solve_cnf",
+    "ModelEnumerator",
+    "count_models",
+    "canonical_solver_name",
+    "sat_solvers",
+    "proof_solvers",
+]
+
+DEFAULT_SAT_SOLVER = "cadical153"
+
+#: Solvers whose random seed PySAT's ``configure`` can set, and the option's name.
+_SEED_OPTION = {"cadical153": "seed", "cadical195": "seed", "cadical300": "seed", "glucose42": "rnd-seed"}
+
+
+def canonical_solver_name(name: str) -> str:
+    """Map any PySAT alias (``"cd15"``, ``"g4"``...) to its canonical name.
+
+    Raises
+    ------
+    BackendUnavailable
+        For a name PySAT does not know.
+    """
+    from pysat.solvers import SolverNames
+
+    key = str(name).lower()
+    for canon, aliases in vars(SolverNames).items():
+        if canon.startswith("_"):
+            continue
+        if key == canon or key in aliases:
+            return canon
+    raise BackendUnavailable(f"unknown SAT solver {name!r}; available: {', '.join(sat_solvers())}")
+
+
+def sat_solvers() -> list[str]:
+    """Canonical names of the PySAT solvers that can be created here."""
+    from pysat.solvers import Solver, SolverNames
+
+    out = []
+    for canon, aliases in vars(SolverNames).items():
+        if canon.startswith("_"):
+            continue
+        try:
+            with Solver(name=aliases[0]):
+                out.append(canon)
+        except Exception:  # noqa: BLE001 - a solver not compiled into this pysat build
+            continue
+    return out
+
+
+_PROOF_CACHE: dict[str, bool] = {}
+
+
+def proof_solvers() -> list[str]:
+    """Solvers that log a DRAT proof (probed: refute a tiny formula, read the proof)."""
+    from pysat.solvers import Solver
+
+    out = []
+    for name in sat_solvers():
+        if name not in _PROOF_CACHE:
+            ok = False
+            try:
+                with Solver(name=name, bootstrap_with=[[1, 2], [-1, 2], [1, -2], [-1, -2]], with_proof=True) as s:
+                    ok = s.solve() is False and s.get_proof() is not None
+            except Exception:  # noqa: BLE001 - NotImplementedError or an unsupported option
+                ok = False
+            _PROOF_CACHE[name] = ok
+        if _PROOF_CACHE[name]:
+            out.append(name)
+    return out
+
+
+def _chunks(formula) -> Iterator[list[list[int]]]:
+    if hasattr(formula, "chunks"):
+        yield from formula.chunks()
+    elif hasattr(formula, "clauses"):
+        yield formula.clauses
+    else:
+        batch: list[list[int]] = []
+        for c in formula:
+            batch.append(list(c))
+            if len(batch) >= 65536:
+                yield batch
+                batch = []
+        if batch:
+            yield batch
+
+
+class SatSession:
+    """One PySAT solver with tilesolve's time-limit, interrupt and proof handling.
+
+    Always use it as a context manager (it owns a native solver).
+
+    Parameters
+    ----------
+    formula : ClauseSet, CNF or iterable of clauses
+    solver : str
+        PySAT solver name or alias.
+    with_proof : bool
+        Ask for DRAT proof logging; silently off for solvers that cannot log one
+        (``self.proof_logging`` says which happened).
+    seed : int, optional
+        Random seed for solvers with a ``seed`` option (CaDiCaL); recorded otherwise.
+
+    Examples
+    --------
+    >>> with SatSession([[1, 2], [-1]]) as s:
+    ...     r = s.solve()
+    >>> r.status.value, r.model
+    ('sat', [-1, 2])
+    """
+
+    def __init__(self, formula, solver: str = DEFAULT_SAT_SOLVER, with_proof: bool = False, seed: int | None = None):
+        from pysat.solvers import Solver
+
+        self.name = canonical_solver_name(solver)
+        self.seed = seed
+        t0 = time.perf_counter()
+        self.proof_logging = False
+        try:
+            self._s = Solver(name=self.name, with_proof=with_proof)
+            self.proof_logging = bool(with_proof)
+        except NotImplementedError:
+            self._s = Solver(name=self.name)
+        except Exception as exc:  # noqa: BLE001
+            raise BackendUnavailable(f"cannot start SAT solver {self.name}: {exc}") from exc
+        self.notes: list[str] = []
+        if with_proof and not self.proof_logging:
+            self.notes.append(f"{self.name} cannot log proofs")
+        if seed is not None:
+            option = _SEED_OPTION.get(self.name)
+            if option is None:
+                self.notes.append(f"{self.name} has no seed option; seed {seed} only recorded")
+            else:
+                self._s.configure({option: int(seed)})
+        self.n_clauses = 0
+        self.empty_clause = False
+        for ch in _chunks(formula):
+            if any(len(c) == 0 for c in ch):
+                # Some PySAT backends mishandle an empty clause; it decides the formula anyway.
+                self.empty_clause = True
+                ch = [c for c in ch if len(c)]
+            self._s.append_formula(ch)
+            self.n_clauses += len(ch)
+        self.load_time = time.perf_counter() - t0
+        self._mode = self._probe_limits()
+
+    def _probe_limits(self) -> str:
+        try:
+            self._s.interrupt()
+            self._s.clear_interrupt()
+            return "interrupt"
+        except NotImplementedError:
+            pass
+        try:
+            self._s.conf_budget(-1)
+            return "budget"
+        except NotImplementedError:
+            return "none"
+
+    def __enter__(self) -> "SatSession":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+    def close(self) -> None:
+        if self._s is not None:
+            self._s.delete()
+            self._s = None
+
+    # -------------------------------------------------------------------- solving
+    def add_clause(self, clause: Sequence[int]) -> None:
+        if len(clause) == 0:
+            self.empty_clause = True
+        else:
+            self._s.add_clause(list(map(int, clause)))
+
+    def set_phases(self, literals: Sequence[int]) -> None:
+        """Preferred polarities (e.g. a target tiling); ignored by solvers without phases."""
+        try:
+            self._s.set_phases(list(map(int, literals)))
+        except NotImplementedError:
+            pass
+
+    def solve(self, assumptions: Sequence[int] = (), time_limit: float | None = None) -> Result:
+        """Decide the formula under ``assumptions``.
+
+        Returns ``SAT`` with the model, ``UNSAT`` (with the DRAT proof when logging and
+        no assumptions were used), or ``UNKNOWN`` on the time limit or Ctrl-C.
+        """
+        t0 = time.perf_counter()
+        deadline = Deadline(time_limit)
+        assumptions = list(map(int, assumptions))
+        stats = {"load_s": self.load_time, "clauses": self.n_clauses}
+        if self.empty_clause:
+            return Result(Status.UNSAT, None, 0.0, ["0"] if self.proof_logging else None, stats, solver=self.name,
+                          reason="the formula contains the empty clause")
+        reason = None
+        try:
+            if time_limit is None:
+                answer = self._s.solve(assumptions=assumptions)
+            elif self._mode == "interrupt":
+                answer = self._solve_interrupt(assumptions, deadline)
+            elif self._mode == "budget":
+                answer = self._solve_sliced(assumptions, deadline)
+            else:
+                raise MethodNotApplicable(
+                    f"SAT solver {self.name} cannot honour a time limit (no interrupt, no budget); "
+                    "use cadical153 or glucose4"
+                )
+        except KeyboardInterrupt:
+            answer, reason = None, "interrupted (Ctrl-C)"
+        runtime = time.perf_counter() - t0
+        try:
+            stats.update(self._s.accum_stats() or {})
+        except (NotImplementedError, AttributeError):
+            pass
+        stats["solve_s"] = runtime
+        if answer is True:
+            return Result(Status.SAT, self._s.get_model(), runtime, None, stats, solver=self.name)
+        if answer is False:
+            proof = self._s.get_proof() if (self.proof_logging and not assumptions) else None
+            return Result(Status.UNSAT, None, runtime, proof, stats, solver=self.name,
+                          reason="unsatisfiable under the assumptions" if assumptions else None)
+        if reason is None:
+            reason = f"time limit of {time_limit:.3g} s reached" if time_limit is not None else "solver gave up"
+        return Result(Status.UNKNOWN, None, runtime, None, stats, solver=self.name, reason=reason)
+
+    def _solve_interrupt(self, assumptions: list[int], deadline: Deadline):
+        rem = deadline.remaining()
+        if rem is not None and rem <= 0:
+            return None
+        timer = threading.Timer(rem, self._s.interrupt)
+        timer.daemon = True
+        timer.start()
+        try:
+            return self._s.solve_limited(assumptions=assumptions, expect_interrupt=True)
+        finally:
+            timer.cancel()
+            self._s.clear_interrupt()
+
+    def _solve_sliced(self, assumptions: list[int], deadline: Deadline):
+        """Conflict-budget slices for solvers without ``interrupt`` (CaDiCaL, Kissat)."""
+        budget = 2000
+        while True:
+            rem = deadline.remaining()
+            if rem is not None and rem <= 0:
+                return None
+            t = time.perf_counter()
+            self._s.conf_budget(int(budget))
+            answer = self._s.solve_limited(assumptions=assumptions)
+            if answer is not None:
+                return answer
+            spent = max(time.perf_counter() - t, 1e-4)
+            rate = budget / spent
+            rem = deadline.remaining() or 0.0
+            # next slice: about a second, or what is left, never more than doubling
+            budget = int(min(2 * budget, max(100.0, rate * min(1.0, rem))))
+
+    def get_model(self) -> list[int] | None:
+        return self._s.get_model()
+
+
+def solve_cnf(
+    formula,
+    *,
+    solver: str = DEFAULT_SAT_SOLVER,
+    time_limit: float | None = None,
+    with_proof: bool = False,
+    assumptions: Sequence[int] = (),
+    seed: int | None = None,
+    phases: Sequence[int] | None = None,
+) -> Result:
+    """Decide a CNF formula once (loading included in ``runtime``).
+
+    Examples
+    --------
+    >>> solve_cnf([[1], [-1]], with_proof=True).status.value
+    'unsat'
+    """
+    t0 = time.perf_counter()
+    deadline = Deadline(time_limit)
+    with SatSession(formula, solver=solver, with_proof=with_proof, seed=seed) as s:
+        if phases is not None:
+            s.set_phases(phases)
+        r = s.solve(assumptions, time_limit=deadline.remaining())
+        r.runtime = time.perf_counter() - t0
+        r.stats["notes"] = list(s.notes)
+        r.stats["proof_logging"] = s.proof_logging
+        return r
+
+
+class ModelEnumerator:
+    """Iterate over the models of a formula, projected on ``projection`` variables.
+
+    Each model found is blocked by a clause over the projection, so two models that
+    differ only on auxiliary variables are reported once. After iteration,
+    :attr:`complete` tells whether every model was seen (no limit or time limit hit).
+
+    Examples
+    --------
+    >>> e = ModelEnumerator([[1, 2]], projection=[1, 2])
+    >>> sorted(tuple(m) for m in e), e.complete
+    ([(-1, 2), (1, -2), (1, 2)], True)
+    """
+
+    def __init__(
+        self,
+        formula,
+        projection: Iterable[int],
+        *,
+        solver: str = DEFAULT_SAT_SOLVER,
+        limit: int | None = None,
+        time_limit: float | None = None,
+    ) -> None:
+        if limit is not None and limit < 0:
+            raise InvalidProblem(f"enumeration limit must be >= 0, got {limit}")
+        self.formula = formula
+        self.projection = np.asarray(list(projection), dtype=np.int64)
+        self.solver = solver
+        self.limit = limit
+        self.time_limit = time_limit
+        self.count = 0
+        self.complete = False
+        self.reason: str | None = None
+
+    def __iter__(self) -> Iterator[list[int]]:
+        deadline = Deadline(self.time_limit)
+        proj = self.projection
+        with SatSession(self.formula, solver=self.solver) as s:
+            while True:
+                if self.limit is not None and self.count >= self.limit:
+                    self.reason = f"limit of {self.limit} models reached"
+                    return
+                r = s.solve(time_limit=deadline.remaining())
+                if r.status is Status.UNSAT:
+                    self.complete = True
+                    return
+                if r.status is Status.UNKNOWN:
+                    self.reason = r.reason
+                    return
+                model = r.model
+                val = np.zeros(int(proj.max(initial=0)) + 1, dtype=bool)
+                m = np.asarray(model, dtype=np.int64)
+                m = m[np.abs(m) < val.size]
+                val[np.abs(m)] = m > 0
+                block = np.where(val[proj], -proj, proj)
+                self.count += 1
+                yield model
+                if block.size == 0:  # nothing to block on: the projection has one model
+                    self.complete = True
+                    return
+                s.add_clause(block.tolist())
+
+
+@dataclass(frozen=True)
+class ModelCount:
+    """Result of :func:`count_models`: ``count`` models, ``complete`` if that is all."""
+
+    count: int
+    complete: bool
+    time_s: float
+    reason: str | None = None
+
+
+def count_models(
+    formula,
+    projection: Iterable[int],
+    *,
+    solver: str = DEFAULT_SAT_SOLVER,
+    time_limit: float | None = None,
+    limit: int | None = None,
+) -> ModelCount:
+    """Count projected models by enumeration (exact when ``complete``).
+
+    Examples
+    --------
+    >>> count_models([[1, 2]], [1, 2]).count
+    3
+    """
+    t0 = time.perf_counter()
+    e = ModelEnumerator(formula, projection, solver=solver, limit=limit, time_limit=time_limit)
+    for _ in e:
+        pass
+    return ModelCount(e.count, e.complete, time.perf_counter() - t0, e.reason)

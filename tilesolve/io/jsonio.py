@@ -1,0 +1,533 @@
+"""Versioned JSON files for problems and solutions, and plain-text tiling grids.
+
+Every file carries ``"format": "tilesolve/<kind>"`` and ``"version"`` (DESIGN.md, "Files").
+Readers accept only the formats and versions in :data:`FORMATS` and turn anything malformed
+into one :class:`~tilesolve.errors.InvalidProblem` line naming the file and the field.
+Writers go through :mod:`tilesolve.io.atomic`.
+
+Dappled formats, version 1
+--------------------------
+``tilesolve/dappled-problem``::
+
+    {
+      "format": "tilesolve/dappled-problem", "version": 1,
+      "size": {"rows": 4, "cols": 6},          # or "6x4" (W x H)
+      "n_tiles": 2,
+      "conditions": ["H0=2", "V1=3", "H{0,2}=3", "V1=inf",
+                     {"axis": "H", "tiles": [0], "limit": [[2, 2, 3], ...]}],  # per-cell, 0 = none
+      "cyclic": false,
+      "fixed": [[0, -1, 1], ...],              # optional partial tiling, -1 = free
+      "counts": ["1=8", "0=4..10"],            # optional global tile counts
+      "closest_to": [[0, 1, 1], ...]           # optional target tiling
+    }
+
+``tilesolve/dappled-solution`` has every problem field plus ``"status"`` (sat, unsat,
+optimal, unknown), ``"tiling"`` (rows top to bottom, or null), ``"method"``, ``"solver"``,
+``"seed"``, ``"time_s"``, ``"objective"``, ``"reason"``, ``"notes"`` and ``"stats"``.
+Tilings are ``tiling[row][col]`` with row 0 at the top.
+
+Text grids
+----------
+One row per line, top row first; a cell is a digit, or ``?`` / ``.`` for a free cell in a
+partial tiling. Rows may instead be whitespace- or comma-separated numbers (for 10 or more
+tiles). Blank lines and lines starting with ``#`` are ignored::
+
+    # a 4x3 partial tiling
+    01?1
+    ?..0
+    1100
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import re
+from pathlib import Path
+from typing import Any, Callable
+
+import numpy as np
+
+from tilesolve.errors import InvalidProblem
+from tilesolve.io.atomic import write_text_atomic
+from tilesolve.model.dappled import Condition, DappledProblem, TileCount, parse_condition, parse_count, parse_size
+from tilesolve.model.solution import Solution, Status
+
+__all__ = [
+    "FORMATS",
+    "DAPPLED_PROBLEM",
+    "DAPPLED_SOLUTION",
+    "load_document",
+    "dumps",
+    "problem_to_dict",
+    "problem_from_dict",
+    "solution_to_dict",
+    "solution_from_dict",
+    "write_problem",
+    "write_solution",
+    "read_problem",
+    "read_solution",
+    "read_tiling",
+    "parse_text_grid",
+    "format_text_grid",
+]
+
+DAPPLED_PROBLEM = "tilesolve/dappled-problem"
+DAPPLED_SOLUTION = "tilesolve/dappled-solution"
+
+#: Formats this version reads, with the versions it understands. Later families add theirs.
+FORMATS: dict[str, frozenset[int]] = {
+    DAPPLED_PROBLEM: frozenset({1}),
+    DAPPLED_SOLUTION: frozenset({1}),
+}
+
+_PROBLEM_KEYS = {"format", "version", "size", "n_tiles", "conditions", "cyclic", "fixed", "counts", "closest_to"}
+_SOLUTION_KEYS = _PROBLEM_KEYS | {
+    "status", "tiling", "method", "solver", "seed", "time_s", "objective", "reason", "notes", "stats",
+}
+_INFO_KEYS = {"created_by", "comment"}  # free text any file may carry
+
+
+# ----------------------------------------------------------------------------- documents
+def load_document(path: str | os.PathLike, *, formats: Any = None) -> dict:
+    """Read a tilesolve JSON file and check its ``format`` and ``version``.
+
+    Parameters
+    ----------
+    path : path-like
+    formats : collection of str, optional
+        Accept only these formats (default: every format in :data:`FORMATS`).
+
+    Raises
+    ------
+    InvalidProblem
+        The file is missing, not JSON, not a tilesolve file, or of an unknown format/version.
+    """
+    doc = _parse_json(_read_text(path), path)
+    return check_document(doc, path, formats=formats)
+
+
+def check_document(doc: Any, source: Any = "<document>", *, formats: Any = None) -> dict:
+    """Check the ``format``/``version`` header of an already-parsed document."""
+    if not isinstance(doc, dict):
+        raise InvalidProblem(f"{source}: not a tilesolve file (expected a JSON object with a 'format' field)")
+    fmt = doc.get("format")
+    if fmt is None:
+        raise InvalidProblem(f"{source}: not a tilesolve file (no 'format' field)")
+    allowed = FORMATS if formats is None else {f: FORMATS[f] for f in formats if f in FORMATS}
+    if fmt not in FORMATS:
+        raise InvalidProblem(f"{source}: unknown format {fmt!r}; this tilesolve reads {', '.join(sorted(FORMATS))}")
+    if fmt not in allowed:
+        raise InvalidProblem(f"{source}: a {fmt!r} file cannot be used here; expected {' or '.join(sorted(allowed))}")
+    version = doc.get("version")
+    if isinstance(version, bool) or not isinstance(version, int):
+        raise InvalidProblem(f"{source}: 'version' must be an integer, got {version!r}")
+    if version not in FORMATS[fmt]:
+        known = ", ".join(map(str, sorted(FORMATS[fmt])))
+        raise InvalidProblem(
+            f"{source}: {fmt} version {version} is not supported (this tilesolve reads version {known}); "
+            "upgrade tilesolve?"
+        )
+    return doc
+
+
+def _read_text(path: str | os.PathLike) -> str:
+    try:
+        return Path(path).read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise InvalidProblem(f"cannot read {path}: no such file") from None
+    except IsADirectoryError:
+        raise InvalidProblem(f"cannot read {path}: it is a directory") from None
+    except UnicodeDecodeError:
+        raise InvalidProblem(f"cannot read {path}: not a UTF-8 text file") from None
+    except OSError as exc:
+        raise InvalidProblem(f"cannot read {path}: {exc.strerror or exc}") from None
+
+
+def _parse_json(text: str, source: Any) -> Any:
+    try:
+        return json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise InvalidProblem(f"{source}: malformed JSON at line {exc.lineno}, column {exc.colno}: {exc.msg}") from None
+    except RecursionError:
+        raise InvalidProblem(f"{source}: malformed JSON (nested too deeply)") from None
+
+
+def dumps(doc: Any) -> str:
+    """JSON text with one line per grid row, so tilings stay readable and diffable.
+
+    >>> print(dumps({"tiling": [[0, 1], [1, 0]], "n_tiles": 2}), end="")
+    {
+      "tiling": [
+        [0, 1],
+        [1, 0]
+      ],
+      "n_tiles": 2
+    }
+    """
+    return _dump(_plain(doc), 0) + "\n"
+
+
+def _dump(obj: Any, level: int) -> str:
+    pad, inner = "  " * level, "  " * (level + 1)
+    if isinstance(obj, dict):
+        if not obj:
+            return "{}"
+        items = [f"{inner}{json.dumps(str(k))}: {_dump(v, level + 1)}" for k, v in obj.items()]
+        return "{\n" + ",\n".join(items) + "\n" + pad + "}"
+    if isinstance(obj, list) and obj and any(isinstance(v, (dict, list)) for v in obj):
+        return "[\n" + ",\n".join(inner + _dump(v, level + 1) for v in obj) + "\n" + pad + "]"
+    return json.dumps(obj, separators=(", ", ": "), ensure_ascii=False, allow_nan=False)
+
+
+def _plain(obj: Any) -> Any:
+    """Turn numpy values, enums, paths and tuples into JSON-ready Python values."""
+    if isinstance(obj, dict):
+        return {str(k): _plain(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_plain(v) for v in obj]
+    if isinstance(obj, np.ndarray):
+        return obj.tolist()
+    if isinstance(obj, np.generic):
+        return obj.item()
+    if isinstance(obj, Status):
+        return obj.value
+    if isinstance(obj, os.PathLike):
+        return os.fspath(obj)
+    if isinstance(obj, float) and not math.isfinite(obj):
+        return None if math.isnan(obj) else ("inf" if obj > 0 else "-inf")
+    if obj is None or isinstance(obj, (bool, int, float, str)):
+        return obj
+    return str(obj)
+
+
+# ----------------------------------------------------------------------------- problems
+def _condition_to_json(cond: Condition) -> Any:
+    if cond.is_uniform:
+        return str(cond)
+    return {"axis": cond.axis, "tiles": list(cond.tiles), "limit": cond.limit.tolist()}
+
+
+def problem_to_dict(problem: DappledProblem, *, format: str = DAPPLED_PROBLEM) -> dict:
+    """The JSON document of ``problem`` (format ``tilesolve/dappled-problem``, version 1)."""
+    from tilesolve import __version__
+
+    doc: dict[str, Any] = {
+        "format": format,
+        "version": 1,
+        "created_by": f"tilesolve {__version__}",
+        "size": {"rows": problem.rows, "cols": problem.cols},
+        "n_tiles": problem.n_tiles,
+        "conditions": [_condition_to_json(c) for c in problem.conditions],
+        "cyclic": problem.cyclic,
+    }
+    if problem.fixed is not None:
+        doc["fixed"] = problem.fixed.tolist()
+    if problem.counts:
+        doc["counts"] = [str(k) for k in problem.counts]
+    if problem.closest_to is not None:
+        doc["closest_to"] = problem.closest_to.tolist()
+    return doc
+
+
+def problem_from_dict(doc: dict, source: Any = "<document>") -> DappledProblem:
+    """Rebuild a :class:`DappledProblem` from a problem or solution document.
+
+    Raises
+    ------
+    InvalidProblem
+        On a missing or malformed field, with the field's name.
+    """
+    check_document(doc, source, formats=(DAPPLED_PROBLEM, DAPPLED_SOLUTION))
+    allowed = (_SOLUTION_KEYS if doc["format"] == DAPPLED_SOLUTION else _PROBLEM_KEYS) | _INFO_KEYS
+    unknown = sorted(set(doc) - allowed)
+    if unknown:
+        raise InvalidProblem(f"{source}: unknown field {unknown[0]!r} in a {doc['format']} file")
+    rows, cols = _size(doc, source)
+    n_tiles = _int(doc.get("n_tiles", 2), "n_tiles", source)
+    conditions = doc.get("conditions", [])
+    if not isinstance(conditions, list):
+        raise InvalidProblem(f"{source}: 'conditions' must be a list, e.g. [\"H0=2\", \"V1=3\"]")
+    conds = tuple(_condition(c, i, source) for i, c in enumerate(conditions))
+    cyclic = doc.get("cyclic", False)
+    if not isinstance(cyclic, bool):
+        raise InvalidProblem(f"{source}: 'cyclic' must be true or false, got {cyclic!r}")
+    counts = doc.get("counts", [])
+    if not isinstance(counts, list):
+        raise InvalidProblem(f"{source}: 'counts' must be a list, e.g. [\"1=8\", \"0=4..10\"]")
+    fixed = _opt_grid(doc.get("fixed"), "fixed", source, allow_free=True)
+    closest = _opt_grid(doc.get("closest_to"), "closest_to", source, allow_free=False)
+    try:
+        return DappledProblem(
+            rows,
+            cols,
+            n_tiles=n_tiles,
+            conditions=conds,
+            cyclic=cyclic,
+            fixed=fixed,
+            counts=tuple(_count(k, source) for k in counts),
+            closest_to=closest,
+        )
+    except InvalidProblem as exc:
+        raise InvalidProblem(f"{source}: {exc}") from None
+
+
+def _size(doc: dict, source: Any) -> tuple[int, int]:
+    size = doc.get("size")
+    if isinstance(size, str):
+        try:
+            return parse_size(size)
+        except InvalidProblem as exc:
+            raise InvalidProblem(f"{source}: 'size': {exc}") from None
+    if not isinstance(size, dict) or set(size) != {"rows", "cols"}:
+        raise InvalidProblem(f"{source}: 'size' must be {{\"rows\": R, \"cols\": C}} or \"WxH\", got {size!r}")
+    return _int(size["rows"], "size.rows", source), _int(size["cols"], "size.cols", source)
+
+
+def _int(value: Any, name: str, source: Any) -> int:
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise InvalidProblem(f"{source}: {name!r} must be an integer, got {value!r}")
+    return value
+
+
+def _condition(c: Any, i: int, source: Any) -> Condition:
+    try:
+        if isinstance(c, str):
+            return parse_condition(c)
+        if isinstance(c, dict):
+            if not {"axis", "tiles", "limit"} <= set(c) or set(c) - {"axis", "tiles", "limit"}:
+                raise InvalidProblem("expected a string like \"H0=2\" or {\"axis\", \"tiles\", \"limit\"}")
+            tiles = c["tiles"]
+            tiles = [tiles] if isinstance(tiles, int) and not isinstance(tiles, bool) else tiles
+            if not isinstance(tiles, list) or not all(isinstance(t, int) and not isinstance(t, bool) for t in tiles):
+                raise InvalidProblem(f"'tiles' must be a tile number or a list of them, got {c['tiles']!r}")
+            limit = c["limit"]
+            if isinstance(limit, list):
+                limit = _grid(limit, "limit", allow_free=False)
+            elif limit in ("inf", "∞", None):
+                limit = None
+            elif isinstance(limit, bool) or not isinstance(limit, int):
+                raise InvalidProblem(f"'limit' must be an integer, \"inf\" or a grid of integers, got {limit!r}")
+            return Condition(str(c["axis"]), tuple(tiles), limit)
+        raise InvalidProblem(f"expected a string like \"H0=2\", got {c!r}")
+    except InvalidProblem as exc:
+        raise InvalidProblem(f"{source}: conditions[{i}]: {exc}") from None
+
+
+def _count(k: Any, source: Any) -> TileCount:
+    try:
+        if isinstance(k, str):
+            return parse_count(k)
+        if isinstance(k, dict) and "tile" in k and not set(k) - {"tile", "low", "high"}:
+            vals = [k["tile"], k.get("low", 0), k.get("high")]
+            if all((isinstance(v, int) and not isinstance(v, bool)) or (v is None and j == 2) for j, v in enumerate(vals)):
+                return TileCount(*vals)
+        raise InvalidProblem(f"expected a string like \"1=8\" or \"1=4..10\", got {k!r}")
+    except InvalidProblem as exc:
+        raise InvalidProblem(f"{source}: counts: {exc}") from None
+
+
+def _grid(value: Any, what: str, *, allow_free: bool) -> np.ndarray:
+    """A rectangular list of lists of ints as an int64 array (``-1`` allowed if ``allow_free``)."""
+    if not isinstance(value, list) or not value or not all(isinstance(r, list) for r in value):
+        raise InvalidProblem(f"{what!r} must be a non-empty list of rows (lists of tile numbers)")
+    width = len(value[0])
+    for r, row in enumerate(value):
+        if len(row) != width or not row:
+            raise InvalidProblem(f"{what!r}: row {r} has {len(row)} cells, row 0 has {width}")
+        for c, v in enumerate(row):
+            if isinstance(v, bool) or not isinstance(v, int):
+                raise InvalidProblem(f"{what!r}: row {r}, col {c} holds {v!r}, not a tile number")
+            if v < -1 or (v == -1 and not allow_free) or v > 2**31:
+                raise InvalidProblem(f"{what!r}: row {r}, col {c} holds {v}, not a tile number")
+    return np.array(value, dtype=np.int64)
+
+
+def _opt_grid(value: Any, what: str, source: Any, *, allow_free: bool) -> np.ndarray | None:
+    if value is None:
+        return None
+    try:
+        return _grid(value, what, allow_free=allow_free)
+    except InvalidProblem as exc:
+        raise InvalidProblem(f"{source}: {exc}") from None
+
+
+# ----------------------------------------------------------------------------- solutions
+def solution_to_dict(problem: DappledProblem, solution: Solution) -> dict:
+    """The JSON document of a solution, carrying its whole problem (``tilesolve/dappled-solution``)."""
+    doc = problem_to_dict(problem, format=DAPPLED_SOLUTION)
+    doc.update(
+        {
+            "status": solution.status.value,
+            "method": solution.method,
+            "solver": solution.solver,
+            "seed": solution.seed,
+            "time_s": round(float(solution.time_s), 6),
+            "objective": solution.objective,
+            "reason": solution.reason,
+            "notes": list(solution.notes),
+            "stats": dict(solution.stats),
+            "tiling": None if solution.tiling is None else np.asarray(solution.tiling).tolist(),
+        }
+    )
+    return doc
+
+
+def solution_from_dict(doc: dict, source: Any = "<document>") -> tuple[DappledProblem, Solution]:
+    """Rebuild ``(problem, solution)`` from a solution document.
+
+    The tiling is read as written (any rectangular grid of integers): checking it against
+    the problem is the verifier's job, so a corrupted tiling is reported there, with positions.
+    """
+    check_document(doc, source, formats=(DAPPLED_SOLUTION,))
+    problem = problem_from_dict(doc, source)
+    status = doc.get("status")
+    try:
+        status = Status(status)
+    except ValueError:
+        raise InvalidProblem(
+            f"{source}: 'status' must be one of {', '.join(s.value for s in Status)}, got {status!r}"
+        ) from None
+    tiling = _opt_grid(doc.get("tiling"), "tiling", source, allow_free=True)
+    if status.has_tiling and tiling is None:
+        raise InvalidProblem(f"{source}: status is {status.value!r} but the file holds no 'tiling'")
+
+    def opt(name: str, kind: type | tuple, default: Any = None) -> Any:
+        v = doc.get(name, default)
+        if v is not None and (not isinstance(v, kind) or isinstance(v, bool) and kind is not bool):
+            raise InvalidProblem(f"{source}: {name!r} has the wrong type ({type(v).__name__})")
+        return v
+
+    notes = opt("notes", list, [])
+    if not all(isinstance(n, str) for n in notes):
+        raise InvalidProblem(f"{source}: 'notes' must be a list of strings")
+    solution = Solution(
+        status=status,
+        tiling=tiling,
+        method=opt("method", str, "") or "",
+        solver=opt("solver", str),
+        seed=opt("seed", int),
+        time_s=float(opt("time_s", (int, float), 0.0) or 0.0),
+        objective=opt("objective", int),
+        reason=opt("reason", str),
+        notes=tuple(notes),
+        stats=opt("stats", dict, {}) or {},
+    )
+    return problem, solution
+
+
+# ----------------------------------------------------------------------------- files
+def write_problem(path: str | os.PathLike, problem: DappledProblem) -> None:
+    """Write a ``tilesolve/dappled-problem`` file atomically."""
+    write_text_atomic(path, dumps(problem_to_dict(problem)))
+
+
+def write_solution(path: str | os.PathLike, problem: DappledProblem, solution: Solution) -> None:
+    """Write a ``tilesolve/dappled-solution`` file atomically."""
+    write_text_atomic(path, dumps(solution_to_dict(problem, solution)))
+
+
+def read_problem(path: str | os.PathLike) -> DappledProblem:
+    """Read the problem of a problem *or* solution file."""
+    return problem_from_dict(load_document(path, formats=(DAPPLED_PROBLEM, DAPPLED_SOLUTION)), path)
+
+
+def read_solution(path: str | os.PathLike) -> tuple[DappledProblem, Solution]:
+    """Read a solution file as ``(problem, solution)``."""
+    return solution_from_dict(load_document(path, formats=(DAPPLED_SOLUTION,)), path)
+
+
+def read_tiling(path: str | os.PathLike, *, allow_free: bool = False, what: str = "tiling") -> np.ndarray:
+    """Read a tiling from a solution file, a problem file, a JSON grid or a text grid.
+
+    Parameters
+    ----------
+    path : path-like
+        A ``tilesolve/dappled-solution`` file (its ``tiling``), a ``tilesolve/dappled-problem``
+        file (its ``fixed`` cells, when ``allow_free``), a JSON list of rows, or a text grid.
+    allow_free : bool
+        Accept free cells (``?``, ``.`` or ``-1``), returned as ``-1``: a partial tiling.
+    what : str
+        How error messages name the tiling.
+
+    Returns
+    -------
+    numpy.ndarray
+        int64 array ``[row, col]``; tile range and shape are checked by the problem.
+    """
+    text = _read_text(path)
+    stripped = text.lstrip()
+    if stripped.startswith(("{", "[")):
+        doc = _parse_json(text, path)
+        if isinstance(doc, list):
+            return _opt_grid(doc, what, path, allow_free=allow_free)
+        check_document(doc, path, formats=(DAPPLED_PROBLEM, DAPPLED_SOLUTION))
+        if doc["format"] == DAPPLED_SOLUTION:
+            _, sol = solution_from_dict(doc, path)
+            if sol.tiling is None:
+                raise InvalidProblem(f"{path}: this solution (status {sol.status.value}) holds no tiling")
+            if (sol.tiling < 0).any():
+                raise InvalidProblem(f"{path}: 'tiling' has free cells (-1)")
+            return sol.tiling
+        problem = problem_from_dict(doc, path)
+        if allow_free and problem.fixed is not None:
+            return problem.fixed.astype(np.int64)
+        raise InvalidProblem(
+            f"{path}: a problem file holds no {what}; give a solution file or a text grid"
+        )
+    try:
+        return parse_text_grid(text, allow_free=allow_free, what=what)
+    except InvalidProblem as exc:
+        raise InvalidProblem(f"{path}: {exc}") from None
+
+
+_FREE = {"?", ".", "-1"}
+_SPLIT = re.compile(r"[\s,]+")
+
+
+def parse_text_grid(text: str, *, allow_free: bool = False, what: str = "tiling") -> np.ndarray:
+    """Parse a text grid (see the module docstring); free cells become ``-1``.
+
+    >>> parse_text_grid("01?\\n110", allow_free=True).tolist()
+    [[0, 1, -1], [1, 1, 0]]
+    >>> parse_text_grid("10 11\\n0 2").tolist()
+    [[10, 11], [0, 2]]
+    """
+    rows: list[list[int]] = []
+    for lineno, raw in enumerate(text.splitlines(), start=1):
+        line = raw.strip()
+        if not line or line.startswith("#"):
+            continue
+        tokens = [t for t in _SPLIT.split(line) if t] if _SPLIT.search(line) else list(line)
+        row = []
+        for tok in tokens:
+            if tok in _FREE:
+                if not allow_free:
+                    raise InvalidProblem(f"line {lineno}: free cell {tok!r} in a {what}, which must be complete")
+                row.append(-1)
+            elif tok.isdigit() and tok.isascii():
+                row.append(int(tok))
+            else:
+                free = ", '?' or '.' for a free cell" if allow_free else ""
+                raise InvalidProblem(f"line {lineno}: cannot read cell {tok!r}: expected a tile number{free}")
+        if rows and len(row) != len(rows[0]):
+            raise InvalidProblem(f"line {lineno}: row has {len(row)} cells, the first row has {len(rows[0])}")
+        rows.append(row)
+    if not rows:
+        raise InvalidProblem(f"the {what} is empty: expected one row of tile numbers per line")
+    return np.array(rows, dtype=np.int64)
+
+
+def format_text_grid(tiling: np.ndarray) -> str:
+    """The tiling as a text grid: digits when every tile is below 10, else space-separated.
+
+    >>> print(format_text_grid(np.array([[0, 1], [-1, 0]])), end="")
+    01
+    ?0
+    """
+    t = np.asarray(tiling)
+    wide = t.size and int(t.max()) >= 10
+    sym: Callable[[int], str] = lambda v: "?" if v < 0 else str(v)  # noqa: E731
+    sep = " " if wide else ""
+    return "".join(sep.join(sym(int(v)) for v in row) + "\n" for row in t)

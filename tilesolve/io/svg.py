@@ -1,0 +1,239 @@
+"""SVG pictures of tilings (svgwrite).
+
+One coloured square per cell, from a fixed colour-blind-friendly palette (Okabe & Ito), a
+legend (tile -> colour, size, conditions), optional grid lines, and for cyclic tilings an
+optional ``repeat x repeat`` view that shows the seams wrap (a faint dashed line marks each
+copy's border). Horizontal runs of equal tiles are drawn as one rectangle and repeated copies
+are ``<use>`` references, so files stay small; pictures above :data:`MAX_SVG_CELLS` cells are
+refused in favour of PNG (:mod:`tilesolve.io.png`).
+
+Examples
+--------
+>>> import numpy as np
+>>> text = svg_string(np.array([[0, 1, 1], [1, 0, 0]]))
+>>> text.startswith("<svg") and "tile 1" in text
+True
+"""
+
+from __future__ import annotations
+
+import colorsys
+import os
+import textwrap
+from typing import Iterable, Sequence
+
+import numpy as np
+import svgwrite
+
+from tilesolve.errors import InvalidProblem
+from tilesolve.io.atomic import atomic_write
+
+__all__ = ["PALETTE", "FREE_COLOUR", "MAX_SVG_CELLS", "tile_colour", "check_svg_size", "tiling_drawing", "svg_string", "write_svg"]
+
+#: Okabe & Ito's colour-blind-safe palette, reordered so that two tiles get blue/orange.
+PALETTE: tuple[str, ...] = (
+    "#0072B2",  # blue
+    "#E69F00",  # orange
+    "#009E73",  # bluish green
+    "#CC79A7",  # reddish purple
+    "#56B4E9",  # sky blue
+    "#D55E00",  # vermillion
+    "#F0E442",  # yellow
+    "#000000",  # black
+)
+#: Colour of a free cell (``-1``) in a partial tiling.
+FREE_COLOUR = "#F4F4F4"
+#: Largest tiling (cells, before repetition) drawn as SVG; bigger ones belong in a PNG.
+MAX_SVG_CELLS = 250_000
+
+_TARGET_PX = 720  # longest side of the picture, before the legend
+_MAX_CELL_PX = 28
+_FONT_PX = 12
+_CHAR_PX = 6.8  # average advance of a 12 px sans-serif character, for layout estimates
+
+
+def tile_colour(tile: int) -> str:
+    """Colour of ``tile``: the palette first, then well-spread hues (golden-angle steps)."""
+    tile = int(tile)
+    if tile < 0:
+        return FREE_COLOUR
+    if tile < len(PALETTE):
+        return PALETTE[tile]
+    k = tile - len(PALETTE)
+    hue = (0.11 + 0.381966 * k) % 1.0
+    light = (0.45, 0.62, 0.33)[k % 3]
+    r, g, b = colorsys.hls_to_rgb(hue, light, 0.65)
+    return "#{:02X}{:02X}{:02X}".format(round(r * 255), round(g * 255), round(b * 255))
+
+
+def check_svg_size(rows: int, cols: int) -> None:
+    """Raise :class:`InvalidProblem` when a ``rows x cols`` tiling is too large for SVG."""
+    if rows * cols > MAX_SVG_CELLS:
+        raise InvalidProblem(
+            f"a {cols}x{rows} tiling has {rows * cols:,} cells, too many for an SVG "
+            f"(limit {MAX_SVG_CELLS:,}); write a PNG instead (--png)"
+        )
+
+
+def _cell_px(rows: int, cols: int) -> float:
+    return float(max(1, min(_MAX_CELL_PX, _TARGET_PX // max(rows, cols))))
+
+
+def _runs(row: np.ndarray) -> Iterable[tuple[int, int, int]]:
+    """``(start, length, tile)`` for each maximal run of equal values in ``row``."""
+    change = np.flatnonzero(np.diff(row)) + 1
+    starts = np.concatenate(([0], change))
+    ends = np.concatenate((change, [row.size]))
+    return zip(starts.tolist(), (ends - starts).tolist(), row[starts].tolist())
+
+
+def tiling_drawing(
+    tiling,
+    *,
+    problem=None,
+    n_tiles: int | None = None,
+    grid: bool | None = None,
+    repeat: int = 1,
+    cell: float | None = None,
+    legend: bool = True,
+    title: str | None = None,
+    notes: Sequence[str] = (),
+) -> svgwrite.Drawing:
+    """Build the SVG drawing of ``tiling`` (``tiling[row, col]``, row 0 at the top).
+
+    Parameters
+    ----------
+    tiling : array-like of int
+        Tile numbers; ``-1`` marks a free cell (drawn light grey).
+    problem : DappledProblem, optional
+        Supplies the legend's size, tile count and conditions.
+    n_tiles : int, optional
+        Tiles listed in the legend (default: from ``problem``, else ``max(tiling) + 1``).
+    grid : bool, optional
+        Draw cell borders; default: when cells are at least 8 px.
+    repeat : int
+        Show ``repeat x repeat`` copies (for cyclic tilings), with faint seams.
+    cell : float, optional
+        Cell size in px (default: the picture's longest side is about 720 px).
+    legend : bool
+        Add the legend below the picture.
+    title : str, optional
+        Title (tooltip) of the drawing and first legend line.
+    notes : sequence of str
+        Extra legend lines.
+
+    Raises
+    ------
+    InvalidProblem
+        The tiling is not a 2-D integer grid, is too large for SVG, or ``repeat < 1``.
+    """
+    t = np.asarray(tiling)
+    if t.ndim != 2 or t.size == 0 or not np.issubdtype(t.dtype, np.integer):
+        raise InvalidProblem("a picture needs a non-empty 2-D grid of tile numbers")
+    rows, cols = t.shape
+    check_svg_size(rows, cols)
+    repeat = int(repeat)
+    if not 1 <= repeat <= 16:
+        raise InvalidProblem(f"repeat must be between 1 and 16, got {repeat}")
+    if problem is not None and n_tiles is None:
+        n_tiles = problem.n_tiles
+    if n_tiles is None:
+        n_tiles = max(int(t.max()) + 1, 2)
+    px = float(cell) if cell else _cell_px(rows * repeat, cols * repeat)
+    if grid is None:
+        grid = px >= 8
+    margin = 10.0
+    block_w, block_h = cols * px, rows * px
+    pic_w, pic_h = block_w * repeat, block_h * repeat
+
+    # --- legend text, so the drawing can be made wide enough for it
+    lines: list[str] = []
+    if title:
+        lines.append(title)
+    if problem is not None:
+        lines.append(f"{cols}x{rows} grid (W x H), |T| = {problem.n_tiles}" + (", cyclic" if problem.cyclic else ""))
+        conds = ", ".join(str(c) for c in problem.conditions) or "none"
+        lines.extend(textwrap.wrap(f"L = {{{conds}}}", 64, subsequent_indent="    "))
+        if problem.counts:
+            lines.append("counts: " + ", ".join(str(k) for k in problem.counts))
+    else:
+        lines.append(f"{cols}x{rows} grid (W x H)")
+    if repeat > 1:
+        lines.append(f"shown {repeat}x{repeat} (dashed lines: seams)")
+    lines.extend(notes)
+    swatch, item_w = 14.0, 64.0
+    text_w = max((len(s) for s in lines), default=0) * _CHAR_PX
+    width = max(pic_w, text_w, 4 * item_w) if legend else pic_w
+    per_row = max(1, int(width // item_w))
+    shown_tiles = list(range(n_tiles)) + ([-1] if (t < 0).any() else [])
+    swatch_rows = -(-len(shown_tiles) // per_row)
+    legend_h = (swatch_rows * 20 + len(lines) * 16 + 12) if legend else 0
+    total_w, total_h = width + 2 * margin, pic_h + legend_h + 2 * margin
+
+    dwg = svgwrite.Drawing(size=(f"{total_w:g}", f"{total_h:g}"), profile="full", debug=False)
+    dwg.viewbox(0, 0, total_w, total_h)
+    dwg.add(dwg.rect((0, 0), (total_w, total_h), fill="white"))
+    if title:
+        dwg.set_desc(title=title)
+
+    block = dwg.g(id="block", shape_rendering="crispEdges")
+    # The most common tile is one background rectangle; only the other runs are drawn.
+    values, freq = np.unique(t, return_counts=True)
+    background = int(values[np.argmax(freq)])
+    block.add(dwg.rect((0, 0), (f"{block_w:g}", f"{block_h:g}"), fill=tile_colour(background)))
+    by_tile: dict[int, svgwrite.container.Group] = {}
+    for r in range(rows):
+        for start, length, tile in _runs(t[r]):
+            if tile == background:
+                continue
+            g = by_tile.get(tile)
+            if g is None:
+                g = by_tile[tile] = dwg.g(fill=tile_colour(tile))
+            g.add(dwg.rect((f"{start * px:g}", f"{r * px:g}"), (f"{length * px:g}", f"{px:g}")))
+    for tile in sorted(by_tile):
+        block.add(by_tile[tile])
+    if grid:
+        d = [f"M0,{r * px:g}H{block_w:g}" for r in range(rows + 1)]
+        d += [f"M{c * px:g},0V{block_h:g}" for c in range(cols + 1)]
+        block.add(dwg.path(d="".join(d), fill="none", stroke="#333333", stroke_opacity=0.45,
+                           stroke_width=f"{max(0.5, min(1.5, px / 16)):g}"))
+    pic = dwg.g(transform=f"translate({margin:g},{margin:g})")
+    if repeat == 1:
+        pic.add(block)
+    else:
+        dwg.defs.add(block)
+        for i in range(repeat):
+            for j in range(repeat):
+                pic.add(dwg.use("#block", insert=(f"{j * block_w:g}", f"{i * block_h:g}")))
+        seams = [f"M0,{i * block_h:g}H{pic_w:g}" for i in range(1, repeat)]
+        seams += [f"M{j * block_w:g},0V{pic_h:g}" for j in range(1, repeat)]
+        pic.add(dwg.path(d="".join(seams), fill="none", stroke="#000000", stroke_opacity=0.5,
+                         stroke_width="2", stroke_dasharray="6,4"))
+    dwg.add(pic)
+
+    if legend:
+        y = margin + pic_h + 14
+        leg = dwg.g(font_family="sans-serif", font_size=_FONT_PX, fill="#222222")
+        for k, tile in enumerate(shown_tiles):
+            x = margin + (k % per_row) * item_w
+            yy = y + (k // per_row) * 20
+            leg.add(dwg.rect((x, yy), (swatch, swatch), fill=tile_colour(tile), stroke="#555555", stroke_width=0.5))
+            leg.add(dwg.text("free" if tile < 0 else f"tile {tile}", insert=(x + swatch + 5, yy + 11.5)))
+        y += swatch_rows * 20 + 12
+        for line in lines:
+            leg.add(dwg.text(line, insert=(margin, y)))
+            y += 16
+        dwg.add(leg)
+    return dwg
+
+
+def svg_string(tiling, **kwargs) -> str:
+    """The SVG text of :func:`tiling_drawing` (same arguments)."""
+    return tiling_drawing(tiling, **kwargs).tostring()
+
+
+def write_svg(path: str | os.PathLike, tiling, **kwargs) -> None:
+    """Write the SVG picture of ``tiling`` to ``path`` atomically (arguments of :func:`tiling_drawing`)."""
+    dwg = tiling_drawing(tiling, **kwargs)
+    with atomic_write(path, "w") as f:
+        dwg.write(f, pretty=False)
