@@ -90,6 +90,7 @@ def test_backends(tmp_path):
     assert proc.returncode == 0, proc.stdout
     for name in ("cadical153", "rc2", "cp-sat"):
         assert name in proc.stdout
+    assert "Exception" not in proc.stderr
 
 
 # ----------------------------------------------------------------------------- verify
@@ -141,6 +142,8 @@ BAD_INPUTS = {
     "missing size": ["--cond", "H0=2"],
     "output directory missing": ["--size", "4x3", "--cond", "H0=2", "--svg", "nodir/x.svg"],
     "svg too large": ["--size", "1000x1000", "--cond", "H0=2", "--svg", "big.svg"],
+    "png too large": ["--size", "10000x10000", "--cond", "H0=2", "--png", "big.png", "--repeat", "4"],
+    "initial tiling of wrong shape": ["--size", "5x5", "--cond", "H0=2", "--initial", "wrong-shape.txt"],
 }
 
 
@@ -349,3 +352,10 @@ def test_library_error_during_solve_is_one_line(tmp_path, monkeypatch):
     assert result.exit_code == 2
     assert result.output.strip() == "tilesolve: error: the constructive route needs ...; use method 'sat'"
     assert os.listdir(tmp_path) == []
+
+
+def test_split_conditions():
+    from tilesolve.cli.common import split_conditions
+
+    assert split_conditions(["H0=2, V{0, 1}=3 H1=2", "V1=inf"]) == ["H0=2", "V{0, 1}=3", "H1=2", "V1=inf"]
+    assert split_conditions(["H{0,2}=3,V1=2"]) == ["H{0,2}=3", "V1=2"]

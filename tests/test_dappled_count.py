@@ -312,3 +312,105 @@ def test_big_count_is_exact():
     assert n == count_dappled(p, orientation="cols")
     assert n >= 2 ** (6 * 5)
     assert plan_count(p).n_primes >= 2
+
+
+def test_strip_bound_does_not_change_counts(monkeypatch):
+    # The strip bound lowers the number of primes; with it switched off, more primes (and the
+    # cruder single-line bound) must give the very same integers.
+    import tilesolve.constructive.dappled_count as dc
+
+    fixed = np.full((8, 7), -1, dtype=np.int8)
+    fixed[2, 3], fixed[5, 0], fixed[7, 6] = 0, 2, 1
+    probs = [
+        P("10x10", ["H0=2", "V1=2"]),
+        P("7x8", ["H{0,1}=3", "V2=1", "V0=2"], n_tiles=3, fixed=fixed),
+        P("9x7", ["H0=1", "V{1,2}=2"], n_tiles=4),
+    ]
+    with_strips = [count_dappled(p) for p in probs]
+    assert all(plan_count(p).n_primes >= 2 for p in probs)
+    monkeypatch.setattr(dc, "_STRIP_BOUND", False)
+    assert [count_dappled(p) for p in probs] == with_strips
+
+
+@settings(max_examples=80, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(problems(), st.sampled_from([(2, 16), (4, 40), (9, 64), (3, 24)]))
+def test_cache_blocking_paths_match_brute_force(problem, blocking):
+    # Tiny axis groups / scratch blocks drive every gather-scatter branch of the blocked sweep
+    # (several groups, transposing gathers, partial blocks, short and long lanes) on small grids.
+    import tilesolve.constructive.dappled_count as dc
+
+    expected = brute_count(problem)
+    old = dc._GROUP, dc._CHUNK
+    dc._GROUP, dc._CHUNK = blocking
+    try:
+        assert count_dappled(problem, orientation="rows") == expected
+        assert count_dappled(problem, orientation="cols") == expected
+    finally:
+        dc._GROUP, dc._CHUNK = old
+
+
+# ------------------------------------------------------- medium sizes: an independent reference
+def reference_count(problem: DappledProblem) -> int:
+    """Plain row-by-row dictionary DP over whole rows of tiles (no classes, no tensor, no masks).
+
+    State: the previous row's tiles and, per V condition, each column's vertical run length.
+    Every row of tiles is tried and checked from Def. 1.1 directly. Uniform limits only, no wrap.
+    """
+    rows, cols, K = problem.rows, problem.cols, problem.n_tiles
+    hs = [(c.tiles, c.limit) for c in problem.conditions if c.axis == "H" and c.limit is not None]
+    vs = [(c.tiles, c.limit) for c in problem.conditions if c.axis == "V" and c.limit is not None]
+    good_rows = []
+    for row in itertools.product(range(K), repeat=cols):
+        ok = True
+        for tiles, lim in hs:
+            run = 0
+            for t in row:
+                run = run + 1 if t in tiles else 0
+                ok &= run <= lim
+        if ok:
+            good_rows.append(row)
+    states = {tuple((0,) * cols for _ in vs): 1}
+    for r in range(rows):
+        new: dict = {}
+        for runs, cnt in states.items():
+            for row in good_rows:
+                if problem.fixed is not None and any(
+                    f >= 0 and f != t for f, t in zip(problem.fixed[r], row)
+                ):
+                    continue
+                nxt = []
+                ok = True
+                for (tiles, lim), old in zip(vs, runs):
+                    nr = tuple(o + 1 if t in tiles else 0 for o, t in zip(old, row))
+                    ok &= max(nr) <= lim
+                    nxt.append(nr)
+                if ok:
+                    key = tuple(nxt)
+                    new[key] = new.get(key, 0) + cnt
+        states = new
+    return sum(states.values())
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    st.integers(5, 9),
+    st.integers(5, 7),
+    st.sampled_from(
+        [
+            (2, ["H0=2", "V1=2"]),
+            (2, ["H0=1", "V0=3", "H1=3"]),
+            (3, ["H{0,1}=2", "V2=1", "V0=2"]),
+            (3, ["H0=2", "V0=2", "H1=2", "V1=2", "H2=2", "V2=2"]),
+            (4, ["H{0,1}=3", "V{1,2}=2", "H3=1"]),
+        ]
+    ),
+    st.integers(0, 2**32 - 1),
+)
+def test_medium_grids_match_reference(rows, cols, spec, seed):
+    n_tiles, conds = spec
+    if n_tiles ** cols > 5000:
+        cols = 5
+    rng = np.random.default_rng(seed)
+    fixed = np.where(rng.random((rows, cols)) < 0.1, rng.integers(0, n_tiles, (rows, cols)), -1).astype(np.int8)
+    p = P(f"{cols}x{rows}", conds, n_tiles=n_tiles, fixed=fixed if seed % 2 else None)
+    assert count_dappled(p) == reference_count(p)

@@ -119,6 +119,13 @@ def test_solution_round_trip(tmp_path):
     assert jsonio.read_problem(path).describe() == p.describe()
 
 
+@pytest.mark.parametrize("low, high", [(0, 2), (0, 10), (-1, 3), (0, 130)])
+def test_dumps_writes_numpy_grids_like_lists(low, high):
+    t = np.random.default_rng(1).integers(low, high, (6, 9))
+    doc = json.loads(jsonio.dumps({"tiling": t, "nested": [t], "empty": np.zeros((0, 0), int)}))
+    assert doc == {"tiling": t.tolist(), "nested": [t.tolist()], "empty": []}
+
+
 def test_unsat_solution_without_tiling(tmp_path):
     path = tmp_path / "u.json"
     jsonio.write_solution(path, _problem(), Solution(Status.UNSAT, None, method="sat", reason="refuted"))
@@ -240,6 +247,13 @@ def test_svg_is_valid_xml_with_legend():
     assert "sat by test" in texts
     fills = {e.get("fill") for e in root.iter() if e.get("fill")}
     assert {PALETTE[0], PALETTE[1]} <= fills
+
+
+def test_svg_legend_shows_per_cell_ranges():
+    lim = np.array([[2, 3, 0, 5]] * 3, dtype=np.int32)
+    p = DappledProblem(3, 4, conditions=(Condition("H", (0,), lim), parse_condition("V1=2")))
+    texts = [t.text for t in _parse(svg_string(TILING, problem=p)).iter(SVG_NS + "text")]
+    assert any("H0=2..5 per cell, V1=2" in t for t in texts)
 
 
 def test_svg_cells_are_drawn_exactly():

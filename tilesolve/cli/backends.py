@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import gc
+import sys
 from dataclasses import dataclass
 from importlib import metadata
 from typing import Callable
@@ -10,7 +12,7 @@ import click
 
 from tilesolve.cli import options as opt
 
-__all__ = ["backends", "BACKENDS", "Backend", "probe"]
+__all__ = ["backends", "OTHER_BACKENDS", "Backend", "probe", "sat_backends"]
 
 
 def _dist_version(name: str) -> str:
@@ -18,17 +20,6 @@ def _dist_version(name: str) -> str:
         return metadata.version(name)
     except metadata.PackageNotFoundError:
         return "?"
-
-
-def _pysat_solver(name: str) -> Callable[[], str]:
-    def check() -> str:
-        from pysat.solvers import Solver
-
-        with Solver(name=name, bootstrap_with=[[1, 2]]) as s:
-            s.solve()
-        return f"python-sat {_dist_version('python-sat')}"
-
-    return check
 
 
 def _rc2() -> str:
@@ -64,18 +55,34 @@ class Backend:
     optional: bool = False
 
 
-#: Backends in order of preference within each kind; the first of a kind is the default.
-BACKENDS: tuple[Backend, ...] = (
-    Backend("cadical195", "SAT", "--method sat", _pysat_solver("cadical195")),
-    Backend("cadical153", "SAT", "--method sat", _pysat_solver("cadical153")),
-    Backend("glucose4", "SAT", "--method sat", _pysat_solver("glucose4")),
-    Backend("minisat22", "SAT", "--method sat", _pysat_solver("minisat22")),
-    Backend("lingeling", "SAT", "--method sat", _pysat_solver("lingeling")),
+#: Backends besides the PySAT SAT solvers (which are listed from :mod:`tilesolve.engine.sat`).
+OTHER_BACKENDS: tuple[Backend, ...] = (
     Backend("rc2", "MaxSAT", "--method maxsat, --closest-to", _rc2),
     Backend("cp-sat", "CP", "--method cpsat", _cpsat),
     Backend("numba", "JIT", "--method constructive (compiled loops)", _numba),
     Backend("moderngl", "GPU", "tilesolve.gpu (pip install 'tilesolve[gpu]')", _moderngl, optional=True),
 )
+
+
+def sat_backends() -> list[tuple[str, bool, str]]:
+    """``(name, installed, notes)`` for every SAT solver PySAT knows."""
+    from pysat.solvers import SolverNames
+
+    from tilesolve.engine.sat import DEFAULT_SAT_SOLVER, proof_solvers, sat_solvers
+
+    # Probing a solver that lacks an option makes PySAT's half-built object complain from
+    # __del__ ("Exception ignored in ..."); that noise says nothing about the backend.
+    hook, sys.unraisablehook = sys.unraisablehook, lambda unraisable: None
+    try:
+        usable, proofs = set(sat_solvers()), set(proof_solvers())
+        gc.collect()
+    finally:
+        sys.unraisablehook = hook
+    out = []
+    for name in (n for n in vars(SolverNames) if not n.startswith("_")):
+        notes = [w for w, ok in (("default", name == DEFAULT_SAT_SOLVER), ("DRAT proofs", name in proofs)) if ok]
+        out.append((name, name in usable, ", ".join(["--method sat"] + notes)))
+    return out
 
 
 def probe(backend: Backend) -> tuple[bool, str]:
@@ -96,11 +103,15 @@ def backends(ctx) -> None:
     Example:
       tilesolve backends
 
-    Exit 0 when every required backend works, 1 when one is missing.
+    Exit 0 when every required backend works (at least one SAT solver), 1 otherwise.
     """
     rows = []
-    missing_required = False
-    for b in BACKENDS:
+    pysat = f"python-sat {_dist_version('python-sat')}"
+    sat = sat_backends()
+    for name, ok, used_by in sat:
+        rows.append((name, "SAT", "yes" if ok else "no", pysat if ok else "not in this python-sat build", used_by))
+    missing_required = not any(ok for _, ok, _ in sat)
+    for b in OTHER_BACKENDS:
         ok, info = probe(b)
         missing_required |= not ok and not b.optional
         status = "yes" if ok else ("no (optional)" if b.optional else "NO")

@@ -22,7 +22,9 @@ def dappled() -> None:
     """
 
 
-def _outputs_ok(problem, output, svg, png) -> None:
+def _outputs_ok(problem, output, svg, png, repeat) -> None:
+    """Refuse impossible outputs before any solving."""
+    from tilesolve.io.png import MAX_PNG_PIXELS
     from tilesolve.io.svg import check_svg_size
 
     for p in (output, svg, png):
@@ -30,9 +32,11 @@ def _outputs_ok(problem, output, svg, png) -> None:
     check_distinct(output, svg, png)
     if svg:
         check_svg_size(problem.rows, problem.cols)
+    if png and problem.size * repeat * repeat > MAX_PNG_PIXELS:
+        raise InvalidProblem(f"a {repeat}x{repeat} repeat of this grid is larger than the {MAX_PNG_PIXELS:,} px PNG limit")
 
 
-def _summary(problem, sol, written: list[str]) -> None:
+def _summary(problem, sol, written: list[str], extra: list[str]) -> None:
     head = f"{sol.status.value}: {problem.describe()}"
     say(head)
     parts = [f"method {sol.method or '?'}"]
@@ -50,6 +54,8 @@ def _summary(problem, sol, written: list[str]) -> None:
         say(f"  note: {note}")
     for k, v in sol.stats.items():
         say(f"  {k}: {v}", level=1)
+    for line in extra:
+        say(f"  {line}")
     if written:
         say("  wrote " + ", ".join(written))
 
@@ -79,7 +85,7 @@ def solve(ctx, method, seed, time_limit, initial, output, svg, png, repeat, grid
     from tilesolve.io.jsonio import dumps, format_text_grid, read_tiling, solution_to_dict, write_solution
 
     problem = build_problem(**problem_kw)
-    _outputs_ok(problem, output, svg, png)
+    _outputs_ok(problem, output, svg, png, repeat)
     init = read_tiling(initial, what="initial tiling") if initial else None
     if init is not None:
         if init.shape != problem.shape:
@@ -88,8 +94,9 @@ def solve(ctx, method, seed, time_limit, initial, output, svg, png, repeat, grid
             )
         if (init >= problem.n_tiles).any():
             raise InvalidProblem(f"{initial}: initial tiling uses tile {int(init.max())}; tiles are 0..{problem.n_tiles - 1}")
+    extra: list[str] = []
     if repeat > 1 and not problem.cyclic:
-        say("  note: --repeat shows copies side by side; without --cyclic the seams may break the conditions")
+        extra.append("note: --repeat draws copies side by side; without --cyclic the seams may break the conditions")
     if seed is None:
         seed = secrets.randbelow(2**31)  # recorded in the output, so every run can be repeated
 
@@ -97,7 +104,7 @@ def solve(ctx, method, seed, time_limit, initial, output, svg, png, repeat, grid
 
     written: list[str] = []
     if output == "-":
-        click.echo(dumps(solution_to_dict(problem, sol)), nl=False)
+        click.echo(dumps(solution_to_dict(problem, sol, arrays=True)), nl=False)
     elif output:
         write_solution(output, problem, sol)
         written.append(output)
@@ -118,8 +125,8 @@ def solve(ctx, method, seed, time_limit, initial, output, svg, png, repeat, grid
         if not (output or svg or png):
             click.echo(format_text_grid(sol.tiling), nl=False)
     elif svg or png:
-        say(f"  no picture: status {sol.status.value}, no tiling")
-    _summary(problem, sol, written)
+        extra.append(f"no picture: status {sol.status.value}, no tiling")
+    _summary(problem, sol, written, extra)
     ctx.exit(sol.status.exit_code)
 
 

@@ -81,7 +81,7 @@ def nonuniform(out: Path, seed: int, time_limit: float) -> DemoResult:
     """
     from tilesolve.model.dappled import Condition, DappledProblem
 
-    rows, m = 24, 40
+    rows, m = 30, 60
     i = np.arange(m)
     left = np.array([math.ceil((k + 1) / 5) + 1 for k in i], dtype=np.int32)
     right = np.array([math.ceil((m - k) / 5) + 1 for k in i], dtype=np.int32)

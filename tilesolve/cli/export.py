@@ -44,6 +44,6 @@ def dimacs(output: str, **problem_kw) -> None:
     from tilesolve.io.dimacs import write_dimacs
 
     enc = encode_wcnf(problem) if weighted else encode_cnf(problem)
-    write_dimacs(output, enc)
+    write_dimacs(enc, output)
     soft = f", {len(enc.soft)} soft" if enc.soft is not None else ""
     say(f"wrote {output}: {problem.describe()}; {enc.n_vars} variables, {len(enc.hard)} hard clauses{soft}")

@@ -211,7 +211,7 @@ class DappledEncoding:
         """Comment lines describing the problem and the variable numbering (DIMACS header)."""
         p = self.problem
         lines = [
-            "tilesolve dappled tiling encoding (Kaji, Derouet-Jourdan, Ochiai 2016, §6 item 8)",
+            "tilesolve dappled tiling encoding (Kaji, Derouet-Jourdan, Ochiai 2016, section 6 item 8)",
             f"problem: {p.describe()}",
             "cells are (row, col), row 0 at the top",
         ]

@@ -171,14 +171,32 @@ def dumps(doc: Any) -> str:
 
 def _dump(obj: Any, level: int) -> str:
     pad, inner = "  " * level, "  " * (level + 1)
+    if isinstance(obj, np.ndarray):  # a 2-D integer grid (see _plain)
+        if obj.size == 0:
+            return json.dumps(obj.tolist())
+        rows = _grid_rows(obj)
+        return "[\n" + ",\n".join(inner + r for r in rows) + "\n" + pad + "]"
     if isinstance(obj, dict):
         if not obj:
             return "{}"
         items = [f"{inner}{json.dumps(str(k))}: {_dump(v, level + 1)}" for k, v in obj.items()]
         return "{\n" + ",\n".join(items) + "\n" + pad + "}"
-    if isinstance(obj, list) and obj and any(isinstance(v, (dict, list)) for v in obj):
+    if isinstance(obj, list) and obj and any(isinstance(v, (dict, list, np.ndarray)) for v in obj):
         return "[\n" + ",\n".join(inner + _dump(v, level + 1) for v in obj) + "\n" + pad + "]"
+    if isinstance(obj, list) and all(type(v) is int for v in obj):  # fast path for grid rows
+        return "[" + ", ".join(map(str, obj)) + "]"
     return json.dumps(obj, separators=(", ", ": "), ensure_ascii=False, allow_nan=False)
+
+
+def _grid_rows(a: np.ndarray) -> list[str]:
+    """``"[0, 1, 1]"`` for each row; single-digit grids are formatted by numpy in bulk."""
+    if a.min() >= 0 and a.max() <= 9:
+        cells = np.empty((a.shape[0], a.shape[1], 3), dtype=np.uint8)
+        cells[:, :, 0] = a.astype(np.uint8) + ord("0")
+        cells[:, :, 1], cells[:, :, 2] = ord(","), ord(" ")
+        text = cells.reshape(a.shape[0], -1)[:, :-2]
+        return ["[" + line.decode("ascii") + "]" for line in map(bytes, text)]
+    return ["[" + ", ".join(map(str, row)) + "]" for row in a.tolist()]
 
 
 def _plain(obj: Any) -> Any:
@@ -186,9 +204,11 @@ def _plain(obj: Any) -> Any:
     if isinstance(obj, dict):
         return {str(k): _plain(v) for k, v in obj.items()}
     if isinstance(obj, (list, tuple)):
+        if all(type(v) is int for v in obj):  # fast path for grid rows
+            return obj if isinstance(obj, list) else list(obj)
         return [_plain(v) for v in obj]
     if isinstance(obj, np.ndarray):
-        return obj.tolist()
+        return obj if obj.ndim == 2 and np.issubdtype(obj.dtype, np.integer) else obj.tolist()
     if isinstance(obj, np.generic):
         return obj.item()
     if isinstance(obj, Status):
@@ -209,8 +229,12 @@ def _condition_to_json(cond: Condition) -> Any:
     return {"axis": cond.axis, "tiles": list(cond.tiles), "limit": cond.limit.tolist()}
 
 
-def problem_to_dict(problem: DappledProblem, *, format: str = DAPPLED_PROBLEM) -> dict:
-    """The JSON document of ``problem`` (format ``tilesolve/dappled-problem``, version 1)."""
+def problem_to_dict(problem: DappledProblem, *, format: str = DAPPLED_PROBLEM, arrays: bool = False) -> dict:
+    """The JSON document of ``problem`` (format ``tilesolve/dappled-problem``, version 1).
+
+    With ``arrays=True`` grids stay numpy arrays (for :func:`dumps`, which writes them fast).
+    """
+    grid = (lambda a: a) if arrays else (lambda a: a.tolist())  # noqa: E731
     from tilesolve import __version__
 
     doc: dict[str, Any] = {
@@ -223,11 +247,11 @@ def problem_to_dict(problem: DappledProblem, *, format: str = DAPPLED_PROBLEM) -
         "cyclic": problem.cyclic,
     }
     if problem.fixed is not None:
-        doc["fixed"] = problem.fixed.tolist()
+        doc["fixed"] = grid(problem.fixed)
     if problem.counts:
         doc["counts"] = [str(k) for k in problem.counts]
     if problem.closest_to is not None:
-        doc["closest_to"] = problem.closest_to.tolist()
+        doc["closest_to"] = grid(problem.closest_to)
     return doc
 
 
@@ -354,9 +378,13 @@ def _opt_grid(value: Any, what: str, source: Any, *, allow_free: bool) -> np.nda
 
 
 # ----------------------------------------------------------------------------- solutions
-def solution_to_dict(problem: DappledProblem, solution: Solution) -> dict:
-    """The JSON document of a solution, carrying its whole problem (``tilesolve/dappled-solution``)."""
-    doc = problem_to_dict(problem, format=DAPPLED_SOLUTION)
+def solution_to_dict(problem: DappledProblem, solution: Solution, *, arrays: bool = False) -> dict:
+    """The JSON document of a solution, carrying its whole problem (``tilesolve/dappled-solution``).
+
+    With ``arrays=True`` grids stay numpy arrays (for :func:`dumps`, which writes them fast).
+    """
+    doc = problem_to_dict(problem, format=DAPPLED_SOLUTION, arrays=arrays)
+    tiling = None if solution.tiling is None else np.asarray(solution.tiling)
     doc.update(
         {
             "status": solution.status.value,
@@ -368,7 +396,7 @@ def solution_to_dict(problem: DappledProblem, solution: Solution) -> dict:
             "reason": solution.reason,
             "notes": list(solution.notes),
             "stats": dict(solution.stats),
-            "tiling": None if solution.tiling is None else np.asarray(solution.tiling).tolist(),
+            "tiling": tiling if arrays or tiling is None else tiling.tolist(),
         }
     )
     return doc
@@ -420,12 +448,12 @@ def solution_from_dict(doc: dict, source: Any = "<document>") -> tuple[DappledPr
 # ----------------------------------------------------------------------------- files
 def write_problem(path: str | os.PathLike, problem: DappledProblem) -> None:
     """Write a ``tilesolve/dappled-problem`` file atomically."""
-    write_text_atomic(path, dumps(problem_to_dict(problem)))
+    write_text_atomic(path, dumps(problem_to_dict(problem, arrays=True)))
 
 
 def write_solution(path: str | os.PathLike, problem: DappledProblem, solution: Solution) -> None:
     """Write a ``tilesolve/dappled-solution`` file atomically."""
-    write_text_atomic(path, dumps(solution_to_dict(problem, solution)))
+    write_text_atomic(path, dumps(solution_to_dict(problem, solution, arrays=True)))
 
 
 def read_problem(path: str | os.PathLike) -> DappledProblem:

@@ -75,6 +75,18 @@ def check_svg_size(rows: int, cols: int) -> None:
         )
 
 
+def _condition_label(cond) -> str:
+    """``H0=2``, or ``H0=2..9 per cell`` for per-cell limits (0 = no limit is skipped)."""
+    text = str(cond)
+    if cond.is_uniform:
+        return text
+    finite = cond.limit[cond.limit > 0]
+    if finite.size == 0:
+        return text.replace("per-cell", "inf")
+    lo, hi = int(finite.min()), int(finite.max())
+    return text.replace("per-cell", f"{lo}..{hi} per cell" if lo != hi else f"{lo} per cell")
+
+
 def _cell_px(rows: int, cols: int) -> float:
     return float(max(1, min(_MAX_CELL_PX, _TARGET_PX // max(rows, cols))))
 
@@ -152,7 +164,7 @@ def tiling_drawing(
         lines.append(title)
     if problem is not None:
         lines.append(f"{cols}x{rows} grid (W x H), |T| = {problem.n_tiles}" + (", cyclic" if problem.cyclic else ""))
-        conds = ", ".join(str(c) for c in problem.conditions) or "none"
+        conds = ", ".join(_condition_label(c) for c in problem.conditions) or "none"
         lines.extend(textwrap.wrap(f"L = {{{conds}}}", 64, subsequent_indent="    "))
         if problem.counts:
             lines.append("counts: " + ", ".join(str(k) for k in problem.counts))
