@@ -98,7 +98,7 @@ def closest(out: Path, seed: int, time_limit: float) -> DemoResult:
     from tilesolve.io.svg import write_svg
     from tilesolve.model.dappled import DappledProblem
 
-    n = 14
+    n = 24
     yy, xx = np.mgrid[0:n, 0:n]
     target = (((yy - (n - 1) / 2) ** 2 + (xx - (n - 1) / 2) ** 2) <= (n * 0.36) ** 2).astype(np.int8)
     p = DappledProblem.from_strings(f"{n}x{n}", ["H0=3", "V0=3", "H1=3", "V1=3"], closest_to=target)

@@ -108,7 +108,8 @@ def _cyc_limit(lim, pos, last, strengthen, init_run):  # pragma: no cover - comp
 
 
 @njit(cache=True, nogil=True)
-def _violate_cyc(g, t, h, v, r, c, p, q, r0, c0, strengthen):  # pragma: no cover - compiled
+def _violate_cyc(g, t, h, v, r, c, p, q, strengthen):  # pragma: no cover - compiled
+    """ViolateCyc(g, [r, c]) for tile ``t`` with non-wrapping runs ``h`` (left), ``v`` (up)."""
     R, C = g.shape
     kh = 0
     if c == C - 1 and p[t] != 0:
@@ -178,11 +179,11 @@ def cyclic_kernel(g, p, q, r0, c0, strengthen, col_order, recheck):  # pragma: n
                 x = d - y
                 t = g[y, x]
                 h, v = _runs(g, Hr, Vr, k1, y, x, t)
-                if y >= r0 and x >= c0 and _violate_cyc(g, t, h, v, y, x, p, q, r0, c0, strengthen):
+                if y >= r0 and x >= c0 and _violate_cyc(g, t, h, v, y, x, p, q, strengthen):
                     t = 1 - t
                     g[y, x] = t
                     h, v = _runs(g, Hr, Vr, k1, y, x, t)
-                    if _violate_cyc(g, t, h, v, y, x, p, q, r0, c0, strengthen):
+                    if _violate_cyc(g, t, h, v, y, x, p, q, strengthen):
                         if y == 0 or x == 0 or (g[y, x - 1] == g[y - 1, x - 1] and x - 1 < c0) or (
                             g[y - 1, x] == g[y - 1, x - 1] and y - 1 < r0
                         ):

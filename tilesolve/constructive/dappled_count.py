@@ -21,13 +21,17 @@ number of column states) per column, ``s ** cols`` entries. Going to the next ro
 independent per-column transitions, applied as one linear pass per axis (tensor-product transform,
 ``cols * s ** cols`` additions per row); fixed cells and per-cell ``V`` limits just change the
 per-axis map. A mask then zeroes the profiles whose row of classes breaks an ``H`` condition
-(per-cell ``H`` limits give one mask per row; cyclic rows are checked around the wrap).
+(per-cell ``H`` limits give one mask per row; cyclic rows are checked around the wrap). The
+passes run in place on one tensor, grouped so that each group of axes is applied to
+cache-sized blocks gathered into scratch buffers (a row costs two or three sweeps over memory).
 
 *Exact integers.* The programme runs modulo several primes just below ``2**62`` (numba, int64;
 every transition weight is a small class size), and the residues are combined by the Chinese
 remainder theorem. The number of primes comes from a rigorous bound: the count is at most the
 product over rows of the number of admissible single rows (and likewise for columns), each
-computed exactly by a one-dimensional programme.
+computed exactly by a one-dimensional programme, and, when that needs several primes, at most
+the product of the exact counts of three horizontal strips (restricting a solution to a strip
+gives a solution of the strip).
 
 The sweep direction is chosen automatically: transposing a problem swaps rows and columns and
 turns ``H`` conditions into ``V`` ones, and the orientation with the smaller tensor wins.
@@ -45,6 +49,7 @@ whose conditions all lie along one axis are supported). Problems whose tensor wo
 from __future__ import annotations
 
 import math
+import sys
 from collections import defaultdict
 from dataclasses import dataclass
 from functools import lru_cache
@@ -373,11 +378,10 @@ class CountPlan:
 def _tensor_size(fr: _Frame) -> tuple[_Automaton, int, int, int]:
     aut = _column_automaton(fr)
     n = aut.s ** fr.cols
-    pat_bytes = 0
-    if fr.H and len({b"".join(c.limit[r].tobytes() for c in fr.H) for r in range(fr.rows)}) > 1:
-        pat_bytes = 4 if fr.K**fr.cols < 2**31 else 8
-    # one int64 tensor + uint8 mask (+ class-pattern index for per-row masks) + row-validity tables
-    mem = n * (8 + (1 if fr.H else 0) + pat_bytes) + (fr.K**fr.cols if fr.H else 0)
+    n_rows = len({b"".join(c.limit[r].tobytes() for c in fr.H) for r in range(fr.rows)}) if fr.H else 0
+    pat_bytes = (4 if fr.K**fr.cols < 2**31 else 8) if n_rows > 1 else 0
+    # one int64 tensor + uint8 mask (+ class-pattern index when rows differ) + row-validity tables
+    mem = n * (8 + (1 if fr.H else 0) + pat_bytes) + n_rows * fr.K**fr.cols + 32 * _CHUNK
     nnz = int((aut.trans >= 0).sum()) / max(1, aut.trans.shape[0])
     ops = int(fr.rows * fr.cols * n * max(1.0, nnz / max(aut.s, 1)))
     return aut, n, mem, ops
@@ -611,14 +615,7 @@ def _sweep_row(t, s, bounds, map_ids, indptr, indices, weights, p, mask, use_mas
             for b0 in range(0, post, bw):
                 nb_ = min(bw, post - b0)
                 ln = na * nb_
-                if nb_ == 1:
-                    _gather_t(t, sc1, a0 * S * post + b0, na, S, post)
-                else:
-                    for qa in range(na):
-                        for i in range(S):
-                            off = ((a0 + qa) * S + i) * post + b0
-                            d = (i * na + qa) * nb_
-                            sc1[d : d + nb_] = t[off : off + nb_]
+                _gather(t, sc1, a0 * S * post + b0, na, S, post, nb_)
                 src = sc1
                 dst = sc2
                 ppre = 1
@@ -629,49 +626,49 @@ def _sweep_row(t, s, bounds, map_ids, indptr, indices, weights, p, mask, use_mas
                     _axis_pass(src, dst, ppre, s, ppost, indptr[m], indices[m], weights[m], p)
                     src, dst = dst, src
                     ppre *= s
-                if nb_ == 1:
-                    _scatter_t(src, t, a0 * S * post + b0, na, S, post, mask, masked)
-                else:
-                    for qa in range(na):
-                        for i in range(S):
-                            off = ((a0 + qa) * S + i) * post + b0
-                            d = (i * na + qa) * nb_
-                            if masked:
-                                tt = t[off : off + nb_]
-                                ss = src[d : d + nb_]
-                                mm = mask[off : off + nb_]
-                                for q in range(nb_):
-                                    tt[q] = ss[q] if mm[q] else 0
-                            else:
-                                t[off : off + nb_] = src[d : d + nb_]
+                _scatter(src, t, a0 * S * post + b0, na, S, post, nb_, mask, masked)
 
 
 @nb.njit(cache=True)
-def _gather_t(t, sc, start, na, S, post):
-    """sc[i * na + q] = t[start + (q * S + i) * post] (transposing gather, unsigned indices)."""
+def _gather(t, sc, start, na, S, post, nb):
+    """sc[(i * na + q) * nb + b] = t[start + (q * S + i) * post + b]: copy a (na, S, nb) block of
+    the tensor into scratch as (S, na, nb). Unsigned indices let LLVM drop negative-index checks."""
     start = np.uint64(start)
     na = np.uint64(na)
     S = np.uint64(S)
     post = np.uint64(post)
-    for i in range(S):
+    nb = np.uint64(nb)
+    if nb == 1:
+        for i in range(S):
+            for q in range(na):
+                sc[i * na + q] = t[start + (q * S + i) * post]
+    else:
         for q in range(na):
-            sc[i * na + q] = t[start + (q * S + i) * post]
+            for i in range(S):
+                src = start + (q * S + i) * post
+                dst = (i * na + q) * nb
+                for b in range(nb):
+                    sc[dst + b] = t[src + b]
 
 
 @nb.njit(cache=True)
-def _scatter_t(sc, t, start, na, S, post, mask, masked):
-    """Inverse of :func:`_gather_t`, zeroing masked-out entries when ``masked``."""
+def _scatter(sc, t, start, na, S, post, nb, mask, masked):
+    """Inverse of :func:`_gather`, zeroing the entries whose mask is 0 when ``masked``."""
     start = np.uint64(start)
     na = np.uint64(na)
     S = np.uint64(S)
     post = np.uint64(post)
+    nb = np.uint64(nb)
     for q in range(na):
         for i in range(S):
-            k = start + (q * S + i) * post
-            v = sc[i * na + q]
-            if masked and not mask[k]:
-                v = 0
-            t[k] = v
+            dst = start + (q * S + i) * post
+            src = (i * na + q) * nb
+            if masked:
+                for b in range(nb):
+                    t[dst + b] = sc[src + b] if mask[dst + b] else 0
+            else:
+                for b in range(nb):
+                    t[dst + b] = sc[src + b]
 
 
 @nb.njit(cache=True)
@@ -806,8 +803,9 @@ def count_dappled(
         Any number of tiles; conditions on single tiles or subsets (§6 item 2), uniform or
         per-cell (§3.1) limits; fixed cells (partial tiling, §6 item 7); cyclic problems (§3.2)
         when all their conditions lie along one axis.
-    progress : callable, optional
-        Called as ``progress(done, total)`` after each row of each residue computation.
+    progress : callable or bool, optional
+        Called as ``progress(done, total)`` after each row of each residue computation;
+        ``True`` prints a progress line on stderr, ``False``/``None`` stays silent.
     max_memory : int
         Refuse (before allocating) when the estimated working memory exceeds this many bytes.
     orientation : {None, 'rows', 'cols'}
@@ -831,6 +829,10 @@ def count_dappled(
     >>> count_dappled(DappledProblem.from_strings("3x3", ["H0=2", "V1=2"]))  # OEIS A206994: T(3,3)
     174
     """
+    if progress is True:
+        progress = _stderr_progress
+    elif not progress:
+        progress = None
     plan, fr, aut, bound = _plan(problem, orientation, max_memory)
     if plan.route in ("trivial", "lines"):
         if progress is not None:
@@ -851,6 +853,11 @@ def count_dappled(
     if _STRIP_BOUND and n_primes >= 2 and fr.rows >= 3:
         n_primes = min(n_primes, _n_primes(min(bound, _strip_bound(fr))))
     return _transfer_count(fr, aut, n_primes, progress)
+
+
+def _stderr_progress(done: int, total: int) -> None:
+    sys.stderr.write(f"\rcounting: {done}/{total} row sweeps" + ("\n" if done == total else ""))
+    sys.stderr.flush()
 
 
 def _sub_frame(fr: _Frame, r0: int, r1: int) -> _Frame:

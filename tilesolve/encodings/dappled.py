@@ -105,8 +105,10 @@ class DappledEncoding:
         For :func:`encode_wcnf`: one literal per soft unit clause (weight 1 each), true
         when a cell keeps its target tile. ``None`` for a plain CNF encoding.
     pool : pysat.formula.IDPool
-        Pool of the auxiliary variables (keys such as ``("count", tile, i)`` are not
-        assigned; :meth:`describe_var` reports pool ranges by count constraint).
+        Pool of the auxiliary variables of the cardinality encodings (it starts after
+        the grid block).
+    aux_ranges : list of (int, int, str)
+        Auxiliary variable ranges and what they encode (:meth:`describe_var`, DIMACS header).
 
     Examples
     --------
@@ -168,7 +170,6 @@ class DappledEncoding:
         in no clause) count as false.
         """
         val = self.values(model)
-        p = self.problem
         gv = self.grid_vars()
         if not self.one_hot:
             return val[gv].astype(np.int8)
@@ -485,10 +486,8 @@ def naive_clauses(problem: DappledProblem) -> list[list[int]]:
             continue
         lim = cond.limit
         inside = set(cond.tiles)
-        if inside == {0, 1}:
-            clauses.append([])
-            continue
         sign = 1 if 0 in inside else -1  # "cell outside tau" literal
+        everything = inside == {0, 1}  # no cell is outside tau: every window is an empty clause
         n_line, n_along = (p.rows, p.cols) if cond.axis == "H" else (p.cols, p.rows)
         for a in range(n_line):
             seen = set()
@@ -500,7 +499,9 @@ def naive_clauses(problem: DappledProblem) -> list[list[int]]:
                 if key in seen:
                     continue
                 seen.add(key)
-                if cond.axis == "H":
+                if everything:
+                    clauses.append([])
+                elif cond.axis == "H":
                     clauses.append([sign * var(a, j) for j in cells])
                 else:
                     clauses.append([sign * var(j, a) for j in cells])
@@ -575,7 +576,7 @@ def build_cpsat(problem: DappledProblem) -> CpSatDappled:
         fixed=problem.fixed,
     )
     enc = encode_cnf(p_nocount)
-    enc.problem = problem
+    enc.problem = problem  # same grid and variables; decode/encode_tiling need only those
     model = cp_model.CpModel()
     xs = [model.new_bool_var(f"v{v}") for v in range(1, enc.n_grid_vars + 1)]
     neg = [x.Not() for x in xs]

@@ -9,7 +9,7 @@ from __future__ import annotations
 import time
 from typing import Sequence
 
-from tilesolve.engine.result import Result
+from tilesolve.engine.result import Deadline, Result, run_interruptible
 from tilesolve.errors import BackendUnavailable, InvalidProblem
 from tilesolve.model.solution import Status
 
@@ -88,11 +88,14 @@ def solve_cp_model(
             prm.subsolvers.append("default_lp")
             for extra in ("no_lp", "max_lp", "quick_restart", "pseudo_costs")[: max(0, num_workers - 2)]:
                 prm.subsolvers.append(extra)
+    # CP-SAT's own SIGINT handling leaves SIGINT at its default action after the solve
+    # (the next Ctrl-C kills Python; ortools 9.15): keep Python's handler and stop the
+    # search ourselves instead.
+    prm.catch_sigint_signal = False
     reason = None
-    try:
-        status = solver.solve(model)
-    except KeyboardInterrupt:
-        status, reason = cp_model.UNKNOWN, "interrupted (Ctrl-C)"
+    status, stop = run_interruptible(lambda: solver.solve(model), solver.stop_search, Deadline(None))
+    if stop == "interrupted":
+        reason = "interrupted (Ctrl-C)"
     rt = time.perf_counter() - t0
     stats = {
         "wall_s": solver.wall_time,

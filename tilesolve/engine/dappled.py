@@ -19,6 +19,7 @@ function                   question
 
 from __future__ import annotations
 
+import dataclasses
 import time
 from dataclasses import dataclass
 from typing import Callable, Iterator
@@ -167,8 +168,9 @@ def solve_sat(
 #: (benchmarks/bench_closest.py).
 MAXSAT_METHODS = ("auto", "rc2", "lazy")
 
-#: Grids with at least this many cells use the lazy decomposition under method="auto".
-LAZY_MIN_CELLS = 1 << 30
+#: Grids with at least this many cells use the lazy decomposition under method="auto"
+#: (with clauses over grid variables only); smaller ones one RC2 run (bench_closest.py).
+LAZY_MIN_CELLS = 10_000
 
 
 def solve_maxsat(
@@ -240,7 +242,7 @@ def solve_maxsat(
     if r.status is Status.UNSAT:
         # Certify infeasibility with a proof-logging SAT run on the same hard clauses.
         rem = deadline.remaining()
-        sat = solve_sat(problem, time_limit=rem, seed=seed)
+        sat = solve_sat(dataclasses.replace(problem, closest_to=None), time_limit=rem, seed=seed)
         if sat.status is Status.UNSAT:
             return sat.replace(method="maxsat", time_s=time.perf_counter() - t0,
                                stats={**stats, **sat.stats}).with_note(f"{r.solver} found the hard clauses unsatisfiable")

@@ -25,14 +25,13 @@ where one RC2 run spends most of its time on bookkeeping over all soft clauses p
 
 from __future__ import annotations
 
-import threading
 import time
 from dataclasses import dataclass
 from typing import Sequence
 
 import numpy as np
 
-from tilesolve.engine.result import Deadline, Result
+from tilesolve.engine.result import Deadline, Result, run_interruptible
 from tilesolve.engine.sat import _chunks, canonical_solver_name
 from tilesolve.errors import MethodNotApplicable
 from tilesolve.model.solution import Status
@@ -65,39 +64,22 @@ class RC2Options:
         return cls(wcnf, solver=solver, adapt=self.adapt, exhaust=self.exhaust, minz=self.minz, trim=self.trim)
 
 
-class _Watchdog:
-    """Interrupt whichever RC2 object is current when the deadline passes."""
+class _Stopped(Exception):
+    """A component solve was stopped by the time limit or Ctrl-C."""
 
-    def __init__(self, deadline: Deadline) -> None:
-        self.lock = threading.Lock()
-        self.current = None
-        self.fired = False
-        self.timer = None
-        rem = deadline.remaining()
-        if rem is not None:
-            self.timer = threading.Timer(rem, self._fire)
-            self.timer.daemon = True
-            self.timer.start()
+    def __init__(self, why: str) -> None:
+        super().__init__(why)
+        self.why = why
 
-    def _fire(self) -> None:
-        with self.lock:
-            self.fired = True
-            if self.current is not None:
-                self.current.interrupt()
 
-    def attach(self, rc2) -> None:
-        with self.lock:
-            self.current = rc2
-            if self.fired:
-                rc2.interrupt()
+def _interrupter(rc2):
+    def interrupt() -> None:
+        try:
+            rc2.interrupt()
+        except NotImplementedError:  # oracle without interrupt: the call runs to its end
+            pass
 
-    def detach(self) -> None:
-        with self.lock:
-            self.current = None
-
-    def cancel(self) -> None:
-        if self.timer is not None:
-            self.timer.cancel()
+    return interrupt
 
 
 def _check_oracle(solver: str, time_limit: float | None) -> str:
@@ -148,35 +130,31 @@ def solve_wcnf(
     for ch in _chunks(hard):
         w.hard.extend(ch)
         for c in ch:
-            if c:
-                w.nv = max(w.nv, max(abs(v) for v in c))
+            if not c:
+                return Result(Status.UNSAT, None, time.perf_counter() - t0, None, {}, solver=f"rc2/{name}",
+                              reason="hard clauses contain the empty clause")
+            w.nv = max(w.nv, max(abs(v) for v in c))
     wts = [1] * len(soft) if weights is None else list(weights)
     for lit, wt in zip(soft, wts):
         w.append([int(lit)], weight=int(wt))
-    dog = _Watchdog(deadline)
     stats: dict = {"hard": len(w.hard), "soft": len(w.soft)}
-    try:
-        with options.make(w, name) as rc2:
-            dog.attach(rc2)
-            try:
-                model = rc2.compute(expect_interrupt=time_limit is not None)
-            except KeyboardInterrupt:
-                model = None
-                dog.fired = True
-            finally:
-                dog.detach()
-            stats["lower_bound"] = int(rc2.cost)
-            interrupted = dog.fired
-    finally:
-        dog.cancel()
+    with options.make(w, name) as rc2:
+        model, stop = run_interruptible(lambda: rc2.compute(expect_interrupt=True), _interrupter(rc2), deadline)
+        stats["lower_bound"] = int(rc2.cost)
+        cost = int(rc2.cost)
     rt = time.perf_counter() - t0
     solver_name = f"rc2/{name}"
-    if model is not None:
-        return Result(Status.OPTIMAL, list(model), rt, None, stats, cost=int(rc2.cost), solver=solver_name)
-    if interrupted:
-        return Result(Status.UNKNOWN, None, rt, None, stats, solver=solver_name,
-                      reason=f"time limit of {time_limit:.3g} s reached" if time_limit is not None else "interrupted")
+    if model is not None:  # RC2 returns None when interrupted, so a model means it finished
+        return Result(Status.OPTIMAL, list(model), rt, None, stats, cost=cost, solver=solver_name)
+    if stop is not None:
+        return Result(Status.UNKNOWN, None, rt, None, stats, solver=solver_name, reason=_stop_reason(stop, time_limit))
     return Result(Status.UNSAT, None, rt, None, stats, solver=solver_name, reason="hard clauses are unsatisfiable")
+
+
+def _stop_reason(stop: str, time_limit: float | None) -> str:
+    if stop == "time limit" and time_limit is not None:
+        return f"time limit of {time_limit:.3g} s reached"
+    return "interrupted (Ctrl-C)"
 
 
 class _UnionFind:
@@ -235,7 +213,7 @@ class _Component:
             self.rc2.delete()
             self.rc2 = None
 
-    def solve(self, soft_of: dict[int, int], name: str, dog: "_Watchdog", options: RC2Options,
+    def solve(self, soft_of: dict[int, int], name: str, deadline: Deadline, options: RC2Options,
               keep_min: int) -> bool:
         """Re-optimise after new clauses; False when the component is unsatisfiable."""
         from pysat.formula import WCNF
@@ -262,11 +240,14 @@ class _Component:
                     rc2.add_clause([loc[v] if sl > 0 else -loc[v]], weight=1)
             self.softs_given = len(self.vars)
         self.pending = []
-        dog.attach(rc2)
-        try:
-            model = rc2.compute(expect_interrupt=dog.timer is not None)
-        finally:
-            dog.detach()
+        if len(self.clauses) >= keep_min:  # large: run interruptibly (time limit, Ctrl-C)
+            model, stop = run_interruptible(lambda: rc2.compute(expect_interrupt=True), _interrupter(rc2), deadline)
+            if model is None and stop is not None:
+                rc2.delete()
+                self.rc2 = None
+                raise _Stopped(stop)
+        else:
+            model = rc2.compute()
         self.cost = int(rc2.cost)
         if len(self.clauses) >= keep_min and model is not None:
             self.rc2 = rc2  # large: keep its cores for the next round
@@ -293,6 +274,7 @@ def solve_lazy(
     time_limit: float | None = None,
     options: RC2Options = RC2Options(),
     keep_min: int = 64,
+    fallback_fraction: float = 0.2,
 ) -> Result:
     """Exact MaxSAT by lazy hard clauses and independent components (see module doc).
 
@@ -309,6 +291,10 @@ def solve_lazy(
         Components with at least this many clauses keep an incremental RC2 between
         rounds (their cores stay valid when hard clauses are added); smaller ones are
         solved from scratch.
+    fallback_fraction : float
+        When one component holds more than this fraction of all hard clauses the
+        decomposition no longer pays: the rest of the time goes to one RC2 run on the
+        whole formula (:func:`solve_wcnf`; ``stats["fallback"]`` says so).
 
     Returns
     -------
@@ -334,11 +320,11 @@ def solve_lazy(
     ref = np.asarray(reference, dtype=bool)
     if any(ref[v] != (l > 0) for v, l in soft_of.items()):
         raise ValueError("the reference assignment must satisfy every soft literal")
+    n_hard = len(hard)
     uf = _UnionFind()
     comps: dict[int, _Component] = {}  # root variable -> component
     cur = ref.copy()
     stats = {"rounds": 0, "component_solves": 0, "lower_bound": 0, "active_clauses": 0}
-    dog = _Watchdog(deadline)
     solver_name = f"lazy/{name}"
 
     def stop(status: Status, reason: str) -> Result:
@@ -371,26 +357,33 @@ def solve_lazy(
                     base = _Component()
                 base.add(c)
                 comps[root] = base
+            largest = max(len(k.clauses) for k in comps.values())
+            if largest > fallback_fraction * n_hard:
+                for comp in comps.values():
+                    comp.close()
+                comps = {}
+                r = solve_wcnf(hard, soft, solver=name, time_limit=deadline.remaining(), options=options)
+                r.stats = {**stats, **r.stats, "fallback": "rc2 on the whole formula"}
+                r.runtime = time.perf_counter() - t0
+                return r
             cur = ref.copy()
             lb = 0
             for comp in comps.values():
                 if comp.dirty:
-                    if deadline.expired() or dog.fired:
-                        raise TimeoutError
-                    ok = comp.solve(soft_of, name, dog, options, keep_min)
+                    if deadline.expired():
+                        raise _Stopped("time limit")
+                    ok = comp.solve(soft_of, name, deadline, options, keep_min)
                     stats["component_solves"] += 1
                     if not ok:
-                        if dog.fired:
-                            raise TimeoutError
                         return stop(Status.UNSAT, "a relaxation of the hard clauses is unsatisfiable")
                 cur[np.asarray(comp.vars, dtype=np.int64)] = comp.values
                 lb += comp.cost
             stats["lower_bound"] = lb
-    except (TimeoutError, KeyboardInterrupt):
-        return stop(Status.UNKNOWN,
-                    f"time limit of {time_limit:.3g} s reached" if time_limit is not None else "interrupted")
+    except _Stopped as exc:
+        return stop(Status.UNKNOWN, _stop_reason(exc.why, time_limit))
+    except KeyboardInterrupt:
+        return stop(Status.UNKNOWN, "interrupted (Ctrl-C)")
     finally:
-        dog.cancel()
         for comp in comps.values():
             comp.close()
     stats["components"] = len(comps)

@@ -7,7 +7,7 @@ from typing import Any
 
 from tilesolve.model.solution import Status
 
-__all__ = ["Result", "Deadline"]
+__all__ = ["Result", "Deadline", "run_interruptible"]
 
 
 @dataclass
@@ -70,3 +70,55 @@ class Deadline:
 
     def expired(self) -> bool:
         return self.time_limit is not None and self.elapsed() >= self.time_limit
+
+
+def run_interruptible(fn, interrupt, deadline: Deadline, poll: float = 0.05):
+    """Run ``fn()`` in a worker thread; call ``interrupt()`` at the deadline or on Ctrl-C.
+
+    Native solvers block the main thread inside C, where Python cannot deliver
+    ``KeyboardInterrupt``; waiting on an event keeps the main thread responsive, so a
+    time limit and Ctrl-C both end in a clean ``interrupt()`` of the solver.
+
+    Returns
+    -------
+    (value, stop) : tuple
+        ``fn``'s return value and ``None``, ``"time limit"`` or ``"interrupted"``.
+
+    Examples
+    --------
+    >>> run_interruptible(lambda: 42, lambda: None, Deadline(None))
+    (42, None)
+    """
+    import threading
+
+    done = threading.Event()
+    box: dict = {}
+
+    def work() -> None:
+        try:
+            box["value"] = fn()
+        except BaseException as exc:  # noqa: BLE001 - re-raised in the caller's thread
+            box["error"] = exc
+        finally:
+            done.set()
+
+    worker = threading.Thread(target=work, name="tilesolve-solver", daemon=True)
+    worker.start()
+    stop = None
+    while True:
+        try:
+            rem = deadline.remaining()
+            wait = poll if rem is None else min(poll, rem + 1e-3)
+            if done.wait(wait):
+                break
+            if stop is None and deadline.expired():
+                stop = "time limit"
+                interrupt()
+        except KeyboardInterrupt:
+            if stop != "interrupted":
+                stop = "interrupted"
+                interrupt()
+    worker.join()
+    if "error" in box:
+        raise box["error"]
+    return box.get("value"), stop

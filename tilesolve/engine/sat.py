@@ -22,6 +22,9 @@ Proofs
 ``with_proof=True`` logs a DRAT proof where the solver can (see :func:`proof_solvers`;
 CaDiCaL 1.0.3/1.5.3/1.9.5/3.0.0, Glucose 3/4/4.2, Gluecard 3/4, Lingeling, MapleChrono,
 MapleCM, MapleSAT and Ergo do; Kissat, MergeSat, Minicard and the MiniSats do not).
+Proofs are only as good as the solver's logging: MapleSAT was seen to emit a unit lemma
+that is neither RUP nor RAT (a cyclic 9x9 dappled problem with a count), which
+:mod:`tilesolve.verify.drat` rejects, so routes that check proofs report ``unknown``.
 """
 
 from __future__ import annotations
@@ -33,7 +36,7 @@ from typing import Iterable, Iterator, Sequence
 
 import numpy as np
 
-from tilesolve.engine.result import Deadline, Result
+from tilesolve.engine.result import Deadline, Result, run_interruptible
 from tilesolve.errors import BackendUnavailable, InvalidProblem, MethodNotApplicable
 from tilesolve.model.solution import Status
 
@@ -73,19 +76,37 @@ def canonical_solver_name(name: str) -> str:
     raise BackendUnavailable(f"unknown SAT solver {name!r}; available: {', '.join(sat_solvers())}")
 
 
+class _QuietDel:
+    """Silence PySAT's ``__del__`` noise from solver objects whose constructor failed."""
+
+    def __enter__(self):
+        import sys
+
+        self._hook = sys.unraisablehook
+        sys.unraisablehook = lambda info: None
+
+    def __exit__(self, *exc):
+        import gc
+        import sys
+
+        gc.collect()
+        sys.unraisablehook = self._hook
+
+
 def sat_solvers() -> list[str]:
     """Canonical names of the PySAT solvers that can be created here."""
     from pysat.solvers import Solver, SolverNames
 
     out = []
-    for canon, aliases in vars(SolverNames).items():
-        if canon.startswith("_"):
-            continue
-        try:
-            with Solver(name=aliases[0]):
-                out.append(canon)
-        except Exception:  # noqa: BLE001 - a solver not compiled into this pysat build
-            continue
+    with _QuietDel():
+        for canon, aliases in vars(SolverNames).items():
+            if canon.startswith("_"):
+                continue
+            try:
+                with Solver(name=aliases[0]):
+                    out.append(canon)
+            except Exception:  # noqa: BLE001 - a solver not compiled into this pysat build
+                continue
     return out
 
 
@@ -97,17 +118,18 @@ def proof_solvers() -> list[str]:
     from pysat.solvers import Solver
 
     out = []
-    for name in sat_solvers():
-        if name not in _PROOF_CACHE:
-            ok = False
-            try:
-                with Solver(name=name, bootstrap_with=[[1, 2], [-1, 2], [1, -2], [-1, -2]], with_proof=True) as s:
-                    ok = s.solve() is False and s.get_proof() is not None
-            except Exception:  # noqa: BLE001 - NotImplementedError or an unsupported option
+    with _QuietDel():
+        for name in sat_solvers():
+            if name not in _PROOF_CACHE:
                 ok = False
-            _PROOF_CACHE[name] = ok
-        if _PROOF_CACHE[name]:
-            out.append(name)
+                try:
+                    with Solver(name=name, bootstrap_with=[[1, 2], [-1, 2], [1, -2], [-1, -2]], with_proof=True) as s:
+                        ok = s.solve() is False and s.get_proof() is not None
+                except Exception:  # noqa: BLE001 - NotImplementedError or an unsupported option
+                    ok = False
+                _PROOF_CACHE[name] = ok
+            if _PROOF_CACHE[name]:
+                out.append(name)
     return out
 
 
@@ -158,11 +180,17 @@ class SatSession:
         self.seed = seed
         t0 = time.perf_counter()
         self.proof_logging = False
+        self._s = None
         try:
-            self._s = Solver(name=self.name, with_proof=with_proof)
-            self.proof_logging = bool(with_proof)
-        except NotImplementedError:
-            self._s = Solver(name=self.name)
+            if with_proof:
+                with _QuietDel():  # a refused with_proof leaves a half-built object behind
+                    try:
+                        self._s = Solver(name=self.name, with_proof=True)
+                        self.proof_logging = True
+                    except NotImplementedError:
+                        pass
+            if self._s is None:
+                self._s = Solver(name=self.name)
         except Exception as exc:  # noqa: BLE001
             raise BackendUnavailable(f"cannot start SAT solver {self.name}: {exc}") from exc
         self.notes: list[str] = []
@@ -177,7 +205,7 @@ class SatSession:
         self.n_clauses = 0
         self.empty_clause = False
         for ch in _chunks(formula):
-            if any(len(c) == 0 for c in ch):
+            if min(map(len, ch), default=1) == 0:
                 # Some PySAT backends mishandle an empty clause; it decides the formula anyway.
                 self.empty_clause = True
                 ch = [c for c in ch if len(c)]
@@ -237,21 +265,24 @@ class SatSession:
         if self.empty_clause:
             return Result(Status.UNSAT, None, 0.0, ["0"] if self.proof_logging else None, stats, solver=self.name,
                           reason="the formula contains the empty clause")
-        reason = None
-        try:
-            if time_limit is None:
-                answer = self._s.solve(assumptions=assumptions)
-            elif self._mode == "interrupt":
-                answer = self._solve_interrupt(assumptions, deadline)
-            elif self._mode == "budget":
-                answer = self._solve_sliced(assumptions, deadline)
-            else:
-                raise MethodNotApplicable(
-                    f"SAT solver {self.name} cannot honour a time limit (no interrupt, no budget); "
-                    "use cadical153 or glucose4"
-                )
-        except KeyboardInterrupt:
-            answer, reason = None, "interrupted (Ctrl-C)"
+        if time_limit is not None and self._mode == "none":
+            raise MethodNotApplicable(
+                f"SAT solver {self.name} cannot honour a time limit (no interrupt, no budget); "
+                "use cadical153 or glucose4"
+            )
+        stop_flag = threading.Event()
+        if self._mode == "interrupt":
+            work = lambda: self._s.solve_limited(assumptions=assumptions, expect_interrupt=True)  # noqa: E731
+            interrupt = self._s.interrupt
+        elif self._mode == "budget":
+            work = lambda: self._solve_sliced(assumptions, deadline, stop_flag)  # noqa: E731
+            interrupt = stop_flag.set
+        else:  # Lingeling: neither; Ctrl-C is noticed only when the call returns
+            work = lambda: self._s.solve(assumptions=assumptions)  # noqa: E731
+            interrupt = lambda: None  # noqa: E731
+        answer, stop = run_interruptible(work, interrupt, deadline)
+        if self._mode == "interrupt":
+            self._s.clear_interrupt()
         runtime = time.perf_counter() - t0
         try:
             stats.update(self._s.accum_stats() or {})
@@ -264,29 +295,24 @@ class SatSession:
             proof = self._s.get_proof() if (self.proof_logging and not assumptions) else None
             return Result(Status.UNSAT, None, runtime, proof, stats, solver=self.name,
                           reason="unsatisfiable under the assumptions" if assumptions else None)
-        if reason is None:
-            reason = f"time limit of {time_limit:.3g} s reached" if time_limit is not None else "solver gave up"
+        if stop == "interrupted":
+            reason = "interrupted (Ctrl-C)"
+        elif time_limit is not None:
+            reason = f"time limit of {time_limit:.3g} s reached"
+        else:
+            reason = "solver gave up"
         return Result(Status.UNKNOWN, None, runtime, None, stats, solver=self.name, reason=reason)
 
-    def _solve_interrupt(self, assumptions: list[int], deadline: Deadline):
-        rem = deadline.remaining()
-        if rem is not None and rem <= 0:
-            return None
-        timer = threading.Timer(rem, self._s.interrupt)
-        timer.daemon = True
-        timer.start()
-        try:
-            return self._s.solve_limited(assumptions=assumptions, expect_interrupt=True)
-        finally:
-            timer.cancel()
-            self._s.clear_interrupt()
+    def _solve_sliced(self, assumptions: list[int], deadline: Deadline, stop: threading.Event):
+        """Conflict-budget slices for solvers without ``interrupt`` (CaDiCaL, Kissat).
 
-    def _solve_sliced(self, assumptions: list[int], deadline: Deadline):
-        """Conflict-budget slices for solvers without ``interrupt`` (CaDiCaL, Kissat)."""
+        Slices last about half a second (or what is left of the time limit), so the
+        deadline and a stop request are honoured within about a second.
+        """
         budget = 2000
         while True:
             rem = deadline.remaining()
-            if rem is not None and rem <= 0:
+            if stop.is_set() or (rem is not None and rem <= 0):
                 return None
             t = time.perf_counter()
             self._s.conf_budget(int(budget))
@@ -295,9 +321,9 @@ class SatSession:
                 return answer
             spent = max(time.perf_counter() - t, 1e-4)
             rate = budget / spent
-            rem = deadline.remaining() or 0.0
-            # next slice: about a second, or what is left, never more than doubling
-            budget = int(min(2 * budget, max(100.0, rate * min(1.0, rem))))
+            rem = deadline.remaining()
+            horizon = 0.5 if rem is None else min(0.5, rem)
+            budget = int(min(2 * budget, max(100.0, rate * horizon)))
 
     def get_model(self) -> list[int] | None:
         return self._s.get_model()
@@ -322,7 +348,12 @@ def solve_cnf(
     """
     t0 = time.perf_counter()
     deadline = Deadline(time_limit)
-    with SatSession(formula, solver=solver, with_proof=with_proof, seed=seed) as s:
+    try:
+        session = SatSession(formula, solver=solver, with_proof=with_proof, seed=seed)
+    except KeyboardInterrupt:
+        return Result(Status.UNKNOWN, None, time.perf_counter() - t0, None, {}, solver=canonical_solver_name(solver),
+                      reason="interrupted (Ctrl-C) while loading the formula")
+    with session as s:
         if phases is not None:
             s.set_phases(phases)
         r = s.solve(assumptions, time_limit=deadline.remaining())

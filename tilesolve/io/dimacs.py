@@ -41,11 +41,14 @@ def _write(fh: TextIO, obj, comments: Sequence[str], wcnf_format: str) -> None:
     hard, soft, header, n_vars = _formula_parts(obj)
     n_hard = 0
     top = n_vars
-    for ch in _clause_chunks(hard):
-        n_hard += len(ch)
-        for c in ch:
-            if c:
-                top = max(top, max(abs(v) for v in c))
+    if hasattr(hard, "max_var"):  # a ClauseSet: numpy does the counting
+        n_hard, top = len(hard), max(top, hard.max_var())
+    else:
+        for ch in _clause_chunks(hard):
+            n_hard += len(ch)
+            for c in ch:
+                if c:
+                    top = max(top, max(abs(v) for v in c))
     soft_list = [] if soft is None else [int(v) for v in np.asarray(soft).ravel()]
     for v in soft_list:
         top = max(top, abs(v))
