@@ -381,6 +381,15 @@ def test_ctrl_c_gives_unknown():
         assert r.status is Status.UNKNOWN and "interrupted" in r.reason
 
 
+def test_tiling_satisfies_encoding_agrees_with_the_verifier():
+    from tilesolve.engine.dappled import tiling_satisfies_encoding
+
+    for p in (DappledProblem.from_strings("3x3", ["H0=1", "V1=1"]),
+              DappledProblem.from_strings("3x2", ["H0=1"], counts=["1=3..4"], cyclic=True)):
+        for t in all_tilings(p):
+            assert tiling_satisfies_encoding(p, t) == is_dappled(t, p)
+
+
 # ---------------------------------------------------------------- registry
 
 

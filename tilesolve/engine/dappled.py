@@ -42,6 +42,7 @@ __all__ = [
     "solve_cpsat",
     "enumerate_tilings",
     "count_by_enumeration",
+    "tiling_satisfies_encoding",
     "TilingEnumerator",
     "TilingCount",
     "MAXSAT_METHODS",
@@ -62,9 +63,14 @@ def _enc_stats(enc: DappledEncoding, encode_s: float) -> dict:
     return {"variables": enc.n_vars, "clauses": len(enc.hard), "encode_s": round(encode_s, 6)}
 
 
-def _unsat_solution(enc: DappledEncoding, r: Result, *, method: str, seed, t0: float, stats: dict,
+def _unsat_solution(enc, r: Result, *, method: str, seed, t0: float, stats: dict,
                     check_proof: bool, proof_time_limit: float | None) -> Solution:
-    """UNSAT with the proof's verdict; a proof that fails the check downgrades to UNKNOWN."""
+    """UNSAT with the proof's verdict; a proof that fails the check downgrades to UNKNOWN.
+
+    Family-generic: ``enc`` is any encoding whose clauses (``enc.hard`` or
+    ``enc.clauses``) are exactly what the solver was given.
+    """
+    formula = enc.hard if hasattr(enc, "hard") else enc.clauses
     stats = dict(stats)
     solver = r.solver
     if r.proof is None:
@@ -77,7 +83,7 @@ def _unsat_solution(enc: DappledEncoding, r: Result, *, method: str, seed, t0: f
         return Solution(Status.UNSAT, None, method, solver, seed, time.perf_counter() - t0,
                         reason=f"proved unsatisfiable by {solver}; DRAT proof of {len(r.proof)} lines kept, not checked",
                         stats=stats)
-    chk = check_drat(enc.hard, r.proof, max_size=PROOF_CHECK_MAX_SIZE, time_limit=proof_time_limit)
+    chk = check_drat(formula, r.proof, max_size=PROOF_CHECK_MAX_SIZE, time_limit=proof_time_limit)
     stats.update(proof_status=chk.status, proof_lemmas=chk.lemmas, proof_check_s=round(chk.time_s, 6))
     if chk.status == "verified":
         reason = f"proved unsatisfiable by {solver}; DRAT proof of {chk.lemmas} lemma(s) checked by tilesolve.verify.drat"
@@ -162,6 +168,27 @@ def solve_sat(
         return sol.replace(notes=sol.notes + notes)
     return Solution(Status.UNKNOWN, None, "sat", r.solver, seed, time.perf_counter() - t0, reason=r.reason,
                     notes=notes, stats=stats)
+
+
+def tiling_satisfies_encoding(problem: DappledProblem, tiling, *, solver: str = DEFAULT_SAT_SOLVER) -> bool:
+    """True when ``tiling`` satisfies the CNF encoding of ``problem`` (a cross-check).
+
+    Without auxiliary variables the clauses are evaluated directly; with counts the
+    formula is solved under the tiling's literals as assumptions (DESIGN.md,
+    "Cross-checks": the constructive output must satisfy the encoding).
+
+    Examples
+    --------
+    >>> p = DappledProblem.from_strings("3x1", ["H0=2"])
+    >>> tiling_satisfies_encoding(p, [[0, 1, 0]]), tiling_satisfies_encoding(p, [[0, 0, 0]])
+    (True, False)
+    """
+    _check_problem(problem)
+    enc = encode_cnf(problem)
+    if all(b.grid_only for b in enc.hard.blocks):
+        return not enc.hard.falsified(enc.target_values(np.asarray(tiling)))
+    r = solve_cnf(enc.hard, solver=solver, assumptions=enc.encode_tiling(tiling))
+    return r.status is Status.SAT
 
 
 #: Exact MaxSAT routes for the closest tiling; "auto" picks by measurement
@@ -351,14 +378,28 @@ def enumerate_tilings(
     return TilingEnumerator(problem, limit, time_limit, solver)
 
 
-@dataclass(frozen=True)
-class TilingCount:
-    """``count`` tilings found; ``complete`` when that is all of them."""
+class TilingCount(tuple):
+    """``(count, complete)``: ``count`` tilings found, ``complete`` when that is all of them.
 
-    count: int
-    complete: bool
-    time_s: float
-    reason: str | None = None
+    Unpacks as a pair; ``time_s`` and ``reason`` (why it stopped early) are attributes.
+    """
+
+    def __new__(cls, count: int, complete: bool, time_s: float = 0.0, reason: str | None = None):
+        self = super().__new__(cls, (int(count), bool(complete)))
+        self.time_s = time_s
+        self.reason = reason
+        return self
+
+    @property
+    def count(self) -> int:
+        return self[0]
+
+    @property
+    def complete(self) -> bool:
+        return self[1]
+
+    def __repr__(self) -> str:
+        return f"TilingCount(count={self[0]}, complete={self[1]}, time_s={self.time_s:.3g}, reason={self.reason!r})"
 
 
 def count_by_enumeration(
@@ -367,20 +408,41 @@ def count_by_enumeration(
     *,
     limit: int | None = None,
     solver: str = DEFAULT_SAT_SOLVER,
+    progress: bool = False,
 ) -> TilingCount:
-    """Count tilings by enumeration (exact if ``complete``; else a lower bound).
+    """Count tilings by enumeration: ``(count, complete)`` (exact if complete, else a lower bound).
+
+    Parameters
+    ----------
+    progress : bool
+        Show a running count on standard error when it is a terminal.
 
     Examples
     --------
     On a 2x2 grid no run of three fits, so all 16 tilings satisfy ``{H0^2, V1^2}``:
 
-    >>> count_by_enumeration(DappledProblem.from_strings("2x2", ["H0=2", "V1=2"])).count
-    16
+    >>> count, complete = count_by_enumeration(DappledProblem.from_strings("2x2", ["H0=2", "V1=2"]))
+    >>> count, complete
+    (16, True)
     """
+    import sys
+
     t0 = time.perf_counter()
     e = TilingEnumerator(problem, limit, time_limit, solver)
-    for _ in e._enum:
-        pass
+    show = progress and sys.stderr.isatty()
+    last = t0
+    try:
+        for _ in e._enum:
+            if show and time.perf_counter() - last > 0.5:
+                last = time.perf_counter()
+                sys.stderr.write(f"\r  {e.count:,} tilings so far ({last - t0:.0f} s)")
+                sys.stderr.flush()
+    except KeyboardInterrupt:
+        return TilingCount(e.count, False, time.perf_counter() - t0, "interrupted (Ctrl-C)")
+    finally:
+        if show:
+            sys.stderr.write("\r\033[K")
+            sys.stderr.flush()
     return TilingCount(e.count, e.complete, time.perf_counter() - t0, e.reason)
 
 

@@ -1,0 +1,473 @@
+"""Compiled inner loops of the linear brick Wang algorithm (see :mod:`tilesolve.constructive.brick`).
+
+Conditions on a leg (§4.1) are pairs ``(kind, colour)``: ``EXACT`` (c), ``NOT`` (¬c),
+``ANY`` (∗) and ``EMPTY`` (no colour; only reached from an empty input).
+Leg colours live in an ``(n, 4)`` array, ``-1`` = not yet chosen.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+EXACT, NOT, ANY, EMPTY = 0, 1, 2, 3
+
+
+@njit(cache=True)
+def bfs_components(nc, nl):
+    """Components of G' by BFS: (comp, order, parent_leg, n_comp).
+
+    ``order`` lists cells component by component in BFS order from the component's
+    lowest-numbered cell; ``parent_leg[v]`` is v's leg towards its BFS parent (-1: root).
+    """
+    n = nc.shape[0]
+    comp = np.full(n, -1, np.int64)
+    order = np.empty(n, np.int64)
+    parent_leg = np.full(n, -1, np.int64)
+    head = 0
+    tail = 0
+    ncomp = 0
+    for s in range(n):
+        if comp[s] >= 0:
+            continue
+        comp[s] = ncomp
+        order[tail] = s
+        tail += 1
+        while head < tail:
+            v = order[head]
+            head += 1
+            for k in range(4):
+                w = nc[v, k]
+                if w >= 0 and comp[w] < 0:
+                    comp[w] = ncomp
+                    parent_leg[w] = nl[v, k]
+                    order[tail] = w
+                    tail += 1
+        ncomp += 1
+    return comp, order, parent_leg, ncomp
+
+
+@njit(cache=True)
+def bfs_tree(nc, nl, sources, allowed):
+    """Multi-source BFS from ``sources`` over cells with ``allowed``; returns (order, parent_leg).
+
+    ``order`` holds the reached non-source cells in BFS order; ``parent_leg[v]`` is the leg
+    of v that meets its BFS parent.
+    """
+    n = nc.shape[0]
+    seen = np.zeros(n, np.bool_)
+    queue = np.empty(n, np.int64)
+    parent_leg = np.full(n, -1, np.int64)
+    head = 0
+    tail = 0
+    for s in sources:
+        seen[s] = True
+        queue[tail] = s
+        tail += 1
+    first = tail
+    while head < tail:
+        v = queue[head]
+        head += 1
+        for k in range(4):
+            w = nc[v, k]
+            if w >= 0 and allowed[w] and not seen[w]:
+                seen[w] = True
+                parent_leg[w] = nl[v, k]
+                queue[tail] = w
+                tail += 1
+    return queue[first:tail].copy(), parent_leg
+
+
+@njit(cache=True)
+def dfs_tree(nc, nl, sources, allowed):
+    """Depth-first spanning forest from ``sources`` (§4 step 2: "in a depth-first manner").
+
+    Returns ``(order, parent_leg)``: the reached non-source cells in preorder (so every
+    cell comes after its parent) and each one's leg towards its parent. Legs are tried in
+    the order E, S, W, N, which on grids walks rows back and forth and keeps memory
+    accesses local.
+    """
+    n = nc.shape[0]
+    seen = np.zeros(n, np.bool_)
+    parent_leg = np.full(n, -1, np.int64)
+    order = np.empty(n, np.int64)
+    stack = np.empty(n, np.int64)
+    nxt = np.zeros(n, np.int64)
+    pref = np.array([2, 3, 0, 1])
+    m = 0
+    for s in sources:
+        seen[s] = True
+    for s in sources:
+        top = 0
+        stack[0] = s
+        nxt[s] = 0
+        while top >= 0:
+            v = stack[top]
+            if nxt[v] >= 4:
+                top -= 1
+                continue
+            k = pref[nxt[v]]
+            nxt[v] += 1
+            w = nc[v, k]
+            if w >= 0 and allowed[w] and not seen[w]:
+                seen[w] = True
+                parent_leg[w] = nl[v, k]
+                order[m] = w
+                m += 1
+                top += 1
+                stack[top] = w
+                nxt[w] = 0
+    return order[:m].copy(), parent_leg
+
+
+@njit(cache=True)
+def find_4cycles(nc, comp, ncomp):
+    """Per component, a chordless 4-cycle a-b-d-c (a 2x2 block) or -1: array (ncomp, 4)."""
+    out = np.full((ncomp, 4), -1, np.int64)
+    n = nc.shape[0]
+    for a in range(n):
+        ci = comp[a]
+        if out[ci, 0] >= 0:
+            continue
+        for k in range(4):
+            b = nc[a, k]
+            c = nc[a, (k + 1) % 4]
+            if b < 0 or c < 0 or b == a or c == a or b == c:
+                continue
+            for kb in range(4):
+                d = nc[b, kb]
+                if d < 0 or d == a or d == b or d == c:
+                    continue
+                hit = False
+                for kc in range(4):
+                    if nc[c, kc] == d:
+                        hit = True
+                if not hit:
+                    continue
+                # chordless: each cell has exactly two legs into {a, b, c, d}
+                good = True
+                for v in (a, b, c, d):
+                    cnt = 0
+                    for kk in range(4):
+                        w = nc[v, kk]
+                        if w == a or w == b or w == c or w == d:
+                            cnt += 1
+                    if cnt != 2:
+                        good = False
+                if good:
+                    out[ci, 0] = a
+                    out[ci, 1] = b
+                    out[ci, 2] = d
+                    out[ci, 3] = c
+                    break
+            if out[ci, 0] >= 0:
+                break
+    return out
+
+
+@njit(cache=True)
+def _in_cond(c, kind, val):
+    if kind == EXACT:
+        return c == val
+    if kind == NOT:
+        return c != val
+    return kind == ANY
+
+
+@njit(cache=True)
+def _meet_nonempty(k1, v1, k2, v2):
+    """Do two conditions share a colour? (#C >= 3)"""
+    if k1 == EMPTY or k2 == EMPTY:
+        return False
+    if k1 == EXACT:
+        return _in_cond(v1, k2, v2)
+    if k2 == EXACT:
+        return _in_cond(v2, k1, v1)
+    return True
+
+
+@njit(cache=True)
+def out_cond(kinds, vals, out):
+    """The weakest condition on leg ``out`` given the other three (Figure 2, §4.1).
+
+    A tile of W_B has ``c_p = c_q and c_out != c_o`` or ``c_p != c_q and c_out = c_o``
+    (``o`` opposite ``out``, ``p``/``q`` the other pair); the result is exactly the set of
+    colours of leg ``out`` in some tile meeting the three input conditions.
+    """
+    o = (out + 2) % 4
+    p = (out + 1) % 4
+    q = (out + 3) % 4
+    if kinds[o] == EMPTY or kinds[p] == EMPTY or kinds[q] == EMPTY:
+        return EMPTY, -1
+    eq = _meet_nonempty(kinds[p], vals[p], kinds[q], vals[q])
+    neq = not (kinds[p] == EXACT and kinds[q] == EXACT and vals[p] == vals[q])
+    if eq and neq:
+        return ANY, -1
+    if eq:  # c_out != c_o
+        if kinds[o] == EXACT:
+            return NOT, vals[o]
+        return ANY, -1
+    return kinds[o], vals[o]  # neq only: c_out = c_o
+
+
+@njit(cache=True)
+def _pick(kind, val, avoid, C, r):
+    if kind == EXACT:
+        if val != avoid:
+            return val
+        return -1
+    if kind == EMPTY:
+        return -1
+    for i in range(C):
+        c = (r + i) % C
+        if c != avoid and (kind == ANY or c != val):
+            return c
+    return -1
+
+
+@njit(cache=True)
+def _pick_common(k1, v1, k2, v2, C, r):
+    if k1 == EXACT:
+        return v1 if _in_cond(v1, k2, v2) else -1
+    if k2 == EXACT:
+        return v2 if _in_cond(v2, k1, v1) else -1
+    if k1 == EMPTY or k2 == EMPTY:
+        return -1
+    for i in range(C):
+        c = (r + i) % C
+        if _in_cond(c, k1, v1) and _in_cond(c, k2, v2):
+            return c
+    return -1
+
+
+@njit(cache=True)
+def choose_tile(kinds, vals, C, r, first_mode, out):
+    """Fill ``out`` with a brick tile meeting the four conditions; False when none exists."""
+    for t in range(2):
+        mode = first_mode if t == 0 else 1 - first_mode
+        ep, eq = (0, 2) if mode == 0 else (1, 3)
+        up, uq = (1, 3) if mode == 0 else (0, 2)
+        x = _pick_common(kinds[ep], vals[ep], kinds[eq], vals[eq], C, r)
+        if x < 0:
+            continue
+        y = _pick(kinds[up], vals[up], -1, C, r)
+        if y < 0:
+            continue
+        z = _pick(kinds[uq], vals[uq], y, C, r + 1)
+        if z < 0:
+            z = _pick(kinds[uq], vals[uq], -1, C, r)
+            if z < 0:
+                continue
+            y = _pick(kinds[up], vals[up], z, C, r + 1)
+            if y < 0:
+                continue
+        out[ep] = x
+        out[eq] = x
+        out[up] = y
+        out[uq] = z
+        return True
+    return False
+
+
+@njit(cache=True)
+def _rand(state):
+    """xorshift64 step on ``state[0]``; returns 32 random bits (cheaper than np.random)."""
+    x = state[0]
+    x ^= (x << np.uint64(13)) & np.uint64(0xFFFFFFFFFFFFFFFF)
+    x ^= x >> np.uint64(7)
+    x ^= (x << np.uint64(17)) & np.uint64(0xFFFFFFFFFFFFFFFF)
+    state[0] = x
+    return np.int64(x >> np.uint64(32))
+
+
+@njit(cache=True)
+def _seed_state(seed):
+    st = np.empty(1, np.uint64)
+    st[0] = np.uint64(seed) * np.uint64(2654435761) + np.uint64(88172645463325252)
+    if st[0] == 0:
+        st[0] = np.uint64(1)
+    return st
+
+
+@njit(cache=True)
+def _set(col, nc, nl, a, k, c):
+    col[a, k] = c
+    b = nc[a, k]
+    if b >= 0:
+        col[b, nl[a, k]] = c
+
+
+@njit(cache=True)
+def _leg_conds(col, a, kinds, vals):
+    for k in range(4):
+        if col[a, k] >= 0:
+            kinds[k] = EXACT
+            vals[k] = col[a, k]
+        else:
+            kinds[k] = ANY
+            vals[k] = -1
+
+
+@njit(cache=True)
+def tile_outside(order, parent_leg, nc, nl, col, C, seed):
+    """Theorem 7 steps 2-3: tile ``order`` from its end (leaves first); each cell's parent
+    leg is still free, so by the three-boundary condition a tile always exists.
+    Returns the index of a cell that could not be tiled (a self-joined leg), or -1."""
+    st = _seed_state(seed)
+    kinds = np.empty(4, np.int64)
+    vals = np.empty(4, np.int64)
+    tile = np.empty(4, np.int64)
+    for i in range(order.size - 1, -1, -1):
+        a = order[i]
+        _leg_conds(col, a, kinds, vals)
+        kinds[parent_leg[a]] = ANY
+        vals[parent_leg[a]] = -1
+        rr = _rand(st)
+        if not choose_tile(kinds, vals, C, (rr >> 1) % C, rr & 1, tile):
+            return a
+        for k in range(4):  # a leg joined to another leg of the same cell
+            if nc[a, k] == a and tile[k] != tile[nl[a, k]]:
+                return a
+        for k in range(4):
+            _set(col, nc, nl, a, k, tile[k])
+    return -1
+
+
+@njit(cache=True)
+def solve_cycle(cells, ins, outs, nc, nl, col, C, seed):
+    """§4.3: tile a chordless cycle whose other legs are already fixed (or free boundary).
+
+    Cell ``cells[i]`` meets ``cells[i+1]`` through its leg ``outs[i]`` (their leg
+    ``ins[i+1]``). For each candidate colour ``x`` of the closing edge, conditions are
+    propagated round the cycle; the first ``x`` that comes back allowed is tiled backwards.
+    Colours not mentioned on the cycle are interchangeable, so trying the mentioned ones
+    and one other is exhaustive. Returns True on success.
+    """
+    np.random.seed(seed)
+    L = cells.size
+    kinds = np.empty(4, np.int64)
+    vals = np.empty(4, np.int64)
+    tile = np.empty(4, np.int64)
+    ck = np.empty(L, np.int64)
+    cv = np.empty(L, np.int64)
+    mentioned = np.zeros(C, np.bool_)
+    for i in range(L):
+        for k in range(4):
+            if k != ins[i] and k != outs[i] and col[cells[i], k] >= 0:
+                mentioned[col[cells[i], k]] = True
+    spare = True
+    for x in range(C):
+        if not mentioned[x]:
+            if not spare:
+                continue
+            spare = False
+        ok = True
+        for i in range(L):
+            a = cells[i]
+            _leg_conds(col, a, kinds, vals)
+            if i == 0:
+                kinds[ins[0]] = EXACT
+                vals[ins[0]] = x
+            else:
+                kinds[ins[i]] = ck[i - 1]
+                vals[ins[i]] = cv[i - 1]
+            kinds[outs[i]] = ANY
+            vals[outs[i]] = -1
+            if ins[i] == outs[i]:
+                ok = False
+                break
+            kd, vl = out_cond(kinds, vals, outs[i])
+            ck[i] = kd
+            cv[i] = vl
+            if kd == EMPTY:
+                ok = False
+                break
+        if not ok or not _in_cond(x, ck[L - 1], cv[L - 1]):
+            continue
+        # tile backwards: the closing edge has colour x
+        nxt = x
+        for i in range(L - 1, -1, -1):
+            a = cells[i]
+            _leg_conds(col, a, kinds, vals)
+            kinds[outs[i]] = EXACT
+            vals[outs[i]] = nxt
+            if i == 0:
+                kinds[ins[0]] = EXACT
+                vals[ins[0]] = x
+            else:
+                kinds[ins[i]] = ck[i - 1]
+                vals[ins[i]] = cv[i - 1]
+            if not choose_tile(kinds, vals, C, np.random.randint(0, C), np.random.randint(0, 2), tile):
+                return False  # cannot happen: the conditions were exact
+            for k in range(4):
+                _set(col, nc, nl, a, k, tile[k])
+            nxt = tile[ins[i]]
+        return True
+    return False
+
+
+@njit(cache=True)
+def solve_trees(order, parent_leg, is_tree, comp, nc, nl, col, C, seed, cond_k, cond_v):
+    """§4.2 on every tree component (cells of ``order`` whose component has ``is_tree``).
+
+    Bottom-up, each cell's output condition on its parent leg is inferred from its other
+    legs (boundary colours and its children's conditions); at the root all four legs must
+    admit a tile. Then top-down, tiles are chosen to meet the conditions.
+    Returns the root of the first component whose conditions clash, or -1.
+    """
+    np.random.seed(seed)
+    kinds = np.empty(4, np.int64)
+    vals = np.empty(4, np.int64)
+    tile = np.empty(4, np.int64)
+    n = order.size
+    # bottom-up
+    for i in range(n - 1, -1, -1):
+        a = order[i]
+        if not is_tree[comp[a]]:
+            continue
+        pl = parent_leg[a]
+        for k in range(4):
+            b = nc[a, k]
+            if k == pl:
+                kinds[k] = ANY
+                vals[k] = -1
+            elif b < 0:
+                if col[a, k] >= 0:
+                    kinds[k] = EXACT
+                    vals[k] = col[a, k]
+                else:
+                    kinds[k] = ANY
+                    vals[k] = -1
+            else:
+                kinds[k] = cond_k[b]
+                vals[k] = cond_v[b]
+        if pl >= 0:
+            kd, vl = out_cond(kinds, vals, pl)
+            cond_k[a] = kd
+            cond_v[a] = vl
+        else:
+            if not choose_tile(kinds, vals, C, 0, 0, tile):
+                return a
+    # top-down
+    for i in range(n):
+        a = order[i]
+        if not is_tree[comp[a]]:
+            continue
+        pl = parent_leg[a]
+        for k in range(4):
+            b = nc[a, k]
+            if k == pl or b < 0:
+                if col[a, k] >= 0:
+                    kinds[k] = EXACT
+                    vals[k] = col[a, k]
+                else:
+                    kinds[k] = ANY
+                    vals[k] = -1
+            else:
+                kinds[k] = cond_k[b]
+                vals[k] = cond_v[b]
+        if not choose_tile(kinds, vals, C, np.random.randint(0, C), np.random.randint(0, 2), tile):
+            return a  # cannot happen after a successful bottom-up pass
+        for k in range(4):
+            _set(col, nc, nl, a, k, tile[k])
+    return -1

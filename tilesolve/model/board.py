@@ -1,0 +1,682 @@
+"""Boards, Wang tile sets and tiling problems on boards.
+
+From Derouet-Jourdan, Kaji, Mizoguchi, *A linear algorithm for brick Wang tiling* (2016):
+boards (Def. 1), restrictions ``G|U`` (Def. 4), the Möbius strip (Example 5), tiling
+problems (Def. 2), the three-boundary condition (Def. 6) and the brick Wang tiles
+(Def. 9).
+
+Conventions
+-----------
+Cells carry ``[row, col]`` labels (row 0 at the top) and are numbered ``0 .. n-1`` in
+row-major order of their labels. Every cell has four *legs*, in the order
+
+    l1 = W (0), l2 = N (1), l3 = E (2), l4 = S (3)
+
+going round the cell, so l1/l3 and l2/l4 are opposite, as Def. 9 assumes.
+A Wang tile is the tuple of the colours of its legs in this order, ``(W, N, E, S)``;
+:func:`wang_from_nesw` and :func:`wang_to_nesw` convert from/to the N, E, S, W order of
+other tools. Colours are ``0 .. n_colors-1`` (the paper's ``C = {1..m}`` shifted by one).
+
+A board is stored as two ``(n, 4)`` int64 arrays: ``nbr_cell[a, k]`` is the cell joined to
+leg ``k`` of cell ``a`` and ``nbr_leg[a, k]`` the leg of that cell it meets, or
+``nbr_cell[a, k] = -1`` for the wall and then ``nbr_leg[a, k]`` is the number of that
+*boundary leg* (``0 .. n_boundary-1``, in order of cell then leg).
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Iterable, Sequence
+
+import numpy as np
+
+from tilesolve.errors import InvalidProblem
+
+__all__ = [
+    "W", "N", "E", "S", "LEG_NAMES", "MAX_BOARD_CELLS",
+    "Board", "WangTileSet", "BoardProblem",
+    "parse_board_spec", "read_mask", "parse_mask_text",
+    "wang_from_nesw", "wang_to_nesw", "random_boundary",
+]
+
+W, N, E, S = 0, 1, 2, 3
+LEG_NAMES = ("W", "N", "E", "S")
+#: Largest board any route accepts.
+MAX_BOARD_CELLS = 1 << 26
+
+_DELTA = {W: (0, -1), N: (-1, 0), E: (0, 1), S: (1, 0)}
+_WRAPS = (None, "plain", "twist")
+
+
+@dataclass(frozen=True, eq=False)
+class Board:
+    """A board (Def. 1): cells with four ordered legs, joined to cells or to the wall.
+
+    Parameters
+    ----------
+    labels : numpy.ndarray
+        ``(n, 2)`` int64 ``[row, col]`` label of each cell.
+    nbr_cell, nbr_leg : numpy.ndarray
+        ``(n, 4)`` int64 joins (see the module docstring).
+    kind : str
+        How it was built (``"rect"``, ``"torus"``, ``"mobius"``, ``"mask"``, ...).
+
+    Examples
+    --------
+    >>> b = Board.rect(2, 3)
+    >>> b.n_cells, b.n_boundary, b.n_edges
+    (6, 10, 17)
+    >>> int(b.nbr_cell[0, E]), int(b.nbr_leg[0, E])
+    (1, 0)
+    """
+
+    labels: np.ndarray
+    nbr_cell: np.ndarray
+    nbr_leg: np.ndarray
+    kind: str = "board"
+
+    def __post_init__(self) -> None:
+        lab = np.ascontiguousarray(np.asarray(self.labels, dtype=np.int64).reshape(-1, 2))
+        nc = np.ascontiguousarray(np.asarray(self.nbr_cell, dtype=np.int64))
+        nl = np.ascontiguousarray(np.asarray(self.nbr_leg, dtype=np.int64))
+        n = lab.shape[0]
+        if nc.shape != (n, 4) or nl.shape != (n, 4):
+            raise InvalidProblem(f"board joins must have shape ({n}, 4), got {nc.shape} and {nl.shape}")
+        if n > MAX_BOARD_CELLS:
+            raise InvalidProblem(f"board has {n:,} cells; tilesolve refuses more than {MAX_BOARD_CELLS:,}")
+        if n and ((nc < -1) | (nc >= n)).any():
+            raise InvalidProblem("board joins name a cell that does not exist")
+        inner = nc >= 0
+        if inner.any():
+            a, k = np.nonzero(inner)
+            b, kb = nc[a, k], nl[a, k]
+            if ((kb < 0) | (kb > 3)).any():
+                raise InvalidProblem("board joins name a leg outside 0..3")
+            if not (np.array_equal(nc[b, kb], a) and np.array_equal(nl[b, kb], k)):
+                i = int(np.flatnonzero((nc[b, kb] != a) | (nl[b, kb] != k))[0])
+                raise InvalidProblem(
+                    f"board joins are not symmetric: leg {int(k[i])} of cell {lab[a[i]].tolist()} meets leg "
+                    f"{int(kb[i])} of cell {lab[b[i]].tolist()}, which does not meet it back"
+                )
+        wall = ~inner
+        nb = int(wall.sum())
+        if nb and not np.array_equal(np.sort(nl[wall]), np.arange(nb)):
+            raise InvalidProblem("boundary legs must be numbered 0..n_boundary-1, each once")
+        for name, arr in (("labels", lab), ("nbr_cell", nc), ("nbr_leg", nl)):
+            arr.setflags(write=False)
+            object.__setattr__(self, name, arr)
+
+    # ------------------------------------------------------------------ basics
+    @property
+    def n_cells(self) -> int:
+        return int(self.labels.shape[0])
+
+    @property
+    def n_boundary(self) -> int:
+        return int((self.nbr_cell < 0).sum())
+
+    @property
+    def n_edges(self) -> int:
+        """Edges of the board graph: joined leg pairs plus boundary legs."""
+        inner = int((self.nbr_cell >= 0).sum())
+        return inner // 2 + self.n_boundary
+
+    @property
+    def boundary_legs(self) -> np.ndarray:
+        """``(n_boundary, 2)`` array: ``[cell, leg]`` of each boundary leg, by boundary number."""
+        a, k = np.nonzero(self.nbr_cell < 0)
+        out = np.empty((a.size, 2), dtype=np.int64)
+        out[self.nbr_leg[a, k]] = np.stack([a, k], axis=1)
+        return out
+
+    def leg_edges(self) -> tuple[np.ndarray, int]:
+        """Number every edge: ``(edge_of_leg (n, 4), n_edges)``; joined legs share an edge."""
+        n = self.n_cells
+        eid = np.full((n, 4), -1, dtype=np.int64)
+        nc, nl = self.nbr_cell, self.nbr_leg
+        a = np.arange(n)[:, None].repeat(4, 1)
+        k = np.arange(4)[None, :].repeat(n, 0)
+        own = (nc < 0) | (nc * 4 + nl > a * 4 + k) | ((nc == a) & (nl == k))
+        ids = np.flatnonzero(own.ravel())
+        eid.ravel()[ids] = np.arange(ids.size)
+        other = ~own
+        eid[other] = eid[nc[other], nl[other]]
+        return eid, int(ids.size)
+
+    def index_of(self) -> dict[tuple[int, int], int]:
+        """``{(row, col): cell index}``."""
+        return {(int(r), int(c)): i for i, (r, c) in enumerate(self.labels)}
+
+    def edge_list(self) -> list[list[int]]:
+        """``[a, ka, b, kb]`` per edge (``b = -1``: wall, ``kb`` = boundary leg number)."""
+        out = []
+        nc, nl = self.nbr_cell, self.nbr_leg
+        for a in range(self.n_cells):
+            for k in range(4):
+                b, kb = int(nc[a, k]), int(nl[a, k])
+                if b < 0 or (b, kb) >= (a, k):
+                    out.append([a, k, b, kb])
+        return out
+
+    def degree_in_cells(self) -> np.ndarray:
+        return (self.nbr_cell >= 0).sum(axis=1)
+
+    def to_networkx(self):
+        """The board graph G as a :class:`networkx.MultiGraph`.
+
+        Nodes are cell indices (attribute ``label``) plus ``"wall"``; each edge has
+        ``legs=(ka, kb)`` (from the smaller endpoint's side as stored) and, for the wall,
+        ``boundary`` = the boundary-leg number.
+        """
+        import networkx as nx
+
+        g = nx.MultiGraph()
+        g.add_node("wall")
+        for i, (r, c) in enumerate(self.labels.tolist()):
+            g.add_node(i, label=(r, c))
+        for a, ka, b, kb in self.edge_list():
+            if b < 0:
+                g.add_edge(a, "wall", legs=(ka, None), boundary=kb)
+            else:
+                g.add_edge(a, b, legs=(ka, kb))
+        return g
+
+    def cell_graph(self):
+        """G' (Def. 1): the cells and the edges between them, as a MultiGraph."""
+        g = self.to_networkx()
+        g.remove_node("wall")
+        return g
+
+    def restrict(self, keep) -> "Board":
+        """The restriction ``G|U`` (Def. 4): cells outside ``U`` are contracted to the wall.
+
+        ``keep`` is a boolean mask over cells or a list of cell indices. Cell numbering of
+        the result follows the kept cells' order.
+        """
+        keep_arr = np.asarray(keep)
+        if keep_arr.dtype != bool:
+            m = np.zeros(self.n_cells, dtype=bool)
+            m[keep_arr.astype(np.int64)] = True
+            keep_arr = m
+        if keep_arr.shape != (self.n_cells,):
+            raise InvalidProblem("restriction mask must have one entry per cell")
+        new = np.full(self.n_cells + 1, -1, dtype=np.int64)
+        new[:-1][keep_arr] = np.arange(int(keep_arr.sum()))
+        nc = self.nbr_cell[keep_arr]
+        nl = self.nbr_leg[keep_arr].copy()
+        nc2 = new[nc]  # -1 maps via new[-1] = -1 (wall stays wall)
+        wall = nc2 < 0
+        nl[wall] = np.arange(int(wall.sum()))
+        return Board(self.labels[keep_arr], nc2, nl, kind=self.kind if keep_arr.all() else f"{self.kind}|U")
+
+    # ------------------------------------------------------------------ builders
+    @classmethod
+    def grid(cls, mask, *, wrap_rows: str | None = None, wrap_cols: str | None = None, kind: str = "mask") -> "Board":
+        """Grid board on the cells where ``mask`` is true.
+
+        ``wrap_cols`` joins the E legs of column ``W-1`` to the W legs of column 0:
+        ``"plain"`` (row ``r`` to row ``r``) or ``"twist"`` (row ``r`` to row ``H-1-r``,
+        the Möbius identification of Example 5); ``wrap_rows`` likewise joins S legs of the
+        last row to N legs of row 0 (``"twist"``: column ``c`` to ``W-1-c``).
+        """
+        m = np.asarray(mask, dtype=bool)
+        if m.ndim != 2 or m.size == 0:
+            raise InvalidProblem("a board mask must be a non-empty 2-D array")
+        if wrap_rows not in _WRAPS or wrap_cols not in _WRAPS:
+            raise InvalidProblem(f"wrap must be one of {_WRAPS}")
+        H, Wd = m.shape
+        if H * Wd > MAX_BOARD_CELLS:
+            raise InvalidProblem(f"board {Wd}x{H} is larger than {MAX_BOARD_CELLS:,} cells")
+        if not m.any():
+            raise InvalidProblem("the board mask has no cells")
+        index = np.full((H, Wd), -1, dtype=np.int64)
+        rows, cols = np.nonzero(m)
+        n = rows.size
+        index[rows, cols] = np.arange(n)
+        nc = np.full((n, 4), -1, dtype=np.int64)
+        nl = np.full((n, 4), -1, dtype=np.int64)
+        for k, (dr, dc) in _DELTA.items():
+            r2, c2 = rows + dr, cols + dc
+            if k in (W, E) and wrap_cols is not None:
+                out = (c2 < 0) | (c2 >= Wd)
+                if wrap_cols == "twist":
+                    r2 = np.where(out, H - 1 - r2, r2)
+                c2 = c2 % Wd
+            if k in (N, S) and wrap_rows is not None:
+                out = (r2 < 0) | (r2 >= H)
+                if wrap_rows == "twist":
+                    c2 = np.where(out, Wd - 1 - c2, c2)
+                r2 = r2 % H
+            ok = (r2 >= 0) & (r2 < H) & (c2 >= 0) & (c2 < Wd)
+            tgt = np.full(n, -1, dtype=np.int64)
+            tgt[ok] = index[r2[ok], c2[ok]]
+            nc[:, k] = tgt
+            nl[:, k] = np.where(tgt >= 0, (k + 2) % 4, -1)
+        wall = nc < 0
+        nl[wall] = np.arange(int(wall.sum()))
+        return cls(np.stack([rows, cols], axis=1), nc, nl, kind=kind)
+
+    @classmethod
+    def rect(cls, rows: int, cols: int) -> "Board":
+        """The ``rows x cols`` rectangle with the wall all round."""
+        _check_dims(rows, cols)
+        return cls.grid(np.ones((rows, cols), bool), kind="rect")
+
+    @classmethod
+    def mask(cls, mask) -> "Board":
+        """Rectangle with holes: cells where ``mask`` is true (Def. 4's restriction)."""
+        return cls.grid(mask, kind="mask")
+
+    @classmethod
+    def torus(cls, rows: int, cols: int) -> "Board":
+        """Both directions wrap: no boundary (periodic tilings, Remark 3)."""
+        _check_dims(rows, cols)
+        return cls.grid(np.ones((rows, cols), bool), wrap_rows="plain", wrap_cols="plain", kind="torus")
+
+    @classmethod
+    def cylinder(cls, rows: int, cols: int) -> "Board":
+        """Columns wrap; the top and bottom rows meet the wall."""
+        _check_dims(rows, cols)
+        return cls.grid(np.ones((rows, cols), bool), wrap_cols="plain", kind="cylinder")
+
+    @classmethod
+    def mobius(cls, rows: int, cols: int) -> "Board":
+        """The Möbius strip of Example 5: columns wrap with a twist, rows meet the wall.
+
+        The E leg of cell ``(r, cols-1)`` meets the W leg of ``(rows-1-r, 0)`` (the paper's
+        ``j = 1, j' = N, i + i' = N + 1``); the N legs of row 0 and the S legs of the last
+        row are the boundary ``B``.
+        """
+        _check_dims(rows, cols)
+        return cls.grid(np.ones((rows, cols), bool), wrap_cols="twist", kind="mobius")
+
+    @classmethod
+    def klein(cls, rows: int, cols: int) -> "Board":
+        """Klein bottle: columns wrap with a twist, rows wrap plainly; no boundary."""
+        _check_dims(rows, cols)
+        return cls.grid(np.ones((rows, cols), bool), wrap_rows="plain", wrap_cols="twist", kind="klein")
+
+    @classmethod
+    def ring(cls, rows: int, cols: int) -> "Board":
+        """The border of a ``rows x cols`` rectangle: G' is one cycle (tests of §4.3)."""
+        _check_dims(rows, cols)
+        if rows < 2 or cols < 2:
+            raise InvalidProblem("a ring needs at least 2x2 cells")
+        m = np.zeros((rows, cols), bool)
+        m[0, :] = m[-1, :] = m[:, 0] = m[:, -1] = True
+        return cls.grid(m, kind="ring")
+
+    @classmethod
+    def random_tree(cls, n_cells: int, *, seed=None, span: int | None = None) -> "Board":
+        """A planar grid board whose G' is a tree: cells added next to exactly one cell."""
+        from tilesolve._random import rng_from_seed
+
+        rng = rng_from_seed(seed)
+        if n_cells < 1:
+            raise InvalidProblem("a tree needs at least one cell")
+        span = span or (2 * n_cells + 3)
+        occ = {(0, 0)}
+        frontier = [(0, 0)]
+        tries = 0
+        while len(occ) < n_cells and tries < 200 * n_cells:
+            tries += 1
+            r, c = frontier[int(rng.integers(len(frontier)))]
+            dr, dc = _DELTA[int(rng.integers(4))]
+            cand = (r + dr, c + dc)
+            if cand in occ or abs(cand[0]) > span or abs(cand[1]) > span:
+                continue
+            nbrs = sum((cand[0] + a, cand[1] + b) in occ for a, b in _DELTA.values())
+            if nbrs != 1:
+                continue
+            occ.add(cand)
+            frontier.append(cand)
+        pts = np.array(sorted(occ))
+        pts -= pts.min(axis=0)
+        m = np.zeros(tuple(pts.max(axis=0) + 1), bool)
+        m[pts[:, 0], pts[:, 1]] = True
+        return cls.grid(m, kind="tree")
+
+    @classmethod
+    def random_holes(cls, rows: int, cols: int, density: float = 0.1, *, seed=None) -> "Board":
+        """Rectangle with each cell removed with probability ``density``."""
+        from tilesolve._random import rng_from_seed
+
+        _check_dims(rows, cols)
+        rng = rng_from_seed(seed)
+        m = rng.random((rows, cols)) >= density
+        if not m.any():
+            m[0, 0] = True
+        return cls.grid(m, kind="mask")
+
+    @classmethod
+    def with_holes(cls, rows: int, cols: int, n_holes: int, max_size: int = 8, *, seed=None) -> "Board":
+        """Rectangle with ``n_holes`` random rectangular holes of side 1..``max_size``."""
+        from tilesolve._random import rng_from_seed
+
+        _check_dims(rows, cols)
+        rng = rng_from_seed(seed)
+        m = np.ones((rows, cols), bool)
+        for _ in range(int(n_holes)):
+            h, w = rng.integers(1, max_size + 1, size=2)
+            r, c = int(rng.integers(0, rows)), int(rng.integers(0, cols))
+            m[r : r + h, c : c + w] = False
+        if not m.any():
+            m[0, 0] = True
+        return cls.grid(m, kind="mask")
+
+    @classmethod
+    def from_edges(cls, cells, edges) -> "Board":
+        """Board from plain data: ``cells`` ([row, col] labels) and ``edges`` ([a, ka, b, kb])."""
+        try:
+            lab = np.asarray(cells, dtype=np.int64).reshape(-1, 2)
+            ed = np.asarray(edges, dtype=np.int64).reshape(-1, 4)
+        except (TypeError, ValueError) as exc:
+            raise InvalidProblem(f"board cells/edges are malformed: {exc}") from None
+        n = lab.shape[0]
+        nc = np.full((n, 4), -2, dtype=np.int64)
+        nl = np.full((n, 4), -2, dtype=np.int64)
+
+        def put(a, k, b, kb):
+            if not (0 <= a < n and 0 <= k < 4):
+                raise InvalidProblem(f"board edge names cell {a} leg {k}, which does not exist")
+            if nc[a, k] != -2:
+                raise InvalidProblem(f"leg {k} of cell {lab[a].tolist()} is joined twice")
+            nc[a, k], nl[a, k] = b, kb
+
+        for a, ka, b, kb in ed.tolist():
+            if b < 0:
+                put(a, ka, -1, kb)
+            else:
+                if not (0 <= b < n and 0 <= kb < 4):
+                    raise InvalidProblem(f"board edge names cell {b} leg {kb}, which does not exist")
+                put(a, ka, b, kb)
+                if (b, kb) != (a, ka):
+                    put(b, kb, a, ka)
+        if (nc == -2).any():
+            a, k = map(int, np.argwhere(nc == -2)[0])
+            raise InvalidProblem(f"leg {k} of cell {lab[a].tolist()} is not joined to anything")
+        return cls(lab, nc, nl, kind="board")
+
+    def describe(self) -> str:
+        rows = int(self.labels[:, 0].max()) + 1 if self.n_cells else 0
+        cols = int(self.labels[:, 1].max()) + 1 if self.n_cells else 0
+        return f"{self.kind} board, {self.n_cells} cells in {cols}x{rows}, {self.n_boundary} boundary legs"
+
+
+def _check_dims(rows: int, cols: int) -> None:
+    if int(rows) < 1 or int(cols) < 1:
+        raise InvalidProblem(f"board size must be positive, got {cols}x{rows} (WxH)")
+    if int(rows) * int(cols) > MAX_BOARD_CELLS:
+        raise InvalidProblem(f"board {cols}x{rows} is larger than {MAX_BOARD_CELLS:,} cells")
+
+
+# ---------------------------------------------------------------------- masks and specs
+def parse_mask_text(text: str, source: str = "<mask>") -> np.ndarray:
+    """ASCII mask: ``#`` = cell, ``.`` = hole, one board row per line (blank lines ignored)."""
+    lines = [ln.rstrip("\r\n").rstrip() for ln in text.splitlines()]
+    lines = [ln for ln in lines if ln.strip()]
+    if not lines:
+        raise InvalidProblem(f"{source}: the mask is empty")
+    width = max(len(ln) for ln in lines)
+    m = np.zeros((len(lines), width), dtype=bool)
+    for r, ln in enumerate(lines):
+        for c, ch in enumerate(ln):
+            if ch == "#":
+                m[r, c] = True
+            elif ch not in ". ":
+                raise InvalidProblem(f"{source}: line {r + 1}, column {c + 1}: {ch!r} is not '#' (cell) or '.' (hole)")
+    if not m.any():
+        raise InvalidProblem(f"{source}: the mask has no '#' cells")
+    return m
+
+
+def read_mask(path: str | Path) -> np.ndarray:
+    """Read a mask file: a PNG (opaque pixels are cells; without alpha, non-white pixels)
+    or a text file of ``#``/``.``."""
+    p = Path(path)
+    try:
+        data = p.read_bytes()
+    except OSError as exc:
+        raise InvalidProblem(f"cannot read mask {p}: {exc.strerror or exc}") from None
+    if data[:8] == b"\x89PNG\r\n\x1a\n":
+        import io
+
+        from PIL import Image
+
+        try:
+            img = Image.open(io.BytesIO(data))
+            img.load()
+        except Exception as exc:  # noqa: BLE001 - any decoder failure is a bad file
+            raise InvalidProblem(f"{p}: not a readable PNG ({exc})") from None
+        if img.width * img.height > MAX_BOARD_CELLS:
+            raise InvalidProblem(f"{p}: {img.width}x{img.height} pixels is too large a board")
+        if "A" in img.getbands() or img.info.get("transparency") is not None:
+            m = np.asarray(img.convert("RGBA"))[:, :, 3] > 0
+        else:
+            m = np.asarray(img.convert("L")) < 128
+        if not m.any():
+            raise InvalidProblem(f"{p}: the PNG mask has no opaque (cell) pixels")
+        return m
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError:
+        raise InvalidProblem(f"{p}: a mask must be a PNG or a text file of '#' and '.'") from None
+    return parse_mask_text(text, str(p))
+
+
+_SPEC_RE = re.compile(r"^\s*(rect|torus|cylinder|mobius|klein|ring)\s*:\s*(\d+)\s*[xX×]\s*(\d+)\s*$")
+
+
+def parse_board_spec(spec: str) -> Board:
+    """``rect:WxH``, ``torus:WxH``, ``cylinder:WxH``, ``mobius:WxH``, ``klein:WxH``,
+    ``ring:WxH`` or ``mask:FILE`` (W columns, H rows).
+
+    Examples
+    --------
+    >>> parse_board_spec("mobius:6x4").describe()
+    'mobius board, 24 cells in 6x4, 12 boundary legs'
+    """
+    s = str(spec)
+    if s.startswith("mask:"):
+        return Board.mask(read_mask(s[5:]))
+    m = _SPEC_RE.match(s)
+    if not m:
+        raise InvalidProblem(
+            f"cannot read board {spec!r}: expected rect:WxH, torus:WxH, cylinder:WxH, mobius:WxH, "
+            "klein:WxH, ring:WxH or mask:FILE"
+        )
+    kind, w, h = m.group(1), int(m.group(2)), int(m.group(3))
+    return getattr(Board, kind)(h, w)
+
+
+# ---------------------------------------------------------------------- tile sets
+def wang_from_nesw(tiles) -> np.ndarray:
+    """Convert tiles given as (N, E, S, W) to tilesolve's (W, N, E, S) leg order."""
+    t = np.asarray(tiles, dtype=np.int64).reshape(-1, 4)
+    return t[:, [3, 0, 1, 2]]
+
+
+def wang_to_nesw(tiles) -> np.ndarray:
+    """Convert (W, N, E, S) tiles to (N, E, S, W)."""
+    t = np.asarray(tiles, dtype=np.int64).reshape(-1, 4)
+    return t[:, [1, 2, 3, 0]]
+
+
+@dataclass(frozen=True, eq=False)
+class WangTileSet:
+    """A set of Wang tiles ``W ⊂ C^4`` (Def. 2), each a tuple of leg colours (W, N, E, S).
+
+    Examples
+    --------
+    >>> wb = WangTileSet.brick(3)
+    >>> len(wb), wb.is_brick, wb.three_boundary()
+    (36, True, True)
+    """
+
+    tiles: np.ndarray
+    n_colors: int
+    is_brick: bool = False
+
+    def __post_init__(self) -> None:
+        k = int(self.n_colors)
+        if k < 1:
+            raise InvalidProblem(f"a tile set needs at least one colour, got {self.n_colors}")
+        try:
+            t = np.asarray(self.tiles, dtype=np.int64)
+        except (TypeError, ValueError):
+            raise InvalidProblem("tiles must be lists of 4 integer colours") from None
+        if t.size == 0:
+            raise InvalidProblem("the tile set is empty")
+        if t.ndim != 2 or t.shape[1] != 4:
+            raise InvalidProblem(f"each tile must have 4 colours (W, N, E, S); got shape {t.shape}")
+        bad = (t < 0) | (t >= k)
+        if bad.any():
+            i = int(np.argwhere(bad)[0][0])
+            raise InvalidProblem(f"tile {t[i].tolist()} uses a colour outside C = 0..{k - 1}")
+        t = np.unique(t, axis=0)
+        t.setflags(write=False)
+        object.__setattr__(self, "tiles", t)
+        object.__setattr__(self, "n_colors", k)
+
+    @classmethod
+    def brick(cls, n_colors: int = 3) -> "WangTileSet":
+        """The brick Wang tiles W_B (Def. 9): ``(c1 = c3 and c2 != c4) or (c1 != c3 and c2 = c4)``."""
+        k = int(n_colors)
+        if k < 3:
+            raise InvalidProblem(f"brick Wang tiles need #C >= 3 colours (Def. 9), got {k}")
+        g = np.stack(np.meshgrid(*[np.arange(k)] * 4, indexing="ij"), axis=-1).reshape(-1, 4)
+        ok = ((g[:, 0] == g[:, 2]) & (g[:, 1] != g[:, 3])) | ((g[:, 0] != g[:, 2]) & (g[:, 1] == g[:, 3]))
+        return cls(g[ok], k, is_brick=True)
+
+    def __len__(self) -> int:
+        return int(self.tiles.shape[0])
+
+    def contains(self, colours) -> np.ndarray:
+        """Boolean per row of ``colours`` ((m, 4) array): is it a tile of the set?"""
+        c = np.asarray(colours, dtype=np.int64).reshape(-1, 4)
+        k = self.n_colors
+        inrange = ((c >= 0) & (c < k)).all(axis=1)
+        key = lambda a: ((a[:, 0] * k + a[:, 1]) * k + a[:, 2]) * k + a[:, 3]  # noqa: E731
+        return inrange & np.isin(key(np.where(c >= 0, c, 0)), key(self.tiles))
+
+    def three_boundary(self) -> bool:
+        """Def. 6: every projection forgetting one place is onto ``C^3``."""
+        k = self.n_colors
+        for i in range(4):
+            rest = np.delete(self.tiles, i, axis=1)
+            key = (rest[:, 0] * k + rest[:, 1]) * k + rest[:, 2]
+            if np.unique(key).size != k**3:
+                return False
+        return True
+
+    def to_json(self):
+        return "brick" if self.is_brick else self.tiles.tolist()
+
+
+def random_boundary(board: Board, n_colors: int, *, seed=None) -> np.ndarray:
+    """A random colour for every boundary leg."""
+    from tilesolve._random import rng_from_seed
+
+    return rng_from_seed(seed).integers(0, n_colors, size=board.n_boundary).astype(np.int64)
+
+
+@dataclass(frozen=True, eq=False)
+class BoardProblem:
+    """A tiling problem ``(G, C, β, W)`` (Def. 2) on a board.
+
+    Parameters
+    ----------
+    board : Board
+    tileset : WangTileSet
+        Its ``n_colors`` is ``#C``.
+    boundary : array-like, optional
+        Colour required on each boundary leg (by boundary-leg number), ``-1`` = free.
+        ``None`` leaves every boundary leg free.
+    max_h, max_v : int, optional
+        Brick walls only (dappled paper §4): no run of more than ``max_h`` consecutive
+        W_H tiles (``c1 = c3``) along a row, or ``max_v`` W_V tiles (``c2 = c4``) down a
+        column. Runs follow the legs: from a cell out of its E (S) leg into the next cell.
+
+    Examples
+    --------
+    >>> p = BoardProblem(Board.rect(3, 3), WangTileSet.brick(3), [0] * 12)
+    >>> p.n_colors, int((p.boundary >= 0).sum())
+    (3, 12)
+    """
+
+    board: Board
+    tileset: WangTileSet
+    boundary: np.ndarray | None = None
+    max_h: int | None = None
+    max_v: int | None = None
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.board, Board):
+            raise InvalidProblem("board must be a Board")
+        if not isinstance(self.tileset, WangTileSet):
+            raise InvalidProblem("tileset must be a WangTileSet")
+        nb = self.board.n_boundary
+        if self.boundary is None:
+            b = np.full(nb, -1, dtype=np.int64)
+        else:
+            try:
+                b = np.asarray(self.boundary, dtype=np.int64).reshape(-1)
+            except (TypeError, ValueError):
+                raise InvalidProblem("boundary colours must be integers (-1 = free)") from None
+            if b.size != nb:
+                raise InvalidProblem(
+                    f"boundary gives {b.size} colours but the board has {nb} boundary legs"
+                    + (" (constraints on legs that are not on the boundary)" if b.size > nb else "")
+                )
+            bad = (b < -1) | (b >= self.tileset.n_colors)
+            if bad.any():
+                i = int(np.flatnonzero(bad)[0])
+                raise InvalidProblem(
+                    f"boundary leg {i} has colour {int(b[i])}, outside C = 0..{self.tileset.n_colors - 1} (-1 = free)"
+                )
+        b = b.copy()
+        b.setflags(write=False)
+        object.__setattr__(self, "boundary", b)
+        for name in ("max_h", "max_v"):
+            v = getattr(self, name)
+            if v is not None:
+                if int(v) < 1:
+                    raise InvalidProblem(f"{name} must be >= 1, got {v}")
+                if not self.tileset.is_brick:
+                    raise InvalidProblem("line-length limits apply to brick Wang tiles only")
+                object.__setattr__(self, name, int(v))
+
+    @property
+    def n_colors(self) -> int:
+        return self.tileset.n_colors
+
+    @property
+    def has_line_limits(self) -> bool:
+        return self.max_h is not None or self.max_v is not None
+
+    @classmethod
+    def from_boundary_legs(cls, board: Board, tileset: WangTileSet, fixed: dict) -> "BoardProblem":
+        """Boundary from ``{(cell, leg): colour}``; a leg not on the boundary is an error."""
+        b = np.full(board.n_boundary, -1, dtype=np.int64)
+        for (a, k), col in fixed.items():
+            a, k = int(a), int(k)
+            if not (0 <= a < board.n_cells and 0 <= k < 4):
+                raise InvalidProblem(f"cell {a} leg {k} does not exist")
+            if board.nbr_cell[a, k] >= 0:
+                raise InvalidProblem(
+                    f"leg {LEG_NAMES[k]} of cell {board.labels[a].tolist()} is not on the boundary "
+                    "(it meets another cell)"
+                )
+            b[board.nbr_leg[a, k]] = int(col)
+        return cls(board, tileset, b)
+
+    def describe(self) -> str:
+        ts = f"brick Wang tiles, {self.n_colors} colours" if self.tileset.is_brick else \
+            f"{len(self.tileset)} Wang tiles, {self.n_colors} colours"
+        fixed = int((self.boundary >= 0).sum())
+        extra = ""
+        if self.has_line_limits:
+            extra = f", lines <= {self.max_h or 'inf'} / {self.max_v or 'inf'}"
+        return f"{self.board.describe()}; {ts}; {fixed} boundary legs fixed{extra}"

@@ -1,0 +1,127 @@
+"""Independent checker for tile packings (class notes §5.5).
+
+Written from the definitions only, with numpy: a packing of the complete Wang or corner
+tile set over ``C`` colours is a ``C**2 x C**2`` toroidal grid (``C_h**2 x C_v**2`` for Wang
+tiles with separate vertical colours) that holds every tile index ``0 .. C**4 - 1`` exactly
+once, such that adjoining edges (Wang) or corners (corner tiles) have equal colours. Tile
+indices are decoded here from eq. 2.3 (Wang: ``c_N c_E c_S c_W``) and eq. 2.6 (corner:
+``c_NE c_SE c_SW c_NW``), without importing :mod:`tilesolve.model.tiles`, the constructions
+or the encodings.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from tilesolve.verify.dappled import Violation
+
+__all__ = ["packing_violations", "is_packing"]
+
+
+def _decode(grid: np.ndarray, radices: tuple[int, int, int, int]) -> list[np.ndarray]:
+    """The four base-``radices`` digits of each index, most significant first."""
+    digits = []
+    rest = grid.copy()
+    for r in reversed(radices):
+        digits.append(rest % r)
+        rest = rest // r
+    return digits[::-1]
+
+
+def packing_violations(grid, kind: str, colors: int, *, colors_v: int | None = None, fixed=()) -> list[Violation]:
+    """Every way ``grid`` fails to be a tile packing, with positions; empty when it is one.
+
+    Parameters
+    ----------
+    grid : array-like of int
+        ``grid[row][col]`` tile indices, row 0 at the top (row r-1 north of row r).
+    kind : {"wang", "corner"}
+    colors : int
+        ``C`` (``C_h`` with ``colors_v``).
+    colors_v : int, optional
+        Wang tiles with a different number of colours on the E/W edges.
+    fixed : iterable of (row, col, tile)
+        Pinned tiles that must be where they are pinned.
+
+    Returns
+    -------
+    list of Violation
+        kinds ``"shape"``, ``"tile"`` (index out of range), ``"duplicate"``, ``"missing"``,
+        ``"match"`` (an edge or corner mismatch, at the western/northern cell of the pair),
+        ``"fixed"``.
+
+    Examples
+    --------
+    >>> sorted({v.kind for v in packing_violations(np.zeros((4, 4), int), "wang", 2)})
+    ['duplicate', 'missing']
+    >>> fig_5_9 = [[0, 1, 3, 2]]   # not a 2D packing: wrong shape
+    >>> str(packing_violations(fig_5_9, "corner", 2)[0])
+    'packing has shape (1, 4), expected 4x4 for C=2'
+    """
+    if kind not in ("wang", "corner"):
+        return [Violation("shape", f"unknown tile kind {kind!r}")]
+    ch = int(colors)
+    cv = ch if colors_v is None else int(colors_v)
+    if kind == "corner" and cv != ch:
+        return [Violation("shape", "corner tiles have one number of colours")]
+    g = np.asarray(grid)
+    rows, cols = ch * ch, cv * cv
+    n = rows * cols
+    if g.ndim != 2 or g.shape != (rows, cols):
+        return [Violation("shape", f"packing has shape {g.shape}, expected {rows}x{cols} for C={colors}"
+                          + (f", C_v={cv}" if cv != ch else ""))]
+    if g.size and not np.issubdtype(g.dtype, np.integer):
+        return [Violation("tile", "packing must hold integer tile indices")]
+    g = g.astype(np.int64)
+    out: list[Violation] = []
+    for r, c in np.argwhere((g < 0) | (g >= n)):
+        out.append(Violation("tile", f"tile {int(g[r, c])} is not in 0..{n - 1}", int(r), int(c)))
+    if out:
+        return out
+    # Each tile exactly once.
+    counts = np.bincount(g.ravel(), minlength=n)
+    for t in np.flatnonzero(counts > 1):
+        where = [tuple(map(int, p)) for p in np.argwhere(g == t)]
+        for r, c in where[1:]:
+            out.append(Violation("duplicate", f"tile {int(t)} appears {int(counts[t])} times "
+                                 f"(first at row {where[0][0]}, col {where[0][1]})", r, c))
+    for t in np.flatnonzero(counts == 0):
+        out.append(Violation("missing", f"tile {int(t)} is missing"))
+    # Matching, toroidal: compare each cell with its east and south neighbours.
+    east = np.roll(g, -1, axis=1)
+    south = np.roll(g, -1, axis=0)
+    if kind == "wang":
+        radices = (ch, cv, ch, cv)
+        n_, e_, s_, w_ = _decode(g, radices)
+        _, _, _, w_east = _decode(east, radices)
+        n_south, _, _, _ = _decode(south, radices)
+        checks = [(e_ != w_east, "east edge colour {a} meets west edge colour {b} of tile {t} to its east",
+                   e_, w_east, east),
+                  (s_ != n_south, "south edge colour {a} meets north edge colour {b} of tile {t} below",
+                   s_, n_south, south)]
+    else:
+        radices = (ch,) * 4
+        ne, se, sw, nw = _decode(g, radices)
+        _, _, sw_e, nw_e = _decode(east, radices)
+        ne_s, _, _, nw_s = _decode(south, radices)
+        checks = [(ne != nw_e, "NE corner colour {a} meets NW corner colour {b} of tile {t} to its east", ne, nw_e, east),
+                  (se != sw_e, "SE corner colour {a} meets SW corner colour {b} of tile {t} to its east", se, sw_e, east),
+                  (sw != nw_s, "SW corner colour {a} meets NW corner colour {b} of tile {t} below", sw, nw_s, south),
+                  (se != ne_s, "SE corner colour {a} meets NE corner colour {b} of tile {t} below", se, ne_s, south)]
+    for bad, text, a, b, other in checks:
+        for r, c in np.argwhere(bad):
+            out.append(Violation("match", f"tile {int(g[r, c])}: " + text.format(a=int(a[r, c]), b=int(b[r, c]),
+                                                                                  t=int(other[r, c])), int(r), int(c)))
+    for r, c, t in fixed:
+        r, c, t = int(r), int(c), int(t)
+        if not (0 <= r < rows and 0 <= c < cols):
+            out.append(Violation("fixed", f"fixed cell ({r}, {c}) is outside the packing"))
+        elif g[r, c] != t:
+            out.append(Violation("fixed", f"fixed tile {t} replaced by {int(g[r, c])}", r, c))
+    out.sort(key=lambda v: (v.row is None, v.row or 0, v.col or 0))
+    return out
+
+
+def is_packing(grid, kind: str, colors: int, *, colors_v: int | None = None, fixed=()) -> bool:
+    """True when ``grid`` is a valid tile packing (see :func:`packing_violations`)."""
+    return not packing_violations(grid, kind, colors, colors_v=colors_v, fixed=fixed)
