@@ -14,35 +14,45 @@ EXACT, NOT, ANY, EMPTY = 0, 1, 2, 3
 
 
 @njit(cache=True)
-def bfs_components(nc, nl):
-    """Components of G' by BFS: (comp, order, parent_leg, n_comp).
+def components(nc, nl):
+    """Components of G' by depth-first search: (comp, order, parent_leg, n_comp).
 
-    ``order`` lists cells component by component in BFS order from the component's
-    lowest-numbered cell; ``parent_leg[v]`` is v's leg towards its BFS parent (-1: root).
+    ``order`` lists cells component by component in DFS preorder from the component's
+    lowest-numbered cell (a parent always precedes its children); ``parent_leg[v]`` is
+    v's leg towards its parent (-1: root). Legs are tried E, S, W, N for locality.
     """
     n = nc.shape[0]
     comp = np.full(n, -1, np.int64)
     order = np.empty(n, np.int64)
     parent_leg = np.full(n, -1, np.int64)
-    head = 0
-    tail = 0
+    stack = np.empty(n, np.int64)
+    nxt = np.zeros(n, np.int64)
+    pref = np.array([2, 3, 0, 1])
+    m = 0
     ncomp = 0
     for s in range(n):
         if comp[s] >= 0:
             continue
         comp[s] = ncomp
-        order[tail] = s
-        tail += 1
-        while head < tail:
-            v = order[head]
-            head += 1
-            for k in range(4):
-                w = nc[v, k]
-                if w >= 0 and comp[w] < 0:
-                    comp[w] = ncomp
-                    parent_leg[w] = nl[v, k]
-                    order[tail] = w
-                    tail += 1
+        order[m] = s
+        m += 1
+        top = 0
+        stack[0] = s
+        while top >= 0:
+            v = stack[top]
+            if nxt[v] >= 4:
+                top -= 1
+                continue
+            k = pref[nxt[v]]
+            nxt[v] += 1
+            w = nc[v, k]
+            if w >= 0 and comp[w] < 0:
+                comp[w] = ncomp
+                parent_leg[w] = nl[v, k]
+                order[m] = w
+                m += 1
+                top += 1
+                stack[top] = w
         ncomp += 1
     return comp, order, parent_leg, ncomp
 

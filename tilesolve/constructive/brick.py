@@ -225,7 +225,7 @@ def solve_linear(problem: BoardProblem, *, seed=None) -> Solution:
     col = np.full((n, 4), -1, np.int64)
     wa, wl = np.nonzero(nc < 0)
     col[wa, wl] = problem.boundary[nl[wa, wl]]
-    comp, order, parent_leg, ncomp = K.bfs_components(nc, nl)
+    comp, order, parent_leg, ncomp = K.components(nc, nl)
     sizes = np.bincount(comp, minlength=ncomp)
     inner_legs = np.bincount(comp, weights=(nc >= 0).sum(axis=1), minlength=ncomp).astype(np.int64)
     is_tree = inner_legs // 2 == sizes - 1
