@@ -208,6 +208,7 @@ def test_solve_contract(tmp_path):
     assert run("verify", "t.json", cwd=tmp_path).returncode == 0
     again = run("dappled", "solve", "--size", "12x8", "--cond", "H0=2", "--cond", "V1=3", "--seed", "3",
                 "-o", "u.json", cwd=tmp_path)
+    assert again.returncode == 0
     assert json.loads((tmp_path / "u.json").read_text())["tiling"] == doc["tiling"]  # same seed, same tiling
 
 

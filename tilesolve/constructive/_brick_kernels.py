@@ -14,12 +14,80 @@ EXACT, NOT, ANY, EMPTY = 0, 1, 2, 3
 
 
 @njit(cache=True)
-def components(nc, nl):
-    """Components of G' by depth-first search: (comp, order, parent_leg, n_comp).
+def four_cycle_at(nc, a, out):
+    """A chordless 4-cycle a-b-d-c through cell ``a`` using two consecutive legs of ``a``
+    (a 2x2 block: four corners). Writes the cells to ``out``; False when there is none."""
+    for k in range(4):
+        b = nc[a, k]
+        c = nc[a, (k + 1) % 4]
+        if b < 0 or c < 0 or b == a or c == a or b == c:
+            continue
+        for kb in range(4):
+            d = nc[b, kb]
+            if d < 0 or d == a or d == b or d == c:
+                continue
+            hit = False
+            for kc in range(4):
+                if nc[c, kc] == d:
+                    hit = True
+            if not hit:
+                continue
+            good = True  # chordless: each cell has exactly two legs into {a, b, c, d}
+            for v in (a, b, c, d):
+                cnt = 0
+                for kk in range(4):
+                    w = nc[v, kk]
+                    if w == a or w == b or w == c or w == d:
+                        cnt += 1
+                if cnt != 2:
+                    good = False
+            if good:
+                out[0] = a
+                out[1] = b
+                out[2] = d
+                out[3] = c
+                return True
+    return False
 
-    ``order`` lists cells component by component in DFS preorder from the component's
-    lowest-numbered cell (a parent always precedes its children); ``parent_leg[v]`` is
-    v's leg towards its parent (-1: root). Legs are tried E, S, W, N for locality.
+
+@njit(cache=True)
+def _dfs(nc, nl, s, label, comp, order, m, parent_leg, stack, nxt, pref, legs):
+    comp[s] = label
+    order[m] = s
+    m += 1
+    top = 0
+    stack[0] = s
+    while top >= 0:
+        v = stack[top]
+        if nxt[v] >= 4:
+            top -= 1
+            continue
+        k = pref[nxt[v]]
+        nxt[v] += 1
+        w = nc[v, k]
+        if w >= 0:
+            legs[label] += 1
+        if w >= 0 and comp[w] < 0:
+            comp[w] = label
+            parent_leg[w] = nl[v, k]
+            order[m] = w
+            m += 1
+            top += 1
+            stack[top] = w
+    return m
+
+
+@njit(cache=True)
+def components(nc, nl):
+    """Components of G' by depth-first search, rooted at a 4-cycle where there is one.
+
+    Returns ``(comp, order, parent_leg, starts, has_quad, is_tree)``: ``order`` lists the cells
+    component by component in DFS preorder (a parent precedes its children),
+    ``parent_leg[v]`` is v's leg towards its parent (-1 at a root), the cells of component
+    ``i`` are ``order[starts[i]:starts[i+1]]``, and ``has_quad[i]`` says that its root
+    lies on a chordless 4-cycle (:func:`four_cycle_at`); ``is_tree[i]`` that the component
+    has one edge fewer than cells. Legs are tried in the order E, S,
+    W, N, which on grids walks rows back and forth and keeps memory accesses local.
     """
     n = nc.shape[0]
     comp = np.full(n, -1, np.int64)
@@ -28,74 +96,36 @@ def components(nc, nl):
     stack = np.empty(n, np.int64)
     nxt = np.zeros(n, np.int64)
     pref = np.array([2, 3, 0, 1])
+    starts = np.zeros(n + 1, np.int64)
+    hq = np.zeros(n, np.bool_)
+    legs = np.zeros(n, np.int64)
+    q = np.empty(4, np.int64)
     m = 0
     ncomp = 0
-    for s in range(n):
+    for s in range(n):  # components with a 2x2 block, rooted in it
+        if comp[s] >= 0 or not four_cycle_at(nc, s, q):
+            continue
+        m = _dfs(nc, nl, s, ncomp, comp, order, m, parent_leg, stack, nxt, pref, legs)
+        hq[ncomp] = True
+        ncomp += 1
+        starts[ncomp] = m
+    for s in range(n):  # the others
         if comp[s] >= 0:
             continue
-        comp[s] = ncomp
-        order[m] = s
-        m += 1
-        top = 0
-        stack[0] = s
-        while top >= 0:
-            v = stack[top]
-            if nxt[v] >= 4:
-                top -= 1
-                continue
-            k = pref[nxt[v]]
-            nxt[v] += 1
-            w = nc[v, k]
-            if w >= 0 and comp[w] < 0:
-                comp[w] = ncomp
-                parent_leg[w] = nl[v, k]
-                order[m] = w
-                m += 1
-                top += 1
-                stack[top] = w
+        m = _dfs(nc, nl, s, ncomp, comp, order, m, parent_leg, stack, nxt, pref, legs)
         ncomp += 1
-    return comp, order, parent_leg, ncomp
-
-
-@njit(cache=True)
-def bfs_tree(nc, nl, sources, allowed):
-    """Multi-source BFS from ``sources`` over cells with ``allowed``; returns (order, parent_leg).
-
-    ``order`` holds the reached non-source cells in BFS order; ``parent_leg[v]`` is the leg
-    of v that meets its BFS parent.
-    """
-    n = nc.shape[0]
-    seen = np.zeros(n, np.bool_)
-    queue = np.empty(n, np.int64)
-    parent_leg = np.full(n, -1, np.int64)
-    head = 0
-    tail = 0
-    for s in sources:
-        seen[s] = True
-        queue[tail] = s
-        tail += 1
-    first = tail
-    while head < tail:
-        v = queue[head]
-        head += 1
-        for k in range(4):
-            w = nc[v, k]
-            if w >= 0 and allowed[w] and not seen[w]:
-                seen[w] = True
-                parent_leg[w] = nl[v, k]
-                queue[tail] = w
-                tail += 1
-    return queue[first:tail].copy(), parent_leg
+        starts[ncomp] = m
+    st = starts[: ncomp + 1].copy()
+    is_tree = legs[:ncomp] // 2 == st[1:] - st[:-1] - 1
+    return comp, order, parent_leg, st, hq[:ncomp].copy(), is_tree
 
 
 @njit(cache=True)
 def dfs_tree(nc, nl, sources, allowed):
-    """Depth-first spanning forest from ``sources`` (§4 step 2: "in a depth-first manner").
+    """Depth-first spanning forest from ``sources`` over cells with ``allowed``.
 
-    Returns ``(order, parent_leg)``: the reached non-source cells in preorder (so every
-    cell comes after its parent) and each one's leg towards its parent. Legs are tried in
-    the order E, S, W, N, which on grids walks rows back and forth and keeps memory
-    accesses local.
+    Returns ``(order, parent_leg)``: the reached non-source cells in preorder (every cell
+    after its parent) and each one's leg towards its parent.
     """
     n = nc.shape[0]
     seen = np.zeros(n, np.bool_)
@@ -126,53 +156,30 @@ def dfs_tree(nc, nl, sources, allowed):
                 m += 1
                 top += 1
                 stack[top] = w
-                nxt[w] = 0
     return order[:m].copy(), parent_leg
 
 
 @njit(cache=True)
-def find_4cycles(nc, comp, ncomp):
-    """Per component, a chordless 4-cycle a-b-d-c (a 2x2 block) or -1: array (ncomp, 4)."""
-    out = np.full((ncomp, 4), -1, np.int64)
-    n = nc.shape[0]
-    for a in range(n):
-        ci = comp[a]
-        if out[ci, 0] >= 0:
-            continue
-        for k in range(4):
-            b = nc[a, k]
-            c = nc[a, (k + 1) % 4]
-            if b < 0 or c < 0 or b == a or c == a or b == c:
-                continue
-            for kb in range(4):
-                d = nc[b, kb]
-                if d < 0 or d == a or d == b or d == c:
-                    continue
-                hit = False
-                for kc in range(4):
-                    if nc[c, kc] == d:
-                        hit = True
-                if not hit:
-                    continue
-                # chordless: each cell has exactly two legs into {a, b, c, d}
-                good = True
-                for v in (a, b, c, d):
-                    cnt = 0
-                    for kk in range(4):
-                        w = nc[v, kk]
-                        if w == a or w == b or w == c or w == d:
-                            cnt += 1
-                    if cnt != 2:
-                        good = False
-                if good:
-                    out[ci, 0] = a
-                    out[ci, 1] = b
-                    out[ci, 2] = d
-                    out[ci, 3] = c
+def quad_legs(nc, nl, roots):
+    """Cycle arrays (cells, ins, outs, ptr) for the 4-cycles through ``roots``."""
+    L = roots.shape[0]
+    cells = np.empty(4 * L, np.int64)
+    ins = np.empty(4 * L, np.int64)
+    outs = np.empty(4 * L, np.int64)
+    ptr = np.arange(L + 1) * 4
+    q = np.empty(4, np.int64)
+    for t in range(L):
+        four_cycle_at(nc, roots[t], q)
+        for i in range(4):
+            a = q[i]
+            b = q[(i + 1) % 4]
+            for k in range(4):
+                if nc[a, k] == b:
+                    cells[4 * t + i] = a
+                    outs[4 * t + i] = k
+                    ins[4 * t + (i + 1) % 4] = nl[a, k]
                     break
-            if out[ci, 0] >= 0:
-                break
-    return out
+    return cells, ins, outs, ptr
 
 
 @njit(cache=True)
@@ -281,7 +288,7 @@ def choose_tile(kinds, vals, C, r, first_mode, out):
 
 @njit(cache=True)
 def _rand(state):
-    """xorshift64 step on ``state[0]``; returns 32 random bits (cheaper than np.random)."""
+    """xorshift64 step on ``state[0]``; returns 32 random bits (cheaper than numpy.random)."""
     x = state[0]
     x ^= (x << np.uint64(13)) & np.uint64(0xFFFFFFFFFFFFFFFF)
     x ^= x >> np.uint64(7)
@@ -319,7 +326,7 @@ def _leg_conds(col, a, kinds, vals):
 
 
 @njit(cache=True)
-def tile_outside(order, parent_leg, nc, nl, col, C, seed):
+def tile_outside(order, parent_leg, skip, nc, nl, col, C, seed):
     """Theorem 7 steps 2-3: tile ``order`` from its end (leaves first); each cell's parent
     leg is still free, so by the three-boundary condition a tile always exists.
     Returns the index of a cell that could not be tiled (a self-joined leg), or -1."""
@@ -329,6 +336,8 @@ def tile_outside(order, parent_leg, nc, nl, col, C, seed):
     tile = np.empty(4, np.int64)
     for i in range(order.size - 1, -1, -1):
         a = order[i]
+        if skip[a]:
+            continue
         _leg_conds(col, a, kinds, vals)
         kinds[parent_leg[a]] = ANY
         vals[parent_leg[a]] = -1
@@ -353,7 +362,7 @@ def solve_cycle(cells, ins, outs, nc, nl, col, C, seed):
     Colours not mentioned on the cycle are interchangeable, so trying the mentioned ones
     and one other is exhaustive. Returns True on success.
     """
-    np.random.seed(seed)
+    st = _seed_state(seed)
     L = cells.size
     kinds = np.empty(4, np.int64)
     vals = np.empty(4, np.int64)
@@ -407,13 +416,24 @@ def solve_cycle(cells, ins, outs, nc, nl, col, C, seed):
             else:
                 kinds[ins[i]] = ck[i - 1]
                 vals[ins[i]] = cv[i - 1]
-            if not choose_tile(kinds, vals, C, np.random.randint(0, C), np.random.randint(0, 2), tile):
+            rr = _rand(st)
+            if not choose_tile(kinds, vals, C, (rr >> 1) % C, rr & 1, tile):
                 return False  # cannot happen: the conditions were exact
             for k in range(4):
                 _set(col, nc, nl, a, k, tile[k])
             nxt = tile[ins[i]]
         return True
     return False
+
+
+@njit(cache=True)
+def solve_cycles(cells, ins, outs, ptr, nc, nl, col, C, seed):
+    """:func:`solve_cycle` on each cycle ``ptr[i]:ptr[i+1]``; the first that fails, or -1."""
+    for i in range(ptr.size - 1):
+        a, b = ptr[i], ptr[i + 1]
+        if not solve_cycle(cells[a:b], ins[a:b], outs[a:b], nc, nl, col, C, seed + i):
+            return i
+    return -1
 
 
 @njit(cache=True)
@@ -425,7 +445,7 @@ def solve_trees(order, parent_leg, is_tree, comp, nc, nl, col, C, seed, cond_k, 
     admit a tile. Then top-down, tiles are chosen to meet the conditions.
     Returns the root of the first component whose conditions clash, or -1.
     """
-    np.random.seed(seed)
+    st = _seed_state(seed)
     kinds = np.empty(4, np.int64)
     vals = np.empty(4, np.int64)
     tile = np.empty(4, np.int64)
@@ -476,7 +496,8 @@ def solve_trees(order, parent_leg, is_tree, comp, nc, nl, col, C, seed, cond_k, 
             else:
                 kinds[k] = cond_k[b]
                 vals[k] = cond_v[b]
-        if not choose_tile(kinds, vals, C, np.random.randint(0, C), np.random.randint(0, 2), tile):
+        rr = _rand(st)
+        if not choose_tile(kinds, vals, C, (rr >> 1) % C, rr & 1, tile):
             return a  # cannot happen after a successful bottom-up pass
         for k in range(4):
             _set(col, nc, nl, a, k, tile[k])

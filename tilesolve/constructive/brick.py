@@ -43,32 +43,13 @@ from tilesolve.errors import MethodNotApplicable
 from tilesolve.model.board import LEG_NAMES, BoardProblem
 from tilesolve.model.solution import Solution, Status
 
-__all__ = ["solve_linear", "find_cycle", "cycle_corners", "LinearReport"]
-
-
-class LinearReport(dict):
-    """Statistics of a linear run: components, cycles, trees, corner counts."""
+__all__ = ["solve_linear", "find_cycle", "cycle_corners", "wall_from_dappled", "brick_wall"]
 
 
 def cycle_corners(nbr_cell: np.ndarray, ins: np.ndarray, outs: np.ndarray) -> int:
     """Number of corner cells (§3): cells whose two cycle legs are consecutive."""
     d = (np.asarray(outs) - np.asarray(ins)) % 4
     return int(((d == 1) | (d == 3)).sum())
-
-
-def _cycle_from_cells(nc: np.ndarray, nl: np.ndarray, cells: list[int]) -> tuple[np.ndarray, np.ndarray] | None:
-    """(ins, outs) legs for a closed walk of distinct ``cells`` (consecutive ones joined)."""
-    L = len(cells)
-    ins = np.empty(L, np.int64)
-    outs = np.empty(L, np.int64)
-    for i, a in enumerate(cells):
-        b = cells[(i + 1) % L]
-        legs = [k for k in range(4) if nc[a, k] == b]
-        if not legs:
-            return None
-        outs[i] = legs[0]
-        ins[(i + 1) % L] = nl[a, legs[0]]
-    return ins, outs
 
 
 def _chordless(nc: np.ndarray, nl: np.ndarray, cells, ins, outs, max_rounds: int = 10_000):
@@ -225,19 +206,14 @@ def solve_linear(problem: BoardProblem, *, seed=None) -> Solution:
     col = np.full((n, 4), -1, np.int64)
     wa, wl = np.nonzero(nc < 0)
     col[wa, wl] = problem.boundary[nl[wa, wl]]
-    comp, order, parent_leg, ncomp = K.components(nc, nl)
-    sizes = np.bincount(comp, minlength=ncomp)
-    inner_legs = np.bincount(comp, weights=(nc >= 0).sum(axis=1), minlength=ncomp).astype(np.int64)
-    is_tree = inner_legs // 2 == sizes - 1
-    four = K.find_4cycles(nc, comp, ncomp)
-    cycles = []
-    starts = np.concatenate([[0], np.cumsum(sizes)])
-    for ci in np.flatnonzero(~is_tree):
-        if four[ci, 0] >= 0:
-            cells = [int(c) for c in four[ci]]
-            io = _cycle_from_cells(nc, nl, cells)
-            cycles.append((np.array(cells, np.int64), io[0], io[1]))
-            continue
+    comp, order, parent_leg, starts, has_quad, is_tree = K.components(nc, nl)
+    ncomp = starts.size - 1
+    # 1. cycles: a 2x2 block through the DFS root where there is one (then the component's
+    # DFS tree is already rooted on its cycle), else a chordless cycle found in Python
+    roots = order[starts[:-1][has_quad]]
+    cells4, ins4, outs4, ptr4 = K.quad_legs(nc, nl, roots)
+    others = []
+    for ci in np.flatnonzero(~is_tree & ~has_quad):
         comp_order = order[starts[ci]:starts[ci + 1]]
         cyc = find_cycle(board, comp_order, comp_order, parent_leg)
         if cyc is None:
@@ -246,26 +222,42 @@ def solve_linear(problem: BoardProblem, *, seed=None) -> Solution:
                 f"the component of cell {board.labels[a].tolist()} has cycles but none without chords "
                 "(cells joined to themselves or twice); the linear algorithm does not cover it"
             )
-        cycles.append(cyc)
-    stats = {"components": int(ncomp), "trees": int(is_tree.sum()), "cycles": len(cycles)}
-    if cycles:
-        sources = np.concatenate([c[0] for c in cycles])
-        allowed = ~is_tree[comp]
-        out_order, out_parent = K.dfs_tree(nc, nl, sources, allowed)
-        bad = K.tile_outside(out_order, out_parent, nc, nl, col, C, ks[0])
-        if bad >= 0:
-            raise MethodNotApplicable(
-                f"cell {board.labels[bad].tolist()} is joined to itself; the linear algorithm covers "
-                "boards without self-joined cells"
-            )
-        for i, (cells, ins, outs) in enumerate(cycles):
-            if not K.solve_cycle(cells, ins, outs, nc, nl, col, C, ks[1] + i):
-                corners = cycle_corners(nc, ins, outs)
-                raise MethodNotApplicable(
-                    f"the cycle through cell {board.labels[cells[0]].tolist()} ({len(cells)} cells, {corners} "
-                    "corners) could not be tiled after the cells around it: the board is not a planar grid "
-                    "and Remark 11 needs a positive even number of corners"
-                )
+        others.append(cyc)
+    stats = {"components": int(ncomp), "trees": int(is_tree.sum()), "cycles": int(roots.size) + len(others)}
+    in_cycle = np.zeros(n, bool)
+    in_cycle[cells4] = True
+    # 2.-3. the cells outside the cycles, leaves first
+    quad_comp = has_quad[comp]
+    bad = K.tile_outside(order, parent_leg, in_cycle | ~quad_comp, nc, nl, col, C, ks[0])
+    if others:
+        oc = np.concatenate([c[0] for c in others])
+        in_cycle[oc] = True
+        allowed = ~is_tree[comp] & ~quad_comp
+        o_order, o_parent = K.dfs_tree(nc, nl, oc, allowed)
+        bad2 = K.tile_outside(o_order, o_parent, in_cycle, nc, nl, col, C, ks[0] + 1)
+        bad = bad if bad >= 0 else bad2
+    if bad >= 0:
+        raise MethodNotApplicable(
+            f"cell {board.labels[bad].tolist()} is joined to itself; the linear algorithm covers "
+            "boards without self-joined cells"
+        )
+    # 4. the cycles (§4.3)
+    if others:
+        cells = np.concatenate([cells4] + [c[0] for c in others])
+        ins = np.concatenate([ins4] + [c[1] for c in others])
+        outs = np.concatenate([outs4] + [c[2] for c in others])
+        ptr = np.concatenate([[0], np.cumsum([4] * roots.size + [len(c[0]) for c in others])]).astype(np.int64)
+    else:
+        cells, ins, outs, ptr = cells4, ins4, outs4, ptr4
+    failed = K.solve_cycles(cells, ins, outs, ptr, nc, nl, col, C, ks[1])
+    if failed >= 0:
+        a, b = ptr[failed], ptr[failed + 1]
+        corners = cycle_corners(nc, ins[a:b], outs[a:b])
+        raise MethodNotApplicable(
+            f"the cycle through cell {board.labels[cells[a]].tolist()} ({b - a} cells, {corners} "
+            "corners) could not be tiled after the cells around it: the board is not a planar grid "
+            "and Remark 11 needs a positive even number of corners"
+        )
     if is_tree.any():
         cond_k = np.full(n, K.ANY, np.int64)
         cond_v = np.full(n, -1, np.int64)
@@ -292,3 +284,94 @@ def solve_linear(problem: BoardProblem, *, seed=None) -> Solution:
     if (col < 0).any():  # pragma: no cover - every leg is coloured above
         raise AssertionError("internal error: the linear algorithm left legs uncoloured")
     return Solution(Status.SAT, col, "linear", None, seed, time.perf_counter() - t0, stats=stats)
+
+
+def wall_from_dappled(classes, n_colors: int = 3, *, seed=None) -> np.ndarray:
+    """Turn a {W_H, W_V} tiling into a brick Wang tiling of the rectangle (dappled paper §4).
+
+    ``classes[r, c]`` is 0 for W_H (``c1 = c3``: a horizontal line crosses the cell) and 1
+    for W_V (``c2 = c4``). Cells are visited left to right, top to bottom: the W and N
+    colours are forced by the neighbours already placed (or drawn at random on the free
+    boundary); a W_H cell copies W to E and draws S != N at random, a W_V cell copies N to
+    S and draws E != W. Each horizontal chain depends only on its row and each vertical
+    chain only on its column, so both are done a column (row) at a time with numpy.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(rows * cols, 4)`` leg colours (W, N, E, S) of :meth:`Board.rect` cells.
+
+    Examples
+    --------
+    >>> t = wall_from_dappled([[0, 1], [1, 0]], 3, seed=0)
+    >>> bool(((t[:, 0] == t[:, 2]) != (t[:, 1] == t[:, 3])).all())
+    True
+    """
+    g = np.asarray(classes)
+    if g.ndim != 2 or not np.isin(g, (0, 1)).all():
+        from tilesolve.errors import InvalidProblem
+
+        raise InvalidProblem("a wall needs a 2-D tiling of classes 0 (W_H) and 1 (W_V)")
+    if n_colors < 3:
+        from tilesolve.errors import InvalidProblem
+
+        raise InvalidProblem(f"brick Wang tiles need #C >= 3 colours (Def. 9), got {n_colors}")
+    rng = rng_from_seed(seed)
+    rows, cols = g.shape
+    h = g == 0
+    west = np.empty((rows, cols), np.int64)
+    east = np.empty((rows, cols), np.int64)
+    cur = rng.integers(0, n_colors, size=rows)
+    for c in range(cols):
+        west[:, c] = cur
+        step = rng.integers(1, n_colors, size=rows)
+        cur = np.where(h[:, c], cur, (cur + step) % n_colors)
+        east[:, c] = cur
+    north = np.empty((rows, cols), np.int64)
+    south = np.empty((rows, cols), np.int64)
+    cur = rng.integers(0, n_colors, size=cols)
+    for r in range(rows):
+        north[r] = cur
+        step = rng.integers(1, n_colors, size=cols)
+        cur = np.where(~h[r], cur, (cur + step) % n_colors)
+        south[r] = cur
+    return np.stack([west.ravel(), north.ravel(), east.ravel(), south.ravel()], axis=1)
+
+
+def brick_wall(rows: int, cols: int, max_line: int, *, max_v: int | None = None, n_colors: int = 3,
+               seed=None) -> tuple[BoardProblem, Solution]:
+    """A brick wall with no horizontal line through more than ``max_line`` cells and no
+    vertical one through more than ``max_v`` (default ``max_line``), dappled paper §4.
+
+    Algorithm 1 of the dappled paper makes an L-dappled tiling with ``T = {0, 1}``,
+    ``L = {H_0^p, V_1^q}`` from a random one (through :func:`tilesolve.dappled.solve`,
+    which uses SAT where Algorithm 1 does not apply, e.g. ``p = 1``); :func:`wall_from_dappled` turns it into
+    edge positions. The board is the ``rows x cols`` rectangle with a free boundary.
+
+    Examples
+    --------
+    >>> from tilesolve.verify.board import board_violations
+    >>> p, s = brick_wall(6, 9, 2, seed=1)
+    >>> board_violations(s.tiling, p)
+    []
+    """
+    from tilesolve import dappled as dappled_facade
+    from tilesolve.model.board import Board, WangTileSet
+    from tilesolve.model.dappled import DappledProblem, parse_condition
+
+    t0 = time.perf_counter()
+    q = max_line if max_v is None else max_v
+    rng = rng_from_seed(seed)
+    dp = DappledProblem(rows, cols, 2, (parse_condition(f"H0={int(max_line)}"), parse_condition(f"V1={int(q)}")))
+    ds = dappled_facade.solve(dp, seed=int(rng.integers(0, 2**31 - 1)))  # verified; SAT where Alg. 1 does not apply
+    if not ds.status.has_tiling:
+        return (BoardProblem(Board.rect(rows, cols), WangTileSet.brick(n_colors), None, max_h=int(max_line),
+                             max_v=int(q)),
+                Solution(ds.status, None, f"dappled/{ds.method}", ds.solver, seed, time.perf_counter() - t0,
+                         reason=ds.reason))
+    classes = ds.tiling
+    tiling = wall_from_dappled(classes, n_colors, seed=rng)
+    problem = BoardProblem(Board.rect(rows, cols), WangTileSet.brick(n_colors), None, max_h=int(max_line), max_v=int(q))
+    sol = Solution(Status.SAT, tiling, f"dappled/{ds.method}", ds.solver, seed, time.perf_counter() - t0,
+                   notes=ds.notes)
+    return problem, sol

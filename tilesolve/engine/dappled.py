@@ -21,8 +21,7 @@ from __future__ import annotations
 
 import dataclasses
 import time
-from dataclasses import dataclass
-from typing import Callable, Iterator
+from typing import Iterator
 
 import numpy as np
 
@@ -46,7 +45,6 @@ __all__ = [
     "TilingEnumerator",
     "TilingCount",
     "MAXSAT_METHODS",
-    "SOLVE_METHODS",
     "PROOF_CHECK_MAX_SIZE",
 ]
 
@@ -445,10 +443,3 @@ def count_by_enumeration(
             sys.stderr.flush()
     return TilingCount(e.count, e.complete, time.perf_counter() - t0, e.reason)
 
-
-#: Registry of solver routes (STYLE.md §1: registries, not if/elif chains).
-SOLVE_METHODS: dict[str, Callable[..., Solution]] = {
-    "sat": solve_sat,
-    "maxsat": solve_maxsat,
-    "cpsat": solve_cpsat,
-}
