@@ -76,7 +76,7 @@ def test_time_limit_gives_unknown_not_unsat():
 
 
 def test_auto_routes():
-    for kind, c, method in [("wang", 2, "sat"), ("corner", 3, "sat"), ("wang", 4, "outer"),
+    for kind, c, method in [("wang", 2, "sat"), ("corner", 3, "outer"), ("wang", 3, "sat"), ("corner", 2, "sat"), ("wang", 4, "outer"),
                             ("corner", 4, "known"), ("corner", 5, "outer"), ("corner", 6, "sat")]:
         assert facade.auto_method(PackingProblem(kind, c)) == method
     for kind, c in [("wang", 4), ("corner", 4), ("corner", 7), ("wang", 8)]:

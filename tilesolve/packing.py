@@ -142,7 +142,10 @@ def _sat(problem: PackingProblem, *, seed=None, time_limit=None, workers=None, p
         rem = deadline.remaining()
         return _unsat_solution(enc, r, method="sat", seed=seed, t0=t0, stats=stats, check_proof=True,
                                proof_time_limit=None if rem is None else max(rem, 1.0))
-    return Solution(Status.UNKNOWN, None, "sat", r.solver, seed, time.perf_counter() - t0, reason=r.reason, stats=stats)
+    reason = r.reason
+    if time_limit is not None and deadline.expired() and "interrupted" not in (reason or ""):
+        reason = f"time limit of {time_limit:.3g} s reached (encoding included)"
+    return Solution(Status.UNKNOWN, None, "sat", r.solver, seed, time.perf_counter() - t0, reason=reason, stats=stats)
 
 
 def _cpsat(problem: PackingProblem, *, seed=None, time_limit=None, workers=None, progress=False, solver=None) -> Solution:
@@ -161,7 +164,10 @@ def _cpsat(problem: PackingProblem, *, seed=None, time_limit=None, workers=None,
         return Solution(Status.SAT, enc.decode(r.model), "cpsat", "cp-sat", seed, time.perf_counter() - t0, stats=stats)
     if r.status is Status.UNSAT and not problem.fixed:
         raise AssertionError("internal error: the unpinned packing model was reported infeasible")
-    return Solution(r.status, None, "cpsat", "cp-sat", seed, time.perf_counter() - t0, reason=r.reason, stats=stats)
+    reason = r.reason
+    if r.status is Status.UNKNOWN and time_limit is not None and "interrupted" not in (reason or ""):
+        reason = f"time limit of {time_limit:.3g} s reached (model building included)"
+    return Solution(r.status, None, "cpsat", "cp-sat", seed, time.perf_counter() - t0, reason=reason, stats=stats)
 
 
 #: Packing routes by name. ``"auto"`` is not an entry: it picks one (see :func:`auto_method`).
@@ -178,14 +184,16 @@ METHODS: tuple[str, ...] = ("auto",) + tuple(SOLVERS)
 def auto_method(problem: PackingProblem) -> str:
     """The route ``"auto"`` takes.
 
-    Pinned tiles (more than one) need a solver. Otherwise small sets get a random-looking
-    solver-built packing (SAT: under a second for C <= 3); larger Wang sets the outer product;
-    larger odd corner sets the de Bruijn construction; C = 4 the notes' packings; other even
-    corner sets (C = 6, 8) a SAT search, which may end ``unknown``.
+    Pinned tiles (more than one) need a solver. Otherwise Wang sets with C <= 3 and the corner
+    set with C = 2 get a random-looking solver-built packing (SAT, well under a second); larger
+    Wang sets the outer product; odd corner sets the de Bruijn construction (SAT on corner C = 3
+    takes 1-40 s, heavy-tailed: ask for it with method 'sat'); C = 4 the notes' packings; the
+    corner set with C = 6 a SAT search, which may end ``unknown``; even C >= 8 corner sets are
+    refused (no construction is known, and the search is too large).
     """
     c = problem.colors
     square = problem.colors_v is None or problem.colors_v == problem.colors
-    if len(set(problem.fixed)) > 1 or (square and c <= 3):
+    if len(set(problem.fixed)) > 1 or (square and (c == 2 or (c == 3 and problem.kind == "wang"))):
         return "sat"
     if problem.kind == "wang":
         return "outer"

@@ -95,6 +95,12 @@ def _linear(problem: BoardProblem, *, seed=None, time_limit=None) -> Solution:
     return solve_linear(problem, seed=seed)
 
 
+def _theorem7(problem: BoardProblem, *, seed=None, time_limit=None) -> Solution:
+    from tilesolve.constructive.wang import theorem7_solve
+
+    return theorem7_solve(problem, seed=seed, time_limit=time_limit)
+
+
 def _sat(problem: BoardProblem, *, seed=None, time_limit=None) -> Solution:
     return solve_sat(problem, seed=seed, time_limit=time_limit)
 
@@ -108,6 +114,7 @@ SOLVERS: dict[str, Callable[..., Solution]] = {
     "linear": _linear,
     "sat": _sat,
     "cpsat": _cpsat,
+    "theorem7": _theorem7,
 }
 METHODS: tuple[str, ...] = ("auto",) + tuple(SOLVERS)
 
@@ -131,8 +138,10 @@ def solve(problem: BoardProblem, *, method: str | Callable[..., Solution] = "aut
     Parameters
     ----------
     problem : BoardProblem
-    method : {"auto", "linear", "sat", "cpsat"} or callable
+    method : {"auto", "linear", "sat", "cpsat", "theorem7"} or callable
         ``"linear"`` is the linear algorithm of §4 (brick Wang tiles, no line limits);
+        ``"theorem7"`` tiles outside a small core leaves first and solves the core by SAT
+        (any three-boundary tile set; ``unknown`` when the core fails);
         ``"auto"`` uses it where it applies and falls back to SAT, saying why in
         ``Solution.notes``.
     seed : int, optional

@@ -122,6 +122,14 @@ def three_tiles(out: Path, seed: int, time_limit: float) -> DemoResult:
 #: The demos, in the order they run.
 DEMOS: list[Callable[[Path, int, float], DemoResult]] = [plain, cyclic, nonuniform, closest, three_tiles]
 
+from tilesolve.cli.pack import demo_packing  # noqa: E402 - tile packings (issue 4)
+
+DEMOS.append(demo_packing)
+
+from tilesolve.cli.brick import demo_brick  # noqa: E402 - brick Wang tilings of boards (issue 3)
+
+DEMOS.append(demo_brick)
+
 
 @click.command(context_settings=opt.CONTEXT_SETTINGS)
 @click.option("--out", "out_dir", type=click.Path(file_okay=False), default="tilesolve-demo", show_default=True,

@@ -73,12 +73,14 @@ def main_group(ctx: click.Context, verbose: int, quiet: int) -> None:
 
 def _register() -> None:
     from tilesolve.cli.backends import backends
+    from tilesolve.cli.brick import brick, wang
     from tilesolve.cli.dappled import dappled
     from tilesolve.cli.demo import demo
     from tilesolve.cli.export import export
+    from tilesolve.cli.pack import pack
     from tilesolve.cli.verify import verify
 
-    for cmd in (dappled, verify, export, demo, backends):
+    for cmd in (dappled, pack, brick, wang, verify, export, demo, backends):
         main_group.add_command(cmd)
 
 

@@ -13,7 +13,7 @@ import click
 from tilesolve.cli import options as opt
 from tilesolve.errors import InvalidProblem
 
-__all__ = ["verify", "CHECKERS", "check_dappled_solution"]
+__all__ = ["verify", "CHECKERS", "check_dappled_solution", "check_board_solution"]
 
 #: Lines of violations printed before "... and N more".
 MAX_SHOWN = 50
@@ -56,10 +56,41 @@ def check_dappled_solution(doc: dict, source: str) -> tuple[int, list[str]]:
     return 0, lines
 
 
+def check_board_solution(doc: dict, source: str) -> tuple[int, list[str]]:
+    """Check a ``tilesolve/board-solution`` document (board, boundary, tiles as written)."""
+    from tilesolve.io.board_json import board_solution_from_dict
+    from tilesolve.verify.board import board_violations
+
+    problem, sol = board_solution_from_dict(doc, source)
+    if sol.tiling is None:
+        return sol.status.exit_code, [
+            f"{source}: status {sol.status.value}" + (f" ({sol.reason})" if sol.reason else "")
+            + "; the file holds no tiling to verify"
+        ]
+    violations = board_violations(sol.tiling, problem)
+    if violations:
+        lines = [f"{source}: {len(violations)} violation{'s' if len(violations) != 1 else ''} of {problem.describe()}"]
+        lines += [f"  {v}" for v in violations[:MAX_SHOWN]]
+        if len(violations) > MAX_SHOWN:
+            lines.append(f"  ... and {len(violations) - MAX_SHOWN} more")
+        return 1, lines
+    return 0, [f"ok: {source} is a valid tiling of {problem.describe()}"]
+
+
 #: Checkers by file format.
 CHECKERS: dict[str, Callable[[dict, str], tuple[int, list[str]]]] = {
     "tilesolve/dappled-solution": check_dappled_solution,
+    "tilesolve/board-solution": check_board_solution,
 }
+
+
+def _check_packing(doc: dict, source: str) -> tuple[int, list[str]]:
+    from tilesolve.cli.pack import check_packing_file  # tile packings (issue 4)
+
+    return check_packing_file(doc, source)
+
+
+CHECKERS["tilesolve/packing"] = _check_packing
 
 
 @click.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP)

@@ -80,6 +80,8 @@ DAPPLED_SOLUTION = "tilesolve/dappled-solution"
 FORMATS: dict[str, frozenset[int]] = {
     DAPPLED_PROBLEM: frozenset({1}),
     DAPPLED_SOLUTION: frozenset({1}),
+    "tilesolve/board-solution": frozenset({1}),  # tilesolve.io.board_json
+    "tilesolve/packing": frozenset({1}),  # tilesolve.io.packing_json
 }
 
 _PROBLEM_KEYS = {"format", "version", "size", "n_tiles", "conditions", "cyclic", "fixed", "counts", "closest_to"}

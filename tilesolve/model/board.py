@@ -367,7 +367,7 @@ class Board:
         return cls.grid(m, kind="mask")
 
     @classmethod
-    def from_edges(cls, cells, edges) -> "Board":
+    def from_edges(cls, cells, edges, *, kind: str = "board") -> "Board":
         """Board from plain data: ``cells`` ([row, col] labels) and ``edges`` ([a, ka, b, kb])."""
         try:
             lab = np.asarray(cells, dtype=np.int64).reshape(-1, 2)
@@ -397,7 +397,7 @@ class Board:
         if (nc == -2).any():
             a, k = map(int, np.argwhere(nc == -2)[0])
             raise InvalidProblem(f"leg {k} of cell {lab[a].tolist()} is not joined to anything")
-        return cls(lab, nc, nl, kind="board")
+        return cls(lab, nc, nl, kind=str(kind))
 
     def describe(self) -> str:
         rows = int(self.labels[:, 0].max()) + 1 if self.n_cells else 0

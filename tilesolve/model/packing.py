@@ -21,9 +21,9 @@ from tilesolve.model.tiles import TileSet
 
 __all__ = ["PackingProblem", "MAX_SEARCH_TILES", "estimated_size"]
 
-#: Largest tile set the solver routes accept (``C = 8``: 4,096 tiles, ~17 million
-#: placement variables). Larger sets are refused before any clause is built.
-MAX_SEARCH_TILES = 4096
+#: Largest tile set the solver routes accept (``C = 6``: 1,296 tiles, ~1.7 million placement
+#: variables, ~15 million clauses). Larger sets are refused before any clause is built.
+MAX_SEARCH_TILES = 1296
 
 
 def estimated_size(n_tiles: int) -> tuple[int, int]:
@@ -102,7 +102,7 @@ class PackingProblem:
             v, c = estimated_size(n)
             raise InvalidProblem(
                 f"a solver-built packing of {n:,} tiles (C={self.colors}) needs about {v:,} variables and "
-                f"{c:,} clauses; tilesolve searches up to {MAX_SEARCH_TILES:,} tiles (C=8). "
+                f"{c:,} clauses; tilesolve searches up to {MAX_SEARCH_TILES:,} tiles (C=6). "
                 "Use --method euler/outer (Wang) or an odd C (corner) for the constructions"
             )
 

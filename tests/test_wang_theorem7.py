@@ -1,0 +1,47 @@
+"""Theorem 7's strategy: tile outside a core leaves first, then solve the core."""
+
+import itertools
+
+import numpy as np
+import pytest
+
+from tilesolve import wang
+from tilesolve.constructive.wang import default_core, theorem7_solve
+from tilesolve.errors import MethodNotApplicable
+from tilesolve.model.board import Board, BoardProblem, WangTileSet, random_boundary
+from tilesolve.verify.board import board_violations
+
+
+@pytest.mark.parametrize("kind", ["rect", "cylinder", "mobius", "torus", "klein"])
+def test_brick_boards_with_a_2x2_core(kind):
+    b = getattr(Board, kind)(5, 6)
+    for seed in range(4):
+        p = BoardProblem(b, WangTileSet.brick(3), random_boundary(b, 3, seed=seed))
+        s = theorem7_solve(p, seed=seed)
+        # a 2x2 block is a cycle with four corners: solvable for every boundary (Remark 11)
+        assert s.status.value == "sat" and board_violations(s.tiling, p) == []
+        assert s.stats["core_cells"] == 4
+
+
+def test_generic_three_boundary_tileset():
+    ts = WangTileSet([t for t in itertools.product(range(3), repeat=4) if sum(t) % 3 == 0], 3)
+    assert ts.three_boundary()
+    b = Board.rect(4, 4)
+    for seed in range(6):
+        p = BoardProblem(b, ts, random_boundary(b, 3, seed=seed))
+        s = theorem7_solve(p, seed=seed)
+        sat = wang.solve_sat(p)
+        if s.status.value == "sat":
+            assert board_violations(s.tiling, p) == [] and sat.status.value == "sat"
+        else:
+            assert s.status.value == "unknown" and "Theorem 7" in s.reason  # never a false unsat
+
+
+def test_core_choice_and_errors():
+    p = BoardProblem(Board.with_holes(8, 8, 2, 3, seed=1), WangTileSet.brick(3))
+    core = default_core(p)
+    assert core.sum() >= 4
+    with pytest.raises(MethodNotApplicable, match="three-boundary"):
+        theorem7_solve(BoardProblem(Board.rect(2, 2), WangTileSet([[0, 0, 0, 0]], 2)))
+    s = wang.solve(BoardProblem(Board.rect(3, 3), WangTileSet.brick(3), [1] * 12), method="theorem7", seed=0)
+    assert s.status.value == "sat" and s.method == "theorem7"

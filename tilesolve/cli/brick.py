@@ -1,0 +1,351 @@
+"""``tilesolve brick solve | wall`` and ``tilesolve wang solve``: thin layers over
+:mod:`tilesolve.wang` and :mod:`tilesolve.constructive.brick`."""
+
+from __future__ import annotations
+
+import json
+import secrets
+
+import click
+
+from tilesolve.cli import options as opt
+from tilesolve.cli.common import check_distinct, check_writable, say
+from tilesolve.errors import InvalidProblem
+
+__all__ = ["brick", "wang", "BOARD_HELP"]
+
+BOARD_HELP = (
+    "\b\nBoards (SPEC): rect:WxH, torus:WxH, cylinder:WxH, mobius:WxH (Example 5: columns "
+    "wrap with a twist), klein:WxH, ring:WxH, or mask:FILE (text: '#' = cell, '.' = hole; or "
+    "a PNG whose opaque pixels are cells).\n\b\nLegs l1..l4 = W, N, E, S; boundary legs are "
+    "numbered by cell (row-major) then leg."
+)
+
+
+def _method_choices():
+    from tilesolve.wang import METHODS
+
+    return METHODS
+
+
+board_opt = click.option("--board", "board_spec", required=True, metavar="SPEC", help="The board (see below).")
+boundary_opt = click.option(
+    "--boundary", default="random", show_default=True, metavar="random|free|FILE",
+    help="Boundary colours: random, free, or a JSON file with a list (one colour or null per boundary leg).",
+)
+method_opt = click.option("--method", type=click.Choice(_method_choices()), default="auto", show_default=True,
+                          help="auto: the linear algorithm (§4) where it applies, SAT otherwise.")
+svg_opt = click.option("--svg", type=click.Path(dir_okay=False), metavar="OUT.svg", help="Also draw the tiling as SVG.")
+line_opts = opt.compose(
+    click.option("--max-h", type=click.IntRange(min=1), default=None, metavar="N",
+                 help="No horizontal line through more than N cells (brick tiles; SAT route)."),
+    click.option("--max-v", type=click.IntRange(min=1), default=None, metavar="N",
+                 help="No vertical line through more than N cells (brick tiles; SAT route)."),
+)
+
+
+def _boundary(spec: str, board, n_colors: int, seed: int):
+    import numpy as np
+
+    from tilesolve.model.board import random_boundary
+
+    if spec == "random":
+        return random_boundary(board, n_colors, seed=seed)
+    if spec == "free":
+        return None
+    try:
+        with open(spec, encoding="utf-8") as fh:
+            data = json.load(fh)
+    except OSError as exc:
+        raise InvalidProblem(f"cannot read boundary {spec}: {exc.strerror or exc}") from None
+    except json.JSONDecodeError as exc:
+        raise InvalidProblem(f"{spec}: malformed JSON at line {exc.lineno}: {exc.msg}") from None
+    if isinstance(data, dict):
+        data = data.get("boundary")
+    if not isinstance(data, list) or not all(v is None or (isinstance(v, int) and not isinstance(v, bool)) for v in data):
+        raise InvalidProblem(f"{spec}: a boundary file holds a list of colours (null = free), or an object with 'boundary'")
+    return np.array([-1 if v is None else v for v in data], dtype=np.int64)
+
+
+def _run(ctx, problem, method, seed, time_limit, output, svg) -> None:
+    from tilesolve import wang as facade
+
+    sol = facade.solve(problem, method=method, seed=seed, time_limit=time_limit)
+    _finish(ctx, problem, sol, output, svg)
+
+
+def _finish(ctx, problem, sol, output, svg) -> None:
+    from tilesolve.io.board_json import board_solution_to_dict, write_board_solution
+    from tilesolve.io.jsonio import dumps
+
+    written = []
+    if output == "-":
+        click.echo(dumps(board_solution_to_dict(problem, sol)), nl=False)
+    elif output:
+        write_board_solution(output, problem, sol)
+        written.append(output)
+    if svg and sol.status.has_tiling:
+        from tilesolve.io.svg_board import write_board_svg
+
+        write_board_svg(svg, problem, sol.tiling, title=problem.board.describe(),
+                        notes=[f"{sol.status.value} by {sol.method}, seed {sol.seed}"])
+        written.append(svg)
+    say(f"{sol.status.value}: {problem.describe()}")
+    say(f"  method {sol.method}" + (f", solver {sol.solver}" if sol.solver else "") + f", {sol.time_s:.3f} s")
+    if sol.reason:
+        say(f"  {'why' if sol.status.value == 'unsat' else 'stopped'}: {sol.reason}")
+    for note in sol.notes:
+        say(f"  note: {note}")
+    if written:
+        say("  wrote " + ", ".join(written))
+    ctx.exit(sol.status.exit_code)
+
+
+@click.group(context_settings=opt.CONTEXT_SETTINGS, short_help="Brick Wang tilings of boards; brick walls.")
+def brick() -> None:
+    """Brick Wang tiles on boards (Derouet-Jourdan, Kaji, Mizoguchi 2016).
+
+    A brick Wang tile (Def. 9) has colours (c1, c2, c3, c4) on its legs W, N, E, S with
+    c1 = c3 xor c2 = c4: one straight mortar line crosses it, never two (no crosses).
+    """
+
+
+@brick.command(context_settings=opt.CONTEXT_SETTINGS, epilog=BOARD_HELP + "\n\n" + opt.EXIT_HELP)
+@board_opt
+@click.option("--colors", type=int, default=3, show_default=True, metavar="K",
+              help="Number of colours #C (edge positions), at least 3.")
+@boundary_opt
+@opt.seed_opt
+@method_opt
+@opt.time_limit_opt
+@line_opts
+@opt.output_opt
+@svg_opt
+@click.pass_context
+def solve(ctx, board_spec, colors, boundary, seed, method, time_limit, max_h, max_v, output, svg) -> None:
+    """Tile a board with brick Wang tiles, or prove it impossible.
+
+    \b
+    Example:
+      tilesolve brick solve --board rect:40x30 --colors 3 --seed 1 -o wall.json --svg wall.svg
+      tilesolve brick solve --board mobius:30x12 --boundary free --method sat -o m.json
+      tilesolve brick solve --board mask:shape.png --colors 4 -o s.json
+    """
+    from tilesolve.model.board import BoardProblem, WangTileSet, parse_board_spec
+
+    for p in (output, svg):
+        check_writable(p)
+    check_distinct(output, svg)
+    tileset = WangTileSet.brick(colors)
+    board = parse_board_spec(board_spec)
+    if seed is None:
+        seed = secrets.randbelow(2**31)
+    problem = BoardProblem(board, tileset, _boundary(boundary, board, colors, seed),
+                           max_h=max_h, max_v=max_v)
+    _run(ctx, problem, method, seed, time_limit, output, svg)
+
+
+@brick.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP)
+@click.option("--size", required=True, metavar="WxH", help="Wall size: W columns by H rows.")
+@click.option("--max-line", type=click.IntRange(min=1), required=True, metavar="N",
+              help="No horizontal line through more than N cells (and no vertical one, unless --max-v).")
+@click.option("--max-v", type=click.IntRange(min=1), default=None, metavar="N", help="Vertical limit, if different.")
+@click.option("--colors", type=int, default=3, show_default=True, metavar="K", help="Number of colours, at least 3.")
+@opt.seed_opt
+@opt.output_opt
+@svg_opt
+@click.pass_context
+def wall(ctx, size, max_line, max_v, colors, seed, output, svg) -> None:
+    """A brick wall without long lines, from a dappled tiling (dappled paper §4).
+
+    \b
+    Example:
+      tilesolve brick wall --size 40x25 --max-line 3 --seed 2 -o wall.json --svg wall.svg
+    """
+    from tilesolve.constructive.brick import brick_wall
+    from tilesolve.model.dappled import parse_size
+
+    for p in (output, svg):
+        check_writable(p)
+    check_distinct(output, svg)
+    rows, cols = parse_size(size)
+    if colors < 3:
+        raise InvalidProblem(f"brick Wang tiles need #C >= 3 colours (Def. 9), got {colors}")
+    if seed is None:
+        seed = secrets.randbelow(2**31)
+    problem, sol = brick_wall(rows, cols, max_line, max_v=max_v, n_colors=colors, seed=seed)
+    _finish(ctx, problem, sol, output, svg)
+
+
+def _brick_problem(board_spec, colors, boundary, seed):
+    from tilesolve.model.board import BoardProblem, WangTileSet, parse_board_spec
+
+    tileset = WangTileSet.brick(colors)
+    board = parse_board_spec(board_spec)
+    return BoardProblem(board, tileset, _boundary(boundary, board, colors, seed))
+
+
+@brick.command(context_settings=opt.CONTEXT_SETTINGS, epilog=BOARD_HELP + "\n\n" + opt.EXIT_HELP)
+@board_opt
+@click.option("--colors", type=int, default=3, show_default=True, metavar="K", help="Number of colours, at least 3.")
+@boundary_opt
+@opt.seed_opt
+@opt.time_limit_opt
+@click.pass_context
+def count(ctx, board_spec, colors, boundary, seed, time_limit) -> None:
+    """Count the brick Wang tilings of a small board exactly (SAT enumeration); the count is
+    the last line of stdout.
+
+    \b
+    Example:
+      tilesolve brick count --board rect:2x1 --boundary free      # prints 432
+    """
+    from tilesolve import wang as facade
+
+    problem = _brick_problem(board_spec, colors, boundary, 0 if seed is None else seed)
+    res = facade.count(problem, time_limit=time_limit)
+    say(f"{'count' if res.value is not None else 'unknown'}: {problem.describe()}  ({res.time_s:.3f} s)")
+    if res.value is None:
+        say(f"  stopped: {res.note}")
+        ctx.exit(3)
+    click.echo(str(res.value))
+    ctx.exit(0)
+
+
+@brick.command(context_settings=opt.CONTEXT_SETTINGS, epilog=BOARD_HELP + "\n\n" + opt.EXIT_HELP)
+@board_opt
+@click.option("--colors", type=int, default=3, show_default=True, metavar="K", help="Number of colours, at least 3.")
+@boundary_opt
+@opt.seed_opt
+@opt.time_limit_opt
+@click.option("--trials", type=click.IntRange(1, 1000), default=1, show_default=True,
+              help="N trials with seeds SEED, SEED+1, ... (a new random boundary each time).")
+@click.pass_context
+def crosscheck(ctx, board_spec, colors, boundary, seed, time_limit, trials) -> None:
+    """Run the linear algorithm, SAT and CP-SAT on one board and check that they agree.
+
+    \b
+    Example:
+      tilesolve brick crosscheck --board mask:shape.txt --trials 5
+    """
+    from tilesolve import wang as facade
+
+    base = secrets.randbelow(2**31) if seed is None else seed
+    ok = True
+    for i in range(trials):
+        problem = _brick_problem(board_spec, colors, boundary, base + i)
+        rep = facade.crosscheck(problem, seed=base + i, time_limit=time_limit)
+        ok &= rep.ok
+        click.echo(f"trial {i + 1}/{trials} (seed {base + i}): {'ok' if rep.ok else 'FAILED'}")
+        for line in rep.lines:
+            click.echo(f"  {line}")
+    click.echo("crosscheck: all routes agree" if ok else "crosscheck: FAILED (see the FAIL lines above)")
+    ctx.exit(0 if ok else 1)
+
+
+@click.group(context_settings=opt.CONTEXT_SETTINGS, short_help="Any Wang tile set on any board.")
+def wang() -> None:
+    """Wang tilings of boards with any tile set W ⊂ C^4 (Def. 2 of the brick paper)."""
+
+
+def _read_tiles(path: str):
+    from tilesolve.model.board import WangTileSet, wang_from_nesw
+
+    try:
+        with open(path, encoding="utf-8") as fh:
+            data = json.load(fh)
+    except OSError as exc:
+        raise InvalidProblem(f"cannot read tiles {path}: {exc.strerror or exc}") from None
+    except json.JSONDecodeError as exc:
+        raise InvalidProblem(f"{path}: malformed JSON at line {exc.lineno}: {exc.msg}") from None
+    if isinstance(data, list):
+        data = {"tiles": data}
+    if not isinstance(data, dict) or not isinstance(data.get("tiles"), list):
+        raise InvalidProblem(f"{path}: expected {{\"colors\": K, \"tiles\": [[W, N, E, S], ...]}} or a list of tiles")
+    tiles = data["tiles"]
+    if not tiles:
+        raise InvalidProblem(f"{path}: the tile set is empty")
+    if not all(isinstance(t, list) and len(t) == 4 and all(isinstance(c, int) and not isinstance(c, bool) for c in t)
+               for t in tiles):
+        raise InvalidProblem(f"{path}: each tile must be a list of 4 integer colours")
+    order = str(data.get("order", "WNES")).upper()
+    if order not in ("WNES", "NESW"):
+        raise InvalidProblem(f"{path}: 'order' must be WNES (tilesolve's leg order) or NESW")
+    if order == "NESW":
+        tiles = wang_from_nesw(tiles).tolist()
+    colors = data.get("colors", 1 + max(max(t) for t in tiles))
+    if isinstance(colors, bool) or not isinstance(colors, int):
+        raise InvalidProblem(f"{path}: 'colors' must be an integer")
+    try:
+        return WangTileSet(tiles, colors)
+    except InvalidProblem as exc:
+        raise InvalidProblem(f"{path}: {exc}") from None
+
+
+@wang.command(name="solve", context_settings=opt.CONTEXT_SETTINGS, epilog=BOARD_HELP + "\n\n" + opt.EXIT_HELP)
+@click.option("--tiles", "tiles_path", required=True, type=click.Path(dir_okay=False), metavar="TILES.json",
+              help='{"colors": K, "tiles": [[W, N, E, S], ...], "order": "WNES"|"NESW"} or a list of tiles.')
+@board_opt
+@boundary_opt
+@opt.seed_opt
+@method_opt
+@opt.time_limit_opt
+@opt.output_opt
+@svg_opt
+@click.pass_context
+def wang_solve(ctx, tiles_path, board_spec, boundary, seed, method, time_limit, output, svg) -> None:
+    """Tile a board with any Wang tile set, or prove it impossible.
+
+    \b
+    Example:
+      tilesolve wang solve --tiles tiles.json --board torus:8x8 --boundary free -o t.json --svg t.svg
+    """
+    from tilesolve.model.board import BoardProblem, parse_board_spec
+
+    for p in (output, svg):
+        check_writable(p)
+    check_distinct(output, svg)
+    ts = _read_tiles(tiles_path)
+    board = parse_board_spec(board_spec)
+    if seed is None:
+        seed = secrets.randbelow(2**31)
+    problem = BoardProblem(board, ts, _boundary(boundary, board, ts.n_colors, seed))
+    _run(ctx, problem, method, seed, time_limit, output, svg)
+
+
+def demo_brick(out, seed: int, time_limit: float):
+    """Demo (``tilesolve demo``): a brick wall without long lines (dappled paper §4) and a
+    brick Wang tiling of a Möbius strip with a hole and a random boundary (brick paper §4)."""
+    import numpy as np
+
+    from tilesolve import wang as facade
+    from tilesolve.cli.demo import DemoResult
+    from tilesolve.constructive.brick import brick_wall
+    from tilesolve.io.board_json import write_board_solution
+    from tilesolve.io.svg_board import write_board_svg
+    from tilesolve.model.board import Board, BoardProblem, WangTileSet, random_boundary
+
+    lines = []
+    ok = True
+    p, s = brick_wall(20, 32, 3, seed=seed)
+    write_board_solution(out / "brick-wall.json", p, s)
+    write_board_svg(out / "brick-wall.svg", p, s.tiling, title="brick wall, no line through more than 3 cells",
+                    notes=[f"{s.status.value} by {s.method}, seed {seed}"])
+    lines += [f"{'brick-wall':12s} 32x20 wall, lines <= 3: {s.status.value} by {s.method} in {s.time_s:.2f} s",
+              f"{'':12s} -> {out / 'brick-wall.svg'}"]
+    ok &= s.status.has_tiling
+    m = Board.mobius(14, 40)
+    keep = np.ones(m.n_cells, bool)
+    lab = m.labels
+    keep[(lab[:, 0] >= 5) & (lab[:, 0] <= 8) & (lab[:, 1] >= 17) & (lab[:, 1] <= 22)] = False
+    b = m.restrict(keep)
+    q = BoardProblem(b, WangTileSet.brick(3), random_boundary(b, 3, seed=seed))
+    s = facade.solve(q, seed=seed, time_limit=time_limit)
+    write_board_solution(out / "brick-mobius.json", q, s)
+    if s.status.has_tiling:
+        write_board_svg(out / "brick-mobius.svg", q, s.tiling, title="Möbius strip with a hole (Example 5)",
+                        notes=[f"{s.status.value} by {s.method}, seed {seed}; arrows: the twisted seam"])
+    lines += [f"{'brick-mobius':12s} Möbius strip 40x14 with a hole: {s.status.value} by {s.method} in {s.time_s:.2f} s",
+              f"{'':12s} -> {out / 'brick-mobius.svg'}"]
+    ok &= s.status.has_tiling
+    return DemoResult(bool(ok), lines)

@@ -1,0 +1,190 @@
+"""``tilesolve pack``: tile packings (class notes §5.5) -- build, count, export.
+
+Fixed forms (issue 4)::
+
+    tilesolve pack --kind corner|wang --colors C [--method ...] [--seed N] [--time-limit S]
+                   [--workers N] -o PACK.json [--svg PACK.svg]
+    tilesolve pack count --kind wang|corner --colors 2 [--up-to-symmetry]   # count on the last line
+    tilesolve verify PACK.json
+"""
+
+from __future__ import annotations
+
+import click
+
+from tilesolve.cli import options as opt
+from tilesolve.cli.common import check_distinct, check_writable, progress_wanted, say
+from tilesolve.errors import InvalidProblem
+
+__all__ = ["pack", "check_packing_file"]
+
+_KINDS = click.Choice(["corner", "wang"])
+
+
+def _methods() -> list[str]:
+    from tilesolve.packing import METHODS
+
+    return list(METHODS)
+
+
+def _parse_fix(items) -> tuple[tuple[int, int, int], ...]:
+    out = []
+    for item in items:
+        parts = item.replace(":", ",").split(",")
+        try:
+            r, c, t = (int(p) for p in parts)
+        except ValueError:
+            raise InvalidProblem(f"--fix takes ROW,COL,TILE (e.g. 0,0,5), got {item!r}") from None
+        out.append((r, c, t))
+    return tuple(out)
+
+
+@click.group(invoke_without_command=True, context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP,
+             short_help="Tile packings: all C^4 Wang or corner tiles on a C^2 x C^2 torus.")
+@click.option("--kind", type=_KINDS, default=None, help="Wang tiles (coloured edges) or corner tiles (coloured corners).")
+@click.option("--colors", type=int, default=None, metavar="C", help="Number of colours C (>= 2).")
+@click.option("--colors-v", type=int, default=None, metavar="CV",
+              help="Wang tiles only: colours of the vertical (E/W) edges if different from C.")
+@click.option("--method", type=click.Choice(_methods()), default="auto", show_default=True,
+              help="euler: Eulerian constructions (Wei's closed form); outer: the same over random Eulerian "
+                   "circuits; known: the notes' C=4 packings; sat/cpsat: random-looking solver-built packings.")
+@click.option("--fix", "fix", multiple=True, metavar="R,C,T", help="Pin tile T at row R, column C (repeatable).")
+@opt.seed_opt
+@opt.time_limit_opt
+@click.option("--workers", type=click.IntRange(min=1), default=None, metavar="N", help="CP-SAT workers [default: 2].")
+@click.option("-o", "--output", type=click.Path(dir_okay=False, allow_dash=True), metavar="PACK.json",
+              help="Write the packing JSON here ('-' for stdout). Without -o the grid is printed.")
+@click.option("--svg", type=click.Path(dir_okay=False), metavar="PACK.svg", help="Also draw the packing as SVG.")
+@click.option("--indices", is_flag=True, help="Write tile indices on the SVG tiles.")
+@click.option("--dimacs", type=click.Path(dir_okay=False), metavar="PACK.cnf",
+              help="Write the SAT encoding as DIMACS CNF instead of solving (a hard benchmark for C >= 4).")
+@click.pass_context
+def pack(ctx, kind, colors, colors_v, method, fix, seed, time_limit, workers, output, svg, indices, dimacs) -> None:
+    """Pack the C^4 tiles of a complete Wang or corner tile set into a C^2 x C^2 torus.
+
+    Every packing is checked by the independent verifier before it is written.
+
+    \b
+    Examples:
+      tilesolve pack --kind wang --colors 4 -o wang4.json --svg wang4.svg
+      tilesolve pack --kind corner --colors 3 --method sat --seed 1 -o c3.json
+      tilesolve pack --kind corner --colors 5 --method euler -o c5.json
+      tilesolve pack count --kind wang --colors 2 --up-to-symmetry
+      tilesolve verify wang4.json
+    """
+    if ctx.invoked_subcommand is not None:
+        return
+    from tilesolve import packing as facade
+    from tilesolve.model.packing import PackingProblem
+
+    if kind is None or colors is None:
+        raise InvalidProblem("tilesolve pack needs --kind corner|wang and --colors C (or: tilesolve pack count ...)")
+    problem = PackingProblem(kind, colors, colors_v, _parse_fix(fix))
+    for p in (output, svg, dimacs):
+        check_writable(p)
+    check_distinct(output, svg, dimacs)
+    if dimacs:
+        from tilesolve.encodings.packing import encode_packing
+        from tilesolve.io.dimacs import write_dimacs
+
+        problem.check_search_size()
+        enc = encode_packing(problem)
+        write_dimacs(enc, dimacs)
+        say(f"wrote {dimacs}: {enc.n_vars:,} variables, {len(enc.clauses):,} clauses ({problem.describe()})")
+        return
+    sol = facade.solve(problem, method=method, seed=seed, time_limit=time_limit, workers=workers,
+                       progress=progress_wanted())
+    written = []
+    if output:
+        from tilesolve.io.packing_json import write_packing
+
+        write_packing(output, problem, sol)
+        if output != "-":
+            written.append(output)
+    if svg and sol.status.has_tiling:
+        from tilesolve.io.svg_packing import write_packing_svg
+
+        write_packing_svg(svg, sol.tiling, kind, colors, colors_v=colors_v, indices=indices,
+                          title=f"{kind} packing, C={colors} ({sol.method})")
+        written.append(svg)
+    if not output and sol.status.has_tiling:
+        width = len(str(problem.n_tiles - 1))
+        for row in sol.tiling.tolist():
+            click.echo(" ".join(f"{v:{width}d}" for v in row))
+    line = f"{sol.status.value}: {problem.describe()} by {sol.method} in {sol.time_s:.2f} s"
+    if sol.reason:
+        line += f" ({sol.reason})"
+    say(line)
+    for n in sol.notes:
+        say(f"  note: {n}")
+    if written:
+        say(f"  wrote {', '.join(written)}")
+    ctx.exit(sol.status.exit_code)
+
+
+@pack.command("count", context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP)
+@click.option("--kind", type=_KINDS, required=True, help="Wang or corner tiles.")
+@click.option("--colors", type=int, required=True, metavar="C", help="Number of colours (C = 2).")
+@click.option("--up-to-symmetry", is_flag=True,
+              help="Count orbits under translation, rotation, reflection and colour permutation.")
+@opt.time_limit_opt
+@click.pass_context
+def count_cmd(ctx, kind, colors, up_to_symmetry, time_limit) -> None:
+    """Count all packings (C = 2); the count is the last line of output.
+
+    The notes (§5.5.3) publish 32 corner packings (1 up to symmetry) and 203,520 Wang packings.
+    """
+    from tilesolve import packing as facade
+
+    res = facade.count(kind, colors, up_to_symmetry=up_to_symmetry, time_limit=time_limit)
+    what = ("packing" if res.value == 1 else "packings") + (" up to symmetry" if up_to_symmetry else "")
+    if not res.complete:
+        say(f"unknown: {res.reason} after {res.anchored} anchored packings")
+        ctx.exit(3)
+    say(f"{kind} C={colors}: {res.value:,} {what} ({res.anchored:,} with tile 0 at the origin, "
+        f"{res.nodes:,} search nodes, {res.time_s:.2f} s)")
+    click.echo(str(res.value))
+
+
+def check_packing_file(doc: dict, source: str) -> tuple[int, list[str]]:
+    """``tilesolve verify`` checker for ``tilesolve/packing`` files (exit 0 valid, 1 violations)."""
+    from tilesolve.cli.verify import MAX_SHOWN
+    from tilesolve.io.packing_json import packing_from_dict
+    from tilesolve.verify.packing import packing_violations
+
+    problem, sol = packing_from_dict(doc, source)
+    if sol.tiling is None:
+        return sol.status.exit_code, [f"{source}: status {sol.status.value}"
+                                      + (f" ({sol.reason})" if sol.reason else "") + "; the file holds no packing"]
+    v = packing_violations(sol.tiling, problem.kind, problem.colors, colors_v=problem.colors_v, fixed=problem.fixed)
+    if v:
+        lines = [f"{source}: {len(v)} violation{'s' if len(v) != 1 else ''} of a {problem.describe()}"]
+        lines += [f"  {x}" for x in v[:MAX_SHOWN]]
+        if len(v) > MAX_SHOWN:
+            lines.append(f"  ... and {len(v) - MAX_SHOWN} more")
+        return 1, lines
+    return 0, [f"ok: {source} is a valid packing: {problem.describe()}"]
+
+
+def demo_packing(out, seed: int, time_limit: float):
+    """``tilesolve demo`` entry: a random-looking SAT-built Wang packing over 3 colours and the
+    notes' corner packing over 4 colours under a random symmetry, as JSON and SVG."""
+    from tilesolve import packing as facade
+    from tilesolve.cli.demo import DemoResult
+    from tilesolve.io.packing_json import write_packing
+    from tilesolve.io.svg_packing import write_packing_svg
+    from tilesolve.model.packing import PackingProblem
+
+    ok, lines = True, []
+    for name, kind, colors, method in (("packing-wang3", "wang", 3, "sat"), ("packing-corner4", "corner", 4, "known")):
+        problem = PackingProblem(kind, colors)
+        sol = facade.solve(problem, method=method, seed=seed, time_limit=time_limit)
+        write_packing(out / f"{name}.json", problem, sol)
+        lines.append(f"{name:12s} {problem.describe()}: {sol.status.value} by {sol.method} in {sol.time_s:.2f} s")
+        if sol.status.has_tiling:
+            svg = out / f"{name}.svg"
+            write_packing_svg(svg, sol.tiling, kind, colors, indices=True, title=f"{kind} packing, C={colors} ({sol.method})")
+            lines.append(f"{'':12s} -> {svg}")
+        else:
+            ok = False
+    return DemoResult(ok, lines)
