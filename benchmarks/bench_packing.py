@@ -58,7 +58,10 @@ def main() -> None:
             for method in ("sat", "cpsat"):
                 for seed in range(1, args.seeds + 1):
                     bench(kind, c, method, seed)
+    for seed in range(1, args.seeds + 1):
+        bench("wang", 4, "hybrid", seed)
     if args.big:
+        bench("wang", 5, "hybrid", 1)
         for kind in ("corner", "wang"):
             for method in ("sat", "cpsat"):
                 bench(kind, 4, method, 1)

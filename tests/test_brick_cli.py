@@ -134,3 +134,19 @@ def test_count_and_crosscheck_commands():
     assert r.exit_code == 0 and r.output.strip().splitlines()[-1] == str(3 * 12 * 12)
     r = invoke("brick", "crosscheck", "--board", "ring:5x4", "--trials", "2", "--seed", "1")
     assert r.exit_code == 0 and "all routes agree" in r.output
+
+
+def test_malformed_board_solution_and_boundary_from_file(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    assert invoke("brick", "solve", "--board", "rect:4x3", "--seed", "2", "-o", "a.json").exit_code == 0
+    doc = json.loads(Path("a.json").read_text())
+    # the boundary of one solution file can be reused for another run
+    r = invoke("brick", "solve", "--board", "rect:4x3", "--boundary", "a.json", "--method", "sat", "-o", "b.json")
+    assert r.exit_code == 0
+    assert json.loads(Path("b.json").read_text())["boundary"] == doc["boundary"]
+    bad = dict(doc, edges=doc["edges"][:-1])
+    Path("bad.json").write_text(json.dumps(bad))
+    r = CliRunner().invoke(main_group, ["verify", "bad.json"])
+    assert r.exit_code == 2 and "not joined" in r.output
+    r = CliRunner().invoke(main_group, ["brick", "solve", "--board", "rect:600x600", "--svg", "x.svg"])
+    assert r.exit_code == 2 and "too large" in r.output and not Path("x.svg").exists()

@@ -37,7 +37,8 @@ def one_line_error(proc) -> str:
 
 
 @pytest.mark.parametrize("kind,c,method", [("wang", 4, "auto"), ("corner", 3, "euler"), ("wang", 2, "sat"),
-                                           ("corner", 2, "cpsat"), ("corner", 4, "known")])
+                                           ("corner", 2, "cpsat"), ("corner", 4, "known"),
+                                           ("wang", 4, "hybrid")])
 def test_pack_writes_a_valid_file(tmp_path, kind, c, method):
     proc = run("pack", "--kind", kind, "--colors", str(c), "--method", method, "--seed", "3",
                "-o", "p.json", "--svg", "p.svg", cwd=tmp_path)

@@ -116,3 +116,22 @@ def test_encoding_accepts_exactly_the_packings():
         bad[0, 1], bad[1, 1] = bad[1, 1], bad[0, 1]
         with Solver(name="cadical153", bootstrap_with=enc.clauses.to_lists()) as s:
             assert not s.solve(assumptions=enc.place_var(cells, bad.ravel()).tolist())
+
+
+@pytest.mark.parametrize("c", [3, 4])
+def test_hybrid_wang_packings(c):
+    """Random Eulerian N/S columns + SAT: valid, reproducible, and not an outer product."""
+    s = facade.solve(PackingProblem("wang", c), method="hybrid", seed=1, time_limit=120)
+    assert s.status is Status.SAT and packing_violations(s.tiling, "wang", c) == []
+    assert np.array_equal(s.tiling, facade.solve(PackingProblem("wang", c), method="hybrid", seed=1).tiling)
+    west = s.tiling % c
+    north = s.tiling // c**3
+    assert len({tuple(r) for r in west.tolist()}) > 1  # rows differ: not separable
+    assert len({tuple(col) for col in north.T.tolist()}) > 1  # columns differ
+
+
+def test_hybrid_refuses_corner_and_pins():
+    with pytest.raises(MethodNotApplicable, match="Wang"):
+        facade.solve(PackingProblem("corner", 3), method="hybrid")
+    with pytest.raises(MethodNotApplicable, match="pinned"):
+        facade.solve(PackingProblem("wang", 3, fixed=((0, 0, 1),)), method="hybrid")

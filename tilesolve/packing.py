@@ -22,6 +22,10 @@ Methods
     honours pinned tiles; ``unsat`` comes with a checked DRAT proof.
 ``cpsat``
     OR-tools CP-SAT on the same encoding with native exactly-one constraints.
+``hybrid``
+    Wang only: random Eulerian N/S edge columns, then SAT for the E/W edges and the tiles;
+    random-looking C = 4 Wang packings in about a second (plain ``sat`` does not finish C = 4
+    in 90 s).
 
 Examples
 --------
@@ -170,6 +174,48 @@ def _cpsat(problem: PackingProblem, *, seed=None, time_limit=None, workers=None,
     return Solution(r.status, None, "cpsat", "cp-sat", seed, time.perf_counter() - t0, reason=reason, stats=stats)
 
 
+def _hybrid(problem: PackingProblem, *, seed=None, time_limit=None, workers=None, progress=False,
+            solver=None) -> Solution:
+    """Wang only: each column's N/S edges are a random Eulerian circuit (so every column holds
+    each vertical domino once); SAT colours the E/W edges and places the tiles. The packing is
+    not an outer product (the columns differ and the rows are solver-built). A column choice
+    that admits no completion is not a proof of anything: the route draws new columns until
+    the time limit (status ``unknown``)."""
+    from tilesolve.constructive.packing import domino_sequence
+    from tilesolve.encodings.packing import encode_packing, fix_horizontal_edges
+    from tilesolve.engine.result import Deadline
+    from tilesolve.engine.sat import solve_cnf
+
+    if problem.kind != "wang":
+        raise MethodNotApplicable("method 'hybrid' builds Wang packings; use 'sat', 'cpsat', 'euler' or 'known' "
+                                  "for corner tiles")
+    if problem.fixed:
+        raise MethodNotApplicable("method 'hybrid' fixes the N/S edges and cannot honour pinned tiles; use 'sat'")
+    problem.check_search_size()
+    t0 = time.perf_counter()
+    deadline = Deadline(time_limit)
+    rng = rng_from_seed(seed)
+    rows, cols = problem.shape
+    attempts = 0
+    stats: dict = {}
+    while True:
+        attempts += 1
+        h = np.stack([domino_sequence(problem.colors, rng) for _ in range(cols)], axis=1)
+        enc = encode_packing(problem, anchor_tile=None)
+        fix_horizontal_edges(enc, h)
+        stats = {"variables": enc.n_vars, "clauses": len(enc.clauses), "attempts": attempts}
+        r = solve_cnf(enc.clauses, solver=solver or PACKING_SAT_SOLVER, time_limit=deadline.remaining(),
+                      seed=int(rng.integers(2**31)))
+        if r.status is Status.SAT:
+            return Solution(Status.SAT, enc.decode(r.model), "hybrid", r.solver, seed, time.perf_counter() - t0,
+                            stats=stats)
+        if r.status is Status.UNKNOWN or deadline.expired():
+            reason = (f"time limit of {time_limit:.3g} s reached" if time_limit is not None else r.reason) + \
+                     f" after {attempts} column choice(s)"
+            return Solution(Status.UNKNOWN, None, "hybrid", r.solver, seed, time.perf_counter() - t0,
+                            reason=reason, stats=stats)
+
+
 #: Packing routes by name. ``"auto"`` is not an entry: it picks one (see :func:`auto_method`).
 SOLVERS: dict[str, Callable[..., Solution]] = {
     "euler": _euler,
@@ -177,6 +223,7 @@ SOLVERS: dict[str, Callable[..., Solution]] = {
     "known": _known,
     "sat": _sat,
     "cpsat": _cpsat,
+    "hybrid": _hybrid,
 }
 METHODS: tuple[str, ...] = ("auto",) + tuple(SOLVERS)
 
@@ -232,7 +279,7 @@ def solve(
     Parameters
     ----------
     problem : PackingProblem
-    method : {"auto", "euler", "outer", "known", "sat", "cpsat"} or callable
+    method : {"auto", "euler", "outer", "known", "sat", "cpsat", "hybrid"} or callable
     seed : int, optional
         The same seed gives the same packing.
     time_limit : float, optional
@@ -262,7 +309,7 @@ def solve(
         if name not in SOLVERS:
             raise InvalidProblem(f"unknown method {method!r}; choose one of {', '.join(METHODS)}")
         runner = SOLVERS[name]
-    if name in ("sat", "cpsat"):
+    if name in ("sat", "cpsat", "hybrid"):
         problem.check_search_size()
     sol = runner(problem, seed=seed, time_limit=time_limit, workers=workers, progress=progress, solver=solver)
     sol = verify_solution(problem, sol)

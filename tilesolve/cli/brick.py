@@ -67,9 +67,17 @@ def _boundary(spec: str, board, n_colors: int, seed: int):
     return np.array([-1 if v is None else v for v in data], dtype=np.int64)
 
 
+def _svg_ok(svg, n_cells: int) -> None:
+    from tilesolve.io.svg import MAX_SVG_CELLS
+
+    if svg and n_cells > MAX_SVG_CELLS:
+        raise InvalidProblem(f"a board of {n_cells:,} cells is too large for an SVG (limit {MAX_SVG_CELLS:,})")
+
+
 def _run(ctx, problem, method, seed, time_limit, output, svg) -> None:
     from tilesolve import wang as facade
 
+    _svg_ok(svg, problem.board.n_cells)
     sol = facade.solve(problem, method=method, seed=seed, time_limit=time_limit)
     _finish(ctx, problem, sol, output, svg)
 
@@ -169,6 +177,7 @@ def wall(ctx, size, max_line, max_v, colors, seed, output, svg) -> None:
         check_writable(p)
     check_distinct(output, svg)
     rows, cols = parse_size(size)
+    _svg_ok(svg, rows * cols)
     if colors < 3:
         raise InvalidProblem(f"brick Wang tiles need #C >= 3 colours (Def. 9), got {colors}")
     if seed is None:

@@ -47,7 +47,8 @@ def _parse_fix(items) -> tuple[tuple[int, int, int], ...]:
               help="Wang tiles only: colours of the vertical (E/W) edges if different from C.")
 @click.option("--method", type=click.Choice(_methods()), default="auto", show_default=True,
               help="euler: Eulerian constructions (Wei's closed form); outer: the same over random Eulerian "
-                   "circuits; known: the notes' C=4 packings; sat/cpsat: random-looking solver-built packings.")
+                   "circuits; known: the notes' C=4 packings; sat/cpsat: random-looking solver-built packings; "
+                   "hybrid (Wang): random Eulerian N/S columns, SAT for the rest (C=4 in seconds).")
 @click.option("--fix", "fix", multiple=True, metavar="R,C,T", help="Pin tile T at row R, column C (repeatable).")
 @opt.seed_opt
 @opt.time_limit_opt
@@ -69,6 +70,7 @@ def pack(ctx, kind, colors, colors_v, method, fix, seed, time_limit, workers, ou
       tilesolve pack --kind wang --colors 4 -o wang4.json --svg wang4.svg
       tilesolve pack --kind corner --colors 3 --method sat --seed 1 -o c3.json
       tilesolve pack --kind corner --colors 5 --method euler -o c5.json
+      tilesolve pack --kind wang --colors 4 --method hybrid --seed 1 -o w4.json
       tilesolve pack count --kind wang --colors 2 --up-to-symmetry
       tilesolve verify wang4.json
     """

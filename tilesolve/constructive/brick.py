@@ -2,11 +2,11 @@
 
 For each connected component of G' (the cells and the edges between them):
 
-1. **Cycle detection.** Look for a chordless cycle: first a 2x2 block of cells (a 4-cycle
-   with four corners), else any cycle of the breadth-first tree, shortened along its
-   chords until none is left.
+1. **Cycle detection.** A depth-first search per component looks for a chordless cycle:
+   first a 2x2 block of cells (a 4-cycle with four corners), which then roots the search;
+   else the cycle closed by a non-tree edge, shortened along its chords until none is left.
 2. **Tiling outside the cycle** (Theorem 7, steps 1-3). The cells outside the cycle are
-   tiled leaves first along a breadth-first tree rooted at the cycle (the wall of
+   tiled leaves first along a depth-first tree rooted at the cycle (the wall of
    ``G|T\\U``): every cell still has its leg towards the root free when it is tiled, and
    W_B satisfies the three-boundary condition (Def. 6), so a tile always exists.
 3. **The cycle solver** (§4.3). With all other legs fixed, conditions (c), (¬c), (∗) are
@@ -20,8 +20,8 @@ For each connected component of G' (the cells and the edges between them):
 
 Every step touches each cell a bounded number of times, so the whole is linear in the
 number of cells. On boards the paper does not cover (a cycle with an odd number of
-corners, or none, as round a Möbius strip or a torus; cells joined to themselves), the
-algorithm raises :class:`~tilesolve.errors.MethodNotApplicable` saying why, and
+corners, or none, as round a Möbius strip or a narrow torus; cells joined to themselves),
+and the cycle solver fails, the algorithm raises :class:`~tilesolve.errors.MethodNotApplicable` saying why, and
 :func:`tilesolve.wang.solve` routes the problem to the SAT solver.
 
 Examples
@@ -102,7 +102,7 @@ def _chordless(nc: np.ndarray, nl: np.ndarray, cells, ins, outs, max_rounds: int
 
 
 def find_cycle(board, component_cells: np.ndarray, order: np.ndarray, parent_leg: np.ndarray):
-    """A chordless cycle of one component from a non-tree edge of its BFS tree, or None.
+    """A chordless cycle of one component from a non-tree edge of its DFS tree, or None.
 
     Returns ``(cells, ins, outs)`` with ``cells[i]`` leaving through leg ``outs[i]`` into
     leg ``ins[i+1]`` of the next cell.

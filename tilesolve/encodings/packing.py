@@ -37,7 +37,7 @@ import numpy as np
 from tilesolve.encodings import ClauseSet
 from tilesolve.model.packing import PackingProblem
 
-__all__ = ["PackingEncoding", "encode_packing", "build_cpsat_packing"]
+__all__ = ["PackingEncoding", "encode_packing", "build_cpsat_packing", "fix_horizontal_edges"]
 
 
 @dataclass
@@ -114,6 +114,21 @@ class PackingEncoding:
         if self.anchor is not None:
             lines.append(f"symmetry breaking: tile {self.anchor[2]} pinned at row {self.anchor[0]}, col {self.anchor[1]}")
         return lines
+
+
+def fix_horizontal_edges(enc: PackingEncoding, colours) -> None:
+    """Wang only: pin the colour of every horizontal edge, ``colours[r][c]`` = ``H[r][c]`` (the
+    edge north of cell ``(r, c)``), as unit clauses. With the N/S edges fixed, the search only
+    places tiles along the rows and colours the vertical edges (the ``hybrid`` route)."""
+    p = enc.problem
+    if p.kind != "wang":
+        raise ValueError("horizontal edges exist only for Wang tiles")
+    rows, cols = p.shape
+    h = np.asarray(colours, dtype=np.int64)
+    if h.shape != (rows, cols):
+        raise ValueError(f"expected a {rows}x{cols} array of edge colours, got {h.shape}")
+    f = np.arange(rows * cols)  # H[r][c] is feature r * cols + c
+    enc.clauses.add_array(enc.feat_var(f, h.ravel())[:, None], "horizontal edges fixed")
 
 
 def _features(problem: PackingProblem) -> tuple[np.ndarray, np.ndarray]:
