@@ -135,3 +135,14 @@ def test_hybrid_refuses_corner_and_pins():
         facade.solve(PackingProblem("corner", 3), method="hybrid")
     with pytest.raises(MethodNotApplicable, match="pinned"):
         facade.solve(PackingProblem("wang", 3, fixed=((0, 0, 1),)), method="hybrid")
+
+
+def test_separate_horizontal_and_vertical_colours():
+    """C_h != C_v (§2.7): a C_h^2 x C_v^2 torus of (C_h C_v)^2 tiles, by every applicable route."""
+    p = PackingProblem("wang", 2, colors_v=3)
+    for method in ("sat", "outer", "euler", "hybrid"):
+        s = facade.solve(p, method=method, seed=1, time_limit=60)
+        assert s.status is Status.SAT and s.tiling.shape == (4, 9)
+        assert is_packing(s.tiling, "wang", 2, colors_v=3)
+    with pytest.raises(MethodNotApplicable):
+        facade.solve(p, method="known")
