@@ -129,9 +129,9 @@ def main(argv=None) -> int:
                   f"{all(r['verified'] for r in rs if r['found'] is not None)}")
     print("optima agree across methods" if not bad else f"OPTIMA DISAGREE: {bad}")
     if a.json:
-        from tilesolve.io.dimacs import atomic_write_text
+        from tilesolve.io.atomic import write_text_atomic
 
-        atomic_write_text(a.json, lambda fh: json.dump(rows, fh, indent=2))
+        write_text_atomic(a.json, json.dumps(rows, indent=2))
     return 1 if bad else 0
 
 

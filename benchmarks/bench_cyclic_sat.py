@@ -102,9 +102,9 @@ def main(argv=None) -> int:
               f"{r['solve_s']:>8.2f} {r['total_s']:>8.2f} {vs:>9} {r['peak_mb']:>8.0f} {r['verified']}")
     print("solve s includes loading the clauses into the solver; total = encode + solve (+ decode).")
     if a.json:
-        from tilesolve.io.dimacs import atomic_write_text
+        from tilesolve.io.atomic import write_text_atomic
 
-        atomic_write_text(a.json, lambda fh: json.dump(rows, fh, indent=2))
+        write_text_atomic(a.json, json.dumps(rows, indent=2))
     return 0
 
 

@@ -10,13 +10,14 @@ interrupted export never leaves a half-written file.
 from __future__ import annotations
 
 import os
-import tempfile
 from pathlib import Path
 from typing import Iterable, Sequence, TextIO
 
 import numpy as np
 
-__all__ = ["write_dimacs", "dimacs_text", "atomic_write_text"]
+from tilesolve.io.atomic import atomic_write
+
+__all__ = ["write_dimacs", "dimacs_text"]
 
 
 def _clause_chunks(clauses) -> Iterable[list[list[int]]]:
@@ -88,26 +89,6 @@ def dimacs_text(obj, *, comments: Sequence[str] = (), wcnf_format: str = "old") 
     return buf.getvalue()
 
 
-def atomic_write_text(path: str | os.PathLike, writer) -> Path:
-    """Call ``writer(fh)`` on a temporary file next to ``path``, then rename it into place."""
-    path = Path(path)
-    directory = path.parent if str(path.parent) else Path(".")
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=directory)
-    try:
-        with os.fdopen(fd, "w", encoding="ascii", newline="\n") as fh:
-            writer(fh)
-            fh.flush()
-            os.fsync(fh.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except FileNotFoundError:
-            pass
-        raise
-    return path
-
-
 def write_dimacs(
     obj,
     path: str | os.PathLike,
@@ -143,4 +124,6 @@ def write_dimacs(
     >>> [l for l in open(f) if not l.startswith("c")]
     ['p cnf 3 1\\n', '1 2 3 0\\n']
     """
-    return atomic_write_text(path, lambda fh: _write(fh, obj, comments, wcnf_format))
+    with atomic_write(path, encoding="ascii") as fh:
+        _write(fh, obj, comments, wcnf_format)
+    return Path(path)
