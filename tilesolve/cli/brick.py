@@ -3,7 +3,6 @@
 
 from __future__ import annotations
 
-import json
 import secrets
 
 import click
@@ -11,6 +10,7 @@ import click
 from tilesolve.cli import options as opt
 from tilesolve.cli.common import check_distinct, check_writable, say
 from tilesolve.errors import InvalidProblem
+from tilesolve.io.jsonio import read_json
 
 __all__ = ["brick", "wang", "BOARD_HELP"]
 
@@ -53,13 +53,7 @@ def _boundary(spec: str, board, n_colors: int, seed: int):
         return random_boundary(board, n_colors, seed=seed)
     if spec == "free":
         return None
-    try:
-        with open(spec, encoding="utf-8") as fh:
-            data = json.load(fh)
-    except OSError as exc:
-        raise InvalidProblem(f"cannot read boundary {spec}: {exc.strerror or exc}") from None
-    except json.JSONDecodeError as exc:
-        raise InvalidProblem(f"{spec}: malformed JSON at line {exc.lineno}: {exc.msg}") from None
+    data = read_json(spec)
     if isinstance(data, dict):
         data = data.get("boundary")
     if not isinstance(data, list) or not all(v is None or (isinstance(v, int) and not isinstance(v, bool)) for v in data):
@@ -260,13 +254,7 @@ def wang() -> None:
 def _read_tiles(path: str):
     from tilesolve.model.board import WangTileSet, wang_from_nesw
 
-    try:
-        with open(path, encoding="utf-8") as fh:
-            data = json.load(fh)
-    except OSError as exc:
-        raise InvalidProblem(f"cannot read tiles {path}: {exc.strerror or exc}") from None
-    except json.JSONDecodeError as exc:
-        raise InvalidProblem(f"{path}: malformed JSON at line {exc.lineno}: {exc.msg}") from None
+    data = read_json(path)
     if isinstance(data, list):
         data = {"tiles": data}
     if not isinstance(data, dict) or not isinstance(data.get("tiles"), list):

@@ -59,6 +59,7 @@ __all__ = [
     "DAPPLED_PROBLEM",
     "DAPPLED_SOLUTION",
     "load_document",
+    "read_json",
     "dumps",
     "problem_to_dict",
     "problem_from_dict",
@@ -106,8 +107,7 @@ def load_document(path: str | os.PathLike, *, formats: Any = None) -> dict:
     InvalidProblem
         The file is missing, not JSON, not a tilesolve file, or of an unknown format/version.
     """
-    doc = _parse_json(_read_text(path), path)
-    return check_document(doc, path, formats=formats)
+    return check_document(read_json(path), path, formats=formats)
 
 
 def check_document(doc: Any, source: Any = "<document>", *, formats: Any = None) -> dict:
@@ -132,6 +132,17 @@ def check_document(doc: Any, source: Any = "<document>", *, formats: Any = None)
             "upgrade tilesolve?"
         )
     return doc
+
+
+def read_json(path: str | os.PathLike) -> Any:
+    """Parse any JSON file (no tilesolve header required), with one-line errors.
+
+    Raises
+    ------
+    InvalidProblem
+        The file is missing, unreadable or not JSON.
+    """
+    return _parse_json(_read_text(path), path)
 
 
 def _read_text(path: str | os.PathLike) -> str:
