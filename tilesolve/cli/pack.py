@@ -150,21 +150,16 @@ def count_cmd(ctx, kind, colors, up_to_symmetry, time_limit) -> None:
 
 def check_packing_file(doc: dict, source: str) -> tuple[int, list[str]]:
     """``tilesolve verify`` checker for ``tilesolve/packing`` files (exit 0 valid, 1 violations)."""
-    from tilesolve.cli.verify import MAX_SHOWN
+    from tilesolve.cli.verify import no_tiling_report, violations_report
     from tilesolve.io.packing_json import packing_from_dict
     from tilesolve.verify.packing import packing_violations
 
     problem, sol = packing_from_dict(doc, source)
     if sol.tiling is None:
-        return sol.status.exit_code, [f"{source}: status {sol.status.value}"
-                                      + (f" ({sol.reason})" if sol.reason else "") + "; the file holds no packing"]
+        return no_tiling_report(source, sol, "packing")
     v = packing_violations(sol.tiling, problem.kind, problem.colors, colors_v=problem.colors_v, fixed=problem.fixed)
     if v:
-        lines = [f"{source}: {len(v)} violation{'s' if len(v) != 1 else ''} of a {problem.describe()}"]
-        lines += [f"  {x}" for x in v[:MAX_SHOWN]]
-        if len(v) > MAX_SHOWN:
-            lines.append(f"  ... and {len(v) - MAX_SHOWN} more")
-        return 1, lines
+        return violations_report(source, v, f"a {problem.describe()}")
     return 0, [f"ok: {source} is a valid packing: {problem.describe()}"]
 
 

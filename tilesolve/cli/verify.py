@@ -19,6 +19,22 @@ __all__ = ["verify", "CHECKERS", "check_dappled_solution", "check_board_solution
 MAX_SHOWN = 50
 
 
+def no_tiling_report(source: str, sol, what: str = "tiling") -> tuple[int, list[str]]:
+    """The answer for a file whose status recorded no tiling: its status's exit code."""
+    why = f" ({sol.reason})" if sol.reason else ""
+    return sol.status.exit_code, [f"{source}: status {sol.status.value}{why}; the file holds no {what} to verify"]
+
+
+def violations_report(source: str, violations, of: str) -> tuple[int, list[str]]:
+    """Exit code 1 and the first :data:`MAX_SHOWN` violations, one per line."""
+    n = len(violations)
+    lines = [f"{source}: {n} violation{'s' if n != 1 else ''} of {of}"]
+    lines += [f"  {v}" for v in violations[:MAX_SHOWN]]
+    if n > MAX_SHOWN:
+        lines.append(f"  ... and {n - MAX_SHOWN} more")
+    return 1, lines
+
+
 def check_dappled_solution(doc: dict, source: str) -> tuple[int, list[str]]:
     """Check a ``tilesolve/dappled-solution`` document exactly as written.
 
@@ -30,10 +46,7 @@ def check_dappled_solution(doc: dict, source: str) -> tuple[int, list[str]]:
 
     problem, sol = solution_from_dict(doc, source)
     if sol.tiling is None:
-        return sol.status.exit_code, [
-            f"{source}: status {sol.status.value}" + (f" ({sol.reason})" if sol.reason else "")
-            + "; the file holds no tiling to verify"
-        ]
+        return no_tiling_report(source, sol)
     violations = list(dappled_violations(sol.tiling, problem))
     if (
         not violations
@@ -43,14 +56,9 @@ def check_dappled_solution(doc: dict, source: str) -> tuple[int, list[str]]:
     ):
         dist = hamming_distance(sol.tiling, problem.closest_to)
         violations.append(Violation("objective", f"recorded distance {sol.objective}, but the tiling is at distance {dist}"))
-    lines: list[str] = []
     if violations:
-        lines.append(f"{source}: {len(violations)} violation{'s' if len(violations) != 1 else ''} of {problem.describe()}")
-        lines += [f"  {v}" for v in violations[:MAX_SHOWN]]
-        if len(violations) > MAX_SHOWN:
-            lines.append(f"  ... and {len(violations) - MAX_SHOWN} more")
-        return 1, lines
-    lines.append(f"ok: {source} is a valid tiling of {problem.describe()}")
+        return violations_report(source, violations, problem.describe())
+    lines = [f"ok: {source} is a valid tiling of {problem.describe()}"]
     if not sol.status.has_tiling:
         lines.append(f"  note: the file records status {sol.status.value!r}, yet its tiling is valid")
     return 0, lines
@@ -63,17 +71,10 @@ def check_board_solution(doc: dict, source: str) -> tuple[int, list[str]]:
 
     problem, sol = board_solution_from_dict(doc, source)
     if sol.tiling is None:
-        return sol.status.exit_code, [
-            f"{source}: status {sol.status.value}" + (f" ({sol.reason})" if sol.reason else "")
-            + "; the file holds no tiling to verify"
-        ]
+        return no_tiling_report(source, sol)
     violations = board_violations(sol.tiling, problem)
     if violations:
-        lines = [f"{source}: {len(violations)} violation{'s' if len(violations) != 1 else ''} of {problem.describe()}"]
-        lines += [f"  {v}" for v in violations[:MAX_SHOWN]]
-        if len(violations) > MAX_SHOWN:
-            lines.append(f"  ... and {len(violations) - MAX_SHOWN} more")
-        return 1, lines
+        return violations_report(source, violations, problem.describe())
     return 0, [f"ok: {source} is a valid tiling of {problem.describe()}"]
 
 
