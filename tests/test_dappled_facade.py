@@ -135,3 +135,26 @@ def test_count_routes_agree_and_time_limit_gives_unknown():
     cyclic = DappledProblem.from_strings("8x8", ["H0=2", "V1=2"], cyclic=True)
     res = count(cyclic, time_limit=0.2)
     assert res.status == Status.UNKNOWN and res.value is None
+
+
+def test_progress_shows_route_and_time_on_a_terminal_only(monkeypatch, capsys):
+    import io
+    import sys
+
+    from tilesolve.engine.progress import ticker
+
+    class Tty(io.StringIO):
+        def isatty(self):
+            return True
+
+    fake = Tty()
+    monkeypatch.setattr(sys, "stderr", fake)
+    with ticker("solving with 'sat'", True, every=0.01):
+        import time
+
+        time.sleep(0.1)
+    assert "solving with 'sat' ..." in fake.getvalue()
+    assert fake.getvalue().endswith("\r\033[K")  # the line is erased when the call returns
+    monkeypatch.undo()
+    solve(DappledProblem.from_strings("6x6", ["H0=1", "V1=2"]), progress=True)
+    assert capsys.readouterr().err == ""  # not a terminal: nothing drawn

@@ -34,6 +34,7 @@ from typing import Callable
 
 import numpy as np
 
+from tilesolve.engine.progress import ticker
 from tilesolve.errors import InvalidProblem, MethodNotApplicable
 from tilesolve.model.dappled import DappledProblem
 from tilesolve.model.solution import Solution, Status
@@ -140,6 +141,8 @@ def solve(
     initial : numpy.ndarray, optional
         Input tiling for Algorithm 1/2 (§2: "we can start with a random tiling or a user
         specified one").
+    progress : bool
+        Show the running route and elapsed time on stderr (only when it is a terminal).
 
     Returns
     -------
@@ -166,12 +169,14 @@ def solve(
     if initial is not None and name != "constructive":
         notes.append(f"the initial tiling is only used by the constructive route, not by {name!r}")
     try:
-        sol = runner(problem, seed=seed, time_limit=time_limit, initial=initial, progress=progress)
+        with ticker(f"solving with {name!r}", progress):
+            sol = runner(problem, seed=seed, time_limit=time_limit, initial=initial, progress=progress)
     except MethodNotApplicable as exc:
         if method != "auto":
             raise
         notes.append(f"constructive route not applicable ({exc}); solved with 'sat'")
-        sol = SOLVERS["sat"](problem, seed=seed, time_limit=time_limit, progress=progress)
+        with ticker("solving with 'sat'", progress):
+            sol = SOLVERS["sat"](problem, seed=seed, time_limit=time_limit, progress=progress)
     if sol.method == "constructive" and sol.status.has_tiling:
         violations = dappled_violations(sol.tiling, problem)
         if violations:
@@ -179,7 +184,8 @@ def solve(
                 f"constructive output failed verification ({len(violations)} violations, first at "
                 f"row {violations[0].row}, col {violations[0].col}); fell back to 'sat'"
             )
-            sol = SOLVERS["sat"](problem, seed=seed, time_limit=time_limit, progress=progress)
+            with ticker("solving with 'sat'", progress):
+                sol = SOLVERS["sat"](problem, seed=seed, time_limit=time_limit, progress=progress)
     sol = _checked(problem, sol)
     return sol.replace(notes=tuple(notes) + sol.notes, time_s=time.perf_counter() - t0, seed=seed)
 

@@ -1,0 +1,47 @@
+"""Progress on long work (DESIGN.md, "Long work ... shows progress on a TTY").
+
+Solver calls give no intermediate numbers we can trust to mean "x % done", so a solve shows
+what is true: which route is running and for how long, refreshed twice a second on stderr,
+and erased when the call returns.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import sys
+import threading
+import time
+from typing import Iterator
+
+__all__ = ["ticker"]
+
+
+@contextlib.contextmanager
+def ticker(label: str, enabled: bool, *, every: float = 0.5) -> Iterator[None]:
+    """Show ``label`` and the elapsed seconds on stderr while the ``with`` block runs.
+
+    Does nothing unless ``enabled`` and stderr is a terminal, so piped output stays clean.
+
+    >>> with ticker("solving", enabled=False):
+    ...     pass
+    """
+    if not (enabled and sys.stderr.isatty()):
+        yield
+        return
+    stop = threading.Event()
+    t0 = time.perf_counter()
+
+    def run() -> None:
+        while not stop.wait(every):
+            sys.stderr.write(f"\r  {label} ... {time.perf_counter() - t0:.0f} s")
+            sys.stderr.flush()
+
+    thread = threading.Thread(target=run, daemon=True)
+    thread.start()
+    try:
+        yield
+    finally:
+        stop.set()
+        thread.join()
+        sys.stderr.write("\r\033[K")
+        sys.stderr.flush()
