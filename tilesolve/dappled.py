@@ -29,15 +29,15 @@ Examples
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
 from typing import Callable
 
 import numpy as np
 
 from tilesolve.engine.progress import ticker
+from tilesolve.engine.routes import lookup, verified
 from tilesolve.errors import InvalidProblem, MethodNotApplicable
 from tilesolve.model.dappled import DappledProblem
-from tilesolve.model.solution import Solution, Status
+from tilesolve.model.solution import CountResult, CrosscheckReport, Solution, Status
 from tilesolve.verify.dappled import dappled_violations
 
 __all__ = [
@@ -98,16 +98,9 @@ def _auto_method(problem: DappledProblem) -> str:
 
 
 def _checked(problem: DappledProblem, sol: Solution) -> Solution:
-    """Run the independent verifier on a returned tiling; a failure is a bug, never 'sat'."""
-    if not sol.status.has_tiling:
-        return sol
-    violations = dappled_violations(sol.tiling, problem)
-    if violations:
-        raise AssertionError(
-            f"internal error: method {sol.method!r} returned a tiling that fails verification "
-            f"({len(violations)} violations, first: {violations[0]}); please report this"
-        )
-    if problem.closest_to is not None:
+    """Run the independent verifier on a returned tiling and recompute the distance."""
+    sol = verified(sol, lambda tiling: dappled_violations(tiling, problem))
+    if sol.status.has_tiling and problem.closest_to is not None:
         dist = int((sol.tiling != problem.closest_to).sum())
         if sol.objective is not None and sol.objective != dist:
             raise AssertionError(f"internal error: reported distance {sol.objective} but the tiling is at {dist}")
@@ -157,15 +150,9 @@ def solve(
     """
     t0 = time.perf_counter()
     notes: list[str] = []
-    if callable(method):
-        runner, name = method, getattr(method, "__name__", "custom")
-    else:
-        name = _auto_method(problem) if method == "auto" else method
-        if name not in SOLVERS:
-            raise InvalidProblem(f"unknown method {method!r}; choose one of {', '.join(METHODS)}")
-        if name == "constructive" and problem.closest_to is not None:
-            raise MethodNotApplicable("the constructive route does not minimise distance; use method 'maxsat'")
-        runner = SOLVERS[name]
+    runner, name = lookup(method, SOLVERS, lambda: _auto_method(problem))
+    if name == "constructive" and problem.closest_to is not None:
+        raise MethodNotApplicable("the constructive route does not minimise distance; use method 'maxsat'")
     if initial is not None and name != "constructive":
         notes.append(f"the initial tiling is only used by the constructive route, not by {name!r}")
     try:
@@ -188,17 +175,6 @@ def solve(
                 sol = SOLVERS["sat"](problem, seed=seed, time_limit=time_limit, progress=progress)
     sol = _checked(problem, sol)
     return sol.replace(notes=tuple(notes) + sol.notes, time_s=time.perf_counter() - t0, seed=seed)
-
-
-@dataclass(frozen=True)
-class CountResult:
-    """An exact count of tilings, or ``None`` with status ``unknown`` when time ran out."""
-
-    value: int | None
-    status: Status
-    method: str
-    time_s: float
-    note: str | None = None
 
 
 def count(
@@ -242,18 +218,6 @@ def count(
     return CountResult(value, Status.SAT, "enumerate", time.perf_counter() - t0, note)
 
 
-@dataclass
-class CrosscheckReport:
-    """What :func:`crosscheck` ran and found; ``ok`` is False on any disagreement."""
-
-    ok: bool = True
-    lines: list[str] = field(default_factory=list)
-
-    def add(self, ok: bool, line: str) -> None:
-        self.ok &= ok
-        self.lines.append(("ok   " if ok else "FAIL ") + line)
-
-
 def crosscheck(problem: DappledProblem, *, seed: int | None = None, time_limit: float | None = None) -> CrosscheckReport:
     """Run the constructive and solver routes on ``problem`` and confirm they agree.
 
@@ -265,7 +229,6 @@ def crosscheck(problem: DappledProblem, *, seed: int | None = None, time_limit: 
     from tilesolve.engine.dappled import tiling_satisfies_encoding
 
     report = CrosscheckReport()
-    statuses = {}
     try:
         cons = SOLVERS["constructive"](problem, seed=seed)
     except MethodNotApplicable as exc:
@@ -275,7 +238,7 @@ def crosscheck(problem: DappledProblem, *, seed: int | None = None, time_limit: 
         report.add(not bad, f"constructive tiling verifies ({len(bad)} violations)")
         if not bad:
             report.add(tiling_satisfies_encoding(problem, cons.tiling), "constructive tiling satisfies the CNF encoding")
-            statuses["constructive"] = Status.SAT
+            report.verdicts["constructive"] = Status.SAT
     for name in ("sat", "cpsat") + (("maxsat",) if problem.closest_to is not None else ()):
         sol = SOLVERS[name](problem, seed=seed, time_limit=time_limit)
         if sol.status.has_tiling:
@@ -284,9 +247,8 @@ def crosscheck(problem: DappledProblem, *, seed: int | None = None, time_limit: 
         else:
             report.lines.append(f"     {name}: {sol.status.value}" + (f" ({sol.reason})" if sol.reason else ""))
         if sol.status != Status.UNKNOWN:
-            statuses[name] = Status.SAT if sol.status.has_tiling else Status.UNSAT
-    verdicts = set(statuses.values())
-    report.add(len(verdicts) <= 1, "routes agree on solvability: " + ", ".join(f"{k}={v.value}" for k, v in statuses.items()))
+            report.verdicts[name] = Status.SAT if sol.status.has_tiling else Status.UNSAT
+    report.add_agreement()
     if problem.closest_to is None and problem.size <= 16:
         a, b = count(problem, method="enumerate"), None
         try:

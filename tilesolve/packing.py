@@ -45,7 +45,8 @@ from typing import Callable
 import numpy as np
 
 from tilesolve._random import rng_from_seed
-from tilesolve.errors import InvalidProblem, MethodNotApplicable
+from tilesolve.engine.routes import lookup, verified
+from tilesolve.errors import MethodNotApplicable
 from tilesolve.model.packing import PackingProblem
 from tilesolve.model.solution import Solution, Status
 from tilesolve.verify.packing import packing_violations
@@ -253,15 +254,12 @@ def auto_method(problem: PackingProblem) -> str:
 
 def verify_solution(problem: PackingProblem, sol: Solution) -> Solution:
     """Run the independent verifier on a returned packing; a failure is a bug, never 'sat'."""
-    if not sol.status.has_tiling:
-        return sol
-    v = packing_violations(sol.tiling, problem.kind, problem.colors, colors_v=problem.colors_v, fixed=problem.fixed)
-    if v:
-        raise AssertionError(
-            f"internal error: method {sol.method!r} returned a packing that fails verification "
-            f"({len(v)} violations, first: {v[0]}); please report this"
-        )
-    return sol
+    return verified(
+        sol,
+        lambda grid: packing_violations(grid, problem.kind, problem.colors, colors_v=problem.colors_v,
+                                        fixed=problem.fixed),
+        "packing",
+    )
 
 
 def solve(
@@ -302,13 +300,7 @@ def solve(
         Absurd sizes for a solver route (refused before any clause is built).
     """
     t0 = time.perf_counter()
-    if callable(method):
-        runner, name = method, getattr(method, "__name__", "custom")
-    else:
-        name = auto_method(problem) if method == "auto" else method
-        if name not in SOLVERS:
-            raise InvalidProblem(f"unknown method {method!r}; choose one of {', '.join(METHODS)}")
-        runner = SOLVERS[name]
+    runner, name = lookup(method, SOLVERS, lambda: auto_method(problem))
     if name in ("sat", "cpsat", "hybrid"):
         problem.check_search_size()
     sol = runner(problem, seed=seed, time_limit=time_limit, workers=workers, progress=progress, solver=solver)

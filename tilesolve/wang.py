@@ -27,14 +27,14 @@ Examples
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
 from typing import Callable, Iterator
 
 import numpy as np
 
+from tilesolve.engine.routes import lookup, verified
 from tilesolve.errors import InvalidProblem, MethodNotApplicable
 from tilesolve.model.board import BoardProblem
-from tilesolve.model.solution import Solution, Status
+from tilesolve.model.solution import CountResult, CrosscheckReport, Solution, Status
 from tilesolve.verify.board import board_violations
 
 __all__ = [
@@ -119,18 +119,6 @@ SOLVERS: dict[str, Callable[..., Solution]] = {
 METHODS: tuple[str, ...] = ("auto",) + tuple(SOLVERS)
 
 
-def _checked(problem: BoardProblem, sol: Solution) -> Solution:
-    if not sol.status.has_tiling:
-        return sol
-    bad = board_violations(sol.tiling, problem)
-    if bad:
-        raise AssertionError(
-            f"internal error: method {sol.method!r} returned a tiling that fails verification "
-            f"({len(bad)} violations, first: {bad[0]}); please report this"
-        )
-    return sol
-
-
 def solve(problem: BoardProblem, *, method: str | Callable[..., Solution] = "auto", seed: int | None = None,
           time_limit: float | None = None) -> Solution:
     """Find a valid tiling of a board problem (or prove none exists), verified independently.
@@ -157,13 +145,7 @@ def solve(problem: BoardProblem, *, method: str | Callable[..., Solution] = "aut
         raise InvalidProblem(f"expected a BoardProblem, got {type(problem).__name__}")
     t0 = time.perf_counter()
     notes: list[str] = []
-    if callable(method):
-        runner, name = method, getattr(method, "__name__", "custom")
-    else:
-        if method != "auto" and method not in SOLVERS:
-            raise InvalidProblem(f"unknown method {method!r}; choose one of {', '.join(METHODS)}")
-        name = "linear" if method == "auto" else method
-        runner = SOLVERS[name]
+    runner, name = lookup(method, SOLVERS, lambda: "linear")
     try:
         sol = runner(problem, seed=seed, time_limit=time_limit)
     except MethodNotApplicable as exc:
@@ -171,7 +153,7 @@ def solve(problem: BoardProblem, *, method: str | Callable[..., Solution] = "aut
             raise
         notes.append(f"linear algorithm not applicable ({exc}); solved with 'sat'")
         sol = SOLVERS["sat"](problem, seed=seed, time_limit=time_limit)
-    sol = _checked(problem, sol)
+    sol = verified(sol, lambda tiling: board_violations(tiling, problem))
     return sol.replace(notes=tuple(notes) + sol.notes, time_s=time.perf_counter() - t0, seed=seed)
 
 
@@ -186,16 +168,6 @@ def enumerate_tilings(problem: BoardProblem, *, limit: int | None = None,
         yield enc.decode(model)
 
 
-@dataclass(frozen=True)
-class CountResult:
-    """Exact number of valid tilings, or ``None`` with status ``unknown`` when time ran out."""
-
-    value: int | None
-    status: Status
-    time_s: float
-    note: str | None = None
-
-
 def count(problem: BoardProblem, *, time_limit: float | None = None) -> CountResult:
     """Count the valid tilings of a (small) board problem exactly, by enumeration."""
     from tilesolve.encodings.wang import encode_wang
@@ -205,22 +177,9 @@ def count(problem: BoardProblem, *, time_limit: float | None = None) -> CountRes
     enc = encode_wang(problem)
     mc = count_models(enc.clauses, enc.projection, time_limit=time_limit)
     if not mc.complete:
-        return CountResult(None, Status.UNKNOWN, time.perf_counter() - t0,
+        return CountResult(None, Status.UNKNOWN, "enumerate", time.perf_counter() - t0,
                            f"stopped after {mc.count} tilings: {mc.reason}")
-    return CountResult(mc.count, Status.SAT, time.perf_counter() - t0)
-
-
-@dataclass
-class CrosscheckReport:
-    """What :func:`crosscheck` ran and found; ``ok`` is False on any disagreement."""
-
-    ok: bool = True
-    lines: list[str] = field(default_factory=list)
-    verdicts: dict = field(default_factory=dict)
-
-    def add(self, ok: bool, line: str) -> None:
-        self.ok &= ok
-        self.lines.append(("ok   " if ok else "FAIL ") + line)
+    return CountResult(mc.count, Status.SAT, "enumerate", time.perf_counter() - t0)
 
 
 def crosscheck(problem: BoardProblem, *, seed: int | None = None, time_limit: float | None = None,
@@ -250,7 +209,5 @@ def crosscheck(problem: BoardProblem, *, seed: int | None = None, time_limit: fl
             rep.lines.append(f"     {name}: {sol.status.value}" + (f" ({sol.reason})" if sol.reason else ""))
         if sol.status is not Status.UNKNOWN:
             rep.verdicts[name] = Status.SAT if sol.status.has_tiling else Status.UNSAT
-    verdicts = set(rep.verdicts.values())
-    rep.add(len(verdicts) <= 1, "routes agree on solvability: " +
-            ", ".join(f"{k}={v.value}" for k, v in rep.verdicts.items()))
+    rep.add_agreement()
     return rep

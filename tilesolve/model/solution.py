@@ -8,7 +8,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["Status", "Solution"]
+__all__ = ["Status", "Solution", "CountResult", "CrosscheckReport"]
 
 
 class Status(str, enum.Enum):
@@ -75,3 +75,39 @@ class Solution:
 
     def replace(self, **changes: Any) -> "Solution":
         return replace(self, **changes)
+
+
+@dataclass(frozen=True)
+class CountResult:
+    """An exact count of solutions, or ``None`` with status ``unknown`` when time ran out.
+
+    ``method`` names the route (``"transfer"``, ``"enumerate"``, ...); ``note`` says what
+    the user should know (a fallback, where enumeration stopped).
+    """
+
+    value: int | None
+    status: Status
+    method: str
+    time_s: float
+    note: str | None = None
+
+
+@dataclass
+class CrosscheckReport:
+    """What a family's ``crosscheck`` ran and found; ``ok`` is False on any disagreement.
+
+    ``verdicts`` maps each route that decided the problem to ``sat`` or ``unsat``.
+    """
+
+    ok: bool = True
+    lines: list[str] = field(default_factory=list)
+    verdicts: dict[str, Status] = field(default_factory=dict)
+
+    def add(self, ok: bool, line: str) -> None:
+        self.ok &= ok
+        self.lines.append(("ok   " if ok else "FAIL ") + line)
+
+    def add_agreement(self) -> None:
+        """Record whether every route that decided the problem agrees on solvability."""
+        agree = len(set(self.verdicts.values())) <= 1
+        self.add(agree, "routes agree on solvability: " + ", ".join(f"{k}={v.value}" for k, v in self.verdicts.items()))
