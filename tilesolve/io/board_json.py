@@ -34,9 +34,9 @@ import numpy as np
 
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.atomic import write_text_atomic
-from tilesolve.io.jsonio import check_document, dumps, load_document
+from tilesolve.io.jsonio import check_document, dumps, load_document, provenance_to_dict, solution_from_provenance
 from tilesolve.model.board import LEG_NAMES, Board, BoardProblem, WangTileSet
-from tilesolve.model.solution import Solution, Status
+from tilesolve.model.solution import Solution
 
 __all__ = ["BOARD_SOLUTION", "board_solution_to_dict", "board_solution_from_dict", "write_board_solution",
            "read_board_solution"]
@@ -58,13 +58,7 @@ def board_solution_to_dict(problem: BoardProblem, solution: Solution) -> dict:
         "tileset": "brick" if problem.tileset.is_brick else np.asarray(problem.tileset.tiles),
         "max_h": problem.max_h,
         "max_v": problem.max_v,
-        "status": solution.status.value,
-        "method": solution.method,
-        "solver": solution.solver,
-        "seed": solution.seed,
-        "time_s": round(float(solution.time_s), 6),
-        "reason": solution.reason,
-        "notes": list(solution.notes),
+        **provenance_to_dict(solution),
         "stats": stats,
         "cells": np.asarray(b.labels),
         "edges": np.asarray(b.edge_list(), dtype=np.int64).reshape(-1, 4),
@@ -111,10 +105,6 @@ def board_solution_from_dict(doc: dict, source: Any = "<document>") -> tuple[Boa
                                max_v=_int(doc, "max_v", source, optional=True))
     except InvalidProblem as exc:
         raise InvalidProblem(f"{source}: {exc}") from None
-    try:
-        status = Status(doc.get("status"))
-    except ValueError:
-        raise InvalidProblem(f"{source}: 'status' must be one of {', '.join(s.value for s in Status)}") from None
     tiles = doc.get("tiles")
     tiling = None
     if tiles is not None:
@@ -122,13 +112,7 @@ def board_solution_from_dict(doc: dict, source: Any = "<document>") -> tuple[Boa
             tiling = np.asarray(tiles, dtype=np.int64)
         except (TypeError, ValueError):
             raise InvalidProblem(f"{source}: 'tiles' must be a list of 4 integer colours per cell") from None
-    if status.has_tiling and tiling is None:
-        raise InvalidProblem(f"{source}: status is {status.value!r} but the file holds no 'tiles'")
-    notes = doc.get("notes") or []
-    sol = Solution(status, tiling, str(doc.get("method") or ""), doc.get("solver"), doc.get("seed"),
-                   float(doc.get("time_s") or 0.0), reason=doc.get("reason"),
-                   notes=tuple(str(n) for n in notes), stats=dict(doc.get("stats") or {}))
-    return problem, sol
+    return problem, solution_from_provenance(doc, source, tiling, what="tiles")
 
 
 def write_board_solution(path: str | os.PathLike, problem: BoardProblem, solution: Solution) -> None:

@@ -59,6 +59,8 @@ __all__ = [
     "DAPPLED_PROBLEM",
     "DAPPLED_SOLUTION",
     "load_document",
+    "provenance_to_dict",
+    "solution_from_provenance",
     "read_json",
     "dumps",
     "problem_to_dict",
@@ -391,48 +393,38 @@ def _opt_grid(value: Any, what: str, source: Any, *, allow_free: bool) -> np.nda
 
 
 # ----------------------------------------------------------------------------- solutions
-def solution_to_dict(problem: DappledProblem, solution: Solution, *, arrays: bool = False) -> dict:
-    """The JSON document of a solution, carrying its whole problem (``tilesolve/dappled-solution``).
+def provenance_to_dict(solution: Solution) -> dict:
+    """The fields every solution file carries, whatever the family: status and provenance."""
+    return {
+        "status": solution.status.value,
+        "method": solution.method,
+        "solver": solution.solver,
+        "seed": solution.seed,
+        "time_s": round(float(solution.time_s), 6),
+        "reason": solution.reason,
+        "notes": list(solution.notes),
+        "stats": dict(solution.stats),
+    }
 
-    With ``arrays=True`` grids stay numpy arrays (for :func:`dumps`, which writes them fast).
+
+def solution_from_provenance(doc: dict, source: Any, tiling, *, what: str = "tiling",
+                             default_status: str | None = None) -> Solution:
+    """A :class:`Solution` from the fields :func:`provenance_to_dict` writes (checked
+    strictly: wrong types are one-line errors), plus ``objective`` where present.
+
+    ``tiling`` is the family's already-parsed grid (``None`` if the file has none); a
+    status that promises a tiling without one is an error. ``default_status`` is used when
+    the file has no ``status`` field.
     """
-    doc = problem_to_dict(problem, format=DAPPLED_SOLUTION, arrays=arrays)
-    tiling = None if solution.tiling is None else np.asarray(solution.tiling)
-    doc.update(
-        {
-            "status": solution.status.value,
-            "method": solution.method,
-            "solver": solution.solver,
-            "seed": solution.seed,
-            "time_s": round(float(solution.time_s), 6),
-            "objective": solution.objective,
-            "reason": solution.reason,
-            "notes": list(solution.notes),
-            "stats": dict(solution.stats),
-            "tiling": tiling if arrays or tiling is None else tiling.tolist(),
-        }
-    )
-    return doc
-
-
-def solution_from_dict(doc: dict, source: Any = "<document>") -> tuple[DappledProblem, Solution]:
-    """Rebuild ``(problem, solution)`` from a solution document.
-
-    The tiling is read as written (any rectangular grid of integers): checking it against
-    the problem is the verifier's job, so a corrupted tiling is reported there, with positions.
-    """
-    check_document(doc, source, formats=(DAPPLED_SOLUTION,))
-    problem = problem_from_dict(doc, source)
-    status = doc.get("status")
+    raw = doc.get("status", default_status)
     try:
-        status = Status(status)
+        status = Status(raw)
     except ValueError:
         raise InvalidProblem(
-            f"{source}: 'status' must be one of {', '.join(s.value for s in Status)}, got {status!r}"
+            f"{source}: 'status' must be one of {', '.join(s.value for s in Status)}, got {raw!r}"
         ) from None
-    tiling = _opt_grid(doc.get("tiling"), "tiling", source, allow_free=True)
     if status.has_tiling and tiling is None:
-        raise InvalidProblem(f"{source}: status is {status.value!r} but the file holds no 'tiling'")
+        raise InvalidProblem(f"{source}: status is {status.value!r} but the file holds no {what!r}")
 
     def opt(name: str, kind: type | tuple, default: Any = None) -> Any:
         v = doc.get(name, default)
@@ -443,7 +435,7 @@ def solution_from_dict(doc: dict, source: Any = "<document>") -> tuple[DappledPr
     notes = opt("notes", list, [])
     if not all(isinstance(n, str) for n in notes):
         raise InvalidProblem(f"{source}: 'notes' must be a list of strings")
-    solution = Solution(
+    return Solution(
         status=status,
         tiling=tiling,
         method=opt("method", str, "") or "",
@@ -455,7 +447,31 @@ def solution_from_dict(doc: dict, source: Any = "<document>") -> tuple[DappledPr
         notes=tuple(notes),
         stats=opt("stats", dict, {}) or {},
     )
-    return problem, solution
+
+
+def solution_to_dict(problem: DappledProblem, solution: Solution, *, arrays: bool = False) -> dict:
+    """The JSON document of a solution, carrying its whole problem (``tilesolve/dappled-solution``).
+
+    With ``arrays=True`` grids stay numpy arrays (for :func:`dumps`, which writes them fast).
+    """
+    doc = problem_to_dict(problem, format=DAPPLED_SOLUTION, arrays=arrays)
+    tiling = None if solution.tiling is None else np.asarray(solution.tiling)
+    doc.update(provenance_to_dict(solution))
+    doc["objective"] = solution.objective
+    doc["tiling"] = tiling if arrays or tiling is None else tiling.tolist()
+    return doc
+
+
+def solution_from_dict(doc: dict, source: Any = "<document>") -> tuple[DappledProblem, Solution]:
+    """Rebuild ``(problem, solution)`` from a solution document.
+
+    The tiling is read as written (any rectangular grid of integers): checking it against
+    the problem is the verifier's job, so a corrupted tiling is reported there, with positions.
+    """
+    check_document(doc, source, formats=(DAPPLED_SOLUTION,))
+    problem = problem_from_dict(doc, source)
+    tiling = _opt_grid(doc.get("tiling"), "tiling", source, allow_free=True)
+    return problem, solution_from_provenance(doc, source, tiling)
 
 
 # ----------------------------------------------------------------------------- files

@@ -30,9 +30,9 @@ import numpy as np
 
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.atomic import write_text_atomic
-from tilesolve.io.jsonio import check_document, dumps, load_document
+from tilesolve.io.jsonio import check_document, dumps, load_document, provenance_to_dict, solution_from_provenance
 from tilesolve.model.packing import PackingProblem
-from tilesolve.model.solution import Solution, Status
+from tilesolve.model.solution import Solution
 
 __all__ = ["PACKING", "packing_to_dict", "packing_from_dict", "write_packing", "read_packing"]
 
@@ -50,15 +50,8 @@ def packing_to_dict(problem: PackingProblem, solution: Solution) -> dict:
     if problem.fixed:
         doc["fixed"] = [list(f) for f in problem.fixed]
     doc.update({
-        "status": solution.status.value,
+        **provenance_to_dict(solution),
         "grid": None if solution.tiling is None else np.asarray(solution.tiling, dtype=np.int64),
-        "method": solution.method,
-        "solver": solution.solver,
-        "seed": solution.seed,
-        "time_s": round(float(solution.time_s), 6),
-        "reason": solution.reason,
-        "notes": list(solution.notes),
-        "stats": dict(solution.stats),
     })
     return doc
 
@@ -108,14 +101,8 @@ def packing_from_dict(doc: dict, source: Any = "<document>") -> tuple[PackingPro
         if len({len(r) for r in grid}) > 1:
             raise InvalidProblem(f"{source}: 'grid' rows have different lengths")
         grid = np.asarray(grid, dtype=np.int64)
-    status_text = doc.get("status", "sat" if grid is not None else "unknown")
-    try:
-        status = Status(status_text)
-    except ValueError:
-        raise InvalidProblem(f"{source}: unknown status {status_text!r}") from None
-    sol = Solution(status, grid, method=str(doc.get("method") or ""), solver=doc.get("solver"),
-                   seed=doc.get("seed"), time_s=float(doc.get("time_s") or 0.0), reason=doc.get("reason"),
-                   notes=tuple(doc.get("notes") or ()), stats=dict(doc.get("stats") or {}))
+    sol = solution_from_provenance(doc, source, grid, what="grid",
+                                   default_status="sat" if grid is not None else "unknown")
     return problem, sol
 
 
