@@ -117,7 +117,7 @@ def _enc_for(problem: PackingProblem, seed, *, amo_tiles: bool = True):
 
 
 def _sat(problem: PackingProblem, *, seed=None, time_limit=None, workers=None, progress=False, solver=None) -> Solution:
-    from tilesolve.engine.dappled import _unsat_solution  # family-generic UNSAT + proof check
+    from tilesolve.engine.certificates import unsat_solution
     from tilesolve.engine.result import Deadline
     from tilesolve.engine.sat import solve_cnf
 
@@ -145,7 +145,7 @@ def _sat(problem: PackingProblem, *, seed=None, time_limit=None, workers=None, p
         if not problem.fixed:  # the anchor only breaks symmetry: an UNSAT here would be a bug
             raise AssertionError("internal error: the unpinned packing encoding was reported unsatisfiable")
         rem = deadline.remaining()
-        return _unsat_solution(enc, r, method="sat", seed=seed, t0=t0, stats=stats, check_proof=True,
+        return unsat_solution(enc.clauses, r, method="sat", seed=seed, t0=t0, stats=stats, check_proof=True,
                                proof_time_limit=None if rem is None else max(rem, 1.0))
     reason = r.reason
     if time_limit is not None and deadline.expired() and "interrupted" not in (reason or ""):

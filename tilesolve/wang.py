@@ -51,7 +51,7 @@ def solve_sat(problem: BoardProblem, *, seed=None, time_limit=None, proof: bool 
     formula is small enough to check); a time limit gives ``unknown``.
     """
     from tilesolve.encodings.wang import encode_wang
-    from tilesolve.engine.dappled import _unsat_solution
+    from tilesolve.engine.certificates import unsat_solution
     from tilesolve.engine.result import Deadline
     from tilesolve.engine.sat import DEFAULT_SAT_SOLVER, solve_cnf
 
@@ -68,7 +68,7 @@ def solve_sat(problem: BoardProblem, *, seed=None, time_limit=None, proof: bool 
                         notes=notes, stats=stats)
     if r.status is Status.UNSAT:
         rem = deadline.remaining()
-        sol = _unsat_solution(enc, r, method="sat", seed=seed, t0=t0, stats=stats, check_proof=True,
+        sol = unsat_solution(enc.clauses, r, method="sat", seed=seed, t0=t0, stats=stats, check_proof=True,
                               proof_time_limit=None if rem is None else max(rem, 1.0))
         return sol.replace(notes=sol.notes + notes)
     return Solution(Status.UNKNOWN, None, "sat", r.solver, seed, time.perf_counter() - t0, reason=r.reason,

@@ -28,12 +28,12 @@ import numpy as np
 from tilesolve.encodings.dappled import DappledEncoding, build_cpsat, encode_cnf, encode_wcnf
 from tilesolve.engine.cpsat import DEFAULT_CPSAT_WORKERS, solve_cp_model
 from tilesolve.engine.maxsat import DEFAULT_MAXSAT_ORACLE, RC2Options, solve_lazy, solve_wcnf
-from tilesolve.engine.result import Deadline, Result
+from tilesolve.engine.certificates import unsat_solution
+from tilesolve.engine.result import Deadline
 from tilesolve.engine.sat import DEFAULT_SAT_SOLVER, ModelEnumerator, solve_cnf
 from tilesolve.errors import InvalidProblem
 from tilesolve.model.dappled import DappledProblem
 from tilesolve.model.solution import Solution, Status
-from tilesolve.verify.drat import check_drat
 
 __all__ = [
     "solve_sat",
@@ -45,12 +45,7 @@ __all__ = [
     "TilingEnumerator",
     "TilingCount",
     "MAXSAT_METHODS",
-    "PROOF_CHECK_MAX_SIZE",
 ]
-
-#: Literals (formula + proof) above which a DRAT proof is kept but not checked in Python.
-PROOF_CHECK_MAX_SIZE = 5_000_000
-
 
 def _check_problem(problem) -> None:
     if not isinstance(problem, DappledProblem):
@@ -59,40 +54,6 @@ def _check_problem(problem) -> None:
 
 def _enc_stats(enc: DappledEncoding, encode_s: float) -> dict:
     return {"variables": enc.n_vars, "clauses": len(enc.hard), "encode_s": round(encode_s, 6)}
-
-
-def _unsat_solution(enc, r: Result, *, method: str, seed, t0: float, stats: dict,
-                    check_proof: bool, proof_time_limit: float | None) -> Solution:
-    """UNSAT with the proof's verdict; a proof that fails the check downgrades to UNKNOWN.
-
-    Family-generic: ``enc`` is any encoding whose clauses (``enc.hard`` or
-    ``enc.clauses``) are exactly what the solver was given.
-    """
-    formula = enc.hard if hasattr(enc, "hard") else enc.clauses
-    stats = dict(stats)
-    solver = r.solver
-    if r.proof is None:
-        reason = f"reported unsatisfiable by {solver} (no proof logged)"
-        if r.reason:
-            reason += f": {r.reason}"
-        return Solution(Status.UNSAT, None, method, solver, seed, time.perf_counter() - t0, reason=reason, stats=stats)
-    stats["proof_lines"] = len(r.proof)
-    if not check_proof:
-        return Solution(Status.UNSAT, None, method, solver, seed, time.perf_counter() - t0,
-                        reason=f"proved unsatisfiable by {solver}; DRAT proof of {len(r.proof)} lines kept, not checked",
-                        stats=stats)
-    chk = check_drat(formula, r.proof, max_size=PROOF_CHECK_MAX_SIZE, time_limit=proof_time_limit)
-    stats.update(proof_status=chk.status, proof_lemmas=chk.lemmas, proof_check_s=round(chk.time_s, 6))
-    if chk.status == "verified":
-        reason = f"proved unsatisfiable by {solver}; DRAT proof of {chk.lemmas} lemma(s) checked by tilesolve.verify.drat"
-        return Solution(Status.UNSAT, None, method, solver, seed, time.perf_counter() - t0, reason=reason, stats=stats)
-    if chk.status == "failed":
-        return Solution(Status.UNKNOWN, None, method, solver, seed, time.perf_counter() - t0,
-                        reason=f"{solver} reported unsatisfiable but its DRAT proof failed the check: {chk.reason}",
-                        stats=stats)
-    return Solution(Status.UNSAT, None, method, solver, seed, time.perf_counter() - t0,
-                    reason=f"proved unsatisfiable by {solver}; {chk.reason}", stats=stats,
-                    notes=("the DRAT proof was not fully checked",))
 
 
 def solve_sat(
@@ -161,7 +122,7 @@ def solve_sat(
         return Solution(Status.SAT, tiling, "sat", r.solver, seed, time.perf_counter() - t0, notes=notes, stats=stats)
     if r.status is Status.UNSAT:
         rem = deadline.remaining()
-        sol = _unsat_solution(enc, r, method="sat", seed=seed, t0=t0, stats=stats, check_proof=check_proof,
+        sol = unsat_solution(enc.hard, r, method="sat", seed=seed, t0=t0, stats=stats, check_proof=check_proof,
                               proof_time_limit=None if rem is None else max(rem, 1.0))
         return sol.replace(notes=sol.notes + notes)
     return Solution(Status.UNKNOWN, None, "sat", r.solver, seed, time.perf_counter() - t0, reason=r.reason,
