@@ -76,10 +76,11 @@ def test_time_limit_gives_unknown_not_unsat():
 
 
 def test_auto_routes():
-    for kind, c, method in [("wang", 2, "sat"), ("corner", 3, "outer"), ("wang", 3, "sat"), ("corner", 2, "sat"), ("wang", 4, "outer"),
-                            ("corner", 4, "known"), ("corner", 5, "outer"), ("corner", 6, "sat")]:
+    for kind, c, method in [("wang", 2, "sat"), ("corner", 3, "outer"), ("wang", 3, "sat"), ("corner", 2, "sat"),
+                            ("wang", 4, "lift"), ("wang", 5, "outer"), ("wang", 6, "lift"), ("wang", 8, "outer"),
+                            ("corner", 4, "lift"), ("corner", 5, "outer"), ("corner", 6, "lift"), ("corner", 8, "lift")]:
         assert facade.auto_method(PackingProblem(kind, c)) == method
-    for kind, c in [("wang", 4), ("corner", 4), ("corner", 7), ("wang", 8)]:
+    for kind, c in [("wang", 4), ("corner", 4), ("corner", 6), ("corner", 7), ("wang", 8)]:
         s = facade.solve(PackingProblem(kind, c), seed=3)
         assert s.status is Status.SAT and is_packing(s.tiling, kind, c)
 
@@ -121,9 +122,9 @@ def test_encoding_accepts_exactly_the_packings():
 @pytest.mark.parametrize("c", [3, 4])
 def test_hybrid_wang_packings(c):
     """Random Eulerian N/S columns + SAT: valid, reproducible, and not an outer product."""
-    s = facade.solve(PackingProblem("wang", c), method="hybrid", seed=1, time_limit=120)
+    s = facade.solve(PackingProblem("wang", c), method="hybrid", seed=1, time_limit=120, workers=1)
     assert s.status is Status.SAT and packing_violations(s.tiling, "wang", c) == []
-    assert np.array_equal(s.tiling, facade.solve(PackingProblem("wang", c), method="hybrid", seed=1).tiling)
+    assert np.array_equal(s.tiling, facade.solve(PackingProblem("wang", c), method="hybrid", seed=1, workers=1).tiling)
     west = s.tiling % c
     north = s.tiling // c**3
     assert len({tuple(r) for r in west.tolist()}) > 1  # rows differ: not separable

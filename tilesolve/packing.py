@@ -17,15 +17,26 @@ Methods
 ``known``
     The notes' published C = 4 packings (Figs. 5.11, 5.12), under a random symmetry when seeded.
 ``sat``
-    CaDiCaL on :func:`tilesolve.encodings.packing.encode_packing`: random-looking packings
-    (the seed picks the tile pinned at the origin, the solver seed and preferred phases);
-    honours pinned tiles; ``unsat`` comes with a checked DRAT proof.
+    SAT (:data:`~tilesolve.engine.packing.PACKING_SAT_SOLVER`) on
+    :func:`tilesolve.encodings.packing.encode_packing`: random-looking packings (the seed
+    picks the tile pinned at the origin, the solver seed and preferred colours); honours
+    pinned tiles; ``unsat`` comes with a checked DRAT proof. Practical up to C = 3.
 ``cpsat``
     OR-tools CP-SAT on the same encoding with native exactly-one constraints.
 ``hybrid``
-    Wang only: random Eulerian N/S edge columns, then SAT for the E/W edges and the tiles;
-    random-looking C = 4 Wang packings in about a second (plain ``sat`` does not finish C = 4
-    in 90 s).
+    Wang only: random Eulerian N/S edge columns, then SAT for the E/W edges and the tiles.
+``lift``
+    A packing over ``m`` colours repeated over the torus plus a ``k``-ary layer found by SAT
+    (``C = m*k``): corner and Wang C = 4 in a fraction of a second, C = 6 in about a second,
+    C = 8 in about a minute (:mod:`tilesolve.engine.packing`).
+``recursive``
+    A packing over ``C - 1`` colours pinned in the bottom-left corner, completed by SAT
+    (Figs. 5.11-5.12).
+
+Heavy-tailed searches (:data:`PORTFOLIO_ROUTES`) get :data:`QUICK_S` seconds in-process;
+if undecided, a portfolio of fresh seeds runs on both cores (``workers``) or on a Dask
+cluster (``cluster``), with per-run budgets that double with every wave
+(:mod:`tilesolve.engine.portfolio`).
 
 Examples
 --------
@@ -45,6 +56,8 @@ from typing import Callable
 import numpy as np
 
 from tilesolve._random import rng_from_seed
+from tilesolve.engine import packing as search
+from tilesolve.engine.packing import PACKING_SAT_SOLVER
 from tilesolve.engine.routes import lookup, verified
 from tilesolve.errors import MethodNotApplicable
 from tilesolve.model.packing import PackingProblem
@@ -52,12 +65,6 @@ from tilesolve.model.solution import Solution, Status
 from tilesolve.verify.packing import packing_violations
 
 __all__ = ["SOLVERS", "METHODS", "PACKING_SAT_SOLVER", "solve", "count", "auto_method", "verify_solution"]
-
-#: SAT solver of the ``sat`` route. Glucose 4.2 stops by ``interrupt()``, so one seeded run is
-#: deterministic (the same seed gives the same packing); CaDiCaL's conflict-budget slices are
-#: sized from wall-clock rates and are not. Both show heavy-tailed run times on corner C = 3.
-PACKING_SAT_SOLVER = "glucose42"
-
 
 def _pin_by_translation(problem: PackingProblem, grid: np.ndarray, method: str) -> np.ndarray:
     """Constructions ignore pins; one pin can always be met by translating the torus."""
@@ -109,147 +116,89 @@ def _known(problem: PackingProblem, *, seed=None, time_limit=None, workers=None,
     return Solution(Status.SAT, g, method="known", seed=seed, time_s=time.perf_counter() - t0, notes=(note,))
 
 
-def _enc_for(problem: PackingProblem, seed, *, amo_tiles: bool = True):
-    from tilesolve.encodings.packing import encode_packing
-
-    anchor = None if problem.fixed else int(rng_from_seed(seed).integers(problem.n_tiles)) if seed is not None else 0
-    return encode_packing(problem, anchor_tile=anchor, amo_tiles=amo_tiles)
-
-
-def _sat(problem: PackingProblem, *, seed=None, time_limit=None, workers=None, progress=False, solver=None) -> Solution:
-    from tilesolve.engine.certificates import unsat_solution
-    from tilesolve.engine.result import Deadline
-    from tilesolve.engine.sat import solve_cnf
-
-    t0 = time.perf_counter()
-    deadline = Deadline(time_limit)
-    enc = _enc_for(problem, seed)
-    stats = {"variables": enc.n_vars, "clauses": len(enc.clauses), "encode_s": round(time.perf_counter() - t0, 6)}
-    phases = None
-    if seed is not None:
-        # Prefer a random arrangement: random-looking packings rather than the solver's default order.
-        perm = rng_from_seed(seed + 1).permutation(problem.n_tiles)
-        pv = enc.place_vars
-        pref = np.zeros(pv.shape, dtype=bool)
-        pref[np.arange(pv.shape[0]), perm] = True
-        phases = np.where(pref, pv, -pv).ravel().tolist()
-    r = solve_cnf(enc.clauses, solver=solver or PACKING_SAT_SOLVER, time_limit=deadline.remaining(),
-                  with_proof=bool(problem.fixed), seed=seed, phases=phases)
-    stats["solve_s"] = round(r.runtime, 6)
-    for k in ("conflicts", "decisions"):
-        if k in r.stats:
-            stats[k] = r.stats[k]
-    if r.status is Status.SAT:
-        return Solution(Status.SAT, enc.decode(r.model), "sat", r.solver, seed, time.perf_counter() - t0, stats=stats)
-    if r.status is Status.UNSAT:
-        if not problem.fixed:  # the anchor only breaks symmetry: an UNSAT here would be a bug
-            raise AssertionError("internal error: the unpinned packing encoding was reported unsatisfiable")
-        rem = deadline.remaining()
-        return unsat_solution(enc.clauses, r, method="sat", seed=seed, t0=t0, stats=stats, check_proof=True,
-                               proof_time_limit=None if rem is None else max(rem, 1.0))
-    reason = r.reason
-    if time_limit is not None and deadline.expired() and "interrupted" not in (reason or ""):
-        reason = f"time limit of {time_limit:.3g} s reached (encoding included)"
-    return Solution(Status.UNKNOWN, None, "sat", r.solver, seed, time.perf_counter() - t0, reason=reason, stats=stats)
-
-
-def _cpsat(problem: PackingProblem, *, seed=None, time_limit=None, workers=None, progress=False, solver=None) -> Solution:
-    from tilesolve.encodings.packing import build_cpsat_packing
-    from tilesolve.engine.cpsat import DEFAULT_CPSAT_WORKERS, solve_cp_model
-
-    t0 = time.perf_counter()
-    problem.check_search_size()
-    anchor = None if problem.fixed else (int(rng_from_seed(seed).integers(problem.n_tiles)) if seed is not None else 0)
-    model, place, enc = build_cpsat_packing(problem, anchor_tile=anchor)
-    stats = {"variables": enc.n_vars, "encode_s": round(time.perf_counter() - t0, 6)}
-    rem = None if time_limit is None else max(0.0, time_limit - (time.perf_counter() - t0))
-    r = solve_cp_model(model, place, time_limit=rem, num_workers=workers or DEFAULT_CPSAT_WORKERS, seed=seed)
-    stats.update({k: v for k, v in r.stats.items() if k in ("conflicts", "branches", "workers")})
-    if r.status is Status.SAT:
-        return Solution(Status.SAT, enc.decode(r.model), "cpsat", "cp-sat", seed, time.perf_counter() - t0, stats=stats)
-    if r.status is Status.UNSAT and not problem.fixed:
-        raise AssertionError("internal error: the unpinned packing model was reported infeasible")
-    reason = r.reason
-    if r.status is Status.UNKNOWN and time_limit is not None and "interrupted" not in (reason or ""):
-        reason = f"time limit of {time_limit:.3g} s reached (model building included)"
-    return Solution(r.status, None, "cpsat", "cp-sat", seed, time.perf_counter() - t0, reason=reason, stats=stats)
-
-
-def _hybrid(problem: PackingProblem, *, seed=None, time_limit=None, workers=None, progress=False,
-            solver=None) -> Solution:
-    """Wang only: each column's N/S edges are a random Eulerian circuit (so every column holds
-    each vertical domino once); SAT colours the E/W edges and places the tiles. The packing is
-    not an outer product (the columns differ and the rows are solver-built). A column choice
-    that admits no completion is not a proof of anything: the route draws new columns until
-    the time limit (status ``unknown``)."""
-    from tilesolve.constructive.packing import domino_sequence
-    from tilesolve.encodings.packing import encode_packing, fix_horizontal_edges
-    from tilesolve.engine.result import Deadline
-    from tilesolve.engine.sat import solve_cnf
-
-    if problem.kind != "wang":
-        raise MethodNotApplicable("method 'hybrid' builds Wang packings; use 'sat', 'cpsat', 'euler' or 'known' "
-                                  "for corner tiles")
-    if problem.fixed:
-        raise MethodNotApplicable("method 'hybrid' fixes the N/S edges and cannot honour pinned tiles; use 'sat'")
-    problem.check_search_size()
-    t0 = time.perf_counter()
-    deadline = Deadline(time_limit)
-    rng = rng_from_seed(seed)
-    rows, cols = problem.shape
-    attempts = 0
-    stats: dict = {}
-    while True:
-        attempts += 1
-        h = np.stack([domino_sequence(problem.colors, rng) for _ in range(cols)], axis=1)
-        enc = encode_packing(problem, anchor_tile=None)
-        fix_horizontal_edges(enc, h)
-        stats = {"variables": enc.n_vars, "clauses": len(enc.clauses), "attempts": attempts}
-        r = solve_cnf(enc.clauses, solver=solver or PACKING_SAT_SOLVER, time_limit=deadline.remaining(),
-                      seed=int(rng.integers(2**31)))
-        if r.status is Status.SAT:
-            return Solution(Status.SAT, enc.decode(r.model), "hybrid", r.solver, seed, time.perf_counter() - t0,
-                            stats=stats)
-        if r.status is Status.UNKNOWN or deadline.expired():
-            reason = (f"time limit of {time_limit:.3g} s reached" if time_limit is not None else r.reason) + \
-                     f" after {attempts} column choice(s)"
-            return Solution(Status.UNKNOWN, None, "hybrid", r.solver, seed, time.perf_counter() - t0,
-                            reason=reason, stats=stats)
-
-
 #: Packing routes by name. ``"auto"`` is not an entry: it picks one (see :func:`auto_method`).
 SOLVERS: dict[str, Callable[..., Solution]] = {
     "euler": _euler,
     "outer": _outer,
     "known": _known,
-    "sat": _sat,
-    "cpsat": _cpsat,
-    "hybrid": _hybrid,
+    "sat": search.solve_sat,
+    "cpsat": search.solve_cpsat,
+    "hybrid": search.solve_hybrid,
+    "lift": search.solve_lift,
+    "recursive": search.solve_recursive,
 }
 METHODS: tuple[str, ...] = ("auto",) + tuple(SOLVERS)
+
+
+#: Routes whose run times are heavy-tailed: with more than one worker, or a cluster, a run
+#: that does not decide within :data:`QUICK_S` seconds is followed by a portfolio of seeds.
+PORTFOLIO_ROUTES: tuple[str, ...] = ("sat", "hybrid", "lift")
+#: Seconds the first, in-process run of a portfolio route gets before the portfolio starts
+#: (most packings up to C = 6 take well under a second, and then no process is started).
+QUICK_S = 5.0
+#: Per-run budget of the first wave of portfolio runs; it doubles with every wave, so a seed
+#: stuck in a heavy tail is abandoned for a fresh one (a restart strategy).
+FIRST_BUDGET_S = 20.0
+#: Seeds a portfolio may draw (seed + 1, seed + 2, ...).
+PORTFOLIO_SEEDS = 64
 
 
 def auto_method(problem: PackingProblem) -> str:
     """The route ``"auto"`` takes.
 
-    Pinned tiles (more than one) need a solver. Otherwise Wang sets with C <= 3 and the corner
-    set with C = 2 get a random-looking solver-built packing (SAT, well under a second); larger
-    Wang sets the outer product; odd corner sets the de Bruijn construction (SAT on corner C = 3
-    takes 1-40 s, heavy-tailed: ask for it with method 'sat'); C = 4 the notes' packings; the
-    corner set with C = 6 a SAT search, which may end ``unknown``; even C >= 8 corner sets are
-    refused (no construction is known, and the search is too large).
+    More than one pinned tile needs the full search (``sat``). Otherwise ``C = 2`` and Wang
+    ``C = 3`` get a random-looking SAT-built packing; Wang ``C = 4, 6`` and even corner sets a
+    lifted packing (seconds; corner ``C = 8`` about a minute); odd corner sets the de Bruijn
+    construction; other Wang sets (``C = 5`` or ``>= 7``, or ``C_h != C_v``) the outer product.
     """
     c = problem.colors
     square = problem.colors_v is None or problem.colors_v == problem.colors
     if len(set(problem.fixed)) > 1 or (square and (c == 2 or (c == 3 and problem.kind == "wang"))):
         return "sat"
-    if problem.kind == "wang":
+    if not square:
         return "outer"
+    if problem.kind == "wang":
+        return "lift" if c in (4, 6) else "outer"
     if c % 2 == 1:
         return "outer"
-    if c == 4:
-        return "known"
-    return "sat"
+    return "lift"
+
+
+def _portfolio_run(problem, name, seed0, workers, time_limit, solver, *, seed):
+    """One portfolio run: route ``name`` with seed ``seed`` and the budget of its wave."""
+    budget = FIRST_BUDGET_S * 2 ** ((seed - seed0 - 1) // workers)
+    if time_limit is not None:
+        budget = min(budget, time_limit)
+    return SOLVERS[name](problem, seed=seed, time_limit=budget, solver=solver)
+
+
+def _run_route(problem, runner, name, *, seed, time_limit, workers, cluster, progress, solver) -> Solution:
+    """Run one route; heavy-tailed searches escalate to a portfolio (module docstring)."""
+    import functools
+
+    from tilesolve.engine.portfolio import DEFAULT_WORKERS, run_portfolio
+    from tilesolve.engine.progress import ticker
+
+    n = DEFAULT_WORKERS if workers is None else workers
+    if name not in PORTFOLIO_ROUTES or (n <= 1 and cluster is None):
+        with ticker(f"{name} packing", progress):
+            return runner(problem, seed=seed, time_limit=time_limit, workers=workers, progress=progress, solver=solver)
+    t0 = time.perf_counter()
+    seed0 = int(rng_from_seed(None).integers(2**31)) if seed is None else seed
+    rem = time_limit
+    if cluster is None:
+        quick = QUICK_S if time_limit is None else min(QUICK_S, time_limit)
+        with ticker(f"{name} packing (first run)", progress):
+            first = runner(problem, seed=seed0, time_limit=quick, solver=solver)
+        if first.status is not Status.UNKNOWN or (first.reason or "").startswith("interrupted"):
+            return first
+        rem = None if time_limit is None else max(0.0, time_limit - (time.perf_counter() - t0))
+        if rem is not None and rem < 1.0:
+            return first
+    task = functools.partial(_portfolio_run, problem, name, seed0, n, rem, solver)
+    seeds = [seed0 + i for i in range(1, PORTFOLIO_SEEDS + 1)]
+    return run_portfolio(task, seeds, workers=n, cluster=cluster, time_limit=rem, progress=progress,
+                         label=f"{name} packing")
 
 
 def verify_solution(problem: PackingProblem, sol: Solution) -> Solution:
@@ -269,6 +218,7 @@ def solve(
     seed: int | None = None,
     time_limit: float | None = None,
     workers: int | None = None,
+    cluster=None,
     progress: bool = False,
     solver: str | None = None,
 ) -> Solution:
@@ -277,13 +227,19 @@ def solve(
     Parameters
     ----------
     problem : PackingProblem
-    method : {"auto", "euler", "outer", "known", "sat", "cpsat", "hybrid"} or callable
+    method : {"auto", "euler", "outer", "known", "sat", "cpsat", "hybrid", "lift", "recursive"} or callable
     seed : int, optional
-        The same seed gives the same packing.
+        The same seed gives the same packing, except when a search escalates to a portfolio
+        (then the note and ``Solution.seed`` name the seed that won; rerun it with
+        ``workers=1`` to reproduce it).
     time_limit : float, optional
         Seconds for the solver routes; expiry gives status ``unknown``.
     workers : int, optional
-        CP-SAT workers (default 2).
+        CP-SAT workers for ``cpsat`` (default 2); for the heavy-tailed searches
+        (:data:`PORTFOLIO_ROUTES`), the local processes of the portfolio that starts when the
+        first run takes longer than :data:`QUICK_S` (default 2; ``1`` runs one seed only).
+    cluster : str or distributed.Client, optional
+        A Dask scheduler address (``tcp://host:8786``): the portfolio's runs go there instead.
     solver : str, optional
         PySAT solver of the ``sat`` route (default :data:`PACKING_SAT_SOLVER`).
 
@@ -301,12 +257,12 @@ def solve(
     """
     t0 = time.perf_counter()
     runner, name = lookup(method, SOLVERS, lambda: auto_method(problem))
-    if name in ("sat", "cpsat", "hybrid"):
-        problem.check_search_size()
-    sol = runner(problem, seed=seed, time_limit=time_limit, workers=workers, progress=progress, solver=solver)
+    sol = _run_route(problem, runner, name, seed=seed, time_limit=time_limit, workers=workers, cluster=cluster,
+                     progress=progress, solver=solver)
     sol = verify_solution(problem, sol)
     notes = (f"auto chose {name!r}",) if method == "auto" else ()
-    return sol.replace(notes=notes + sol.notes, time_s=time.perf_counter() - t0, seed=seed)
+    return sol.replace(notes=notes + sol.notes, time_s=time.perf_counter() - t0,
+                       seed=seed if sol.seed is None else sol.seed)
 
 
 def count(kind: str, colors: int, *, up_to_symmetry: bool = False, time_limit: float | None = None):

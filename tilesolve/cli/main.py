@@ -78,9 +78,10 @@ def _register() -> None:
     from tilesolve.cli.demo import demo
     from tilesolve.cli.export import export
     from tilesolve.cli.pack import pack
+    from tilesolve.cli.tiles import tiles
     from tilesolve.cli.verify import verify
 
-    for cmd in (dappled, pack, brick, wang, verify, export, demo, backends):
+    for cmd in (dappled, pack, brick, wang, tiles, verify, export, demo, backends):
         main_group.add_command(cmd)
 
 

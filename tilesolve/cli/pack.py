@@ -46,13 +46,21 @@ def _parse_fix(items) -> tuple[tuple[int, int, int], ...]:
 @click.option("--colors-v", type=int, default=None, metavar="CV",
               help="Wang tiles only: colours of the vertical (E/W) edges if different from C.")
 @click.option("--method", type=click.Choice(_methods()), default="auto", show_default=True,
-              help="euler: Eulerian constructions (Wei's closed form); outer: the same over random Eulerian "
-                   "circuits; known: the notes' C=4 packings; sat/cpsat: random-looking solver-built packings; "
-                   "hybrid (Wang): random Eulerian N/S columns, SAT for the rest (C=4 in seconds).")
+              help="euler: Eulerian constructions (Wei's closed form; odd C for corner tiles); outer: the same "
+                   "over random Eulerian circuits; known: the notes' C=4 packings; sat/cpsat: the full search "
+                   "(random-looking, C <= 3, proves pins contradictory); hybrid (Wang): random Eulerian N/S "
+                   "columns, SAT for the rest; lift: a packing over C/k colours plus a k-ary layer by SAT "
+                   "(corner C=4 in 0.1 s, C=8 in about a minute); recursive: a C-1 packing pinned in the "
+                   "bottom-left corner, SAT for the rest (Figs. 5.11-5.12). auto picks by kind and C.")
 @click.option("--fix", "fix", multiple=True, metavar="R,C,T", help="Pin tile T at row R, column C (repeatable).")
 @opt.seed_opt
 @opt.time_limit_opt
-@click.option("--workers", type=click.IntRange(min=1), default=None, metavar="N", help="CP-SAT workers [default: 2].")
+@click.option("--workers", type=click.IntRange(min=1), default=None, metavar="N",
+              help="CP-SAT workers; for sat/hybrid/lift/recursive, the processes of the seed portfolio that starts "
+                   "when the first run has not finished in 5 s (1: one seed, reproducible) [default: 2].")
+@click.option("--cluster", default=None, metavar="ADDRESS",
+              help="Run the seed portfolio on this Dask scheduler (e.g. tcp://host:8786) instead of local "
+                   "processes; needs pip install \"tilesolve[cluster]\".")
 @click.option("-o", "--output", type=click.Path(dir_okay=False, allow_dash=True), metavar="PACK.json",
               help="Write the packing JSON here ('-' for stdout). Without -o the grid is printed.")
 @click.option("--svg", type=click.Path(dir_okay=False), metavar="PACK.svg", help="Also draw the packing as SVG.")
@@ -60,7 +68,8 @@ def _parse_fix(items) -> tuple[tuple[int, int, int], ...]:
 @click.option("--dimacs", type=click.Path(dir_okay=False), metavar="PACK.cnf",
               help="Write the SAT encoding as DIMACS CNF instead of solving (a hard benchmark for C >= 4).")
 @click.pass_context
-def pack(ctx, kind, colors, colors_v, method, fix, seed, time_limit, workers, output, svg, indices, dimacs) -> None:
+def pack(ctx, kind, colors, colors_v, method, fix, seed, time_limit, workers, cluster, output, svg, indices,
+         dimacs) -> None:
     """Pack the C^4 tiles of a complete Wang or corner tile set into a C^2 x C^2 torus.
 
     Every packing is checked by the independent verifier before it is written.
@@ -71,6 +80,8 @@ def pack(ctx, kind, colors, colors_v, method, fix, seed, time_limit, workers, ou
       tilesolve pack --kind corner --colors 3 --method sat --seed 1 -o c3.json
       tilesolve pack --kind corner --colors 5 --method euler -o c5.json
       tilesolve pack --kind wang --colors 4 --method hybrid --seed 1 -o w4.json
+      tilesolve pack --kind corner --colors 8 --method lift --seed 1 -o c8.json
+      tilesolve pack --kind corner --colors 4 --method recursive --svg c4.svg --indices
       tilesolve pack count --kind wang --colors 2 --up-to-symmetry
       tilesolve verify wang4.json
     """
@@ -94,7 +105,7 @@ def pack(ctx, kind, colors, colors_v, method, fix, seed, time_limit, workers, ou
         write_dimacs(enc, dimacs)
         say(f"wrote {dimacs}: {enc.n_vars:,} variables, {len(enc.clauses):,} clauses ({problem.describe()})")
         return
-    sol = facade.solve(problem, method=method, seed=seed, time_limit=time_limit, workers=workers,
+    sol = facade.solve(problem, method=method, seed=seed, time_limit=time_limit, workers=workers, cluster=cluster,
                        progress=progress_wanted())
     written = []
     if output:

@@ -279,7 +279,7 @@ def corner_packing_odd(colors: int, seed=None) -> np.ndarray:
     if c % 2 == 0:
         raise MethodNotApplicable(
             f"the triangular-shift de Bruijn construction needs an odd number of colours, got C={c}; "
-            "use method 'sat' or 'cpsat' for even C"
+            "use method 'lift' for even C"
         )
     if seed is None:
         s = wei_sequence(c)

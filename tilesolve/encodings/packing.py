@@ -6,24 +6,34 @@ A Wang tile's colours live on the torus's edges, a corner tile's on its lattice 
 (eq. 2.1 / 2.5). Variables:
 
 ``place(p, t)``
-    cell ``p = row * cols + col`` holds tile ``t``;
+    cell ``p = row * cols + col`` holds tile ``t``; one variable per *placement*, i.e. per
+    pair ``(p, t)`` that the feature domains allow (all pairs unless domains are given);
 ``feat(f, k)``
-    feature ``f`` (an edge or a lattice point) has colour ``k``.
+    feature ``f`` (an edge or a lattice point) has colour ``k``; one variable per colour in
+    the feature's domain.
 
-Clauses: every feature has exactly one colour; ``place(p, t)`` implies the four feature
-colours of ``t`` at ``p`` and is implied by them (so each cell holds exactly the tile its
-features spell); every cell holds a tile; every tile is placed at least once (the
-pigeonhole principle then makes it exactly once, and :data:`PackingEncoding.amo_tiles`
-adds the at-most-one side explicitly, which helps propagation). Pinned tiles are unit
-clauses, and with no pins one tile is pinned to cell (0, 0) to break the translation
-symmetry (every packing has a translate with that tile there).
+Clauses: every feature has exactly one colour of its domain; ``place(p, t)`` implies the
+four feature colours of ``t`` at ``p`` and is implied by them (so each cell holds exactly
+the tile its features spell); every cell holds a tile; every tile is placed at least once
+(the pigeonhole principle then makes it exactly once, and ``amo_tiles`` adds the
+at-most-one side explicitly, which helps propagation). Pinned tiles are unit clauses, and
+with no pins one tile may be pinned to cell (0, 0) to break the translation symmetry (every
+packing has a translate with that tile there).
+
+Feature domains are how the search routes shrink the problem without a second encoding:
+the ``hybrid`` route fixes the colours of the horizontal edges and the ``lift`` route allows
+each feature only the colours ``base + m*b`` over a packing with ``m`` colours. A restricted formula that is
+unsatisfiable proves nothing about the packing problem itself; only the full-domain
+formula's ``unsat`` is a proof.
 
 Feature layout (``grid[row, col]``, row 0 at the top):
 
 * Wang: ``H[r][c]`` is the edge north of cell ``(r, c)`` and ``V[r][c]`` the edge west of
   it, so the cell reads ``N = H[r][c]``, ``E = V[r][c+1]``, ``S = H[r+1][c]``, ``W = V[r][c]``.
+  Feature ids: ``H[r][c] = r*cols + c``, ``V[r][c] = rows*cols + r*cols + c``.
 * corner: ``P[r][c]`` is the lattice point north-west of cell ``(r, c)``, so the cell reads
   ``NE = P[r][c+1]``, ``SE = P[r+1][c+1]``, ``SW = P[r+1][c]``, ``NW = P[r][c]`` (mod the size).
+  Feature ids: ``P[r][c] = r*cols + c``.
 
 The encoding calls no solver (DESIGN.md, "Encodings").
 """
@@ -37,7 +47,14 @@ import numpy as np
 from tilesolve.encodings import ClauseSet
 from tilesolve.model.packing import PackingProblem
 
-__all__ = ["PackingEncoding", "encode_packing", "build_cpsat_packing", "fix_horizontal_edges"]
+__all__ = [
+    "PackingEncoding",
+    "encode_packing",
+    "build_cpsat_packing",
+    "packing_features",
+    "features_of_packing",
+    "full_domains",
+]
 
 
 @dataclass
@@ -49,18 +66,30 @@ class PackingEncoding:
     problem : PackingProblem
     clauses : ClauseSet
     n_vars : int
+    cell_features : numpy.ndarray
+        ``(cells, 4)`` feature ids of each cell in the tile's side order.
+    pair_cell, pair_tile : numpy.ndarray
+        The placements: variable ``1 + i`` is "cell ``pair_cell[i]`` holds tile ``pair_tile[i]``",
+        sorted by cell, then tile.
+    feat_ids : numpy.ndarray
+        ``(features, colours)`` variable of "feature ``f`` has colour ``k``", 0 where the
+        domain excludes the colour.
     anchor : tuple or None
         ``(row, col, tile)`` pinned for symmetry breaking (``None`` when the problem has pins).
+    restricted : bool
+        True when domains exclude some colours: ``unsat`` then proves nothing.
     """
 
     problem: PackingProblem
     clauses: ClauseSet
     n_vars: int
-    cell_features: np.ndarray  # (cells, 4) feature ids in the tile's side order
-    feature_colors: np.ndarray  # (features,) domain size of each feature
-    feature_offset: np.ndarray  # (features,) first variable of each feature
+    cell_features: np.ndarray
+    pair_cell: np.ndarray
+    pair_tile: np.ndarray
+    feat_ids: np.ndarray
     anchor: tuple[int, int, int] | None = None
     amo_tiles: bool = True
+    restricted: bool = False
     labels: list[str] = field(default_factory=list)
 
     @property
@@ -71,44 +100,44 @@ class PackingEncoding:
     def n_cells(self) -> int:
         return self.cell_features.shape[0]
 
-    def place_var(self, p, t):
-        """Variable of "cell ``p`` holds tile ``t``" (works on arrays)."""
-        return 1 + np.asarray(p) * self.problem.n_tiles + np.asarray(t)
-
-    def feat_var(self, f, k):
-        """Variable of "feature ``f`` has colour ``k``" (works on arrays)."""
-        return self.feature_offset[np.asarray(f)] + np.asarray(k)
-
     @property
-    def place_vars(self) -> np.ndarray:
-        """All placement variables, shape ``(cells, tiles)``."""
+    def n_placements(self) -> int:
+        return int(self.pair_cell.size)
+
+    def place_var(self, p, t):
+        """Variable of "cell ``p`` holds tile ``t``" (works on arrays); 0 where the pair is not
+        a placement of this encoding."""
         n = self.problem.n_tiles
-        return 1 + np.arange(self.n_cells * n, dtype=np.int64).reshape(self.n_cells, n)
+        keys = self.pair_cell * n + self.pair_tile
+        want = np.asarray(p, dtype=np.int64) * n + np.asarray(t, dtype=np.int64)
+        i = np.minimum(np.searchsorted(keys, want), keys.size - 1)
+        return np.where(keys[i] == want, i + 1, 0)
 
     def decode(self, model) -> np.ndarray:
         """The packing grid of a model (signed DIMACS literals, or CP-SAT's list of bools over
-        :attr:`place_vars` in row-major order)."""
-        pv = self.place_vars
+        the placement variables in order)."""
         m = np.asarray(model)
         if m.dtype == bool:
-            val = m.reshape(pv.shape)
+            val = m[: self.n_placements]
         else:
             truth = np.zeros(self.n_vars + 1, dtype=bool)
             m = m.astype(np.int64)
             m = m[np.abs(m) <= self.n_vars]
             truth[m[m > 0]] = True
-            val = truth[pv]
+            val = truth[1 : self.n_placements + 1]
+        grid = np.full(self.n_cells, -1, dtype=np.int64)
+        grid[self.pair_cell[val]] = self.pair_tile[val]
         rows, cols = self.problem.shape
-        return np.argmax(val, axis=1).reshape(rows, cols).astype(np.int64)
+        return grid.reshape(rows, cols)
 
     def header(self) -> list[str]:
         p = self.problem
-        rows, cols = p.shape
         lines = [
             f"tilesolve tile packing: {p.describe()}",
-            f"variables 1..{self.n_cells * p.n_tiles}: place(cell, tile) = 1 + cell*{p.n_tiles} + tile, "
-            f"cell = row*{cols} + col (row 0 at the top); tile index per eq. 2.1 (Wang N E S W) / 2.5 (corner NE SE SW NW)",
-            f"variables {self.n_cells * p.n_tiles + 1}..{self.n_vars}: feature colours "
+            f"variables 1..{self.n_placements}: placements (cell, tile), cell = row*{p.shape[1]} + col "
+            "(row 0 at the top), sorted by cell then tile; tile index per eq. 2.1 (Wang N E S W) / 2.5 "
+            "(corner NE SE SW NW)" + ("" if self.restricted else f"; variable = 1 + cell*{p.n_tiles} + tile"),
+            f"variables {self.n_placements + 1}..{int(self.feat_ids.max())}: feature colours "
             + ("(Wang: edges)" if p.kind == "wang" else "(corner: lattice points)"),
         ]
         if self.anchor is not None:
@@ -116,22 +145,9 @@ class PackingEncoding:
         return lines
 
 
-def fix_horizontal_edges(enc: PackingEncoding, colours) -> None:
-    """Wang only: pin the colour of every horizontal edge, ``colours[r][c]`` = ``H[r][c]`` (the
-    edge north of cell ``(r, c)``), as unit clauses. With the N/S edges fixed, the search only
-    places tiles along the rows and colours the vertical edges (the ``hybrid`` route)."""
-    p = enc.problem
-    if p.kind != "wang":
-        raise ValueError("horizontal edges exist only for Wang tiles")
-    rows, cols = p.shape
-    h = np.asarray(colours, dtype=np.int64)
-    if h.shape != (rows, cols):
-        raise ValueError(f"expected a {rows}x{cols} array of edge colours, got {h.shape}")
-    f = np.arange(rows * cols)  # H[r][c] is feature r * cols + c
-    enc.clauses.add_array(enc.feat_var(f, h.ravel())[:, None], "horizontal edges fixed")
-
-
-def _features(problem: PackingProblem) -> tuple[np.ndarray, np.ndarray]:
+def packing_features(problem: PackingProblem) -> tuple[np.ndarray, np.ndarray]:
+    """``(cell_features, feature_colours)``: the ``(cells, 4)`` feature ids of every cell in
+    the tile's side order, and the number of colours of every feature (layout: module doc)."""
     rows, cols = problem.shape
     r = np.arange(rows)[:, None].repeat(cols, 1)
     c = np.arange(cols)[None, :].repeat(rows, 0)
@@ -149,7 +165,62 @@ def _features(problem: PackingProblem) -> tuple[np.ndarray, np.ndarray]:
     return cf.astype(np.int64), colors.astype(np.int64)
 
 
-def encode_packing(problem: PackingProblem, *, anchor_tile: int | None = 0, amo_tiles: bool = True) -> PackingEncoding:
+def features_of_packing(problem: PackingProblem, grid) -> np.ndarray:
+    """The colour of every feature of a packing grid (edges for Wang, lattice points for corner).
+
+    Each feature is read from the first cell that touches it; on a valid packing every cell
+    agrees.
+    """
+    cf, fcol = packing_features(problem)
+    tab = problem.tiles.table()
+    out = np.full(fcol.size, -1, dtype=np.int64)
+    cols = tab[np.asarray(grid, dtype=np.int64).ravel()]  # (cells, 4)
+    out[cf.ravel()[::-1]] = cols.ravel()[::-1]
+    return out
+
+
+def full_domains(problem: PackingProblem) -> np.ndarray:
+    """``(features, max colours)`` boolean mask allowing every colour of every feature."""
+    _, fcol = packing_features(problem)
+    return np.arange(fcol.max())[None, :] < fcol[:, None]
+
+
+def _placements(cf: np.ndarray, domains: np.ndarray, radices) -> tuple[np.ndarray, np.ndarray]:
+    """All (cell, tile) pairs whose four feature colours lie in the domains, sorted by cell
+    then tile. Cells are grouped by the sizes of their four domains so that each group is
+    one numpy broadcast (a full domain gives every tile to every cell)."""
+    sizes = domains.sum(axis=1)
+    order = np.argsort(~domains, axis=1, kind="stable")  # allowed colours first, ascending
+    weights = np.array([radices[1] * radices[2] * radices[3], radices[2] * radices[3], radices[3], 1])
+    csz = sizes[cf]  # (cells, 4)
+    cells_out, tiles_out = [], []
+    for key in np.unique(csz, axis=0):
+        ps = np.flatnonzero((csz == key).all(axis=1))
+        if (key == 0).any():
+            continue
+        code = np.zeros((ps.size, 1), dtype=np.int64)
+        for s in range(4):
+            cols = order[cf[ps, s], : key[s]]  # (cells, size_s)
+            code = (code[:, :, None] + weights[s] * cols[:, None, :]).reshape(ps.size, -1)
+        cells_out.append(np.repeat(ps, code.shape[1]))
+        tiles_out.append(code.ravel())
+    if not cells_out:
+        return np.zeros(0, np.int64), np.zeros(0, np.int64)
+    pc, pt = np.concatenate(cells_out), np.concatenate(tiles_out)
+    srt = np.lexsort((pt, pc))
+    return pc[srt].astype(np.int64), pt[srt].astype(np.int64)
+
+
+def _ragged_groups(keys: np.ndarray, lits: np.ndarray, n_groups: int) -> list[list[int]]:
+    """The literals grouped by key (0..n_groups-1), as one list per key (empty lists kept)."""
+    srt = np.argsort(keys, kind="stable")
+    bounds = np.searchsorted(keys[srt], np.arange(n_groups + 1))
+    flat = lits[srt].tolist()
+    return [flat[bounds[g] : bounds[g + 1]] for g in range(n_groups)]
+
+
+def encode_packing(problem: PackingProblem, *, anchor_tile: int | None = 0, amo_tiles: bool = True,
+                   domains: np.ndarray | None = None) -> PackingEncoding:
     """CNF of a packing problem.
 
     Parameters
@@ -160,57 +231,77 @@ def encode_packing(problem: PackingProblem, *, anchor_tile: int | None = 0, amo_
         pins of its own (``None``: no symmetry breaking, e.g. to count all packings).
     amo_tiles : bool
         Add "each tile at most once" explicitly (sequential counter, :mod:`pysat.card`).
+    domains : numpy.ndarray, optional
+        ``(features, max colours)`` booleans: the colours each feature may take (default: all,
+        :func:`full_domains`). An empty domain, or a tile no cell can hold, gives an empty
+        clause (unsatisfiable).
 
     Examples
     --------
     >>> enc = encode_packing(PackingProblem("corner", 2))
-    >>> enc.n_vars > 256, len(enc.clauses) > 0
-    (True, True)
+    >>> enc.n_placements, enc.restricted
+    (256, False)
     """
     from pysat.card import CardEnc, EncType
     from pysat.formula import IDPool
 
-    problem.check_search_size()
     ts = problem.tiles
     n = ts.n_tiles
-    cf, fcol = _features(problem)
-    cells = cf.shape[0]
-    n_place = cells * n
-    offset = n_place + 1 + np.concatenate([[0], np.cumsum(fcol)[:-1]]).astype(np.int64)
-    top = int(n_place + fcol.sum())
-    enc = PackingEncoding(problem, ClauseSet(), top, cf, fcol, offset, amo_tiles=amo_tiles)
+    cf, fcol = packing_features(problem)
+    full = full_domains(problem)
+    if domains is None:
+        domains = full
+    domains = np.asarray(domains, dtype=bool)
+    if domains.shape != full.shape:
+        raise ValueError(f"domains must have shape {full.shape}, got {domains.shape}")
+    domains = domains & full
+    restricted = bool((domains != full).any())
+    pc, pt = _placements(cf, domains, ts.radices)
+    n_place = pc.size
+    feat_ids = np.zeros(domains.shape, dtype=np.int64)
+    feat_ids[domains] = n_place + 1 + np.arange(int(domains.sum()))
+    top = n_place + int(domains.sum())
+    enc = PackingEncoding(problem, ClauseSet(), top, cf, pc, pt, feat_ids, amo_tiles=amo_tiles, restricted=restricted)
     cs = enc.clauses
-    # Features: exactly one colour.
-    for k in np.unique(fcol):
-        fs = np.flatnonzero(fcol == k)
-        lits = offset[fs][:, None] + np.arange(k)[None, :]
-        cs.add_array(lits, f"feature has a colour (C={k})")
+    # Features: exactly one colour of the domain (grouped by domain size for numpy blocks).
+    sizes = domains.sum(axis=1)
+    if (sizes == 0).any():
+        cs.add_lists([[]], "a feature with an empty domain")
+    srt = np.sort(feat_ids, axis=1)[:, ::-1]  # allowed variables first
+    for k in np.unique(sizes[sizes > 0]):
+        lits = srt[sizes == k][:, :k]
+        cs.add_array(lits, f"feature has a colour ({k} allowed)")
         for a in range(k):
             for b in range(a + 1, k):
                 cs.add_array(-np.stack([lits[:, a], lits[:, b]], axis=1), "feature has one colour")
     # Links between placements and features.
-    tab = ts.table()  # (n, 4) colours in side order
-    pv = enc.place_vars  # (cells, n)
-    fv = offset[cf][:, None, :] + tab[None, :, :]  # (cells, n, 4)
+    pv = np.arange(1, n_place + 1, dtype=np.int64)
+    tab = ts.table()
+    fv = feat_ids[cf[pc], tab[pt]]  # (placements, 4)
     for s in range(4):
-        cs.add_array(np.stack([-pv.ravel(), fv[:, :, s].ravel()], axis=1), f"placement implies side {ts.sides[s]}")
-    cs.add_array(np.concatenate([-fv.reshape(-1, 4), pv.reshape(-1, 1)], axis=1), "sides imply placement")
-    cs.add_array(pv, "cell holds a tile")
-    cs.add_array(pv.T.copy(), "tile is placed")
+        cs.add_array(np.stack([-pv, fv[:, s]], axis=1), f"placement implies side {ts.sides[s]}")
+    cs.add_array(np.concatenate([-fv, pv[:, None]], axis=1), "sides imply placement")
+    cs.add_lists(_ragged_groups(pc, pv, enc.n_cells), "cell holds a tile")
+    by_tile = _ragged_groups(pt, pv, n)
+    cs.add_lists(by_tile, "tile is placed")
     if amo_tiles:
         pool = IDPool(start_from=top + 1)
         ragged = []
-        for t in range(n):
-            ragged.extend(CardEnc.atmost(pv[:, t].tolist(), 1, vpool=pool, encoding=EncType.seqcounter).clauses)
+        for group in by_tile:
+            if len(group) > 1:
+                ragged.extend(CardEnc.atmost(group, 1, vpool=pool, encoding=EncType.seqcounter).clauses)
         cs.add_lists(ragged, "tile placed at most once", grid_only=False)
         enc.n_vars = max(top, pool.top)
-    # Pins.
+    # Pins: unit clauses on placements; a pin its cell's domains exclude is unsatisfiable here.
     pins = list(problem.fixed)
     if not pins and anchor_tile is not None:
         enc.anchor = (0, 0, int(anchor_tile))
         pins = [enc.anchor]
     rows, cols = problem.shape
-    units = [[int(enc.place_var(r * cols + c, t))] for r, c, t in pins]
+    units = []
+    for r, c, t in pins:
+        v = int(enc.place_var(r * cols + c, t))
+        units.append([v] if v else [])
     cs.add_lists(units, "pinned tiles" if problem.fixed else "symmetry breaking (translation)")
     return enc
 
@@ -218,8 +309,8 @@ def encode_packing(problem: PackingProblem, *, anchor_tile: int | None = 0, amo_
 def build_cpsat_packing(problem: PackingProblem, *, anchor_tile: int | None = 0):
     """CP-SAT model of the same encoding, with native exactly-one constraints.
 
-    Returns ``(model, place_vars)``; ``place_vars`` is the flat row-major list of the
-    placement Booleans, which :meth:`PackingEncoding.decode` reads back.
+    Returns ``(model, place, enc)``; ``place`` is the list of the placement Booleans in
+    variable order, which :meth:`PackingEncoding.decode` reads back.
     """
     from ortools.sat.python import cp_model
 
@@ -227,18 +318,14 @@ def build_cpsat_packing(problem: PackingProblem, *, anchor_tile: int | None = 0)
     m = cp_model.CpModel()
     bools = [None] + [m.new_bool_var(f"v{i}") for i in range(1, enc.n_vars + 1)]
     for block in enc.clauses.blocks:
-        if block.label in ("cell holds a tile", "tile is placed"):
-            continue
+        exactly_one = block.label in ("cell holds a tile", "tile is placed")
         for chunk in block.lists():
             for cl in chunk:
-                if len(cl) == 1:
+                if exactly_one:
+                    m.add_exactly_one([bools[v] for v in cl])
+                elif len(cl) == 1:
                     m.add(bools[abs(cl[0])] == (1 if cl[0] > 0 else 0))
                 else:
                     m.add_bool_or([bools[v] if v > 0 else bools[-v].Not() for v in cl])
-    pv = enc.place_vars
-    for p in range(pv.shape[0]):
-        m.add_exactly_one([bools[int(v)] for v in pv[p]])
-    for t in range(pv.shape[1]):
-        m.add_exactly_one([bools[int(v)] for v in pv[:, t]])
-    place = [bools[int(v)] for v in pv.ravel()]
+    place = bools[1 : enc.n_placements + 1]
     return m, place, enc

@@ -11,9 +11,9 @@ import contextlib
 import sys
 import threading
 import time
-from typing import Iterator
+from typing import Callable, Iterator
 
-__all__ = ["ticker"]
+__all__ = ["ticker", "status_line"]
 
 
 @contextlib.contextmanager
@@ -40,6 +40,43 @@ def ticker(label: str, enabled: bool, *, every: float = 0.5) -> Iterator[None]:
     thread.start()
     try:
         yield
+    finally:
+        stop.set()
+        thread.join()
+        sys.stderr.write("\r\033[K")
+        sys.stderr.flush()
+
+
+@contextlib.contextmanager
+def status_line(label: str, enabled: bool, *, every: float = 0.5) -> Iterator[Callable[[str], None]]:
+    """:func:`ticker` with a detail the caller keeps up to date (e.g. runs started/finished).
+
+    Yields ``set_detail(text)``; the line reads ``label: text ... N s`` and is erased when the
+    ``with`` block ends. Does nothing unless ``enabled`` and stderr is a terminal.
+
+    >>> with status_line("search", enabled=False) as set_detail:
+    ...     set_detail("1 of 4 runs finished")
+    """
+    if not (enabled and sys.stderr.isatty()):
+        yield lambda text: None
+        return
+    stop = threading.Event()
+    t0 = time.perf_counter()
+    detail = [""]
+
+    def set_detail(text: str) -> None:
+        detail[0] = text  # one reference swap: safe to read from the drawing thread
+
+    def run() -> None:
+        while not stop.wait(every):
+            text = f": {detail[0]}" if detail[0] else ""
+            sys.stderr.write(f"\r\033[K  {label}{text} ... {time.perf_counter() - t0:.0f} s")
+            sys.stderr.flush()
+
+    thread = threading.Thread(target=run, daemon=True)
+    thread.start()
+    try:
+        yield set_detail
     finally:
         stop.set()
         thread.join()

@@ -113,6 +113,10 @@ def run_interruptible(fn, interrupt, deadline: Deadline, poll: float = 0.05):
                 break
             if stop is None and deadline.expired():
                 stop = "time limit"
+            if stop is not None:
+                # Repeated on every poll: an interrupt that lands before the solver has
+                # entered its search can be cleared when the search starts (seen with
+                # Glucose under very short budgets), and the run would never end.
                 interrupt()
         except KeyboardInterrupt:
             if stop != "interrupted":

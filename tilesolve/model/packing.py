@@ -19,21 +19,20 @@ from dataclasses import dataclass
 from tilesolve.errors import InvalidProblem
 from tilesolve.model.tiles import TileSet
 
-__all__ = ["PackingProblem", "MAX_SEARCH_TILES", "estimated_size"]
+__all__ = ["PackingProblem", "MAX_PLACEMENTS", "estimated_size"]
 
-#: Largest tile set the solver routes accept (``C = 6``: 1,296 tiles, ~1.7 million placement
-#: variables, ~15 million clauses). Larger sets are refused before any clause is built.
-MAX_SEARCH_TILES = 1296
+#: Most placement variables (cell, tile) a solver route builds: the full encoding of the
+#: ``C = 6`` set (1,296 tiles, ~1.7 million placements, ~10 million clauses). Larger searches
+#: are refused before any clause is built. The ``lift`` route needs far fewer placements
+#: (``cells * k**4``), so it reaches ``C = 8`` and beyond.
+MAX_PLACEMENTS = 1296 * 1296
 
 
-def estimated_size(n_tiles: int) -> tuple[int, int]:
-    """Rough ``(variables, clauses)`` of the SAT encoding of a packing of ``n_tiles`` tiles.
-
-    One placement variable per (cell, tile) pair and about five clauses per placement
-    (four links to its colours and one back), plus the exactly-one constraints.
-    """
-    placements = n_tiles * n_tiles
-    return placements, 5 * placements + 4 * n_tiles * n_tiles
+def estimated_size(placements: int) -> tuple[int, int]:
+    """Rough ``(variables, clauses)`` of a packing encoding with ``placements`` placement
+    variables: about six clauses per placement (four links to its colours, one back, its
+    share of the at-most-one constraints)."""
+    return placements, 6 * placements
 
 
 @dataclass(frozen=True)
@@ -95,15 +94,20 @@ class PackingProblem:
     def n_tiles(self) -> int:
         return self.tiles.n_tiles
 
-    def check_search_size(self) -> None:
-        """Refuse tile sets too large for the solver routes, before anything is built."""
+    def check_search_size(self, placements: int | None = None, route: str = "sat") -> None:
+        """Refuse searches too large to build, before anything is built.
+
+        ``placements`` is the number of (cell, tile) variables the route would create
+        (default: the full encoding, ``n_tiles**2``).
+        """
         n = self.n_tiles
-        if n > MAX_SEARCH_TILES:
-            v, c = estimated_size(n)
+        placements = n * n if placements is None else placements
+        if placements > MAX_PLACEMENTS:
+            v, c = estimated_size(placements)
             raise InvalidProblem(
-                f"a solver-built packing of {n:,} tiles (C={self.colors}) needs about {v:,} variables and "
-                f"{c:,} clauses; tilesolve searches up to {MAX_SEARCH_TILES:,} tiles (C=6). "
-                "Use --method euler/outer (Wang) or an odd C (corner) for the constructions"
+                f"method {route!r} on {n:,} tiles (C={self.colors}) needs about {v:,} variables and "
+                f"{c:,} clauses; tilesolve builds up to {MAX_PLACEMENTS:,} placements. "
+                "Use --method lift (any C with a small prime factor), euler/outer (Wang) or an odd C (corner)"
             )
 
     def describe(self) -> str:

@@ -1,0 +1,58 @@
+"""``tilesolve tiles``: list (and draw) a complete or compact Wang or corner tile set.
+
+::
+
+    tilesolve tiles --kind wang|corner --colors C [--set complete|compact|sums] [--svg FILE]
+
+The tile indices (eq. 2.1 for Wang tiles, eq. 2.5 for corner tiles) are the last line of
+standard output, space-separated; a one-line summary goes to stderr (hidden by ``-q``).
+"""
+
+from __future__ import annotations
+
+import click
+
+from tilesolve.cli import options as opt
+from tilesolve.cli.common import check_writable, say
+from tilesolve.errors import InvalidProblem
+
+__all__ = ["tiles"]
+
+
+@click.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP,
+               short_help="List or draw a complete or compact Wang or corner tile set.")
+@click.option("--kind", type=click.Choice(["wang", "corner"]), required=True,
+              help="Wang tiles (coloured edges, N E S W) or corner tiles (coloured corners, NE SE SW NW).")
+@click.option("--colors", type=int, required=True, metavar="C", help="Number of colours C (>= 2).")
+@click.option("--set", "variant", type=click.Choice(["complete", "compact", "sums"]), default="complete",
+              show_default=True,
+              help="complete: all C^4 tiles (notes §2.7); compact: two tiles per (N, W) edge colours, 2C^2 "
+                   "Wang tiles (§3.2.1), or per (NE, NW, SW) corner colours, 2C^3 corner tiles (§3.2.2); "
+                   "sums: the C^3 Wang tiles whose edges are sums of corner colours (§3.3.2.2).")
+@click.option("--svg", type=click.Path(dir_okay=False), metavar="OUT.svg",
+              help="Also draw the set: one tile per index, in index order, labelled.")
+def tiles(kind: str, colors: int, variant: str, svg: str | None) -> None:
+    """Print the indices of the tiles of a Wang or corner tile set (class notes §2.7, §3.2-3.3).
+
+    Wang tile N E S W over C colours has index ((N*C + E)*C + S)*C + W (eq. 2.1); corner
+    tile NE SE SW NW has index ((NE*C + SE)*C + SW)*C + NW (eq. 2.5). The notes give the
+    compact sets only for C = 2; for larger C tilesolve picks one (see the TileSet docs).
+
+    \b
+    Examples:
+      tilesolve tiles --kind wang --colors 2 --set compact        # 0 3 5 6 9 10 12 15 (notes Fig. 3.2)
+      tilesolve tiles --kind corner --colors 3 --set compact --svg c3.svg
+      tilesolve tiles --kind wang --colors 3 --set sums
+    """
+    from tilesolve.model.tiles import TileSet
+
+    if colors < 2:
+        raise InvalidProblem(f"--colors must be >= 2, got {colors}")
+    ts = TileSet(kind, colors, variant=variant)
+    check_writable(svg)
+    if svg:
+        from tilesolve.io.svg_tileset import write_tileset_svg
+
+        write_tileset_svg(svg, ts)
+    say(ts.describe() + (f"; wrote {svg}" if svg else ""))
+    click.echo(" ".join(map(str, ts.indices.tolist())))
