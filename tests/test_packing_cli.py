@@ -134,3 +134,24 @@ def test_demo_entry_writes_verified_pictures(tmp_path):
         problem, sol = read_packing(tmp_path / f"{name}.json")
         assert is_packing(sol.tiling, problem.kind, problem.colors)
         assert (tmp_path / f"{name}.svg").exists()
+
+
+def test_lift_and_recursive_from_the_command_line(tmp_path):
+    p = run("pack", "--kind", "corner", "--colors", "4", "--method", "lift", "--seed", "2", "-o", "c4.json",
+            cwd=tmp_path)
+    assert p.returncode == 0, p.stderr
+    assert "base packing over 2 colours" in p.stderr
+    assert run("verify", "c4.json", cwd=tmp_path).returncode == 0
+    p = run("pack", "--kind", "wang", "--colors", "3", "--method", "recursive", "--seed", "1", "-o", "w3.json",
+            cwd=tmp_path)
+    assert p.returncode == 0, p.stderr
+    assert "embeds a packing over 2 colours" in p.stderr
+    grid = np.array(read_packing(tmp_path / "w3.json")[1].tiling)
+    assert is_packing(grid, "wang", 3)
+
+
+def test_unreachable_cluster_is_a_one_line_error(tmp_path):
+    p = run("pack", "--kind", "corner", "--colors", "4", "--method", "lift", "--cluster", "tcp://127.0.0.1:9",
+            "-o", "c.json", cwd=tmp_path)
+    assert "cluster" in one_line_error(p).lower() or "connect" in p.stderr.lower()
+    assert not (tmp_path / "c.json").exists()
