@@ -6,8 +6,8 @@ process so far, status, and whether the result passed the independent verifier. 
 ``--time-limit`` (status ``unknown`` when it runs out).
 
 Run: ``python benchmarks/bench_packing.py [--time-limit S] [--max-colors C] [--big]``
-(``--big`` adds the full C = 4 SAT and CP-SAT searches, the recursive C = 4 search and the
-Wang C = 8 lift, each up to S seconds). Searches run with one worker (one seed: the times
+(``--big`` adds the full C = 4 SAT and CP-SAT searches, the recursive C = 4 search, the
+Wang C = 8 lift and the corner C = 10 and 12 lifts, each up to S seconds). Searches run with one worker (one seed: the times
 are per seed); the last rows run the corner C = 8 lift as a two-process portfolio.
 """
 
@@ -82,6 +82,8 @@ def main() -> None:
     if args.big:
         bench("wang", 5, "hybrid", 1)
         bench("wang", 8, "lift", 1)
+        bench("corner", 10, "lift", 1)
+        bench("corner", 12, "lift", 1)
         for kind in ("corner", "wang"):
             bench(kind, 4, "recursive", 1)
             for method in ("sat", "cpsat"):

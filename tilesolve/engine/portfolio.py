@@ -217,6 +217,12 @@ class _Runs:
     def detail(self, running: int, state: str = "running") -> str:
         return f"{self.finished}/{len(self.seeds)} runs finished, {running} {state}"
 
+    def record(self, seed: int, sol: Solution) -> bool:
+        """Count an undecided run; True when it ends the whole portfolio (a run that returns
+        ``unknown`` because of Ctrl-C)."""
+        self.unknown.append((seed, sol))
+        return sol.status is Status.UNKNOWN and (sol.reason or "").startswith("interrupted")
+
     def won(self, seed: int, sol: Solution) -> Solution:
         stats = dict(sol.stats, run_time_s=sol.time_s, portfolio_runs=self.started,
                      portfolio_workers=self.n_workers)
@@ -255,11 +261,6 @@ def _runs(n: int) -> str:
     return f"{n} run{'s' * (n != 1)}"
 
 
-def _ends_search(sol: Solution) -> bool:
-    """A run that returns ``unknown`` because of Ctrl-C ends the whole portfolio."""
-    return sol.status is Status.UNKNOWN and (sol.reason or "").startswith("interrupted")
-
-
 # ------------------------------------------------------------------------ in this process
 
 
@@ -289,8 +290,7 @@ def _run_inline(task, seeds: list[int], deadline: Deadline, progress: bool, labe
                 sol = task(seed=seed)
                 if sol.status in _DECISIVE:
                     return runs.won(seed, sol)
-                runs.unknown.append((seed, sol))
-                if _ends_search(sol):
+                if runs.record(seed, sol):
                     stop = "interrupted"
                     break
         except KeyboardInterrupt:
@@ -434,8 +434,7 @@ def _run_pool(task, seeds: list[int], n: int, deadline: Deadline, progress: bool
                     if payload.status in _DECISIVE:
                         winner = (seed, payload)
                         break
-                    runs.unknown.append((seed, payload))
-                    if _ends_search(payload):
+                    if runs.record(seed, payload):
                         stop, stopped = "interrupted", len(busy) - 1
                         break
                     assign(w)
@@ -547,8 +546,7 @@ def _run_dask(task, seeds: list[int], cluster, deadline: Deadline, progress: boo
                     sol = fut.result()  # re-raises the run's exception, same type
                     if sol.status in _DECISIVE:
                         return runs.won(seed, sol)
-                    runs.unknown.append((seed, sol))
-                    if _ends_search(sol):
+                    if runs.record(seed, sol):
                         stop = "interrupted"
                         break
             except KeyboardInterrupt:
