@@ -172,7 +172,7 @@ def outer_product(x, y, colors: int, colors_v: int | None = None) -> np.ndarray:
     """
     x = np.asarray(x, dtype=np.int64)
     y = np.asarray(y, dtype=np.int64)
-    rows, cols = y.size, x.size
+    rows = y.size
     big_r = rows - 1 - np.arange(rows)
     n = y[(big_r + 1) % rows][:, None]
     s = y[big_r][:, None]
@@ -222,7 +222,6 @@ def wang_position(tile, colors: int, colors_v: int | None = None) -> tuple:
     from tilesolve.model.tiles import wang_colors
 
     ch = int(colors)
-    cv = ch if colors_v is None else int(colors_v)
     n, e, s, w = wang_colors(np.asarray(tile, dtype=np.int64), colors=ch, colors_v=colors_v)
     row = ch * ch - 1 - domino_position(s, n)
     col = domino_position(w, e)
