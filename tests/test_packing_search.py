@@ -132,3 +132,8 @@ def test_portfolio_on_a_dask_cluster():
         s = facade.solve(PackingProblem("corner", 4), method="lift", seed=1, cluster=lc.scheduler_address)
     assert s.status is Status.SAT and is_packing(s.tiling, "corner", 4)
     assert any("portfolio" in n for n in s.notes)
+
+
+def test_lift_out_of_time_is_unknown_even_in_the_base_search():
+    s = search.solve_lift(PackingProblem("corner", 8), seed=1, time_limit=0.01)
+    assert s.status is Status.UNKNOWN and s.tiling is None and "time limit" in s.reason

@@ -112,6 +112,9 @@ def solve_sat(problem: PackingProblem, *, seed=None, time_limit=None, workers=No
     anchor = None if problem.fixed else (int(rng.integers(problem.n_tiles)) if seed is not None else 0)
     enc = encode_packing(problem, anchor_tile=anchor)
     encode_s = time.perf_counter() - t0
+    if deadline.expired():
+        return _unknown("sat", solver or PACKING_SAT_SOLVER, seed, t0, time_limit, deadline,
+                        "time limit reached while encoding", _stats(enc, encode_s=round(encode_s, 6)))
     phases = None if seed is None else _random_phases(enc, rng)
     r = solve_cnf(enc.clauses, solver=solver or PACKING_SAT_SOLVER, time_limit=deadline.remaining(),
                   with_proof=bool(problem.fixed), seed=seed, phases=phases)
@@ -231,12 +234,11 @@ def lift_domains(problem: PackingProblem, base_features: np.ndarray | None, m: i
 
 
 def _base_packing(kind: str, m: int, rng, solver, deadline: Deadline):
-    """A packing over ``m`` colours for :func:`solve_lift` (``None`` for ``m = 1``): the odd
-    corner construction, a random Wang outer product for primes >= 5, else a lifted search."""
+    """A packing over ``m >= 2`` colours for :func:`solve_lift` (``None`` when its own search
+    ran out of time): the odd corner construction, a random Wang outer product for primes
+    >= 5, else a lifted search."""
     from tilesolve.constructive.packing import corner_packing_odd, wang_packing
 
-    if m == 1:
-        return None
     if kind == "corner" and m % 2 == 1:
         return corner_packing_odd(m, seed=rng)
     mm, _ = lift_factors(m)
@@ -263,10 +265,10 @@ def solve_lift(problem: PackingProblem, *, seed=None, time_limit=None, workers=N
     base_info = []
 
     def domains(rng):
+        if m == 1:
+            return lift_domains(problem, None, 1)
         base = _base_packing(problem.kind, m, rng, solver, deadline)
         if base is None:
-            return lift_domains(problem, None, 1)
-        if base.min() < 0:
             raise _NoBase()
         base_info.append(f"base packing over {m} colours, {k}-ary layer by SAT")
         return lift_domains(problem, features_of_packing(PackingProblem(problem.kind, m), base), m)

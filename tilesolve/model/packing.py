@@ -107,7 +107,8 @@ class PackingProblem:
             raise InvalidProblem(
                 f"method {route!r} on {n:,} tiles (C={self.colors}) needs about {v:,} variables and "
                 f"{c:,} clauses; tilesolve builds up to {MAX_PLACEMENTS:,} placements. "
-                "Use --method lift (any C with a small prime factor), euler/outer (Wang) or an odd C (corner)"
+                + ("Use --method euler/outer (Wang) or an odd C (corner)" if route == "lift" else
+                   "Use --method lift (C with a small prime factor), euler/outer (Wang) or an odd C (corner)")
             )
 
     def describe(self) -> str:
