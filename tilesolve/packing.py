@@ -28,7 +28,7 @@ Methods
 ``lift``
     A packing over ``m`` colours repeated over the torus plus a ``k``-ary layer found by SAT
     (``C = m*k``): corner and Wang C = 4 in a fraction of a second, C = 6 in about a second,
-    C = 8 in about a minute (:mod:`tilesolve.engine.packing`).
+    C = 8 in 10-20 s (:mod:`tilesolve.engine.packing`).
 ``recursive``
     A packing over ``C - 1`` colours pinned in the bottom-left corner, completed by SAT
     (Figs. 5.11-5.12).
@@ -148,7 +148,7 @@ def auto_method(problem: PackingProblem) -> str:
 
     More than one pinned tile needs the full search (``sat``). Otherwise ``C = 2`` and Wang
     ``C = 3`` get a random-looking SAT-built packing; Wang ``C = 4, 6`` and even corner sets a
-    lifted packing (seconds; corner ``C = 8`` about a minute); odd corner sets the de Bruijn
+    lifted packing (seconds; corner ``C = 8`` 10-20 s); odd corner sets the de Bruijn
     construction; other Wang sets (``C = 5`` or ``>= 7``, or ``C_h != C_v``) the outer product.
     """
     c = problem.colors

@@ -50,7 +50,7 @@ def _parse_fix(items) -> tuple[tuple[int, int, int], ...]:
                    "over random Eulerian circuits; known: the notes' C=4 packings; sat/cpsat: the full search "
                    "(random-looking, C <= 3, proves pins contradictory); hybrid (Wang): random Eulerian N/S "
                    "columns, SAT for the rest; lift: a packing over C/k colours plus a k-ary layer by SAT "
-                   "(corner C=4 in 0.1 s, C=8 in about a minute); recursive: a C-1 packing pinned in the "
+                   "(corner C=4 in 0.1 s, C=8 in 10-20 s); recursive: a C-1 packing pinned in the "
                    "bottom-left corner, SAT for the rest (Figs. 5.11-5.12). auto picks by kind and C.")
 @click.option("--fix", "fix", multiple=True, metavar="R,C,T", help="Pin tile T at row R, column C (repeatable).")
 @opt.seed_opt
@@ -81,7 +81,7 @@ def pack(ctx, kind, colors, colors_v, method, fix, seed, time_limit, workers, cl
       tilesolve pack --kind corner --colors 5 --method euler -o c5.json
       tilesolve pack --kind wang --colors 4 --method hybrid --seed 1 -o w4.json
       tilesolve pack --kind corner --colors 8 --method lift --seed 1 -o c8.json
-      tilesolve pack --kind corner --colors 4 --method recursive --svg c4.svg --indices
+      tilesolve pack --kind corner --colors 3 --method recursive --svg c3.svg --indices
       tilesolve pack count --kind wang --colors 2 --up-to-symmetry
       tilesolve verify wang4.json
     """
