@@ -127,7 +127,8 @@ def test_slow_first_run_escalates_to_a_portfolio(monkeypatch):
 
 
 def test_portfolio_on_a_dask_cluster():
-    distributed = pytest.importorskip("distributed", reason="the 'cluster' extra is part of the test extra")
+    import distributed  # a test dependency (the "cluster" extra is part of the "test" extra)
+
     with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=None) as lc:
         s = facade.solve(PackingProblem("corner", 4), method="lift", seed=1, cluster=lc.scheduler_address)
     assert s.status is Status.SAT and is_packing(s.tiling, "corner", 4)

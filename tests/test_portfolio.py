@@ -245,7 +245,8 @@ def test_no_progress_line_off_a_terminal(monkeypatch):
 
 @pytest.fixture(scope="module")
 def dask_address():
-    distributed = pytest.importorskip("distributed")
+    import distributed  # a test dependency (the "cluster" extra is part of the "test" extra)
+
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                                   dashboard_address=":0") as cluster:  # any free port
         yield cluster.scheduler_address
@@ -293,7 +294,6 @@ def test_dask_ctrl_c(dask_address, ctrl_c):
 
 
 def test_unreachable_scheduler_is_a_one_line_error(monkeypatch):
-    pytest.importorskip("distributed")
     monkeypatch.setattr(pf, "CONNECT_TIMEOUT_S", 1.0)
     with pytest.raises(BackendUnavailable) as info:
         run_portfolio(task(), [0, 1], cluster="tcp://127.0.0.1:1")
@@ -304,7 +304,6 @@ def test_unreachable_scheduler_is_a_one_line_error(monkeypatch):
 
 @pytest.mark.parametrize("address", ["foo://127.0.0.1:1", "ray://127.0.0.1:10001", 8786])
 def test_malformed_cluster_address(address):
-    pytest.importorskip("distributed")
     with pytest.raises(InvalidProblem):
         run_portfolio(task(), [0, 1], cluster=address)
 
