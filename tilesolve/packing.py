@@ -132,7 +132,7 @@ METHODS: tuple[str, ...] = ("auto",) + tuple(SOLVERS)
 
 #: Routes whose run times are heavy-tailed: with more than one worker, or a cluster, a run
 #: that does not decide within :data:`QUICK_S` seconds is followed by a portfolio of seeds.
-PORTFOLIO_ROUTES: tuple[str, ...] = ("sat", "hybrid", "lift")
+PORTFOLIO_ROUTES: tuple[str, ...] = ("sat", "hybrid", "lift", "recursive")
 #: Seconds the first, in-process run of a portfolio route gets before the portfolio starts
 #: (most packings up to C = 6 take well under a second, and then no process is started).
 QUICK_S = 5.0
