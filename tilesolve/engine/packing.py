@@ -103,7 +103,6 @@ def solve_sat(problem: PackingProblem, *, seed=None, time_limit=None, workers=No
     """The full encoding (the seed picks the tile pinned at the origin and preferred phases)."""
     from tilesolve.encodings.packing import encode_packing
     from tilesolve.engine.certificates import unsat_solution
-    from tilesolve.engine.sat import solve_cnf
 
     problem.check_search_size()
     t0 = time.perf_counter()
@@ -115,9 +114,7 @@ def solve_sat(problem: PackingProblem, *, seed=None, time_limit=None, workers=No
     if deadline.expired():
         return _unknown("sat", solver or PACKING_SAT_SOLVER, seed, t0, time_limit, deadline,
                         "time limit reached while encoding", _stats(enc, encode_s=round(encode_s, 6)))
-    phases = None if seed is None else _random_phases(enc, rng)
-    r = solve_cnf(enc.clauses, solver=solver or PACKING_SAT_SOLVER, time_limit=deadline.remaining(),
-                  with_proof=bool(problem.fixed), seed=seed, phases=phases)
+    r = _run_sat(enc, solver=solver, deadline=deadline, rng=rng, with_proof=bool(problem.fixed))
     stats = _stats(enc, r, encode_s=round(encode_s, 6))
     if r.status is Status.SAT:
         return Solution(Status.SAT, enc.decode(r.model), "sat", r.solver, seed, time.perf_counter() - t0, stats=stats)
@@ -158,7 +155,7 @@ def solve_cpsat(problem: PackingProblem, *, seed=None, time_limit=None, workers=
 # --------------------------------------------------------------------------- restricted searches
 
 
-def _restricted_search(problem, method, make_domains, *, seed, time_limit, solver, anchor=None) -> Solution:
+def _restricted_search(problem, method, make_domains, *, seed, time_limit, solver) -> Solution:
     """Draw domains with ``make_domains(rng)`` and solve until a packing or the time limit."""
     from tilesolve.encodings.packing import encode_packing
 
@@ -169,7 +166,7 @@ def _restricted_search(problem, method, make_domains, *, seed, time_limit, solve
     while True:
         tries += 1
         domains = make_domains(rng)
-        enc = encode_packing(problem, anchor_tile=anchor, domains=domains)
+        enc = encode_packing(problem, anchor_tile=None, domains=domains)
         r = _run_sat(enc, solver=solver, deadline=deadline, rng=rng)
         stats = _stats(enc, r, attempts=tries)
         if r.status is Status.SAT:

@@ -25,31 +25,14 @@ def ticker(label: str, enabled: bool, *, every: float = 0.5) -> Iterator[None]:
     >>> with ticker("solving", enabled=False):
     ...     pass
     """
-    if not (enabled and sys.stderr.isatty()):
+    with status_line(label, enabled, every=every):
         yield
-        return
-    stop = threading.Event()
-    t0 = time.perf_counter()
-
-    def run() -> None:
-        while not stop.wait(every):
-            sys.stderr.write(f"\r  {label} ... {time.perf_counter() - t0:.0f} s")
-            sys.stderr.flush()
-
-    thread = threading.Thread(target=run, daemon=True)
-    thread.start()
-    try:
-        yield
-    finally:
-        stop.set()
-        thread.join()
-        sys.stderr.write("\r\033[K")
-        sys.stderr.flush()
 
 
 @contextlib.contextmanager
 def status_line(label: str, enabled: bool, *, every: float = 0.5) -> Iterator[Callable[[str], None]]:
-    """:func:`ticker` with a detail the caller keeps up to date (e.g. runs started/finished).
+    """Show ``label``, a detail the caller keeps up to date (e.g. runs started/finished) and
+    the elapsed seconds on stderr while the ``with`` block runs.
 
     Yields ``set_detail(text)``; the line reads ``label: text ... N s`` and is erased when the
     ``with`` block ends. Does nothing unless ``enabled`` and stderr is a terminal.
