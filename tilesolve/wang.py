@@ -52,7 +52,7 @@ def solve_sat(problem: BoardProblem, *, seed=None, time_limit=None, proof: bool 
     """
     from tilesolve.encodings.wang import encode_wang
     from tilesolve.engine.certificates import unsat_solution
-    from tilesolve.engine.result import Deadline
+    from tilesolve.deadline import Deadline
     from tilesolve.engine.sat import DEFAULT_SAT_SOLVER, solve_cnf
 
     t0 = time.perf_counter()

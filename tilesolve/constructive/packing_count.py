@@ -29,7 +29,7 @@ from typing import Iterator
 
 import numpy as np
 
-from tilesolve.engine.result import Deadline
+from tilesolve.deadline import Deadline
 from tilesolve.errors import InvalidProblem
 from tilesolve.constructive.packing import apply_symmetry, symmetry_tile_map
 from tilesolve.model.tiles import TileSet

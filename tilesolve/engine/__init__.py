@@ -13,7 +13,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Callable
 
-from tilesolve.engine.result import Deadline, Result
+from tilesolve.deadline import Deadline
+from tilesolve.engine.result import Result
 
 __all__ = [
     "Result",

@@ -9,7 +9,8 @@ from __future__ import annotations
 import time
 from typing import Sequence
 
-from tilesolve.engine.result import Deadline, Result, run_interruptible
+from tilesolve.deadline import Deadline
+from tilesolve.engine.result import Result, run_interruptible
 from tilesolve.errors import BackendUnavailable, InvalidProblem
 from tilesolve.model.solution import Status
 

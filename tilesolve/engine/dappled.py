@@ -29,7 +29,7 @@ from tilesolve.encodings.dappled import DappledEncoding, build_cpsat, encode_cnf
 from tilesolve.engine.cpsat import DEFAULT_CPSAT_WORKERS, solve_cp_model
 from tilesolve.engine.maxsat import DEFAULT_MAXSAT_ORACLE, RC2Options, solve_lazy, solve_wcnf
 from tilesolve.engine.certificates import unsat_solution
-from tilesolve.engine.result import Deadline
+from tilesolve.deadline import Deadline
 from tilesolve.engine.sat import DEFAULT_SAT_SOLVER, ModelEnumerator, solve_cnf
 from tilesolve.errors import InvalidProblem
 from tilesolve.model.dappled import DappledProblem

@@ -31,7 +31,8 @@ from typing import Sequence
 
 import numpy as np
 
-from tilesolve.engine.result import Deadline, Result, run_interruptible
+from tilesolve.deadline import Deadline
+from tilesolve.engine.result import Result, run_interruptible
 from tilesolve.engine.sat import _chunks, canonical_solver_name
 from tilesolve.errors import MethodNotApplicable
 from tilesolve.model.solution import Status

@@ -37,7 +37,7 @@ import time
 import numpy as np
 
 from tilesolve._random import rng_from_seed
-from tilesolve.engine.result import Deadline
+from tilesolve.deadline import Deadline
 from tilesolve.errors import MethodNotApplicable
 from tilesolve.model.packing import PackingProblem
 from tilesolve.model.solution import Solution, Status

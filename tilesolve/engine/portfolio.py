@@ -65,7 +65,7 @@ from multiprocessing.connection import wait as wait_for_any
 from typing import Any, Callable, Iterable
 
 from tilesolve.engine.progress import status_line
-from tilesolve.engine.result import Deadline
+from tilesolve.deadline import Deadline
 from tilesolve.errors import BackendUnavailable, InvalidProblem
 from tilesolve.model.solution import Solution, Status
 

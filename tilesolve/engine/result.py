@@ -5,9 +5,10 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
+from tilesolve.deadline import Deadline
 from tilesolve.model.solution import Status
 
-__all__ = ["Result", "Deadline", "run_interruptible"]
+__all__ = ["Result", "run_interruptible"]
 
 
 @dataclass
@@ -44,32 +45,6 @@ class Result:
     cost: int | None = None
     solver: str = ""
     reason: str | None = None
-
-
-class Deadline:
-    """A wall-clock deadline shared by the steps of one solve (``None`` = no limit)."""
-
-    def __init__(self, time_limit: float | None) -> None:
-        import time
-
-        if time_limit is not None and time_limit < 0:
-            from tilesolve.errors import InvalidProblem
-
-            raise InvalidProblem(f"time limit must be >= 0 seconds, got {time_limit}")
-        self._clock = time.perf_counter
-        self.start = self._clock()
-        self.time_limit = time_limit
-
-    def elapsed(self) -> float:
-        return self._clock() - self.start
-
-    def remaining(self) -> float | None:
-        if self.time_limit is None:
-            return None
-        return max(0.0, self.time_limit - self.elapsed())
-
-    def expired(self) -> bool:
-        return self.time_limit is not None and self.elapsed() >= self.time_limit
 
 
 def run_interruptible(fn, interrupt, deadline: Deadline, poll: float = 0.05):

@@ -36,7 +36,8 @@ from typing import Iterable, Iterator, Sequence
 
 import numpy as np
 
-from tilesolve.engine.result import Deadline, Result, run_interruptible
+from tilesolve.deadline import Deadline
+from tilesolve.engine.result import Result, run_interruptible
 from tilesolve.errors import BackendUnavailable, InvalidProblem, MethodNotApplicable
 from tilesolve.model.solution import Status
 
