@@ -8,6 +8,7 @@ from tilesolve.constructive.packing import corner_packing_odd
 from tilesolve.constructive.packing_known import known_packing
 from tilesolve.encodings.packing import encode_packing, features_of_packing, full_domains, packing_features
 from tilesolve.engine import packing as search
+from tilesolve.engine import portfolio
 from tilesolve.errors import MethodNotApplicable
 from tilesolve.model.packing import PackingProblem
 from tilesolve.model.solution import Status
@@ -117,7 +118,7 @@ def test_recursive_and_embedding_refusals():
 
 def test_slow_first_run_escalates_to_a_portfolio(monkeypatch):
     """With QUICK_S = 0 the in-process run ends at once and the seed portfolio decides."""
-    monkeypatch.setattr(facade, "QUICK_S", 0.0)
+    monkeypatch.setattr(portfolio, "QUICK_S", 0.0)
     s = facade.solve(PackingProblem("wang", 3), method="sat", seed=10, workers=2)
     assert s.status is Status.SAT and is_packing(s.tiling, "wang", 3)
     assert any(n.startswith("portfolio: seed") for n in s.notes)

@@ -33,7 +33,7 @@ Methods
     A packing over ``C - 1`` colours pinned in the bottom-left corner, completed by SAT
     (Figs. 5.11-5.12).
 
-Heavy-tailed searches (:data:`PORTFOLIO_ROUTES`) get :data:`QUICK_S` seconds in-process;
+Heavy-tailed searches (:data:`PORTFOLIO_ROUTES`) get :data:`~tilesolve.engine.portfolio.QUICK_S` seconds in-process;
 if undecided, a portfolio of fresh seeds runs on both cores (``workers``) or on a Dask
 cluster (``cluster``), with per-run budgets that double with every wave
 (:mod:`tilesolve.engine.portfolio`).
@@ -131,16 +131,8 @@ METHODS: tuple[str, ...] = ("auto",) + tuple(SOLVERS)
 
 
 #: Routes whose run times are heavy-tailed: with more than one worker, or a cluster, a run
-#: that does not decide within :data:`QUICK_S` seconds is followed by a portfolio of seeds.
+#: that does not decide within :data:`~tilesolve.engine.portfolio.QUICK_S` seconds is followed by a portfolio of seeds.
 PORTFOLIO_ROUTES: tuple[str, ...] = ("sat", "hybrid", "lift", "recursive")
-#: Seconds the first, in-process run of a portfolio route gets before the portfolio starts
-#: (most packings up to C = 6 take well under a second, and then no process is started).
-QUICK_S = 5.0
-#: Per-run budget of the first wave of portfolio runs; it doubles with every wave, so a seed
-#: stuck in a heavy tail is abandoned for a fresh one (a restart strategy).
-FIRST_BUDGET_S = 20.0
-#: Seeds a portfolio may draw (seed + 1, seed + 2, ...).
-PORTFOLIO_SEEDS = 64
 
 
 def auto_method(problem: PackingProblem) -> str:
@@ -164,41 +156,16 @@ def auto_method(problem: PackingProblem) -> str:
     return "lift"
 
 
-def _portfolio_run(problem, name, seed0, workers, time_limit, solver, *, seed):
-    """One portfolio run: route ``name`` with seed ``seed`` and the budget of its wave."""
-    budget = FIRST_BUDGET_S * 2 ** ((seed - seed0 - 1) // workers)
-    if time_limit is not None:
-        budget = min(budget, time_limit)
-    return SOLVERS[name](problem, seed=seed, time_limit=budget, solver=solver)
-
-
 def _run_route(problem, runner, name, *, seed, time_limit, workers, cluster, progress, solver) -> Solution:
     """Run one route; heavy-tailed searches escalate to a portfolio (module docstring)."""
-    import functools
-
-    from tilesolve.engine.portfolio import DEFAULT_WORKERS, run_portfolio
+    from tilesolve.engine.portfolio import escalate
     from tilesolve.engine.progress import ticker
 
-    n = DEFAULT_WORKERS if workers is None else workers
-    if name not in PORTFOLIO_ROUTES or (n <= 1 and cluster is None):
+    if name not in PORTFOLIO_ROUTES:
         with ticker(f"{name} packing", progress):
             return runner(problem, seed=seed, time_limit=time_limit, workers=workers, progress=progress, solver=solver)
-    t0 = time.perf_counter()
-    seed0 = int(rng_from_seed(None).integers(2**31)) if seed is None else seed
-    rem = time_limit
-    if cluster is None:
-        quick = QUICK_S if time_limit is None else min(QUICK_S, time_limit)
-        with ticker(f"{name} packing (first run)", progress):
-            first = runner(problem, seed=seed0, time_limit=quick, solver=solver)
-        if first.status is not Status.UNKNOWN or (first.reason or "").startswith("interrupted"):
-            return first
-        rem = None if time_limit is None else max(0.0, time_limit - (time.perf_counter() - t0))
-        if rem is not None and rem < 1.0:
-            return first
-    task = functools.partial(_portfolio_run, problem, name, seed0, n, rem, solver)
-    seeds = [seed0 + i for i in range(1, PORTFOLIO_SEEDS + 1)]
-    return run_portfolio(task, seeds, workers=n, cluster=cluster, time_limit=rem, progress=progress,
-                         label=f"{name} packing")
+    return escalate(runner, problem, name=f"{name} packing", seed=seed, time_limit=time_limit, workers=workers,
+                    cluster=cluster, progress=progress, solver=solver)
 
 
 def verify_solution(problem: PackingProblem, sol: Solution) -> Solution:
@@ -237,7 +204,7 @@ def solve(
     workers : int, optional
         CP-SAT workers for ``cpsat`` (default 2); for the heavy-tailed searches
         (:data:`PORTFOLIO_ROUTES`), the local processes of the portfolio that starts when the
-        first run takes longer than :data:`QUICK_S` (default 2; ``1`` runs one seed only).
+        first run takes longer than :data:`~tilesolve.engine.portfolio.QUICK_S` (default 2; ``1`` runs one seed only).
     cluster : str or distributed.Client, optional
         A Dask scheduler address (``tcp://host:8786``): the portfolio's runs go there instead.
     solver : str, optional

@@ -53,6 +53,7 @@ Examples
 from __future__ import annotations
 
 import collections
+import functools
 import gc
 import multiprocessing
 import pickle
@@ -69,7 +70,8 @@ from tilesolve.deadline import Deadline
 from tilesolve.errors import BackendUnavailable, InvalidProblem
 from tilesolve.model.solution import Solution, Status
 
-__all__ = ["run_portfolio", "DEFAULT_WORKERS", "START_METHOD", "GRACE_S", "CONNECT_TIMEOUT_S"]
+__all__ = ["run_portfolio", "escalate", "DEFAULT_WORKERS", "START_METHOD", "GRACE_S", "CONNECT_TIMEOUT_S",
+           "QUICK_S", "FIRST_BUDGET_S", "PORTFOLIO_SEEDS"]
 
 #: Local worker processes when the caller names none: the machines tilesolve targets have two
 #: cores (as :data:`tilesolve.engine.cpsat.DEFAULT_CPSAT_WORKERS`).
@@ -95,6 +97,15 @@ GRACE_S = 1.0
 
 #: Seconds to wait for a Dask scheduler to answer before giving up with a one-line error.
 CONNECT_TIMEOUT_S = 5.0
+
+#: Seconds the first, in-process run of an escalated search gets before the portfolio starts
+#: (most packings up to C = 6 take well under a second, and then no process is started).
+QUICK_S = 5.0
+#: Per-run budget of the first wave of portfolio runs; it doubles with every wave, so a seed
+#: stuck in a heavy tail is abandoned for a fresh one (a restart strategy).
+FIRST_BUDGET_S = 20.0
+#: Seeds a portfolio may draw (seed + 1, seed + 2, ...).
+PORTFOLIO_SEEDS = 64
 
 _DECISIVE = (Status.SAT, Status.OPTIMAL, Status.UNSAT)
 
@@ -183,6 +194,70 @@ def run_portfolio(
     if workers == 1:
         return _run_inline(task, seeds, deadline, progress, label)
     return _run_pool(task, seeds, min(workers, len(seeds)), deadline, progress, label)
+
+
+def _wave_run(route, problem, seed0, workers, time_limit, solver, *, seed):
+    """One portfolio run: ``route`` with seed ``seed`` and the budget of its wave."""
+    budget = FIRST_BUDGET_S * 2 ** ((seed - seed0 - 1) // workers)
+    if time_limit is not None:
+        budget = min(budget, time_limit)
+    return route(problem, seed=seed, time_limit=budget, solver=solver)
+
+
+def escalate(route, problem, *, name, seed=None, time_limit=None, workers=None, cluster=None, progress=False,
+             solver=None) -> Solution:
+    """Run a heavy-tailed search; if it does not decide quickly, escalate to a seed portfolio.
+
+    Parameters
+    ----------
+    route : callable
+        The raw route ``route(problem, *, seed, time_limit, solver) -> Solution`` (an
+        ``engine`` search such as :func:`tilesolve.engine.packing.solve_lift`, never a facade):
+        it is what the worker processes run, so it must pickle (a module-level function).
+    problem
+        The problem handed to ``route`` (pickled to the workers).
+    name : str
+        What the progress line and the notes call the search (e.g. ``"lift packing"``).
+    seed : int, optional
+        Seed of the first run; portfolio runs take ``seed + 1, seed + 2, ...``.
+    time_limit : float, optional
+        Wall-clock budget of the whole search in seconds.
+    workers : int, optional
+        Local processes (default :data:`DEFAULT_WORKERS`); ``1`` runs the one seed, plainly.
+    cluster : str or distributed.Client, optional
+        A Dask scheduler: the portfolio's runs go there.
+    progress : bool
+        Show a live status line on a terminal.
+    solver : str, optional
+        Passed to ``route``.
+
+    Returns
+    -------
+    Solution
+        The first decisive run's Solution (see :func:`run_portfolio`).
+    """
+    from tilesolve._random import rng_from_seed
+    from tilesolve.engine.progress import ticker
+
+    n = DEFAULT_WORKERS if workers is None else workers
+    if n <= 1 and cluster is None:
+        with ticker(name, progress):
+            return route(problem, seed=seed, time_limit=time_limit, solver=solver)
+    t0 = time.perf_counter()
+    seed0 = int(rng_from_seed(None).integers(2**31)) if seed is None else seed
+    rem = time_limit
+    if cluster is None:
+        quick = QUICK_S if time_limit is None else min(QUICK_S, time_limit)
+        with ticker(f"{name} (first run)", progress):
+            first = route(problem, seed=seed0, time_limit=quick, solver=solver)
+        if first.status is not Status.UNKNOWN or (first.reason or "").startswith("interrupted"):
+            return first
+        rem = None if time_limit is None else max(0.0, time_limit - (time.perf_counter() - t0))
+        if rem is not None and rem < 1.0:
+            return first
+    task = functools.partial(_wave_run, route, problem, seed0, n, rem, solver)
+    seeds = [seed0 + i for i in range(1, PORTFOLIO_SEEDS + 1)]
+    return run_portfolio(task, seeds, workers=n, cluster=cluster, time_limit=rem, progress=progress, label=name)
 
 
 # ----------------------------------------------------------------------------- bookkeeping
