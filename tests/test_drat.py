@@ -124,7 +124,7 @@ def test_size_and_time_guards(php6):
     f, proof = php6
     assert check_drat(f, proof, max_size=10).status == "skipped"
     r = check_drat(php(8), proof_of(php(8)), time_limit=0.0)
-    assert r.status in ("unknown", "verified")  # a fast machine may finish within one check interval
+    assert r.status == "unknown" and r.reason.startswith("time limit of 0 s reached while")
 
 
 def test_checker_imports_no_solver():

@@ -8,9 +8,20 @@ from __future__ import annotations
 
 import time
 
-from tilesolve.errors import InvalidProblem
+from tilesolve.errors import InvalidProblem, TilesolveError
 
-__all__ = ["Deadline"]
+__all__ = ["Deadline", "TimeLimitReached"]
+
+
+class TimeLimitReached(TilesolveError):
+    """The deadline passed while a route was still building (encoding, loading a solver).
+
+    Routes turn it into a ``Status.UNKNOWN`` answer whose reason is the message, e.g.
+    ``"time limit of 3 s reached while encoding (2.1 M of 8.4 M clauses built)"``; the CLI
+    maps an uncaught one to exit code 3 (unknown), never to an error of the user's.
+    """
+
+    exit_code = 3
 
 
 class Deadline:
@@ -33,3 +44,20 @@ class Deadline:
 
     def expired(self) -> bool:
         return self.time_limit is not None and self.elapsed() >= self.time_limit
+
+    def check(self, doing: str) -> None:
+        """Raise :class:`TimeLimitReached` if the deadline has passed.
+
+        ``doing`` completes the message "time limit of N s reached while ...", e.g.
+        ``"encoding (1.2 M clauses built)"``.
+
+        Examples
+        --------
+        >>> Deadline(None).check("encoding")
+        >>> Deadline(0).check("encoding")
+        Traceback (most recent call last):
+        ...
+        tilesolve.deadline.TimeLimitReached: time limit of 0 s reached while encoding
+        """
+        if self.expired():
+            raise TimeLimitReached(f"time limit of {self.time_limit:.3g} s reached while {doing}")

@@ -302,7 +302,8 @@ def check_drat(
         Size guard: total literals of formula plus proof above which the check is
         ``skipped`` (pure Python is slow; a proof of millions of lemmas would take hours).
     time_limit : float or None
-        Seconds after which the check stops with status ``unknown``.
+        Seconds after which the check stops with status ``unknown`` (reading the formula and
+        the proof count).
 
     Returns
     -------
@@ -316,7 +317,19 @@ def check_drat(
     'verified'
     """
     t0 = time.perf_counter()
-    clauses = [list(map(int, c)) for c in formula]
+
+    def out_of_time() -> bool:
+        return time_limit is not None and time.perf_counter() - t0 > time_limit
+
+    def stopped(doing: str, **counts) -> DratResult:
+        return DratResult("unknown", f"time limit of {time_limit:.3g} s reached while {doing}",
+                          time_s=time.perf_counter() - t0, **counts)
+
+    clauses: list[list[int]] = []
+    for c in formula:
+        clauses.append(list(map(int, c)))
+        if len(clauses) % 4096 == 0 and out_of_time():
+            return stopped(f"reading the formula ({len(clauses):,} clauses read)")
     try:
         steps = parse_drat(proof)
     except (ValueError, UnicodeDecodeError, IndexError) as exc:
@@ -325,10 +338,12 @@ def check_drat(
     if max_size is not None and size > max_size:
         return DratResult(
             "skipped",
-            f"proof not checked: formula plus proof have {size:,} literals (guard {max_size:,})",
+            f"formula plus proof have {size:,} literals, over the {max_size:,} the checker takes",
             lemmas=sum(1 for d, _ in steps if not d),
             time_s=time.perf_counter() - t0,
         )
+    if out_of_time():
+        return stopped("reading the proof")
     n_vars = 0
     for c in clauses:
         for x in c:
@@ -337,8 +352,10 @@ def check_drat(
         for x in c:
             n_vars = max(n_vars, abs(x))
     chk = _Checker(n_vars)
-    for c in clauses:
+    for i, c in enumerate(clauses, 1):
         chk.add(c)
+        if i % 4096 == 0 and out_of_time():
+            return stopped(f"loading the formula into the checker ({i:,} of {len(clauses):,} clauses)")
     lemmas = deletions = rats = ignored = 0
 
     def result(status: str, reason: str) -> DratResult:
@@ -347,8 +364,9 @@ def check_drat(
     for step, (is_del, lits) in enumerate(steps, 1):
         if chk.inconsistent:
             break
-        if time_limit is not None and step % 256 == 0 and time.perf_counter() - t0 > time_limit:
-            return result("unknown", f"proof check stopped by its {time_limit:g} s time limit at step {step}")
+        if step % 256 == 0 and out_of_time():
+            return result("unknown", f"time limit of {time_limit:.3g} s reached while checking the proof "
+                                     f"(step {step:,} of {len(steps):,})")
         if is_del:
             deletions += 1
             if chk.delete(lits) == "ignored":
