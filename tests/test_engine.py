@@ -149,10 +149,11 @@ def test_other_proof_solvers_certify_example_6_2(solver):
     assert s.status is Status.UNSAT and f"by {solver}; DRAT proof" in s.reason
 
 
-def test_solver_without_proofs_still_answers():
+def test_solver_without_proofs_cannot_answer_unsat():
+    # A checked proof or nothing: minisat22 logs no proof, so its "unsatisfiable" is unknown.
     p = DappledProblem.from_strings("4x4", ["H0=2", "V1=2"], cyclic=True, fixed=EXAMPLE_62)
     s = solve_sat(p, solver="minisat22")
-    assert s.status is Status.UNSAT and "no proof logged" in s.reason
+    assert s.status is Status.UNKNOWN and "logged no proof" in s.reason and "not checked" in s.reason
 
 
 def test_a_proof_that_fails_the_check_never_gives_unsat(monkeypatch):
@@ -162,7 +163,10 @@ def test_a_proof_that_fails_the_check_never_gives_unsat(monkeypatch):
     def lying_solver(formula, **kw):
         return Result(Status.UNSAT, None, 0.0, ["1 0", "0"], {}, solver="liar")
 
-    monkeypatch.setattr(route, "solve_cnf", lying_solver)
+    import tilesolve.engine.sat as sat_backend
+
+    monkeypatch.setattr(sat_backend, "solve_cnf", lying_solver)
+    monkeypatch.setattr(route, "solve_cnf", lying_solver, raising=False)
     s = route.solve_sat(DappledProblem.from_strings("3x3", ["H0=2", "V1=2"]))
     assert s.status is Status.UNKNOWN and "failed the check" in s.reason
 

@@ -15,7 +15,20 @@ PySAT solvers differ in what they can do (checked against ``pysat.solvers`` 1.9)
   deadline is checked between slices (CaDiCaL keeps its learnt clauses across calls).
 * Lingeling supports neither; a time limit is refused for it.
 
+Loading the clauses into the solver counts against the limit too: they go in chunks of
+:data:`LOAD_CHUNK` clauses with a deadline check between chunks, so a formula too large to
+load in time ends ``unknown`` ("time limit of 3 s reached while loading the formula into
+cadical153 (1.2 M of 8.4 M clauses)") within about one chunk's time of the limit.
+
 A call stopped by the time limit or by Ctrl-C returns ``Status.UNKNOWN``, never ``UNSAT``.
+
+Seeds
+-----
+A ``seed`` draws the solver's initial phase of every variable (``set_phases``) from
+:func:`tilesolve._random.rng_from_seed`, and sets the solver's own random seed where PySAT
+exposes one (CaDiCaL, Glucose 4.2). The solvers are deterministic, so the same formula,
+solver and seed give the same model; different seeds start the search from different
+assignments and, on formulas with many models, end in different ones.
 
 Proofs
 ------
@@ -43,7 +56,9 @@ from tilesolve.model.solution import Status
 
 __all__ = [
     "DEFAULT_SAT_SOLVER",
+    "LOAD_CHUNK",
     "SatSession",
+    "seeded_phases",
     "solve_cnf",
     "ModelEnumerator",
     "count_models",
@@ -53,6 +68,10 @@ __all__ = [
 ]
 
 DEFAULT_SAT_SOLVER = "cadical153"
+
+#: Clauses handed to the solver per call while loading (a deadline check between calls;
+#: about 0.1 s of loading each on a laptop core).
+LOAD_CHUNK = 1 << 14
 
 #: Solvers whose random seed PySAT's ``configure`` can set, and the option's name.
 _SEED_OPTION = {"cadical153": "seed", "cadical195": "seed", "cadical300": "seed", "glucose42": "rnd-seed"}
@@ -134,20 +153,50 @@ def proof_solvers() -> list[str]:
     return out
 
 
-def _chunks(formula) -> Iterator[list[list[int]]]:
+def _chunks(formula, size: int = 1 << 16) -> Iterator[list[list[int]]]:
     if hasattr(formula, "chunks"):
-        yield from formula.chunks()
+        yield from formula.chunks(size)
     elif hasattr(formula, "clauses"):
-        yield formula.clauses
+        cl = formula.clauses
+        for i in range(0, len(cl), size):
+            yield cl[i : i + size]
     else:
         batch: list[list[int]] = []
         for c in formula:
             batch.append(list(c))
-            if len(batch) >= 65536:
+            if len(batch) >= size:
                 yield batch
                 batch = []
         if batch:
             yield batch
+
+
+def _size_of(formula) -> int | None:
+    """Number of clauses, when it is known without iterating."""
+    if hasattr(formula, "clauses"):
+        return len(formula.clauses)
+    try:
+        return len(formula)
+    except TypeError:
+        return None
+
+
+def _millions(n: int) -> str:
+    return f"{n / 1e6:.1f} M" if n >= 100_000 else f"{n:,}"
+
+
+def seeded_phases(n_vars: int, seed) -> list[int]:
+    """Random preferred literals for variables ``1..n_vars`` drawn from ``seed``.
+
+    Examples
+    --------
+    >>> seeded_phases(4, 1) == seeded_phases(4, 1), len(seeded_phases(4, 1))
+    (True, 4)
+    """
+    from tilesolve._random import rng_from_seed
+
+    v = np.arange(1, n_vars + 1, dtype=np.int64)
+    return np.where(rng_from_seed(seed).random(n_vars) < 0.5, v, -v).tolist()
 
 
 class SatSession:
@@ -164,7 +213,11 @@ class SatSession:
         Ask for DRAT proof logging; silently off for solvers that cannot log one
         (``self.proof_logging`` says which happened).
     seed : int, optional
-        Random seed for solvers with a ``seed`` option (CaDiCaL); recorded otherwise.
+        Draws the initial phases (see "Seeds" above) and sets the solver's random seed
+        where it has one.
+    deadline : Deadline, optional
+        Loading stops when it passes; :meth:`solve` then answers ``unknown`` at once
+        (:attr:`stopped` says why).
 
     Examples
     --------
@@ -174,7 +227,8 @@ class SatSession:
     ('sat', [-1, 2])
     """
 
-    def __init__(self, formula, solver: str = DEFAULT_SAT_SOLVER, with_proof: bool = False, seed: int | None = None):
+    def __init__(self, formula, solver: str = DEFAULT_SAT_SOLVER, with_proof: bool = False, seed: int | None = None,
+                 deadline: Deadline | None = None):
         from pysat.solvers import Solver
 
         self.name = canonical_solver_name(solver)
@@ -199,19 +253,27 @@ class SatSession:
             self.notes.append(f"{self.name} cannot log proofs")
         if seed is not None:
             option = _SEED_OPTION.get(self.name)
-            if option is None:
-                self.notes.append(f"{self.name} has no seed option; seed {seed} only recorded")
-            else:
+            if option is not None:
                 self._s.configure({option: int(seed)})
         self.n_clauses = 0
         self.empty_clause = False
-        for ch in _chunks(formula):
+        #: Why loading stopped early (the deadline passed), else None.
+        self.stopped: str | None = None
+        total = _size_of(formula)
+        for ch in _chunks(formula, LOAD_CHUNK):
+            if deadline is not None and deadline.expired():
+                of = f" of {_millions(total)}" if total is not None else ""
+                self.stopped = (f"time limit of {deadline.time_limit:.3g} s reached while loading the formula into "
+                                f"{self.name} ({_millions(self.n_clauses)}{of} clauses loaded)")
+                break
             if min(map(len, ch), default=1) == 0:
                 # Some PySAT backends mishandle an empty clause; it decides the formula anyway.
                 self.empty_clause = True
                 ch = [c for c in ch if len(c)]
             self._s.append_formula(ch)
             self.n_clauses += len(ch)
+        if seed is not None and self.stopped is None:
+            self.set_phases(seeded_phases(self._s.nof_vars(), seed))
         self.load_time = time.perf_counter() - t0
         self._mode = self._probe_limits()
 
@@ -253,16 +315,23 @@ class SatSession:
         except NotImplementedError:
             pass
 
-    def solve(self, assumptions: Sequence[int] = (), time_limit: float | None = None) -> Result:
+    def solve(self, assumptions: Sequence[int] = (), time_limit: float | None = None,
+              deadline: Deadline | None = None) -> Result:
         """Decide the formula under ``assumptions``.
 
         Returns ``SAT`` with the model, ``UNSAT`` (with the DRAT proof when logging and
-        no assumptions were used), or ``UNKNOWN`` on the time limit or Ctrl-C.
+        no assumptions were used), or ``UNKNOWN`` on the time limit or Ctrl-C. A
+        ``deadline`` (the whole run's) replaces ``time_limit`` and names the run's limit
+        in the reason.
         """
         t0 = time.perf_counter()
-        deadline = Deadline(time_limit)
+        if deadline is None:
+            deadline = Deadline(time_limit)
+        time_limit = deadline.time_limit
         assumptions = list(map(int, assumptions))
         stats = {"load_s": self.load_time, "clauses": self.n_clauses}
+        if self.stopped is not None:
+            return Result(Status.UNKNOWN, None, 0.0, None, stats, solver=self.name, reason=self.stopped)
         if self.empty_clause:
             return Result(Status.UNSAT, None, 0.0, ["0"] if self.proof_logging else None, stats, solver=self.name,
                           reason="the formula contains the empty clause")
@@ -299,7 +368,7 @@ class SatSession:
         if stop == "interrupted":
             reason = "interrupted (Ctrl-C)"
         elif time_limit is not None:
-            reason = f"time limit of {time_limit:.3g} s reached"
+            reason = f"time limit of {time_limit:.3g} s reached while solving"
         else:
             reason = "solver gave up"
         return Result(Status.UNKNOWN, None, runtime, None, stats, solver=self.name, reason=reason)
@@ -339,25 +408,32 @@ def solve_cnf(
     assumptions: Sequence[int] = (),
     seed: int | None = None,
     phases: Sequence[int] | None = None,
+    deadline: Deadline | None = None,
 ) -> Result:
-    """Decide a CNF formula once (loading included in ``runtime``).
+    """Decide a CNF formula once (loading included in ``runtime`` and in the time limit).
+
+    ``deadline`` (the whole run's, when the caller has one) replaces ``time_limit``.
+    ``phases`` (e.g. a target tiling) take precedence over the seed's random phases.
 
     Examples
     --------
     >>> solve_cnf([[1], [-1]], with_proof=True).status.value
     'unsat'
+    >>> solve_cnf([[1, 2, 3]], seed=4).model == solve_cnf([[1, 2, 3]], seed=4).model
+    True
     """
     t0 = time.perf_counter()
-    deadline = Deadline(time_limit)
+    if deadline is None:
+        deadline = Deadline(time_limit)
     try:
-        session = SatSession(formula, solver=solver, with_proof=with_proof, seed=seed)
+        session = SatSession(formula, solver=solver, with_proof=with_proof, seed=seed, deadline=deadline)
     except KeyboardInterrupt:
         return Result(Status.UNKNOWN, None, time.perf_counter() - t0, None, {}, solver=canonical_solver_name(solver),
                       reason="interrupted (Ctrl-C) while loading the formula")
     with session as s:
         if phases is not None:
             s.set_phases(phases)
-        r = s.solve(assumptions, time_limit=deadline.remaining())
+        r = s.solve(assumptions, deadline=deadline)
         r.runtime = time.perf_counter() - t0
         r.stats["notes"] = list(s.notes)
         r.stats["proof_logging"] = s.proof_logging
@@ -401,12 +477,12 @@ class ModelEnumerator:
     def __iter__(self) -> Iterator[list[int]]:
         deadline = Deadline(self.time_limit)
         proj = self.projection
-        with SatSession(self.formula, solver=self.solver) as s:
+        with SatSession(self.formula, solver=self.solver, deadline=deadline) as s:
             while True:
                 if self.limit is not None and self.count >= self.limit:
                     self.reason = f"limit of {self.limit} models reached"
                     return
-                r = s.solve(time_limit=deadline.remaining())
+                r = s.solve(deadline=deadline)
                 if r.status is Status.UNSAT:
                     self.complete = True
                     return
