@@ -6,9 +6,10 @@ import pytest
 
 from tilesolve.errors import InvalidProblem
 from tilesolve.model.board import (
-    E, N, S, W, Board, BoardProblem, WangTileSet, parse_board_spec, parse_mask_text, read_mask,
+    E, N, S, W, Board, BoardProblem, GridSpec, WangTileSet, parse_board_spec, parse_mask_text,
     wang_from_nesw, wang_to_nesw,
 )
+from tilesolve.io.mask import read_board_spec, read_mask
 
 
 def test_rect_joins_and_counts():
@@ -92,12 +93,14 @@ def test_masks(tmp_path):
     pm = read_mask(tmp_path / "m.png")
     assert pm.sum() == 2 and pm[1, 1] and pm[1, 2]
     (tmp_path / "m.txt").write_text("#.\n##\n")
-    b = parse_board_spec(f"mask:{tmp_path / 'm.txt'}")
-    assert b.n_cells == 3
+    b = read_board_spec(f"mask:{tmp_path / 'm.txt'}")
+    assert b.n_cells == 3 and b.grid_spec == GridSpec(2, 2) and b.mask_of().tolist() == [[True, False], [True, True]]
     with pytest.raises(InvalidProblem, match="cannot read mask"):
-        parse_board_spec(f"mask:{tmp_path / 'missing.txt'}")
+        read_board_spec(f"mask:{tmp_path / 'missing.txt'}")
     with pytest.raises(InvalidProblem, match="cannot read board"):
-        parse_board_spec("hexagon:3x3")
+        read_board_spec("hexagon:3x3")
+    with pytest.raises(InvalidProblem, match="mask file"):
+        parse_board_spec(f"mask:{tmp_path / 'm.txt'}")  # the model reads no files
 
 
 def test_brick_tiles_def9_and_three_boundary():
@@ -134,3 +137,64 @@ def test_problem_validation():
     assert sorted(q.boundary[q.boundary >= 0].tolist()) == [1, 2]
     with pytest.raises(InvalidProblem, match="brick"):
         BoardProblem(b, WangTileSet([[0, 0, 0, 0]], 1), max_h=2)
+
+
+def _literal_grid(mask, wrap_rows, wrap_cols):
+    """Joins of Board.grid read off the definition cell by cell (brick paper Def. 1, Example 5)."""
+    H, Wd = mask.shape
+    cells = [(r, c) for r in range(H) for c in range(Wd) if mask[r, c]]
+    index = {rc: i for i, rc in enumerate(cells)}
+    nc = np.full((len(cells), 4), -1)
+    for i, (r, c) in enumerate(cells):
+        for k, (dr, dc) in enumerate([(0, -1), (-1, 0), (0, 1), (1, 0)]):
+            r2, c2 = r + dr, c + dc
+            if not 0 <= c2 < Wd and wrap_cols:
+                r2, c2 = (H - 1 - r2 if wrap_cols == "twist" else r2), c2 % Wd
+            if not 0 <= r2 < H and wrap_rows:
+                r2, c2 = r2 % H, (Wd - 1 - c2 if wrap_rows == "twist" else c2)
+            nc[i, k] = index.get((r2, c2), -1)
+    return np.array(cells).reshape(-1, 2), nc
+
+
+@pytest.mark.parametrize("wrap_rows", [None, "plain", "twist"])
+@pytest.mark.parametrize("wrap_cols", [None, "plain", "twist"])
+def test_grid_builder_matches_the_definition_and_restrictions_keep_their_grid(wrap_rows, wrap_cols):
+    rng = np.random.default_rng(5)
+    for H, Wd in [(1, 1), (1, 4), (3, 1), (4, 5)]:
+        mask = rng.random((H, Wd)) > 0.25
+        mask[0, 0] = True
+        b = Board.grid(mask, wrap_rows=wrap_rows, wrap_cols=wrap_cols)
+        labels, nc = _literal_grid(mask, wrap_rows, wrap_cols)
+        assert np.array_equal(b.labels, labels) and np.array_equal(b.nbr_cell, nc)
+        Board(b.labels, b.nbr_cell, b.nbr_leg)  # the checked constructor accepts the joins
+        assert b.grid_spec == GridSpec(H, Wd, wrap_rows, wrap_cols)
+        keep = rng.random(b.n_cells) > 0.3
+        keep[0] = True
+        r = b.restrict(keep)
+        g = Board.from_grid_spec(r.grid_spec, r.mask_of())
+        for name in ("labels", "nbr_cell", "nbr_leg"):
+            assert np.array_equal(getattr(r, name), getattr(g, name))
+        e = b.edge_array()
+        again = Board.from_edges(b.labels, e)
+        assert np.array_equal(again.nbr_cell, b.nbr_cell) and np.array_equal(again.nbr_leg, b.nbr_leg)
+
+
+def test_grid_spec_given_by_hand_is_checked():
+    b = Board.mobius(3, 4)
+    assert Board(b.labels, b.nbr_cell, b.nbr_leg, grid_spec=GridSpec(3, 4, None, "twist")).grid_spec == b.grid_spec
+    with pytest.raises(InvalidProblem, match="not those of the grid"):
+        Board(b.labels, b.nbr_cell, b.nbr_leg, grid_spec=GridSpec(3, 4, None, "plain"))
+    with pytest.raises(InvalidProblem, match="do not fit"):
+        Board(b.labels, b.nbr_cell, b.nbr_leg, grid_spec=GridSpec(2, 4))
+    with pytest.raises(InvalidProblem, match="wrap must be"):
+        Board.from_grid_spec(GridSpec(2, 2, "spiral"), np.ones((2, 2), bool))
+    with pytest.raises(InvalidProblem, match="does not fit"):
+        Board.from_grid_spec(GridSpec(2, 2), np.ones((3, 2), bool))
+    assert Board.from_edges(b.labels, b.edge_array()).grid_spec is None
+
+
+def test_from_edges_reports_bad_cells_and_legs():
+    with pytest.raises(InvalidProblem, match="cell 5 leg 0, which does not exist"):
+        Board.from_edges([[0, 0]], [[5, 0, -1, 0]])
+    with pytest.raises(InvalidProblem, match="cell 0 leg 7, which does not exist"):
+        Board.from_edges([[0, 0], [0, 1]], [[1, 0, 0, 7]])

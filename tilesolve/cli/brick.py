@@ -8,7 +8,8 @@ import secrets
 import click
 
 from tilesolve.cli import options as opt
-from tilesolve.cli.common import check_distinct, check_writable, say
+from tilesolve.cli.common import human_bytes, say
+from tilesolve.cli.outputs import Outputs, stop_if_interrupted
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.jsonio import read_json
 
@@ -35,11 +36,14 @@ boundary_opt = click.option(
 )
 method_opt = click.option("--method", type=click.Choice(_method_choices()), default="auto", show_default=True,
                           help="auto: the linear algorithm (§4) where it applies, SAT otherwise.")
-svg_opt = click.option("--svg", type=click.Path(dir_okay=False), metavar="OUT.svg", help="Also draw the tiling as SVG.")
+svg_opt = click.option("--svg", type=click.Path(dir_okay=False, allow_dash=True), metavar="OUT.svg",
+                       help="Also draw the tiling as SVG ('-' for stdout).")
+colors_opt = click.option("--colors", type=int, default=3, show_default=True, metavar="K",
+                          help="Number of colours #C (edge positions), at least 3.")
 line_opts = opt.compose(
-    click.option("--max-h", type=click.IntRange(min=1), default=None, metavar="N",
+    click.option("--max-h", type=opt.positive_int, default=None, metavar="N",
                  help="No horizontal line through more than N cells (brick tiles; SAT route)."),
-    click.option("--max-v", type=click.IntRange(min=1), default=None, metavar="N",
+    click.option("--max-v", type=opt.positive_int, default=None, metavar="N",
                  help="No vertical line through more than N cells (brick tiles; SAT route)."),
 )
 
@@ -68,36 +72,83 @@ def _svg_ok(svg, n_cells: int) -> None:
         raise InvalidProblem(f"a board of {n_cells:,} cells is too large for an SVG (limit {MAX_SVG_CELLS:,})")
 
 
-def _run(ctx, problem, method, seed, time_limit, output, svg) -> None:
+#: Most colours for brick tiles: building W_B enumerates all K^4 colourings (64 bytes each
+#: while it is built), so K = 64 already needs 1 GiB.
+MAX_BRICK_COLORS = 63
+
+
+def _brick_colors(colors: int) -> None:
+    """Refuse a brick colour count that cannot be built, saying what it would need."""
+    if colors < 3:
+        raise InvalidProblem(f"brick Wang tiles need #C >= 3 colours (Def. 9), got {colors}")
+    if colors > MAX_BRICK_COLORS:
+        tiles = 2 * colors * colors * (colors - 1)
+        raise InvalidProblem(
+            f"--colors {colors:,}: the brick tile set would have {tiles:,} tiles and need "
+            f"{human_bytes(64 * colors**4)} to build; tilesolve builds up to {MAX_BRICK_COLORS} colours"
+        )
+
+
+def board_text(problem, tiling) -> str:
+    """The tiling as text, one line per board row (labels, row 0 first).
+
+    Each cell shows its leg colours W N E S: four digits (``0121``) up to 10 colours, else
+    comma-separated; ``.`` fills a hole.
+
+    >>> from tilesolve.model.board import Board, BoardProblem, WangTileSet
+    >>> p = BoardProblem(Board.rect(1, 2), WangTileSet.brick(3), None)
+    >>> print(board_text(p, [[0, 1, 0, 2], [0, 1, 2, 1]]), end="")
+    0102 0121
+    """
+    import numpy as np
+
+    t = np.asarray(tiling, dtype=np.int64).reshape(-1, 4)
+    lab = problem.board.labels
+    if problem.n_colors <= 10:
+        cells = np.char.add(np.char.add(t[:, 0].astype(str), t[:, 1].astype(str)),
+                            np.char.add(t[:, 2].astype(str), t[:, 3].astype(str)))
+    else:
+        cells = np.array([",".join(map(str, row)) for row in t.tolist()])
+    width = max((len(c) for c in cells.tolist()), default=1)
+    rows, cols = (int(lab[:, 0].max()) + 1, int(lab[:, 1].max()) + 1) if len(lab) else (0, 0)
+    grid = np.full((rows, cols), "." * width, dtype=f"<U{width}")
+    grid[lab[:, 0], lab[:, 1]] = np.char.rjust(cells, width)
+    return "".join(" ".join(row) + "\n" for row in grid.tolist())
+
+
+def _run(ctx, problem, method, seed, time_limit, outs, output, svg) -> None:
     from tilesolve import wang as facade
 
     _svg_ok(svg, problem.board.n_cells)
     sol = facade.solve(problem, method=method, seed=seed, time_limit=time_limit)
-    _finish(ctx, problem, sol, output, svg)
+    _finish(ctx, problem, sol, outs, output, svg)
 
 
-def _finish(ctx, problem, sol, output, svg) -> None:
-    from tilesolve.io.board_json import board_solution_to_dict, write_board_solution
-    from tilesolve.io.jsonio import dumps
+def _finish(ctx, problem, sol, outs, output, svg) -> None:
+    from tilesolve.io.board_json import write_board_solution
 
     written = []
-    if output == "-":
-        click.echo(dumps(board_solution_to_dict(problem, sol)), nl=False)
-    elif output:
-        write_board_solution(output, problem, sol)
-        written.append(output)
-    if svg and sol.status.has_tiling:
-        from tilesolve.io.svg_board import write_board_svg
+    with outs.commit(sol):
+        if output:
+            write_board_solution(output, problem, sol)
+            written.append(output)
+        if svg and sol.status.has_tiling:
+            from tilesolve.io.svg_board import write_board_svg
 
-        write_board_svg(svg, problem, sol.tiling, title=problem.board.describe(),
-                        notes=[f"{sol.status.value} by {sol.method}, seed {sol.seed}"])
-        written.append(svg)
+            write_board_svg(svg, problem, sol.tiling, title=problem.board.describe(),
+                            notes=[f"{sol.status.value} by {sol.method}, seed {sol.seed}"])
+            written.append(svg)
+    if not outs and sol.status.has_tiling:
+        click.echo(board_text(problem, sol.tiling), nl=False)
     say(f"{sol.status.value}: {problem.describe()}")
     say(f"  method {sol.method}" + (f", solver {sol.solver}" if sol.solver else "") + f", {sol.time_s:.3f} s")
     if sol.reason:
         say(f"  {'why' if sol.status.value == 'unsat' else 'stopped'}: {sol.reason}")
     for note in sol.notes:
         say(f"  note: {note}")
+    if not outs and sol.status.has_tiling:
+        say("  printed: each cell's leg colours W N E S ('.' = hole); -o FILE writes the JSON, --svg FILE draws it")
+    written = [w for w in written if w != "-"]
     if written:
         say("  wrote " + ", ".join(written))
     ctx.exit(sol.status.exit_code)
@@ -114,8 +165,7 @@ def brick() -> None:
 
 @brick.command(context_settings=opt.CONTEXT_SETTINGS, epilog=BOARD_HELP + "\n\n" + opt.EXIT_HELP)
 @board_opt
-@click.option("--colors", type=int, default=3, show_default=True, metavar="K",
-              help="Number of colours #C (edge positions), at least 3.")
+@colors_opt
 @boundary_opt
 @opt.seed_opt
 @method_opt
@@ -132,27 +182,29 @@ def solve(ctx, board_spec, colors, boundary, seed, method, time_limit, max_h, ma
       tilesolve brick solve --board rect:40x30 --colors 3 --seed 1 -o wall.json --svg wall.svg
       tilesolve brick solve --board mobius:30x12 --boundary free --method sat -o m.json
       tilesolve brick solve --board mask:shape.png --colors 4 -o s.json
-    """
-    from tilesolve.model.board import BoardProblem, WangTileSet, parse_board_spec
 
-    for p in (output, svg):
-        check_writable(p)
-    check_distinct(output, svg)
+    Without -o or --svg the tiling is printed as text: each cell's leg colours W N E S.
+    """
+    from tilesolve.io.mask import read_board_spec
+    from tilesolve.model.board import BoardProblem, WangTileSet
+
+    outs = Outputs(output, svg)
+    _brick_colors(colors)
     tileset = WangTileSet.brick(colors)
-    board = parse_board_spec(board_spec)
+    board = read_board_spec(board_spec)
     if seed is None:
         seed = secrets.randbelow(2**31)
     problem = BoardProblem(board, tileset, _boundary(boundary, board, colors, seed),
                            max_h=max_h, max_v=max_v)
-    _run(ctx, problem, method, seed, time_limit, output, svg)
+    _run(ctx, problem, method, seed, time_limit, outs, output, svg)
 
 
 @brick.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP)
 @click.option("--size", required=True, metavar="WxH", help="Wall size: W columns by H rows.")
-@click.option("--max-line", type=click.IntRange(min=1), required=True, metavar="N",
+@click.option("--max-line", type=opt.positive_int, required=True, metavar="N",
               help="No horizontal line through more than N cells (and no vertical one, unless --max-v).")
-@click.option("--max-v", type=click.IntRange(min=1), default=None, metavar="N", help="Vertical limit, if different.")
-@click.option("--colors", type=int, default=3, show_default=True, metavar="K", help="Number of colours, at least 3.")
+@click.option("--max-v", type=opt.positive_int, default=None, metavar="N", help="Vertical limit, if different.")
+@colors_opt
 @opt.seed_opt
 @opt.output_opt
 @svg_opt
@@ -163,34 +215,34 @@ def wall(ctx, size, max_line, max_v, colors, seed, output, svg) -> None:
     \b
     Example:
       tilesolve brick wall --size 40x25 --max-line 3 --seed 2 -o wall.json --svg wall.svg
+
+    Without -o or --svg the wall is printed as text: each cell's leg colours W N E S.
     """
     from tilesolve.constructive.brick import brick_wall
     from tilesolve.model.dappled import parse_size
 
-    for p in (output, svg):
-        check_writable(p)
-    check_distinct(output, svg)
+    outs = Outputs(output, svg)
     rows, cols = parse_size(size)
     _svg_ok(svg, rows * cols)
-    if colors < 3:
-        raise InvalidProblem(f"brick Wang tiles need #C >= 3 colours (Def. 9), got {colors}")
+    _brick_colors(colors)
     if seed is None:
         seed = secrets.randbelow(2**31)
     problem, sol = brick_wall(rows, cols, max_line, max_v=max_v, n_colors=colors, seed=seed)
-    _finish(ctx, problem, sol, output, svg)
+    _finish(ctx, problem, sol, outs, output, svg)
 
 
 def _brick_problem(board_spec, colors, boundary, seed):
-    from tilesolve.model.board import BoardProblem, WangTileSet, parse_board_spec
+    from tilesolve.io.mask import read_board_spec
+    from tilesolve.model.board import BoardProblem, WangTileSet
 
     tileset = WangTileSet.brick(colors)
-    board = parse_board_spec(board_spec)
+    board = read_board_spec(board_spec)
     return BoardProblem(board, tileset, _boundary(boundary, board, colors, seed))
 
 
 @brick.command(context_settings=opt.CONTEXT_SETTINGS, epilog=BOARD_HELP + "\n\n" + opt.EXIT_HELP)
 @board_opt
-@click.option("--colors", type=int, default=3, show_default=True, metavar="K", help="Number of colours, at least 3.")
+@colors_opt
 @boundary_opt
 @opt.seed_opt
 @opt.time_limit_opt
@@ -207,6 +259,7 @@ def count(ctx, board_spec, colors, boundary, seed, time_limit) -> None:
 
     problem = _brick_problem(board_spec, colors, boundary, 0 if seed is None else seed)
     res = facade.count(problem, time_limit=time_limit)
+    stop_if_interrupted(res)
     say(f"{'count' if res.value is not None else 'unknown'}: {problem.describe()}  ({res.time_s:.3f} s)")
     if res.value is None:
         say(f"  stopped: {res.note}")
@@ -217,7 +270,7 @@ def count(ctx, board_spec, colors, boundary, seed, time_limit) -> None:
 
 @brick.command(context_settings=opt.CONTEXT_SETTINGS, epilog=BOARD_HELP + "\n\n" + opt.EXIT_HELP)
 @board_opt
-@click.option("--colors", type=int, default=3, show_default=True, metavar="K", help="Number of colours, at least 3.")
+@colors_opt
 @boundary_opt
 @opt.seed_opt
 @opt.time_limit_opt
@@ -296,18 +349,19 @@ def wang_solve(ctx, tiles_path, board_spec, boundary, seed, method, time_limit, 
     \b
     Example:
       tilesolve wang solve --tiles tiles.json --board torus:8x8 --boundary free -o t.json --svg t.svg
-    """
-    from tilesolve.model.board import BoardProblem, parse_board_spec
 
-    for p in (output, svg):
-        check_writable(p)
-    check_distinct(output, svg)
+    Without -o or --svg the tiling is printed as text: each cell's leg colours W N E S.
+    """
+    from tilesolve.io.mask import read_board_spec
+    from tilesolve.model.board import BoardProblem
+
+    outs = Outputs(output, svg)
     ts = _read_tiles(tiles_path)
-    board = parse_board_spec(board_spec)
+    board = read_board_spec(board_spec)
     if seed is None:
         seed = secrets.randbelow(2**31)
     problem = BoardProblem(board, ts, _boundary(boundary, board, ts.n_colors, seed))
-    _run(ctx, problem, method, seed, time_limit, output, svg)
+    _run(ctx, problem, method, seed, time_limit, outs, output, svg)
 
 
 def demo_brick(out, seed: int, time_limit: float):

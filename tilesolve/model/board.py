@@ -21,13 +21,20 @@ A board is stored as two ``(n, 4)`` int64 arrays: ``nbr_cell[a, k]`` is the cell
 leg ``k`` of cell ``a`` and ``nbr_leg[a, k]`` the leg of that cell it meets, or
 ``nbr_cell[a, k] = -1`` for the wall and then ``nbr_leg[a, k]`` is the number of that
 *boundary leg* (``0 .. n_boundary-1``, in order of cell then leg).
+
+Boards cut from a grid (rectangles, tori, cylinders, Möbius strips, Klein bottles, rings,
+masks, and their restrictions) also carry their :class:`GridSpec`: the grid's size and how
+its sides are identified. With the mask of the cells present, that rebuilds the board
+exactly (:meth:`Board.from_grid_spec`), which is how solution files store such boards.
+Reading mask *files* (PNG or text) is :mod:`tilesolve.io.mask`'s job; this module parses
+in-memory text only.
 """
 
 from __future__ import annotations
 
 import re
 from dataclasses import dataclass
-from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
@@ -35,8 +42,8 @@ from tilesolve.errors import InvalidProblem
 
 __all__ = [
     "W", "N", "E", "S", "LEG_NAMES", "MAX_BOARD_CELLS",
-    "Board", "WangTileSet", "BoardProblem",
-    "parse_board_spec", "read_mask", "parse_mask_text",
+    "GridSpec", "Board", "WangTileSet", "BoardProblem",
+    "parse_board_spec", "parse_mask_text",
     "wang_from_nesw", "wang_to_nesw", "random_boundary",
 ]
 
@@ -47,6 +54,20 @@ MAX_BOARD_CELLS = 1 << 26
 
 _DELTA = {W: (0, -1), N: (-1, 0), E: (0, 1), S: (1, 0)}
 _WRAPS = (None, "plain", "twist")
+
+
+class GridSpec(NamedTuple):
+    """The grid a board is cut from: ``rows x cols`` cells, sides identified by
+    ``wrap_rows`` / ``wrap_cols`` (``None``, ``"plain"`` or ``"twist"``, see :meth:`Board.grid`).
+
+    The board's cells are then the cells of a boolean ``(rows, cols)`` mask, numbered in
+    row-major order, with the joins and boundary-leg numbers :meth:`Board.grid` gives them.
+    """
+
+    rows: int
+    cols: int
+    wrap_rows: str | None = None
+    wrap_cols: str | None = None
 
 
 @dataclass(frozen=True, eq=False)
@@ -61,6 +82,10 @@ class Board:
         ``(n, 4)`` int64 joins (see the module docstring).
     kind : str
         How it was built (``"rect"``, ``"torus"``, ``"mobius"``, ``"mask"``, ...).
+    grid_spec : GridSpec, optional
+        The grid the board is cut from, set by the grid builders and kept by
+        :meth:`restrict`; ``None`` for boards given by their joins alone. One given here is
+        checked against the joins.
 
     Examples
     --------
@@ -75,6 +100,7 @@ class Board:
     nbr_cell: np.ndarray
     nbr_leg: np.ndarray
     kind: str = "board"
+    grid_spec: GridSpec | None = None
 
     def __post_init__(self) -> None:
         lab = np.ascontiguousarray(np.asarray(self.labels, dtype=np.int64).reshape(-1, 2))
@@ -106,6 +132,39 @@ class Board:
         for name, arr in (("labels", lab), ("nbr_cell", nc), ("nbr_leg", nl)):
             arr.setflags(write=False)
             object.__setattr__(self, name, arr)
+        if self.grid_spec is not None:
+            spec = GridSpec(*self.grid_spec)
+            same = Board.from_grid_spec(spec, self.mask_of(spec))
+            if not (np.array_equal(same.labels, lab) and np.array_equal(same.nbr_cell, nc)
+                    and np.array_equal(same.nbr_leg, nl)):
+                raise InvalidProblem(f"the board's joins are not those of the grid {spec}")
+            object.__setattr__(self, "grid_spec", spec)
+
+    @classmethod
+    def _built(cls, labels, nbr_cell, nbr_leg, kind: str, grid_spec: GridSpec | None) -> "Board":
+        """A board from joins that a builder made correct by construction (no checks)."""
+        self = object.__new__(cls)
+        for name, arr in (("labels", labels), ("nbr_cell", nbr_cell), ("nbr_leg", nbr_leg)):
+            arr = np.ascontiguousarray(arr, dtype=np.int64)
+            arr.setflags(write=False)
+            object.__setattr__(self, name, arr)
+        object.__setattr__(self, "kind", kind)
+        object.__setattr__(self, "grid_spec", grid_spec)
+        return self
+
+    def mask_of(self, spec: GridSpec | None = None) -> np.ndarray:
+        """The ``(rows, cols)`` boolean mask of the cells present in ``spec`` (default: the
+        board's own :attr:`grid_spec`)."""
+        spec = self.grid_spec if spec is None else spec
+        if spec is None:
+            raise InvalidProblem(f"this {self.kind} board is not cut from a grid")
+        rows, cols = int(spec[0]), int(spec[1])
+        lab = self.labels
+        if lab.size and (lab.min() < 0 or lab[:, 0].max() >= rows or lab[:, 1].max() >= cols):
+            raise InvalidProblem(f"the board's cell labels do not fit a {cols}x{rows} grid")
+        m = np.zeros((rows, cols), bool)
+        m[lab[:, 0], lab[:, 1]] = True
+        return m
 
     # ------------------------------------------------------------------ basics
     @property
@@ -148,16 +207,18 @@ class Board:
         """``{(row, col): cell index}``."""
         return {(int(r), int(c)): i for i, (r, c) in enumerate(self.labels)}
 
-    def edge_list(self) -> list[list[int]]:
-        """``[a, ka, b, kb]`` per edge (``b = -1``: wall, ``kb`` = boundary leg number)."""
-        out = []
+    def edge_array(self) -> np.ndarray:
+        """``(n_edges, 4)`` int64 rows ``[a, ka, b, kb]``, one per edge (``b = -1``: wall,
+        ``kb`` = boundary leg number); a joined pair is listed once, from its smaller
+        ``(cell, leg)``, in order of ``(a, ka)``."""
         nc, nl = self.nbr_cell, self.nbr_leg
-        for a in range(self.n_cells):
-            for k in range(4):
-                b, kb = int(nc[a, k]), int(nl[a, k])
-                if b < 0 or (b, kb) >= (a, k):
-                    out.append([a, k, b, kb])
-        return out
+        here = np.arange(self.n_cells, dtype=np.int64)[:, None] * 4 + np.arange(4)
+        a, k = np.nonzero((nc < 0) | (nc * 4 + nl >= here))
+        return np.stack([a, k, nc[a, k], nl[a, k]], axis=1)
+
+    def edge_list(self) -> list[list[int]]:
+        """:meth:`edge_array` as lists."""
+        return self.edge_array().tolist()
 
     def degree_in_cells(self) -> np.ndarray:
         return (self.nbr_cell >= 0).sum(axis=1)
@@ -208,7 +269,9 @@ class Board:
         nc2 = new[nc]  # -1 maps via new[-1] = -1 (wall stays wall)
         wall = nc2 < 0
         nl[wall] = np.arange(int(wall.sum()))
-        return Board(self.labels[keep_arr], nc2, nl, kind=self.kind if keep_arr.all() else f"{self.kind}|U")
+        # a restriction of a valid board is valid; a grid board stays one (its mask shrinks)
+        return Board._built(self.labels[keep_arr], nc2, nl, self.kind if keep_arr.all() else f"{self.kind}|U",
+                            self.grid_spec)
 
     # ------------------------------------------------------------------ builders
     @classmethod
@@ -230,32 +293,49 @@ class Board:
             raise InvalidProblem(f"board {Wd}x{H} is larger than {MAX_BOARD_CELLS:,} cells")
         if not m.any():
             raise InvalidProblem("the board mask has no cells")
-        index = np.full((H, Wd), -1, dtype=np.int64)
-        rows, cols = np.nonzero(m)
-        n = rows.size
-        index[rows, cols] = np.arange(n)
-        nc = np.full((n, 4), -1, dtype=np.int64)
-        nl = np.full((n, 4), -1, dtype=np.int64)
+        return cls.from_grid_spec(GridSpec(H, Wd, wrap_rows, wrap_cols), m, kind=kind)
+
+    @classmethod
+    def from_grid_spec(cls, spec: GridSpec, mask, *, kind: str = "mask") -> "Board":
+        """The board of the cells of ``mask`` (shape ``(spec.rows, spec.cols)``) on ``spec``'s grid.
+
+        The index of every cell is looked up in the grid padded by one cell all round, the
+        padding holding ``-1`` (the wall) or, where sides are identified, the cells of the
+        opposite side (reversed for a twist): four gathers, no per-cell Python.
+        """
+        H, Wd, wrap_rows, wrap_cols = int(spec[0]), int(spec[1]), spec[2], spec[3]
+        if wrap_rows not in _WRAPS or wrap_cols not in _WRAPS:
+            raise InvalidProblem(f"wrap must be one of {_WRAPS}")
+        _check_dims(H, Wd)
+        m = np.asarray(mask, dtype=bool)
+        if m.shape != (H, Wd):
+            raise InvalidProblem(f"a mask of shape {m.shape} does not fit a {Wd}x{H} grid")
+        flat = m.ravel()
+        cells = np.flatnonzero(flat)
+        n = cells.size
+        if n == 0:
+            raise InvalidProblem("the board mask has no cells")
+        pad = np.full((H + 2, Wd + 2), -1, dtype=np.int64)
+        index = pad[1:-1, 1:-1]
+        index[m] = np.arange(n, dtype=np.int64)
+        if wrap_cols is not None:
+            flip = slice(None, None, -1) if wrap_cols == "twist" else slice(None)
+            pad[1:-1, 0] = index[flip, -1]
+            pad[1:-1, -1] = index[flip, 0]
+        if wrap_rows is not None:
+            flip = slice(None, None, -1) if wrap_rows == "twist" else slice(None)
+            pad[0, 1:-1] = index[-1, flip]
+            pad[-1, 1:-1] = index[0, flip]
+        rows, cols = np.divmod(cells, Wd)
+        at = (rows + 1) * (Wd + 2) + (cols + 1)
+        flat_pad = pad.ravel()
+        nc = np.empty((n, 4), dtype=np.int64)
         for k, (dr, dc) in _DELTA.items():
-            r2, c2 = rows + dr, cols + dc
-            if k in (W, E) and wrap_cols is not None:
-                out = (c2 < 0) | (c2 >= Wd)
-                if wrap_cols == "twist":
-                    r2 = np.where(out, H - 1 - r2, r2)
-                c2 = c2 % Wd
-            if k in (N, S) and wrap_rows is not None:
-                out = (r2 < 0) | (r2 >= H)
-                if wrap_rows == "twist":
-                    c2 = np.where(out, Wd - 1 - c2, c2)
-                r2 = r2 % H
-            ok = (r2 >= 0) & (r2 < H) & (c2 >= 0) & (c2 < Wd)
-            tgt = np.full(n, -1, dtype=np.int64)
-            tgt[ok] = index[r2[ok], c2[ok]]
-            nc[:, k] = tgt
-            nl[:, k] = np.where(tgt >= 0, (k + 2) % 4, -1)
+            np.take(flat_pad, at + (dr * (Wd + 2) + dc), out=nc[:, k])
+        nl = np.where(nc >= 0, (np.arange(4, dtype=np.int64) + 2) % 4, np.int64(-1))
         wall = nc < 0
-        nl[wall] = np.arange(int(wall.sum()))
-        return cls(np.stack([rows, cols], axis=1), nc, nl, kind=kind)
+        nl[wall] = np.arange(int(np.count_nonzero(wall)), dtype=np.int64)
+        return cls._built(np.stack([rows, cols], axis=1), nc, nl, kind, GridSpec(H, Wd, wrap_rows, wrap_cols))
 
     @classmethod
     def rect(cls, rows: int, cols: int) -> "Board":
@@ -374,28 +454,29 @@ class Board:
         except (TypeError, ValueError) as exc:
             raise InvalidProblem(f"board cells/edges are malformed: {exc}") from None
         n = lab.shape[0]
-        nc = np.full((n, 4), -2, dtype=np.int64)
-        nl = np.full((n, 4), -2, dtype=np.int64)
-
-        def put(a, k, b, kb):
-            if not (0 <= a < n and 0 <= k < 4):
-                raise InvalidProblem(f"board edge names cell {a} leg {k}, which does not exist")
-            if nc[a, k] != -2:
-                raise InvalidProblem(f"leg {k} of cell {lab[a].tolist()} is joined twice")
-            nc[a, k], nl[a, k] = b, kb
-
-        for a, ka, b, kb in ed.tolist():
-            if b < 0:
-                put(a, ka, -1, kb)
-            else:
-                if not (0 <= b < n and 0 <= kb < 4):
-                    raise InvalidProblem(f"board edge names cell {b} leg {kb}, which does not exist")
-                put(a, ka, b, kb)
-                if (b, kb) != (a, ka):
-                    put(b, kb, a, ka)
-        if (nc == -2).any():
-            a, k = map(int, np.argwhere(nc == -2)[0])
-            raise InvalidProblem(f"leg {k} of cell {lab[a].tolist()} is not joined to anything")
+        a, ka, b, kb = ed.T
+        bad = ~((a >= 0) & (a < n) & (ka >= 0) & (ka < 4))
+        bad_b = ~bad & (b >= 0) & ~((b < n) & (kb >= 0) & (kb < 4))
+        if bad.any() or bad_b.any():
+            i = int(np.flatnonzero(bad | bad_b)[0])
+            c, k = (a[i], ka[i]) if bad[i] else (b[i], kb[i])
+            raise InvalidProblem(f"board edge names cell {int(c)} leg {int(k)}, which does not exist")
+        # every edge fills the slot of (a, ka), and of (b, kb) too when it joins two legs
+        back = (b >= 0) & ((b != a) | (kb != ka))
+        slot = np.concatenate([a * 4 + ka, b[back] * 4 + kb[back]])
+        to_cell = np.concatenate([np.where(b >= 0, b, -1), a[back]])
+        to_leg = np.concatenate([kb, ka[back]])
+        uses = np.bincount(slot, minlength=4 * n)
+        if (uses > 1).any():
+            s_ = int(np.flatnonzero(uses > 1)[0])
+            raise InvalidProblem(f"leg {s_ % 4} of cell {lab[s_ // 4].tolist()} is joined twice")
+        if (uses == 0).any():
+            s_ = int(np.flatnonzero(uses == 0)[0])
+            raise InvalidProblem(f"leg {s_ % 4} of cell {lab[s_ // 4].tolist()} is not joined to anything")
+        nc = np.empty(4 * n, dtype=np.int64)
+        nl = np.empty(4 * n, dtype=np.int64)
+        nc[slot], nl[slot] = to_cell, to_leg
+        nc, nl = nc.reshape(n, 4), nl.reshape(n, 4)
         return cls(lab, nc, nl, kind=str(kind))
 
     def describe(self) -> str:
@@ -431,46 +512,13 @@ def parse_mask_text(text: str, source: str = "<mask>") -> np.ndarray:
     return m
 
 
-def read_mask(path: str | Path) -> np.ndarray:
-    """Read a mask file: a PNG (opaque pixels are cells; without alpha, non-white pixels)
-    or a text file of ``#``/``.``."""
-    p = Path(path)
-    try:
-        data = p.read_bytes()
-    except OSError as exc:
-        raise InvalidProblem(f"cannot read mask {p}: {exc.strerror or exc}") from None
-    if data[:8] == b"\x89PNG\r\n\x1a\n":
-        import io
-
-        from PIL import Image
-
-        try:
-            img = Image.open(io.BytesIO(data))
-            img.load()
-        except Exception as exc:  # noqa: BLE001 - any decoder failure is a bad file
-            raise InvalidProblem(f"{p}: not a readable PNG ({exc})") from None
-        if img.width * img.height > MAX_BOARD_CELLS:
-            raise InvalidProblem(f"{p}: {img.width}x{img.height} pixels is too large a board")
-        if "A" in img.getbands() or img.info.get("transparency") is not None:
-            m = np.asarray(img.convert("RGBA"))[:, :, 3] > 0
-        else:
-            m = np.asarray(img.convert("L")) < 128
-        if not m.any():
-            raise InvalidProblem(f"{p}: the PNG mask has no opaque (cell) pixels")
-        return m
-    try:
-        text = data.decode("utf-8")
-    except UnicodeDecodeError:
-        raise InvalidProblem(f"{p}: a mask must be a PNG or a text file of '#' and '.'") from None
-    return parse_mask_text(text, str(p))
-
-
 _SPEC_RE = re.compile(r"^\s*(rect|torus|cylinder|mobius|klein|ring)\s*:\s*(\d+)\s*[xX×]\s*(\d+)\s*$")
 
 
 def parse_board_spec(spec: str) -> Board:
-    """``rect:WxH``, ``torus:WxH``, ``cylinder:WxH``, ``mobius:WxH``, ``klein:WxH``,
-    ``ring:WxH`` or ``mask:FILE`` (W columns, H rows).
+    """``rect:WxH``, ``torus:WxH``, ``cylinder:WxH``, ``mobius:WxH``, ``klein:WxH`` or
+    ``ring:WxH`` (W columns, H rows). ``mask:FILE`` names a file, which
+    :func:`tilesolve.io.mask.read_board_spec` reads.
 
     Examples
     --------
@@ -479,7 +527,7 @@ def parse_board_spec(spec: str) -> Board:
     """
     s = str(spec)
     if s.startswith("mask:"):
-        return Board.mask(read_mask(s[5:]))
+        raise InvalidProblem(f"board {spec!r} names a mask file; read it with tilesolve.io.mask.read_board_spec")
     m = _SPEC_RE.match(s)
     if not m:
         raise InvalidProblem(

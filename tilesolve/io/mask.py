@@ -1,0 +1,76 @@
+"""Board masks from files: a PNG picture or a text file of ``#`` (cell) and ``.`` (hole).
+
+Parsing mask text that is already in memory is the model's
+(:func:`tilesolve.model.board.parse_mask_text`); this module reads the files and turns a
+``mask:FILE`` board spec into a board (brick paper, Def. 4: a rectangle restricted to the
+cells of the mask).
+"""
+
+from __future__ import annotations
+
+import io
+import os
+
+import numpy as np
+
+from tilesolve.errors import InvalidProblem
+from tilesolve.model.board import MAX_BOARD_CELLS, Board, parse_board_spec, parse_mask_text
+
+__all__ = ["read_mask", "read_board_spec"]
+
+_PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
+
+
+def read_mask(path: str | os.PathLike) -> np.ndarray:
+    """Read a mask file as a boolean ``(rows, cols)`` array (``True`` = cell).
+
+    A PNG's opaque pixels are cells (without an alpha channel: its dark pixels, grey
+    level below 128); any other file is read as UTF-8 text of ``#`` and ``.``.
+
+    Raises
+    ------
+    InvalidProblem
+        The file cannot be read, is neither a PNG nor such a text, or has no cell.
+    """
+    try:
+        with open(path, "rb") as fh:
+            data = fh.read()
+    except OSError as exc:
+        raise InvalidProblem(f"cannot read mask {path}: {exc.strerror or exc}") from None
+    if data[:8] == _PNG_MAGIC:
+        from PIL import Image
+
+        try:
+            img = Image.open(io.BytesIO(data))
+            img.load()
+        except Exception as exc:  # noqa: BLE001 - any decoder failure is a bad file
+            raise InvalidProblem(f"{path}: not a readable PNG ({exc})") from None
+        if img.width * img.height > MAX_BOARD_CELLS:
+            raise InvalidProblem(f"{path}: {img.width}x{img.height} pixels is too large a board")
+        if "A" in img.getbands() or img.info.get("transparency") is not None:
+            m = np.asarray(img.convert("RGBA"))[:, :, 3] > 0
+        else:
+            m = np.asarray(img.convert("L")) < 128
+        if not m.any():
+            raise InvalidProblem(f"{path}: the PNG mask has no opaque (cell) pixels")
+        return m
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError:
+        raise InvalidProblem(f"{path}: a mask must be a PNG or a text file of '#' and '.'") from None
+    return parse_mask_text(text, str(path))
+
+
+def read_board_spec(spec: str) -> Board:
+    """A board from a command-line spec: ``mask:FILE`` reads the mask file, anything else
+    (``rect:WxH``, ``torus:WxH``, ...) goes to :func:`tilesolve.model.board.parse_board_spec`.
+
+    Examples
+    --------
+    >>> read_board_spec("ring:4x3").describe()
+    'ring board, 10 cells in 4x3, 20 boundary legs'
+    """
+    s = str(spec)
+    if s.startswith("mask:"):
+        return Board.mask(read_mask(s[5:]))
+    return parse_board_spec(s)
