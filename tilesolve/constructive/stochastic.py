@@ -1,0 +1,395 @@
+"""Stochastic Wang and corner tilings, scanline and direct (class notes ch. 3).
+
+Coordinates
+-----------
+Tiles sit with their corners on the integer lattice and are named by their SW (lower-left)
+corner ``(x, y)``, ``y`` pointing north (§2.7, §3.3.1). A *window* ``(x0, y0, w, h)`` is the
+block ``[x0, x0 + w) x [y0, y0 + h)`` of the infinite tiling, returned as
+``grid[row, col]`` with row 0 at the top: ``grid[r, c]`` is the tile at
+``(x0 + c, y0 + h - 1 - r)``. Tiles are numbered by eq. 2.1 (Wang: ``c_N c_E c_S c_W``) or
+eq. 2.5 (corner: ``c_NE c_SE c_SW c_NW``), as :class:`tilesolve.model.tiles.TileSet` does;
+:func:`tile_set` names the set a method's windows are drawn from.
+
+Algorithms
+----------
+``direct`` (§3.3): every tile is a function of hashes of the lattice points around it.
+  *corner* (§3.3.1): corner colours ``h(x+1, y+1), h(x+1, y), h(x, y), h(x, y+1)`` (NE,
+  SE, SW, NW); the complete corner set. *wang, two hashes* (§3.3.2.1): edge colours are sums
+  modulo ``C`` of the pairs ``(h_h, h_v)`` at the corners; the complete Wang set. *wang, edge
+  hash* (§3.3.2.3): ``N, E, S, W = h(2x+1, 2y+2), h(2x+2, 2y+1), h(2x+1, 2y), h(2x, 2y+1)``;
+  the complete Wang set. *wang, sums* (§3.3.2.2): one hash, edge colours are sums of corner
+  colours; the ``C**3`` tiles of the "sums" set. Random access: the tile of a cell is the
+  same in every window that contains it.
+
+``scanline`` (§3.2): tiles are placed west to east, north to south, each matching the tile
+  above and the tile to the left, the remaining colours chosen at random; complete or
+  compact sets (§3.2.1: ``2 C**2`` Wang tiles; §3.2.2: ``2 C**3`` corner tiles). The random
+  choice of a cell is a hash of its coordinates (not a sequential random stream), and the
+  colours the window's first row and column take from outside the window are hashes of the
+  lattice too. Hence: a tile depends only on the cells between it and the window's NW corner,
+  so **two windows with the same NW corner** ``(x0, y0 + h)`` agree where they overlap; with
+  a *complete* set every choice is free and a tile depends on its own cell only (random
+  access as for ``direct``); with a *compact* set windows with different NW corners are
+  different tilings (the algorithm has no random access, §3.3).
+
+Hashes (§3.4.3): ``"long"`` (default), the long-period hash of :func:`tiling_hash` (period
+5,930,659,848), or ``"table"``, one permutation table of the smallest multiple of ``C`` that
+is at least 256 entries (period that size). Tables are drawn from ``seed``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from tilesolve._random import rng_from_seed
+from tilesolve.constructive.hashes import PermutationHash, permutation_table, tiling_hash
+from tilesolve.errors import InvalidProblem, MethodNotApplicable
+from tilesolve.model.tiles import TileSet
+
+__all__ = [
+    "METHODS",
+    "WANG_DIRECT",
+    "HASHES",
+    "MAX_WINDOW_CELLS",
+    "tile_set",
+    "make_hash",
+    "direct_corner",
+    "direct_wang",
+    "scanline_wang",
+    "scanline_corner",
+    "stochastic_window",
+]
+
+METHODS = ("direct", "scanline")
+#: Direct algorithms for Wang tiles: two hash functions (§3.3.2.1), a hash at the edges (§3.3.2.3).
+WANG_DIRECT = ("edges", "two")
+HASHES = ("long", "table")
+#: Largest window (cells) any function here builds in memory.
+MAX_WINDOW_CELLS = 1 << 28
+_I64 = (-(1 << 63), (1 << 63) - 1)
+
+
+# ------------------------------------------------------------------------------------ checks
+def _check_int(v, name: str, lo: int | None = None) -> int:
+    if isinstance(v, bool) or not isinstance(v, (int, np.integer)):
+        raise InvalidProblem(f"{name} must be an integer, got {v!r}")
+    v = int(v)
+    if lo is not None and v < lo:
+        raise InvalidProblem(f"{name} must be >= {lo}, got {v}")
+    return v
+
+
+def _check_window(x0, y0, w, h) -> tuple[int, int, int, int]:
+    x0, y0 = _check_int(x0, "x0"), _check_int(y0, "y0")
+    w, h = _check_int(w, "width", 1), _check_int(h, "height", 1)
+    # Lattice points up to x0 + w + 1 (and twice that for the edge hash) must stay in 64 bits.
+    lo, hi = _I64[0] // 2 + 2, _I64[1] // 2 - 2
+    if not (lo <= x0 and x0 + w <= hi and lo <= y0 and y0 + h <= hi):
+        raise InvalidProblem(f"window [{x0}, {x0 + w}) x [{y0}, {y0 + h}) leaves the 63-bit lattice "
+                             f"({lo} .. {hi}) the hashes address")
+    if w * h > MAX_WINDOW_CELLS:
+        raise InvalidProblem(f"window of {w} x {h} = {w * h:,} tiles needs about {w * h * 4 / 2**30:.1f} GiB; "
+                             f"tilesolve builds at most {MAX_WINDOW_CELLS:,} tiles at once: ask for smaller windows")
+    return x0, y0, w, h
+
+
+def tile_set(kind: str, method: str, colors: int, variant: str = "complete") -> TileSet:
+    """The :class:`TileSet` that ``method`` tiles with; raises when the notes give no such algorithm.
+
+    ``direct`` exists for the complete sets and, for Wang tiles, the ``"sums"`` set of
+    §3.3.2.2 (the notes' "compact" direct algorithm); there is no direct algorithm for
+    compact corner sets (§3.5). ``scanline`` uses complete or compact sets (§3.2).
+    """
+    if method not in METHODS:
+        raise InvalidProblem(f"unknown method {method!r}; choose one of {', '.join(METHODS)}")
+    ts = TileSet(kind, _check_int(colors, "colors", 1), variant=variant)
+    if method == "direct" and variant == "compact":
+        hint = ("use variant 'sums' (the direct algorithm for compact sets, §3.3.2.2) or method 'scanline'"
+                if kind == "wang" else "the notes have none (§3.5); use method 'scanline'")
+        raise MethodNotApplicable(f"no direct stochastic algorithm for the compact {kind} set: {hint}")
+    if method == "scanline" and variant == "sums":
+        raise MethodNotApplicable("the sums set (§3.3.2.2) belongs to the direct algorithm; use method 'direct'")
+    return ts
+
+
+def make_hash(name, colors: int, seed=None):
+    """A 2-D lattice hash whose range is a multiple of ``colors`` (so ``h % colors`` is uniform).
+
+    ``name`` is ``"long"`` (§3.4.3, :func:`tiling_hash`), ``"table"`` (§3.4.1, eq. 3.3, a table
+    of the smallest multiple of ``colors`` that is at least 256) or a hash object with
+    ``outer`` and ``range`` (returned as is).
+    """
+    if hasattr(name, "outer"):
+        if name.range % colors:
+            raise InvalidProblem(f"hash range {name.range} is not a multiple of {colors} colours")
+        return name
+    if name == "long":
+        return tiling_hash(colors, seed=seed)
+    if name == "table":
+        return PermutationHash(permutation_table(colors * -(-256 // colors), seed))
+    raise InvalidProblem(f"unknown hash {name!r}; choose one of {', '.join(HASHES)}")
+
+
+def _lattice(hsh, xs, ys, colors: int) -> np.ndarray:
+    """``h(x, y) % colors`` on the lattice ``ys x xs`` (rows by increasing ``y``), int32."""
+    return hsh.outer(np.asarray(xs, dtype=np.int64), np.asarray(ys, dtype=np.int64), colors)
+
+
+def _out_dtype(colors: int):
+    return np.int32 if colors**4 < 2**31 else np.int64
+
+
+# ------------------------------------------------------------------------------------ direct
+# Lattice arrays are indexed [y - y0, x - x0] (y growing); outputs [row, col] with row 0 at the top.
+@njit(cache=True)
+def _corner_kernel(lat, c, out):
+    """Eq. 2.5 of the corner colours NE, SE, SW, NW read off the lattice (§3.3.1)."""
+    h, w = out.shape
+    for r in range(h):
+        y = h - 1 - r
+        for x in range(w):
+            out[r, x] = ((lat[y + 1, x + 1] * c + lat[y, x + 1]) * c + lat[y, x]) * c + lat[y + 1, x]
+    return out
+
+
+@njit(cache=True)
+def _corner_sums_kernel(hh, hv, c, out):
+    """Eq. 2.1 of the edges N = NW + NE, E = NE + SE, S = SE + SW, W = SW + NW (mod C) of the
+    corner hashes ``hh`` (horizontal edges) and ``hv`` (vertical edges) (§3.3.2.1, §3.3.2.2)."""
+    h, w = out.shape
+    for r in range(h):
+        y = h - 1 - r
+        for x in range(w):
+            n = (hh[y + 1, x] + hh[y + 1, x + 1]) % c
+            e = (hv[y + 1, x + 1] + hv[y, x + 1]) % c
+            s = (hh[y, x + 1] + hh[y, x]) % c
+            wc = (hv[y, x] + hv[y + 1, x]) % c
+            out[r, x] = ((n * c + e) * c + s) * c + wc
+    return out
+
+
+@njit(cache=True)
+def _edge_kernel(hor, ver, c, out):
+    """Eq. 2.1 of N = hor[y + 1, x], E = ver[y, x + 1], S = hor[y, x], W = ver[y, x] (§3.3.2.3)."""
+    h, w = out.shape
+    for r in range(h):
+        y = h - 1 - r
+        for x in range(w):
+            out[r, x] = ((hor[y + 1, x] * c + ver[y, x + 1]) * c + hor[y, x]) * c + ver[y, x]
+    return out
+
+
+def direct_corner(x0, y0, w, h, *, colors: int, seed=None, hash="long") -> np.ndarray:
+    """Window of the direct stochastic corner tiling (§3.3.1, Lagae and Dutré 2006).
+
+    Parameters
+    ----------
+    x0, y0, w, h : int
+        The window ``[x0, x0 + w) x [y0, y0 + h)`` (see the module docstring).
+    colors : int
+        ``C``; tiles of the complete corner set (``C**4`` tiles).
+    seed : int
+        Draws the permutation tables.
+    hash : {"long", "table"}
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(h, w)`` eq. 2.5 indices, row 0 at the top.
+
+    Examples
+    --------
+    >>> g = direct_corner(-2, 5, 4, 3, colors=3, seed=1)
+    >>> g.shape, bool((direct_corner(-1, 6, 1, 1, colors=3, seed=1) == g[1, 1]).all())
+    ((3, 4), True)
+    """
+    x0, y0, w, h = _check_window(x0, y0, w, h)
+    c = _check_int(colors, "colors", 1)
+    lat = _lattice(make_hash(hash, c, seed), np.arange(x0, x0 + w + 1), np.arange(y0, y0 + h + 1), c)
+    return _corner_kernel(lat, c, np.empty((h, w), dtype=_out_dtype(c)))
+
+
+def direct_wang(x0, y0, w, h, *, colors: int, seed=None, algorithm: str = "edges", variant: str = "complete",
+                hash="long") -> np.ndarray:
+    """Window of a direct stochastic Wang tiling (§3.3.2).
+
+    Parameters
+    ----------
+    x0, y0, w, h : int
+        The window (see the module docstring).
+    colors : int
+        ``C``.
+    algorithm : {"edges", "two"}
+        Complete set only: a hash at the tile edges on the doubled lattice (§3.3.2.3), or two
+        hashes ``h_h``, ``h_v`` at the corners summed along each edge (§3.3.2.1).
+    variant : {"complete", "sums"}
+        ``"sums"``: the direct algorithm for compact sets (§3.3.2.2), one hash at the corners,
+        each edge the sum of its two corners modulo ``C``; ``C**3`` tiles.
+    seed, hash
+        As for :func:`direct_corner`.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(h, w)`` eq. 2.1 indices, row 0 at the top.
+
+    Notes
+    -----
+    §3.3.2.1 prints the W edge as ``(c_SW^c + c_NW^v) % C``; ``c_SW^c`` is read as
+    ``c_SW^v`` (vertical edges use ``h_v``, as the E edge does).
+    """
+    x0, y0, w, h = _check_window(x0, y0, w, h)
+    c = _check_int(colors, "colors", 1)
+    tile_set("wang", "direct", c, variant)
+    if variant == "complete" and algorithm not in WANG_DIRECT:
+        raise InvalidProblem(f"unknown direct Wang algorithm {algorithm!r}; choose one of {', '.join(WANG_DIRECT)}")
+    out = np.empty((h, w), dtype=_out_dtype(c))
+    xs, ys = np.arange(x0, x0 + w + 1), np.arange(y0, y0 + h + 1)
+    if variant == "sums" or algorithm == "two":
+        rng = rng_from_seed(seed)
+        hh = _lattice(make_hash(hash, c, rng), xs, ys, c)
+        hv = hh if variant == "sums" else _lattice(make_hash(hash, c, rng), xs, ys, c)
+        return _corner_sums_kernel(hh, hv, c, out)
+    hsh = make_hash(hash, c, seed)
+    # horizontal edges: h(2x + 1, 2y) for y in y0 .. y0 + h; vertical: h(2x, 2y + 1) for x in x0 .. x0 + w
+    hor = _lattice(hsh, 2 * xs[:-1] + 1, 2 * ys, c)
+    ver = _lattice(hsh, 2 * xs, 2 * ys[:-1] + 1, c)
+    return _edge_kernel(hor, ver, c, out)
+
+
+# ------------------------------------------------------------------------------------ scanline
+@njit(cache=True)
+def _scanline_wang_kernel(north, west, pick, colors, compact):
+    """§3.2.1 in scanline order; ``north``/``west`` are the colours met at the window's top
+    row and left column, ``pick[r, c]`` the random choice of cell ``(r, c)`` (row 0 at the top)."""
+    h, w = pick.shape
+    out = np.empty((h, w), dtype=np.int64)
+    south = north.copy()  # S colours of the row above, i.e. the N colours of this row
+    for r in range(h):
+        east = west[r]  # E colour of the cell to the left, i.e. the W colour of this cell
+        for c in range(w):
+            n, wc = south[c], east
+            if compact:  # the two tiles of (N, W): E = N + k, S = W + k, k in {0, 1}
+                k = pick[r, c] & 1
+                e, s = (n + k) % colors, (wc + k) % colors
+            else:  # every (E, S) is a tile: two free colours
+                e, s = pick[r, c] % colors, (pick[r, c] // colors) % colors
+            out[r, c] = ((n * colors + e) * colors + s) * colors + wc
+            south[c] = s
+            east = e
+    return out
+
+
+@njit(cache=True)
+def _scanline_corner_kernel(top, left, pick, colors, compact):
+    """§3.2.2 in scanline order: ``top`` holds the w + 1 corner colours along the window's
+    top edge, ``left`` the h colours down its west edge (below the top corner)."""
+    h, w = pick.shape
+    out = np.empty((h, w), dtype=np.int64)
+    above = top.copy()  # lattice colours on the line above the current row
+    below = np.empty_like(top)
+    for r in range(h):
+        below[0] = left[r]
+        for c in range(w):
+            nw, ne, sw = above[c], above[c + 1], below[c]
+            if compact:  # the two tiles of (NE, NW, SW): SE = x or x + 1, x = NE + NW + SW
+                se = (ne + nw + sw + (pick[r, c] & 1)) % colors
+            else:
+                se = pick[r, c] % colors
+            below[c + 1] = se
+            out[r, c] = ((ne * colors + se) * colors + sw) * colors + nw
+        above, below = below, above
+    return out
+
+
+def _choices(x0, y0, w, h, seed, hash, span: int) -> np.ndarray:
+    """Hash values of the cells of the window and of the virtual cells around it, row 0 at the top.
+
+    ``out[1:, 1:]`` is the window (``out[r + 1, c + 1]`` belongs to ``(x0 + c, y0 + h - 1 - r)``);
+    ``out[0]`` is the row of cells just north of it (``y = y0 + h``, from ``x = x0 - 1``) and
+    ``out[:, 0]`` the column just west of it (``x = x0 - 1``). ``span`` is how many values one
+    choice needs (``C**2`` for two free colours, ``C`` or ``lcm(C, 2)`` otherwise); the hash
+    range is a multiple of it so that every choice is uniform.
+    """
+    hsh = make_hash(hash, span, seed)
+    return hsh.outer(np.arange(x0 - 1, x0 + w), np.arange(y0, y0 + h + 1))[::-1].astype(np.int64)
+
+
+def scanline_wang(x0, y0, w, h, *, colors: int, seed=None, variant: str = "complete", hash="long") -> np.ndarray:
+    """Window of the scanline stochastic Wang tiling (§3.2.1, Cohen et al. 2003).
+
+    The window is tiled from its NW corner, west to east and north to south. Each cell's
+    free choice is a hash of its coordinates; the N colours of the top row and the W colours
+    of the left column are those the same rule gives the virtual cells just outside the
+    window (see the module docstring for what that guarantees).
+
+    Parameters
+    ----------
+    variant : {"complete", "compact"}
+        ``"compact"``: the ``2 C**2`` tiles of :class:`TileSet` (``E = N + k``,
+        ``S = W + k``), one random bit per cell.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(h, w)`` eq. 2.1 indices (int64), row 0 at the top.
+    """
+    x0, y0, w, h = _check_window(x0, y0, w, h)
+    c = _check_int(colors, "colors", 1)
+    tile_set("wang", "scanline", c, variant)
+    compact = variant == "compact"
+    ext = _choices(x0, y0, w, h, seed, hash, math.lcm(c, 2) if compact else c * c)
+    # The colours the virtual cells north and west of the window show it: their S (the
+    # second free colour for a complete set) and E colours.
+    north = ext[0, 1:] % c if compact else (ext[0, 1:] // c) % c
+    west = ext[1:, 0] % c
+    return _scanline_wang_kernel(north, west, ext[1:, 1:], c, compact)
+
+
+def scanline_corner(x0, y0, w, h, *, colors: int, seed=None, variant: str = "complete", hash="long") -> np.ndarray:
+    """Window of the scanline stochastic corner tiling (§3.2.2, Lagae and Dutré 2006).
+
+    As :func:`scanline_wang`; the corners on the window's top and west edges are the SE
+    corners the virtual cells just outside the window choose. ``variant="compact"``: the ``2 C**3`` tiles of :class:`TileSet`
+    (``SE = NE + NW + SW + k``, ``k`` in ``{0, 1}``).
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(h, w)`` eq. 2.5 indices (int64), row 0 at the top.
+    """
+    x0, y0, w, h = _check_window(x0, y0, w, h)
+    c = _check_int(colors, "colors", 1)
+    tile_set("corner", "scanline", c, variant)
+    compact = variant == "compact"
+    ext = _choices(x0, y0, w, h, seed, hash, math.lcm(c, 2) if compact else c)
+    # The corners on the window's top and west edges are the SE corners of the virtual
+    # cells north and west of it.
+    return _scanline_corner_kernel(ext[0] % c, ext[1:, 0] % c, ext[1:, 1:], c, compact)
+
+
+def stochastic_window(kind: str, method: str, region, *, colors: int, seed, variant: str = "complete",
+                      algorithm: str = "edges", hash="long") -> np.ndarray:
+    """One entry point: ``region = (x0, y0, w, h)``; dispatches to the four functions above.
+
+    Examples
+    --------
+    >>> from tilesolve.verify.grid import is_grid_tiling
+    >>> ts = tile_set("corner", "scanline", 3, "compact")
+    >>> g = stochastic_window("corner", "scanline", (0, 0, 6, 4), colors=3, seed=2, variant="compact")
+    >>> is_grid_tiling(g, ts.table(), kind="corner", labels=ts.indices)
+    True
+    """
+    if kind not in ("wang", "corner"):
+        raise InvalidProblem(f"unknown tile kind {kind!r}; choose wang or corner")
+    tile_set(kind, method, colors, variant)
+    x0, y0, w, h = region
+    if method == "direct":
+        if kind == "corner":
+            return direct_corner(x0, y0, w, h, colors=colors, seed=seed, hash=hash)
+        return direct_wang(x0, y0, w, h, colors=colors, seed=seed, algorithm=algorithm, variant=variant, hash=hash)
+    fn = scanline_wang if kind == "wang" else scanline_corner
+    return fn(x0, y0, w, h, colors=colors, seed=seed, variant=variant, hash=hash)
