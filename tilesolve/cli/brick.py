@@ -8,7 +8,7 @@ import secrets
 import click
 
 from tilesolve.cli import options as opt
-from tilesolve.cli.common import human_bytes, say
+from tilesolve.cli.common import big, human_bytes, say
 from tilesolve.cli.outputs import Outputs, stop_if_interrupted
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.jsonio import read_json
@@ -84,7 +84,7 @@ def _brick_colors(colors: int) -> None:
     if colors > MAX_BRICK_COLORS:
         tiles = 2 * colors * colors * (colors - 1)
         raise InvalidProblem(
-            f"--colors {colors:,}: the brick tile set would have {tiles:,} tiles and need "
+            f"--colors {big(colors)}: the brick tile set would have {big(tiles)} tiles and need "
             f"{human_bytes(64 * colors**4)} to build; tilesolve builds up to {MAX_BRICK_COLORS} colours"
         )
 
@@ -235,6 +235,7 @@ def _brick_problem(board_spec, colors, boundary, seed):
     from tilesolve.io.mask import read_board_spec
     from tilesolve.model.board import BoardProblem, WangTileSet
 
+    _brick_colors(colors)
     tileset = WangTileSet.brick(colors)
     board = read_board_spec(board_spec)
     return BoardProblem(board, tileset, _boundary(boundary, board, colors, seed))

@@ -2,17 +2,21 @@
 
 from __future__ import annotations
 
-import os
 import re
 import sys
-from pathlib import Path
 from typing import Iterable
 
 import click
 
 from tilesolve.errors import InvalidProblem
 
-__all__ = ["CliError", "build_problem", "check_writable", "say", "verbosity", "progress_wanted", "split_conditions"]
+__all__ = ["CliError", "usage_error", "build_problem", "check_writable", "say", "verbosity", "progress_wanted",
+           "split_conditions", "check_colors", "human_bytes", "big",
+           "MAX_COMPLETE_TILES"]
+
+#: Most tiles in a complete tile set the CLI builds (``pack``, ``tiles``): C^2 x C_v^2 = 2^24,
+#: i.e. C = 64, a 128 MiB grid of int64 tile indices.
+MAX_COMPLETE_TILES = 2**24
 
 
 class CliError(click.ClickException):
@@ -23,8 +27,18 @@ class CliError(click.ClickException):
         self.exit_code = exit_code
 
     def show(self, file=None) -> None:  # noqa: D102 - click API
-        message = " ".join(self.format_message().split("\n"))
+        message = " ".join(self.format_message().split())
         click.echo(f"tilesolve: error: {message}", err=True)
+
+
+def usage_error(exc: click.UsageError) -> CliError:
+    """A click usage error (bad option value, unknown command, missing argument) as one line.
+
+    ``tilesolve: error: dappled solve: Invalid value for '--method': ... (see tilesolve dappled solve --help)``
+    """
+    path = exc.ctx.command_path if exc.ctx is not None else "tilesolve"
+    where = path.split(" ", 1)[1] + ": " if " " in path else ""
+    return CliError(f"{where}{exc.format_message()} (see {path} --help)", 2)
 
 
 def verbosity() -> int:
@@ -72,6 +86,7 @@ def build_problem(
     The size is checked first (absurd sizes are refused before anything is allocated),
     then the conditions and counts, then the files.
     """
+    from tilesolve.cli.options import MAX_INT
     from tilesolve.io.jsonio import read_problem, read_tiling
     from tilesolve.model.dappled import DappledProblem, parse_condition, parse_count, parse_size
 
@@ -88,6 +103,11 @@ def build_problem(
     rows, cols = parse_size(size)
     conds = tuple(parse_condition(c) for c in split_conditions(conditions))
     tile_counts = tuple(parse_count(k) for k in counts)
+    for what, c, numbers in [("condition", c, (*c.tiles, c.limit or 0)) for c in conds] + \
+                            [("count", k, (k.tile, k.low, k.high or 0)) for k in tile_counts]:
+        if max(numbers) > MAX_INT:
+            raise InvalidProblem(f"{what} {c}: {max(numbers):,} is absurdly large (at most {MAX_INT:,}; "
+                                 "a limit of inf means no limit)")
     fixed = read_tiling(fix, allow_free=True, what="partial tiling") if fix else None
     target = read_tiling(closest_to, what="target tiling") if closest_to else None
     try:
@@ -107,25 +127,35 @@ def build_problem(
 
 
 def check_writable(path: str | None) -> None:
-    """Refuse an output path whose directory is missing, before any work is done."""
-    if not path or path == "-":
-        return
-    p = Path(path)
-    if p.is_dir():
-        raise InvalidProblem(f"cannot write {path}: it is a directory")
-    parent = p.parent if str(p.parent) else Path(".")
-    if not parent.is_dir():
-        raise InvalidProblem(f"cannot write {path}: directory {parent} does not exist")
-    if not os.access(parent, os.W_OK):
-        raise InvalidProblem(f"cannot write {path}: directory {parent} is not writable")
+    """Refuse an output that cannot be written, before any work (see :class:`~tilesolve.cli.outputs.Outputs`)."""
+    from tilesolve.cli.outputs import Outputs
+
+    Outputs(path)
 
 
-def check_distinct(*paths: str | None) -> None:
-    """Refuse two outputs (or an output and an input) that name the same file."""
-    seen: dict[str, str] = {}
-    for p in paths:
-        if p and p != "-":
-            key = os.path.realpath(p)
-            if key in seen:
-                raise InvalidProblem(f"{p} is named twice (as input and output, or as two outputs)")
-            seen[key] = p
+def human_bytes(n: int) -> str:
+    """``1.5 GiB``-style size for messages."""
+    for unit, size in (("TiB", 2**40), ("GiB", 2**30), ("MiB", 2**20), ("KiB", 2**10)):
+        if n >= size:
+            return f"{big(n / size, '.1f')} {unit}"
+    return f"{n} bytes"
+
+
+def big(n: float, fmt: str = ",") -> str:
+    """A count for messages: ``1,998,000`` (``fmt``), or ``2.0e+24`` once it is absurd."""
+    return format(n, fmt) if n < 1e13 else f"{n:.1e}"
+
+
+def check_colors(kind: str, colors: int, colors_v: int | None = None) -> None:
+    """Refuse colour counts below 2, or so large that the complete tile set cannot be built
+    (it has C^2 x C_v^2 tiles), saying what it would need."""
+    for name, c in (("--colors", colors), ("--colors-v", colors_v)):
+        if c is not None and c < 2:
+            raise InvalidProblem(f"{name} must be at least 2, got {c}")
+    cv = colors if colors_v is None else colors_v
+    n = colors**2 * cv**2
+    if n > MAX_COMPLETE_TILES:
+        raise InvalidProblem(
+            f"{big(colors)} colours: the complete {kind} tile set has {big(n)} tiles ({human_bytes(8 * n)} as int64 "
+            f"indices, before any search); tilesolve builds up to {MAX_COMPLETE_TILES:,} tiles (C = 64)"
+        )

@@ -7,7 +7,8 @@ import secrets
 import click
 
 from tilesolve.cli import options as opt
-from tilesolve.cli.common import build_problem, check_distinct, check_writable, progress_wanted, say
+from tilesolve.cli.common import build_problem, progress_wanted, say
+from tilesolve.cli.outputs import Outputs, stop_if_interrupted
 from tilesolve.errors import InvalidProblem
 
 __all__ = ["dappled", "solve", "count", "crosscheck"]
@@ -22,14 +23,16 @@ def dappled() -> None:
     """
 
 
-def _outputs_ok(problem, output, svg, png, repeat) -> None:
-    """Refuse impossible outputs before any solving."""
+def _pictures_ok(ctx, problem, svg, png, repeat) -> None:
+    """Refuse impossible pictures, and picture options without a picture, before any solving."""
     from tilesolve.io.png import MAX_PNG_PIXELS
     from tilesolve.io.svg import check_svg_size
 
-    for p in (output, svg, png):
-        check_writable(p)
-    check_distinct(output, svg, png)
+    if not (svg or png):
+        given = [f"--{n}" for n in ("repeat", "grid") if ctx.get_parameter_source(n) == click.core.ParameterSource.COMMANDLINE]
+        if given:
+            raise InvalidProblem(f"{' and '.join(given)} only {'change' if len(given) > 1 else 'changes'} "
+                                 "the picture: add --svg FILE or --png FILE")
     if svg:
         check_svg_size(problem.rows, problem.cols)
     if png and problem.size * repeat * repeat > MAX_PNG_PIXELS:
@@ -79,13 +82,15 @@ def solve(ctx, method, seed, time_limit, initial, output, svg, png, repeat, grid
       tilesolve dappled solve --size 8x8 --cond H0=2,V1=2 --fix partial.txt --count 1=30..34 -o t.json
 
     The summary (status, method, time, notes, files) goes to stderr; without -o/--svg/--png
-    the tiling itself is printed to stdout as a text grid.
+    the tiling itself is printed to stdout as a text grid (a digit per cell, top row first).
+    The files are written together at the end, or none of them.
     """
     from tilesolve import dappled as facade
-    from tilesolve.io.jsonio import dumps, format_text_grid, read_tiling, solution_to_dict, write_solution
+    from tilesolve.io.jsonio import format_text_grid, read_tiling, write_solution
 
+    outs = Outputs(output, svg, png)
     problem = build_problem(**problem_kw)
-    _outputs_ok(problem, output, svg, png, repeat)
+    _pictures_ok(ctx, problem, svg, png, repeat)
     init = read_tiling(initial, what="initial tiling") if initial else None
     if init is not None:
         if init.shape != problem.shape:
@@ -103,29 +108,29 @@ def solve(ctx, method, seed, time_limit, initial, output, svg, png, repeat, grid
     sol = facade.solve(problem, method=method, seed=seed, time_limit=time_limit, initial=init, progress=progress_wanted())
 
     written: list[str] = []
-    if output == "-":
-        click.echo(dumps(solution_to_dict(problem, sol, arrays=True)), nl=False)
-    elif output:
-        write_solution(output, problem, sol)
-        written.append(output)
-    if sol.status.has_tiling:
-        legend = [f"{sol.status.value} by {sol.method}" + (f", seed {sol.seed}" if sol.seed is not None else "")]
-        if sol.objective is not None:
-            legend.append(f"distance to the target: {sol.objective}")
-        if svg:
-            from tilesolve.io.svg import write_svg
+    with outs.commit(sol):
+        if output:
+            write_solution(output, problem, sol)
+            written.append(output)
+        if sol.status.has_tiling:
+            legend = [f"{sol.status.value} by {sol.method}" + (f", seed {sol.seed}" if sol.seed is not None else "")]
+            if sol.objective is not None:
+                legend.append(f"distance to the target: {sol.objective}")
+            if svg:
+                from tilesolve.io.svg import write_svg
 
-            write_svg(svg, sol.tiling, problem=problem, repeat=repeat, grid=grid, notes=legend)
-            written.append(svg)
-        if png:
-            from tilesolve.io.png import write_png
+                write_svg(svg, sol.tiling, problem=problem, repeat=repeat, grid=grid, notes=legend)
+                written.append(svg)
+            if png:
+                from tilesolve.io.png import write_png
 
-            write_png(png, sol.tiling, repeat=repeat, grid=grid)
-            written.append(png)
-        if not (output or svg or png):
-            click.echo(format_text_grid(sol.tiling), nl=False)
-    elif svg or png:
-        extra.append(f"no picture: status {sol.status.value}, no tiling")
+                write_png(png, sol.tiling, repeat=repeat, grid=grid)
+                written.append(png)
+        elif svg or png:
+            extra.append(f"no picture: status {sol.status.value}, no tiling")
+    if not outs and sol.status.has_tiling:
+        click.echo(format_text_grid(sol.tiling), nl=False)
+    written = [w for w in written if w != "-"]
     _summary(problem, sol, written, extra)
     ctx.exit(sol.status.exit_code)
 
@@ -150,6 +155,7 @@ def count(ctx, method, time_limit, **problem_kw) -> None:
 
     problem = build_problem(**problem_kw)
     res = facade.count(problem, method=method, time_limit=time_limit, progress=progress_wanted())
+    stop_if_interrupted(res)
     exact = res.value is not None and res.status != Status.UNKNOWN
     say(f"{'count' if exact else 'unknown'}: {problem.describe()}")
     say(f"  method {res.method}, {res.time_s:.3f} s")

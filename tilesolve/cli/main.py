@@ -1,21 +1,25 @@
 """The ``tilesolve`` command: one click group, one short module per command (rasterio ``rio`` style).
 
 Every :class:`~tilesolve.errors.TilesolveError` becomes one line ``tilesolve: error: ...`` on
-stderr and its ``exit_code``; Ctrl-C before a result exits 130. Outputs are written
-atomically and only after the inputs have been read and checked, so bad input leaves no file.
+stderr and its ``exit_code``, and so does every usage error (exit 2); Ctrl-C exits 130 and
+SIGTERM 143. Outputs are checked before any work and written together at the end
+(:mod:`tilesolve.cli.outputs`), so bad input or an interruption leaves no file.
 """
 
 from __future__ import annotations
 
+import contextlib
 import logging
 import sys
 
 import click
 
 from tilesolve import __version__
-from tilesolve.cli.common import CliError
+from tilesolve.cli.common import CliError, usage_error
 from tilesolve.cli.options import CONTEXT_SETTINGS, EXIT_HELP
+from tilesolve.cli.outputs import catch_sigterm, interruption
 from tilesolve.errors import TilesolveError
+from tilesolve.io.atomic import remove_temporaries
 
 __all__ = ["main_group", "main", "COMMANDS"]
 
@@ -26,19 +30,23 @@ class TilesolveGroup(click.Group):
     def invoke(self, ctx: click.Context):
         try:
             return super().invoke(ctx)
+        except click.exceptions.NoArgsIsHelpError:
+            raise  # a bare command group: its help, not an error
+        except click.UsageError as exc:
+            raise usage_error(exc) from None
         except TilesolveError as exc:
             raise CliError(str(exc), exc.exit_code) from None
         except KeyboardInterrupt:
-            click.echo("tilesolve: interrupted (no file was written)", err=True)
-            ctx.exit(130)
+            ctx.exit(_interrupted())
         except BrokenPipeError:  # e.g. `tilesolve ... | head`
-            sys.stderr.close()
+            _quiet_stdout()
             ctx.exit(1)
         except OSError as exc:
             where = f"{exc.filename}: " if exc.filename else ""
-            raise CliError(f"{where}{exc.strerror or exc}", 2) from None
-        except MemoryError:
-            raise CliError("out of memory; try a smaller grid", 2) from None
+            raise CliError(f"{where}{(exc.strerror or str(exc)).lower()}", 2) from None
+        except (OverflowError, MemoryError) as exc:
+            what = "a number is too large" if isinstance(exc, OverflowError) else "out of memory"
+            raise CliError(f"{what} for this problem; try smaller sizes or numbers", 2) from None
 
     def list_commands(self, ctx: click.Context) -> list[str]:
         return list(self.commands)  # in registration order, not alphabetical
@@ -91,13 +99,46 @@ _register()
 COMMANDS = main_group.commands
 
 
+def _interrupted() -> int:
+    """Ctrl-C (exit 130) or SIGTERM (exit 143): no file of this run is left."""
+    remove_temporaries()
+    code, what = interruption()
+    click.echo(f"tilesolve: {what} (no file was written)", err=True)
+    return code
+
+
+def _quiet_stdout() -> None:
+    """Standard output is a closed pipe: let the interpreter exit without flushing into it."""
+    import os
+
+    with contextlib.suppress(OSError, ValueError):
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Console-script entry point; returns the exit code."""
+    """Console-script entry point; returns the exit code.
+
+    Every error is one line ``tilesolve: error: ...`` (exit 2 for usage); Ctrl-C exits 130 and
+    SIGTERM 143, both leaving no file of this run.
+    """
+    catch_sigterm()
     try:
-        return main_group.main(args=argv, prog_name="tilesolve", standalone_mode=True)
-    except SystemExit as exc:
-        code = exc.code
-        return code if isinstance(code, int) else (0 if code is None else 1)
+        rv = main_group.main(args=argv, prog_name="tilesolve", standalone_mode=False)
+    except click.exceptions.NoArgsIsHelpError as exc:
+        exc.show()
+        return exc.exit_code
+    except click.UsageError as exc:
+        usage_error(exc).show()
+        return 2
+    except click.ClickException as exc:
+        exc.show()
+        return exc.exit_code
+    except (click.Abort, KeyboardInterrupt):
+        return _interrupted()
+    except BrokenPipeError:
+        _quiet_stdout()
+        return 1
+    return rv if isinstance(rv, int) else 0
 
 
 if __name__ == "__main__":  # pragma: no cover

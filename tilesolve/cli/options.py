@@ -6,6 +6,7 @@ Choices come from the library's registries (:data:`tilesolve.dappled.METHODS`,
 
 from __future__ import annotations
 
+import math
 from typing import Callable
 
 import click
@@ -30,8 +31,9 @@ Exit codes:
   0  sat / optimal / ok
   1  unsat (proved), or the file has violations
   2  bad input or usage (one line on stderr, no file written)
-  3  unknown: time limit or interrupted
-  130  interrupted before any result"""
+  3  unknown: the time limit ran out (the unknown record is written)
+  130  interrupted (Ctrl-C): no file written, existing files untouched
+  143  terminated (SIGTERM): no file written, existing files untouched"""
 
 TILING_FILE_HELP = (
     "a solution JSON file or a text grid (one row per line, top row first, a digit per cell)"
@@ -114,15 +116,45 @@ count_method_opt = click.option(
     show_default=True,
     help="transfer: row-by-row transfer matrix (exact, fast); enumerate: solver enumeration (any problem).",
 )
+#: Largest count-like option value (line limits, tile numbers): far beyond any board, inside a C long.
+MAX_INT = 2**31 - 1
+
+#: A positive whole number option (a line limit, a run length).
+positive_int = click.IntRange(1, MAX_INT)
+
+#: Largest --seed: solver backends take a 32-bit signed seed.
+MAX_SEED = 2**31 - 1
+#: Largest --time-limit in seconds (about 115 days); beyond it timers overflow.
+MAX_TIME_LIMIT = 1e7
+
+
+class Seconds(click.ParamType):
+    """A time limit: a finite number of seconds, > 0 and at most :data:`MAX_TIME_LIMIT`."""
+
+    name = "seconds"
+
+    def convert(self, value, param, ctx) -> float:  # noqa: D102 - click API
+        if isinstance(value, float):
+            return value
+        try:
+            v = float(value)
+        except (TypeError, ValueError):
+            self.fail(f"{value!r} is not a number of seconds", param, ctx)
+        if not (math.isfinite(v) and 0 < v <= MAX_TIME_LIMIT):
+            self.fail(f"{value!r} is not a number of seconds in (0, {MAX_TIME_LIMIT:.0e}]", param, ctx)
+        return v
+
+
 seed_opt = click.option(
-    "--seed", type=click.IntRange(min=0), default=None, metavar="N", help="Random seed; the same seed gives the same tiling."
+    "--seed", type=click.IntRange(0, MAX_SEED), default=None, metavar="N",
+    help=f"Random seed 0..{MAX_SEED}; the same seed gives the same tiling.",
 )
 time_limit_opt = click.option(
     "--time-limit",
-    type=click.FloatRange(min=0, min_open=True),
+    type=Seconds(),
     default=None,
     metavar="S",
-    help="Stop after S seconds with status unknown (exit 3).",
+    help="Stop after S seconds with status unknown (exit 3); the unknown record is still written.",
 )
 initial_opt = click.option(
     "--initial",
@@ -137,11 +169,13 @@ output_opt = click.option(
     "--output",
     type=click.Path(dir_okay=False, allow_dash=True),
     metavar="OUT.json",
-    help="Write the solution JSON here ('-' for stdout). Without -o, --svg or --png the tiling is printed.",
+    help="Write the solution JSON here ('-' for stdout). With no output option the tiling is printed as text.",
 )
-svg_opt = click.option("--svg", type=click.Path(dir_okay=False), metavar="OUT.svg", help="Also draw the tiling as SVG.")
+svg_opt = click.option("--svg", type=click.Path(dir_okay=False, allow_dash=True), metavar="OUT.svg",
+                       help="Also draw the tiling as SVG ('-' for stdout).")
 png_opt = click.option(
-    "--png", type=click.Path(dir_okay=False), metavar="OUT.png", help="Also draw the tiling as PNG (for large grids)."
+    "--png", type=click.Path(dir_okay=False, allow_dash=True), metavar="OUT.png",
+    help="Also draw the tiling as PNG, for large grids ('-' for stdout).",
 )
 repeat_opt = click.option(
     "--repeat",

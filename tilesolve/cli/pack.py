@@ -13,7 +13,8 @@ from __future__ import annotations
 import click
 
 from tilesolve.cli import options as opt
-from tilesolve.cli.common import check_distinct, check_writable, progress_wanted, say
+from tilesolve.cli.common import check_colors, progress_wanted, say
+from tilesolve.cli.outputs import Outputs
 from tilesolve.errors import InvalidProblem
 
 __all__ = ["pack", "check_packing_file"]
@@ -25,6 +26,21 @@ def _methods() -> list[str]:
     from tilesolve.packing import METHODS
 
     return list(METHODS)
+
+
+def _refuse_contradictions(ctx, dimacs, svg) -> None:
+    """Refuse options that would be silently ignored: solving options with --dimacs, --indices without --svg."""
+    from click.core import ParameterSource
+
+    given = [p for p in ctx.command.params
+             if p.name and ctx.get_parameter_source(p.name) == ParameterSource.COMMANDLINE]
+    if dimacs:
+        clash = [p.opts[-1] if p.name != "output" else "-o" for p in given
+                 if p.name not in ("kind", "colors", "colors_v", "fix", "dimacs")]
+        if clash:
+            raise InvalidProblem(f"--dimacs writes the encoding instead of solving; drop {', '.join(clash)}")
+    elif ctx.params.get("indices") and not svg:
+        raise InvalidProblem("--indices labels the SVG tiles: add --svg FILE")
 
 
 def _parse_fix(items) -> tuple[tuple[int, int, int], ...]:
@@ -55,18 +71,20 @@ def _parse_fix(items) -> tuple[tuple[int, int, int], ...]:
 @click.option("--fix", "fix", multiple=True, metavar="R,C,T", help="Pin tile T at row R, column C (repeatable).")
 @opt.seed_opt
 @opt.time_limit_opt
-@click.option("--workers", type=click.IntRange(min=1), default=None, metavar="N",
+@click.option("--workers", type=click.IntRange(1, 256), default=None, metavar="N",
               help="CP-SAT workers; for sat/hybrid/lift/recursive, the processes of the seed portfolio that starts "
                    "when the first run has not finished in 5 s (1: one seed, reproducible) [default: 2].")
 @click.option("--cluster", default=None, metavar="ADDRESS",
               help="Run the seed portfolio on this Dask scheduler (e.g. tcp://host:8786) instead of local "
                    "processes; needs pip install \"tilesolve[cluster]\".")
 @click.option("-o", "--output", type=click.Path(dir_okay=False, allow_dash=True), metavar="PACK.json",
-              help="Write the packing JSON here ('-' for stdout). Without -o the grid is printed.")
-@click.option("--svg", type=click.Path(dir_okay=False), metavar="PACK.svg", help="Also draw the packing as SVG.")
-@click.option("--indices", is_flag=True, help="Write tile indices on the SVG tiles.")
-@click.option("--dimacs", type=click.Path(dir_okay=False), metavar="PACK.cnf",
-              help="Write the SAT encoding as DIMACS CNF instead of solving (a hard benchmark for C >= 4).")
+              help="Write the packing JSON here ('-' for stdout). Without -o or --svg the grid is printed.")
+@click.option("--svg", type=click.Path(dir_okay=False, allow_dash=True), metavar="PACK.svg",
+              help="Also draw the packing as SVG ('-' for stdout).")
+@click.option("--indices", is_flag=True, help="Write tile indices on the SVG tiles (needs --svg).")
+@click.option("--dimacs", type=click.Path(dir_okay=False, allow_dash=True), metavar="PACK.cnf",
+              help="Write the SAT encoding as DIMACS CNF instead of solving (a hard benchmark for C >= 4); "
+                   "takes no solving or drawing options.")
 @click.pass_context
 def pack(ctx, kind, colors, colors_v, method, fix, seed, time_limit, workers, cluster, output, svg, indices,
          dimacs) -> None:
@@ -92,35 +110,39 @@ def pack(ctx, kind, colors, colors_v, method, fix, seed, time_limit, workers, cl
 
     if kind is None or colors is None:
         raise InvalidProblem("tilesolve pack needs --kind corner|wang and --colors C (or: tilesolve pack count ...)")
+    _refuse_contradictions(ctx, dimacs, svg)
+    outs = Outputs(output, svg, dimacs)
+    check_colors(kind, colors, colors_v)
     problem = PackingProblem(kind, colors, colors_v, _parse_fix(fix))
-    for p in (output, svg, dimacs):
-        check_writable(p)
-    check_distinct(output, svg, dimacs)
     if dimacs:
         from tilesolve.encodings.packing import encode_packing
         from tilesolve.io.dimacs import write_dimacs
 
-        problem.check_search_size()
+        from tilesolve.engine.packing import check_search_size
+
+        check_search_size(problem)
         enc = encode_packing(problem)
-        write_dimacs(enc, dimacs)
+        with outs.commit():
+            write_dimacs(enc, dimacs)
         say(f"wrote {dimacs}: {enc.n_vars:,} variables, {len(enc.clauses):,} clauses ({problem.describe()})")
         return
     sol = facade.solve(problem, method=method, seed=seed, time_limit=time_limit, workers=workers, cluster=cluster,
                        progress=progress_wanted())
     written = []
-    if output:
-        from tilesolve.io.packing_json import write_packing
+    with outs.commit(sol):
+        if output:
+            from tilesolve.io.packing_json import write_packing
 
-        write_packing(output, problem, sol)
-        if output != "-":
+            write_packing(output, problem, sol)
             written.append(output)
-    if svg and sol.status.has_tiling:
-        from tilesolve.io.svg_packing import write_packing_svg
+        if svg and sol.status.has_tiling:
+            from tilesolve.io.svg_packing import write_packing_svg
 
-        write_packing_svg(svg, sol.tiling, kind, colors, colors_v=colors_v, indices=indices,
-                          title=f"{kind} packing, C={colors} ({sol.method})")
-        written.append(svg)
-    if not output and sol.status.has_tiling:
+            write_packing_svg(svg, sol.tiling, kind, colors, colors_v=colors_v, indices=indices,
+                              title=f"{kind} packing, C={colors} ({sol.method})")
+            written.append(svg)
+    written = [w for w in written if w != "-"]
+    if not outs and sol.status.has_tiling:
         width = len(str(problem.n_tiles - 1))
         for row in sol.tiling.tolist():
             click.echo(" ".join(f"{v:{width}d}" for v in row))

@@ -5,7 +5,8 @@
     tilesolve tiles --kind wang|corner --colors C [--set complete|compact|sums] [--svg FILE]
 
 The tile indices (eq. 2.1 for Wang tiles, eq. 2.5 for corner tiles) are the last line of
-standard output, space-separated; a one-line summary goes to stderr (hidden by ``-q``).
+standard output, space-separated (unless ``--svg -`` puts the picture there); a one-line
+summary goes to stderr (hidden by ``-q``).
 """
 
 from __future__ import annotations
@@ -13,8 +14,8 @@ from __future__ import annotations
 import click
 
 from tilesolve.cli import options as opt
-from tilesolve.cli.common import check_writable, say
-from tilesolve.errors import InvalidProblem
+from tilesolve.cli.common import check_colors, say
+from tilesolve.cli.outputs import Outputs
 
 __all__ = ["tiles"]
 
@@ -29,8 +30,8 @@ __all__ = ["tiles"]
               help="complete: all C^4 tiles (notes §2.7); compact: two tiles per (N, W) edge colours, 2C^2 "
                    "Wang tiles (§3.2.1), or per (NE, NW, SW) corner colours, 2C^3 corner tiles (§3.2.2); "
                    "sums: the C^3 Wang tiles whose edges are sums of corner colours (§3.3.2.2).")
-@click.option("--svg", type=click.Path(dir_okay=False), metavar="OUT.svg",
-              help="Also draw the set: one tile per index, in index order, labelled.")
+@click.option("--svg", type=click.Path(dir_okay=False, allow_dash=True), metavar="OUT.svg",
+              help="Also draw the set: one tile per index, in index order, labelled ('-' for stdout).")
 def tiles(kind: str, colors: int, variant: str, svg: str | None) -> None:
     """Print the indices of the tiles of a Wang or corner tile set (class notes §2.7, §3.2-3.3).
 
@@ -46,13 +47,14 @@ def tiles(kind: str, colors: int, variant: str, svg: str | None) -> None:
     """
     from tilesolve.model.tiles import TileSet
 
-    if colors < 2:
-        raise InvalidProblem(f"--colors must be >= 2, got {colors}")
+    outs = Outputs(svg)
+    check_colors(kind, colors)
     ts = TileSet(kind, colors, variant=variant)
-    check_writable(svg)
     if svg:
         from tilesolve.io.svg_tileset import write_tileset_svg
 
-        write_tileset_svg(svg, ts)
-    say(ts.describe() + (f"; wrote {svg}" if svg else ""))
-    click.echo(" ".join(map(str, ts.indices.tolist())))
+        with outs.commit():
+            write_tileset_svg(svg, ts)
+    say(ts.describe() + (f"; wrote {svg}" if outs.files else ""))
+    if svg != "-":
+        click.echo(" ".join(map(str, ts.indices.tolist())))

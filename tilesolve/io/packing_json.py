@@ -108,13 +108,7 @@ def packing_from_dict(doc: dict, source: Any = "<document>") -> tuple[PackingPro
 
 def write_packing(path: str | os.PathLike, problem: PackingProblem, solution: Solution) -> None:
     """Write a packing file atomically ('-' writes to stdout)."""
-    text = dumps(packing_to_dict(problem, solution))
-    if str(path) == "-":
-        import sys
-
-        sys.stdout.write(text)
-    else:
-        write_text_atomic(path, text)
+    write_text_atomic(path, dumps(packing_to_dict(problem, solution)))
 
 
 def read_packing(path: str | os.PathLike) -> tuple[PackingProblem, Solution]:

@@ -1,0 +1,157 @@
+"""What a command run leaves behind: its output files, all or none, and nothing on Ctrl-C.
+
+Every command that writes files builds one :class:`Outputs` from all the outputs it was
+given (``-o``, ``--svg``, ``--png``, ``--dimacs``...) before any work. The constructor
+checks them all: each can be written (directory exists and accepts a new file, the name is
+not a directory, an existing device or FIFO is writable), and no two name the same file
+(``-`` is standard output, and only one output may use it). The command then writes through
+the library's writers inside :meth:`Outputs.commit`, which stages every file and commits
+them together when the block ends cleanly: a failure of any write leaves no file of this run
+(:func:`tilesolve.io.atomic.commit_together`).
+
+Interruptions (README, "Exit codes"): Ctrl-C exits 130 and SIGTERM exits 143, writing
+nothing and leaving existing files as they were. The engine turns Ctrl-C inside a solver
+into an ``unknown`` result whose reason starts with ``"interrupted"``;
+:func:`stop_if_interrupted` is the one place that recognises such a result, and turns it
+back into the interruption it was, before any file is written. A *time limit* is not an
+interruption: its ``unknown`` record is written as documented (exit 3).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import signal
+from pathlib import Path
+from typing import Iterator
+
+from tilesolve.errors import InvalidProblem
+from tilesolve.io.atomic import commit_together, probe_writable
+
+__all__ = ["Outputs", "check_target", "stop_if_interrupted", "catch_sigterm", "interruption"]
+
+_state = {"terminated": False, "pid": 0}
+
+
+def check_target(path: str) -> None:
+    """Refuse an output that cannot be written, before any work is done."""
+    if path == "-":
+        return
+    p = Path(path)
+    if p.is_dir() or path.endswith(("/", os.sep)):
+        raise InvalidProblem(f"cannot write {path}: it is a directory")
+    parent = p.parent if str(p.parent) else Path(".")
+    if not parent.exists():
+        raise InvalidProblem(f"cannot write {path}: directory {parent} does not exist")
+    if not parent.is_dir():
+        raise InvalidProblem(f"cannot write {path}: {parent} is not a directory")
+    try:
+        probe_writable(p)
+    except OSError as exc:
+        why = (exc.strerror or str(exc)).lower()
+        if p.exists():
+            raise InvalidProblem(f"cannot write {path}: {why}") from None
+        raise InvalidProblem(f"cannot write {path}: cannot create a file in {parent} ({why})") from None
+
+
+def _same(a: str, b: str) -> bool:
+    if a == "-" or b == "-":
+        return a == b
+    try:
+        return os.path.samefile(a, b)
+    except OSError:
+        return os.path.realpath(a) == os.path.realpath(b)
+
+
+class Outputs:
+    """All the outputs of one command run (``None`` entries are options not given).
+
+    Examples
+    --------
+    >>> import os, tempfile
+    >>> from tilesolve.io.atomic import write_text_atomic
+    >>> d = tempfile.mkdtemp()
+    >>> a, b = os.path.join(d, "a.txt"), os.path.join(d, "b.txt")
+    >>> outs = Outputs(a, None, b)
+    >>> with outs.commit():
+    ...     write_text_atomic(a, "one")
+    ...     os.path.exists(a)                  # staged: not there yet
+    ...     write_text_atomic(b, "two")
+    False
+    >>> sorted(os.listdir(d))
+    ['a.txt', 'b.txt']
+    >>> Outputs(a, "-", a)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    tilesolve.errors.InvalidProblem: ... is named twice (two outputs cannot share a file)
+    """
+
+    def __init__(self, *paths: str | None) -> None:
+        self.paths = [str(p) for p in paths if p]
+        for i, p in enumerate(self.paths):
+            for q in self.paths[:i]:
+                if _same(p, q):
+                    if p == "-":
+                        raise InvalidProblem("only one output can go to standard output ('-')")
+                    raise InvalidProblem(f"{p} is named twice (two outputs cannot share a file)")
+        for p in self.paths:
+            check_target(p)
+
+    def __bool__(self) -> bool:
+        return bool(self.paths)
+
+    @property
+    def files(self) -> list[str]:
+        """The outputs that are files (not standard output), for the summary line."""
+        return [p for p in self.paths if p != "-"]
+
+    @contextlib.contextmanager
+    def commit(self, result=None) -> Iterator[None]:
+        """Stage the writes of the block and commit them together at its end.
+
+        ``result`` (a solution or a count) is checked first: an interrupted one ends the run
+        here, before anything is written (:func:`stop_if_interrupted`).
+        """
+        if result is not None:
+            stop_if_interrupted(result)
+        with commit_together():
+            yield
+
+
+def stop_if_interrupted(result) -> None:
+    """Raise ``KeyboardInterrupt`` if ``result`` is the engine's record of an interruption.
+
+    The engine catches Ctrl-C inside a solver and returns ``unknown`` with a reason (or, for
+    counts, a note) starting with ``"interrupted"``. The CLI does not write that record: it
+    exits 130 (143 after SIGTERM) as if the interruption had reached it directly.
+    """
+    from tilesolve.model.solution import Status
+
+    if getattr(result, "status", None) is not Status.UNKNOWN:
+        return
+    why = getattr(result, "reason", None) or getattr(result, "note", None) or ""
+    if why.startswith("interrupted"):
+        raise KeyboardInterrupt
+
+
+def _on_sigterm(signum, frame) -> None:
+    if os.getpid() != _state["pid"]:  # a child that inherited the handler: die as by default
+        signal.signal(signal.SIGTERM, signal.SIG_DFL)
+        os.kill(os.getpid(), signal.SIGTERM)
+        return
+    _state["terminated"] = True
+    # Unwinds like Ctrl-C: solvers stop through the engine's interrupt path, and every
+    # temporary is removed by the writer that opened it.
+    raise KeyboardInterrupt
+
+
+def catch_sigterm() -> None:
+    """Make SIGTERM in this process behave as Ctrl-C, remembered for the exit code (143)."""
+    _state["pid"] = os.getpid()
+    with contextlib.suppress(ValueError, OSError):  # not in the main thread, or no SIGTERM
+        signal.signal(signal.SIGTERM, _on_sigterm)
+
+
+def interruption() -> tuple[int, str]:
+    """Exit code and word for the interruption being handled: (143, "terminated") after
+    SIGTERM, else (130, "interrupted")."""
+    return (143, "terminated") if _state["terminated"] else (130, "interrupted")
