@@ -26,6 +26,26 @@ optimal, unknown), ``"tiling"`` (rows top to bottom, or null), ``"method"``, ``"
 ``"seed"``, ``"time_s"``, ``"objective"``, ``"reason"``, ``"notes"`` and ``"stats"``.
 Tilings are ``tiling[row][col]`` with row 0 at the top.
 
+Compact arrays
+--------------
+Large grids travel as *encoded arrays* (in ``tilesolve/board-solution`` version 2 and
+``tilesolve/dappled-solution`` version 2)::
+
+    {"dtype": "uint8", "shape": [4096, 4096], "data": "AAEBAAEAAQ..."}
+
+``data`` is standard base64 (RFC 4648, with padding) of the array's values in row-major
+(C) order. ``dtype`` is one of ``int8``, ``uint8``, ``int16``, ``uint16``, ``int32``,
+``uint32``, ``int64`` (little-endian, ``itemsize`` bytes per value) or ``bits``: values 0/1
+packed eight to a byte, the first value in the most significant bit, the last byte padded
+with zeros (``numpy.packbits``). In Python::
+
+    raw = base64.b64decode(a["data"])
+    if a["dtype"] == "bits":
+        v = numpy.unpackbits(numpy.frombuffer(raw, numpy.uint8), count=prod(a["shape"]))
+    else:
+        v = numpy.frombuffer(raw, "<" + numpy.dtype(a["dtype"]).str[1:])
+    v = v.reshape(a["shape"])
+
 Text grids
 ----------
 One row per line, top row first; a cell is a digit, or ``?`` / ``.`` for a free cell in a
@@ -40,6 +60,8 @@ tiles). Blank lines and lines starting with ``#`` are ignored::
 
 from __future__ import annotations
 
+import base64
+import binascii
 import json
 import math
 import os
@@ -74,6 +96,9 @@ __all__ = [
     "read_tiling",
     "parse_text_grid",
     "format_text_grid",
+    "encode_array",
+    "decode_array",
+    "ARRAY_DTYPES",
 ]
 
 DAPPLED_PROBLEM = "tilesolve/dappled-problem"
@@ -235,6 +260,92 @@ def _plain(obj: Any) -> Any:
     if obj is None or isinstance(obj, (bool, int, float, str)):
         return obj
     return str(obj)
+
+
+# ----------------------------------------------------------------------------- compact arrays
+#: The ``dtype`` names of encoded arrays (see the module docstring), smallest first.
+ARRAY_DTYPES: dict[str, np.dtype] = {
+    name: np.dtype(name).newbyteorder("<")
+    for name in ("uint8", "int8", "uint16", "int16", "uint32", "int32", "int64")
+}
+
+
+def encode_array(a) -> dict:
+    """An integer array as an encoded array (module docstring), in the smallest ``dtype``
+    that holds its values: ``bits`` for 0/1 values, else the narrowest integer type.
+
+    >>> encode_array(np.array([[0, 1, 1], [1, 0, 0]]))
+    {'dtype': 'bits', 'shape': [2, 3], 'data': 'cA=='}
+    >>> encode_array([300, -1])["dtype"]
+    'int16'
+    """
+    arr = np.asarray(a)
+    if arr.dtype != bool and not np.issubdtype(arr.dtype, np.integer):
+        raise TypeError(f"encode_array takes integer arrays, not {arr.dtype}")
+    lo, hi = (int(arr.min()), int(arr.max())) if arr.size else (0, 0)
+    if lo >= 0 and hi <= 1:
+        name, raw = "bits", np.packbits(arr.astype(bool, copy=False), axis=None).tobytes()
+    else:
+        name = next(n for n, d in ARRAY_DTYPES.items()
+                    if np.iinfo(d).min <= lo and hi <= np.iinfo(d).max)
+        raw = np.ascontiguousarray(arr, dtype=ARRAY_DTYPES[name]).tobytes()
+    return {"dtype": name, "shape": list(arr.shape), "data": base64.b64encode(raw).decode("ascii")}
+
+
+def decode_array(value: Any, what: str, source: Any, *, ndim: int | None = None) -> np.ndarray:
+    """The int64 array of an encoded array (module docstring), or of plain JSON lists.
+
+    Raises
+    ------
+    InvalidProblem
+        One line naming ``source`` and the field ``what``: not an encoded array or a
+        rectangular list of integers, an unknown dtype, a bad shape, bad base64, a length
+        that does not match the shape, or (for ``bits``) padding that is not zero.
+    """
+    def fail(why: str) -> InvalidProblem:
+        return InvalidProblem(f"{source}: {what!r}: {why}")
+
+    if isinstance(value, list):
+        try:
+            arr = np.array(value)
+        except ValueError:
+            raise fail("rows of different lengths") from None
+        if arr.size and arr.dtype.kind not in "iu" or arr.dtype == object:
+            raise fail("must hold integers only")
+        arr = arr.astype(np.int64)
+    elif isinstance(value, dict):
+        if set(value) != {"dtype", "shape", "data"}:
+            raise fail("an encoded array has exactly the fields 'dtype', 'shape' and 'data'")
+        name, shape, data = value["dtype"], value["shape"], value["data"]
+        if name != "bits" and name not in ARRAY_DTYPES:
+            raise fail(f"unknown dtype {name!r}; expected bits or {', '.join(ARRAY_DTYPES)}")
+        if not isinstance(shape, list) or not all(type(d) is int and d >= 0 for d in shape):
+            raise fail(f"'shape' must be a list of sizes, got {shape!r}")
+        if not isinstance(data, str):
+            raise fail("'data' must be a base64 string")
+        try:
+            raw = base64.b64decode(data, validate=True)
+        except (binascii.Error, ValueError):
+            raise fail("'data' is not valid base64") from None
+        count = math.prod(shape)
+        if name == "bits":
+            if len(raw) != (count + 7) // 8:
+                raise fail(f"'data' holds {len(raw)} bytes; {count} bits need {(count + 7) // 8}")
+            bits = np.unpackbits(np.frombuffer(raw, np.uint8))
+            if bits[count:].any():
+                raise fail("'data' has bits set after the last value")
+            arr = bits[:count].astype(np.int64)
+        else:
+            dt = ARRAY_DTYPES[name]
+            if len(raw) != count * dt.itemsize:
+                raise fail(f"'data' holds {len(raw)} bytes; {count} {name} values need {count * dt.itemsize}")
+            arr = np.frombuffer(raw, dt).astype(np.int64)
+        arr = arr.reshape(shape)
+    else:
+        raise fail(f"expected an encoded array or a list, got {type(value).__name__}")
+    if ndim is not None and arr.ndim != ndim and arr.size:
+        raise fail(f"expected {ndim} dimensions, got shape {list(arr.shape)}")
+    return arr
 
 
 # ----------------------------------------------------------------------------- problems

@@ -1,0 +1,171 @@
+"""Board solution files, versions 1 and 2: round trips, old files, other readers, bad input."""
+
+import base64
+import json
+
+import numpy as np
+import pytest
+
+from tilesolve.errors import InvalidProblem
+from tilesolve.io import jsonio
+from tilesolve.io.board_json import (
+    COMPACT_MIN_CELLS, board_solution_to_dict, read_board_solution, write_board_solution,
+)
+from tilesolve.model.board import Board, BoardProblem, WangTileSet
+from tilesolve.model.solution import Solution, Status
+
+
+def _boards():
+    mob = Board.mobius(5, 7)
+    keep = np.ones(mob.n_cells, bool)
+    keep[[8, 9, 16, 34]] = False  # the last row loses a cell: the grid keeps its 5 rows
+    ring = Board.ring(4, 5)
+    return {
+        "rect": Board.rect(3, 4), "torus": Board.torus(3, 4), "cylinder": Board.cylinder(2, 5),
+        "mobius": Board.mobius(4, 3), "klein": Board.klein(3, 3), "ring": ring,
+        "mask": Board.random_holes(6, 6, 0.3, seed=2), "mobius|U": mob.restrict(keep),
+        "tree": Board.random_tree(12, seed=1),
+        "edges only": Board.from_edges(ring.labels, ring.edge_array(), kind="ring"),
+    }
+
+
+def _problem_and_solution(board, seed=0, tiling=True):
+    rng = np.random.default_rng(seed)
+    beta = rng.integers(-1, 3, board.n_boundary)
+    p = BoardProblem(board, WangTileSet.brick(3), beta, max_h=3 if seed % 2 else None)
+    tiles = rng.integers(0, 3, (board.n_cells, 4)) if tiling else None
+    status = Status.SAT if tiling else Status.UNSAT
+    return p, Solution(status, tiles, method="linear", seed=seed, time_s=0.5, stats={"cycles": 2})
+
+
+def _same(p, s, q, t):
+    for name in ("labels", "nbr_cell", "nbr_leg"):
+        assert np.array_equal(getattr(p.board, name), getattr(q.board, name)), name
+    assert p.board.kind == q.board.kind
+    assert np.array_equal(p.boundary, q.boundary)
+    assert (p.n_colors, p.tileset.is_brick, p.max_h, p.max_v) == (q.n_colors, q.tileset.is_brick, q.max_h, q.max_v)
+    assert t.status == s.status and (t.method, t.seed, t.time_s, t.stats) == (s.method, s.seed, s.time_s, s.stats)
+    assert (s.tiling is None and t.tiling is None) or np.array_equal(s.tiling, t.tiling)
+
+
+@pytest.mark.parametrize("compact", [False, True])
+@pytest.mark.parametrize("name", list(_boards()))
+def test_round_trip_gives_the_same_problem_and_tiling(tmp_path, name, compact):
+    board = _boards()[name]
+    for seed, tiling in ((0, True), (1, True), (2, False)):
+        p, s = _problem_and_solution(board, seed, tiling)
+        path = tmp_path / "s.json"
+        write_board_solution(path, p, s, compact=compact)
+        doc = json.loads(path.read_text())
+        assert doc["version"] == (2 if compact else 1)
+        if compact:
+            assert ("grid" in doc) == (board.grid_spec is not None) and ("edges" in doc) == (board.grid_spec is None)
+        _same(p, s, *read_board_solution(path))
+
+
+def test_large_boards_are_written_compactly_and_small_ones_as_lists():
+    small = Board.rect(64, 64)
+    big = Board.with_holes(70, 70, 8, 5, seed=1)
+    assert small.n_cells <= COMPACT_MIN_CELLS < big.n_cells
+    assert board_solution_to_dict(*_problem_and_solution(small))["version"] == 1
+    doc = board_solution_to_dict(*_problem_and_solution(big))
+    assert doc["version"] == 2 and doc["mask"]["dtype"] == "bits" and doc["tiles"]["dtype"] == "uint8"
+    assert board_solution_to_dict(*_problem_and_solution(Board.rect(80, 80)))["mask"] is None
+
+
+def test_version_2_reads_with_base64_and_numpy_alone(tmp_path):
+    """What the module docstring tells another tool, done by hand."""
+    board = Board.mobius(4, 6).restrict(np.arange(24) != 7)
+    p, s = _problem_and_solution(board, 3)
+    path = tmp_path / "s.json"
+    write_board_solution(path, p, s, compact=True)
+    doc = json.loads(path.read_text())
+    g = doc["grid"]
+    assert (g["rows"], g["cols"], g["wrap_rows"], g["wrap_cols"]) == (4, 6, None, "twist")
+    mask = np.unpackbits(np.frombuffer(base64.b64decode(doc["mask"]["data"]), np.uint8), count=24).reshape(4, 6)
+    assert mask.sum() == 23 and mask[1, 1] == 0
+    tiles = np.frombuffer(base64.b64decode(doc["tiles"]["data"]), "<u1").reshape(doc["tiles"]["shape"])
+    assert np.array_equal(tiles, s.tiling)
+    beta = np.frombuffer(base64.b64decode(doc["boundary"]["data"]), "<i1")
+    assert np.array_equal(beta, p.boundary)
+
+
+def test_reads_a_version_1_file_written_by_hand(tmp_path):
+    doc = {
+        "format": "tilesolve/board-solution", "version": 1, "board_kind": "rect",
+        "leg_order": ["W", "N", "E", "S"], "colors": 3, "tileset": "brick", "max_h": None, "max_v": None,
+        "status": "sat", "method": "linear", "solver": None, "seed": 4, "time_s": 0.1, "reason": None,
+        "notes": [], "stats": {},
+        "cells": [[0, 0], [0, 1]],
+        "edges": [[0, 0, -1, 0], [0, 1, -1, 1], [0, 2, 1, 0], [0, 3, -1, 2],
+                  [1, 1, -1, 3], [1, 2, -1, 4], [1, 3, -1, 5]],
+        "boundary": [1, None, None, 0, None, None],
+        "tiles": [[1, 0, 2, 1], [2, 0, 2, 2]],
+    }
+    path = tmp_path / "v1.json"
+    path.write_text(json.dumps(doc))
+    q, t = read_board_solution(path)
+    b = Board.rect(1, 2)
+    assert np.array_equal(q.board.nbr_cell, b.nbr_cell) and np.array_equal(q.board.nbr_leg, b.nbr_leg)
+    assert q.boundary.tolist() == [1, -1, -1, 0, -1, -1] and t.tiling.tolist() == doc["tiles"]
+
+
+def _v2_doc():
+    return board_solution_to_dict(*_problem_and_solution(Board.with_holes(7, 9, 2, 2, seed=3)), compact=True)
+
+
+def _set(path, value):
+    def change(d):
+        *head, last = path
+        for k in head:
+            d = d[k]
+        d[last] = value
+    return change
+
+
+@pytest.mark.parametrize("change, field, message", [
+    (_set(["tiles", "data"], "not base64!"), "tiles", "not valid base64"),
+    (_set(["tiles", "data"], base64.b64encode(b"\0" * 7).decode()), "tiles", "holds 7 bytes"),
+    (_set(["tiles", "dtype"], "float32"), "tiles", "unknown dtype 'float32'"),
+    (_set(["tiles", "shape"], "63x4"), "tiles", "'shape' must be a list"),
+    (_set(["tiles", "data"], 12), "tiles", "'data' must be a base64 string"),
+    (_set(["tiles"], "brick"), "tiles", "expected an encoded array"),
+    (_set(["tiles", "extra"], 1), "tiles", "exactly the fields"),
+    (_set(["mask", "shape"], [9, 7]), "mask", "0/1 values of shape [7, 9]"),
+    (_set(["mask", "dtype"], "uint8"), "mask", "holds"),
+    (_set(["mask", "data"], base64.b64encode(b"\xff" * 8).decode()), "mask", "bits set after the last value"),
+    (_set(["boundary", "data"], "AAAA"), "boundary", "bytes"),
+    (_set(["grid", "wrap_cols"], "spiral"), "grid", "wrap_cols"),
+    (_set(["grid", "rows"], "7"), "grid", "'rows' must be an integer"),
+    (_set(["grid", "rows"], 0), "grid", "positive"),
+    (lambda d: d.pop("grid"), "grid", "needs 'grid' or 'cells' and 'edges'"),
+])
+def test_malformed_version_2_is_one_line_naming_file_and_field(tmp_path, change, field, message):
+    doc = _v2_doc()
+    change(doc)
+    path = tmp_path / "bad.json"
+    path.write_text(json.dumps(doc))
+    with pytest.raises(InvalidProblem) as err:
+        read_board_solution(path)
+    text = str(err.value)
+    assert message in text and str(path) in text and field in text and "\n" not in text
+
+
+def test_unknown_versions_are_still_refused(tmp_path):
+    doc = _v2_doc()
+    doc["version"] = 3
+    path = tmp_path / "v3.json"
+    path.write_text(json.dumps(doc))
+    with pytest.raises(InvalidProblem, match="version 3 is not supported"):
+        read_board_solution(path)
+
+
+@pytest.mark.parametrize("values", [[0, 1, 1, 0], [[3, 200], [0, 5]], [-1, 40000], [2**40, -3]])
+def test_encoded_arrays_round_trip_in_the_narrowest_dtype(values):
+    a = np.array(values)
+    enc = jsonio.encode_array(a)
+    assert np.array_equal(jsonio.decode_array(json.loads(json.dumps(enc)), "x", "f"), a)
+    width = {"bits": 1 / 8, "uint8": 1, "int16": 2, "int32": 4, "int64": 8}[enc["dtype"]]
+    lo, hi = a.min(), a.max()
+    assert width == (1 / 8 if lo >= 0 and hi <= 1 else 1 if lo >= 0 and hi < 256 else
+                     2 if -2**15 <= lo and hi < 2**15 else 4 if -2**31 <= lo and hi < 2**31 else 8)
