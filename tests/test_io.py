@@ -142,7 +142,7 @@ def _doc() -> dict:
     [
         (lambda d: d.update(format="tilesolve/teapot"), "unknown format"),
         (lambda d: d.pop("format"), "no 'format'"),
-        (lambda d: d.update(version=2), "version 2 is not supported"),
+        (lambda d: d.update(version=3), "version 3 is not supported"),
         (lambda d: d.update(version="1"), "'version' must be an integer"),
         (lambda d: d.update(size={"rows": 3}), "'size'"),
         (lambda d: d.update(size={"rows": 0, "cols": 4}), "positive"),
@@ -348,3 +348,76 @@ def test_readme_commands_match_ci():
     assert "pip install . && tilesolve demo" in readme
     assert 'pip install ".[test]" && python -m pytest -q' in readme
     assert 'pip install ".[test]"' in ci and "python -m pytest -q" in ci
+
+
+def test_compact_solution_round_trip_version_2(tmp_path):
+    p = _rich_problem()
+    tiling = np.array([[1, 2, 0, 2], [2, 1, 1, 0], [0, 2, 1, 2]])
+    sol = Solution(Status.SAT, tiling, method="sat", seed=3, objective=7)
+    path = tmp_path / "s.json"
+    jsonio.write_solution(path, p, sol, compact=True)
+    doc = json.loads(path.read_text())
+    assert doc["version"] == 2 and doc["tiling"]["dtype"] == "uint8" and doc["fixed"]["dtype"] == "int8"
+    assert doc["conditions"][3]["limit"]["shape"] == [3, 4] and doc["closest_to"]["dtype"] == "bits"
+    q, s = jsonio.read_solution(path)
+    assert q.describe() == p.describe() and list(q.conditions) == list(p.conditions)
+    assert np.array_equal(q.fixed, p.fixed) and np.array_equal(q.closest_to, p.closest_to)
+    assert np.array_equal(s.tiling, tiling) and s.tiling.dtype == np.int64 and s.objective == 7
+    assert np.array_equal(jsonio.read_tiling(path), tiling)
+    assert jsonio.read_problem(path).describe() == p.describe()
+
+
+def test_large_solutions_are_written_compactly():
+    rows, cols = 300, 220
+    assert rows * cols > jsonio.COMPACT_MIN_CELLS
+    p = DappledProblem.from_strings(f"{cols}x{rows}", ["H0=2"])
+    t = np.indices((rows, cols)).sum(axis=0) % 2
+    doc = jsonio.solution_to_dict(p, Solution(Status.SAT, t, method="constructive"), arrays=True)
+    assert doc["version"] == 2 and doc["tiling"]["dtype"] == "bits"
+    assert len(doc["tiling"]["data"]) == 4 * ((rows * cols // 8 + 2) // 3)  # one bit a cell, base64
+    _, s = jsonio.solution_from_dict(json.loads(jsonio.dumps(doc)))
+    assert np.array_equal(s.tiling, t)
+    small = jsonio.solution_to_dict(_problem(), Solution(Status.SAT, TILING, method="sat"))
+    assert small["version"] == 1 and small["tiling"] == TILING.tolist()
+
+
+@pytest.mark.parametrize("change, message", [
+    (lambda t: t.update(data="%%%"), "'tiling': 'data' is not valid base64"),
+    (lambda t: t.update(data="AAAA"), "'tiling': 'data' holds 3 bytes; 12 uint8 values need 12"),
+    (lambda t: t.update(dtype="float64"), "'tiling': unknown dtype 'float64'"),
+    (lambda t: t.update(shape=[12]), "'tiling': expected 2 dimensions"),
+    (lambda t: t.update(shape=[3, -4]), "'tiling': 'shape' must be a list of sizes"),
+    (lambda t: t.pop("dtype"), "'tiling': an encoded array has exactly the fields"),
+])
+def test_malformed_compact_tiling_is_one_line(tmp_path, change, message):
+    doc = jsonio.solution_to_dict(_problem(n_tiles=3), Solution(Status.SAT, TILING * 2 % 3, method="sat"),
+                                  compact=True)
+    change(doc["tiling"])
+    path = tmp_path / "bad.json"
+    path.write_text(json.dumps(doc))
+    with pytest.raises(InvalidProblem) as err:
+        jsonio.read_solution(path)
+    text = str(err.value)
+    assert message in text and text.startswith(str(path)) and "\n" not in text
+
+
+def test_encoded_arrays_need_version_2(tmp_path):
+    doc = jsonio.solution_to_dict(_problem(), Solution(Status.SAT, TILING, method="sat"), compact=True)
+    doc["version"] = 1
+    with pytest.raises(InvalidProblem, match="encoded arrays need version 2"):
+        jsonio.solution_from_dict(doc, "f.json")
+    with pytest.raises(ValueError):
+        jsonio.problem_to_dict(_problem(), compact=True)
+
+
+def test_list_grids_read_fast_keep_their_messages():
+    doc = _doc()
+    doc["tiling"] = [[0, 1, 1, 0], [1, 0, 0, True], [0, 1, 1, 0]]
+    with pytest.raises(InvalidProblem, match=r"'tiling': row 1, col 3 holds True, not a tile number"):
+        jsonio.solution_from_dict(doc)
+    doc["tiling"] = [[0, 1, 1, 0], [1, 0, 0, -2], [0, 1, 1, 0]]
+    with pytest.raises(InvalidProblem, match=r"'tiling': row 1, col 3 holds -2, not a tile number"):
+        jsonio.solution_from_dict(doc)
+    doc["tiling"] = [[0, 1, 1, 0], [1, 0, 0, 1.5], [0, 1, 1, 0]]
+    with pytest.raises(InvalidProblem, match=r"'tiling': row 1, col 3 holds 1.5, not a tile number"):
+        jsonio.solution_from_dict(doc)

@@ -26,6 +26,13 @@ optimal, unknown), ``"tiling"`` (rows top to bottom, or null), ``"method"``, ``"
 ``"seed"``, ``"time_s"``, ``"objective"``, ``"reason"``, ``"notes"`` and ``"stats"``.
 Tilings are ``tiling[row][col]`` with row 0 at the top.
 
+Dappled solutions, version 2
+----------------------------
+Solutions of grids of more than :data:`COMPACT_MIN_CELLS` cells are written as version 2
+of ``tilesolve/dappled-solution``: the fields of version 1, with every grid (``tiling``,
+``fixed``, ``closest_to`` and the ``limit`` of per-cell conditions) an *encoded array*
+(below) instead of a list of rows. Readers take both versions.
+
 Compact arrays
 --------------
 Large grids travel as *encoded arrays* (in ``tilesolve/board-solution`` version 2 and
@@ -99,6 +106,8 @@ __all__ = [
     "encode_array",
     "decode_array",
     "ARRAY_DTYPES",
+    "DAPPLED_SOLUTION_VERSIONS",
+    "COMPACT_MIN_CELLS",
 ]
 
 DAPPLED_PROBLEM = "tilesolve/dappled-problem"
@@ -111,6 +120,11 @@ FORMATS: dict[str, frozenset[int]] = {
     "tilesolve/board-solution": frozenset({1}),  # tilesolve.io.board_json
     "tilesolve/packing": frozenset({1}),  # tilesolve.io.packing_json
 }
+
+#: Versions of ``tilesolve/dappled-solution`` this module reads (problems are version 1).
+DAPPLED_SOLUTION_VERSIONS = frozenset({1, 2})
+#: Dappled solutions of more cells than this are written as version 2 (encoded arrays).
+COMPACT_MIN_CELLS = 1 << 16
 
 _PROBLEM_KEYS = {"format", "version", "size", "n_tiles", "conditions", "cyclic", "fixed", "counts", "closest_to"}
 _SOLUTION_KEYS = _PROBLEM_KEYS | {
@@ -349,27 +363,32 @@ def decode_array(value: Any, what: str, source: Any, *, ndim: int | None = None)
 
 
 # ----------------------------------------------------------------------------- problems
-def _condition_to_json(cond: Condition) -> Any:
+def _condition_to_json(cond: Condition, grid: Callable[[np.ndarray], Any]) -> Any:
     if cond.is_uniform:
         return str(cond)
-    return {"axis": cond.axis, "tiles": list(cond.tiles), "limit": cond.limit.tolist()}
+    return {"axis": cond.axis, "tiles": list(cond.tiles), "limit": grid(cond.limit)}
 
 
-def problem_to_dict(problem: DappledProblem, *, format: str = DAPPLED_PROBLEM, arrays: bool = False) -> dict:
+def problem_to_dict(problem: DappledProblem, *, format: str = DAPPLED_PROBLEM, arrays: bool = False,
+                    compact: bool = False) -> dict:
     """The JSON document of ``problem`` (format ``tilesolve/dappled-problem``, version 1).
 
-    With ``arrays=True`` grids stay numpy arrays (for :func:`dumps`, which writes them fast).
+    With ``arrays=True`` grids stay numpy arrays (for :func:`dumps`, which writes them fast);
+    with ``compact=True`` (solutions only) they are encoded arrays, in version 2.
     """
-    grid = (lambda a: a) if arrays else (lambda a: a.tolist())  # noqa: E731
+    if compact and format != DAPPLED_SOLUTION:
+        raise ValueError("only solution documents have a compact version")
+    grid: Callable[[np.ndarray], Any]
+    grid = encode_array if compact else (lambda a: a) if arrays else (lambda a: a.tolist())  # noqa: E731
     from tilesolve import __version__
 
     doc: dict[str, Any] = {
         "format": format,
-        "version": 1,
+        "version": 2 if compact else 1,
         "created_by": f"tilesolve {__version__}",
         "size": {"rows": problem.rows, "cols": problem.cols},
         "n_tiles": problem.n_tiles,
-        "conditions": [_condition_to_json(c) for c in problem.conditions],
+        "conditions": [_condition_to_json(c, grid) for c in problem.conditions],
         "cyclic": problem.cyclic,
     }
     if problem.fixed is not None:
@@ -389,7 +408,7 @@ def problem_from_dict(doc: dict, source: Any = "<document>") -> DappledProblem:
     InvalidProblem
         On a missing or malformed field, with the field's name.
     """
-    check_document(doc, source, formats=(DAPPLED_PROBLEM, DAPPLED_SOLUTION))
+    version = _dappled_header(doc, source, (DAPPLED_PROBLEM, DAPPLED_SOLUTION))
     allowed = (_SOLUTION_KEYS if doc["format"] == DAPPLED_SOLUTION else _PROBLEM_KEYS) | _INFO_KEYS
     unknown = sorted(set(doc) - allowed)
     if unknown:
@@ -399,15 +418,15 @@ def problem_from_dict(doc: dict, source: Any = "<document>") -> DappledProblem:
     conditions = doc.get("conditions", [])
     if not isinstance(conditions, list):
         raise InvalidProblem(f"{source}: 'conditions' must be a list, e.g. [\"H0=2\", \"V1=3\"]")
-    conds = tuple(_condition(c, i, source) for i, c in enumerate(conditions))
+    conds = tuple(_condition(c, i, source, version) for i, c in enumerate(conditions))
     cyclic = doc.get("cyclic", False)
     if not isinstance(cyclic, bool):
         raise InvalidProblem(f"{source}: 'cyclic' must be true or false, got {cyclic!r}")
     counts = doc.get("counts", [])
     if not isinstance(counts, list):
         raise InvalidProblem(f"{source}: 'counts' must be a list, e.g. [\"1=8\", \"0=4..10\"]")
-    fixed = _opt_grid(doc.get("fixed"), "fixed", source, allow_free=True)
-    closest = _opt_grid(doc.get("closest_to"), "closest_to", source, allow_free=False)
+    fixed = _opt_grid(doc.get("fixed"), "fixed", source, allow_free=True, version=version)
+    closest = _opt_grid(doc.get("closest_to"), "closest_to", source, allow_free=False, version=version)
     try:
         return DappledProblem(
             rows,
@@ -421,6 +440,16 @@ def problem_from_dict(doc: dict, source: Any = "<document>") -> DappledProblem:
         )
     except InvalidProblem as exc:
         raise InvalidProblem(f"{source}: {exc}") from None
+
+
+def _dappled_header(doc: Any, source: Any, formats: tuple[str, ...]) -> int:
+    """The document's version: version 2 of a solution is read here, anything else goes
+    through :func:`check_document`."""
+    if DAPPLED_SOLUTION in formats and isinstance(doc, dict) and doc.get("format") == DAPPLED_SOLUTION \
+            and type(doc.get("version")) is int and doc["version"] in DAPPLED_SOLUTION_VERSIONS - {1}:
+        return doc["version"]
+    check_document(doc, source, formats=formats)
+    return 1
 
 
 def _size(doc: dict, source: Any) -> tuple[int, int]:
@@ -441,7 +470,7 @@ def _int(value: Any, name: str, source: Any) -> int:
     return value
 
 
-def _condition(c: Any, i: int, source: Any) -> Condition:
+def _condition(c: Any, i: int, source: Any, version: int = 1) -> Condition:
     try:
         if isinstance(c, str):
             return parse_condition(c)
@@ -453,7 +482,7 @@ def _condition(c: Any, i: int, source: Any) -> Condition:
             if not isinstance(tiles, list) or not all(isinstance(t, int) and not isinstance(t, bool) for t in tiles):
                 raise InvalidProblem(f"'tiles' must be a tile number or a list of them, got {c['tiles']!r}")
             limit = c["limit"]
-            if isinstance(limit, list):
+            if isinstance(limit, list) or (version >= 2 and isinstance(limit, dict)):
                 limit = _grid(limit, "limit", allow_free=False)
             elif limit in ("inf", "∞", None):
                 limit = None
@@ -479,9 +508,33 @@ def _count(k: Any, source: Any) -> TileCount:
 
 
 def _grid(value: Any, what: str, *, allow_free: bool) -> np.ndarray:
-    """A rectangular list of lists of ints as an int64 array (``-1`` allowed if ``allow_free``)."""
-    if not isinstance(value, list) or not value or not all(isinstance(r, list) for r in value):
-        raise InvalidProblem(f"{what!r} must be a non-empty list of rows (lists of tile numbers)")
+    """A rectangular list of lists of ints, or an encoded array, as an int64 array
+    (``-1`` allowed if ``allow_free``)."""
+    if isinstance(value, dict):
+        arr = decode_array(value, what, "", ndim=2)
+        if arr.size == 0:
+            raise InvalidProblem(f"{what!r} must be a non-empty grid")
+    else:
+        if not isinstance(value, list) or not value or not all(isinstance(r, list) for r in value):
+            raise InvalidProblem(f"{what!r} must be a non-empty list of rows (lists of tile numbers)")
+        types: set[type] = set()
+        for row in value:
+            types.update(map(type, row))
+        try:
+            arr = np.array(value) if types == {int} else None
+        except (ValueError, OverflowError):
+            arr = None
+        if arr is None or arr.ndim != 2 or not arr.size:
+            _grid_error(value, what)
+    low = -1 if allow_free else 0
+    if arr.min() < low or arr.max() > 2**31:
+        r, c = np.argwhere((arr < low) | (arr > 2**31))[0]
+        raise InvalidProblem(f"{what!r}: row {r}, col {c} holds {arr[r, c]}, not a tile number")
+    return arr.astype(np.int64, copy=False)
+
+
+def _grid_error(value: list, what: str) -> None:
+    """Raise the one-line error for the first thing wrong in a list of rows."""
     width = len(value[0])
     for r, row in enumerate(value):
         if len(row) != width or not row:
@@ -489,18 +542,18 @@ def _grid(value: Any, what: str, *, allow_free: bool) -> np.ndarray:
         for c, v in enumerate(row):
             if isinstance(v, bool) or not isinstance(v, int):
                 raise InvalidProblem(f"{what!r}: row {r}, col {c} holds {v!r}, not a tile number")
-            if v < -1 or (v == -1 and not allow_free) or v > 2**31:
-                raise InvalidProblem(f"{what!r}: row {r}, col {c} holds {v}, not a tile number")
-    return np.array(value, dtype=np.int64)
+    raise InvalidProblem(f"{what!r} must be a grid of tile numbers")
 
 
-def _opt_grid(value: Any, what: str, source: Any, *, allow_free: bool) -> np.ndarray | None:
+def _opt_grid(value: Any, what: str, source: Any, *, allow_free: bool, version: int = 1) -> np.ndarray | None:
     if value is None:
         return None
+    if isinstance(value, dict) and version < 2:
+        raise InvalidProblem(f"{source}: {what!r} must be a list of rows (encoded arrays need version 2)")
     try:
         return _grid(value, what, allow_free=allow_free)
     except InvalidProblem as exc:
-        raise InvalidProblem(f"{source}: {exc}") from None
+        raise InvalidProblem(f"{source}: {str(exc).removeprefix(': ')}") from None
 
 
 # ----------------------------------------------------------------------------- solutions
@@ -560,16 +613,23 @@ def solution_from_provenance(doc: dict, source: Any, tiling, *, what: str = "til
     )
 
 
-def solution_to_dict(problem: DappledProblem, solution: Solution, *, arrays: bool = False) -> dict:
+def solution_to_dict(problem: DappledProblem, solution: Solution, *, arrays: bool = False,
+                     compact: bool | None = None) -> dict:
     """The JSON document of a solution, carrying its whole problem (``tilesolve/dappled-solution``).
 
     With ``arrays=True`` grids stay numpy arrays (for :func:`dumps`, which writes them fast).
+    ``compact`` writes version 2 (grids as encoded arrays); by default, for grids of more
+    than :data:`COMPACT_MIN_CELLS` cells.
     """
-    doc = problem_to_dict(problem, format=DAPPLED_SOLUTION, arrays=arrays)
+    if compact is None:
+        compact = problem.rows * problem.cols > COMPACT_MIN_CELLS
+    doc = problem_to_dict(problem, format=DAPPLED_SOLUTION, arrays=arrays, compact=compact)
     tiling = None if solution.tiling is None else np.asarray(solution.tiling)
     doc.update(provenance_to_dict(solution))
     doc["objective"] = solution.objective
-    doc["tiling"] = tiling if arrays or tiling is None else tiling.tolist()
+    if tiling is not None:
+        tiling = encode_array(tiling) if compact else tiling if arrays else tiling.tolist()
+    doc["tiling"] = tiling
     return doc
 
 
@@ -579,9 +639,9 @@ def solution_from_dict(doc: dict, source: Any = "<document>") -> tuple[DappledPr
     The tiling is read as written (any rectangular grid of integers): checking it against
     the problem is the verifier's job, so a corrupted tiling is reported there, with positions.
     """
-    check_document(doc, source, formats=(DAPPLED_SOLUTION,))
+    version = _dappled_header(doc, source, (DAPPLED_SOLUTION,))
     problem = problem_from_dict(doc, source)
-    tiling = _opt_grid(doc.get("tiling"), "tiling", source, allow_free=True)
+    tiling = _opt_grid(doc.get("tiling"), "tiling", source, allow_free=True, version=version)
     return problem, solution_from_provenance(doc, source, tiling)
 
 
@@ -591,19 +651,20 @@ def write_problem(path: str | os.PathLike, problem: DappledProblem) -> None:
     write_text_atomic(path, dumps(problem_to_dict(problem, arrays=True)))
 
 
-def write_solution(path: str | os.PathLike, problem: DappledProblem, solution: Solution) -> None:
-    """Write a ``tilesolve/dappled-solution`` file atomically."""
-    write_text_atomic(path, dumps(solution_to_dict(problem, solution, arrays=True)))
+def write_solution(path: str | os.PathLike, problem: DappledProblem, solution: Solution, *,
+                   compact: bool | None = None) -> None:
+    """Write a ``tilesolve/dappled-solution`` file atomically (``compact`` as in :func:`solution_to_dict`)."""
+    write_text_atomic(path, dumps(solution_to_dict(problem, solution, arrays=True, compact=compact)))
 
 
 def read_problem(path: str | os.PathLike) -> DappledProblem:
     """Read the problem of a problem *or* solution file."""
-    return problem_from_dict(load_document(path, formats=(DAPPLED_PROBLEM, DAPPLED_SOLUTION)), path)
+    return problem_from_dict(read_json(path), path)
 
 
 def read_solution(path: str | os.PathLike) -> tuple[DappledProblem, Solution]:
-    """Read a solution file as ``(problem, solution)``."""
-    return solution_from_dict(load_document(path, formats=(DAPPLED_SOLUTION,)), path)
+    """Read a solution file (version 1 or 2) as ``(problem, solution)``."""
+    return solution_from_dict(read_json(path), path)
 
 
 def read_tiling(path: str | os.PathLike, *, allow_free: bool = False, what: str = "tiling") -> np.ndarray:
@@ -630,7 +691,7 @@ def read_tiling(path: str | os.PathLike, *, allow_free: bool = False, what: str 
         doc = _parse_json(text, path)
         if isinstance(doc, list):
             return _opt_grid(doc, what, path, allow_free=allow_free)
-        check_document(doc, path, formats=(DAPPLED_PROBLEM, DAPPLED_SOLUTION))
+        _dappled_header(doc, path, (DAPPLED_PROBLEM, DAPPLED_SOLUTION))
         if doc["format"] == DAPPLED_SOLUTION:
             _, sol = solution_from_dict(doc, path)
             if sol.tiling is None:
