@@ -69,13 +69,13 @@ def board_violations(tiling, problem) -> list[Violation]:
         return [Violation("shape", f"tiling has shape {t.shape}, the board needs ({n}, 4): 4 leg colours per cell")]
     if t.size and not np.issubdtype(t.dtype, np.integer):
         return [Violation("colour", "leg colours must be integers")]
-    t = t.astype(np.int64)
+    t = t.astype(np.int64, copy=False)
     out: list[Violation] = []
-    bad = (t < 0) | (t >= k)
-    for a, leg in np.argwhere(bad):
-        r, c = _where(labels, a)
-        out.append(Violation("colour", f"leg {_LEGS[leg]} has colour {int(t[a, leg])}, outside C = 0..{k - 1}", r, c))
-    if out:
+    if t.size and (int(t.min()) < 0 or int(t.max()) >= k):
+        for a, leg in np.argwhere((t < 0) | (t >= k)):
+            r, c = _where(labels, a)
+            out.append(Violation("colour", f"leg {_LEGS[leg]} has colour {int(t[a, leg])}, outside C = 0..{k - 1}",
+                                 r, c))
         return out
     # (1) tiles in W
     if problem.tileset.is_brick:
@@ -94,13 +94,14 @@ def board_violations(tiling, problem) -> list[Violation]:
         for a in np.flatnonzero(~ok):
             r, c = _where(labels, a)
             out.append(Violation("tile", f"tile {t[a].tolist()} (W, N, E, S) is not in the tile set", r, c))
-    # joined legs agree
-    a_idx, legs = np.nonzero(nc >= 0)
-    b_idx, b_legs = nc[a_idx, legs], nl[a_idx, legs]
-    first = (a_idx * 4 + legs) <= (b_idx * 4 + b_legs)
-    mism = first & (t[a_idx, legs] != t[b_idx, b_legs])
+    # joined legs agree: leg slot a*4+k meets slot b*4+kb (flat arrays, one gather)
+    slot = np.arange(4 * n, dtype=np.int64)
+    ncf = nc.ravel()
+    other = np.where(ncf >= 0, ncf * 4 + nl.ravel(), slot)
+    tf = t.ravel()
+    mism = (tf != tf[other]) & (slot <= other)  # each join once, from its smaller slot
     for i in np.flatnonzero(mism):
-        a, leg, b, bl = int(a_idx[i]), int(legs[i]), int(b_idx[i]), int(b_legs[i])
+        a, leg, b, bl = int(i) // 4, int(i) % 4, int(other[i]) // 4, int(other[i]) % 4
         r, c = _where(labels, a)
         out.append(Violation(
             "edge",

@@ -124,10 +124,11 @@ def _condition_cells(tiling: np.ndarray, cond: Condition, cyclic: bool) -> np.nd
         return np.empty((0, 2), np.int64)
     ax = 1 if cond.axis == "H" else 0
     line = cols if ax == 1 else rows
-    if not cyclic and lim >= line:
+    if not cyclic and not per_cell and lim >= line:
         return np.empty((0, 2), np.int64)  # no line holds lim + 1 cells
-    # the lim cells before each cell along the axis (the halo), wrapped or padded as non-members
-    halo = min(lim, line) if cyclic else lim
+    # the lim cells before each cell along the axis (the halo), wrapped or padded as
+    # non-members; no run reaches further back than a whole line
+    halo = min(lim, line)
     ext = np.arange(-halo, line)
     valid = (ext >= 0) | cyclic
     ext = ext % line
