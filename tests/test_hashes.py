@@ -124,6 +124,12 @@ def test_fnv_colours_are_uniform_and_streams_differ():
     for k in (2, 3, 7):
         assert chi2_z(np.bincount(a.colour(x, y, k).ravel(), minlength=k)) < 4
     assert (a.colour(x, y, 2) != b.colour(x, y, 2)).mean() == pytest.approx(0.5, abs=0.01)
+    # neighbours along both axes (and near 2**62) are unrelated: equal colours 1/k of the time
+    for k in (2, 3):
+        for xx, yy in ((x, y), (x + 2**62, y - 2**62)):
+            c = a.colour(xx, yy, k)
+            assert (c[1:] == c[:-1]).mean() == pytest.approx(1 / k, abs=0.01)
+            assert (c[:, 1:] == c[:, :-1]).mean() == pytest.approx(1 / k, abs=0.01)
     # bit 0 of the colour is not a linear function of the coordinates' parities
     c = a.colour(x, y, 2)
     for px in (0, 1):

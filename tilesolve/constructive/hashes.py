@@ -41,12 +41,15 @@ __all__ = [
     "FNV_OFFSET",
     "FNV_PRIME",
     "MASK64",
+    "XORSHIFT_STAR",
 ]
 
 #: FNV-1a 64-bit offset basis and prime (Fowler, Noll, Vo).
 FNV_OFFSET = 0xCBF29CE484222325
 FNV_PRIME = 0x100000001B3
 MASK64 = (1 << 64) - 1
+#: Output multiplier of xorshift64* (Vigna, 2014).
+XORSHIFT_STAR = 0x2545F4914F6CDD1D
 _MASK32 = (1 << 32) - 1
 
 
@@ -294,9 +297,11 @@ def fnv_xorshift_u64(basis, x, y):
 
     ``basis`` is the FNV state after the seed words (see :class:`FnvXorshift`); ``x`` and
     ``y`` are the coordinates as two's-complement ``uint64``. Each coordinate is fed to
-    FNV-1a as its low and its high 32-bit word; the state then seeds Marsaglia's xorshift64
-    (shifts 13, 7, 17) and one step is taken ("peek a value", 004 §4.2). Only operators
-    appear here, so numpy and numba compile the same arithmetic.
+    FNV-1a as its low and its high 32-bit word; the state then seeds Vigna's xorshift64*
+    generator (shifts 12, 25, 27, output multiplier 0x2545F4914F6CDD1D) and its first output
+    is the hash ("peek a value", 004 §4.2). The output multiplication matters: without it the
+    high bits hardly depend on the low bits of ``y``. Only operators appear here, so numpy
+    and numba compile the same arithmetic.
     """
     m32 = np.uint64(0xFFFFFFFF)
     p = np.uint64(FNV_PRIME)
@@ -305,22 +310,25 @@ def fnv_xorshift_u64(basis, x, y):
     h = (h ^ (x >> np.uint64(32))) * p
     h = (h ^ (y & m32)) * p
     h = (h ^ (y >> np.uint64(32))) * p
-    h = h ^ (h << np.uint64(13))
-    h = h ^ (h >> np.uint64(7))
-    h = h ^ (h << np.uint64(17))
-    return h
+    h = h ^ (h >> np.uint64(12))
+    h = h ^ (h << np.uint64(25))
+    h = h ^ (h >> np.uint64(27))
+    return h * np.uint64(XORSHIFT_STAR)
 
 
 @dataclass(frozen=True)
 class FnvXorshift:
-    """The hash of the procedural walls (004 §4.2): FNV-1a seeds xorshift64, one value is peeked.
+    """The hash of the procedural walls (004 §4.2): FNV-1a seeds xorshift64*, one value is peeked.
 
     The paper names the scheme and nothing more. tilesolve's reading: FNV-1a (64-bit) over
     the 32-bit words of ``seed`` (low, high), ``stream`` and then ``x`` (low, high) and ``y``
-    (low, high), the words treated as FNV's "octets"; the result seeds xorshift64
-    (13, 7, 17), whose next state is the hash. ``stream`` separates independent hashes of
-    one seed (the paper's ``ℋ`` and ``𝒱``). :meth:`colour` takes the high 32 bits modulo
-    ``k`` (FNV's low bits mix poorly: bit 0 of FNV-1a is the parity of the inputs' bit 0).
+    (low, high), the words treated as FNV's "octets"; the result seeds xorshift64*, whose
+    first output is the hash (see :func:`fnv_xorshift_u64`). ``stream`` separates independent hashes of
+    one seed (the paper's ``ℋ`` and ``𝒱``). The *value* of the hash is its high 32 bits
+    ``u`` (FNV's low bits mix poorly: bit 0 of FNV-1a is the parity of the inputs' bit 0), and
+    :meth:`colour` reduces it to ``0 .. k-1`` as ``(u * k) >> 32``, the division-free range
+    reduction (Lemire) that stands for the paper's ``ℋ(i, j) % k``: each colour gets
+    ``floor(2**32 / k)`` or ``ceil(2**32 / k)`` of the values, as with ``%``.
 
     Examples
     --------
@@ -358,14 +366,14 @@ class FnvXorshift:
         h = self.basis
         for w in (x & _MASK32, x >> 32, y & _MASK32, y >> 32):
             h = ((h ^ w) * FNV_PRIME) & MASK64
-        h ^= (h << 13) & MASK64
-        h ^= h >> 7
-        h ^= (h << 17) & MASK64
-        return h
+        h ^= h >> 12
+        h ^= (h << 25) & MASK64
+        h ^= h >> 27
+        return (h * XORSHIFT_STAR) & MASK64
 
     def colour(self, x, y, k: int) -> np.ndarray:
-        """``(hash >> 32) % k`` as int64: a pseudo-random colour in ``0 .. k-1``."""
-        return ((self(x, y) >> np.uint64(32)) % np.uint64(k)).astype(np.int64)
+        """``((hash >> 32) * k) >> 32`` as int64: a pseudo-random colour in ``0 .. k-1`` (``k < 2**31``)."""
+        return (((self(x, y) >> np.uint64(32)) * np.uint64(k)) >> np.uint64(32)).astype(np.int64)
 
     def colour_scalar(self, x, y, k: int) -> int:
-        return (self.scalar(x, y) >> 32) % k
+        return ((self.scalar(x, y) >> 32) * k) >> 32
