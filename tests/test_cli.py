@@ -324,6 +324,22 @@ def test_interrupt_exits_130_without_files(tmp_path, monkeypatch):
     assert os.listdir(tmp_path) == []
 
 
+def test_interrupted_solution_exits_130_and_keeps_old_files(tmp_path, monkeypatch):
+    """The engine returns Ctrl-C inside a solver as an unknown solution; the CLI writes nothing."""
+    from tilesolve import dappled
+    from tilesolve.cli.main import main_group
+
+    monkeypatch.setattr(dappled, "solve", lambda *a, **k: Solution(Status.UNKNOWN, None, method="sat",
+                                                                   reason="interrupted (Ctrl-C)"))
+    monkeypatch.chdir(tmp_path)
+    Path("t.json").write_text("earlier result")
+    result = CliRunner().invoke(main_group, ["dappled", "solve", "--size", "4x4", "--cond", "H0=2",
+                                             "-o", "t.json", "--svg", "t.svg"])
+    assert result.exit_code == 130
+    assert "interrupted (no file was written)" in result.output
+    assert os.listdir(tmp_path) == ["t.json"] and Path("t.json").read_text() == "earlier result"
+
+
 def test_unknown_status_exit_3(tmp_path, monkeypatch):
     from tilesolve import dappled
     from tilesolve.cli.main import main_group
