@@ -1,9 +1,12 @@
-"""Portfolios of seeded runs: local worker processes, in-process runs, and a Dask cluster.
+"""Portfolios of seeded runs: local worker processes, in-process runs, and a Dask cluster;
+the escalation of a heavy-tailed route (first run here, workers beside it); scripts without a
+``__main__`` guard; workers that die with their parent.
 
-The tasks are fakes scripted per seed (``scripted``), so every outcome is fixed in advance.
-No wall-clock limits: where a test shows that a long run was stopped rather than waited for,
-the run sleeps 60 s and the test only checks that the call came back within 30 s (a bound
-that a loaded machine still meets, and that waiting for the sleeper never could).
+The tasks are fakes scripted per seed (``scripted``, ``planned_route``), so every outcome is
+fixed in advance. No wall-clock limits: where a test shows that a long run was stopped rather
+than waited for, the run lasts 60 s or more and the test only checks that the call came back
+within 30 s (a bound that a loaded machine still meets, and that waiting for the run never
+could).
 """
 
 from __future__ import annotations
@@ -12,16 +15,22 @@ import functools
 import io
 import os
 import signal
+import subprocess
 import sys
+import textwrap
+import threading
 import time
+from pathlib import Path
 from concurrent.futures.process import BrokenProcessPool
 
 import numpy as np
 import pytest
 
 import tilesolve.engine.portfolio as pf
+from tilesolve.deadline import Deadline
 from tilesolve.engine import progress
-from tilesolve.engine.portfolio import run_portfolio
+from tilesolve.engine.portfolio import escalate, run_portfolio
+from tilesolve.engine.result import run_interruptible
 from tilesolve.errors import BackendUnavailable, InvalidProblem
 from tilesolve.model.solution import Solution, Status
 
@@ -312,3 +321,238 @@ def test_missing_dask_names_the_extra(monkeypatch):
     monkeypatch.setitem(sys.modules, "distributed", None)  # makes `import distributed` fail
     with pytest.raises(BackendUnavailable, match=r'pip install "tilesolve\[cluster\]"'):
         run_portfolio(task(), [0, 1], cluster="tcp://127.0.0.1:8786")
+
+
+# --------------------------------------------------------------------- escalate (a route)
+
+
+def planned_route(plan: dict, *, seed, time_limit, solver):
+    """A fake route over the "problem" ``plan`` (seed -> action, default ``"wait"``).
+
+    ``"sat"``; ``"sleep:S"`` (then ``sat``: decides late and cannot be stopped early);
+    ``"raise"``; ``"wait"``: a "solver" that runs until it is interrupted (the time limit, or
+    the escalation's stop request) and then answers ``unknown``.
+    """
+    action, _, arg = plan.get(seed, "wait").partition(":")
+    stats = {"pid": os.getpid(), "time_limit": time_limit}
+    if action == "raise":
+        raise InvalidProblem(f"bad input for seed {seed}")
+    if action == "wait":
+        solving = threading.Event()
+        _, stop = run_interruptible(solving.wait, solving.set, Deadline(time_limit))
+        return Solution(Status.UNKNOWN, None, "fake", solver, seed, 0.0, reason=stop, stats=stats)
+    if action == "sleep":
+        time.sleep(float(arg))
+    return Solution(Status.SAT, _tiling(seed), "fake", solver, seed, 0.0, stats=stats)
+
+
+def _escalate(plan: dict, **kwargs) -> Solution:
+    return escalate(planned_route, plan, name="fake search", **({"seed": 1, "solver": "s"} | kwargs))
+
+
+@pytest.fixture
+def at_once(monkeypatch):
+    """Workers join the first run at once, and their runs last past the 30 s bound."""
+    monkeypatch.setattr(pf, "QUICK_S", 0.0)
+    monkeypatch.setattr(pf, "FIRST_BUDGET_S", LONG_S)
+
+
+def test_escalate_first_run_that_decides_quickly_is_the_plain_call():
+    s = _escalate({1: "sat"})
+    plain = planned_route({1: "sat"}, seed=1, time_limit=None, solver="s")
+    _same(s, plain)
+    assert s.stats == plain.stats and s.stats["pid"] == os.getpid()
+
+
+@pytest.mark.parametrize("workers", [1, 2])
+def test_escalate_keeps_the_first_run_with_the_whole_time_limit(workers, monkeypatch):
+    monkeypatch.setattr(pf, "QUICK_S", 0.1)
+    s = _escalate({1: "sleep:0.5"}, workers=workers, time_limit=50.0)
+    assert s.status is Status.SAT and s.seed == 1 and s.stats["pid"] == os.getpid()
+    assert s.stats["time_limit"] == 50.0  # not cut to QUICK_S: the first run is never thrown away
+    if workers == 2:
+        assert s.notes == ("portfolio: seed 1 decided it in this process; 1 run started beside it on "
+                           "1 worker process",)
+        assert s.stats["portfolio_runs"] == 1 and s.stats["portfolio_workers"] == 1
+    else:
+        assert s.notes == () and "portfolio_runs" not in s.stats
+
+
+def test_escalate_worker_that_decides_stops_the_first_run(at_once):
+    t0 = time.perf_counter()
+    s = _escalate({1: "wait", 3: "sat"}, workers=3)  # the first run alone would wait forever
+    assert time.perf_counter() - t0 < BOUND_S
+    assert s.status is Status.SAT and s.seed == 3 and np.array_equal(s.tiling, _tiling(3))
+    assert s.stats["pid"] != os.getpid() and s.stats["time_limit"] == LONG_S  # the first wave's budget
+    assert s.notes == ("portfolio: seed 3 decided it, after 2 of 64 runs started, on 2 worker processes "
+                       "beside seed 1 in this process",)
+
+
+def test_escalate_first_run_that_decides_terminates_the_workers(at_once):
+    t0 = time.perf_counter()
+    s = _escalate({1: "sleep:1"}, workers=3)  # seeds 2, 3 (and on) wait for 60 s
+    assert time.perf_counter() - t0 < BOUND_S
+    assert s.status is Status.SAT and s.seed == 1 and s.stats["pid"] == os.getpid()
+    assert s.notes[-1] == "portfolio: seed 1 decided it in this process; 2 runs started beside it on 2 worker processes"
+
+
+def test_escalate_undecided_keeps_the_first_runs_reason_and_summarises_the_workers(monkeypatch):
+    monkeypatch.setattr(pf, "QUICK_S", 0.0)
+    s = _escalate({}, workers=2, time_limit=3.0)
+    assert s.status is Status.UNKNOWN and s.tiling is None and s.seed == 1
+    assert s.reason == "time limit" and s.stats["pid"] == os.getpid()
+    assert s.notes[-1].startswith("portfolio beside seed 1: no run decided: ")
+
+
+def test_escalate_reraises_a_worker_error_and_stops_the_first_run(at_once):
+    t0 = time.perf_counter()
+    with pytest.raises(InvalidProblem, match="bad input for seed 2"):
+        _escalate({1: "wait", 2: "raise"}, workers=2)
+    assert time.perf_counter() - t0 < BOUND_S
+
+
+def test_escalate_draws_a_seed_and_checks_workers():
+    s = escalate(planned_route, {}, name="fake search", time_limit=0.0)  # seed drawn, first run undecided
+    assert s.status is Status.UNKNOWN and isinstance(s.seed, int)
+    with pytest.raises(InvalidProblem, match="workers"):
+        _escalate({1: "sat"}, workers=0)
+
+
+# ------------------------------------------------- scripts without a __main__ guard (issue 9)
+
+
+def _run_script(tmp_path: Path, code: str) -> subprocess.CompletedProcess:
+    """Run ``code`` as a script file with this interpreter, from a directory of its own."""
+    script = tmp_path / "script.py"
+    script.write_text(textwrap.dedent(code))
+    return subprocess.run([sys.executable, str(script)], cwd=tmp_path, capture_output=True, text=True,
+                          timeout=600)
+
+
+def test_readme_packing_example_runs_as_a_script_without_main_guard(tmp_path):
+    # The README's second Python example, verbatim: corner C = 8 takes longer than QUICK_S,
+    # so a worker starts beside the first run (it used to re-run the script and die).
+    r = _run_script(tmp_path, """\
+        from tilesolve import packing
+        from tilesolve.model.packing import PackingProblem
+
+        s = packing.solve(PackingProblem("corner", 8), method="lift", seed=1)   # 64x64 de Bruijn torus
+        print(s.status.value, s.tiling.shape, s.notes)
+        """)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.startswith("sat (64, 64) (")
+
+
+def test_forced_portfolio_runs_as_a_script_without_main_guard(tmp_path):
+    r = _run_script(tmp_path, """\
+        import functools
+        from tilesolve import packing
+        from tilesolve.engine import portfolio
+        from tilesolve.engine.packing import solve_lift
+        from tilesolve.model.packing import PackingProblem
+
+        portfolio.QUICK_S = 0.0  # workers start beside the first run at once
+        s = packing.solve(PackingProblem("corner", 6), method="lift", seed=1, workers=2)
+        print(s.status.value, s.stats["portfolio_workers"])
+        s = portfolio.run_portfolio(functools.partial(solve_lift, PackingProblem("corner", 4)), [1, 2], workers=2)
+        print(s.status.value, s.stats["portfolio_workers"], s.notes[-1])
+        """)
+    assert r.returncode == 0, r.stderr
+    lines = r.stdout.splitlines()
+    assert lines[0] == "sat 1"
+    assert lines[1].startswith("sat 2 portfolio: seed ") and lines[1].endswith("on 2 worker processes")
+
+
+_MAIN_TASK = """\
+    from tilesolve.engine.portfolio import run_portfolio
+    from tilesolve.model.solution import Solution, Status
+
+    def task(seed):  # defined in __main__: the workers must import this script to find it
+        return Solution(Status.SAT if seed == 1 else Status.UNKNOWN, seed=seed)
+
+    {call}
+    """
+
+
+def test_task_defined_in_a_guarded_script_runs_in_the_workers(tmp_path):
+    call = 'if __name__ == "__main__":\n        print(run_portfolio(task, [0, 1], workers=2).notes[-1])'
+    r = _run_script(tmp_path, _MAIN_TASK.format(call=call))
+    assert r.returncode == 0, r.stderr
+    assert r.stdout == "portfolio: seed 1 decided it, after 2 of 2 runs started, on 2 worker processes\n"
+
+
+def test_task_defined_in_an_unguarded_script_is_a_clear_error(tmp_path):
+    r = _run_script(tmp_path, _MAIN_TASK.format(call="print(run_portfolio(task, [0, 1], workers=2))"))
+    assert r.returncode == 1 and r.stdout == ""
+    last = r.stderr.strip().splitlines()[-1]
+    assert last.startswith("tilesolve.errors.InvalidProblem: ") and "script.py starts a tilesolve portfolio" in last
+    assert last.endswith("put its top-level code under 'if __name__ == \"__main__\":'")
+
+
+# ---------------------------------------------------------- workers die with their parent
+
+
+def _children(pid: int) -> list[int]:
+    """Live (non-zombie) child processes of ``pid``, from /proc."""
+    out = []
+    for entry in Path("/proc").iterdir():
+        if entry.name.isdigit() and _state(int(entry.name)) not in (None, "Z"):
+            try:
+                fields = (entry / "stat").read_text().rsplit(")", 1)[1].split()
+            except OSError:
+                continue
+            if int(fields[1]) == pid:
+                out.append(int(entry.name))
+    return out
+
+
+def _state(pid: int) -> str | None:
+    """``R``, ``S``, ``Z``... from /proc/PID/stat; None when the process is gone."""
+    try:
+        return (Path("/proc") / str(pid) / "stat").read_text().rsplit(")", 1)[1].split()[0]
+    except OSError:
+        return None
+
+
+def _solving(pid: int) -> bool:
+    """Whether process ``pid`` has loaded PySAT's solvers (read from /proc/PID/maps)."""
+    try:
+        return "pysolvers" in (Path("/proc") / str(pid) / "maps").read_text()
+    except OSError:
+        return False
+
+
+def _until(predicate) -> bool:
+    t0 = time.perf_counter()
+    while time.perf_counter() - t0 < BOUND_S:
+        if predicate():
+            return True
+        time.sleep(0.1)
+    return False
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
+@pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGKILL])
+def test_workers_die_with_the_cli_process(sig):
+    # A CLI run escalates at once to 2 worker processes whose runs would last 600 s (corner
+    # C = 4 by full SAT: minutes per seed); the parent is then terminated or killed.
+    boot = ("import sys; import tilesolve.engine.portfolio as p; p.QUICK_S = 0.0; p.FIRST_BUDGET_S = 600.0; "
+            "from tilesolve.cli.main import main; sys.exit(main(sys.argv[1:]))")
+    cli = subprocess.Popen([sys.executable, "-c", boot, "pack", "--kind", "corner", "--colors", "4", "--method", "sat",
+                            "--seed", "1", "--workers", "3"], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    workers = []
+    try:
+        assert _until(lambda: len(_children(cli.pid)) == 2), "the portfolio did not start"
+        workers = _children(cli.pid)
+        # In their runs (the SAT solver loaded), not still starting (then they would see the
+        # pipe close and leave anyway).
+        assert _until(lambda: all(_solving(w) for w in workers)), "the workers did not start solving"
+        cli.send_signal(sig)
+        cli.wait(timeout=BOUND_S)
+        assert _until(lambda: all(_state(w) in (None, "Z") for w in workers)), "workers outlived their parent"
+    finally:
+        for pid in [cli.pid] + workers:  # nothing of this test outlives it, even when it fails
+            if _state(pid) not in (None, "Z"):
+                os.kill(pid, signal.SIGKILL)
+        cli.wait()
+        cli.stderr.close()

@@ -4,7 +4,9 @@ A long search (a seeded SAT run on a tile packing, say) has heavy-tailed run tim
 finishes in a second where another needs minutes. :func:`run_portfolio` runs several seeds
 at once and keeps the first *decisive* answer (``sat``, ``optimal``, or a proved ``unsat``);
 the other runs are stopped. A portfolio in which every run ends ``unknown`` is ``unknown``,
-never ``unsat`` (DESIGN.md, "Status").
+never ``unsat`` (DESIGN.md, "Status"). :func:`escalate` is how a facade runs a heavy-tailed
+route: one seed in this process, joined by worker processes on the other cores when it has
+not decided within :data:`QUICK_S` seconds.
 
 Where the runs go (DESIGN.md, "Parallel and distributed work")
 --------------------------------------------------------------
@@ -26,12 +28,31 @@ and futures with ``as_completed``: all this module needs. Ray brings a large nat
 for the same one-function-per-seed pattern; one engine is supported, and DESIGN.md forbids
 a home-made cluster protocol. Ray is not implemented.
 
+Worker processes
+----------------
+A worker is a fresh interpreter (:mod:`subprocess`, ``python -c``) that imports this module
+and answers over a :func:`multiprocessing.Pipe`. Not a :mod:`multiprocessing` start method:
+``spawn`` and ``forkserver`` re-import the caller's ``__main__`` in every worker, which
+re-runs a script that lacks an ``if __name__ == "__main__":`` guard (the worker then tries
+to start its own pool and dies: a library call must not depend on the caller's script
+layout), and ``fork`` copies the parent's threads' locks (OR-tools, numba, the progress line,
+a Dask client) in whatever state they were. A worker imports the caller's ``__main__`` only
+when the task was defined there (see Limits). On Linux a worker dies with the thread that
+started it (``prctl(PR_SET_PDEATHSIG)``): a parent killed by SIGTERM or SIGKILL, which runs
+no cleanup, leaves no worker running its search to the end; elsewhere a watchdog thread in
+the worker checks the parent twice a second. Start-up cost is the imports: 1.1-1.6 s for a
+task that imports the solver stack (pysat, OR-tools, numba), as with ``spawn``.
+
 Limits
 ------
+- POSIX only for local workers (the pipe is handed over with ``pass_fds``); on Windows use
+  ``workers=1`` or a Dask cluster.
 - ``task`` must be picklable: a module-level function, or a :func:`functools.partial` of
-  one (the Dask path also takes closures, through cloudpickle). Functions defined in
-  ``__main__`` work from a script that guards its entry point with
-  ``if __name__ == "__main__":`` (the usual rule of process pools that do not fork).
+  one (the Dask path also takes closures, through cloudpickle). A task defined in
+  ``__main__`` makes the workers import that script (as ``__mp_main__``), so the script must
+  guard its entry point with ``if __name__ == "__main__":``; one that does not gets an
+  :class:`~tilesolve.errors.InvalidProblem` saying so. Tasks from importable modules (all of
+  tilesolve's routes) need no guard.
 - Each run honours the time limit baked into ``task``; ``time_limit`` here is the wall-clock
   budget of the whole portfolio: no seed starts once it is spent, and runs still going
   :data:`GRACE_S` seconds later are stopped (status ``unknown``).
@@ -56,8 +77,12 @@ import collections
 import functools
 import gc
 import multiprocessing
+import os
 import pickle
 import signal
+import subprocess
+import sys
+import threading
 import time
 import traceback
 from concurrent.futures.process import BrokenProcessPool
@@ -65,31 +90,20 @@ from dataclasses import dataclass, field
 from multiprocessing.connection import wait as wait_for_any
 from typing import Any, Callable, Iterable
 
-from tilesolve.engine.progress import status_line
+from tilesolve._random import rng_from_seed
 from tilesolve.deadline import Deadline
+from tilesolve.engine.progress import status_line
+from tilesolve.engine.result import stop_on
 from tilesolve.errors import BackendUnavailable, InvalidProblem
 from tilesolve.model.solution import Solution, Status
 
-__all__ = ["run_portfolio", "escalate", "DEFAULT_WORKERS", "START_METHOD", "GRACE_S", "CONNECT_TIMEOUT_S",
-           "QUICK_S", "FIRST_BUDGET_S", "PORTFOLIO_SEEDS"]
+__all__ = ["run_portfolio", "escalate", "DEFAULT_WORKERS", "GRACE_S", "CONNECT_TIMEOUT_S", "QUICK_S",
+           "FIRST_BUDGET_S", "PORTFOLIO_SEEDS"]
 
-#: Local worker processes when the caller names none: the machines tilesolve targets have two
-#: cores (as :data:`tilesolve.engine.cpsat.DEFAULT_CPSAT_WORKERS`).
+#: Processes when the caller names none: the machines tilesolve targets have two cores (as
+#: :data:`tilesolve.engine.cpsat.DEFAULT_CPSAT_WORKERS`). For :func:`escalate` this process
+#: counts as one of them.
 DEFAULT_WORKERS = 2
-
-#: How worker processes start. Never ``fork``: the parent may already run threads (OR-tools,
-#: numba's pool, the progress line, a Dask client), and a forked child inherits their locks
-#: in whatever state they were. ``forkserver`` forks each worker from a small single-threaded
-#: server process started once per session; ``spawn`` starts a fresh interpreter per worker.
-#: Measured on the dev machine (2 cores, Python 3.11), whole call for 2 seeds on 2 workers
-#: with a task that answers at once: spawn 0.38-0.52 s; forkserver 0.27-0.33 s (0.33-0.46 s
-#: on the first call, which starts the server). A task that imports the solver stack (pysat,
-#: OR-tools, numba) costs 1.1-1.6 s either way: the imports dominate. Forkserver is the
-#: cheaper of the two, is Python 3.14's default on Linux, and keeps the fork away from the
-#: parent's threads; where it does not exist (Windows) spawn is used. Both are small next to
-#: the searches a portfolio is for. (Preloading the solver stack into the server would save
-#: the imports, but the server is shared process-wide state; not worth it.)
-START_METHOD = "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() else "spawn"
 
 #: Seconds the runs get, past ``time_limit``, to report before they are stopped: each run
 #: honours its own limit, which starts a little later than the portfolio's (process start).
@@ -98,13 +112,13 @@ GRACE_S = 1.0
 #: Seconds to wait for a Dask scheduler to answer before giving up with a one-line error.
 CONNECT_TIMEOUT_S = 5.0
 
-#: Seconds the first, in-process run of an escalated search gets before the portfolio starts
-#: (most packings up to C = 6 take well under a second, and then no process is started).
+#: Seconds :func:`escalate`'s first run goes alone before worker processes join it (most
+#: packings up to C = 6 take well under a second, and then no process is started).
 QUICK_S = 5.0
-#: Per-run budget of the first wave of portfolio runs; it doubles with every wave, so a seed
-#: stuck in a heavy tail is abandoned for a fresh one (a restart strategy).
+#: Per-run budget of the first wave of worker runs in :func:`escalate`; it doubles with every
+#: wave, so a seed stuck in a heavy tail is abandoned for a fresh one (a restart strategy).
 FIRST_BUDGET_S = 20.0
-#: Seeds a portfolio may draw (seed + 1, seed + 2, ...).
+#: Seeds :func:`escalate`'s workers may draw (seed + 1, seed + 2, ...).
 PORTFOLIO_SEEDS = 64
 
 _DECISIVE = (Status.SAT, Status.OPTIMAL, Status.UNSAT)
@@ -126,9 +140,9 @@ def run_portfolio(
     ----------
     task : callable
         ``task(seed=seed) -> Solution``: one independent randomised search that honours its
-        own time limit. The seed is passed by keyword, so a :func:`functools.partial` of any
-        tilesolve ``solve`` function works as it is, e.g. ``partial(tilesolve.packing.solve,
-        problem, method="sat", time_limit=60)``. Must pickle (module docstring).
+        own time limit. The seed is passed by keyword, so a :func:`functools.partial` of an
+        engine route works as it is, e.g. ``partial(tilesolve.engine.packing.solve_lift,
+        problem, time_limit=60)``. Must pickle (module docstring).
     seeds : iterable of int
         One run per seed, started in this order (a seed starts when a worker is free).
     workers : int
@@ -162,10 +176,11 @@ def run_portfolio(
     ------
     InvalidProblem
         No seeds, a seed that is not a non-negative int, ``workers < 1``, a negative time
-        limit, or a malformed cluster address.
+        limit, a malformed cluster address, or a call made while a worker imports an
+        unguarded script (module docstring, Limits).
     BackendUnavailable
         ``cluster`` given but Dask distributed is not installed, or the scheduler cannot be
-        reached within :data:`CONNECT_TIMEOUT_S` seconds.
+        reached within :data:`CONNECT_TIMEOUT_S` seconds; local workers on Windows.
     TypeError
         ``task`` does not pickle (local workers only).
     BrokenProcessPool
@@ -183,12 +198,12 @@ def run_portfolio(
     >>> s.status.value, s.reason
     ('unknown', 'no run decided: 2 runs ended unknown (time limit: 2)')
     """
+    _refuse_while_importing_main()
     seeds = _check_seeds(seeds)
     deadline = Deadline(time_limit)  # validates time_limit
     if cluster is not None:
         return _run_dask(task, seeds, cluster, deadline, progress, label)
-    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
-        raise InvalidProblem(f"workers must be an integer >= 1, got {workers!r}")
+    _check_workers(workers)
     if len(seeds) == 1:
         return _run_single(task, seeds[0], progress, label)
     if workers == 1:
@@ -196,68 +211,178 @@ def run_portfolio(
     return _run_pool(task, seeds, min(workers, len(seeds)), deadline, progress, label)
 
 
-def _wave_run(route, problem, seed0, workers, time_limit, solver, *, seed):
-    """One portfolio run: ``route`` with seed ``seed`` and the budget of its wave."""
-    budget = FIRST_BUDGET_S * 2 ** ((seed - seed0 - 1) // workers)
-    if time_limit is not None:
-        budget = min(budget, time_limit)
-    return route(problem, seed=seed, time_limit=budget, solver=solver)
+def escalate(route: Callable[..., Solution], problem: Any, *, name: str, seed: int | None = None,
+             time_limit: float | None = None, workers: int | None = None, cluster: Any = None,
+             progress: bool = False, solver: str | None = None) -> Solution:
+    """Run a heavy-tailed route: one seed here, joined by worker processes if it is slow.
 
+    The first run, ``route`` with ``seed``, runs in this process with the whole time limit,
+    exactly the plain call (Ctrl-C reaches it as usual). If it has not decided within
+    :data:`QUICK_S` seconds, ``workers - 1`` worker processes start beside it and run fresh
+    seeds ``seed + 1, seed + 2, ...`` with per-run budgets of :data:`FIRST_BUDGET_S` seconds
+    that double with every wave (a restart strategy against heavy tails). The first decisive
+    run wins: a worker that wins stops the first run (:func:`tilesolve.engine.result.stop_on`:
+    at its next solver call, within 50 ms), the first run that wins terminates the workers.
+    The first run is never thrown away, so on ``workers`` free cores this is never slower
+    than the single seed (``benchmarks/bench_portfolio.py``).
 
-def escalate(route, problem, *, name, seed=None, time_limit=None, workers=None, cluster=None, progress=False,
-             solver=None) -> Solution:
-    """Run a heavy-tailed search; if it does not decide quickly, escalate to a seed portfolio.
+    With ``cluster``, every run goes to the Dask cluster (seeds ``seed + 1, ...``); with
+    ``workers=1`` and no cluster, this is the plain call.
 
     Parameters
     ----------
     route : callable
-        The raw route ``route(problem, *, seed, time_limit, solver) -> Solution`` (an
-        ``engine`` search such as :func:`tilesolve.engine.packing.solve_lift`, never a facade):
-        it is what the worker processes run, so it must pickle (a module-level function).
-    problem
+        The raw route, ``route(problem, *, seed, time_limit, solver) -> Solution``: an engine
+        search such as :func:`tilesolve.engine.packing.solve_lift`, never a facade. Workers
+        run it, so it must pickle (a module-level function).
+    problem : object
         The problem handed to ``route`` (pickled to the workers).
     name : str
-        What the progress line and the notes call the search (e.g. ``"lift packing"``).
+        What the progress line and the notes call the search, e.g. ``"lift packing"``.
     seed : int, optional
-        Seed of the first run; portfolio runs take ``seed + 1, seed + 2, ...``.
+        Seed of the first run (drawn when ``None``, so that the workers' seeds differ).
     time_limit : float, optional
         Wall-clock budget of the whole search in seconds.
     workers : int, optional
-        Local processes (default :data:`DEFAULT_WORKERS`); ``1`` runs the one seed, plainly.
+        Processes, this one included (default :data:`DEFAULT_WORKERS`).
     cluster : str or distributed.Client, optional
-        A Dask scheduler: the portfolio's runs go there.
+        A Dask scheduler address or client (:func:`run_portfolio`).
     progress : bool
-        Show a live status line on a terminal.
+        Show a live status line on stderr when it is a terminal.
     solver : str, optional
         Passed to ``route``.
 
     Returns
     -------
     Solution
-        The first decisive run's Solution (see :func:`run_portfolio`).
-    """
-    from tilesolve._random import rng_from_seed
-    from tilesolve.engine.progress import ticker
+        The winning run's Solution. Once workers have started, its notes say which seed
+        decided it and where, and its stats hold ``portfolio_runs`` (worker runs started) and
+        ``portfolio_workers``; ``seed`` is the winning seed, so ``workers=1`` with that seed
+        reproduces it. ``unknown`` when no run decided: the first run's reason, the workers'
+        summary in a note.
 
+    Raises
+    ------
+    InvalidProblem
+        ``workers < 1``, or what ``run_portfolio`` refuses.
+    Exception
+        Whatever the first run raises, or a worker's exception when the first run did not
+        decide (re-raised with its type, as in :func:`run_portfolio`).
+
+    Examples
+    --------
+    >>> from tilesolve.engine.packing import solve_lift
+    >>> from tilesolve.model.packing import PackingProblem
+    >>> s = escalate(solve_lift, PackingProblem("corner", 4), name="lift packing", seed=1)
+    >>> s.status.value, s.seed, s.tiling.shape  # decided alone in well under QUICK_S
+    ('sat', 1, (16, 16))
+    """
+    _refuse_while_importing_main()
     n = DEFAULT_WORKERS if workers is None else workers
-    if n <= 1 and cluster is None:
-        with ticker(name, progress):
+    _check_workers(n)
+    if n == 1 and cluster is None:
+        with status_line(name, progress):
             return route(problem, seed=seed, time_limit=time_limit, solver=solver)
-    t0 = time.perf_counter()
     seed0 = int(rng_from_seed(None).integers(2**31)) if seed is None else seed
-    rem = time_limit
-    if cluster is None:
-        quick = QUICK_S if time_limit is None else min(QUICK_S, time_limit)
-        with ticker(f"{name} (first run)", progress):
-            first = route(problem, seed=seed0, time_limit=quick, solver=solver)
-        if first.status is not Status.UNKNOWN or (first.reason or "").startswith("interrupted"):
+    if cluster is not None:
+        task = functools.partial(_wave_run, route, problem, seed0, n, FIRST_BUDGET_S, time_limit, solver)
+        seeds = [seed0 + i for i in range(1, PORTFOLIO_SEEDS + 1)]
+        return run_portfolio(task, seeds, cluster=cluster, time_limit=time_limit, progress=progress, label=name)
+    return _Escalation(route, problem, name, seed0, time_limit, n - 1, solver).run(progress)
+
+
+def _wave_run(route, problem, seed0, per_wave, first_budget, time_limit, solver, *, seed):
+    """One worker run of :func:`escalate`: ``route`` with ``seed`` and the budget of its wave
+    (``per_wave`` runs per wave, the first wave ``first_budget`` seconds)."""
+    budget = first_budget * 2 ** ((seed - seed0 - 1) // per_wave)
+    if time_limit is not None:
+        budget = min(budget, time_limit)
+    return route(problem, seed=seed, time_limit=budget, solver=solver)
+
+
+class _Escalation:
+    """:func:`escalate` on local processes: the first run in the calling thread, the worker
+    pool driven by a helper thread (which also started the workers, so that they die with it)."""
+
+    def __init__(self, route, problem, name, seed0, time_limit, helpers, solver) -> None:
+        self.route, self.problem, self.name, self.seed0 = route, problem, name, seed0
+        self.time_limit, self.helpers, self.solver = time_limit, helpers, solver
+        self.clock = Deadline(time_limit)
+        self.first_done = threading.Event()  # the first run has returned
+        self.stop_first = threading.Event()  # a worker decided (or failed): stop the first run
+        self.wake_r, self.wake_w = multiprocessing.Pipe(duplex=False)  # wakes the helper
+        self.pool: _Pool | None = None
+        self.winner: tuple[int, Solution] | None = None
+        self.stop: str | None = None  # why the pool's runs were cut, and how many (_Pool.drive)
+        self.stopped = 0
+        self.error: BaseException | None = None
+        self.show: Callable[[str], None] = lambda text: None
+
+    def run(self, progress: bool) -> Solution:
+        helper = threading.Thread(target=self._helper, name=f"tilesolve-{self.name}-portfolio", daemon=True)
+        with status_line(self.name, progress) as show:
+            self.show = show
+            show(f"seed {self.seed0}")
+            helper.start()
+            try:
+                with stop_on(self.stop_first):
+                    first = self.route(self.problem, seed=self.seed0, time_limit=self.time_limit, solver=self.solver)
+            except KeyboardInterrupt:
+                first = Solution(Status.UNKNOWN, seed=self.seed0, time_s=self.clock.elapsed(), reason="interrupted")
+            finally:
+                self.first_done.set()
+                self.wake_w.send_bytes(b"")
+                helper.join()
+                self.wake_r.close()
+                self.wake_w.close()
+        return self._outcome(first)
+
+    def _helper(self) -> None:
+        if self.first_done.wait(QUICK_S):
+            return
+        rem = self.clock.remaining()
+        if rem is not None and rem < 1.0:  # workers could not start in time
+            return
+        task = functools.partial(_wave_run, self.route, self.problem, self.seed0, self.helpers, FIRST_BUDGET_S,
+                                 rem, self.solver)
+        seeds = [self.seed0 + i for i in range(1, PORTFOLIO_SEEDS + 1)]
+        where = f"on {_processes(self.helpers)} beside seed {self.seed0} in this process"
+        pool = None
+        try:
+            self.pool = pool = _Pool(task, seeds, self.helpers, Deadline(rem), self.name, where)
+            pool.start()
+            self.winner, self.stop, self.stopped = pool.drive(
+                lambda text: self.show(f"seed {self.seed0} here; {text} in {_processes(self.helpers)}"),
+                wake=self.wake_r)
+        except BaseException as exc:  # noqa: BLE001 - re-raised by the caller's thread
+            self.error = exc
+        finally:
+            if self.winner is not None or self.error is not None:
+                self.stop_first.set()
+            if pool is not None:
+                pool.close()
+
+    def _outcome(self, first: Solution) -> Solution:
+        pool, elapsed = self.pool, self.clock.elapsed()
+        if first.status not in _DECISIVE and self.error is not None:
+            raise self.error
+        if pool is None:  # decided (or ended) before any worker started: the plain call
             return first
-        rem = None if time_limit is None else max(0.0, time_limit - (time.perf_counter() - t0))
-        if rem is not None and rem < 1.0:
-            return first
-    task = functools.partial(_wave_run, route, problem, seed0, n, rem, solver)
-    seeds = [seed0 + i for i in range(1, PORTFOLIO_SEEDS + 1)]
-    return run_portfolio(task, seeds, workers=n, cluster=cluster, time_limit=rem, progress=progress, label=name)
+        if first.status not in _DECISIVE and self.winner is not None:
+            return pool.runs.won(*self.winner).replace(time_s=elapsed)
+        if first.status in _DECISIVE:
+            note = (f"portfolio: seed {self.seed0} decided it in this process; {_runs(pool.runs.started)} "
+                    f"started beside it on {_processes(self.helpers)}")
+        else:
+            stop = "the first run ended" if self.stop == "stopped" else self.stop
+            note = f"portfolio beside seed {self.seed0}: {pool.runs.summary(stop, self.stopped)}"
+        stats = dict(first.stats, run_time_s=first.time_s, portfolio_runs=pool.runs.started,
+                     portfolio_workers=self.helpers)
+        return first.replace(time_s=elapsed, stats=stats, notes=first.notes + (note,))
+
+
+def _processes(n: int) -> str:
+    return f"{n} worker process{'es' * (n != 1)}"
 
 
 # ----------------------------------------------------------------------------- bookkeeping
@@ -271,6 +396,11 @@ def _check_seeds(seeds: Iterable[int]) -> list[int]:
         if isinstance(s, bool) or not isinstance(s, int) or s < 0:
             raise InvalidProblem(f"seeds must be non-negative integers, got {s!r}")
     return out
+
+
+def _check_workers(workers: int) -> None:
+    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
+        raise InvalidProblem(f"workers must be an integer >= 1, got {workers!r}")
 
 
 @dataclass
@@ -308,17 +438,7 @@ class _Runs:
 
     def undecided(self, stop: str | None = None, stopped: int = 0) -> Solution:
         """``unknown``: every run ended so, or ``stop`` ("time limit", "interrupted") cut them."""
-        parts = []
-        if self.unknown:
-            counts = collections.Counter(sol.reason or "no reason given" for _, sol in self.unknown)
-            why = ", ".join(f"{r}: {n}" for r, n in counts.most_common())
-            parts.append(f"{_runs(len(self.unknown))} ended unknown ({why})")
-        if stopped:
-            parts.append(f"{_runs(stopped)} stopped ({stop})")
-        if self.started < len(self.seeds):
-            n = len(self.seeds) - self.started
-            parts.append(f"{n} seed{'s' * (n != 1)} not {self.started_word} ({stop or 'time limit'})")
-        summary = "no run decided: " + "; ".join(parts)
+        summary = self.summary(stop, stopped)
         sols = [sol for _, sol in self.unknown]
         methods = {s.method for s in sols}
         solvers = {s.solver for s in sols}
@@ -330,6 +450,61 @@ class _Runs:
         return Solution(Status.UNKNOWN, None, methods.pop() if len(methods) == 1 else "portfolio",
                         solvers.pop() if len(solvers) == 1 else None, None, self.deadline.elapsed(),
                         reason=reason, notes=notes, stats=stats)
+
+    def summary(self, stop: str | None = None, stopped: int = 0) -> str:
+        """``"no run decided: ..."``: how the runs ended, how many ``stop`` cut, how many never began."""
+        parts = []
+        if self.unknown:
+            counts = collections.Counter(sol.reason or "no reason given" for _, sol in self.unknown)
+            why = ", ".join(f"{r}: {n}" for r, n in counts.most_common())
+            parts.append(f"{_runs(len(self.unknown))} ended unknown ({why})")
+        if stopped:
+            parts.append(f"{_runs(stopped)} stopped ({stop})")
+        if self.started < len(self.seeds):
+            n = len(self.seeds) - self.started
+            parts.append(f"{n} seed{'s' * (n != 1)} not {self.started_word} ({stop or 'time limit'})")
+        return "no run decided: " + "; ".join(parts)
+
+
+def _runs(n: int) -> str:
+    return f"{n} run{'s' * (n != 1)}"
+
+
+# ------------------------------------------------------------------------ in this process
+
+
+def _run_single(task, seed: int, progress: bool, label: str) -> Solution:
+    """One seed: the plain call (its own Solution, unchanged), Ctrl-C giving ``unknown``."""
+    t0 = time.perf_counter()
+    with status_line(label, progress) as show:
+        show("1 run")
+        try:
+            return task(seed=seed)
+        except KeyboardInterrupt:
+            pass
+    return Solution(Status.UNKNOWN, seed=seed, time_s=time.perf_counter() - t0, reason="interrupted")
+
+
+def _run_inline(task, seeds: list[int], deadline: Deadline, progress: bool, label: str) -> Solution:
+    runs = _Runs(seeds, "in this process (1 worker)", 1, deadline)
+    stop, stopped = None, 0
+    with status_line(label, progress) as show:
+        try:
+            for seed in seeds:
+                if deadline.expired():
+                    stop = "time limit"
+                    break
+                runs.started += 1
+                show(runs.detail(1))
+                sol = task(seed=seed)
+                if sol.status in _DECISIVE:
+                    return runs.won(seed, sol)
+                if runs.record(seed, sol):
+                    stop = "interrupted"
+                    break
+        except KeyboardInterrupt:
+            stop, stopped = "interrupted", 1
+    return runs.undecided(stop, stopped)
 
 
 def _runs(n: int) -> str:
@@ -412,13 +587,92 @@ def _unpack_exception(packed: tuple) -> BaseException:
     return exc
 
 
-def _worker_main(conn, task_blob: bytes) -> None:
-    """A worker process: answer ``("done" | "error", seed, payload)`` for each seed received."""
-    # Ctrl-C on a terminal reaches the whole process group; the parent alone handles it (by
-    # terminating the workers), so a worker never prints a KeyboardInterrupt traceback.
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
+#: What a worker interpreter runs (``python -c``): ignore Ctrl-C (the parent alone handles it,
+#: by terminating the workers, so no worker prints a KeyboardInterrupt traceback), take the
+#: parent's ``sys.path`` from the pipe (so the task's modules import as they do there), then
+#: hand over to :func:`_worker_main`.
+_BOOT = ("import signal, sys; signal.signal(signal.SIGINT, signal.SIG_IGN); "
+         "from multiprocessing.connection import Connection; conn = Connection({fd}); sys.path[:] = conn.recv(); "
+         "from tilesolve.engine.portfolio import _worker_main; _worker_main(conn, {ppid})")
+
+#: ``PR_SET_PDEATHSIG`` of ``<linux/prctl.h>``: the signal a process gets when its parent dies.
+_PR_SET_PDEATHSIG = 1
+
+#: Where ``__main__`` is being imported in this worker (module docstring, Limits), else None.
+_importing_main: str | None = None
+
+
+def _refuse_while_importing_main() -> None:
+    """A script without a ``__main__`` guard, imported by a worker for its task, would start
+    portfolios of its own in every worker: refuse with what to change."""
+    if _importing_main is not None:
+        raise InvalidProblem(f"{_importing_main} starts a tilesolve portfolio when it is imported, and the worker "
+                             f"processes import it to find the task defined there: put its top-level code "
+                             f"under 'if __name__ == \"__main__\":'")
+
+
+def _die_with_parent(ppid: int) -> None:
+    """End this worker when its parent dies, even by SIGKILL: the kernel's parent-death signal
+    on Linux, a watchdog thread elsewhere."""
+    if sys.platform.startswith("linux"):
+        import ctypes
+
+        ctypes.CDLL(None, use_errno=True).prctl(_PR_SET_PDEATHSIG, signal.SIGKILL)
+    else:
+        def watch() -> None:
+            while os.getppid() == ppid:
+                time.sleep(0.5)
+            os._exit(1)
+
+        threading.Thread(target=watch, daemon=True).start()
+    if os.getppid() != ppid:  # the parent died before the signal was armed
+        os._exit(1)
+
+
+def _main_of_parent() -> tuple[str, str] | None:
+    """How a worker imports the parent's ``__main__``: ``("module", name)`` for ``python -m``,
+    ``("path", file)`` for a script, None for an interactive session."""
+    main = sys.modules["__main__"]
+    name = getattr(getattr(main, "__spec__", None), "name", None)
+    if name is not None:
+        return "module", name
+    path = getattr(main, "__file__", None)
+    return None if path is None else ("path", os.path.abspath(path))
+
+
+def _load_task(blob: bytes, main: tuple[str, str] | None):
+    """Unpickle the task; one defined in the parent's ``__main__`` first needs that module,
+    imported as ``__mp_main__`` (as :mod:`multiprocessing` does) so its guarded code stays off."""
+    global _importing_main
     try:
-        task, load_error = pickle.loads(task_blob), None
+        return pickle.loads(blob)
+    except (AttributeError, ImportError):
+        if main is None or b"__main__" not in blob:
+            raise
+    import runpy
+    import types
+
+    kind, where = main
+    _importing_main = where
+    try:
+        if kind == "module":
+            namespace = runpy.run_module(where, run_name="__mp_main__", alter_sys=False)
+        else:
+            namespace = runpy.run_path(where, run_name="__mp_main__")
+    finally:
+        _importing_main = None
+    module = types.ModuleType("__mp_main__")
+    module.__dict__.update(namespace)
+    sys.modules["__main__"] = sys.modules["__mp_main__"] = module
+    return pickle.loads(blob)
+
+
+def _worker_main(conn, ppid: int) -> None:
+    """A worker process: answer ``("done" | "error", seed, payload)`` for each seed received."""
+    _die_with_parent(ppid)
+    main, blob = conn.recv()
+    try:
+        task, load_error = _load_task(blob, main), None
     except BaseException as exc:  # noqa: BLE001 - e.g. the task's module is not importable here
         task, load_error = None, _pack_exception(exc)
     while True:
@@ -444,7 +698,7 @@ def _worker_main(conn, task_blob: bytes) -> None:
 
 @dataclass
 class _Worker:
-    process: Any
+    process: subprocess.Popen
     conn: Any
     seed: int | None = None  # the seed it is running, None when idle
 
@@ -457,101 +711,118 @@ def _pickled_task(task) -> bytes:
                         f"functools.partial of one), got {task!r}: {exc}") from None
 
 
-def _run_pool(task, seeds: list[int], n: int, deadline: Deadline, progress: bool, label: str) -> Solution:
-    blob = _pickled_task(task)
-    ctx = multiprocessing.get_context(START_METHOD)
-    runs = _Runs(seeds, f"on {n} worker processes", n, deadline)
-    queue = collections.deque(seeds)
-    pool: list[_Worker] = []
-    winner = error = stop = None
-    stopped = 0
+class _Pool:
+    """Worker processes running ``task`` on a queue of seeds until one decides."""
 
-    def assign(w: _Worker) -> None:
+    def __init__(self, task, seeds: list[int], n: int, deadline: Deadline, label: str, where: str = "") -> None:
+        if os.name != "posix":
+            raise BackendUnavailable("local worker processes need a POSIX system; use workers=1 or a Dask cluster")
+        self.blob = _pickled_task(task)
+        self.n, self.label, self.deadline = n, label, deadline
+        self.where = where or f"on {_processes(n)}"
+        self.runs = _Runs(seeds, self.where, n, deadline)
+        self.queue = collections.deque(seeds)
+        self.workers: list[_Worker] = []
+
+    def start(self) -> None:
+        main = _main_of_parent()
+        for _ in range(self.n):
+            parent_end, child_end = multiprocessing.Pipe()
+            fd = child_end.fileno()
+            try:
+                process = subprocess.Popen([sys.executable, "-c", _BOOT.format(fd=fd, ppid=os.getpid())],
+                                           pass_fds=(fd,), stdin=subprocess.DEVNULL)
+            finally:
+                child_end.close()
+            w = _Worker(process, parent_end)
+            self.workers.append(w)
+            parent_end.send(sys.path)
+            parent_end.send((main, self.blob))
+            self.assign(w)
+
+    def busy(self) -> list[_Worker]:
+        return [w for w in self.workers if w.seed is not None]
+
+    def assign(self, w: _Worker) -> None:
         w.seed = None
-        if queue and not deadline.expired():
-            w.seed = queue.popleft()
-            runs.started += 1
+        if self.queue and not self.deadline.expired():
+            w.seed = self.queue.popleft()
+            self.runs.started += 1
             try:
                 w.conn.send(w.seed)
             except OSError:  # the worker is gone (killed from outside)
-                raise BrokenProcessPool(f"a {label} worker process is gone (exit code {w.process.exitcode})") from None
+                raise BrokenProcessPool(f"a {self.label} worker process is gone "
+                                        f"(exit code {w.process.poll()})") from None
 
+    def drive(self, show: Callable[[str], None], wake=None) -> tuple[tuple[int, Solution] | None, str | None, int]:
+        """Run seeds until one decides: ``(winner, None, 0)``; else ``(None, stop, stopped)``
+        with ``stop`` the reason runs were cut (``"time limit"``, ``"interrupted"``, or
+        ``"stopped"`` when ``wake`` became readable) and ``stopped`` how many. Re-raises a
+        run's exception, or BrokenProcessPool."""
+        while True:
+            busy = self.busy()
+            if not busy:
+                return None, "time limit" if self.queue else None, 0  # seeds left: the budget is spent
+            show(self.runs.detail(len(busy)))
+            timeout = None
+            if self.deadline.time_limit is not None:
+                timeout = self.deadline.time_limit + GRACE_S - self.deadline.elapsed()
+                if timeout <= 0:
+                    return None, "time limit", len(busy)
+            ready = set(wait_for_any([w.conn for w in busy] + ([wake] if wake is not None else []), timeout))
+            if wake is not None and wake in ready:
+                return None, "stopped", len(busy)
+            for w in busy:
+                if w.conn not in ready:
+                    continue
+                kind, seed, payload = self._receive(w)
+                if kind == "error":
+                    raise _unpack_exception(payload)
+                if payload.status in _DECISIVE:
+                    return (seed, payload), None, 0
+                if self.runs.record(seed, payload):
+                    return None, "interrupted", len(busy) - 1
+                self.assign(w)
+
+    def _receive(self, w: _Worker) -> tuple:
+        """The worker's answer; a worker that died without one is a broken pool."""
+        try:
+            return pickle.loads(w.conn.recv_bytes())
+        except (EOFError, OSError):
+            pass
+        try:
+            code = w.process.wait(timeout=1.0)
+        except subprocess.TimeoutExpired:
+            code = None
+        raise BrokenProcessPool(f"a {self.label} worker process died (exit code {code}) while running seed {w.seed}")
+
+    def close(self) -> None:
+        """Terminate every worker now (a run inside native code cannot be asked to stop)."""
+        for w in self.workers:
+            if w.process.poll() is None:
+                w.process.terminate()
+        for w in self.workers:
+            try:
+                w.process.wait(timeout=2.0)
+            except subprocess.TimeoutExpired:  # SIGTERM blocked or ignored by native code
+                w.process.kill()
+                w.process.wait()
+            w.conn.close()
+
+
+def _run_pool(task, seeds: list[int], n: int, deadline: Deadline, progress: bool, label: str) -> Solution:
+    pool = _Pool(task, seeds, n, deadline, label)
     with status_line(label, progress) as show:
         try:
-            for i in range(n):
-                parent_end, child_end = ctx.Pipe()
-                p = ctx.Process(target=_worker_main, args=(child_end, blob), name=f"tilesolve-{label}-{i}")
-                p.start()
-                child_end.close()
-                pool.append(_Worker(p, parent_end))
-                assign(pool[-1])
-            while winner is None and error is None:
-                busy = [w for w in pool if w.seed is not None]
-                if not busy:
-                    if queue:  # seeds left, but the budget is spent
-                        stop = "time limit"
-                    break
-                show(runs.detail(len(busy)))
-                timeout = None
-                if deadline.time_limit is not None:
-                    timeout = deadline.time_limit + GRACE_S - deadline.elapsed()
-                    if timeout <= 0:
-                        stop, stopped = "time limit", len(busy)
-                        break
-                ready = set(wait_for_any([w.conn for w in busy] + [w.process.sentinel for w in busy], timeout))
-                for w in busy:
-                    if w.conn not in ready and w.process.sentinel not in ready:
-                        continue
-                    kind, seed, payload = _receive(w, label)
-                    if kind == "error":
-                        error = _unpack_exception(payload)
-                        break
-                    if payload.status in _DECISIVE:
-                        winner = (seed, payload)
-                        break
-                    if runs.record(seed, payload):
-                        stop, stopped = "interrupted", len(busy) - 1
-                        break
-                    assign(w)
-                if stop is not None:
-                    break
+            pool.start()
+            winner, stop, stopped = pool.drive(show)
         except KeyboardInterrupt:
-            stop, stopped = "interrupted", sum(w.seed is not None for w in pool)
-        except BaseException as exc:  # e.g. BrokenProcessPool, or a worker that cannot start
-            error = exc
+            winner, stop, stopped = None, "interrupted", len(pool.busy())
         finally:
-            _stop_all(pool)
-    if error is not None:
-        raise error
+            pool.close()
     if winner is not None:
-        return runs.won(*winner)
-    return runs.undecided(stop, stopped)
-
-
-def _receive(w: _Worker, label: str) -> tuple:
-    """The worker's answer; a worker that died without one is a broken pool."""
-    try:
-        if w.conn.poll():
-            return pickle.loads(w.conn.recv_bytes())
-    except (EOFError, OSError):
-        pass
-    w.process.join(timeout=1.0)
-    raise BrokenProcessPool(f"a {label} worker process died (exit code {w.process.exitcode}) "
-                            f"while running seed {w.seed}")
-
-
-def _stop_all(pool: list[_Worker]) -> None:
-    """Terminate every worker now (a run inside native code cannot be asked to stop)."""
-    for w in pool:
-        if w.process.is_alive():
-            w.process.terminate()
-    for w in pool:
-        w.process.join(timeout=2.0)
-        if w.process.is_alive():  # SIGTERM blocked or ignored by native code
-            w.process.kill()
-            w.process.join()
-        w.conn.close()
-        w.process.close()
+        return pool.runs.won(*winner)
+    return pool.runs.undecided(stop, stopped)
 
 
 # ---------------------------------------------------------------------------------- Dask

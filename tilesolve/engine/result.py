@@ -2,13 +2,19 @@
 
 from __future__ import annotations
 
+import contextlib
+import contextvars
+import threading
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Iterator
 
 from tilesolve.deadline import Deadline
 from tilesolve.model.solution import Status
 
-__all__ = ["Result", "run_interruptible"]
+__all__ = ["Result", "run_interruptible", "stop_on"]
+
+#: The event set by :func:`stop_on` in this context, if any.
+_STOP_REQUEST: contextvars.ContextVar[threading.Event | None] = contextvars.ContextVar("tilesolve_stop", default=None)
 
 
 @dataclass
@@ -47,8 +53,30 @@ class Result:
     reason: str | None = None
 
 
+@contextlib.contextmanager
+def stop_on(event: threading.Event) -> Iterator[None]:
+    """Inside the block, ``event`` being set interrupts :func:`run_interruptible` as Ctrl-C does.
+
+    A seed portfolio runs its first seed in the calling thread and stops it this way when a
+    worker process decides first (:func:`tilesolve.engine.portfolio.escalate`); the run then
+    returns ``unknown`` ("interrupted") at its next solver call, within one poll.
+
+    >>> stop, solving = threading.Event(), threading.Event()
+    >>> stop.set()
+    >>> with stop_on(stop):  # a "solver" that runs until interrupted
+    ...     run_interruptible(solving.wait, solving.set, Deadline(None))
+    (True, 'interrupted')
+    """
+    token = _STOP_REQUEST.set(event)
+    try:
+        yield
+    finally:
+        _STOP_REQUEST.reset(token)
+
+
 def run_interruptible(fn, interrupt, deadline: Deadline, poll: float = 0.05):
-    """Run ``fn()`` in a worker thread; call ``interrupt()`` at the deadline or on Ctrl-C.
+    """Run ``fn()`` in a worker thread; call ``interrupt()`` at the deadline, on Ctrl-C, or
+    when the :func:`stop_on` event of this context is set.
 
     Native solvers block the main thread inside C, where Python cannot deliver
     ``KeyboardInterrupt``; waiting on an event keeps the main thread responsive, so a
@@ -64,8 +92,7 @@ def run_interruptible(fn, interrupt, deadline: Deadline, poll: float = 0.05):
     >>> run_interruptible(lambda: 42, lambda: None, Deadline(None))
     (42, None)
     """
-    import threading
-
+    requested = _STOP_REQUEST.get()
     done = threading.Event()
     box: dict = {}
 
@@ -88,6 +115,8 @@ def run_interruptible(fn, interrupt, deadline: Deadline, poll: float = 0.05):
                 break
             if stop is None and deadline.expired():
                 stop = "time limit"
+            if requested is not None and requested.is_set():
+                stop = "interrupted"
             if stop is not None:
                 # Repeated on every poll: an interrupt that lands before the solver has
                 # entered its search can be cleared when the search starts (seen with
