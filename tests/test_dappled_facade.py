@@ -97,7 +97,7 @@ def test_limit_one_routes_to_sat_with_a_note():
 
 
 def test_invalid_constructive_output_falls_back_to_sat(monkeypatch):
-    def broken(problem, **kw):
+    def broken(problem, run):
         return Solution(Status.SAT, np.zeros(problem.shape, dtype=np.int8), method="constructive")
 
     monkeypatch.setitem(facade.SOLVERS, "constructive", broken)

@@ -72,7 +72,7 @@ def test_clauses_accept_exactly_the_dappled_tilings(p, data):
     enc = encode_cnf(p)
     falsified = enc.hard.falsified(enc.target_values(t))
     assert (not falsified) == is_dappled(t, p)
-    np.testing.assert_array_equal(enc.decode(enc.encode_tiling(t)), t)
+    np.testing.assert_array_equal(enc.decode(enc.literals(t)), t)
 
 
 @settings(max_examples=60)
@@ -87,7 +87,7 @@ def test_assumptions_check_a_tiling_against_the_encoding(p, data):
         assert not is_dappled(t, p)
         return
     with Solver(name="cadical153", bootstrap_with=clauses) as s:
-        assert s.solve(assumptions=enc.encode_tiling(t)) == is_dappled(t, p)
+        assert s.solve(assumptions=enc.literals(t)) == is_dappled(t, p)
 
 
 @settings(max_examples=80)
@@ -141,14 +141,14 @@ def test_counts_exact_and_bounds():
     for cells in itertools.product([0, 1], repeat=6):
         t = np.array(cells).reshape(2, 3)
         with Solver(name="cadical153", bootstrap_with=enc.hard.to_lists()) as s:
-            assert s.solve(assumptions=enc.encode_tiling(t)) == (t.sum() == 2)
+            assert s.solve(assumptions=enc.literals(t)) == (t.sum() == 2)
 
 
 def test_wcnf_soft_literals_are_the_target():
     target = np.array([[0, 1, 1], [1, 0, 0]])
     p = DappledProblem.from_strings("3x2", ["H0=2"], closest_to=target)
     enc = encode_wcnf(p)
-    assert enc.soft.tolist() == enc.encode_tiling(target)
+    assert enc.soft.tolist() == enc.literals(target)
     p3 = DappledProblem(2, 3, n_tiles=3, closest_to=np.array([[0, 1, 2], [2, 1, 0]]))
     enc3 = encode_wcnf(p3)
     assert len(enc3.soft) == 6 and (enc3.soft > 0).all()

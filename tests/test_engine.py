@@ -16,7 +16,6 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from tilesolve.engine import BACKENDS, backend_status
 from tilesolve.engine.dappled import (
     count_by_enumeration,
     enumerate_tilings,
@@ -390,14 +389,6 @@ def test_tiling_satisfies_encoding_agrees_with_the_verifier():
               DappledProblem.from_strings("3x2", ["H0=1"], counts=["1=3..4"], cyclic=True)):
         for t in all_tilings(p):
             assert tiling_satisfies_encoding(p, t) == is_dappled(t, p)
-
-
-# ---------------------------------------------------------------- registry
-
-
-def test_registries():
-    assert list(BACKENDS)[0] == "sat"
-    assert all(b["supported"] for b in backend_status())
 
 
 def test_bad_inputs():

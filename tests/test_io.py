@@ -174,12 +174,12 @@ def test_reader_rejects_bad_json_and_missing_file(tmp_path):
     path = tmp_path / "bad.json"
     path.write_text('{"format": ')
     with pytest.raises(InvalidProblem, match="malformed JSON at line 1"):
-        jsonio.load_document(path)
+        jsonio.load_document(path, jsonio.DAPPLED_FORMATS)
     with pytest.raises(InvalidProblem, match="no such file"):
-        jsonio.load_document(tmp_path / "missing.json")
+        jsonio.load_document(tmp_path / "missing.json", jsonio.DAPPLED_FORMATS)
     path.write_text("[1, 2]")
     with pytest.raises(InvalidProblem, match="not a tilesolve file"):
-        jsonio.load_document(path)
+        jsonio.load_document(path, jsonio.DAPPLED_FORMATS)
 
 
 def test_corrupted_tiling_is_read_for_the_verifier(tmp_path):

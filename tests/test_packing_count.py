@@ -22,17 +22,17 @@ from tilesolve.verify.packing import is_packing
 
 
 def test_published_totals():
-    assert facade.count("corner", 2).value == PUBLISHED_COUNTS[("corner", 2)][0] == 32
-    assert facade.count("wang", 2).value == PUBLISHED_COUNTS[("wang", 2)][0] == 203_520
+    assert facade.count(PackingProblem("corner", 2)).value == PUBLISHED_COUNTS[("corner", 2)][0] == 32
+    assert facade.count(PackingProblem("wang", 2)).value == PUBLISHED_COUNTS[("wang", 2)][0] == 203_520
     # "The 32 solutions of the 2 color corner tile packing problem reduce to a single fundamental solution."
-    assert facade.count("corner", 2, up_to_symmetry=True).value == 1
+    assert facade.count(PackingProblem("corner", 2), up_to_symmetry=True).value == 1
 
 
 def test_wang_up_to_symmetry_agrees_with_burnside():
     """Orbits by canonical forms (911) equal the Burnside average of fixed points over the group
     of translations x rotations/reflections x colour permutations (16 * 8 * 2 = 256 elements)."""
-    res = facade.count("wang", 2, up_to_symmetry=True)
-    assert res.complete and res.value == 911
+    res = facade.count(PackingProblem("wang", 2), up_to_symmetry=True)
+    assert res.exact and res.value == 911
     anchored = np.asarray(list(enumerate_packings("wang", 2)), dtype=np.int8)
     allp = np.concatenate([np.roll(anchored, (r, c), axis=(1, 2)) for r in range(4) for c in range(4)])
     assert len(allp) == 203_520
@@ -76,11 +76,11 @@ def test_orbit_representatives_are_packings():
 
 def test_time_limit_gives_unknown():
     res = count_packings("wang", 2, time_limit=1e-9)
-    assert not res.complete and res.value is None and "time limit" in res.reason
+    assert not res.exact and res.value is None and "time limit" in res.note
 
 
 def test_counting_beyond_c2_refused():
     with pytest.raises(InvalidProblem, match="C=2"):
-        facade.count("corner", 3)
+        facade.count(PackingProblem("corner", 3))
     with pytest.raises(InvalidProblem, match="kind"):
-        facade.count("hex", 2)
+        facade.count(PackingProblem("hex", 2))

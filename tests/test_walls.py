@@ -184,6 +184,22 @@ def test_random_access_windows_and_single_cells_agree(n, nc, x0, y0, seed, dx, d
     assert cell == tuple(int(v) for v in big[15 - dy, dx])
 
 
+def test_windows_built_in_strips_match_single_cells():
+    # 3 x 70001 cells are built in several strips of rows; cells on both sides of every strip
+    # boundary must be those of the per-cell form.
+    x0, y0, w, h = -2, -35001, 3, 70001
+    legs = wall_window(x0, y0, w, h, colors=3, max_line=2, seed=4)
+    problem, t = window_problem(legs[:40], 3, 2)
+    assert board_violations(t, problem) == []
+    strip = (1 << 16) // w
+    for r in sorted({0, h - 1} | {k * strip + d for k in range(1, h // strip + 1) for d in (-1, 0)} - {h}):
+        for c in range(w):
+            assert tuple(int(v) for v in legs[r, c]) == wall_tile_scalar(x0 + c, y0 + h - 1 - r, colors=3,
+                                                                           max_line=2, seed=4), (r, c)
+    hor, ver = line_lengths(legs)
+    assert max(hor.max(), ver.max()) <= 2
+
+
 @pytest.mark.parametrize("n", [None, 1, 2, 3, 4])
 def test_windows_satisfy_the_sat_encoding_and_sat_solves_them_too(n):
     legs = wall_window(-5, 9, 8, 7, colors=3, max_line=n, seed=11)

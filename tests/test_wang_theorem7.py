@@ -5,8 +5,8 @@ import itertools
 import numpy as np
 import pytest
 
-from tilesolve import wang
-from tilesolve.constructive.wang import default_core, theorem7_solve
+from tilesolve import board as wang
+from tilesolve.constructive.wang import default_core
 from tilesolve.errors import MethodNotApplicable
 from tilesolve.model.board import Board, BoardProblem, WangTileSet, random_boundary
 from tilesolve.verify.board import board_violations
@@ -17,7 +17,7 @@ def test_brick_boards_with_a_2x2_core(kind):
     b = getattr(Board, kind)(5, 6)
     for seed in range(4):
         p = BoardProblem(b, WangTileSet.brick(3), random_boundary(b, 3, seed=seed))
-        s = theorem7_solve(p, seed=seed)
+        s = wang.solve(p, method="theorem7", seed=seed)
         # a 2x2 block is a cycle with four corners: solvable for every boundary (Remark 11)
         assert s.status.value == "sat" and board_violations(s.tiling, p) == []
         assert s.stats["core_cells"] == 4
@@ -29,8 +29,8 @@ def test_generic_three_boundary_tileset():
     b = Board.rect(4, 4)
     for seed in range(6):
         p = BoardProblem(b, ts, random_boundary(b, 3, seed=seed))
-        s = theorem7_solve(p, seed=seed)
-        sat = wang.solve_sat(p)
+        s = wang.solve(p, method="theorem7", seed=seed)
+        sat = wang.solve(p, method="sat")
         if s.status.value == "sat":
             assert board_violations(s.tiling, p) == [] and sat.status.value == "sat"
         else:
@@ -42,6 +42,6 @@ def test_core_choice_and_errors():
     core = default_core(p)
     assert core.sum() >= 4
     with pytest.raises(MethodNotApplicable, match="three-boundary"):
-        theorem7_solve(BoardProblem(Board.rect(2, 2), WangTileSet([[0, 0, 0, 0]], 2)))
+        wang.solve(BoardProblem(Board.rect(2, 2), WangTileSet([[0, 0, 0, 0]], 2)), method="theorem7")
     s = wang.solve(BoardProblem(Board.rect(3, 3), WangTileSet.brick(3), [1] * 12), method="theorem7", seed=0)
     assert s.status.value == "sat" and s.method == "theorem7"

@@ -29,67 +29,90 @@ Examples
 from __future__ import annotations
 
 import time
-from typing import Callable
+from typing import Any
 
 import numpy as np
 
-from tilesolve.engine.progress import ticker
-from tilesolve.engine.routes import lookup, verified
 from tilesolve.errors import InvalidProblem, MethodNotApplicable
+from tilesolve.family import Codec, Demo, Family, RunOptions, raise_if_interrupted, register
+from tilesolve.family import solve as _solve
+from tilesolve.io.jsonio import DAPPLED_FORMATS, DAPPLED_PROBLEM, DAPPLED_SOLUTION
 from tilesolve.model.dappled import DappledProblem
 from tilesolve.model.solution import CountResult, CrosscheckReport, Solution, Status
-from tilesolve.verify.dappled import dappled_violations
+from tilesolve.verify.dappled import dappled_violations, hamming_distance
 
 __all__ = [
+    "FAMILY",
     "SOLVERS",
     "METHODS",
     "COUNT_METHODS",
     "CountResult",
     "CrosscheckReport",
+    "constructive",
+    "sat",
+    "maxsat",
+    "cpsat",
     "solve",
     "count",
     "crosscheck",
 ]
 
 
-def _constructive(problem: DappledProblem, *, seed=None, time_limit=None, initial=None, progress=False) -> Solution:
+def _solver_notes(run: RunOptions, name: str) -> tuple[str, ...]:
+    if run.option("initial") is not None:
+        return (f"the initial tiling is only used by the constructive route, not by {name!r}",)
+    return ()
+
+
+def constructive(problem: DappledProblem, run: RunOptions) -> Solution:
+    """The papers' algorithms (Algorithm 1, the |T| >= 3 algorithm, Algorithm 2, Remark 3.4).
+
+    Uses ``run.options["initial"]`` as the input tiling when given (dappled §2).
+    """
     from tilesolve.constructive.dappled import make_dappled
 
+    if problem.closest_to is not None:
+        raise MethodNotApplicable("the constructive route does not minimise distance; use method 'maxsat'")
     t0 = time.perf_counter()
-    tiling = make_dappled(problem, initial, seed=seed)
-    return Solution(Status.SAT, tiling, method="constructive", seed=seed, time_s=time.perf_counter() - t0)
+    tiling = make_dappled(problem, run.option("initial"), seed=run.seed)
+    return Solution(Status.SAT, tiling, method="constructive", seed=run.seed, time_s=time.perf_counter() - t0)
 
 
-def _sat(problem: DappledProblem, *, seed=None, time_limit=None, initial=None, progress=False) -> Solution:
+def sat(problem: DappledProblem, run: RunOptions) -> Solution:
+    """SAT on the CNF encoding (§6 item 8); unsat answers carry a checked DRAT proof."""
     from tilesolve.engine.dappled import solve_sat
+    from tilesolve.engine.sat import DEFAULT_SAT_SOLVER
 
-    return solve_sat(problem, time_limit=time_limit, seed=seed)
+    sol = solve_sat(problem, time_limit=run.time_limit, seed=run.seed, solver=run.solver or DEFAULT_SAT_SOLVER)
+    return sol.replace(notes=_solver_notes(run, "sat") + sol.notes)
 
 
-def _maxsat(problem: DappledProblem, *, seed=None, time_limit=None, initial=None, progress=False) -> Solution:
+def maxsat(problem: DappledProblem, run: RunOptions) -> Solution:
+    """The closest tiling to ``closest_to``, proved optimal (§6 item 3)."""
     from tilesolve.engine.dappled import solve_maxsat
 
-    return solve_maxsat(problem, time_limit=time_limit, seed=seed)
+    sol = solve_maxsat(problem, time_limit=run.time_limit, seed=run.seed)
+    return sol.replace(notes=_solver_notes(run, "maxsat") + sol.notes)
 
 
-def _cpsat(problem: DappledProblem, *, seed=None, time_limit=None, initial=None, progress=False) -> Solution:
+def cpsat(problem: DappledProblem, run: RunOptions) -> Solution:
+    """OR-tools CP-SAT on the same clauses (``closest_to`` as the objective)."""
+    from tilesolve.engine.cpsat import DEFAULT_CPSAT_WORKERS
     from tilesolve.engine.dappled import solve_cpsat
 
-    return solve_cpsat(problem, time_limit=time_limit, seed=seed)
+    sol = solve_cpsat(problem, time_limit=run.time_limit, seed=run.seed,
+                      num_workers=run.workers or DEFAULT_CPSAT_WORKERS)
+    return sol.replace(notes=_solver_notes(run, "cpsat") + sol.notes)
 
 
-#: Solving routes by name. ``"auto"`` is not an entry: it picks one (see :func:`solve`).
-SOLVERS: dict[str, Callable[..., Solution]] = {
-    "constructive": _constructive,
-    "sat": _sat,
-    "maxsat": _maxsat,
-    "cpsat": _cpsat,
-}
+#: Solving routes by name. ``"auto"`` is not an entry: it picks one (:func:`auto_method`).
+SOLVERS = {"constructive": constructive, "sat": sat, "maxsat": maxsat, "cpsat": cpsat}
 METHODS: tuple[str, ...] = ("auto",) + tuple(SOLVERS)
 COUNT_METHODS: tuple[str, ...] = ("auto", "transfer", "enumerate")
 
 
-def _auto_method(problem: DappledProblem) -> str:
+def auto_method(problem: DappledProblem) -> str:
+    """MaxSAT for closest tilings, the constructive algorithms for plain problems, SAT otherwise."""
     if problem.closest_to is not None:
         return "maxsat"
     if problem.is_plain:
@@ -97,21 +120,10 @@ def _auto_method(problem: DappledProblem) -> str:
     return "sat"
 
 
-def _checked(problem: DappledProblem, sol: Solution) -> Solution:
-    """Run the independent verifier on a returned tiling and recompute the distance."""
-    sol = verified(sol, lambda tiling: dappled_violations(tiling, problem))
-    if sol.status.has_tiling and problem.closest_to is not None:
-        dist = int((sol.tiling != problem.closest_to).sum())
-        if sol.objective is not None and sol.objective != dist:
-            raise AssertionError(f"internal error: reported distance {sol.objective} but the tiling is at {dist}")
-        sol = sol.replace(objective=dist)
-    return sol
-
-
 def solve(
     problem: DappledProblem,
     *,
-    method: str | Callable[..., Solution] = "auto",
+    method: str | Any = "auto",
     seed: int | None = None,
     time_limit: float | None = None,
     initial: np.ndarray | None = None,
@@ -119,18 +131,21 @@ def solve(
 ) -> Solution:
     """Find an L-dappled tiling (or prove none exists) and verify it independently.
 
+    The generic pipeline :func:`tilesolve.family.solve` with the dappled family's routes.
+
     Parameters
     ----------
     problem : DappledProblem
     method : {"auto", "constructive", "sat", "maxsat", "cpsat"} or callable
         ``"auto"`` uses the constructive algorithms (Algorithm 1, the trivial |T|>=3
         algorithm, Algorithm 2 / Remark 3.4 for cyclic problems) when they apply, MaxSAT
-        for closest tilings, and SAT otherwise. A callable takes ``(problem, seed=,
-        time_limit=, initial=, progress=)`` and returns a :class:`Solution`.
+        for closest tilings, and SAT otherwise (also when a constructive output ever fails
+        verification). A callable is a route ``(problem, run) -> Solution``.
     seed : int, optional
-        Seeds the random initial tiling of the constructive route and solver randomness.
+        Seeds the random initial tiling of the constructive route and solver randomness;
+        drawn and recorded in ``Solution.seed`` when not given.
     time_limit : float, optional
-        Seconds; a solver that runs out returns status ``unknown``.
+        Seconds for the whole run; a route that runs out returns status ``unknown``.
     initial : numpy.ndarray, optional
         Input tiling for Algorithm 1/2 (§2: "we can start with a random tiling or a user
         specified one").
@@ -148,33 +163,10 @@ def solve(
         An explicitly requested method cannot handle the problem; the message names one
         that can.
     """
-    t0 = time.perf_counter()
-    notes: list[str] = []
-    runner, name = lookup(method, SOLVERS, lambda: _auto_method(problem))
-    if name == "constructive" and problem.closest_to is not None:
-        raise MethodNotApplicable("the constructive route does not minimise distance; use method 'maxsat'")
-    if initial is not None and name != "constructive":
-        notes.append(f"the initial tiling is only used by the constructive route, not by {name!r}")
-    try:
-        with ticker(f"solving with {name!r}", progress):
-            sol = runner(problem, seed=seed, time_limit=time_limit, initial=initial, progress=progress)
-    except MethodNotApplicable as exc:
-        if method != "auto":
-            raise
-        notes.append(f"constructive route not applicable ({exc}); solved with 'sat'")
-        with ticker("solving with 'sat'", progress):
-            sol = SOLVERS["sat"](problem, seed=seed, time_limit=time_limit, progress=progress)
-    if sol.method == "constructive" and sol.status.has_tiling:
-        violations = dappled_violations(sol.tiling, problem)
-        if violations:
-            notes.append(
-                f"constructive output failed verification ({len(violations)} violations, first at "
-                f"row {violations[0].row}, col {violations[0].col}); fell back to 'sat'"
-            )
-            with ticker("solving with 'sat'", progress):
-                sol = SOLVERS["sat"](problem, seed=seed, time_limit=time_limit, progress=progress)
-    sol = _checked(problem, sol)
-    return sol.replace(notes=tuple(notes) + sol.notes, time_s=time.perf_counter() - t0, seed=seed)
+    if not isinstance(problem, DappledProblem):
+        raise InvalidProblem(f"expected a DappledProblem, got {type(problem).__name__}")
+    return _solve(problem, method, seed=seed, time_limit=time_limit, progress=progress,
+                  options={"initial": initial} if initial is not None else None)
 
 
 def count(
@@ -183,12 +175,13 @@ def count(
     method: str = "auto",
     time_limit: float | None = None,
     progress: bool = False,
+    force: bool = False,
 ) -> CountResult:
     """Count the tilings that satisfy ``problem`` exactly.
 
     ``"transfer"`` is the row-by-row transfer-matrix programme (exact big integers; plain
-    conditions, fixed cells); ``"enumerate"`` enumerates solver models with blocking
-    clauses (any problem, small counts); ``"auto"`` prefers the transfer matrix.
+    and cyclic conditions, fixed cells); ``"enumerate"`` enumerates solver models with
+    blocking clauses (any problem, small counts); ``"auto"`` prefers the transfer matrix.
     For T = {0,1} and L = {H_0^2, V_1^2} the counts are OEIS A206994 (Remark 1.4).
     """
     from tilesolve.constructive.dappled_count import count_dappled
@@ -209,13 +202,11 @@ def count(
             note = f"transfer matrix not applicable ({exc}); counted by solver enumeration"
     from tilesolve.engine.dappled import count_by_enumeration
 
-    value, complete = count_by_enumeration(problem, time_limit=time_limit, progress=progress)
-    if not complete:
-        return CountResult(
-            None, Status.UNKNOWN, "enumerate", time.perf_counter() - t0,
-            f"time limit reached after {value} tilings" + (f"; {note}" if note else ""),
-        )
-    return CountResult(value, Status.SAT, "enumerate", time.perf_counter() - t0, note)
+    res = count_by_enumeration(problem, time_limit=time_limit, progress=progress)
+    if not res.complete:
+        return CountResult(None, Status.UNKNOWN, "enumerate", time.perf_counter() - t0,
+                           f"{res.reason or 'stopped'} after {res.count} tilings" + (f"; {note}" if note else ""))
+    return CountResult(res.count, Status.SAT, "enumerate", time.perf_counter() - t0, note)
 
 
 def crosscheck(problem: DappledProblem, *, seed: int | None = None, time_limit: float | None = None) -> CrosscheckReport:
@@ -224,13 +215,16 @@ def crosscheck(problem: DappledProblem, *, seed: int | None = None, time_limit: 
     Checks (DESIGN.md, "Cross-checks"): the constructive output passes the verifier and
     satisfies the CNF encoding; SAT and CP-SAT agree on solvability; every tiling they
     return passes the verifier; on small plain grids the transfer-matrix count equals the
-    enumeration count.
+    enumeration count. Ctrl-C stops it (``KeyboardInterrupt``), whichever route is running.
     """
+    from tilesolve.deadline import Deadline
     from tilesolve.engine.dappled import tiling_satisfies_encoding
+    from tilesolve.family import draw_seed
 
+    seed = draw_seed() if seed is None else seed
     report = CrosscheckReport()
     try:
-        cons = SOLVERS["constructive"](problem, seed=seed)
+        cons = constructive(problem, RunOptions(seed))
     except MethodNotApplicable as exc:
         report.lines.append(f"skip constructive route: {exc}")
     else:
@@ -240,7 +234,7 @@ def crosscheck(problem: DappledProblem, *, seed: int | None = None, time_limit: 
             report.add(tiling_satisfies_encoding(problem, cons.tiling), "constructive tiling satisfies the CNF encoding")
             report.verdicts["constructive"] = Status.SAT
     for name in ("sat", "cpsat") + (("maxsat",) if problem.closest_to is not None else ()):
-        sol = SOLVERS[name](problem, seed=seed, time_limit=time_limit)
+        sol = raise_if_interrupted(SOLVERS[name](problem, RunOptions(seed, Deadline(time_limit))))
         if sol.status.has_tiling:
             bad = dappled_violations(sol.tiling, problem)
             report.add(not bad, f"{name}: {sol.status.value}, tiling verifies ({len(bad)} violations)")
@@ -258,3 +252,117 @@ def crosscheck(problem: DappledProblem, *, seed: int | None = None, time_limit: 
         if b is not None:
             report.add(a.value == b.value, f"count: enumeration {a.value} = transfer matrix {b.value}")
     return report
+
+
+# ----------------------------------------------------------------------------- the family record
+def _verify(problem: DappledProblem, tiling) -> list:
+    return dappled_violations(tiling, problem)
+
+
+def _objective(problem: DappledProblem, tiling) -> int | None:
+    return None if problem.closest_to is None else hamming_distance(tiling, problem.closest_to)
+
+
+def _encode(problem: DappledProblem):
+    from tilesolve.encodings.dappled import encode_cnf, encode_wcnf
+
+    return encode_wcnf(problem) if problem.closest_to is not None else encode_cnf(problem)
+
+
+def _read_problem(doc: dict, source: str):
+    from tilesolve.io.jsonio import problem_from_dict
+
+    return problem_from_dict(doc, source), None
+
+
+def _read_solution(doc: dict, source: str):
+    from tilesolve.io.jsonio import solution_from_dict
+
+    return solution_from_dict(doc, source)
+
+
+def _write_solution(problem: DappledProblem, sol: Solution) -> dict:
+    from tilesolve.io.jsonio import solution_to_dict
+
+    return solution_to_dict(problem, sol, arrays=True)
+
+
+def _draw(problem: DappledProblem, sol: Solution, path, fmt: str, *, repeat: int = 1, grid=None,
+          title: str | None = None, notes=()) -> None:
+    """SVG (legend, conditions, N x N repeat) or PNG (large grids) of a dappled tiling."""
+    if fmt == "png":
+        from tilesolve.io.png import write_png
+
+        write_png(path, sol.tiling, repeat=repeat, grid=grid)
+        return
+    from tilesolve.io.svg import write_svg
+
+    legend = [f"{sol.status.value} by {sol.method}" + (f", seed {sol.seed}" if sol.seed is not None else "")]
+    if sol.objective is not None:
+        legend.append(f"distance to the target: {sol.objective} cells")
+    write_svg(path, sol.tiling, problem=problem, repeat=repeat, grid=grid, title=title, notes=legend + list(notes))
+
+
+def _example_31() -> DappledProblem:
+    """Example 3.1 (dappled §3.1): limits that vary across the grid.
+
+    The paper gives ``p0(i, j) = q1(i, j) = ceil((i+1)/5) + 1`` and ``p1(i, j) = ceil((m-i)/5) + 1``
+    with ``i`` the column; the extraction lost ``q0``, which we take equal to ``p1`` so that
+    the text's description holds (left: short white rows and orange columns; right: the reverse).
+    """
+    from tilesolve.model.dappled import Condition
+
+    rows, m = 30, 60
+    i = np.arange(m)
+    left = np.tile((np.ceil((i + 1) / 5) + 1).astype(np.int32), (rows, 1))
+    right = np.tile((np.ceil((m - i) / 5) + 1).astype(np.int32), (rows, 1))
+    conds = (Condition("H", (0,), left), Condition("V", (1,), left),
+             Condition("H", (1,), right), Condition("V", (0,), right))
+    return DappledProblem(rows, m, conditions=conds)
+
+
+def _disc_target() -> DappledProblem:
+    """The closest dappled tiling to a disc (dappled §6 item 3), runs <= 3 both ways."""
+    n = 24
+    yy, xx = np.mgrid[0:n, 0:n]
+    target = (((yy - (n - 1) / 2) ** 2 + (xx - (n - 1) / 2) ** 2) <= (n * 0.36) ** 2).astype(np.int8)
+    return DappledProblem.from_strings(f"{n}x{n}", ["H0=3", "V0=3", "H1=3", "V1=3"], closest_to=target)
+
+
+DEMOS = (
+    Demo("plain", "Algorithm 1: tile 0 runs <= 2 across, tile 1 runs <= 3 down",
+         lambda: DappledProblem.from_strings("32x20", ["H0=2", "V1=3"])),
+    Demo("cyclic", "Algorithm 2: cyclic, runs <= 3 both ways, shown 2x2",
+         lambda: DappledProblem.from_strings("16x12", ["H0=3", "V0=3", "H1=3", "V1=3"], cyclic=True),
+         draw_options={"repeat": 2}),
+    Demo("nonuniform", "Example 3.1: limits vary from left to right", _example_31),
+    Demo("closest", "the nearest tiling with runs <= 3 to a disc (MaxSAT)", _disc_target),
+    Demo("three-tiles", "|T| = 3, no run longer than 2",
+         lambda: DappledProblem.from_strings("30x18", ["H0=2", "V0=2", "H1=2", "V1=2", "H2=2", "V2=2"], n_tiles=3)),
+)
+
+FAMILY = register(Family(
+    name="dappled",
+    title="dappled tilings: no long runs of a tile (Kaji, Derouet-Jourdan, Ochiai 2016)",
+    problem_type=DappledProblem,
+    routes=SOLVERS,
+    auto=auto_method,
+    verify=_verify,
+    fallback="sat",
+    objective=_objective,
+    count=count,
+    encode=_encode,
+    codecs=(
+        Codec(DAPPLED_SOLUTION, DAPPLED_FORMATS[DAPPLED_SOLUTION], _read_solution, _write_solution),
+        Codec(DAPPLED_PROBLEM, DAPPLED_FORMATS[DAPPLED_PROBLEM], _read_problem),
+    ),
+    draw=_draw,
+    demos=DEMOS,
+    commands=("tilesolve.cli.dappled:dappled",),
+    route_help={
+        "constructive": "Algorithm 1, |T| >= 3, Algorithm 2 / Remark 3.4 (numba)",
+        "sat": "CNF + PySAT (CaDiCaL), unsat with a checked DRAT proof",
+        "maxsat": "closest tiling by RC2 or the lazy decomposition",
+        "cpsat": "OR-tools CP-SAT",
+    },
+))

@@ -9,6 +9,7 @@ exception               exit code  meaning
 ``MethodNotApplicable`` 2          a method's preconditions fail (names another)
 ``BackendUnavailable``  2          a solver backend or optional package is missing
 ``Unsatisfiable``       1          raised only by APIs that must return a tiling
+``InternalError``       70         a bug: an answer failed its own verification
 ======================  =========  ==============================================
 
 A solver run that ends on a time limit is *not* an error: it returns a
@@ -21,6 +22,7 @@ __all__ = [
     "MethodNotApplicable",
     "BackendUnavailable",
     "Unsatisfiable",
+    "InternalError",
 ]
 
 
@@ -52,3 +54,15 @@ class Unsatisfiable(TilesolveError):
     """No tiling exists (proved). Raised only by APIs that must return a tiling."""
 
     exit_code = 1
+
+
+class InternalError(TilesolveError, AssertionError):
+    """A bug, never the user's fault: e.g. a route returned a tiling its verifier rejects.
+
+    Exit code 70 (``EX_SOFTWARE``); the message asks for a report.
+    """
+
+    exit_code = 70
+
+    def __init__(self, message: str) -> None:
+        super().__init__(f"internal error: {message}; please report this")

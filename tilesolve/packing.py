@@ -44,27 +44,30 @@ Examples
 >>> s = solve(PackingProblem("corner", 2), method="sat", seed=1)
 >>> s.status.value, s.tiling.shape
 ('sat', (4, 4))
->>> count("corner", 2).value, count("corner", 2, up_to_symmetry=True).value
+>>> count(PackingProblem("corner", 2)).value, count(PackingProblem("corner", 2), up_to_symmetry=True).value
 (32, 1)
 """
 
 from __future__ import annotations
 
 import time
-from typing import Callable
+from typing import Any
 
 import numpy as np
 
 from tilesolve._random import rng_from_seed
-from tilesolve.engine import packing as search
 from tilesolve.engine.packing import PACKING_SAT_SOLVER
-from tilesolve.engine.routes import lookup, verified
-from tilesolve.errors import MethodNotApplicable
+from tilesolve.errors import InvalidProblem, MethodNotApplicable
+from tilesolve.family import Codec, Demo, Family, RunOptions, register
+from tilesolve.family import solve as _solve
+from tilesolve.io.packing_json import PACKING, VERSIONS
 from tilesolve.model.packing import PackingProblem
-from tilesolve.model.solution import Solution, Status
+from tilesolve.model.solution import CountResult, Solution, Status
 from tilesolve.verify.packing import packing_violations
 
-__all__ = ["SOLVERS", "METHODS", "PACKING_SAT_SOLVER", "solve", "count", "auto_method", "verify_solution"]
+__all__ = ["FAMILY", "SOLVERS", "METHODS", "PACKING_SAT_SOLVER", "PORTFOLIO_ROUTES", "solve", "count",
+           "auto_method", "euler", "outer", "known", "sat", "cpsat", "hybrid", "lift", "recursive"]
+
 
 def _pin_by_translation(problem: PackingProblem, grid: np.ndarray, method: str) -> np.ndarray:
     """Constructions ignore pins; one pin can always be met by translating the torus."""
@@ -79,7 +82,9 @@ def _pin_by_translation(problem: PackingProblem, grid: np.ndarray, method: str) 
     return np.roll(grid, (r - int(r0), c - int(c0)), axis=(0, 1))
 
 
-def _euler(problem: PackingProblem, *, seed=None, time_limit=None, workers=None, progress=False, solver=None) -> Solution:
+def euler(problem: PackingProblem, run: RunOptions) -> Solution:
+    """Eulerian constructions: Wei's Wang outer product (§5.5.2, Fig. 5.10), the odd-C corner
+    de Bruijn torus."""
     from tilesolve.constructive.packing import corner_packing_odd, wang_packing
 
     t0 = time.perf_counter()
@@ -88,51 +93,70 @@ def _euler(problem: PackingProblem, *, seed=None, time_limit=None, workers=None,
     else:
         g = corner_packing_odd(problem.colors)
     g = _pin_by_translation(problem, g, "euler")
-    return Solution(Status.SAT, g, method="euler", seed=seed, time_s=time.perf_counter() - t0)
+    return Solution(Status.SAT, g, method="euler", seed=run.seed, time_s=time.perf_counter() - t0)
 
 
-def _outer(problem: PackingProblem, *, seed=None, time_limit=None, workers=None, progress=False, solver=None) -> Solution:
+def outer(problem: PackingProblem, run: RunOptions) -> Solution:
+    """The same constructions over random (seeded) Eulerian circuits."""
     from tilesolve.constructive.packing import corner_packing_odd, wang_packing
 
     t0 = time.perf_counter()
-    rng = rng_from_seed(seed)
+    rng = rng_from_seed(run.seed)
     if problem.kind == "wang":
         g = wang_packing(problem.colors, problem.colors_v, seed=rng)
     else:
         g = corner_packing_odd(problem.colors, seed=rng)
     g = _pin_by_translation(problem, g, "outer")
-    return Solution(Status.SAT, g, method="outer", seed=seed, time_s=time.perf_counter() - t0)
+    return Solution(Status.SAT, g, method="outer", seed=run.seed, time_s=time.perf_counter() - t0)
 
 
-def _known(problem: PackingProblem, *, seed=None, time_limit=None, workers=None, progress=False, solver=None) -> Solution:
+def known(problem: PackingProblem, run: RunOptions) -> Solution:
+    """The notes' published C = 4 packings (Figs. 5.11, 5.12) under a seeded random symmetry."""
     from tilesolve.constructive.packing_known import known_packing
 
     t0 = time.perf_counter()
     if problem.colors_v is not None and problem.colors_v != problem.colors:
         raise MethodNotApplicable("the notes publish no packing with C_h != C_v; use method 'outer' or 'sat'")
-    fig, g = known_packing(problem.kind, problem.colors, seed=seed)
+    fig, g = known_packing(problem.kind, problem.colors, seed=run.seed)
     g = _pin_by_translation(problem, g, "known")
-    note = f"the packing of the class notes' {fig}" + (" under a random symmetry" if seed is not None else "")
-    return Solution(Status.SAT, g, method="known", seed=seed, time_s=time.perf_counter() - t0, notes=(note,))
+    note = f"the packing of the class notes' {fig} under a random symmetry"
+    return Solution(Status.SAT, g, method="known", seed=run.seed, time_s=time.perf_counter() - t0, notes=(note,))
 
+
+def _search(name: str):
+    """The facade route of the engine search ``engine.packing.solve_<name>``; heavy-tailed
+    searches escalate to a seed portfolio (:func:`tilesolve.engine.portfolio.escalate`)."""
+    from tilesolve.engine import packing as engine
+
+    raw = getattr(engine, f"solve_{name}")
+
+    def route(problem: PackingProblem, run: RunOptions) -> Solution:
+        if name not in PORTFOLIO_ROUTES:
+            return raw(problem, seed=run.seed, time_limit=run.time_limit, workers=run.workers, solver=run.solver)
+        from tilesolve.engine.portfolio import escalate
+
+        return escalate(raw, problem, name=f"{name} packing", seed=run.seed, time_limit=run.time_limit,
+                        workers=run.workers, cluster=run.cluster, progress=run.progress, solver=run.solver)
+
+    route.__name__ = name
+    route.__doc__ = raw.__doc__
+    return route
+
+
+#: Routes whose run times are heavy-tailed: a run that does not decide quickly is followed
+#: by a portfolio of seeds on local processes or a Dask cluster.
+PORTFOLIO_ROUTES: tuple[str, ...] = ("sat", "hybrid", "lift", "recursive")
+
+sat = _search("sat")
+cpsat = _search("cpsat")
+hybrid = _search("hybrid")
+lift = _search("lift")
+recursive = _search("recursive")
 
 #: Packing routes by name. ``"auto"`` is not an entry: it picks one (see :func:`auto_method`).
-SOLVERS: dict[str, Callable[..., Solution]] = {
-    "euler": _euler,
-    "outer": _outer,
-    "known": _known,
-    "sat": search.solve_sat,
-    "cpsat": search.solve_cpsat,
-    "hybrid": search.solve_hybrid,
-    "lift": search.solve_lift,
-    "recursive": search.solve_recursive,
-}
+SOLVERS = {"euler": euler, "outer": outer, "known": known, "sat": sat, "cpsat": cpsat, "hybrid": hybrid,
+           "lift": lift, "recursive": recursive}
 METHODS: tuple[str, ...] = ("auto",) + tuple(SOLVERS)
-
-
-#: Routes whose run times are heavy-tailed: with more than one worker, or a cluster, a run
-#: that does not decide within :data:`~tilesolve.engine.portfolio.QUICK_S` seconds is followed by a portfolio of seeds.
-PORTFOLIO_ROUTES: tuple[str, ...] = ("sat", "hybrid", "lift", "recursive")
 
 
 def auto_method(problem: PackingProblem) -> str:
@@ -140,8 +164,8 @@ def auto_method(problem: PackingProblem) -> str:
 
     More than one pinned tile needs the full search (``sat``). Otherwise ``C = 2`` and Wang
     ``C = 3`` get a random-looking SAT-built packing; Wang ``C = 4, 6`` and even corner sets a
-    lifted packing (seconds; corner ``C = 8`` 10-20 s); odd corner sets the de Bruijn
-    construction; other Wang sets (``C = 5`` or ``>= 7``, or ``C_h != C_v``) the outer product.
+    lifted packing; odd corner sets the de Bruijn construction; other Wang sets (``C = 5`` or
+    ``>= 7``, or ``C_h != C_v``) the outer product.
     """
     c = problem.colors
     square = problem.colors_v is None or problem.colors_v == problem.colors
@@ -156,32 +180,10 @@ def auto_method(problem: PackingProblem) -> str:
     return "lift"
 
 
-def _run_route(problem, runner, name, *, seed, time_limit, workers, cluster, progress, solver) -> Solution:
-    """Run one route; heavy-tailed searches escalate to a portfolio (module docstring)."""
-    from tilesolve.engine.portfolio import escalate
-    from tilesolve.engine.progress import ticker
-
-    if name not in PORTFOLIO_ROUTES:
-        with ticker(f"{name} packing", progress):
-            return runner(problem, seed=seed, time_limit=time_limit, workers=workers, progress=progress, solver=solver)
-    return escalate(runner, problem, name=f"{name} packing", seed=seed, time_limit=time_limit, workers=workers,
-                    cluster=cluster, progress=progress, solver=solver)
-
-
-def verify_solution(problem: PackingProblem, sol: Solution) -> Solution:
-    """Run the independent verifier on a returned packing; a failure is a bug, never 'sat'."""
-    return verified(
-        sol,
-        lambda grid: packing_violations(grid, problem.kind, problem.colors, colors_v=problem.colors_v,
-                                        fixed=problem.fixed),
-        "packing",
-    )
-
-
 def solve(
     problem: PackingProblem,
     *,
-    method: str | Callable[..., Solution] = "auto",
+    method: str | Any = "auto",
     seed: int | None = None,
     time_limit: float | None = None,
     workers: int | None = None,
@@ -191,20 +193,22 @@ def solve(
 ) -> Solution:
     """Find a tile packing (or prove that the pinned tiles allow none) and verify it.
 
+    The generic pipeline :func:`tilesolve.family.solve` with the packing family's routes.
+
     Parameters
     ----------
     problem : PackingProblem
     method : {"auto", "euler", "outer", "known", "sat", "cpsat", "hybrid", "lift", "recursive"} or callable
     seed : int, optional
-        The same seed gives the same packing, except when a search escalates to a portfolio
-        (then the note and ``Solution.seed`` name the seed that won; rerun it with
-        ``workers=1`` to reproduce it).
+        The same seed gives the same packing with ``workers=1``; when a search escalates to a
+        portfolio, the note and ``Solution.seed`` name the seed that won (rerun it with
+        ``workers=1`` to reproduce it). Drawn and recorded when not given.
     time_limit : float, optional
-        Seconds for the solver routes; expiry gives status ``unknown``.
+        Seconds for the whole run; expiry gives status ``unknown``.
     workers : int, optional
         CP-SAT workers for ``cpsat`` (default 2); for the heavy-tailed searches
-        (:data:`PORTFOLIO_ROUTES`), the local processes of the portfolio that starts when the
-        first run takes longer than :data:`~tilesolve.engine.portfolio.QUICK_S` (default 2; ``1`` runs one seed only).
+        (:data:`PORTFOLIO_ROUTES`), the local processes of the portfolio (default 2; ``1``
+        runs one seed only).
     cluster : str or distributed.Client, optional
         A Dask scheduler address (``tcp://host:8786``): the portfolio's runs go there instead.
     solver : str, optional
@@ -222,25 +226,97 @@ def solve(
     InvalidProblem
         Absurd sizes for a solver route (refused before any clause is built).
     """
-    t0 = time.perf_counter()
-    runner, name = lookup(method, SOLVERS, lambda: auto_method(problem))
-    sol = _run_route(problem, runner, name, seed=seed, time_limit=time_limit, workers=workers, cluster=cluster,
-                     progress=progress, solver=solver)
-    sol = verify_solution(problem, sol)
-    notes = (f"auto chose {name!r}",) if method == "auto" else ()
-    return sol.replace(notes=notes + sol.notes, time_s=time.perf_counter() - t0,
-                       seed=seed if sol.seed is None else sol.seed)
+    if not isinstance(problem, PackingProblem):
+        raise InvalidProblem(f"expected a PackingProblem, got {type(problem).__name__}")
+    return _solve(problem, method, seed=seed, time_limit=time_limit, progress=progress, solver=solver,
+                  workers=workers, cluster=cluster)
 
 
-def count(kind: str, colors: int, *, up_to_symmetry: bool = False, time_limit: float | None = None):
-    """Count all packings (C = 2): the notes publish 32 corner and 203,520 Wang packings.
+def count(problem: PackingProblem, *, method: str = "auto", time_limit: float | None = None, progress: bool = False,
+          force: bool = False, up_to_symmetry: bool = False) -> CountResult:
+    """Count all packings of ``problem``'s tile set (C = 2): the notes publish 32 corner and
+    203,520 Wang packings.
 
     With ``up_to_symmetry`` the packings are counted up to translation, rotation, reflection
     and colour permutation (§5.5.3): 1 for corner tiles (as published), 911 for Wang tiles
-    (computed here; the notes give no number). Returns a
-    :class:`~tilesolve.constructive.packing_count.PackingCount`.
+    (computed here; the notes give no number).
     """
     from tilesolve.constructive.packing_count import count_packings
 
-    PackingProblem(kind, colors)  # checks kind and colours
-    return count_packings(kind, colors, up_to_symmetry=up_to_symmetry, time_limit=time_limit)
+    if method not in ("auto", "backtrack"):
+        raise InvalidProblem(f"unknown count method {method!r}; choose auto or backtrack")
+    if problem.fixed or (problem.colors_v is not None and problem.colors_v != problem.colors):
+        raise InvalidProblem("packings are counted for square tile sets without pinned tiles")
+    return count_packings(problem.kind, problem.colors, up_to_symmetry=up_to_symmetry, time_limit=time_limit)
+
+
+# ----------------------------------------------------------------------------- the family record
+def _verify(problem: PackingProblem, grid) -> list:
+    return packing_violations(grid, problem.kind, problem.colors, colors_v=problem.colors_v, fixed=problem.fixed)
+
+
+def _encode(problem: PackingProblem):
+    from tilesolve.encodings.packing import encode_packing
+    from tilesolve.engine.packing import check_search_size
+
+    check_search_size(problem)
+    return encode_packing(problem)
+
+
+def _read(doc: dict, source: str):
+    from tilesolve.io.packing_json import packing_from_dict
+
+    return packing_from_dict(doc, source)
+
+
+def _write(problem: PackingProblem, sol: Solution) -> dict:
+    from tilesolve.io.packing_json import packing_to_dict
+
+    return packing_to_dict(problem, sol)
+
+
+def _draw(problem: PackingProblem, sol: Solution, path, fmt: str, *, indices: bool = False, title: str | None = None,
+          notes=(), **_ignored) -> None:
+    """SVG (tiles drawn with their edge or corner colours) or PNG of a packing."""
+    if fmt == "png":
+        from tilesolve.io.png import write_packing_png
+
+        write_packing_png(path, sol.tiling, problem.kind, problem.colors, colors_v=problem.colors_v)
+        return
+    from tilesolve.io.svg_packing import write_packing_svg
+
+    write_packing_svg(path, sol.tiling, problem.kind, problem.colors, colors_v=problem.colors_v, indices=indices,
+                      title=title or f"{problem.describe()} ({sol.method}, seed {sol.seed})")
+
+
+DEMOS = (
+    Demo("packing-wang3", "a random-looking SAT-built Wang packing, C = 3 (81 tiles on a 9x9 torus)",
+         lambda: PackingProblem("wang", 3), method="sat", draw_options={"indices": True}),
+    Demo("packing-corner4", "a lifted corner packing, C = 4 (the notes' backtracking: 280 CPU-days)",
+         lambda: PackingProblem("corner", 4), method="lift", draw_options={"indices": True}),
+)
+
+FAMILY = register(Family(
+    name="packing",
+    title="tile packings: every tile of a complete Wang or corner set once on a torus (class notes §5.5)",
+    problem_type=PackingProblem,
+    routes=SOLVERS,
+    auto=auto_method,
+    verify=_verify,
+    count=count,
+    encode=_encode,
+    codecs=(Codec(PACKING, VERSIONS, _read, _write),),
+    draw=_draw,
+    demos=DEMOS,
+    commands=("tilesolve.cli.pack:pack", "tilesolve.cli.tiles:tiles"),
+    route_help={
+        "euler": "Eulerian constructions (Wang outer product, odd-C corner de Bruijn torus)",
+        "outer": "the constructions over random Eulerian circuits",
+        "known": "the notes' published C = 4 packings",
+        "sat": "full CNF + PySAT (Glucose 4.2), pinned tiles, unsat with a checked DRAT proof",
+        "cpsat": "full model in OR-tools CP-SAT",
+        "hybrid": "Wang: random Eulerian N/S columns + SAT",
+        "lift": "a packing over C/k colours + a k-ary layer by SAT",
+        "recursive": "a C-1 packing pinned, completed by SAT (Figs. 5.11-5.12)",
+    },
+))

@@ -1,4 +1,5 @@
-"""``tilesolve backends``: which solver backends are installed (CPMpy ``SolverLookup`` style)."""
+"""``tilesolve backends``: which solver backends are installed (CPMpy ``SolverLookup`` style),
+and every family's routes (read from the registry, :mod:`tilesolve.family`)."""
 
 from __future__ import annotations
 
@@ -40,10 +41,10 @@ def _numba() -> str:
     return f"numba {numba.__version__}"
 
 
-def _moderngl() -> str:
-    import moderngl  # noqa: F401
+def _distributed() -> str:
+    import distributed  # noqa: F401
 
-    return f"moderngl {_dist_version('moderngl')}"
+    return f"distributed {_dist_version('distributed')}"
 
 
 @dataclass(frozen=True)
@@ -60,7 +61,7 @@ OTHER_BACKENDS: tuple[Backend, ...] = (
     Backend("rc2", "MaxSAT", "--method maxsat, --closest-to", _rc2),
     Backend("cp-sat", "CP", "--method cpsat", _cpsat),
     Backend("numba", "JIT", "--method constructive (compiled loops)", _numba),
-    Backend("moderngl", "GPU", "tilesolve.gpu (pip install 'tilesolve[gpu]')", _moderngl, optional=True),
+    Backend("dask", "cluster", "--cluster ADDRESS (pip install 'tilesolve[cluster]')", _distributed, optional=True),
 )
 
 
@@ -97,7 +98,7 @@ def probe(backend: Backend) -> tuple[bool, str]:
 @click.command(context_settings=opt.CONTEXT_SETTINGS)
 @click.pass_context
 def backends(ctx) -> None:
-    """List the solver backends and whether each is installed.
+    """List the solver backends (and whether each is installed) and every family's routes.
 
     \b
     Example:
@@ -116,8 +117,16 @@ def backends(ctx) -> None:
         missing_required |= not ok and not b.optional
         status = "yes" if ok else ("no (optional)" if b.optional else "NO")
         rows.append((b.name, b.kind, status, info, b.used_by))
-    header = ("backend", "kind", "installed", "version / reason", "used by")
+    _table(("backend", "kind", "installed", "version / reason", "used by"), rows)
+    from tilesolve.family import families
+
+    click.echo("")
+    _table(("family", "route", "what it does"),
+           [(fam.name, route, fam.route_help.get(route, "")) for fam in families() for route in fam.routes])
+    ctx.exit(1 if missing_required else 0)
+
+
+def _table(header: tuple[str, ...], rows: list[tuple[str, ...]]) -> None:
     widths = [max(len(r[i]) for r in rows + [header]) for i in range(len(header))]
     for r in [header] + rows:
         click.echo("  ".join(c.ljust(w) for c, w in zip(r, widths)).rstrip())
-    ctx.exit(1 if missing_required else 0)

@@ -1,5 +1,5 @@
 """``tilesolve brick solve | wall`` and ``tilesolve wang solve``: thin layers over
-:mod:`tilesolve.wang` and :mod:`tilesolve.constructive.brick`."""
+:mod:`tilesolve.board` and :mod:`tilesolve.walls`."""
 
 from __future__ import annotations
 
@@ -24,7 +24,7 @@ BOARD_HELP = (
 
 
 def _method_choices():
-    from tilesolve.wang import METHODS
+    from tilesolve.board import METHODS
 
     return METHODS
 
@@ -117,7 +117,7 @@ def board_text(problem, tiling) -> str:
 
 
 def _run(ctx, problem, method, seed, time_limit, outs, output, svg) -> None:
-    from tilesolve import wang as facade
+    from tilesolve import board as facade
 
     _svg_ok(svg, problem.board.n_cells)
     sol = facade.solve(problem, method=method, seed=seed, time_limit=time_limit)
@@ -218,7 +218,7 @@ def wall(ctx, size, max_line, max_v, colors, seed, output, svg) -> None:
 
     Without -o or --svg the wall is printed as text: each cell's leg colours W N E S.
     """
-    from tilesolve.constructive.brick import brick_wall
+    from tilesolve.walls import brick_wall
     from tilesolve.model.dappled import parse_size
 
     outs = Outputs(output, svg)
@@ -256,7 +256,7 @@ def count(ctx, board_spec, colors, boundary, seed, time_limit) -> None:
     Example:
       tilesolve brick count --board rect:2x1 --boundary free      # prints 432
     """
-    from tilesolve import wang as facade
+    from tilesolve import board as facade
 
     problem = _brick_problem(board_spec, colors, boundary, 0 if seed is None else seed)
     res = facade.count(problem, time_limit=time_limit)
@@ -285,7 +285,7 @@ def crosscheck(ctx, board_spec, colors, boundary, seed, time_limit, trials) -> N
     Example:
       tilesolve brick crosscheck --board mask:shape.txt --trials 5
     """
-    from tilesolve import wang as facade
+    from tilesolve import board as facade
 
     base = secrets.randbelow(2**31) if seed is None else seed
     ok = True
@@ -363,41 +363,3 @@ def wang_solve(ctx, tiles_path, board_spec, boundary, seed, method, time_limit, 
         seed = secrets.randbelow(2**31)
     problem = BoardProblem(board, ts, _boundary(boundary, board, ts.n_colors, seed))
     _run(ctx, problem, method, seed, time_limit, outs, output, svg)
-
-
-def demo_brick(out, seed: int, time_limit: float):
-    """Demo (``tilesolve demo``): a brick wall without long lines (dappled paper §4) and a
-    brick Wang tiling of a Möbius strip with a hole and a random boundary (brick paper §4)."""
-    import numpy as np
-
-    from tilesolve import wang as facade
-    from tilesolve.cli.demo import DemoResult
-    from tilesolve.constructive.brick import brick_wall
-    from tilesolve.io.board_json import write_board_solution
-    from tilesolve.io.svg_board import write_board_svg
-    from tilesolve.model.board import Board, BoardProblem, WangTileSet, random_boundary
-
-    lines = []
-    ok = True
-    p, s = brick_wall(20, 32, 3, seed=seed)
-    write_board_solution(out / "brick-wall.json", p, s)
-    write_board_svg(out / "brick-wall.svg", p, s.tiling, title="brick wall, no line through more than 3 cells",
-                    notes=[f"{s.status.value} by {s.method}, seed {seed}"])
-    lines += [f"{'brick-wall':12s} 32x20 wall, lines <= 3: {s.status.value} by {s.method} in {s.time_s:.2f} s",
-              f"{'':12s} -> {out / 'brick-wall.svg'}"]
-    ok &= s.status.has_tiling
-    m = Board.mobius(14, 40)
-    keep = np.ones(m.n_cells, bool)
-    lab = m.labels
-    keep[(lab[:, 0] >= 5) & (lab[:, 0] <= 8) & (lab[:, 1] >= 17) & (lab[:, 1] <= 22)] = False
-    b = m.restrict(keep)
-    q = BoardProblem(b, WangTileSet.brick(3), random_boundary(b, 3, seed=seed))
-    s = facade.solve(q, seed=seed, time_limit=time_limit)
-    write_board_solution(out / "brick-mobius.json", q, s)
-    if s.status.has_tiling:
-        write_board_svg(out / "brick-mobius.svg", q, s.tiling, title="Möbius strip with a hole (Example 5)",
-                        notes=[f"{s.status.value} by {s.method}, seed {seed}; arrows: the twisted seam"])
-    lines += [f"{'brick-mobius':12s} Möbius strip 40x14 with a hole: {s.status.value} by {s.method} in {s.time_s:.2f} s",
-              f"{'':12s} -> {out / 'brick-mobius.svg'}"]
-    ok &= s.status.has_tiling
-    return DemoResult(bool(ok), lines)

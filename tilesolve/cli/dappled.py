@@ -10,6 +10,22 @@ from tilesolve.cli import options as opt
 from tilesolve.cli.common import build_problem, progress_wanted, say
 from tilesolve.cli.outputs import Outputs, stop_if_interrupted
 from tilesolve.errors import InvalidProblem
+from tilesolve.dappled import COUNT_METHODS, METHODS
+
+method_opt = click.option(
+    "--method",
+    type=click.Choice(METHODS),
+    default="auto",
+    show_default=True,
+    help="auto: the papers' constructive algorithms when they apply, MaxSAT for --closest-to, SAT otherwise.",
+)
+count_method_opt = click.option(
+    "--method",
+    type=click.Choice(COUNT_METHODS),
+    default="auto",
+    show_default=True,
+    help="transfer: row-by-row transfer matrix (exact, fast); enumerate: solver enumeration (any problem).",
+)
 
 __all__ = ["dappled", "solve", "count", "crosscheck"]
 
@@ -65,7 +81,7 @@ def _summary(problem, sol, written: list[str], extra: list[str]) -> None:
 
 @dappled.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.CONDITION_HELP + "\n\n" + opt.EXIT_HELP)
 @opt.problem_options()
-@opt.method_opt
+@method_opt
 @opt.seed_opt
 @opt.time_limit_opt
 @opt.initial_opt
@@ -137,7 +153,7 @@ def solve(ctx, method, seed, time_limit, initial, output, svg, png, repeat, grid
 
 @dappled.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.CONDITION_HELP + "\n\n" + opt.EXIT_HELP)
 @opt.problem_options(closest=False)
-@opt.count_method_opt
+@count_method_opt
 @opt.time_limit_opt
 @click.pass_context
 def count(ctx, method, time_limit, **problem_kw) -> None:

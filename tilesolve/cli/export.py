@@ -1,4 +1,8 @@
-"""``tilesolve export dimacs``: write a problem's SAT/MaxSAT encoding for external solvers."""
+"""``tilesolve export dimacs``: write any family's SAT/MaxSAT encoding for external solvers.
+
+The problem comes from a problem or solution file of any family (through the registry's
+codecs and each family's ``encode``), or from the dappled problem options.
+"""
 
 from __future__ import annotations
 
@@ -17,33 +21,49 @@ def export() -> None:
 
 
 @export.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.CONDITION_HELP + "\n\n" + opt.EXIT_HELP)
+@click.argument("file", required=False, type=click.Path(dir_okay=False))
 @opt.problem_options()
 @click.option(
     "-o", "--output", required=True, type=click.Path(dir_okay=False), metavar="OUT.cnf|OUT.wcnf",
-    help="Output file; .wcnf (weighted MaxSAT) for --closest-to, else .cnf.",
+    help="Output file; .wcnf (weighted MaxSAT) for closest-tiling problems, else .cnf.",
 )
-def dimacs(output: str, **problem_kw) -> None:
-    """Write the CNF (or, with --closest-to, WCNF) encoding of a dappled problem.
+def dimacs(file: str | None, output: str, **problem_kw) -> None:
+    """Write the CNF (or WCNF) encoding of a problem.
 
-    The header comments describe the problem and the variable numbering: with two tiles,
-    variable 1 + r*W + c is true when cell (row r, col c) holds tile 1.
+    FILE is a problem or solution file of any family (dappled, board, packing); without it
+    the dappled problem options describe the problem. The header comments describe the
+    problem and the variable numbering (for dappled tilings with two tiles, variable
+    1 + r*W + c is true when cell (row r, col c) holds tile 1).
 
     \b
     Example:
       tilesolve export dimacs --size 12x8 --cond H0=2,V1=2 -o t.cnf
       tilesolve export dimacs --size 12x8 --cond H0=2,V1=2 --closest-to target.txt -o t.wcnf
+      tilesolve export dimacs c4.json -o c4.cnf          # a packing (or board) file
     """
-    problem = build_problem(**problem_kw)
+    from tilesolve.family import family_of, read_document
+
+    if file is not None:
+        given = [k for k, v in problem_kw.items() if v not in (None, (), False)]
+        if given:
+            raise InvalidProblem(f"FILE gives the whole problem; drop --{given[0].replace('_', '-')}")
+        fam, codec, doc = read_document(file)
+        problem, _ = codec.read(doc, file)
+    else:
+        problem = build_problem(**problem_kw)
+        fam = family_of(problem)
     check_writable(output)
+    if fam.encode is None:
+        raise InvalidProblem(f"{fam.name} problems have no SAT encoding to export")
+    enc = fam.encode(problem)
     weighted = output.lower().endswith(".wcnf")
-    if problem.closest_to is not None and not weighted:
+    has_soft = getattr(enc, "soft", None) is not None
+    if has_soft and not weighted:
         raise InvalidProblem("a closest-tiling problem has soft clauses: write a .wcnf file (-o OUT.wcnf)")
-    if weighted and problem.closest_to is None:
-        raise InvalidProblem("a .wcnf file needs soft clauses: add --closest-to FILE, or write a .cnf file")
-    from tilesolve.encodings import encode_cnf, encode_wcnf
+    if weighted and not has_soft:
+        raise InvalidProblem("a .wcnf file needs soft clauses (a closest-tiling problem); write a .cnf file")
     from tilesolve.io.dimacs import write_dimacs
 
-    enc = encode_wcnf(problem) if weighted else encode_cnf(problem)
     write_dimacs(enc, output)
-    soft = f", {len(enc.soft)} soft" if enc.soft is not None else ""
+    soft = f", {len(enc.soft)} soft" if has_soft else ""
     say(f"wrote {output}: {problem.describe()}; {enc.n_vars} variables, {len(enc.hard)} hard clauses{soft}")

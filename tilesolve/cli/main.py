@@ -1,5 +1,11 @@
 """The ``tilesolve`` command: one click group, one short module per command (rasterio ``rio`` style).
 
+Commands load lazily: the generic commands (:data:`GENERIC`: verify, draw, demo, export,
+backends) serve every family through the registry (:mod:`tilesolve.family`); each family names
+its own command groups (``Family.commands``, ``"module:attribute"``, the attribute being the
+command's name). Nothing is imported before a command runs, so ``tilesolve --version`` costs no
+more than starting Python and click.
+
 Every :class:`~tilesolve.errors.TilesolveError` becomes one line ``tilesolve: error: ...`` on
 stderr and its ``exit_code``, and so does every usage error (exit 2); Ctrl-C exits 130 and
 SIGTERM 143. Outputs are checked before any work and written together at the end
@@ -9,6 +15,7 @@ SIGTERM 143. Outputs are checked before any work and written together at the end
 from __future__ import annotations
 
 import contextlib
+import importlib
 import logging
 import sys
 
@@ -21,7 +28,7 @@ from tilesolve.cli.outputs import catch_sigterm, interruption
 from tilesolve.errors import TilesolveError
 from tilesolve.io.atomic import remove_temporaries
 
-__all__ = ["main_group", "main", "COMMANDS"]
+__all__ = ["main_group", "main", "GENERIC"]
 
 
 class TilesolveGroup(click.Group):
@@ -49,7 +56,31 @@ class TilesolveGroup(click.Group):
             raise CliError(f"{what} for this problem; try smaller sizes or numbers", 2) from None
 
     def list_commands(self, ctx: click.Context) -> list[str]:
-        return list(self.commands)  # in registration order, not alphabetical
+        return list(_family_commands()) + list(GENERIC)  # families first, in registry order
+
+    def get_command(self, ctx: click.Context, name: str):
+        target = GENERIC.get(name) or _family_commands().get(name)
+        if target is None:
+            return None
+        module, attr = target.split(":")
+        return getattr(importlib.import_module(module), attr)
+
+
+#: Commands that serve every family through the registry: name -> "module:attribute".
+GENERIC = {
+    "verify": "tilesolve.cli.verify:verify",
+    "draw": "tilesolve.cli.draw:draw",
+    "export": "tilesolve.cli.export:export",
+    "demo": "tilesolve.cli.demo:demo",
+    "backends": "tilesolve.cli.backends:backends",
+}
+
+
+def _family_commands() -> dict[str, str]:
+    """Every family's commands, name -> "module:attribute" (loads the registry)."""
+    from tilesolve.family import families
+
+    return {t.split(":")[1]: t for fam in families() for t in fam.commands}
 
 
 @click.group(
@@ -77,26 +108,6 @@ def main_group(ctx: click.Context, verbose: int, quiet: int) -> None:
         format="tilesolve: %(levelname)s: %(message)s",
     )
     ctx.obj = {"verbosity": level}
-
-
-def _register() -> None:
-    from tilesolve.cli.backends import backends
-    from tilesolve.cli.brick import brick, wang
-    from tilesolve.cli.dappled import dappled
-    from tilesolve.cli.demo import demo
-    from tilesolve.cli.export import export
-    from tilesolve.cli.pack import pack
-    from tilesolve.cli.tiles import tiles
-    from tilesolve.cli.verify import verify
-
-    for cmd in (dappled, pack, brick, wang, tiles, verify, export, demo, backends):
-        main_group.add_command(cmd)
-
-
-_register()
-
-#: Registered commands by name.
-COMMANDS = main_group.commands
 
 
 def _interrupted() -> int:

@@ -1,7 +1,8 @@
 """Option decorators and help texts shared by the commands (rasterio ``rio/options.py`` style).
 
-Choices come from the library's registries (:data:`tilesolve.dappled.METHODS`,
-:data:`tilesolve.dappled.COUNT_METHODS`), so a new method shows up here by itself.
+Only options every family shares live here (no library import: ``tilesolve --version`` loads
+nothing); each family's own options (``--method`` choices from its registry entry) live in its
+command module.
 """
 
 from __future__ import annotations
@@ -11,7 +12,6 @@ from typing import Callable
 
 import click
 
-from tilesolve.dappled import COUNT_METHODS, METHODS
 
 CONTEXT_SETTINGS = {"help_option_names": ["-h", "--help"], "max_content_width": 100}
 
@@ -102,20 +102,6 @@ def problem_options(*, closest: bool = True, counts: bool = True) -> Callable:
 
 
 # ----------------------------------------------------------------------------- running
-method_opt = click.option(
-    "--method",
-    type=click.Choice(METHODS),
-    default="auto",
-    show_default=True,
-    help="auto: the papers' constructive algorithms when they apply, MaxSAT for --closest-to, SAT otherwise.",
-)
-count_method_opt = click.option(
-    "--method",
-    type=click.Choice(COUNT_METHODS),
-    default="auto",
-    show_default=True,
-    help="transfer: row-by-row transfer matrix (exact, fast); enumerate: solver enumeration (any problem).",
-)
 #: Largest count-like option value (line limits, tile numbers): far beyond any board, inside a C long.
 MAX_INT = 2**31 - 1
 
@@ -154,7 +140,7 @@ time_limit_opt = click.option(
     type=Seconds(),
     default=None,
     metavar="S",
-    help="Stop after S seconds with status unknown (exit 3); the unknown record is still written.",
+    help="Stop after S seconds with status unknown (exit 3).",
 )
 initial_opt = click.option(
     "--initial",

@@ -17,7 +17,7 @@ from tilesolve.cli.common import check_colors, progress_wanted, say
 from tilesolve.cli.outputs import Outputs
 from tilesolve.errors import InvalidProblem
 
-__all__ = ["pack", "check_packing_file"]
+__all__ = ["pack"]
 
 _KINDS = click.Choice(["corner", "wang"])
 
@@ -170,51 +170,13 @@ def count_cmd(ctx, kind, colors, up_to_symmetry, time_limit) -> None:
     The notes (§5.5.3) publish 32 corner packings (1 up to symmetry) and 203,520 Wang packings.
     """
     from tilesolve import packing as facade
-
-    res = facade.count(kind, colors, up_to_symmetry=up_to_symmetry, time_limit=time_limit)
-    what = ("packing" if res.value == 1 else "packings") + (" up to symmetry" if up_to_symmetry else "")
-    if not res.complete:
-        say(f"unknown: {res.reason} after {res.anchored} anchored packings")
-        ctx.exit(3)
-    say(f"{kind} C={colors}: {res.value:,} {what} ({res.anchored:,} with tile 0 at the origin, "
-        f"{res.nodes:,} search nodes, {res.time_s:.2f} s)")
-    click.echo(str(res.value))
-
-
-def check_packing_file(doc: dict, source: str) -> tuple[int, list[str]]:
-    """``tilesolve verify`` checker for ``tilesolve/packing`` files (exit 0 valid, 1 violations)."""
-    from tilesolve.cli.verify import no_tiling_report, violations_report
-    from tilesolve.io.packing_json import packing_from_dict
-    from tilesolve.verify.packing import packing_violations
-
-    problem, sol = packing_from_dict(doc, source)
-    if sol.tiling is None:
-        return no_tiling_report(source, sol, "packing")
-    v = packing_violations(sol.tiling, problem.kind, problem.colors, colors_v=problem.colors_v, fixed=problem.fixed)
-    if v:
-        return violations_report(source, v, f"a {problem.describe()}")
-    return 0, [f"ok: {source} is a valid packing: {problem.describe()}"]
-
-
-def demo_packing(out, seed: int, time_limit: float):
-    """``tilesolve demo`` entry: a random-looking SAT-built Wang packing over 3 colours and a
-    lifted corner packing over 4 colours (the notes' 280 CPU-day search), as JSON and SVG."""
-    from tilesolve import packing as facade
-    from tilesolve.cli.demo import DemoResult
-    from tilesolve.io.packing_json import write_packing
-    from tilesolve.io.svg_packing import write_packing_svg
     from tilesolve.model.packing import PackingProblem
 
-    ok, lines = True, []
-    for name, kind, colors, method in (("packing-wang3", "wang", 3, "sat"), ("packing-corner4", "corner", 4, "lift")):
-        problem = PackingProblem(kind, colors)
-        sol = facade.solve(problem, method=method, seed=seed, time_limit=time_limit, workers=1)
-        write_packing(out / f"{name}.json", problem, sol)
-        lines.append(f"{name:12s} {problem.describe()}: {sol.status.value} by {sol.method} in {sol.time_s:.2f} s")
-        if sol.status.has_tiling:
-            svg = out / f"{name}.svg"
-            write_packing_svg(svg, sol.tiling, kind, colors, indices=True, title=f"{kind} packing, C={colors} ({sol.method})")
-            lines.append(f"{'':12s} -> {svg}")
-        else:
-            ok = False
-    return DemoResult(ok, lines)
+    res = facade.count(PackingProblem(kind, colors), up_to_symmetry=up_to_symmetry, time_limit=time_limit)
+    what = ("packing" if res.value == 1 else "packings") + (" up to symmetry" if up_to_symmetry else "")
+    if not res.exact:
+        say(f"unknown: {res.note} after {res.stats['anchored']} anchored packings")
+        ctx.exit(3)
+    say(f"{kind} C={colors}: {res.value:,} {what} ({res.stats['anchored']:,} with tile 0 at the origin, "
+        f"{res.stats['nodes']:,} search nodes, {res.time_s:.2f} s)")
+    click.echo(str(res.value))

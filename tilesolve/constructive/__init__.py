@@ -1,23 +1,18 @@
 """The papers' constructive algorithms (hot loops compiled with numba)."""
 
-from tilesolve.constructive.dappled import (
-    ROUTES,
-    algorithm1,
-    algorithm2,
-    dappled_route,
-    draughtboard,
-    make_dappled,
-    remark34,
-    trivial,
-)
+from tilesolve._lazy import lazy_exports
 
-__all__ = [
-    "ROUTES",
-    "algorithm1",
-    "algorithm2",
-    "dappled_route",
-    "draughtboard",
-    "make_dappled",
-    "remark34",
-    "trivial",
-]
+#: Exported names and the module each lives in (imported on first use).
+_WHERE = {
+    "ROUTES": "tilesolve.constructive.dappled",
+    "algorithm1": "tilesolve.constructive.dappled",
+    "algorithm2": "tilesolve.constructive.dappled",
+    "dappled_route": "tilesolve.constructive.dappled",
+    "draughtboard": "tilesolve.constructive.dappled",
+    "make_dappled": "tilesolve.constructive.dappled",
+    "remark34": "tilesolve.constructive.dappled",
+    "trivial": "tilesolve.constructive.dappled",
+}
+
+__all__ = list(_WHERE)
+__getattr__, __dir__ = lazy_exports(__name__, _WHERE)

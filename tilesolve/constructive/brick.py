@@ -43,7 +43,7 @@ from tilesolve.errors import MethodNotApplicable
 from tilesolve.model.board import LEG_NAMES, BoardProblem
 from tilesolve.model.solution import Solution, Status
 
-__all__ = ["solve_linear", "find_cycle", "cycle_corners", "wall_from_dappled", "brick_wall"]
+__all__ = ["solve_linear", "find_cycle", "cycle_corners", "wall_from_dappled"]
 
 
 def cycle_corners(nbr_cell: np.ndarray, ins: np.ndarray, outs: np.ndarray) -> int:
@@ -336,42 +336,3 @@ def wall_from_dappled(classes, n_colors: int = 3, *, seed=None) -> np.ndarray:
         cur = np.where(~h[r], cur, (cur + step) % n_colors)
         south[r] = cur
     return np.stack([west.ravel(), north.ravel(), east.ravel(), south.ravel()], axis=1)
-
-
-def brick_wall(rows: int, cols: int, max_line: int, *, max_v: int | None = None, n_colors: int = 3,
-               seed=None) -> tuple[BoardProblem, Solution]:
-    """A brick wall with no horizontal line through more than ``max_line`` cells and no
-    vertical one through more than ``max_v`` (default ``max_line``), dappled paper §4.
-
-    Algorithm 1 of the dappled paper makes an L-dappled tiling with ``T = {0, 1}``,
-    ``L = {H_0^p, V_1^q}`` from a random one (through :func:`tilesolve.dappled.solve`,
-    which uses SAT where Algorithm 1 does not apply, e.g. ``p = 1``); :func:`wall_from_dappled` turns it into
-    edge positions. The board is the ``rows x cols`` rectangle with a free boundary.
-
-    Examples
-    --------
-    >>> from tilesolve.verify.board import board_violations
-    >>> p, s = brick_wall(6, 9, 2, seed=1)
-    >>> board_violations(s.tiling, p)
-    []
-    """
-    from tilesolve import dappled as dappled_facade
-    from tilesolve.model.board import Board, WangTileSet
-    from tilesolve.model.dappled import DappledProblem, parse_condition
-
-    t0 = time.perf_counter()
-    q = max_line if max_v is None else max_v
-    rng = rng_from_seed(seed)
-    dp = DappledProblem(rows, cols, 2, (parse_condition(f"H0={int(max_line)}"), parse_condition(f"V1={int(q)}")))
-    ds = dappled_facade.solve(dp, seed=int(rng.integers(0, 2**31 - 1)))  # verified; SAT where Alg. 1 does not apply
-    if not ds.status.has_tiling:
-        return (BoardProblem(Board.rect(rows, cols), WangTileSet.brick(n_colors), None, max_h=int(max_line),
-                             max_v=int(q)),
-                Solution(ds.status, None, f"dappled/{ds.method}", ds.solver, seed, time.perf_counter() - t0,
-                         reason=ds.reason))
-    classes = ds.tiling
-    tiling = wall_from_dappled(classes, n_colors, seed=rng)
-    problem = BoardProblem(Board.rect(rows, cols), WangTileSet.brick(n_colors), None, max_h=int(max_line), max_v=int(q))
-    sol = Solution(Status.SAT, tiling, f"dappled/{ds.method}", ds.solver, seed, time.perf_counter() - t0,
-                   notes=ds.notes)
-    return problem, sol

@@ -24,7 +24,6 @@ from __future__ import annotations
 
 import itertools
 import time
-from dataclasses import dataclass
 from typing import Iterator
 
 import numpy as np
@@ -32,13 +31,13 @@ import numpy as np
 from tilesolve.deadline import Deadline
 from tilesolve.errors import InvalidProblem
 from tilesolve.constructive.packing import apply_symmetry, symmetry_tile_map
+from tilesolve.model.solution import CountResult, Status
 from tilesolve.model.tiles import TileSet
 
 __all__ = [
     "PUBLISHED_COUNTS",
     "enumerate_packings",
     "count_packings",
-    "PackingCount",
     "symmetry_maps",
     "apply_symmetry",
     "packing_orbits",
@@ -211,28 +210,13 @@ def packing_orbits(anchored_packings, kind: str, colors: int) -> list[np.ndarray
     return [best_grid[i] for i in sorted(first)]
 
 
-@dataclass(frozen=True)
-class PackingCount:
-    """Result of :func:`count_packings`.
-
-    ``value`` is the number of packings (or of orbits with ``up_to_symmetry``); ``None`` with
-    ``complete = False`` when the time limit stopped the enumeration.
-    """
-
-    kind: str
-    colors: int
-    value: int | None
-    up_to_symmetry: bool
-    complete: bool
-    time_s: float
-    anchored: int
-    nodes: int
-    reason: str | None = None
-
-
 def count_packings(kind: str, colors: int, *, up_to_symmetry: bool = False,
-                   time_limit: float | None = None) -> PackingCount:
+                   time_limit: float | None = None) -> CountResult:
     """Count all packings of the complete set over ``colors`` colours (C = 2).
+
+    The value counts packings (or orbits, with ``up_to_symmetry``); ``stats`` holds
+    ``anchored`` (packings with tile 0 at the origin) and ``nodes`` (search nodes). Status
+    ``unknown`` with value ``None`` when the time limit stopped the enumeration.
 
     Examples
     --------
@@ -243,10 +227,10 @@ def count_packings(kind: str, colors: int, *, up_to_symmetry: bool = False,
     deadline = Deadline(time_limit)
     stats: dict = {}
     anchored = list(enumerate_packings(kind, colors, deadline=deadline, stats=stats))
+    figures = {"anchored": len(anchored), "nodes": stats["nodes"]}
     if not stats["complete"]:
-        return PackingCount(kind, colors, None, up_to_symmetry, False, time.perf_counter() - t0, len(anchored),
-                            stats["nodes"], f"time limit of {time_limit:.3g} s reached")
+        return CountResult(None, Status.UNKNOWN, "backtrack", time.perf_counter() - t0,
+                           f"time limit of {time_limit:.3g} s reached", figures)
     n = TileSet(kind, colors).n_tiles
     value = len(packing_orbits(anchored, kind, colors)) if up_to_symmetry else n * len(anchored)
-    return PackingCount(kind, colors, value, up_to_symmetry, True, time.perf_counter() - t0, len(anchored),
-                        stats["nodes"])
+    return CountResult(value, Status.SAT, "backtrack", time.perf_counter() - t0, None, figures)

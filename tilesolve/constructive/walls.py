@@ -423,6 +423,7 @@ def _wall_kernel(x0, y0, w, h, nc, p, fixed, bh, bv, bo, opt, nopt, out):
 
 
 _LIMIT = (1 << 62) - 8
+_STRIP_CELLS = 1 << 16
 
 
 def _check_window(x0, y0, w, h) -> tuple[int, int, int, int]:
@@ -472,7 +473,14 @@ def wall_window(x0, y0, w, h, *, colors: int = 3, max_line: int | None = None, s
     fixed = max_line is not None and int(max_line) % 2 == 1
     out = np.empty((h, w, 4), dtype=np.int8)
     basis = [np.uint64(FnvXorshift(s, k).basis) for k in range(3)]
-    return _wall_kernel(x0, y0, w, h, nc, p, fixed, basis[0], basis[1], basis[2], _OPT, _NOPT, out)
+    # Strips of about 2**16 cells keep the kernel's scratch arrays in cache; random access makes
+    # each strip the same as the corresponding rows of one big window.
+    rows = max(2, min(h, _STRIP_CELLS // w))
+    for top in range(0, h, rows):
+        hh = min(rows, h - top)
+        _wall_kernel(x0, y0 + h - top - hh, w, hh, nc, p, fixed, basis[0], basis[1], basis[2], _OPT, _NOPT,
+                     out[top: top + hh])
+    return out
 
 
 def wall_tile_scalar(i, j, *, colors: int = 3, max_line: int | None = None, seed: int = 0) -> tuple[int, int, int, int]:

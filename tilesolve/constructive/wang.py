@@ -16,7 +16,8 @@ Examples
 --------
 >>> from tilesolve.model.board import Board, BoardProblem, WangTileSet
 >>> p = BoardProblem(Board.rect(6, 6), WangTileSet.brick(3), [0] * 24)
->>> theorem7_solve(p, seed=1).status.value
+>>> from tilesolve import board  # the board family passes its SAT route as the core solver
+>>> board.solve(p, method='theorem7', seed=1).status.value
 'sat'
 """
 
@@ -54,7 +55,7 @@ def default_core(problem: BoardProblem) -> np.ndarray:
     return core
 
 
-def theorem7_solve(problem: BoardProblem, core=None, *, core_solver: Callable[..., Solution] | None = None,
+def theorem7_solve(problem: BoardProblem, core=None, *, core_solver: Callable[..., Solution],
                    seed=None, time_limit: float | None = None) -> Solution:
     """Solve a tiling problem by Theorem 7's strategy.
 
@@ -64,9 +65,9 @@ def theorem7_solve(problem: BoardProblem, core=None, *, core_solver: Callable[..
         Its tile set must satisfy the three-boundary condition (Def. 6).
     core : array-like of bool or int, optional
         The cells of ``U`` (a mask or indices); default :func:`default_core`.
-    core_solver : callable, optional
-        ``core_solver(subproblem, seed=, time_limit=) -> Solution`` for ``G|U``; default
-        :func:`tilesolve.wang.solve_sat`.
+    core_solver : callable
+        ``core_solver(subproblem, seed=, time_limit=) -> Solution`` for ``G|U`` (the board
+        family passes its SAT route; constructive code never calls a solver itself).
 
     Returns
     -------
@@ -142,8 +143,6 @@ def theorem7_solve(problem: BoardProblem, core=None, *, core_solver: Callable[..
     beta = np.full(sub.n_boundary, -1, np.int64)
     beta[sub.nbr_leg[sa, sl]] = col[idx[sa], sl]
     subproblem = BoardProblem(sub, ts, beta)
-    if core_solver is None:
-        from tilesolve.wang import solve_sat as core_solver
     cs = core_solver(subproblem, seed=seed, time_limit=time_limit)
     stats = {"core_cells": int(keep.sum()), "core_method": cs.method}
     if not cs.status.has_tiling:

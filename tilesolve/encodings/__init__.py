@@ -13,13 +13,14 @@ plus ragged clauses from cardinality encodings.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Iterable, Iterator
+from typing import Iterable, Iterator, Protocol
 
 import numpy as np
 
 __all__ = [
     "ClauseBlock",
     "ClauseSet",
+    "Encoding",
     "DappledEncoding",
     "encode_cnf",
     "encode_wcnf",
@@ -168,11 +169,47 @@ class ClauseSet:
         return out
 
 
-# The dappled family (imported last: it builds on ClauseSet above).
-from tilesolve.encodings.dappled import (  # noqa: E402
-    CpSatDappled,
-    DappledEncoding,
-    build_cpsat,
-    encode_cnf,
-    encode_wcnf,
-)
+class Encoding(Protocol):
+    """What every family's CNF encoding offers (one protocol, so one SAT driver,
+    :func:`tilesolve.engine.routes.sat_route`, and one DIMACS writer serve every family).
+
+    Attributes
+    ----------
+    hard : ClauseSet
+        The clauses.
+    n_vars : int
+        Largest variable in use.
+    restricted : bool
+        True when the formula searches only part of the problem's space (e.g. lifted
+        packings): then unsat proves nothing.
+    soft : numpy.ndarray or None
+        Weighted encodings only: one literal per unit soft clause of weight 1.
+    """
+
+    hard: ClauseSet
+    n_vars: int
+    restricted: bool
+
+    def projection(self) -> np.ndarray:
+        """Variables that determine the tiling (enumeration blocks on them)."""
+
+    def decode(self, model) -> np.ndarray:
+        """The tiling of a model (signed DIMACS literals)."""
+
+    def literals(self, tiling) -> list[int]:
+        """Unit literals that pin ``tiling`` (check that a tiling satisfies the formula)."""
+
+    def header(self) -> list[str]:
+        """DIMACS comment lines that explain the variables."""
+
+
+_DAPPLED = ("DappledEncoding", "encode_cnf", "encode_wcnf", "build_cpsat", "CpSatDappled")
+
+
+def __getattr__(name: str):
+    # The dappled encoders import pysat; load them on first use (PEP 562).
+    if name in _DAPPLED:
+        from tilesolve.encodings import dappled
+
+        return getattr(dappled, name)
+    raise AttributeError(f"module 'tilesolve.encodings' has no attribute {name!r}")

@@ -46,6 +46,7 @@ import numpy as np
 from pysat.card import CardEnc, EncType
 from pysat.formula import CNF, WCNF, IDPool
 
+from tilesolve.deadline import Deadline
 from tilesolve.encodings import ClauseSet
 from tilesolve.errors import InvalidProblem
 from tilesolve.model.dappled import Condition, DappledProblem
@@ -118,7 +119,7 @@ class DappledEncoding:
     [[1, 2, 3]]
     >>> enc.decode([-1, 2, -3]).tolist()
     [[0, 1, 0]]
-    >>> enc.encode_tiling([[1, 0, 0]])
+    >>> enc.literals([[1, 0, 0]])
     [1, -2, -3]
     """
 
@@ -130,6 +131,9 @@ class DappledEncoding:
     soft: np.ndarray | None = None
     pool: IDPool | None = None
     aux_ranges: list = field(default_factory=list)
+
+    #: The formula is the whole problem: an unsat answer is a refutation.
+    restricted = False
 
     # ------------------------------------------------------------------ literals
     def grid_vars(self) -> np.ndarray:
@@ -144,7 +148,7 @@ class DappledEncoding:
         """The grid variables (a model restricted to them determines the tiling)."""
         return np.arange(1, self.n_grid_vars + 1, dtype=np.int64)
 
-    def encode_tiling(self, tiling) -> list[int]:
+    def literals(self, tiling) -> list[int]:
         """Literals that fix every grid variable to ``tiling`` (assumptions for a solver).
 
         The formula plus these assumptions is satisfiable iff ``tiling`` satisfies the
@@ -186,7 +190,7 @@ class DappledEncoding:
     def target_values(self, tiling) -> np.ndarray:
         """Boolean grid assignment (``v[var]``) of a tiling; auxiliary variables false."""
         val = np.zeros(self.n_vars + 1, dtype=bool)
-        lits = np.asarray(self.encode_tiling(tiling), dtype=np.int64)
+        lits = np.asarray(self.literals(tiling), dtype=np.int64)
         val[np.abs(lits)] = lits > 0
         return val
 
@@ -262,6 +266,10 @@ class DappledEncoding:
 # ---------------------------------------------------------------------- helpers
 
 
+def _millions(n: int) -> str:
+    return f"{n / 1e6:.1f} M" if n >= 100_000 else f"{n:,}"
+
+
 def _grid_vars(p: DappledProblem) -> np.ndarray:
     if p.n_tiles == 2:
         return np.arange(1, p.size + 1, dtype=np.int64).reshape(p.rows, p.cols)
@@ -285,12 +293,37 @@ def _outside_lits(p: DappledProblem, tiles: Sequence[int]) -> np.ndarray:
     return _grid_vars(p)[:, :, others]
 
 
-def _window_clauses(out: np.ndarray, limit: np.ndarray, cyclic: bool) -> list[np.ndarray]:
+def _uniform_windows(out: np.ndarray, p: int, cyclic: bool) -> list[np.ndarray]:
+    """:func:`_window_clauses` for one limit ``p`` at every cell, by shifted slices.
+
+    Same clauses in the same order (row-major over the window's last cell, literals from
+    cell ``c-p`` to ``c``), without the index arrays of the per-cell path (4x faster on a
+    2048x2048 grid).
+    """
+    rows, cols, k = out.shape
+    if cyclic and p + 1 >= cols:
+        return [out.reshape(rows, cols * k)]
+    if cyclic:
+        parts = [np.roll(out, j, axis=1) for j in range(p, -1, -1)]  # cell c-j at column c
+        n_end = cols
+    else:
+        if p >= cols:
+            return []
+        n_end = cols - p
+        parts = [out[:, p - j : p - j + n_end] for j in range(p, -1, -1)]
+    win = np.stack(parts, axis=2)  # (rows, n_end, p + 1, k)
+    return [win.reshape(rows * n_end, (p + 1) * k)]
+
+
+def _window_clauses(out: np.ndarray, limit: np.ndarray | int, cyclic: bool) -> list[np.ndarray]:
     """Forbid horizontal windows (along axis 1) of ``limit + 1`` cells all inside ``tau``.
 
     ``out[r, c, :]`` are the literals "cell (r, c) is outside tau"; ``limit[r, c]`` is the
-    limit for runs ending at ``(r, c)`` (0 = none). Returns clause arrays.
+    limit for runs ending at ``(r, c)`` (0 = none), or one int for every cell. Returns
+    clause arrays.
     """
+    if not isinstance(limit, np.ndarray):
+        return _uniform_windows(out, int(limit), cyclic) if limit else []
     rows, cols, k = out.shape
     blocks = []
     for p in np.unique(limit[limit > 0]).tolist():
@@ -315,10 +348,10 @@ def _window_clauses(out: np.ndarray, limit: np.ndarray, cyclic: bool) -> list[np
 
 def _condition_blocks(p: DappledProblem, cond: Condition) -> list[np.ndarray]:
     out = _outside_lits(p, cond.tiles)
-    limit = cond.limit_array(p.rows, p.cols)
+    limit = cond.limit_array(p.rows, p.cols) if not cond.is_uniform else (cond.limit or 0)
     if cond.axis == "H":
         return _window_clauses(out, limit, p.cyclic)
-    return _window_clauses(out.transpose(1, 0, 2), limit.T, p.cyclic)
+    return _window_clauses(out.transpose(1, 0, 2), limit.T if isinstance(limit, np.ndarray) else limit, p.cyclic)
 
 
 def _exactly_one_blocks(p: DappledProblem) -> list[tuple[np.ndarray, str]]:
@@ -350,7 +383,10 @@ def _sequential_amo(p: DappledProblem, first_aux: int) -> tuple[np.ndarray, int]
 
 
 def encode_cnf(
-    problem: DappledProblem, *, card_encoding: CardEncoding | str = CardEncoding.AUTO
+    problem: DappledProblem,
+    *,
+    card_encoding: CardEncoding | str = CardEncoding.AUTO,
+    deadline: Deadline | None = None,
 ) -> DappledEncoding:
     """Encode a dappled problem as CNF (dappled paper §6 item 8).
 
@@ -364,10 +400,17 @@ def encode_cnf(
     problem : DappledProblem
     card_encoding : CardEncoding or str
         Cardinality encoding for ``problem.counts``.
+    deadline : Deadline, optional
+        Checked between blocks of clauses.
 
     Returns
     -------
     DappledEncoding
+
+    Raises
+    ------
+    TimeLimitReached
+        The deadline passed while encoding (the message says how far it got).
 
     Examples
     --------
@@ -379,6 +422,11 @@ def encode_cnf(
     p = problem
     card = CardEncoding(card_encoding)
     hard = ClauseSet()
+
+    def check() -> None:
+        if deadline is not None:
+            deadline.check(f"encoding ({_millions(len(hard))} clauses built)")
+
     one_hot = p.n_tiles > 2
     n_grid = p.size * (p.n_tiles if one_hot else 1)
     top = n_grid
@@ -392,8 +440,10 @@ def encode_cnf(
             aux_ranges.append((top + 1, new_top, "at-most-one sequential counters"))
             top = new_top
     for cond in p.conditions:
+        check()
         for arr in _condition_blocks(p, cond):
             hard.add_array(arr, f"{cond} windows" + (" (cyclic)" if p.cyclic else ""))
+    check()
     if p.fixed is not None:
         rr, cc = np.nonzero(p.fixed >= 0)
         if rr.size:
@@ -403,6 +453,7 @@ def encode_cnf(
             hard.add_array(lits[:, None], "fixed cells")
     pool = IDPool(start_from=top + 1)
     for k in p.counts:
+        check()
         lits = _tile_lits(p, k.tile).ravel().tolist()
         n = len(lits)
         before = pool.top
@@ -416,6 +467,7 @@ def encode_cnf(
         hard.add_lists(clauses, f"count {k}", grid_only=False)
         if pool.top > before:
             aux_ranges.append((before + 1, pool.top, f"cardinality encoding of count {k}"))
+    check()
     return DappledEncoding(
         problem=p,
         hard=hard,
@@ -432,6 +484,7 @@ def encode_wcnf(
     target=None,
     *,
     card_encoding: CardEncoding | str = CardEncoding.AUTO,
+    deadline: Deadline | None = None,
 ) -> DappledEncoding:
     """Encode the closest-tiling problem as weighted partial MaxSAT (§6 item 3, Example 6.1).
 
@@ -444,6 +497,8 @@ def encode_wcnf(
     problem : DappledProblem
     target : array-like, optional
         The tiling to stay close to; defaults to ``problem.closest_to``.
+    deadline : Deadline, optional
+        As for :func:`encode_cnf`.
 
     Raises
     ------
@@ -462,8 +517,8 @@ def encode_wcnf(
         target = problem.closest_to
     if target is None:
         raise InvalidProblem("a closest-tiling encoding needs a target tiling (closest_to)")
-    enc = encode_cnf(problem, card_encoding=card_encoding)
-    enc.soft = np.asarray(enc.encode_tiling(target), dtype=np.int64)
+    enc = encode_cnf(problem, card_encoding=card_encoding, deadline=deadline)
+    enc.soft = np.asarray(enc.literals(target), dtype=np.int64)
     if enc.one_hot:
         enc.soft = enc.soft[enc.soft > 0]
     return enc
@@ -546,16 +601,30 @@ class CpSatDappled:
 
     def add_hint(self, tiling) -> None:
         """Hint every grid variable with ``tiling`` (CP-SAT solution hint)."""
-        for lit in self.encoding.encode_tiling(tiling):
+        for lit in self.encoding.literals(tiling):
             self.model.add_hint(self.variables[abs(lit) - 1], lit > 0)
 
 
-def build_cpsat(problem: DappledProblem) -> CpSatDappled:
+#: Variables or clauses added to a CP-SAT model between two deadline checks.
+CPSAT_BUILD_CHUNK = 1 << 14
+
+
+def build_cpsat(problem: DappledProblem, *, deadline: Deadline | None = None) -> CpSatDappled:
     """Build a CP-SAT model with the same semantics as :func:`encode_cnf`.
 
-    The grid clauses of the CNF encoding (windows, fixed cells, exactly-one) become
-    ``BoolOr`` constraints; counts become native linear constraints; ``closest_to``
-    becomes the objective "minimise the number of cells that differ" (§6 item 3).
+    The clauses of the CNF encoding (windows, fixed cells, exactly-one) become ``BoolOr``
+    constraints; counts become native linear constraints; ``closest_to`` becomes the
+    objective "minimise the number of cells that differ" (§6 item 3).
+
+    The clauses go into the model's protocol buffer directly (CP-SAT literal ``v - 1`` for
+    variable ``v``, ``-v`` for its negation), a few times faster than one
+    ``add_bool_or`` call per clause; building is still about 10 µs a clause, so a
+    ``deadline`` is checked every :data:`CPSAT_BUILD_CHUNK` variables or clauses.
+
+    Raises
+    ------
+    TimeLimitReached
+        The deadline passed while building (the message says how far it got).
 
     Examples
     --------
@@ -575,28 +644,39 @@ def build_cpsat(problem: DappledProblem) -> CpSatDappled:
         cyclic=problem.cyclic,
         fixed=problem.fixed,
     )
-    enc = encode_cnf(p_nocount)
+    enc = encode_cnf(p_nocount, deadline=deadline)
     enc.problem = problem  # same grid and variables; decode/encode_tiling need only those
     model = cp_model.CpModel()
-    xs = [model.new_bool_var(f"v{v}") for v in range(1, enc.n_grid_vars + 1)]
-    neg = [x.Not() for x in xs]
-    aux: dict[int, Any] = {}
-
-    def lit(v: int):
-        a = abs(v)
-        if a > enc.n_grid_vars:  # sequential-counter auxiliaries (|T| > PAIRWISE_AMO_MAX)
-            if a not in aux:
-                aux[a] = model.new_bool_var(f"a{a}")
-            return aux[a] if v > 0 else aux[a].Not()
-        return xs[a - 1] if v > 0 else neg[a - 1]
-
-    for ch in enc.hard.chunks():
-        for clause in ch:
-            model.add_bool_or([lit(v) for v in clause])
+    chunk = CPSAT_BUILD_CHUNK
+    n_vars = enc.n_vars  # grid variables, then the sequential-counter auxiliaries
+    n_clauses = len(enc.hard)
+    every: list = []
+    for lo in range(0, n_vars, chunk):
+        if deadline is not None:
+            deadline.check(f"building the CP-SAT model ({_millions(lo)} of {_millions(n_vars)} variables created)")
+        every.extend(model.new_bool_var(f"v{v}") for v in range(lo + 1, min(n_vars, lo + chunk) + 1))
+    xs = every[: enc.n_grid_vars]
+    constraints = model.proto.constraints
+    done = 0
+    for block in enc.hard.blocks:
+        lits = block.lits if block.lits is not None else None
+        rows = block.ragged if lits is None else None
+        n = len(block)
+        for lo in range(0, n, chunk):
+            if deadline is not None:
+                deadline.check(f"building the CP-SAT model ({_millions(done)} of {_millions(n_clauses)} clauses added)")
+            if lits is not None:
+                part = lits[lo : lo + chunk]
+                part = np.where(part > 0, part - 1, part).tolist()  # CP-SAT: v - 1, negation -v
+            else:
+                part = [[v - 1 if v > 0 else v for v in c] for c in rows[lo : lo + chunk]]
+            for clause in part:
+                constraints.add().bool_or.literals.extend(clause)
+            done += len(part)
     for k in problem.counts:
         tl = _tile_lits(problem, k.tile).ravel().tolist()
         terms = [xs[v - 1] if v > 0 else 1 - xs[-v - 1] for v in tl]
-        s = sum(terms)
+        s = cp_model.LinearExpr.sum(terms)
         if k.low > 0:
             model.add(s >= k.low)
         if k.high is not None:
@@ -607,5 +687,5 @@ def build_cpsat(problem: DappledProblem) -> CpSatDappled:
         if enc.one_hot:
             keep = [v for v in keep if v > 0]
         # cost of a cell = 1 - [cell keeps its target tile]
-        model.minimize(sum((1 - xs[v - 1]) if v > 0 else xs[-v - 1] for v in keep))
+        model.minimize(cp_model.LinearExpr.sum([(1 - xs[v - 1]) if v > 0 else xs[-v - 1] for v in keep]))
     return CpSatDappled(model=model, variables=xs, encoding=enc, objective=has_obj)

@@ -130,6 +130,15 @@ class PackingEncoding:
         rows, cols = self.problem.shape
         return grid.reshape(rows, cols)
 
+    def projection(self) -> np.ndarray:
+        """The placement variables (a model restricted to them determines the packing)."""
+        return np.arange(1, self.n_placements + 1, dtype=np.int64)
+
+    def literals(self, grid) -> list[int]:
+        """Unit literals placing the tiles of ``grid`` (0 entries: pairs outside the domains)."""
+        g = np.asarray(grid, dtype=np.int64).reshape(-1)
+        return self.place_var(np.arange(g.size), g).tolist()
+
     def header(self) -> list[str]:
         p = self.problem
         lines = [

@@ -58,7 +58,9 @@ class WangEncoding:
         """The variable ``x(edge, colour)`` (vectorised)."""
         return 1 + np.asarray(edge, dtype=np.int64) * self.n_colors + np.asarray(colour, dtype=np.int64)
 
-    @property
+    #: The formula is the whole problem: an unsat answer is a refutation.
+    restricted = False
+
     def projection(self) -> np.ndarray:
         """The edge-colour variables (a tiling is determined by them)."""
         return np.arange(1, self.n_edges * self.n_colors + 1, dtype=np.int64)
@@ -73,7 +75,16 @@ class WangEncoding:
         colour = onehot.argmax(axis=1)
         return colour[self.edge_of_leg]
 
-    def assumptions_for(self, tiling) -> list[int]:
+    def header(self) -> list[str]:
+        """DIMACS comment lines describing the variables."""
+        return [
+            f"tilesolve board tiling: {self.n_edges} edges, {self.n_colors} colours",
+            f"variables 1..{self.n_edges * self.n_colors}: x(edge, colour) = 1 + edge*{self.n_colors} + colour "
+            "(edge numbers: tilesolve.model.board.Board.leg_edges; legs W, N, E, S)",
+            f"variables above {self.n_edges * self.n_colors}: tile selectors and line-length auxiliaries",
+        ]
+
+    def literals(self, tiling) -> list[int]:
         """Unit literals that pin the edge colours of ``tiling`` (to check it satisfies the CNF)."""
         t = np.asarray(tiling, dtype=np.int64)
         col = np.zeros(self.n_edges, dtype=np.int64)

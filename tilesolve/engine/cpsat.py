@@ -2,6 +2,17 @@
 
 Generic over families: it solves any ``CpModel`` and reports the values of the Boolean
 variables the caller names.
+
+Seeds
+-----
+CP-SAT's presolve often finds a first solution of a satisfaction model by itself
+("trivial exploration"), the same whatever ``random_seed`` says. So a seeded satisfaction
+run hints every reported variable with a value drawn from the seed (unless the model
+carries its own hint, e.g. a target tiling) and turns presolve off, so that the hint steers
+the search: different seeds then give different solutions where there are many, and with
+one worker the same seed gives the same solution. With several workers CP-SAT races its
+subsolvers, and which one answers first may differ between runs (``num_workers=1`` for
+exact repetition). Optimisation runs keep presolve; their optimum may be unique.
 """
 
 from __future__ import annotations
@@ -37,6 +48,7 @@ def solve_cp_model(
     seed: int | None = None,
     has_objective: bool = False,
     core_search: bool | None = None,
+    deadline: Deadline | None = None,
 ) -> Result:
     """Solve a CP-SAT model and read back ``variables``.
 
@@ -50,13 +62,15 @@ def solve_cp_model(
         (a solution, optimality not proved).
     num_workers : int
     seed : int, optional
-        ``random_seed``.
+        ``random_seed``; for satisfaction models also the seeded hint (see "Seeds").
     has_objective : bool
         Report ``OPTIMAL`` (with ``cost``) rather than ``SAT`` when the search completes.
     core_search : bool, optional
         Force a core-based worker for optimisation (CP-SAT's portfolio of two workers has
         none, and then rarely proves optimality of closest-tiling objectives); default:
         on when ``has_objective``.
+    deadline : Deadline, optional
+        The whole run's deadline (replaces ``time_limit``; the reason names its limit).
 
     Examples
     --------
@@ -72,13 +86,22 @@ def solve_cp_model(
     if num_workers < 1:
         raise InvalidProblem(f"num_workers must be >= 1, got {num_workers}")
     t0 = time.perf_counter()
+    if deadline is None:
+        deadline = Deadline(time_limit)
+    time_limit = deadline.time_limit
     solver = cp_model.CpSolver()
     prm = solver.parameters
     prm.num_workers = int(num_workers)
-    if time_limit is not None:
-        prm.max_time_in_seconds = max(float(time_limit), 0.0)
     if seed is not None:
         prm.random_seed = int(seed)
+        if not has_objective and not model.proto.solution_hint.vars:
+            _seeded_hint(model, variables, seed, deadline)
+            prm.cp_model_presolve = False
+    if deadline.expired():
+        return Result(Status.UNKNOWN, None, time.perf_counter() - t0, None, {"workers": num_workers},
+                      solver="cp-sat", reason=f"time limit of {time_limit:.3g} s reached before CP-SAT started")
+    if time_limit is not None:
+        prm.max_time_in_seconds = max(deadline.remaining(), 0.0)
     if core_search is None:
         core_search = has_objective
     if core_search:
@@ -94,7 +117,7 @@ def solve_cp_model(
     # search ourselves instead.
     prm.catch_sigint_signal = False
     reason = None
-    status, stop = run_interruptible(lambda: solver.solve(model), solver.stop_search, Deadline(None))
+    status, stop = run_interruptible(lambda: solver.solve(model), solver.stop_search, deadline)
     if stop == "interrupted":
         reason = "interrupted (Ctrl-C)"
     rt = time.perf_counter() - t0
@@ -121,5 +144,20 @@ def solve_cp_model(
     if status == cp_model.INFEASIBLE:
         return Result(Status.UNSAT, None, rt, None, stats, solver="cp-sat", reason="CP-SAT proved infeasibility")
     if reason is None:
-        reason = f"time limit of {time_limit:.3g} s reached" if time_limit is not None else "CP-SAT gave up"
+        reason = (f"time limit of {time_limit:.3g} s reached while solving" if time_limit is not None
+                  else "CP-SAT gave up")
     return Result(Status.UNKNOWN, None, rt, None, stats, solver="cp-sat", reason=reason)
+
+
+def _seeded_hint(model, variables: Sequence, seed: int, deadline: Deadline) -> None:
+    """Hint each of ``variables`` with a value drawn from ``seed`` (see "Seeds")."""
+    from tilesolve._random import rng_from_seed
+
+    bits = (rng_from_seed(seed).random(len(variables)) < 0.5).tolist()
+    hint = model.proto.solution_hint
+    step = 1 << 16
+    for lo in range(0, len(variables), step):
+        if deadline.expired():
+            return  # a partial hint is still a hint; the solve call reports the time limit
+        hint.vars.extend(v.index for v in variables[lo : lo + step])
+        hint.values.extend(int(b) for b in bits[lo : lo + step])

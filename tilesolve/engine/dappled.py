@@ -28,11 +28,12 @@ import numpy as np
 from tilesolve.encodings.dappled import DappledEncoding, build_cpsat, encode_cnf, encode_wcnf
 from tilesolve.engine.cpsat import DEFAULT_CPSAT_WORKERS, solve_cp_model
 from tilesolve.engine.maxsat import DEFAULT_MAXSAT_ORACLE, RC2Options, solve_lazy, solve_wcnf
-from tilesolve.engine.certificates import unsat_solution
+from tilesolve.engine.routes import sat_route
 from tilesolve.deadline import Deadline
 from tilesolve.engine.sat import DEFAULT_SAT_SOLVER, ModelEnumerator, solve_cnf
 from tilesolve.errors import InvalidProblem
 from tilesolve.model.dappled import DappledProblem
+from tilesolve.model.run import RunOptions
 from tilesolve.model.solution import Solution, Status
 
 __all__ = [
@@ -61,9 +62,7 @@ def solve_sat(
     *,
     time_limit: float | None = None,
     solver: str = DEFAULT_SAT_SOLVER,
-    proof: bool = True,
     seed: int | None = None,
-    check_proof: bool = True,
 ) -> Solution:
     """Decide a dappled problem with a SAT solver (dappled paper §6 item 8).
 
@@ -76,14 +75,11 @@ def solve_sat(
     time_limit : float, optional
         Seconds, encoding included; expiry gives ``Status.UNKNOWN``, never ``UNSAT``.
     solver : str
-        PySAT solver name (see :func:`tilesolve.engine.sat.proof_solvers`).
-    proof : bool
-        Log a DRAT proof; on UNSAT it is checked by :mod:`tilesolve.verify.drat` (up to
-        :data:`PROOF_CHECK_MAX_SIZE` literals).
+        PySAT solver name (see :func:`tilesolve.engine.sat.proof_solvers`). UNSAT answers
+        carry the DRAT proof it logged, checked by :mod:`tilesolve.verify.drat`
+        (:func:`tilesolve.engine.routes.sat_route`).
     seed : int, optional
         Solver random seed (CaDiCaL, Glucose 4.2); recorded in the Solution.
-    check_proof : bool
-        Check the proof of an UNSAT answer (default).
 
     Returns
     -------
@@ -104,29 +100,13 @@ def solve_sat(
     """
     _check_problem(problem)
     t0 = time.perf_counter()
-    deadline = Deadline(time_limit)
+    run = RunOptions(seed, Deadline(time_limit))
     enc = encode_cnf(problem)
-    stats = _enc_stats(enc, time.perf_counter() - t0)
-    phases = enc.encode_tiling(problem.closest_to) if problem.closest_to is not None else None
-    r = solve_cnf(enc.hard, solver=solver, time_limit=deadline.remaining(), with_proof=proof, seed=seed,
-                  phases=phases)
-    stats["solve_s"] = round(r.runtime, 6)
-    for k in ("conflicts", "decisions", "propagations", "restarts"):
-        if k in r.stats:
-            stats[k] = r.stats[k]
-    notes = tuple(r.stats.get("notes", ()))
+    phases = enc.literals(problem.closest_to) if problem.closest_to is not None else None
+    notes = ()
     if problem.closest_to is not None:
-        notes += ("closest_to only guided the search; use solve_maxsat for the closest tiling",)
-    if r.status is Status.SAT:
-        tiling = enc.decode(r.model)
-        return Solution(Status.SAT, tiling, "sat", r.solver, seed, time.perf_counter() - t0, notes=notes, stats=stats)
-    if r.status is Status.UNSAT:
-        rem = deadline.remaining()
-        sol = unsat_solution(enc.hard, r, method="sat", seed=seed, t0=t0, stats=stats, check_proof=check_proof,
-                              proof_time_limit=None if rem is None else max(rem, 1.0))
-        return sol.replace(notes=sol.notes + notes)
-    return Solution(Status.UNKNOWN, None, "sat", r.solver, seed, time.perf_counter() - t0, reason=r.reason,
-                    notes=notes, stats=stats)
+        notes = ("closest_to only guided the search; use solve_maxsat for the closest tiling",)
+    return sat_route(enc, run, solver=solver, t0=t0, phases=phases, notes=notes)
 
 
 def tiling_satisfies_encoding(problem: DappledProblem, tiling, *, solver: str = DEFAULT_SAT_SOLVER) -> bool:
@@ -146,7 +126,7 @@ def tiling_satisfies_encoding(problem: DappledProblem, tiling, *, solver: str = 
     enc = encode_cnf(problem)
     if all(b.grid_only for b in enc.hard.blocks):
         return not enc.hard.falsified(enc.target_values(np.asarray(tiling)))
-    r = solve_cnf(enc.hard, solver=solver, assumptions=enc.encode_tiling(tiling))
+    r = solve_cnf(enc.hard, solver=solver, assumptions=enc.literals(tiling))
     return r.status is Status.SAT
 
 

@@ -38,12 +38,14 @@ import numpy as np
 
 from tilesolve._random import rng_from_seed
 from tilesolve.deadline import Deadline
-from tilesolve.errors import MethodNotApplicable
+from tilesolve.errors import InvalidProblem, MethodNotApplicable
 from tilesolve.model.packing import PackingProblem
 from tilesolve.model.solution import Solution, Status
 
 __all__ = [
     "PACKING_SAT_SOLVER",
+    "MAX_PLACEMENTS",
+    "check_search_size",
     "solve_sat",
     "solve_cpsat",
     "solve_hybrid",
@@ -58,6 +60,38 @@ __all__ = [
 #: deterministic (the same seed gives the same packing); CaDiCaL's conflict-budget slices are
 #: sized from wall-clock rates and are not. Both show heavy-tailed run times on corner C = 3.
 PACKING_SAT_SOLVER = "glucose42"
+
+
+#: Most placement variables (cell, tile) a solver route builds: the full encoding of the
+#: ``C = 6`` set (1,296 tiles, ~1.7 million placements, ~10 million clauses). Larger searches
+#: are refused before any clause is built. The ``lift`` route needs far fewer placements
+#: (``cells * k**4``), so it reaches ``C = 8`` and beyond.
+MAX_PLACEMENTS = 1296 * 1296
+
+
+def estimated_size(placements: int) -> tuple[int, int]:
+    """Rough ``(variables, clauses)`` of a packing encoding with ``placements`` placement
+    variables: about six clauses per placement (four links to its colours, one back, its
+    share of the at-most-one constraints)."""
+    return placements, 6 * placements
+
+
+def check_search_size(problem: PackingProblem, placements: int | None = None, route: str = "sat") -> None:
+    """Refuse searches too large to build, before anything is built.
+
+    ``placements`` is the number of (cell, tile) variables the route would create
+    (default: the full encoding, ``n_tiles**2``).
+    """
+    n = problem.n_tiles
+    placements = n * n if placements is None else placements
+    if placements > MAX_PLACEMENTS:
+        v, c = estimated_size(placements)
+        raise InvalidProblem(
+            f"method {route!r} on {n:,} tiles (C={problem.colors}) needs about {v:,} variables and "
+            f"{c:,} clauses; tilesolve builds up to {MAX_PLACEMENTS:,} placements. "
+            + ("Use method euler/outer (Wang) or an odd C (corner)" if route == "lift" else
+               "Use method lift (C with a small prime factor), euler/outer (Wang) or an odd C (corner)")
+        )
 
 
 def _random_phases(enc, rng) -> list[int]:
@@ -104,7 +138,7 @@ def solve_sat(problem: PackingProblem, *, seed=None, time_limit=None, workers=No
     from tilesolve.encodings.packing import encode_packing
     from tilesolve.engine.certificates import unsat_solution
 
-    problem.check_search_size()
+    check_search_size(problem)
     t0 = time.perf_counter()
     deadline = Deadline(time_limit)
     rng = rng_from_seed(seed)
@@ -133,7 +167,7 @@ def solve_cpsat(problem: PackingProblem, *, seed=None, time_limit=None, workers=
     from tilesolve.encodings.packing import build_cpsat_packing
     from tilesolve.engine.cpsat import DEFAULT_CPSAT_WORKERS, solve_cp_model
 
-    problem.check_search_size(route="cpsat")
+    check_search_size(problem, route="cpsat")
     t0 = time.perf_counter()
     deadline = Deadline(time_limit)
     anchor = None if problem.fixed else (int(rng_from_seed(seed).integers(problem.n_tiles)) if seed is not None else 0)
@@ -189,7 +223,7 @@ def solve_hybrid(problem: PackingProblem, *, seed=None, time_limit=None, workers
     if problem.fixed:
         raise MethodNotApplicable("method 'hybrid' fixes the N/S edges and cannot honour pinned tiles; use 'sat'")
     rows, cols = problem.shape
-    problem.check_search_size(rows * cols * problem.tiles.cv**2, route="hybrid")
+    check_search_size(problem, rows * cols * problem.tiles.cv**2, route="hybrid")
 
     def domains(rng):
         h = np.stack([domino_sequence(problem.colors, rng) for _ in range(cols)], axis=1)
@@ -256,7 +290,7 @@ def solve_lift(problem: PackingProblem, *, seed=None, time_limit=None, workers=N
         raise MethodNotApplicable("method 'lift' needs C_h = C_v; use 'outer' or 'sat'")
     m, k = lift_factors(problem.colors)
     rows, cols = problem.shape
-    problem.check_search_size(rows * cols * k**4, route="lift")
+    check_search_size(problem, rows * cols * k**4, route="lift")
     t0 = time.perf_counter()
     deadline = Deadline(time_limit)
     base_info = []
@@ -342,7 +376,7 @@ def solve_recursive(problem: PackingProblem, *, seed=None, time_limit=None, work
         raise MethodNotApplicable("a recursive packing embeds a packing over C-1 >= 2 colours; C must be >= 3")
     if problem.colors_v is not None and problem.colors_v != problem.colors:
         raise MethodNotApplicable("method 'recursive' needs C_h = C_v")
-    problem.check_search_size(route="recursive")
+    check_search_size(problem, route="recursive")
     t0 = time.perf_counter()
     deadline = Deadline(time_limit)
     rng = rng_from_seed(seed)

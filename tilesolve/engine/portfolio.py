@@ -244,7 +244,8 @@ def escalate(route: Callable[..., Solution], problem: Any, *, name: str, seed: i
     time_limit : float, optional
         Wall-clock budget of the whole search in seconds.
     workers : int, optional
-        Processes, this one included (default :data:`DEFAULT_WORKERS`).
+        Processes, this one included (default :data:`DEFAULT_WORKERS`; 1 on Windows, which
+        has no local workers).
     cluster : str or distributed.Client, optional
         A Dask scheduler address or client (:func:`run_portfolio`).
     progress : bool
@@ -278,7 +279,9 @@ def escalate(route: Callable[..., Solution], problem: Any, *, name: str, seed: i
     ('sat', 1, (16, 16))
     """
     _refuse_while_importing_main()
-    n = DEFAULT_WORKERS if workers is None else workers
+    if workers is None:  # no local workers on Windows (module docstring, Limits): one seed
+        workers = DEFAULT_WORKERS if os.name == "posix" or cluster is not None else 1
+    n = workers
     _check_workers(n)
     if n == 1 and cluster is None:
         with status_line(name, progress):

@@ -1,48 +1,93 @@
-"""The plumbing every family facade shares (STYLE.md §1: a registry, not an if/elif chain).
+"""The one SAT route driver every family shares (DESIGN.md, "One pipeline").
 
-A facade (``tilesolve.dappled``, ``tilesolve.wang``, ``tilesolve.packing``) keeps a
-``SOLVERS`` dict of routes; :func:`lookup` turns the user's ``method`` into a route and
-:func:`verified` runs the family's independent checker on whatever a route returns.
+A family's ``sat`` route builds its encoding (the protocol of
+:class:`tilesolve.encodings.Encoding`) and calls :func:`sat_route`, which runs PySAT under the
+run's deadline and turns the backend's :class:`~tilesolve.engine.result.Result` into a
+:class:`~tilesolve.model.solution.Solution`:
+
+- ``sat``: the decoded tiling (the pipeline then verifies it independently);
+- ``unsat``: only with a DRAT proof checked by :mod:`tilesolve.verify.drat`
+  (:mod:`tilesolve.engine.certificates`); a *restricted* formula (one that searches part of
+  the space, e.g. the lifted packings) proves nothing by being unsatisfiable, so its unsat
+  is reported ``unknown``;
+- ``unknown``: time limit or Ctrl-C, never ``unsat``.
 """
 
 from __future__ import annotations
 
-from typing import Callable, Mapping, Sequence
+import time
+from typing import Any, Sequence
 
-from tilesolve.errors import InvalidProblem
-from tilesolve.model.solution import Solution
+from tilesolve.model.solution import Solution, Status
 
-__all__ = ["lookup", "verified"]
+__all__ = ["sat_route", "encoding_stats"]
 
 
-def lookup(
-    method: str | Callable[..., Solution],
-    solvers: Mapping[str, Callable[..., Solution]],
-    auto: Callable[[], str],
-) -> tuple[Callable[..., Solution], str]:
-    """The route for ``method`` and its name.
+def encoding_stats(encoding: Any, encode_s: float) -> dict:
+    """Size figures of an encoding for ``Solution.stats``."""
+    return {"variables": int(encoding.n_vars), "clauses": len(encoding.hard), "encode_s": round(encode_s, 6)}
 
-    ``method`` is a key of ``solvers``, ``"auto"`` (then ``auto()`` names the key), or a
-    callable with the routes' signature.
 
-    >>> lookup("sat", {"sat": len}, lambda: "sat")
-    (<built-in function len>, 'sat')
+def sat_route(
+    encoding: Any,
+    run: Any,
+    *,
+    method: str = "sat",
+    solver: str,
+    t0: float,
+    phases: Sequence[int] | None = None,
+    proof: bool = True,
+    notes: tuple[str, ...] = (),
+) -> Solution:
+    """Decide ``encoding`` with a PySAT solver within ``run``'s deadline.
+
+    Parameters
+    ----------
+    encoding
+        Has ``hard`` (the clauses), ``n_vars``, ``decode(model)`` and ``restricted``.
+    run : tilesolve.family.RunOptions
+        Seed (the solver's random seed) and deadline.
+    method : str
+        Recorded in the Solution.
+    solver : str
+        PySAT solver name.
+    t0 : float
+        ``time.perf_counter()`` when the route started (encoding included in ``time_s``).
+    phases : sequence of int, optional
+        Preferred literals (solver phases), e.g. a target tiling or seeded random colours.
+    proof : bool
+        Log a DRAT proof (checked on unsat). A restricted formula never logs one.
+    notes : tuple of str
+        Notes to attach to the Solution.
     """
-    if callable(method):
-        return method, getattr(method, "__name__", "custom")
-    name = auto() if method == "auto" else method
-    if name not in solvers:
-        raise InvalidProblem(f"unknown method {method!r}; choose one of {', '.join(('auto', *solvers))}")
-    return solvers[name], name
+    from tilesolve.engine.certificates import unsat_solution
+    from tilesolve.engine.sat import solve_cnf
 
-
-def verified(sol: Solution, violations: Callable[[object], Sequence], what: str = "tiling") -> Solution:
-    """Return ``sol`` once its tiling passes ``violations``; a failure is a bug, never 'sat'."""
-    if sol.status.has_tiling:
-        bad = violations(sol.tiling)
-        if bad:
-            raise AssertionError(
-                f"internal error: method {sol.method!r} returned a {what} that fails verification "
-                f"({len(bad)} violations, first: {bad[0]}); please report this"
-            )
-    return sol
+    restricted = bool(getattr(encoding, "restricted", False))
+    stats = encoding_stats(encoding, time.perf_counter() - t0)
+    if run.deadline.expired():
+        return Solution(Status.UNKNOWN, None, method, solver, run.seed, time.perf_counter() - t0,
+                        reason=f"time limit of {run.deadline.time_limit:.3g} s reached while encoding",
+                        notes=notes, stats=stats)
+    r = solve_cnf(encoding.hard, solver=solver, time_limit=run.time_limit, with_proof=proof and not restricted,
+                  seed=run.seed, phases=phases)
+    stats["solve_s"] = round(r.runtime, 6)
+    stats.update({k: r.stats[k] for k in ("conflicts", "decisions", "propagations", "restarts") if k in r.stats})
+    notes = notes + tuple(r.stats.get("notes", ()))
+    if r.status is Status.SAT:
+        return Solution(Status.SAT, encoding.decode(r.model), method, r.solver, run.seed, time.perf_counter() - t0,
+                        notes=notes, stats=stats)
+    if r.status is Status.UNSAT and restricted:
+        return Solution(Status.UNKNOWN, None, method, r.solver, run.seed, time.perf_counter() - t0,
+                        reason="the restricted search space holds no solution (this proves nothing about the "
+                               "full problem)", notes=notes, stats=stats)
+    if r.status is Status.UNSAT:
+        rem = run.deadline.remaining()
+        sol = unsat_solution(encoding.hard, r, method=method, seed=run.seed, t0=t0, stats=stats, check_proof=True,
+                             proof_time_limit=None if rem is None else max(rem, 1.0))
+        return sol.replace(notes=sol.notes + notes)
+    reason = r.reason
+    if run.deadline.time_limit is not None and run.deadline.expired() and not (reason or "").startswith("interrupted"):
+        reason = f"time limit of {run.deadline.time_limit:.3g} s reached"
+    return Solution(Status.UNKNOWN, None, method, r.solver, run.seed, time.perf_counter() - t0, reason=reason,
+                    notes=notes, stats=stats)

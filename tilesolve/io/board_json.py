@@ -141,12 +141,8 @@ def _int(doc: dict, name: str, source: Any, *, optional: bool = False) -> int | 
 
 
 def _check_header(doc: Any, source: Any) -> int:
-    """The file's version: 2 is read here; anything else goes through the shared check."""
-    if isinstance(doc, dict) and doc.get("format") == BOARD_SOLUTION and type(doc.get("version")) is int \
-            and doc["version"] in VERSIONS - {1}:
-        return doc["version"]
-    check_document(doc, source, formats=(BOARD_SOLUTION,))
-    return 1
+    """The file's version, once its format and version are checked."""
+    return check_document(doc, source, {BOARD_SOLUTION: VERSIONS})["version"]
 
 
 def _grid_board(doc: dict, source: Any, kind: str) -> Board:

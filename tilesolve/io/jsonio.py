@@ -74,7 +74,7 @@ import math
 import os
 import re
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any, Callable, Iterable, Mapping
 
 import numpy as np
 
@@ -84,7 +84,7 @@ from tilesolve.model.dappled import Condition, DappledProblem, TileCount, parse_
 from tilesolve.model.solution import Solution, Status
 
 __all__ = [
-    "FORMATS",
+    "DAPPLED_FORMATS",
     "DAPPLED_PROBLEM",
     "DAPPLED_SOLUTION",
     "load_document",
@@ -113,16 +113,13 @@ __all__ = [
 DAPPLED_PROBLEM = "tilesolve/dappled-problem"
 DAPPLED_SOLUTION = "tilesolve/dappled-solution"
 
-#: Formats this version reads, with the versions it understands. Later families add theirs.
-FORMATS: dict[str, frozenset[int]] = {
-    DAPPLED_PROBLEM: frozenset({1}),
-    DAPPLED_SOLUTION: frozenset({1}),
-    "tilesolve/board-solution": frozenset({1}),  # tilesolve.io.board_json
-    "tilesolve/packing": frozenset({1}),  # tilesolve.io.packing_json
-}
-
 #: Versions of ``tilesolve/dappled-solution`` this module reads (problems are version 1).
 DAPPLED_SOLUTION_VERSIONS = frozenset({1, 2})
+#: The dappled formats and the versions this module reads (each io module checks its own).
+DAPPLED_FORMATS: dict[str, frozenset[int]] = {
+    DAPPLED_PROBLEM: frozenset({1}),
+    DAPPLED_SOLUTION: DAPPLED_SOLUTION_VERSIONS,
+}
 #: Dappled solutions of more cells than this are written as version 2 (encoded arrays).
 COMPACT_MIN_CELLS = 1 << 16
 
@@ -134,14 +131,15 @@ _INFO_KEYS = {"created_by", "comment"}  # free text any file may carry
 
 
 # ----------------------------------------------------------------------------- documents
-def load_document(path: str | os.PathLike, *, formats: Any = None) -> dict:
+def load_document(path: str | os.PathLike, formats: Mapping[str, Iterable[int]]) -> dict:
     """Read a tilesolve JSON file and check its ``format`` and ``version``.
 
     Parameters
     ----------
     path : path-like
-    formats : collection of str, optional
-        Accept only these formats (default: every format in :data:`FORMATS`).
+    formats : mapping
+        The formats accepted here and the versions of each (the reading module's own;
+        :func:`tilesolve.family.read_document` finds any family's format in the registry).
 
     Raises
     ------
@@ -151,23 +149,21 @@ def load_document(path: str | os.PathLike, *, formats: Any = None) -> dict:
     return check_document(read_json(path), path, formats=formats)
 
 
-def check_document(doc: Any, source: Any = "<document>", *, formats: Any = None) -> dict:
-    """Check the ``format``/``version`` header of an already-parsed document."""
+def check_document(doc: Any, source: Any, formats: Mapping[str, Iterable[int]]) -> dict:
+    """Check the ``format``/``version`` header of an already-parsed document against
+    ``formats`` (format name -> versions read)."""
     if not isinstance(doc, dict):
         raise InvalidProblem(f"{source}: not a tilesolve file (expected a JSON object with a 'format' field)")
     fmt = doc.get("format")
-    if fmt is None:
+    if not isinstance(fmt, str):
         raise InvalidProblem(f"{source}: not a tilesolve file (no 'format' field)")
-    allowed = FORMATS if formats is None else {f: FORMATS[f] for f in formats if f in FORMATS}
-    if fmt not in FORMATS:
-        raise InvalidProblem(f"{source}: unknown format {fmt!r}; this tilesolve reads {', '.join(sorted(FORMATS))}")
-    if fmt not in allowed:
-        raise InvalidProblem(f"{source}: a {fmt!r} file cannot be used here; expected {' or '.join(sorted(allowed))}")
+    if fmt not in formats:
+        raise InvalidProblem(f"{source}: a {fmt!r} file cannot be used here; expected {' or '.join(sorted(formats))}")
     version = doc.get("version")
     if isinstance(version, bool) or not isinstance(version, int):
         raise InvalidProblem(f"{source}: 'version' must be an integer, got {version!r}")
-    if version not in FORMATS[fmt]:
-        known = ", ".join(map(str, sorted(FORMATS[fmt])))
+    if version not in formats[fmt]:
+        known = ", ".join(map(str, sorted(formats[fmt])))
         raise InvalidProblem(
             f"{source}: {fmt} version {version} is not supported (this tilesolve reads version {known}); "
             "upgrade tilesolve?"
@@ -443,13 +439,8 @@ def problem_from_dict(doc: dict, source: Any = "<document>") -> DappledProblem:
 
 
 def _dappled_header(doc: Any, source: Any, formats: tuple[str, ...]) -> int:
-    """The document's version: version 2 of a solution is read here, anything else goes
-    through :func:`check_document`."""
-    if DAPPLED_SOLUTION in formats and isinstance(doc, dict) and doc.get("format") == DAPPLED_SOLUTION \
-            and type(doc.get("version")) is int and doc["version"] in DAPPLED_SOLUTION_VERSIONS - {1}:
-        return doc["version"]
-    check_document(doc, source, formats=formats)
-    return 1
+    """The document's version, once its header is one of ``formats`` (dappled formats)."""
+    return check_document(doc, source, {f: DAPPLED_FORMATS[f] for f in formats})["version"]
 
 
 def _size(doc: dict, source: Any) -> tuple[int, int]:

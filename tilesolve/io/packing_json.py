@@ -37,6 +37,8 @@ from tilesolve.model.solution import Solution
 __all__ = ["PACKING", "packing_to_dict", "packing_from_dict", "write_packing", "read_packing"]
 
 PACKING = "tilesolve/packing"
+#: Versions of the packing format this module reads and writes.
+VERSIONS = frozenset({1})
 
 _KEYS = {"format", "version", "kind", "colors", "colors_v", "fixed", "status", "grid", "method", "solver", "seed",
          "time_s", "reason", "notes", "stats", "created_by", "comment"}
@@ -76,7 +78,7 @@ def packing_from_dict(doc: dict, source: Any = "<document>") -> tuple[PackingPro
     >>> p.kind, s.status.value, s.tiling.shape
     ('wang', 'sat', (4, 4))
     """
-    check_document(doc, source, formats=[PACKING])
+    check_document(doc, source, {PACKING: VERSIONS})
     extra = sorted(set(doc) - _KEYS)
     if extra:
         raise InvalidProblem(f"{source}: unknown field{'s' if len(extra) > 1 else ''} {', '.join(map(repr, extra))}")
@@ -113,4 +115,4 @@ def write_packing(path: str | os.PathLike, problem: PackingProblem, solution: So
 
 def read_packing(path: str | os.PathLike) -> tuple[PackingProblem, Solution]:
     """Read a ``tilesolve/packing`` file."""
-    return packing_from_dict(load_document(path, formats=[PACKING]), path)
+    return packing_from_dict(load_document(path, {PACKING: VERSIONS}), path)

@@ -4,34 +4,26 @@ Families: dappled tilings (``dappled``), boards and Wang tile sets (``board``), 
 with the class notes' indexing (``tiles``) and tile packings (``packing``).
 """
 
-from tilesolve.model.dappled import (
-    MAX_CELLS,
-    Condition,
-    DappledProblem,
-    TileCount,
-    parse_condition,
-    parse_count,
-    parse_size,
-)
-from tilesolve.model.board import Board, BoardProblem, WangTileSet, parse_board_spec
-from tilesolve.model.packing import PackingProblem
-from tilesolve.model.solution import Solution, Status
-from tilesolve.model.tiles import TileSet
+from tilesolve._lazy import lazy_exports
 
-__all__ = [
-    "MAX_CELLS",
-    "Condition",
-    "DappledProblem",
-    "TileCount",
-    "parse_condition",
-    "parse_count",
-    "parse_size",
-    "Solution",
-    "Status",
-    "Board",
-    "BoardProblem",
-    "WangTileSet",
-    "parse_board_spec",
-    "PackingProblem",
-    "TileSet",
-]
+#: Exported names and the module each lives in (imported on first use).
+_WHERE = {
+    "MAX_CELLS": "tilesolve.model.dappled",
+    "Condition": "tilesolve.model.dappled",
+    "DappledProblem": "tilesolve.model.dappled",
+    "TileCount": "tilesolve.model.dappled",
+    "parse_condition": "tilesolve.model.dappled",
+    "parse_count": "tilesolve.model.dappled",
+    "parse_size": "tilesolve.model.dappled",
+    "Board": "tilesolve.model.board",
+    "BoardProblem": "tilesolve.model.board",
+    "WangTileSet": "tilesolve.model.board",
+    "parse_board_spec": "tilesolve.model.board",
+    "PackingProblem": "tilesolve.model.packing",
+    "Solution": "tilesolve.model.solution",
+    "Status": "tilesolve.model.solution",
+    "TileSet": "tilesolve.model.tiles",
+}
+
+__all__ = list(_WHERE)
+__getattr__, __dir__ = lazy_exports(__name__, _WHERE)

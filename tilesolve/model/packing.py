@@ -19,21 +19,7 @@ from dataclasses import dataclass
 from tilesolve.errors import InvalidProblem
 from tilesolve.model.tiles import TileSet
 
-__all__ = ["PackingProblem", "MAX_PLACEMENTS", "estimated_size"]
-
-#: Most placement variables (cell, tile) a solver route builds: the full encoding of the
-#: ``C = 6`` set (1,296 tiles, ~1.7 million placements, ~10 million clauses). Larger searches
-#: are refused before any clause is built. The ``lift`` route needs far fewer placements
-#: (``cells * k**4``), so it reaches ``C = 8`` and beyond.
-MAX_PLACEMENTS = 1296 * 1296
-
-
-def estimated_size(placements: int) -> tuple[int, int]:
-    """Rough ``(variables, clauses)`` of a packing encoding with ``placements`` placement
-    variables: about six clauses per placement (four links to its colours, one back, its
-    share of the at-most-one constraints)."""
-    return placements, 6 * placements
-
+__all__ = ["PackingProblem"]
 
 @dataclass(frozen=True)
 class PackingProblem:
@@ -93,23 +79,6 @@ class PackingProblem:
     @property
     def n_tiles(self) -> int:
         return self.tiles.n_tiles
-
-    def check_search_size(self, placements: int | None = None, route: str = "sat") -> None:
-        """Refuse searches too large to build, before anything is built.
-
-        ``placements`` is the number of (cell, tile) variables the route would create
-        (default: the full encoding, ``n_tiles**2``).
-        """
-        n = self.n_tiles
-        placements = n * n if placements is None else placements
-        if placements > MAX_PLACEMENTS:
-            v, c = estimated_size(placements)
-            raise InvalidProblem(
-                f"method {route!r} on {n:,} tiles (C={self.colors}) needs about {v:,} variables and "
-                f"{c:,} clauses; tilesolve builds up to {MAX_PLACEMENTS:,} placements. "
-                + ("Use --method euler/outer (Wang) or an odd C (corner)" if route == "lift" else
-                   "Use --method lift (C with a small prime factor), euler/outer (Wang) or an odd C (corner)")
-            )
 
     def describe(self) -> str:
         rows, cols = self.shape

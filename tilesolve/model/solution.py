@@ -81,8 +81,9 @@ class Solution:
 class CountResult:
     """An exact count of solutions, or ``None`` with status ``unknown`` when time ran out.
 
-    ``method`` names the route (``"transfer"``, ``"enumerate"``, ...); ``note`` says what
-    the user should know (a fallback, where enumeration stopped).
+    ``method`` names the route (``"transfer"``, ``"enumerate"``, ``"backtrack"``...); ``note``
+    says what the user should know (a fallback, where enumeration stopped); ``stats`` holds
+    route figures (search nodes, partial counts).
     """
 
     value: int | None
@@ -90,6 +91,12 @@ class CountResult:
     method: str
     time_s: float
     note: str | None = None
+    stats: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def exact(self) -> bool:
+        """True when ``value`` is the exact count."""
+        return self.value is not None and self.status is Status.SAT
 
 
 @dataclass

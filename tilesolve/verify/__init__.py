@@ -1,16 +1,18 @@
 """Independent checkers (numpy only; never import encodings or constructive code)."""
 
-from tilesolve.verify.board import board_violations, is_valid_board_tiling
-from tilesolve.verify.dappled import Violation, dappled_violations, hamming_distance, is_dappled
-from tilesolve.verify.packing import is_packing, packing_violations
+from tilesolve._lazy import lazy_exports
 
-__all__ = [
-    "Violation",
-    "dappled_violations",
-    "hamming_distance",
-    "is_dappled",
-    "board_violations",
-    "is_valid_board_tiling",
-    "packing_violations",
-    "is_packing",
-]
+#: Exported names and the module each lives in (imported on first use).
+_WHERE = {
+    "board_violations": "tilesolve.verify.board",
+    "is_valid_board_tiling": "tilesolve.verify.board",
+    "Violation": "tilesolve.verify.dappled",
+    "dappled_violations": "tilesolve.verify.dappled",
+    "hamming_distance": "tilesolve.verify.dappled",
+    "is_dappled": "tilesolve.verify.dappled",
+    "is_packing": "tilesolve.verify.packing",
+    "packing_violations": "tilesolve.verify.packing",
+}
+
+__all__ = list(_WHERE)
+__getattr__, __dir__ = lazy_exports(__name__, _WHERE)

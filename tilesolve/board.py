@@ -1,0 +1,290 @@
+"""Wang tilings of boards end to end: the ``board`` family (linear algorithm, solvers, walls).
+
+Every question about Wang tilings of boards (Derouet-Jourdan, Kaji, Mizoguchi, *A linear
+algorithm for brick Wang tiling*, 2016) goes through :func:`solve`, :func:`count` or
+:func:`crosscheck`, as for dappled tilings (:mod:`tilesolve.dappled`):
+
+``solve``
+    the generic pipeline (:func:`tilesolve.family.solve`) over :data:`SOLVERS`: every
+    tiling is checked with the independent verifier
+    :func:`tilesolve.verify.board.board_violations`.
+``count`` / ``enumerate_tilings``
+    all valid tilings of small boards by solver enumeration with blocking clauses (the
+    paper's future work, §5).
+``crosscheck``
+    runs the linear algorithm, SAT and CP-SAT on one problem and confirms they agree.
+
+Examples
+--------
+>>> from tilesolve.model.board import Board, BoardProblem, WangTileSet
+>>> p = BoardProblem(Board.rect(4, 4), WangTileSet.brick(3), [1] * 16)
+>>> s = solve(p, seed=1)
+>>> s.status.value, s.method
+('sat', 'linear')
+>>> count(BoardProblem(Board.rect(1, 1), WangTileSet.brick(3))).value
+36
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Any, Iterator
+
+import numpy as np
+
+from tilesolve.errors import InvalidProblem, MethodNotApplicable
+from tilesolve.family import Codec, Demo, Family, RunOptions, raise_if_interrupted, register
+from tilesolve.family import solve as _solve
+from tilesolve.io.board_json import BOARD_SOLUTION, VERSIONS
+from tilesolve.model.board import BoardProblem
+from tilesolve.model.solution import CountResult, CrosscheckReport, Solution, Status
+from tilesolve.verify.board import board_violations
+
+__all__ = [
+    "FAMILY", "SOLVERS", "METHODS", "linear", "sat", "cpsat", "theorem7", "wall", "solve",
+    "enumerate_tilings", "count", "CountResult", "crosscheck", "CrosscheckReport",
+]
+
+
+def linear(problem: BoardProblem, run: RunOptions) -> Solution:
+    """The linear algorithm of §4 (brick Wang tiles, no line limits)."""
+    from tilesolve.constructive.brick import solve_linear
+
+    return solve_linear(problem, seed=run.seed)
+
+
+def sat(problem: BoardProblem, run: RunOptions) -> Solution:
+    """SAT on :func:`tilesolve.encodings.wang.encode_wang` (any tile set, line limits);
+    unsat answers carry a checked DRAT proof."""
+    from tilesolve.encodings.wang import encode_wang
+    from tilesolve.engine.routes import sat_route
+    from tilesolve.engine.sat import DEFAULT_SAT_SOLVER
+
+    t0 = time.perf_counter()
+    return sat_route(encode_wang(problem), run, solver=run.solver or DEFAULT_SAT_SOLVER, t0=t0)
+
+
+def cpsat(problem: BoardProblem, run: RunOptions) -> Solution:
+    """OR-tools CP-SAT: an integer colour per edge, a table constraint per cell."""
+    from tilesolve.encodings.wang import build_cpsat_wang
+    from tilesolve.engine.cpsat import DEFAULT_CPSAT_WORKERS, solve_cp_model
+
+    t0 = time.perf_counter()
+    cp = build_cpsat_wang(problem)
+    r = solve_cp_model(cp.model, cp.bools, time_limit=run.time_limit, seed=run.seed,
+                       num_workers=run.workers or DEFAULT_CPSAT_WORKERS)
+    tiling = cp.decode(r.model) if r.status.has_tiling else None
+    return Solution(Status.SAT if tiling is not None else r.status, tiling, "cpsat", "cp-sat", run.seed,
+                    time.perf_counter() - t0, reason=None if tiling is not None else r.reason, stats=dict(r.stats))
+
+
+def theorem7(problem: BoardProblem, run: RunOptions) -> Solution:
+    """Theorem 7: tile outside a small core leaves first, solve the core by SAT (any
+    three-boundary tile set; ``unknown`` when the core fails)."""
+    from tilesolve.constructive.wang import theorem7_solve
+
+    return theorem7_solve(problem, core_solver=lambda sub, *, seed, time_limit: sat(
+        sub, RunOptions(seed, _deadline(time_limit))), seed=run.seed, time_limit=run.time_limit)
+
+
+def wall(problem: BoardProblem, run: RunOptions) -> Solution:
+    """A brick wall without long lines from a dappled tiling (dappled paper §4;
+    :mod:`tilesolve.walls`): brick tiles on a rectangle, free boundary, line limits."""
+    from tilesolve.walls import wall_route
+
+    return wall_route(problem, run)
+
+
+def _deadline(time_limit):
+    from tilesolve.deadline import Deadline
+
+    return Deadline(time_limit)
+
+
+#: Solving routes by name. ``"auto"`` is not an entry: it picks one (:func:`auto_method`).
+SOLVERS = {"linear": linear, "sat": sat, "cpsat": cpsat, "theorem7": theorem7, "wall": wall}
+METHODS: tuple[str, ...] = ("auto",) + tuple(SOLVERS)
+
+
+def auto_method(problem: BoardProblem) -> str:
+    """``wall`` for brick walls with line limits on a free rectangle, else ``linear`` (falls
+    back to ``sat`` where it does not apply)."""
+    from tilesolve.walls import is_free_wall
+
+    return "wall" if is_free_wall(problem) else "linear"
+
+
+def solve(problem: BoardProblem, *, method: str | Any = "auto", seed: int | None = None,
+          time_limit: float | None = None, progress: bool = False) -> Solution:
+    """Find a valid tiling of a board problem (or prove none exists), verified independently.
+
+    Parameters
+    ----------
+    problem : BoardProblem
+    method : {"auto", "linear", "sat", "cpsat", "theorem7", "wall"} or callable
+        ``"linear"`` is the linear algorithm of §4 (brick Wang tiles, no line limits);
+        ``"theorem7"`` tiles outside a small core leaves first and solves the core by SAT
+        (any three-boundary tile set); ``"wall"`` makes a brick wall without long lines from
+        a dappled tiling; ``"auto"`` uses ``wall`` or ``linear`` where they apply and falls
+        back to SAT, saying why in ``Solution.notes``. A callable is a route ``(problem, run)``.
+    seed : int, optional
+        Drawn and recorded when not given.
+    time_limit : float, optional
+        Seconds for the whole run; expiry gives ``unknown``.
+
+    Returns
+    -------
+    Solution
+        ``tiling`` is an ``(n_cells, 4)`` array of leg colours (W, N, E, S).
+    """
+    if not isinstance(problem, BoardProblem):
+        raise InvalidProblem(f"expected a BoardProblem, got {type(problem).__name__}")
+    return _solve(problem, method, seed=seed, time_limit=time_limit, progress=progress)
+
+
+def enumerate_tilings(problem: BoardProblem, *, limit: int | None = None,
+                      time_limit: float | None = None) -> Iterator[np.ndarray]:
+    """Yield every valid tiling (``(n_cells, 4)`` arrays), each once, by SAT enumeration."""
+    from tilesolve.encodings.wang import encode_wang
+    from tilesolve.engine.sat import ModelEnumerator
+
+    enc = encode_wang(problem)
+    for model in ModelEnumerator(enc.clauses, enc.projection(), limit=limit, time_limit=time_limit):
+        yield enc.decode(model)
+
+
+def count(problem: BoardProblem, *, method: str = "auto", time_limit: float | None = None, progress: bool = False,
+          force: bool = False) -> CountResult:
+    """Count the valid tilings of a (small) board problem exactly, by enumeration."""
+    from tilesolve.encodings.wang import encode_wang
+    from tilesolve.engine.sat import count_models
+
+    if method not in ("auto", "enumerate"):
+        raise InvalidProblem(f"unknown count method {method!r}; choose auto or enumerate")
+    t0 = time.perf_counter()
+    enc = encode_wang(problem)
+    mc = count_models(enc.clauses, enc.projection(), time_limit=time_limit)
+    if not mc.complete:
+        return CountResult(None, Status.UNKNOWN, "enumerate", time.perf_counter() - t0,
+                           f"stopped after {mc.count} tilings: {mc.reason}")
+    return CountResult(mc.count, Status.SAT, "enumerate", time.perf_counter() - t0)
+
+
+def crosscheck(problem: BoardProblem, *, seed: int | None = None, time_limit: float | None = None,
+               methods=("linear", "sat", "cpsat")) -> CrosscheckReport:
+    """Run several routes on ``problem``: verdicts must agree and every tiling must verify.
+
+    The linear algorithm's tiling must also satisfy the CNF encoding. Ctrl-C stops it.
+    """
+    from tilesolve.encodings.wang import encode_wang
+    from tilesolve.engine.sat import solve_cnf
+    from tilesolve.family import draw_seed
+
+    seed = draw_seed() if seed is None else seed
+    rep = CrosscheckReport()
+    for name in methods:
+        try:
+            sol = raise_if_interrupted(SOLVERS[name](problem, RunOptions(seed, _deadline(time_limit))))
+        except MethodNotApplicable as exc:
+            rep.lines.append(f"skip {name}: {exc}")
+            continue
+        if sol.status.has_tiling:
+            bad = board_violations(sol.tiling, problem)
+            rep.add(not bad, f"{name}: sat, tiling verifies ({len(bad)} violations)")
+            if name == "linear" and not bad:
+                enc = encode_wang(problem)
+                r = solve_cnf(enc.clauses, assumptions=enc.literals(sol.tiling))
+                rep.add(r.status is Status.SAT, "linear tiling satisfies the CNF encoding")
+        else:
+            rep.lines.append(f"     {name}: {sol.status.value}" + (f" ({sol.reason})" if sol.reason else ""))
+        if sol.status is not Status.UNKNOWN:
+            rep.verdicts[name] = Status.SAT if sol.status.has_tiling else Status.UNSAT
+    rep.add_agreement()
+    return rep
+
+
+# ----------------------------------------------------------------------------- the family record
+def _verify(problem: BoardProblem, tiling) -> list:
+    return board_violations(tiling, problem)
+
+
+def _encode(problem: BoardProblem):
+    from tilesolve.encodings.wang import encode_wang
+
+    return encode_wang(problem)
+
+
+def _read_solution(doc: dict, source: str):
+    from tilesolve.io.board_json import board_solution_from_dict
+
+    return board_solution_from_dict(doc, source)
+
+
+def _write_solution(problem: BoardProblem, sol: Solution) -> dict:
+    from tilesolve.io.board_json import board_solution_to_dict
+
+    return board_solution_to_dict(problem, sol)
+
+
+def _draw(problem: BoardProblem, sol: Solution, path, fmt: str, *, title: str | None = None, notes=(),
+          **_ignored) -> None:
+    """SVG of a board tiling: bricks merged from the edge structure, seams of tori and
+    Möbius strips marked; PNG for large boards."""
+    legend = [f"{sol.status.value} by {sol.method}" + (f", seed {sol.seed}" if sol.seed is not None else "")]
+    if fmt == "png":
+        from tilesolve.io.png import write_board_png
+
+        write_board_png(path, problem, sol.tiling)
+        return
+    from tilesolve.io.svg_board import write_board_svg
+
+    write_board_svg(path, problem, sol.tiling, title=title or problem.board.describe(), notes=legend + list(notes))
+
+
+def _brick_wall_demo() -> BoardProblem:
+    from tilesolve.walls import wall_problem
+
+    return wall_problem(20, 32, 3)
+
+
+def _mobius_demo() -> BoardProblem:
+    """A Möbius strip (Example 5) with a hole, brick tiles, a random boundary."""
+    from tilesolve.model.board import Board, WangTileSet, random_boundary
+
+    m = Board.mobius(14, 40)
+    keep = np.ones(m.n_cells, bool)
+    lab = m.labels
+    keep[(lab[:, 0] >= 5) & (lab[:, 0] <= 8) & (lab[:, 1] >= 17) & (lab[:, 1] <= 22)] = False
+    b = m.restrict(keep)
+    return BoardProblem(b, WangTileSet.brick(3), random_boundary(b, 3, seed=1))
+
+
+DEMOS = (
+    Demo("brick-wall", "a 32x20 brick wall, no line through more than 3 cells (dappled §4)", _brick_wall_demo),
+    Demo("brick-mobius", "a Möbius strip 40x14 with a hole, random boundary (brick paper §4, Example 5)",
+         _mobius_demo),
+)
+
+FAMILY = register(Family(
+    name="board",
+    title="Wang tilings of boards: brick Wang tiles, the linear algorithm, any tile set by SAT "
+          "(Derouet-Jourdan, Kaji, Mizoguchi 2016)",
+    problem_type=BoardProblem,
+    routes=SOLVERS,
+    auto=auto_method,
+    verify=_verify,
+    fallback="sat",
+    count=count,
+    encode=_encode,
+    codecs=(Codec(BOARD_SOLUTION, VERSIONS, _read_solution, _write_solution),),
+    draw=_draw,
+    demos=DEMOS,
+    commands=("tilesolve.cli.brick:brick", "tilesolve.cli.brick:wang"),
+    route_help={
+        "linear": "the linear algorithm of §4 (numba)",
+        "sat": "CNF + PySAT, any tile set, line limits; unsat with a checked DRAT proof",
+        "cpsat": "OR-tools CP-SAT table constraints",
+        "theorem7": "Theorem 7: leaves first, the core by SAT",
+        "wall": "brick walls without long lines from a dappled tiling (dappled §4)",
+    },
+))

@@ -1,0 +1,547 @@
+"""The family registry and the one solve pipeline (DESIGN.md, "Families and their contract").
+
+A *family* is one kind of tiling question (dappled tilings, Wang tilings of boards, tile
+packings, ...). Each family writes its layer modules (``model/``, ``constructive/``,
+``encodings/``, ``verify/``, ``io/``, ``cli/``), declares one :class:`Family` record in its
+facade module (``tilesolve/<family>.py``), and registers it once, under the entry-point group
+``tilesolve.families`` in ``pyproject.toml``::
+
+    [project.entry-points."tilesolve.families"]
+    dappled = "tilesolve.dappled:FAMILY"
+
+(or, at run time, with :func:`register`). Everything generic reads the registry: the solve
+pipeline below, ``tilesolve verify`` (:func:`verify_file`), ``draw``, ``demo``,
+``export dimacs``, ``backends`` and the CLI's command list. Adding a family edits no shared
+list. ``docs/ADDING_A_FAMILY.md`` walks through it.
+
+Routes
+------
+Every route of every family has one signature, ``route(problem, run) -> Solution``, where
+``run`` is a :class:`RunOptions`: the resolved seed, the :class:`~tilesolve.deadline.Deadline`
+of the whole run, progress, solver, workers, cluster, and the family's own options. A user's
+``method=callable`` has the same signature.
+
+The pipeline (:func:`solve`) is written once: look the method up (``"auto"`` asks the
+family), draw and record a seed when none is given, show progress, fall back to the
+family's fallback route when ``auto``'s choice does not apply or its output fails
+verification, verify every tiling with the family's independent checker, and stamp the
+provenance (method, seed, time, notes).
+
+Examples
+--------
+>>> from tilesolve.model.dappled import DappledProblem
+>>> s = solve(DappledProblem.from_strings("6x4", ["H0=2", "V1=2"]), seed=3)
+>>> s.status.value, s.seed
+('sat', 3)
+>>> sorted(f.name for f in families())[:3]
+['board', 'dappled', 'packing']
+"""
+
+from __future__ import annotations
+
+import os
+import secrets
+import time
+from dataclasses import dataclass, field
+from typing import Any, Callable, Iterable, Mapping, Sequence
+
+from tilesolve.deadline import Deadline
+from tilesolve.errors import InternalError, InvalidProblem, MethodNotApplicable
+from tilesolve.model.run import RunOptions
+from tilesolve.model.solution import CountResult, Solution, Status
+
+__all__ = [
+    "RunOptions",
+    "Route",
+    "Codec",
+    "Demo",
+    "Family",
+    "register",
+    "unregister",
+    "families",
+    "get",
+    "family_of",
+    "codec_of",
+    "solve",
+    "count",
+    "draw_seed",
+    "interrupted",
+    "raise_if_interrupted",
+    "read_document",
+    "verify_document",
+    "verify_file",
+    "write_solution",
+    "draw_solution",
+    "ENTRY_POINT_GROUP",
+]
+
+#: Entry-point group under which packages declare their families.
+ENTRY_POINT_GROUP = "tilesolve.families"
+
+
+#: The one route signature: ``route(problem, run) -> Solution``.
+Route = Callable[[Any, RunOptions], Solution]
+
+
+@dataclass(frozen=True)
+class Codec:
+    """One versioned JSON file format of a family.
+
+    Attributes
+    ----------
+    format : str
+        The ``"format"`` field, e.g. ``"tilesolve/dappled-solution"``.
+    versions : frozenset of int
+        Versions this build reads.
+    read : callable
+        ``read(doc, source) -> (problem, solution or None)``: checks every field's type and
+        raises :class:`~tilesolve.errors.InvalidProblem` naming the file and field.
+        Problem-only formats return ``None`` as the solution.
+    write : callable or None
+        ``write(problem, solution) -> dict`` (JSON-ready; numpy arrays allowed).
+    """
+
+    format: str
+    versions: frozenset[int]
+    read: Callable[[dict, str], tuple[Any, Solution | None]]
+    write: Callable[[Any, Solution], dict] | None = None
+
+
+@dataclass(frozen=True)
+class Demo:
+    """One showcase problem for ``tilesolve demo``.
+
+    ``make()`` builds the problem; the demo runner solves it with ``method``, writes
+    ``<name>.json`` and a picture drawn with ``draw_options``.
+    """
+
+    name: str
+    caption: str
+    make: Callable[[], Any]
+    method: str = "auto"
+    draw_options: Mapping[str, Any] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class Family:
+    """Everything generic code needs to know about one family.
+
+    Attributes
+    ----------
+    name : str
+        Registry key (``"dappled"``, ``"board"``, ``"packing"``, ...).
+    title : str
+        One line for listings.
+    problem_type : type
+        Problems of this family are instances of it.
+    routes : Mapping[str, Route]
+        Routes by name (the CLI's ``--method`` choices are ``auto`` plus these keys).
+    auto : callable
+        ``auto(problem) -> route name``.
+    verify : callable
+        ``verify(problem, tiling) -> list of violations`` (empty when valid): the family's
+        independent checker (``tilesolve.verify``).
+    fallback : str or None
+        Route used when ``auto``'s choice raises MethodNotApplicable or returns a tiling that
+        fails verification (a constructive algorithm without a proof).
+    objective : callable or None
+        ``objective(problem, tiling) -> int or None``: the value an ``optimal`` answer claims
+        (e.g. the Hamming distance of closest tilings); ``None`` when the problem has none.
+    count : callable or None
+        ``count(problem, *, method, time_limit, progress, force) -> CountResult``.
+    encode : callable or None
+        ``encode(problem)`` -> an encoding with the protocol of
+        :class:`tilesolve.encodings.Encoding` (DIMACS export).
+    codecs : tuple of Codec
+        File formats; the first solution format is the one solutions are written in.
+    draw : callable or None
+        ``draw(problem, solution, path, fmt, **options)`` writes an ``"svg"`` or ``"png"``
+        picture of a solution.
+    demos : tuple of Demo
+    commands : tuple of str
+        ``"module:attribute"`` of the family's click commands (loaded only when used).
+    route_help : Mapping[str, str]
+        One line per route, for ``--help`` and ``tilesolve backends``.
+    """
+
+    name: str
+    title: str
+    problem_type: type
+    routes: Mapping[str, Route]
+    auto: Callable[[Any], str]
+    verify: Callable[[Any, Any], Sequence]
+    fallback: str | None = None
+    objective: Callable[[Any, Any], int | None] | None = None
+    count: Callable[..., CountResult] | None = None
+    encode: Callable[[Any], Any] | None = None
+    codecs: tuple[Codec, ...] = ()
+    draw: Callable[..., None] | None = None
+    demos: tuple[Demo, ...] = ()
+    commands: tuple[str, ...] = ()
+    route_help: Mapping[str, str] = field(default_factory=dict)
+
+    @property
+    def methods(self) -> tuple[str, ...]:
+        """``("auto", *routes)``: the ``method`` values :func:`solve` accepts."""
+        return ("auto",) + tuple(self.routes)
+
+    @property
+    def solution_codec(self) -> Codec:
+        """The codec solutions are written with."""
+        for c in self.codecs:
+            if c.write is not None:
+                return c
+        raise InvalidProblem(f"family {self.name!r} has no solution file format")
+
+    def lookup(self, method: str | Route, problem: Any) -> tuple[Route, str]:
+        """The route for ``method`` (a name, ``"auto"`` or a callable) and its name."""
+        if callable(method):
+            return method, getattr(method, "__name__", "custom")
+        name = self.auto(problem) if method == "auto" else method
+        if name not in self.routes:
+            raise InvalidProblem(f"unknown method {method!r} for {self.name} problems; "
+                                 f"choose one of {', '.join(self.methods)}")
+        return self.routes[name], name
+
+
+# ----------------------------------------------------------------------------- registry
+_REGISTRY: dict[str, Family] = {}
+_LOADED = False
+
+
+def register(family: Family) -> Family:
+    """Add ``family`` to the registry (a name registered twice is an error).
+
+    Facade modules call it when imported; the entry points make sure they are imported.
+    """
+    old = _REGISTRY.get(family.name)
+    if old is not None and old is not family:
+        raise InvalidProblem(f"a family named {family.name!r} is registered already")
+    taken = {c.format for f in _REGISTRY.values() if f is not old for c in f.codecs}
+    clash = taken & {c.format for c in family.codecs}
+    if clash:
+        raise InvalidProblem(f"file format {sorted(clash)[0]!r} belongs to another family")
+    _REGISTRY[family.name] = family
+    return family
+
+
+def unregister(name: str) -> None:
+    """Remove a family (tests register throw-away families and remove them)."""
+    _REGISTRY.pop(name, None)
+
+
+def _load_builtin() -> None:
+    """Load the families declared under :data:`ENTRY_POINT_GROUP` (once)."""
+    global _LOADED
+    if _LOADED:
+        return
+    _LOADED = True
+    from importlib.metadata import entry_points
+
+    for ep in sorted(entry_points(group=ENTRY_POINT_GROUP), key=lambda e: e.name):
+        if ep.name in _REGISTRY:
+            continue
+        fam = ep.load()
+        if not isinstance(fam, Family):
+            raise InternalError(f"entry point {ep.value} is not a tilesolve Family")
+        _REGISTRY[fam.name] = fam
+
+
+def families() -> list[Family]:
+    """Every registered family, in registration order."""
+    _load_builtin()
+    return list(_REGISTRY.values())
+
+
+def get(name: str) -> Family:
+    """The family called ``name``."""
+    _load_builtin()
+    try:
+        return _REGISTRY[name]
+    except KeyError:
+        raise InvalidProblem(f"unknown family {name!r}; known: {', '.join(_REGISTRY)}") from None
+
+
+def family_of(problem: Any) -> Family:
+    """The family whose problem type ``problem`` is."""
+    for fam in families():
+        if isinstance(problem, fam.problem_type):
+            return fam
+    raise InvalidProblem(f"no tilesolve family solves a {type(problem).__name__}")
+
+
+def codec_of(fmt: str) -> tuple[Family, Codec]:
+    """The family and codec of a file format name."""
+    for fam in families():
+        for c in fam.codecs:
+            if c.format == fmt:
+                return fam, c
+    known = sorted(c.format for f in families() for c in f.codecs)
+    raise InvalidProblem(f"unknown format {fmt!r}; this tilesolve reads {', '.join(known)}")
+
+
+# ----------------------------------------------------------------------------- pipeline
+def draw_seed() -> int:
+    """A fresh seed (recorded with the answer, so every run can be repeated)."""
+    return secrets.randbelow(2**31)
+
+
+def solve(
+    problem: Any,
+    method: str | Route = "auto",
+    *,
+    seed: int | None = None,
+    time_limit: float | None = None,
+    progress: bool = False,
+    solver: str | None = None,
+    workers: int | None = None,
+    cluster: Any = None,
+    options: Mapping[str, Any] | None = None,
+) -> Solution:
+    """Solve ``problem`` with its family's routes and verify the answer independently.
+
+    Parameters
+    ----------
+    problem
+        A problem of a registered family.
+    method : str or callable
+        ``"auto"``, a route name of the family, or a callable ``route(problem, run)``.
+    seed : int, optional
+        Drawn (and recorded in ``Solution.seed``) when not given.
+    time_limit : float, optional
+        Seconds for the whole run; expiry gives status ``unknown``, never ``unsat``.
+    progress, solver, workers, cluster, options
+        See :class:`RunOptions`.
+
+    Returns
+    -------
+    Solution
+        ``sat``/``optimal`` with a verified tiling, ``unsat`` with a reason, or ``unknown``.
+
+    Raises
+    ------
+    MethodNotApplicable
+        An explicitly requested route cannot take the problem (the message names one that can).
+    InternalError
+        A route returned a tiling that fails verification and no fallback exists (a bug).
+    """
+    fam = family_of(problem)
+    if time_limit is not None and not (time_limit > 0 and time_limit < float("inf")):
+        raise InvalidProblem(f"time limit must be a positive number of seconds, got {time_limit}")
+    run = RunOptions(
+        seed=draw_seed() if seed is None else _check_seed(seed),
+        deadline=Deadline(time_limit),
+        progress=progress,
+        solver=solver,
+        workers=workers,
+        cluster=cluster,
+        options=dict(options or {}),
+    )
+    return run_route(fam, problem, method, run)
+
+
+def _check_seed(seed: Any) -> int:
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        import numpy as np
+
+        if isinstance(seed, np.integer) and seed >= 0:
+            return int(seed)
+        raise InvalidProblem(f"seed must be a non-negative integer, got {seed!r}")
+    return seed
+
+
+def run_route(fam: Family, problem: Any, method: str | Route, run: RunOptions) -> Solution:
+    """The pipeline of :func:`solve` once the run is resolved (also used by crosschecks)."""
+    from tilesolve.engine.progress import status_line
+
+    route, name = fam.lookup(method, problem)
+    notes: list[str] = []
+    if method == "auto":
+        notes.append(f"auto chose {name!r}")
+    with status_line(f"{fam.name}: solving with {name!r}", run.progress):
+        try:
+            sol = route(problem, run)
+        except MethodNotApplicable as exc:
+            if method != "auto" or fam.fallback is None or name == fam.fallback:
+                raise
+            notes.append(f"{name!r} not applicable ({exc}); solved with {fam.fallback!r}")
+            name = fam.fallback
+            sol = fam.routes[name](problem, run)
+    bad = fam.verify(problem, sol.tiling) if sol.status.has_tiling else ()
+    if bad and method == "auto" and fam.fallback is not None and name != fam.fallback:
+        notes.append(f"{name!r} output failed verification ({len(bad)} violations, first: {bad[0]}); "
+                     f"fell back to {fam.fallback!r}")
+        name = fam.fallback
+        with status_line(f"{fam.name}: solving with {name!r}", run.progress):
+            sol = fam.routes[name](problem, run)
+        bad = fam.verify(problem, sol.tiling) if sol.status.has_tiling else ()
+    if bad:
+        raise InternalError(f"method {sol.method or name!r} returned a tiling that fails verification "
+                            f"({len(bad)} violations, first: {bad[0]})")
+    if sol.status.has_tiling and fam.objective is not None:
+        value = fam.objective(problem, sol.tiling)
+        if sol.objective is not None and value != sol.objective:
+            raise InternalError(f"method {name!r} reported objective {sol.objective}, the tiling has {value}")
+        sol = sol.replace(objective=value)
+    return sol.replace(
+        method=sol.method or name,
+        notes=tuple(notes) + sol.notes,
+        time_s=run.deadline.elapsed(),
+        seed=run.seed if sol.seed is None else sol.seed,
+    )
+
+
+def interrupted(solution: Solution) -> bool:
+    """True when Ctrl-C stopped the run (routes return ``unknown`` with reason "interrupted ...").
+
+    The CLI exits 130 and writes nothing for such an answer; a time limit is not an interruption.
+    """
+    return solution.status is Status.UNKNOWN and (solution.reason or "").startswith("interrupted")
+
+
+def raise_if_interrupted(solution: Solution) -> Solution:
+    """Return ``solution``, or raise KeyboardInterrupt if Ctrl-C stopped it (loops over routes stop)."""
+    if interrupted(solution):
+        raise KeyboardInterrupt
+    return solution
+
+
+def count(problem: Any, *, method: str = "auto", time_limit: float | None = None, progress: bool = False,
+          force: bool = False) -> CountResult:
+    """Count the solutions of ``problem`` exactly with its family's counter."""
+    fam = family_of(problem)
+    if fam.count is None:
+        raise MethodNotApplicable(f"{fam.name} problems have no counter")
+    return fam.count(problem, method=method, time_limit=time_limit, progress=progress, force=force)
+
+
+# ----------------------------------------------------------------------------- files
+def read_document(path: str | os.PathLike) -> tuple[Family, Codec, dict]:
+    """Read a tilesolve JSON file and find its family and codec (version checked)."""
+    from tilesolve.io.jsonio import read_json
+
+    doc = read_json(path)
+    return _identify(doc, str(path)) + (doc,)
+
+
+def _identify(doc: Any, source: str) -> tuple[Family, Codec]:
+    if not isinstance(doc, dict):
+        raise InvalidProblem(f"{source}: not a tilesolve file (expected a JSON object with a 'format' field)")
+    fmt = doc.get("format")
+    if not isinstance(fmt, str):
+        raise InvalidProblem(f"{source}: not a tilesolve file (no 'format' field)")
+    try:
+        fam, codec = codec_of(fmt)
+    except InvalidProblem as exc:
+        raise InvalidProblem(f"{source}: {exc}") from None
+    version = doc.get("version")
+    if isinstance(version, bool) or not isinstance(version, int):
+        raise InvalidProblem(f"{source}: 'version' must be an integer, got {version!r}")
+    if version not in codec.versions:
+        known = ", ".join(map(str, sorted(codec.versions)))
+        raise InvalidProblem(f"{source}: {fmt} version {version} is not supported (this tilesolve reads "
+                             f"version {known}); upgrade tilesolve?")
+    return fam, codec
+
+
+#: Violation lines printed before "... and N more".
+MAX_SHOWN = 50
+
+
+@dataclass(frozen=True)
+class FileReport:
+    """What :func:`verify_file` found: the exit code (0 valid, 1 a false claim) and lines."""
+
+    exit_code: int
+    lines: tuple[str, ...]
+
+    @property
+    def ok(self) -> bool:
+        return self.exit_code == 0
+
+
+def verify_document(doc: dict, source: str = "<document>") -> FileReport:
+    """Check every claim a solution document makes (``tilesolve verify``).
+
+    The tiling must pass the family's independent verifier; the status must match the
+    file's content (``sat``/``optimal`` need a tiling, ``unsat``/``unknown`` must hold none);
+    ``optimal`` needs a problem with an objective and the recorded objective must equal the
+    tiling's value. Field types are checked by the family's codec.
+    """
+    fam, codec = _identify(doc, source)
+    problem, sol = codec.read(doc, source)
+    if sol is None:
+        raise InvalidProblem(f"{source}: a {codec.format} file holds no solution to verify; solve it first")
+    what = problem.describe() if hasattr(problem, "describe") else fam.name
+    false: list[str] = []
+    if sol.tiling is None:
+        if sol.status.has_tiling:
+            false.append(f"status {sol.status.value!r} claims a tiling, but the file holds none")
+        else:
+            why = f" ({sol.reason})" if sol.reason else ""
+            return FileReport(sol.status.exit_code, (f"{source}: status {sol.status.value}{why}; "
+                                                     "the file holds no tiling to verify",))
+    else:
+        if not sol.status.has_tiling:
+            false.append(f"status {sol.status.value!r} claims no tiling was found, but the file holds one")
+        violations = list(fam.verify(problem, sol.tiling))
+        if violations:
+            n = len(violations)
+            lines = [f"{source}: {n} violation{'s' if n != 1 else ''} of {what}"]
+            lines += [f"  {v}" for v in violations[:MAX_SHOWN]]
+            if n > MAX_SHOWN:
+                lines.append(f"  ... and {n - MAX_SHOWN} more")
+            return FileReport(1, tuple(lines + [f"  {f}" for f in false]))
+        value = fam.objective(problem, sol.tiling) if fam.objective is not None else None
+        if value is None:
+            if sol.status is Status.OPTIMAL:
+                false.append("status 'optimal' claims an optimum, but the problem has no objective")
+            if sol.objective is not None:
+                false.append(f"objective {sol.objective} recorded, but the problem has no objective")
+        elif sol.objective != value:
+            false.append(f"recorded objective {sol.objective}, but the tiling's value is {value}")
+    if false:
+        return FileReport(1, (f"{source}: the file's claims are false",) + tuple(f"  {f}" for f in false))
+    return FileReport(0, (f"ok: {source} is a valid tiling of {what}",))
+
+
+def verify_file(path: str | os.PathLike) -> FileReport:
+    """:func:`verify_document` on a file (one-line errors for unreadable or malformed files)."""
+    from tilesolve.io.jsonio import read_json
+
+    return verify_document(read_json(path), str(path))
+
+
+def write_solution(path: str | os.PathLike, problem: Any, solution: Solution) -> None:
+    """Write ``solution`` in its family's solution format (atomically)."""
+    from tilesolve.io.atomic import write_text_atomic
+
+    write_text_atomic(path, solution_text(problem, solution))
+
+
+def solution_text(problem: Any, solution: Solution) -> str:
+    """The JSON text of a solution file."""
+    from tilesolve.io.jsonio import dumps
+
+    return dumps(family_of(problem).solution_codec.write(problem, solution))
+
+
+def draw_solution(path: str | os.PathLike, problem: Any, solution: Solution, *, fmt: str | None = None,
+                  **options: Any) -> None:
+    """Draw a solution with its family's drawing (``fmt`` from the file suffix by default)."""
+    fam = family_of(problem)
+    if fam.draw is None:
+        raise MethodNotApplicable(f"{fam.name} solutions have no drawing")
+    fmt = fmt or os.path.splitext(str(path))[1].lstrip(".").lower()
+    if fmt not in ("svg", "png"):
+        raise InvalidProblem(f"{path}: pictures are .svg or .png files")
+    if not solution.status.has_tiling:
+        raise InvalidProblem(f"status {solution.status.value}: no tiling to draw")
+    fam.draw(problem, solution, path, fmt, **options)
+
+
+def iter_demos() -> Iterable[tuple[Family, Demo]]:
+    """Every family's demos, family by family."""
+    for fam in families():
+        for d in fam.demos:
+            yield fam, d

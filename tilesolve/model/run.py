@@ -1,0 +1,54 @@
+"""What one run of a route may use (DESIGN.md, "Families and their contract").
+
+Every route of every family has the signature ``route(problem, run) -> Solution``;
+``run`` is a :class:`RunOptions`, resolved once by :func:`tilesolve.family.solve`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any, Mapping
+
+from tilesolve.deadline import Deadline
+
+__all__ = ["RunOptions"]
+
+
+@dataclass(frozen=True)
+class RunOptions:
+    """What one run of a route may use, resolved once by :func:`solve`.
+
+    Attributes
+    ----------
+    seed : int
+        Always set: the pipeline draws one when the caller gives none, and records it.
+    deadline : Deadline
+        The whole run's wall-clock budget (encoding, solving and proof checking count).
+    progress : bool
+        Show progress on a terminal.
+    solver : str or None
+        Backend choice (e.g. a PySAT solver name) for routes that take one.
+    workers : int or None
+        Parallel workers (CP-SAT threads, portfolio processes); ``None`` = the route's default.
+    cluster : str or object or None
+        A Dask scheduler address (or client) for routes that can run on a cluster.
+    options : Mapping
+        The family's own options (e.g. ``initial`` for the dappled constructive route).
+    """
+
+    seed: int
+    deadline: Deadline = field(default_factory=lambda: Deadline(None))
+    progress: bool = False
+    solver: str | None = None
+    workers: int | None = None
+    cluster: Any = None
+    options: Mapping[str, Any] = field(default_factory=dict)
+
+    @property
+    def time_limit(self) -> float | None:
+        """Seconds left of the run's budget (``None`` = no limit)."""
+        return self.deadline.remaining()
+
+    def option(self, name: str, default: Any = None) -> Any:
+        """A family option, or ``default``."""
+        return self.options.get(name, default)
