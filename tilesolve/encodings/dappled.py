@@ -645,7 +645,7 @@ def build_cpsat(problem: DappledProblem, *, deadline: Deadline | None = None) ->
         fixed=problem.fixed,
     )
     enc = encode_cnf(p_nocount, deadline=deadline)
-    enc.problem = problem  # same grid and variables; decode/encode_tiling need only those
+    enc.problem = problem  # same grid and variables; decode/literals need only those
     model = cp_model.CpModel()
     chunk = CPSAT_BUILD_CHUNK
     n_vars = enc.n_vars  # grid variables, then the sequential-counter auxiliaries
@@ -683,7 +683,7 @@ def build_cpsat(problem: DappledProblem, *, deadline: Deadline | None = None) ->
             model.add(s <= k.high)
     has_obj = problem.closest_to is not None
     if has_obj:
-        keep = enc.encode_tiling(problem.closest_to)
+        keep = enc.literals(problem.closest_to)
         if enc.one_hot:
             keep = [v for v in keep if v > 0]
         # cost of a cell = 1 - [cell keeps its target tile]
