@@ -33,7 +33,7 @@ import numpy as np
 
 from tilesolve.deadline import Deadline
 from tilesolve.engine.result import Result, run_interruptible
-from tilesolve.engine.sat import _chunks, canonical_solver_name
+from tilesolve.engine.sat import LOAD_CHUNK, _chunks, _millions, _size_of, canonical_solver_name, seeded_phases
 from tilesolve.errors import MethodNotApplicable
 from tilesolve.model.solution import Status
 
@@ -101,6 +101,8 @@ def solve_wcnf(
     solver: str = DEFAULT_MAXSAT_ORACLE,
     time_limit: float | None = None,
     options: RC2Options = RC2Options(),
+    deadline: Deadline | None = None,
+    seed: int | None = None,
 ) -> Result:
     """Solve hard clauses plus soft unit clauses with RC2.
 
@@ -115,6 +117,13 @@ def solve_wcnf(
         RC2's SAT oracle (PySAT name).
     time_limit : float, optional
         Seconds; on expiry the result is ``UNKNOWN`` with ``stats["lower_bound"]``.
+        Loading the hard clauses into the oracle counts (chunks with deadline checks).
+    deadline : Deadline, optional
+        The whole run's deadline (replaces ``time_limit``).
+    seed : int, optional
+        Draws the oracle's initial phases (:func:`~tilesolve.engine.sat.seeded_phases`):
+        where several assignments reach the optimum, different seeds may end in different
+        ones; the same seed gives the same one (RC2 and its oracle are deterministic).
 
     Examples
     --------
@@ -125,26 +134,51 @@ def solve_wcnf(
     from pysat.formula import WCNF
 
     t0 = time.perf_counter()
-    deadline = Deadline(time_limit)
+    if deadline is None:
+        deadline = Deadline(time_limit)
+    time_limit = deadline.time_limit
     name = _check_oracle(solver, time_limit)
+    solver_name = f"rc2/{name}"
+    soft = [int(lit) for lit in soft]
+    wts = [1] * len(soft) if weights is None else [int(wt) for wt in weights]
+    n_hard = _size_of(hard)
+    top = hard.max_var() if hasattr(hard, "max_var") else 0
+    if not hasattr(hard, "max_var"):
+        hard = list(_chunks(hard))  # lists: read once for the largest variable
+        top = max((abs(v) for ch in hard for c in ch for v in c), default=0)
+        n_hard = sum(len(ch) for ch in hard)
+    # RC2 gets the soft clauses only; the hard ones go straight into its oracle, in chunks
+    # with deadline checks (RC2 would load them in one uninterruptible call).
     w = WCNF()
-    for ch in _chunks(hard):
-        w.hard.extend(ch)
-        for c in ch:
-            if not c:
-                return Result(Status.UNSAT, None, time.perf_counter() - t0, None, {}, solver=f"rc2/{name}",
-                              reason="hard clauses contain the empty clause")
-            w.nv = max(w.nv, max(abs(v) for v in c))
-    wts = [1] * len(soft) if weights is None else list(weights)
     for lit, wt in zip(soft, wts):
-        w.append([int(lit)], weight=int(wt))
-    stats: dict = {"hard": len(w.hard), "soft": len(w.soft)}
+        w.append([lit], weight=wt)
+    w.nv = max(top, max((abs(v) for v in soft), default=0))
+    stats: dict = {"hard": 0, "soft": len(w.soft)}
+
+    def unknown(reason: str) -> Result:
+        return Result(Status.UNKNOWN, None, time.perf_counter() - t0, None, stats, solver=solver_name, reason=reason)
+
     with options.make(w, name) as rc2:
+        chunks = hard if isinstance(hard, list) else _chunks(hard, LOAD_CHUNK)
+        for ch in chunks:
+            if deadline.expired():
+                of = f" of {_millions(n_hard)}" if n_hard is not None else ""
+                return unknown(f"time limit of {time_limit:.3g} s reached while loading the hard clauses into "
+                               f"{solver_name} ({_millions(stats['hard'])}{of} loaded)")
+            if min(map(len, ch), default=1) == 0:
+                return Result(Status.UNSAT, None, time.perf_counter() - t0, None, stats, solver=solver_name,
+                              reason="hard clauses contain the empty clause")
+            rc2.oracle.append_formula(ch)
+            stats["hard"] += len(ch)
+        if seed is not None:
+            try:
+                rc2.oracle.set_phases(seeded_phases(w.nv, seed))
+            except NotImplementedError:
+                pass
         model, stop = run_interruptible(lambda: rc2.compute(expect_interrupt=True), _interrupter(rc2), deadline)
         stats["lower_bound"] = int(rc2.cost)
         cost = int(rc2.cost)
     rt = time.perf_counter() - t0
-    solver_name = f"rc2/{name}"
     if model is not None:  # RC2 returns None when interrupted, so a model means it finished
         return Result(Status.OPTIMAL, list(model), rt, None, stats, cost=cost, solver=solver_name)
     if stop is not None:
@@ -154,7 +188,7 @@ def solve_wcnf(
 
 def _stop_reason(stop: str, time_limit: float | None) -> str:
     if stop == "time limit" and time_limit is not None:
-        return f"time limit of {time_limit:.3g} s reached"
+        return f"time limit of {time_limit:.3g} s reached while solving"
     return "interrupted (Ctrl-C)"
 
 
@@ -276,6 +310,7 @@ def solve_lazy(
     options: RC2Options = RC2Options(),
     keep_min: int = 64,
     fallback_fraction: float = 0.2,
+    deadline: Deadline | None = None,
 ) -> Result:
     """Exact MaxSAT by lazy hard clauses and independent components (see module doc).
 
@@ -296,6 +331,9 @@ def solve_lazy(
         When one component holds more than this fraction of all hard clauses the
         decomposition no longer pays: the rest of the time goes to one RC2 run on the
         whole formula (:func:`solve_wcnf`; ``stats["fallback"]`` says so).
+    deadline : Deadline, optional
+        The whole run's deadline (replaces ``time_limit``). The decomposition is
+        deterministic and takes no seed.
 
     Returns
     -------
@@ -313,7 +351,9 @@ def solve_lazy(
     ('optimal', 1)
     """
     t0 = time.perf_counter()
-    deadline = Deadline(time_limit)
+    if deadline is None:
+        deadline = Deadline(time_limit)
+    time_limit = deadline.time_limit
     name = _check_oracle(solver, time_limit)
     if any(not b.grid_only for b in getattr(hard, "blocks", [])):
         raise MethodNotApplicable("lazy decomposition needs clauses over grid variables only (no counts)")
@@ -342,7 +382,9 @@ def solve_lazy(
                 return stop(Status.UNSAT, "hard clauses contain the empty clause")
             stats["rounds"] += 1
             stats["active_clauses"] += len(new)
-            for c in new:
+            for i, c in enumerate(new):
+                if i % 4096 == 0 and deadline.expired():
+                    raise _Stopped("time limit")
                 roots = {uf.find(abs(v)) for v in c}
                 parts = [comps.pop(r) for r in roots if r in comps]
                 root = abs(c[0])
@@ -363,7 +405,7 @@ def solve_lazy(
                 for comp in comps.values():
                     comp.close()
                 comps = {}
-                r = solve_wcnf(hard, soft, solver=name, time_limit=deadline.remaining(), options=options)
+                r = solve_wcnf(hard, soft, solver=name, deadline=deadline, options=options)
                 r.stats = {**stats, **r.stats, "fallback": "rc2 on the whole formula"}
                 r.runtime = time.perf_counter() - t0
                 return r
