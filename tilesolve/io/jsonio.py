@@ -280,6 +280,10 @@ ARRAY_DTYPES: dict[str, np.dtype] = {
 }
 
 
+_SIGNED = {"uint8": np.int16, "int8": np.int8, "uint16": np.int32, "int16": np.int16, "uint32": np.int64,
+           "int32": np.int32, "int64": np.int64}
+
+
 def encode_array(a) -> dict:
     """An integer array as an encoded array (module docstring), in the smallest ``dtype``
     that holds its values: ``bits`` for 0/1 values, else the narrowest integer type.
@@ -303,7 +307,11 @@ def encode_array(a) -> dict:
 
 
 def decode_array(value: Any, what: str, source: Any, *, ndim: int | None = None) -> np.ndarray:
-    """The int64 array of an encoded array (module docstring), or of plain JSON lists.
+    """The signed integer array of an encoded array (module docstring), or of plain JSON lists.
+
+    An encoded array comes back in the narrowest signed type that holds its ``dtype``
+    (``int8`` for ``bits`` and ``int8``, ``int16`` for ``uint8``, ...), so a large grid costs
+    no more memory read than written; lists come back as ``int64``.
 
     Raises
     ------
@@ -344,12 +352,12 @@ def decode_array(value: Any, what: str, source: Any, *, ndim: int | None = None)
             bits = np.unpackbits(np.frombuffer(raw, np.uint8))
             if bits[count:].any():
                 raise fail("'data' has bits set after the last value")
-            arr = bits[:count].astype(np.int64)
+            arr = bits[:count].view(np.int8)
         else:
             dt = ARRAY_DTYPES[name]
             if len(raw) != count * dt.itemsize:
                 raise fail(f"'data' holds {len(raw)} bytes; {count} {name} values need {count * dt.itemsize}")
-            arr = np.frombuffer(raw, dt).astype(np.int64)
+            arr = np.frombuffer(raw, dt).astype(_SIGNED[name])
         arr = arr.reshape(shape)
     else:
         raise fail(f"expected an encoded array or a list, got {type(value).__name__}")
@@ -521,7 +529,7 @@ def _grid(value: Any, what: str, *, allow_free: bool) -> np.ndarray:
     if arr.min() < low or arr.max() > 2**31:
         r, c = np.argwhere((arr < low) | (arr > 2**31))[0]
         raise InvalidProblem(f"{what!r}: row {r}, col {c} holds {arr[r, c]}, not a tile number")
-    return arr.astype(np.int64, copy=False)
+    return arr
 
 
 def _grid_error(value: list, what: str) -> None:
