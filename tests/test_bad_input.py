@@ -1,0 +1,220 @@
+"""Bad-input sweep: every command and option of the real console script, fed malformed,
+absurd and hostile values.
+
+Each run must end with exit 2 (DESIGN.md, "Errors"), exactly one ``tilesolve: error: ...``
+line on stderr and no traceback, and leave the folder exactly as it was: no new file, no
+temporary, and the pre-existing ``keep.json`` (named as an output in many cases) byte-identical.
+The commands come from ``tilesolve --help``; a test checks that none is missing here.
+
+Every case fails on input checks, before any search, so the sweep stays cheap.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shlex
+import stat
+
+import numpy as np
+import pytest
+from clitools import one_line_error, run, snapshot
+
+from tilesolve.io.jsonio import write_solution
+from tilesolve.model.dappled import DappledProblem
+from tilesolve.model.solution import Solution, Status
+
+BIG = "1" + "0" * 30  # 10^30
+
+#: command -> the cases: (name, arguments). Files named here are made by the ``folder`` fixture.
+CASES: dict[str, list[tuple[str, str]]] = {
+    "dappled solve": [
+        ("size not a number", "--size abcxdef -o keep.json"),
+        ("size zero", "--size 0x0"),
+        ("size 10^30", f"--size {BIG}x{BIG} -o keep.json"),
+        ("tiles not a number", "--size 4x4 --tiles abc"),
+        ("tiles 10^30", f"--size 4x4 --tiles {BIG}"),
+        ("condition garbage", "--size 4x4 --cond H0=abc"),
+        ("condition limit 10^30", f"--size 4x4 --cond H0={BIG} -o keep.json"),
+        ("condition tile 10^30", f"--size 4x4 --cond H{BIG}=2"),
+        ("count 10^30", f"--size 4x4 --count 1={BIG}"),
+        ("method unknown", "--size 4x4 --method magic -o keep.json"),
+        ("seed 10^30", f"--size 4x4 --seed {BIG}"),
+        ("time limit zero", "--size 4x4 --time-limit 0"),
+        ("time limit negative", "--size 4x4 --time-limit -1"),
+        ("time limit nan", "--size 4x4 --time-limit nan -o keep.json"),
+        ("time limit inf", "--size 4x4 --time-limit inf"),
+        ("time limit 1e400", "--size 4x4 --time-limit 1e400"),
+        ("problem missing", "--problem missing.json -o keep.json"),
+        ("problem binary", "--problem garbage.bin"),
+        ("problem wrong JSON", "--problem wrong.json"),
+        ("problem is a directory", "--problem adir"),
+        ("problem unreadable", "--problem locked.json"),
+        ("fix binary", "--size 4x4 --fix garbage.bin"),
+        ("initial is a directory", "--size 2x2 --initial adir"),
+        ("output is a directory", "--size 4x4 -o adir"),
+        ("output in a missing directory", "--size 4x4 -o nodir/x.json"),
+        ("output where a file is the directory", "--size 4x4 -o garbage.bin/x.json"),
+        ("output twice", "--size 4x4 -o keep.json --svg ./keep.json"),
+        ("stdout twice", "--size 4x4 -o - --svg -"),
+        ("output under /proc", "--size 4x4 -o keep.json --png /proc/x.png"),
+        ("repeat zero", "--size 4x4 --svg a.svg --repeat 0"),
+        ("repeat without a picture", "--size 4x4 --repeat 2 -o keep.json"),
+    ],
+    "dappled count": [
+        ("size zero", "--size 0x0"),
+        ("method unknown", "--size 3x3 --method magic"),
+        ("time limit nan", "--size 3x3 --time-limit nan"),
+    ],
+    "dappled crosscheck": [
+        ("trials zero", "--size 3x3 --trials 0"),
+        ("trials text", "--size 3x3 --trials many"),
+    ],
+    "pack": [
+        ("colors 1000", "--kind corner --colors 1000 -o keep.json"),
+        ("colors 10^30", f"--kind wang --colors {BIG}"),
+        ("colors text", "--kind corner --colors abc"),
+        ("kind unknown", "--kind hex --colors 3"),
+        ("no kind", "--colors 3"),
+        ("workers zero", "--kind corner --colors 3 --workers 0"),
+        ("workers 10^30", f"--kind corner --colors 3 --workers {BIG}"),
+        ("fix garbage", "--kind corner --colors 3 --fix a,b,c"),
+        ("fix 10^30", f"--kind corner --colors 3 --fix {BIG},0,0"),
+        ("dimacs with -o", "--kind corner --colors 3 --dimacs x.cnf -o keep.json"),
+        ("dimacs with --svg --indices", "--kind corner --colors 3 --dimacs x.cnf --svg x.svg --indices"),
+        ("indices without svg", "--kind corner --colors 3 --indices"),
+        ("method unknown", "--kind corner --colors 3 --method magic"),
+        ("svg under /proc", "--kind corner --colors 4 -o keep.json --svg /proc/x.svg"),
+        ("output is a directory", "--kind corner --colors 3 -o adir"),
+        ("time limit negative", "--kind corner --colors 3 --time-limit -1"),
+    ],
+    "pack count": [
+        ("kind unknown", "--kind hex --colors 2"),
+        ("colors text", "--kind wang --colors two"),
+        ("time limit inf", "--kind wang --colors 2 --time-limit inf"),
+    ],
+    "brick solve": [
+        ("board zero", "--board rect:0x0"),
+        ("board 10^30", f"--board rect:{BIG}x{BIG} -o keep.json"),
+        ("board kind unknown", "--board hex:3x3"),
+        ("mask binary", "--board mask:garbage.bin"),
+        ("mask missing", "--board mask:missing.txt"),
+        ("colors 1000", "--board rect:4x4 --colors 1000 -o keep.json"),
+        ("colors 10^30", f"--board rect:4x4 --colors {BIG}"),
+        ("colors two", "--board rect:4x4 --colors 2"),
+        ("boundary binary", "--board rect:2x2 --boundary garbage.bin"),
+        ("boundary wrong JSON", "--board rect:2x2 --boundary wrong.json"),
+        ("max-h 10^30", f"--board rect:4x4 --max-h {BIG}"),
+        ("method unknown", "--board rect:4x4 --method magic"),
+        ("output is a directory", "--board rect:4x4 -o adir"),
+        ("svg and output the same", "--board rect:4x4 -o keep.json --svg keep.json"),
+    ],
+    "brick wall": [
+        ("size garbage", "--size abc --max-line 2"),
+        ("size 10^30", f"--size {BIG}x2 --max-line 2 -o keep.json"),
+        ("max-line zero", "--size 4x4 --max-line 0"),
+        ("max-line 10^30", f"--size 4x4 --max-line {BIG}"),
+        ("colors 10^30", f"--size 4x4 --max-line 2 --colors {BIG}"),
+    ],
+    "brick count": [
+        ("colors 1000", "--board rect:2x2 --colors 1000"),
+        ("board garbage", "--board rect:axb"),
+    ],
+    "brick crosscheck": [
+        ("trials zero", "--board rect:2x2 --trials 0"),
+    ],
+    "wang solve": [
+        ("tiles binary", "--tiles garbage.bin --board rect:2x2"),
+        ("tiles wrong JSON", "--tiles wrong.json --board rect:2x2 -o keep.json"),
+        ("tiles missing", "--tiles missing.json --board rect:2x2"),
+        ("tiles is a directory", "--tiles adir --board rect:2x2"),
+        ("board zero", "--tiles tiles.json --board rect:0x3"),
+    ],
+    "tiles": [
+        ("kind unknown", "--kind hex --colors 2"),
+        ("colors 1000", "--kind wang --colors 1000"),
+        ("colors 10^30", f"--kind corner --colors {BIG}"),
+        ("colors one", "--kind wang --colors 1"),
+        ("set unknown", "--kind wang --colors 2 --set weird"),
+        ("svg is a directory", "--kind wang --colors 2 --svg adir"),
+    ],
+    "verify": [
+        ("missing", "missing.json"),
+        ("binary", "garbage.bin"),
+        ("wrong JSON", "wrong.json"),
+        ("wrong format name", "teapot.json"),
+        ("directory", "adir"),
+        ("no file", ""),
+    ],
+    "draw": [
+        ("missing", "missing.json -o x.svg"),
+        ("binary", "garbage.bin -o x.svg"),
+        ("unknown picture format", "solution.json -o x.bmp"),
+        ("output in a missing directory", "solution.json -o nodir/x.svg"),
+        ("output over the input", "solution.json -o solution.json"),
+        ("repeat 10^30", f"solution.json -o x.svg --repeat {BIG}"),
+    ],
+    "export dimacs": [
+        ("size zero", "--size 0x0 -o x.cnf"),
+        ("output is a directory", "--size 3x3 -o adir"),
+        ("output in a missing directory", "--size 3x3 -o nodir/x.cnf"),
+        ("file binary", "garbage.bin -o x.cnf"),
+    ],
+    "demo": [
+        ("out is a file", "--out garbage.bin"),
+        ("time limit zero", "--time-limit 0"),
+        ("family unknown", "--family nope"),
+    ],
+    "backends": [
+        ("extra argument", "everything"),
+    ],
+    "": [
+        ("unknown command", "frobnicate"),
+        ("unknown option", "--frobnicate"),
+        ("unknown subcommand", "dappled frobnicate"),
+    ],
+}
+
+
+@pytest.fixture
+def folder(tmp_path):
+    """A folder of hostile inputs, and ``keep.json``, an earlier result that must survive."""
+    (tmp_path / "garbage.bin").write_bytes(bytes(range(256)) * 4)
+    (tmp_path / "wrong.json").write_text('{"tiles": [1, 2,')
+    (tmp_path / "teapot.json").write_text('{"format": "tilesolve/teapot", "version": 1}')
+    (tmp_path / "tiles.json").write_text('{"colors": 2, "tiles": [[0, 0, 0, 0]]}')
+    problem = DappledProblem.from_strings("2x2", ["H0=1"])
+    write_solution(tmp_path / "solution.json", problem, Solution(Status.SAT, np.array([[0, 1], [1, 0]]), method="sat"))
+    (tmp_path / "locked.json").write_bytes((tmp_path / "solution.json").read_bytes())
+    (tmp_path / "locked.json").chmod(0)
+    (tmp_path / "adir").mkdir()
+    (tmp_path / "keep.json").write_text('{"an": "earlier result"}\n')
+    yield tmp_path
+    (tmp_path / "locked.json").chmod(stat.S_IRUSR | stat.S_IWUSR)
+
+
+@pytest.mark.parametrize("command,args", [pytest.param(c, a, id=f"{c or 'tilesolve'}: {n}")
+                                          for c, cases in CASES.items() for n, a in cases])
+def test_refused_in_one_line_leaving_everything_as_it_was(folder, command, args):
+    if "locked.json" in args and os.geteuid() == 0:
+        pytest.skip("root reads files whatever their mode")
+    before = snapshot(folder)
+    proc = run(*shlex.split(command), *shlex.split(args), cwd=folder)
+    one_line_error(proc)
+    assert snapshot(folder) == before
+
+
+def _commands(args: tuple[str, ...], folder) -> list[str]:
+    """The command names listed under 'Commands:' in ``tilesolve ARGS --help``."""
+    out = run(*args, "--help", cwd=folder).stdout
+    block = out.split("Commands:", 1)[1] if "Commands:" in out else ""
+    return re.findall(r"^  (\S+)", block.split("\n\n", 1)[0], flags=re.M)
+
+
+def test_every_command_is_swept(tmp_path):
+    swept = {c.split()[0] for c in CASES if c}
+    for name in _commands((), tmp_path):
+        assert name in swept, f"add bad-input cases for `tilesolve {name}`"
+        subs = _commands((name,), tmp_path)
+        for sub in subs:
+            assert f"{name} {sub}" in CASES, f"add bad-input cases for `tilesolve {name} {sub}`"
