@@ -29,7 +29,7 @@ from tilesolve.encodings.dappled import DappledEncoding, build_cpsat, encode_cnf
 from tilesolve.engine.cpsat import DEFAULT_CPSAT_WORKERS, solve_cp_model
 from tilesolve.engine.maxsat import DEFAULT_MAXSAT_ORACLE, RC2Options, solve_lazy, solve_wcnf
 from tilesolve.engine.routes import sat_route
-from tilesolve.deadline import Deadline
+from tilesolve.deadline import Deadline, TimeLimitReached
 from tilesolve.engine.sat import DEFAULT_SAT_SOLVER, ModelEnumerator, solve_cnf
 from tilesolve.errors import InvalidProblem
 from tilesolve.model.dappled import DappledProblem
@@ -101,7 +101,10 @@ def solve_sat(
     _check_problem(problem)
     t0 = time.perf_counter()
     run = RunOptions(seed, Deadline(time_limit))
-    enc = encode_cnf(problem)
+    try:
+        enc = encode_cnf(problem, deadline=run.deadline)
+    except TimeLimitReached as exc:
+        return Solution(Status.UNKNOWN, None, "sat", solver, seed, time.perf_counter() - t0, reason=str(exc))
     phases = enc.literals(problem.closest_to) if problem.closest_to is not None else None
     notes = ()
     if problem.closest_to is not None:
@@ -184,7 +187,10 @@ def solve_maxsat(
     if problem.closest_to is None:
         sol = solve_sat(problem, time_limit=time_limit, seed=seed)
         return sol.with_note("no closest_to target: solved as a satisfaction problem")
-    enc = encode_wcnf(problem)
+    try:
+        enc = encode_wcnf(problem, deadline=deadline)
+    except TimeLimitReached as exc:
+        return Solution(Status.UNKNOWN, None, "maxsat", solver, seed, time.perf_counter() - t0, reason=str(exc))
     stats = _enc_stats(enc, time.perf_counter() - t0)
     lazy_ok = all(b.grid_only for b in enc.hard.blocks)
     if method == "lazy" and not lazy_ok:
@@ -192,9 +198,9 @@ def solve_maxsat(
     use_lazy = method == "lazy" or (method == "auto" and lazy_ok and problem.size >= LAZY_MIN_CELLS)
     if use_lazy:
         r = solve_lazy(enc.hard, enc.soft, enc.target_values(problem.closest_to), solver=solver,
-                       time_limit=deadline.remaining(), options=options)
+                       deadline=deadline, options=options)
     else:
-        r = solve_wcnf(enc.hard, enc.soft, solver=solver, time_limit=deadline.remaining(), options=options)
+        r = solve_wcnf(enc.hard, enc.soft, solver=solver, deadline=deadline, options=options, seed=seed)
     stats.update({k: v for k, v in r.stats.items() if isinstance(v, (int, float, str))})
     stats["solve_s"] = round(r.runtime, 6)
     if r.status is Status.OPTIMAL:
@@ -248,11 +254,14 @@ def solve_cpsat(
     _check_problem(problem)
     t0 = time.perf_counter()
     deadline = Deadline(time_limit)
-    m = build_cpsat(problem)
+    try:
+        m = build_cpsat(problem, deadline=deadline)
+    except TimeLimitReached as exc:
+        return Solution(Status.UNKNOWN, None, "cpsat", "cp-sat", seed, time.perf_counter() - t0, reason=str(exc))
     stats = _enc_stats(m.encoding, time.perf_counter() - t0)
     if hint and problem.closest_to is not None:
         m.add_hint(problem.closest_to)
-    r = solve_cp_model(m.model, m.variables, time_limit=deadline.remaining(), num_workers=num_workers, seed=seed,
+    r = solve_cp_model(m.model, m.variables, deadline=deadline, num_workers=num_workers, seed=seed,
                        has_objective=m.objective)
     stats.update({k: v for k, v in r.stats.items() if isinstance(v, (int, float, str))})
     if r.status.has_tiling:

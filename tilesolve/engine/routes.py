@@ -69,7 +69,7 @@ def sat_route(
         return Solution(Status.UNKNOWN, None, method, solver, run.seed, time.perf_counter() - t0,
                         reason=f"time limit of {run.deadline.time_limit:.3g} s reached while encoding",
                         notes=notes, stats=stats)
-    r = solve_cnf(encoding.hard, solver=solver, time_limit=run.time_limit, with_proof=proof and not restricted,
+    r = solve_cnf(encoding.hard, solver=solver, deadline=run.deadline, with_proof=proof and not restricted,
                   seed=run.seed, phases=phases)
     stats["solve_s"] = round(r.runtime, 6)
     stats.update({k: r.stats[k] for k in ("conflicts", "decisions", "propagations", "restarts") if k in r.stats})
@@ -82,12 +82,12 @@ def sat_route(
                         reason="the restricted search space holds no solution (this proves nothing about the "
                                "full problem)", notes=notes, stats=stats)
     if r.status is Status.UNSAT:
-        rem = run.deadline.remaining()
         sol = unsat_solution(encoding.hard, r, method=method, seed=run.seed, t0=t0, stats=stats, check_proof=True,
-                             proof_time_limit=None if rem is None else max(rem, 1.0))
+                             deadline=run.deadline)
         return sol.replace(notes=sol.notes + notes)
     reason = r.reason
-    if run.deadline.time_limit is not None and run.deadline.expired() and not (reason or "").startswith("interrupted"):
+    if run.deadline.time_limit is not None and run.deadline.expired() and not (reason or "").startswith(
+            ("interrupted", "time limit of")):
         reason = f"time limit of {run.deadline.time_limit:.3g} s reached"
     return Solution(Status.UNKNOWN, None, method, r.solver, run.seed, time.perf_counter() - t0, reason=reason,
                     notes=notes, stats=stats)
