@@ -149,3 +149,15 @@ def test_same_seed_same_tables_and_bad_input():
         FnvXorshift(0).scalar(2**64, 0)
     with pytest.raises(InvalidProblem):
         tiling_hash(0)
+
+
+@settings(max_examples=60)
+@given(xs=st.lists(I64, min_size=1, max_size=12), ys=st.lists(I64, min_size=1, max_size=12),
+       seed=st.integers(0, 2**32), colors=st.integers(1, 30), long=st.booleans(), reduce=st.booleans())
+def test_grid_evaluation_equals_the_pointwise_hash(xs, ys, seed, colors, long, reduce):
+    h = tiling_hash(colors, seed=seed) if long else PermutationHash.from_seed(colors * 9, seed)
+    x, y = np.array(xs, dtype=np.int64), np.array(ys, dtype=np.int64)
+    want = h(x[None, :], y[:, None])
+    if reduce:
+        want = want % colors
+    assert np.array_equal(h.outer(x, y, colors if reduce else None), want)

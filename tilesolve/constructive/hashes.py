@@ -25,9 +25,9 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from numba import njit
 
 from tilesolve._random import rng_from_seed
+from tilesolve.constructive._lattice_kernels import outer_rows
 from tilesolve.errors import InvalidProblem
 
 __all__ = [
@@ -139,6 +139,10 @@ class PermutationHash:
         """
         return _outer((self,), xs, ys, self.range, modulus)
 
+    def row_tables(self, xs, modulus: int | None = None):
+        """The tables that evaluate this hash a row at a time over the columns ``xs`` (compiled code)."""
+        return _row_tables((self,), xs, self.range, modulus)
+
     def scalar(self, *coords) -> int:
         if not 1 <= len(coords) <= 3:
             raise InvalidProblem("permutation hashes take 1, 2 or 3 coordinates (eq. 3.1-3.4)")
@@ -212,36 +216,31 @@ class LongPeriodHash:
         """``h(x, y)`` on the grid ``ys x xs``, int32 (see :meth:`PermutationHash.outer`)."""
         return _outer(self._parts, xs, ys, self.range, modulus)
 
+    def row_tables(self, xs, modulus: int | None = None):
+        """The tables that evaluate this hash a row at a time over the columns ``xs`` (compiled code)."""
+        return _row_tables(self._parts, xs, self.range, modulus)
+
     def scalar(self, *coords) -> int:
         return sum(p.scalar(*coords) for p in self._parts) % self.range
 
 
-@njit(cache=True)
-def _outer_sum(twice, px, ym, rng, modulus):
-    """``out[r, c] = ((sum_i twice[i, ym[i, r] + px[i, c]]) % rng) % modulus`` (eq. 3.3/3.6 on a grid)."""
-    m, h, w = px.shape[0], ym.shape[1], px.shape[1]
-    out = np.empty((h, w), dtype=np.int32)
-    for r in range(h):
-        for c in range(w):
-            s = 0
-            for i in range(m):
-                s += twice[i, ym[i, r] + px[i, c]]
-            out[r, c] = (s % rng) % modulus
-    return out
+def _row_tables(parts, xs, rng: int, modulus: int | None):
+    """``(twice, sizes, px, red)`` for :mod:`._lattice_kernels` (see its docstring)."""
+    xs = _as_int64(xs).reshape(-1)
+    m, big = len(parts), 2 * max(p.size for p in parts)
+    twice = np.zeros((m, big), dtype=np.int32)
+    px = np.empty((xs.size, m), dtype=np.int32)
+    for i, p in enumerate(parts):
+        twice[i, : 2 * p.size] = np.concatenate([p.table, p.table])
+        px[:, i] = p.table[xs % p.size]
+    sizes = np.array([p.size for p in parts], dtype=np.int64)
+    red = (np.arange(int(sizes.sum()), dtype=np.int64) % rng) % (rng if modulus is None else int(modulus))
+    return twice, sizes, px, red.astype(np.int32)
 
 
 def _outer(parts, xs, ys, rng: int, modulus: int | None) -> np.ndarray:
     """Evaluate the 2-D hash of the tables ``parts`` on the grid ``ys x xs`` (compiled loop)."""
-    xs, ys = _as_int64(xs).reshape(-1), _as_int64(ys).reshape(-1)
-    m, big = len(parts), 2 * max(p.size for p in parts)
-    twice = np.zeros((m, big), dtype=np.int32)
-    px = np.empty((m, xs.size), dtype=np.int32)
-    ym = np.empty((m, ys.size), dtype=np.int32)
-    for i, p in enumerate(parts):
-        twice[i, : 2 * p.size] = np.concatenate([p.table, p.table])
-        px[i] = p.table[xs % p.size]
-        ym[i] = ys % p.size
-    return _outer_sum(twice, px, ym, np.int32(rng), np.int32(rng if modulus is None else modulus))
+    return outer_rows(*_row_tables(parts, xs, rng, modulus), _as_int64(ys).reshape(-1))
 
 
 def _primes_around(r: int, below: int, above: int) -> list[int]:

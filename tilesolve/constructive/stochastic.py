@@ -42,9 +42,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
 from tilesolve._random import rng_from_seed
+from tilesolve.constructive import _lattice_kernels as _k
 from tilesolve.constructive.hashes import PermutationHash, permutation_table, tiling_hash
 from tilesolve.errors import InvalidProblem, MethodNotApplicable
 from tilesolve.model.tiles import TileSet
@@ -120,9 +120,9 @@ def make_hash(name, colors: int, seed=None):
 
     ``name`` is ``"long"`` (§3.4.3, :func:`tiling_hash`), ``"table"`` (§3.4.1, eq. 3.3, a table
     of the smallest multiple of ``colors`` that is at least 256) or a hash object with
-    ``outer`` and ``range`` (returned as is).
+    ``row_tables`` and ``range`` (returned as is).
     """
-    if hasattr(name, "outer"):
+    if hasattr(name, "row_tables"):
         if name.range % colors:
             raise InvalidProblem(f"hash range {name.range} is not a multiple of {colors} colours")
         return name
@@ -133,55 +133,11 @@ def make_hash(name, colors: int, seed=None):
     raise InvalidProblem(f"unknown hash {name!r}; choose one of {', '.join(HASHES)}")
 
 
-def _lattice(hsh, xs, ys, colors: int) -> np.ndarray:
-    """``h(x, y) % colors`` on the lattice ``ys x xs`` (rows by increasing ``y``), int32."""
-    return hsh.outer(np.asarray(xs, dtype=np.int64), np.asarray(ys, dtype=np.int64), colors)
-
-
 def _out_dtype(colors: int):
     return np.int32 if colors**4 < 2**31 else np.int64
 
 
 # ------------------------------------------------------------------------------------ direct
-# Lattice arrays are indexed [y - y0, x - x0] (y growing); outputs [row, col] with row 0 at the top.
-@njit(cache=True)
-def _corner_kernel(lat, c, out):
-    """Eq. 2.5 of the corner colours NE, SE, SW, NW read off the lattice (§3.3.1)."""
-    h, w = out.shape
-    for r in range(h):
-        y = h - 1 - r
-        for x in range(w):
-            out[r, x] = ((lat[y + 1, x + 1] * c + lat[y, x + 1]) * c + lat[y, x]) * c + lat[y + 1, x]
-    return out
-
-
-@njit(cache=True)
-def _corner_sums_kernel(hh, hv, c, out):
-    """Eq. 2.1 of the edges N = NW + NE, E = NE + SE, S = SE + SW, W = SW + NW (mod C) of the
-    corner hashes ``hh`` (horizontal edges) and ``hv`` (vertical edges) (§3.3.2.1, §3.3.2.2)."""
-    h, w = out.shape
-    for r in range(h):
-        y = h - 1 - r
-        for x in range(w):
-            n = (hh[y + 1, x] + hh[y + 1, x + 1]) % c
-            e = (hv[y + 1, x + 1] + hv[y, x + 1]) % c
-            s = (hh[y, x + 1] + hh[y, x]) % c
-            wc = (hv[y, x] + hv[y + 1, x]) % c
-            out[r, x] = ((n * c + e) * c + s) * c + wc
-    return out
-
-
-@njit(cache=True)
-def _edge_kernel(hor, ver, c, out):
-    """Eq. 2.1 of N = hor[y + 1, x], E = ver[y, x + 1], S = hor[y, x], W = ver[y, x] (§3.3.2.3)."""
-    h, w = out.shape
-    for r in range(h):
-        y = h - 1 - r
-        for x in range(w):
-            out[r, x] = ((hor[y + 1, x] * c + ver[y, x + 1]) * c + hor[y, x]) * c + ver[y, x]
-    return out
-
-
 def direct_corner(x0, y0, w, h, *, colors: int, seed=None, hash="long") -> np.ndarray:
     """Window of the direct stochastic corner tiling (§3.3.1, Lagae and Dutré 2006).
 
@@ -208,8 +164,8 @@ def direct_corner(x0, y0, w, h, *, colors: int, seed=None, hash="long") -> np.nd
     """
     x0, y0, w, h = _check_window(x0, y0, w, h)
     c = _check_int(colors, "colors", 1)
-    lat = _lattice(make_hash(hash, c, seed), np.arange(x0, x0 + w + 1), np.arange(y0, y0 + h + 1), c)
-    return _corner_kernel(lat, c, np.empty((h, w), dtype=_out_dtype(c)))
+    tables = make_hash(hash, c, seed).row_tables(np.arange(x0, x0 + w + 1), c)
+    return _k.direct_corner(*tables, y0, c, np.empty((h, w), dtype=_out_dtype(c)))
 
 
 def direct_wang(x0, y0, w, h, *, colors: int, seed=None, algorithm: str = "edges", variant: str = "complete",
@@ -247,75 +203,25 @@ def direct_wang(x0, y0, w, h, *, colors: int, seed=None, algorithm: str = "edges
     if variant == "complete" and algorithm not in WANG_DIRECT:
         raise InvalidProblem(f"unknown direct Wang algorithm {algorithm!r}; choose one of {', '.join(WANG_DIRECT)}")
     out = np.empty((h, w), dtype=_out_dtype(c))
-    xs, ys = np.arange(x0, x0 + w + 1), np.arange(y0, y0 + h + 1)
+    xs = np.arange(x0, x0 + w + 1)
     if variant == "sums" or algorithm == "two":
         rng = rng_from_seed(seed)
-        hh = _lattice(make_hash(hash, c, rng), xs, ys, c)
-        hv = hh if variant == "sums" else _lattice(make_hash(hash, c, rng), xs, ys, c)
-        return _corner_sums_kernel(hh, hv, c, out)
+        hh = make_hash(hash, c, rng).row_tables(xs, c)
+        hv = hh if variant == "sums" else make_hash(hash, c, rng).row_tables(xs, c)
+        return _k.direct_wang_sums(*hh, *hv, y0, c, out)
     hsh = make_hash(hash, c, seed)
-    # horizontal edges: h(2x + 1, 2y) for y in y0 .. y0 + h; vertical: h(2x, 2y + 1) for x in x0 .. x0 + w
-    hor = _lattice(hsh, 2 * xs[:-1] + 1, 2 * ys, c)
-    ver = _lattice(hsh, 2 * xs, 2 * ys[:-1] + 1, c)
-    return _edge_kernel(hor, ver, c, out)
+    twice, sizes, podd, red = hsh.row_tables(2 * xs[:-1] + 1, c)
+    peven = hsh.row_tables(2 * xs, c)[2]
+    return _k.direct_wang_edges(twice, sizes, podd, peven, red, y0, c, out)
 
 
 # ------------------------------------------------------------------------------------ scanline
-@njit(cache=True)
-def _scanline_wang_kernel(north, west, pick, colors, compact):
-    """§3.2.1 in scanline order; ``north``/``west`` are the colours met at the window's top
-    row and left column, ``pick[r, c]`` the random choice of cell ``(r, c)`` (row 0 at the top)."""
-    h, w = pick.shape
-    out = np.empty((h, w), dtype=np.int64)
-    south = north.copy()  # S colours of the row above, i.e. the N colours of this row
-    for r in range(h):
-        east = west[r]  # E colour of the cell to the left, i.e. the W colour of this cell
-        for c in range(w):
-            n, wc = south[c], east
-            if compact:  # the two tiles of (N, W): E = N + k, S = W + k, k in {0, 1}
-                k = pick[r, c] & 1
-                e, s = (n + k) % colors, (wc + k) % colors
-            else:  # every (E, S) is a tile: two free colours
-                e, s = pick[r, c] % colors, (pick[r, c] // colors) % colors
-            out[r, c] = ((n * colors + e) * colors + s) * colors + wc
-            south[c] = s
-            east = e
-    return out
-
-
-@njit(cache=True)
-def _scanline_corner_kernel(top, left, pick, colors, compact):
-    """§3.2.2 in scanline order: ``top`` holds the w + 1 corner colours along the window's
-    top edge, ``left`` the h colours down its west edge (below the top corner)."""
-    h, w = pick.shape
-    out = np.empty((h, w), dtype=np.int64)
-    above = top.copy()  # lattice colours on the line above the current row
-    below = np.empty_like(top)
-    for r in range(h):
-        below[0] = left[r]
-        for c in range(w):
-            nw, ne, sw = above[c], above[c + 1], below[c]
-            if compact:  # the two tiles of (NE, NW, SW): SE = x or x + 1, x = NE + NW + SW
-                se = (ne + nw + sw + (pick[r, c] & 1)) % colors
-            else:
-                se = pick[r, c] % colors
-            below[c + 1] = se
-            out[r, c] = ((ne * colors + se) * colors + sw) * colors + nw
-        above, below = below, above
-    return out
-
-
-def _choices(x0, y0, w, h, seed, hash, span: int) -> np.ndarray:
-    """Hash values of the cells of the window and of the virtual cells around it, row 0 at the top.
-
-    ``out[1:, 1:]`` is the window (``out[r + 1, c + 1]`` belongs to ``(x0 + c, y0 + h - 1 - r)``);
-    ``out[0]`` is the row of cells just north of it (``y = y0 + h``, from ``x = x0 - 1``) and
-    ``out[:, 0]`` the column just west of it (``x = x0 - 1``). ``span`` is how many values one
-    choice needs (``C**2`` for two free colours, ``C`` or ``lcm(C, 2)`` otherwise); the hash
-    range is a multiple of it so that every choice is uniform.
-    """
-    hsh = make_hash(hash, span, seed)
-    return hsh.outer(np.arange(x0 - 1, x0 + w), np.arange(y0, y0 + h + 1))[::-1].astype(np.int64)
+def _choice_tables(x0, w, seed, hash, span: int):
+    """Row tables of the choice hash over the columns ``x0 - 1 .. x0 + w - 1`` (column 0: the
+    virtual cells west of the window). ``span`` is how many values one choice needs (``C**2``
+    for two free colours, ``C`` or ``lcm(C, 2)`` otherwise); the hash range is a multiple of it,
+    so every choice is uniform."""
+    return make_hash(hash, span, seed).row_tables(np.arange(x0 - 1, x0 + w), span)
 
 
 def scanline_wang(x0, y0, w, h, *, colors: int, seed=None, variant: str = "complete", hash="long") -> np.ndarray:
@@ -335,18 +241,14 @@ def scanline_wang(x0, y0, w, h, *, colors: int, seed=None, variant: str = "compl
     Returns
     -------
     numpy.ndarray
-        ``(h, w)`` eq. 2.1 indices (int64), row 0 at the top.
+        ``(h, w)`` eq. 2.1 indices (int32 when C**4 < 2**31), row 0 at the top.
     """
     x0, y0, w, h = _check_window(x0, y0, w, h)
     c = _check_int(colors, "colors", 1)
     tile_set("wang", "scanline", c, variant)
     compact = variant == "compact"
-    ext = _choices(x0, y0, w, h, seed, hash, math.lcm(c, 2) if compact else c * c)
-    # The colours the virtual cells north and west of the window show it: their S (the
-    # second free colour for a complete set) and E colours.
-    north = ext[0, 1:] % c if compact else (ext[0, 1:] // c) % c
-    west = ext[1:, 0] % c
-    return _scanline_wang_kernel(north, west, ext[1:, 1:], c, compact)
+    tables = _choice_tables(x0, w, seed, hash, math.lcm(c, 2) if compact else c * c)
+    return _k.scanline_wang(*tables, y0, c, compact, np.empty((h, w), dtype=_out_dtype(c)))
 
 
 def scanline_corner(x0, y0, w, h, *, colors: int, seed=None, variant: str = "complete", hash="long") -> np.ndarray:
@@ -359,16 +261,14 @@ def scanline_corner(x0, y0, w, h, *, colors: int, seed=None, variant: str = "com
     Returns
     -------
     numpy.ndarray
-        ``(h, w)`` eq. 2.5 indices (int64), row 0 at the top.
+        ``(h, w)`` eq. 2.5 indices (int32 when C**4 < 2**31), row 0 at the top.
     """
     x0, y0, w, h = _check_window(x0, y0, w, h)
     c = _check_int(colors, "colors", 1)
     tile_set("corner", "scanline", c, variant)
     compact = variant == "compact"
-    ext = _choices(x0, y0, w, h, seed, hash, math.lcm(c, 2) if compact else c)
-    # The corners on the window's top and west edges are the SE corners of the virtual
-    # cells north and west of it.
-    return _scanline_corner_kernel(ext[0] % c, ext[1:, 0] % c, ext[1:, 1:], c, compact)
+    tables = _choice_tables(x0, w, seed, hash, math.lcm(c, 2) if compact else c)
+    return _k.scanline_corner(*tables, y0, c, compact, np.empty((h, w), dtype=_out_dtype(c)))
 
 
 def stochastic_window(kind: str, method: str, region, *, colors: int, seed, variant: str = "complete",
