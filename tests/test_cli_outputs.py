@@ -211,3 +211,13 @@ def test_temporary_names_carry_the_writer_pid(tmp_path):
         (part,) = [p for p in os.listdir(tmp_path) if p.endswith(".part")]
     assert part.startswith(f".a.txt.{os.getpid()}.")
     assert os.listdir(tmp_path) == ["a.txt"]
+
+
+@posix_only
+def test_a_symbolic_link_is_followed_not_replaced(tmp_path):
+    from tilesolve.io import atomic
+
+    (tmp_path / "real.txt").write_text("old")
+    (tmp_path / "link.txt").symlink_to("real.txt")
+    atomic.write_text_atomic(tmp_path / "link.txt", "new")
+    assert (tmp_path / "link.txt").is_symlink() and (tmp_path / "real.txt").read_text() == "new"

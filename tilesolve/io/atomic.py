@@ -12,7 +12,8 @@ Three kinds of destination are not renamed over:
 * an existing file that is not a regular file (``/dev/null``, a terminal, a FIFO, a socket)
   is opened and written directly: renaming over it would replace the device or pipe with
   a regular file;
-* everything else (a regular file, or a new name) is written atomically.
+* everything else (a regular file, or a new name) is written atomically; a symbolic link is
+  followed, so the file it points to is replaced and the link kept.
 
 :func:`commit_together` groups the writes of one run: inside it nothing reaches its
 destination until the block ends cleanly, and then every file is committed; if the block
@@ -77,6 +78,12 @@ def _umask() -> int:
     return mask
 
 
+def _target(path: str | os.PathLike) -> str:
+    """The file a write to ``path`` should reach: a symbolic link is followed, not replaced."""
+    p = str(path)
+    return os.path.realpath(p) if p != "-" and os.path.islink(p) else p
+
+
 def _is_direct(path: str) -> bool:
     """True for stdout (``"-"``) and for existing files that are not regular files."""
     if path == "-":
@@ -137,7 +144,7 @@ def probe_writable(path: str | os.PathLike) -> None:
     writable; otherwise a temporary is created in the destination's directory and removed
     again (permission bits alone do not tell, e.g. for root in ``/proc``).
     """
-    p = str(path)
+    p = _target(path)
     if p == "-":
         return
     if _is_direct(p):
@@ -199,7 +206,7 @@ def atomic_write(path: str | os.PathLike, mode: str = "w", *, encoding: str | No
     if mode not in ("w", "wb"):
         raise ValueError(f"atomic_write supports modes 'w' and 'wb', not {mode!r}")
     kwargs = {} if "b" in mode else {"encoding": encoding, "newline": "\n"}
-    dest = str(path)
+    dest = _target(path)
     direct = _is_direct(dest)
     group = _group.get()
     if direct and group is None:
