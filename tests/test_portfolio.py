@@ -448,7 +448,7 @@ def test_forced_portfolio_runs_as_a_script_without_main_guard(tmp_path):
         import functools
         from tilesolve import packing
         from tilesolve.engine import portfolio
-        from tilesolve.engine.packing import solve_lift
+        from tilesolve.packing_search import solve_lift
         from tilesolve.model.packing import PackingProblem
 
         portfolio.QUICK_S = 0.0  # workers start beside the first run at once

@@ -41,7 +41,6 @@ from __future__ import annotations
 
 import os
 import secrets
-import time
 from dataclasses import dataclass, field
 from typing import Any, Callable, Iterable, Mapping, Sequence
 
@@ -71,6 +70,9 @@ __all__ = [
     "verify_document",
     "verify_file",
     "write_solution",
+    "solution_text",
+    "backend_report",
+    "iter_demos",
     "draw_solution",
     "ENTRY_POINT_GROUP",
 ]
@@ -538,6 +540,26 @@ def draw_solution(path: str | os.PathLike, problem: Any, solution: Solution, *, 
     if not solution.status.has_tiling:
         raise InvalidProblem(f"status {solution.status.value}: no tiling to draw")
     fam.draw(problem, solution, path, fmt, **options)
+
+
+def backend_report() -> tuple[list[tuple[str, ...]], list[tuple[str, ...]], bool]:
+    """What ``tilesolve backends`` prints: ``(backend rows, route rows, a required backend is
+    missing)``; backend rows are (name, kind, installed, version or reason, used by), route
+    rows (family, route, what it does)."""
+    from tilesolve.engine.backends import OTHER_BACKENDS, dist_version, probe, sat_backends
+
+    rows = []
+    pysat = f"python-sat {dist_version('python-sat')}"
+    sat = sat_backends()
+    for name, ok, used_by in sat:
+        rows.append((name, "SAT", "yes" if ok else "no", pysat if ok else "not in this python-sat build", used_by))
+    missing = not any(ok for _, ok, _ in sat)
+    for b in OTHER_BACKENDS:
+        ok, info = probe(b)
+        missing |= not ok and not b.optional
+        rows.append((b.name, b.kind, "yes" if ok else ("no (optional)" if b.optional else "NO"), info, b.used_by))
+    routes = [(fam.name, route, fam.route_help.get(route, "")) for fam in families() for route in fam.routes]
+    return rows, routes, missing
 
 
 def iter_demos() -> Iterable[tuple[Family, Demo]]:

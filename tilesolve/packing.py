@@ -124,11 +124,13 @@ def known(problem: PackingProblem, run: RunOptions) -> Solution:
 
 
 def _search(name: str):
-    """The facade route of the engine search ``engine.packing.solve_<name>``; heavy-tailed
-    searches escalate to a seed portfolio (:func:`tilesolve.engine.portfolio.escalate`)."""
+    """The facade route of the search ``solve_<name>`` (:mod:`tilesolve.engine.packing` for
+    ``sat``/``cpsat``, :mod:`tilesolve.packing_search` for the searches over constructions);
+    heavy-tailed searches escalate to a seed portfolio (:func:`tilesolve.engine.portfolio.escalate`)."""
+    from tilesolve import packing_search
     from tilesolve.engine import packing as engine
 
-    raw = getattr(engine, f"solve_{name}")
+    raw = getattr(engine if name in ("sat", "cpsat") else packing_search, f"solve_{name}")
 
     def route(problem: PackingProblem, run: RunOptions) -> Solution:
         if name not in PORTFOLIO_ROUTES:

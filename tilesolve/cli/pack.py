@@ -115,13 +115,9 @@ def pack(ctx, kind, colors, colors_v, method, fix, seed, time_limit, workers, cl
     check_colors(kind, colors, colors_v)
     problem = PackingProblem(kind, colors, colors_v, _parse_fix(fix))
     if dimacs:
-        from tilesolve.encodings.packing import encode_packing
         from tilesolve.io.dimacs import write_dimacs
 
-        from tilesolve.engine.packing import check_search_size
-
-        check_search_size(problem)
-        enc = encode_packing(problem)
+        enc = facade.FAMILY.encode(problem)
         with outs.commit():
             write_dimacs(enc, dimacs)
         say(f"wrote {dimacs}: {enc.n_vars:,} variables, {len(enc.clauses):,} clauses ({problem.describe()})")

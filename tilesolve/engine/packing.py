@@ -1,33 +1,14 @@
-"""Search routes for tile packings (class notes §5.5) over one CNF encoding.
-
-Every route here builds :func:`tilesolve.encodings.packing.encode_packing`, possibly with
-shrunken feature domains, and hands it to a SAT solver; the facade
-(:mod:`tilesolve.packing`) verifies what comes back.
+"""Solver routes for tile packings (class notes §5.5) over one CNF encoding.
 
 ``sat``
-    The full problem. With pinned tiles its ``unsat`` carries a checked DRAT proof.
+    The full problem (:func:`tilesolve.encodings.packing.encode_packing`). With pinned tiles
+    its ``unsat`` carries a checked DRAT proof.
 ``cpsat``
     The same encoding in OR-tools CP-SAT, native exactly-one constraints.
-``hybrid``
-    Wang only: the N/S edge columns are random Eulerian circuits; SAT colours the E/W edges.
-``lift``
-    A packing over ``C = m*k`` colours (``k`` the smallest prime factor of ``C``) whose
-    colours are ``base + m*b``, where ``base`` is a packing over ``m`` colours repeated
-    ``k**2`` times in each direction and ``b`` is a ``k``-ary layer found by SAT. The
-    composite tile is the pair (base tile, layer tile), so the packing is valid exactly
-    when, among the cells that share a base tile, the layer tiles are all different: a
-    small search. This is the product idea of Hurlbert & Isaak's constructions of de Bruijn
-    tori ("New constructions for de Bruijn tori", a ``k1*k2``-ary torus from a ``k1``-ary
-    and a ``k2``-ary one) with the layer found by a solver instead of by a formula. Corner
-    C = 4 and C = 8 packings, which took the notes' backtracking 280 CPU-days for C = 4,
-    come out in well under a minute.
-``recursive``
-    Figs. 5.11-5.12: a packing over ``C - 1`` colours is pinned in the bottom-left corner
-    and SAT completes it (the notes: "a solution for C colors can often be found faster by
-    starting from a solution of C-1 colors").
 
-Routes that search a restricted space (``hybrid``, ``lift`` and ``recursive``) never answer ``unsat``: a restricted space without a packing proves nothing,
-so they try again with new random choices until the time limit (status ``unknown``).
+The searches that combine constructions with SAT (``hybrid``, ``lift``, ``recursive``) live
+one layer up, in :mod:`tilesolve.packing_search`; they use :func:`run_packing_sat` and
+:func:`check_search_size` from here.
 """
 
 from __future__ import annotations
@@ -38,7 +19,7 @@ import numpy as np
 
 from tilesolve._random import rng_from_seed
 from tilesolve.deadline import Deadline
-from tilesolve.errors import InvalidProblem, MethodNotApplicable
+from tilesolve.errors import InvalidProblem
 from tilesolve.model.packing import PackingProblem
 from tilesolve.model.solution import Solution, Status
 
@@ -46,14 +27,11 @@ __all__ = [
     "PACKING_SAT_SOLVER",
     "MAX_PLACEMENTS",
     "check_search_size",
+    "run_packing_sat",
+    "packing_stats",
+    "unknown_solution",
     "solve_sat",
     "solve_cpsat",
-    "solve_hybrid",
-    "solve_lift",
-    "solve_recursive",
-    "lift_factors",
-    "lift_domains",
-    "embedding_pins",
 ]
 
 #: SAT solver of the packing routes. Glucose 4.2 stops by ``interrupt()``, so one seeded run is
@@ -105,14 +83,14 @@ def _random_phases(enc, rng) -> list[int]:
     return np.where(pref, ids, -ids)[allowed].tolist()
 
 
-def _run_sat(enc, *, solver, deadline: Deadline, rng, with_proof: bool = False):
+def run_packing_sat(enc, *, solver, deadline: Deadline, rng, with_proof: bool = False):
     from tilesolve.engine.sat import solve_cnf
 
     return solve_cnf(enc.clauses, solver=solver or PACKING_SAT_SOLVER, time_limit=deadline.remaining(),
                      with_proof=with_proof, seed=int(rng.integers(2**31)), phases=_random_phases(enc, rng))
 
 
-def _stats(enc, r=None, **more) -> dict:
+def packing_stats(enc, r=None, **more) -> dict:
     out = {"variables": enc.n_vars, "clauses": len(enc.clauses), "placements": enc.n_placements}
     if r is not None:
         out["solve_s"] = round(r.runtime, 6)
@@ -121,7 +99,7 @@ def _stats(enc, r=None, **more) -> dict:
     return out
 
 
-def _unknown(method, solver, seed, t0, time_limit, deadline, reason, stats, tries=None) -> Solution:
+def unknown_solution(method, solver, seed, t0, time_limit, deadline, reason, stats, tries=None) -> Solution:
     if time_limit is not None and deadline.expired() and "interrupted" not in (reason or ""):
         reason = f"time limit of {time_limit:.3g} s reached"
     if tries is not None:
@@ -146,10 +124,10 @@ def solve_sat(problem: PackingProblem, *, seed=None, time_limit=None, workers=No
     enc = encode_packing(problem, anchor_tile=anchor)
     encode_s = time.perf_counter() - t0
     if deadline.expired():
-        return _unknown("sat", solver or PACKING_SAT_SOLVER, seed, t0, time_limit, deadline,
-                        "time limit reached while encoding", _stats(enc, encode_s=round(encode_s, 6)))
-    r = _run_sat(enc, solver=solver, deadline=deadline, rng=rng, with_proof=bool(problem.fixed))
-    stats = _stats(enc, r, encode_s=round(encode_s, 6))
+        return unknown_solution("sat", solver or PACKING_SAT_SOLVER, seed, t0, time_limit, deadline,
+                        "time limit reached while encoding", packing_stats(enc, encode_s=round(encode_s, 6)))
+    r = run_packing_sat(enc, solver=solver, deadline=deadline, rng=rng, with_proof=bool(problem.fixed))
+    stats = packing_stats(enc, r, encode_s=round(encode_s, 6))
     if r.status is Status.SAT:
         return Solution(Status.SAT, enc.decode(r.model), "sat", r.solver, seed, time.perf_counter() - t0, stats=stats)
     if r.status is Status.UNSAT:
@@ -158,7 +136,7 @@ def solve_sat(problem: PackingProblem, *, seed=None, time_limit=None, workers=No
         rem = deadline.remaining()
         return unsat_solution(enc.clauses, r, method="sat", seed=seed, t0=t0, stats=stats, check_proof=True,
                               proof_time_limit=None if rem is None else max(rem, 1.0))
-    return _unknown("sat", r.solver, seed, t0, time_limit, deadline, r.reason, stats)
+    return unknown_solution("sat", r.solver, seed, t0, time_limit, deadline, r.reason, stats)
 
 
 def solve_cpsat(problem: PackingProblem, *, seed=None, time_limit=None, workers=None, progress=False,
@@ -172,7 +150,7 @@ def solve_cpsat(problem: PackingProblem, *, seed=None, time_limit=None, workers=
     deadline = Deadline(time_limit)
     anchor = None if problem.fixed else (int(rng_from_seed(seed).integers(problem.n_tiles)) if seed is not None else 0)
     model, place, enc = build_cpsat_packing(problem, anchor_tile=anchor)
-    stats = _stats(enc, encode_s=round(time.perf_counter() - t0, 6))
+    stats = packing_stats(enc, encode_s=round(time.perf_counter() - t0, 6))
     r = solve_cp_model(model, place, time_limit=deadline.remaining(), num_workers=workers or DEFAULT_CPSAT_WORKERS,
                        seed=seed)
     stats.update({k: v for k, v in r.stats.items() if k in ("conflicts", "branches", "workers")})
@@ -183,228 +161,4 @@ def solve_cpsat(problem: PackingProblem, *, seed=None, time_limit=None, workers=
     if r.status is Status.UNSAT:
         return Solution(Status.UNSAT, None, "cpsat", "cp-sat", seed, time.perf_counter() - t0, reason=r.reason,
                         stats=stats)
-    return _unknown("cpsat", "cp-sat", seed, t0, time_limit, deadline, r.reason, stats)
-
-
-# --------------------------------------------------------------------------- restricted searches
-
-
-def _restricted_search(problem, method, make_domains, *, seed, time_limit, solver) -> Solution:
-    """Draw domains with ``make_domains(rng)`` and solve until a packing or the time limit."""
-    from tilesolve.encodings.packing import encode_packing
-
-    t0 = time.perf_counter()
-    deadline = Deadline(time_limit)
-    rng = rng_from_seed(seed)
-    tries, stats, r = 0, {}, None
-    while True:
-        tries += 1
-        domains = make_domains(rng)
-        enc = encode_packing(problem, anchor_tile=None, domains=domains)
-        r = _run_sat(enc, solver=solver, deadline=deadline, rng=rng)
-        stats = _stats(enc, r, attempts=tries)
-        if r.status is Status.SAT:
-            return Solution(Status.SAT, enc.decode(r.model), method, r.solver, seed, time.perf_counter() - t0,
-                            stats=stats)
-        if r.status is Status.UNKNOWN or deadline.expired():
-            return _unknown(method, r.solver, seed, t0, time_limit, deadline, r.reason, stats, tries)
-
-
-def solve_hybrid(problem: PackingProblem, *, seed=None, time_limit=None, workers=None, progress=False,
-                 solver=None) -> Solution:
-    """Wang only: each column's N/S edges are a random Eulerian circuit (so every column holds
-    each vertical domino once); SAT colours the E/W edges and places the tiles. The packing is
-    not an outer product (the columns differ and the rows are solver-built)."""
-    from tilesolve.constructive.packing import domino_sequence
-    from tilesolve.encodings.packing import full_domains
-
-    if problem.kind != "wang":
-        raise MethodNotApplicable("method 'hybrid' builds Wang packings; use 'lift', 'sat' or 'euler' for corner tiles")
-    if problem.fixed:
-        raise MethodNotApplicable("method 'hybrid' fixes the N/S edges and cannot honour pinned tiles; use 'sat'")
-    rows, cols = problem.shape
-    check_search_size(problem, rows * cols * problem.tiles.cv**2, route="hybrid")
-
-    def domains(rng):
-        h = np.stack([domino_sequence(problem.colors, rng) for _ in range(cols)], axis=1)
-        d = full_domains(problem)
-        d[: rows * cols] = False
-        d[np.arange(rows * cols), h.ravel()] = True  # H[r][c] is feature r*cols + c
-        return d
-
-    return _restricted_search(problem, "hybrid", domains, seed=seed, time_limit=time_limit, solver=solver)
-
-
-def lift_factors(colors: int) -> tuple[int, int]:
-    """``(m, k)`` with ``colors = m * k`` and ``k`` the smallest prime factor of ``colors``.
-
-    >>> lift_factors(8), lift_factors(6), lift_factors(7)
-    ((4, 2), (3, 2), (1, 7))
-    """
-    k = next(d for d in range(2, colors + 1) if colors % d == 0)
-    return colors // k, k
-
-
-def lift_domains(problem: PackingProblem, base_features: np.ndarray | None, m: int) -> np.ndarray:
-    """Feature domains of the lifted search: feature ``f`` may take the colours ``c`` with
-    ``c mod m`` equal to the colour of the corresponding feature of the base packing (a
-    packing over ``m`` colours, ``m**2 x m**2``, repeated over the torus). ``m = 1`` (no
-    base) allows everything."""
-    from tilesolve.encodings.packing import full_domains
-
-    d = full_domains(problem)
-    if base_features is None:
-        return d
-    rows, cols = problem.shape
-    layers = d.shape[0] // (rows * cols)  # 2 for Wang (H, V), 1 for corner (P)
-    rb = m * m
-    base = np.asarray(base_features).reshape(layers, rb, rb)
-    tiled = np.tile(base, (1, rows // rb, cols // rb)).ravel()
-    colours = np.arange(d.shape[1])
-    return d & (colours[None, :] % m == tiled[:, None])
-
-
-def _base_packing(kind: str, m: int, rng, solver, deadline: Deadline):
-    """A packing over ``m >= 2`` colours for :func:`solve_lift` (``None`` when its own search
-    ran out of time): the odd corner construction, a random Wang outer product for primes
-    >= 5, else a lifted search."""
-    from tilesolve.constructive.packing import corner_packing_odd, wang_packing
-
-    if kind == "corner" and m % 2 == 1:
-        return corner_packing_odd(m, seed=rng)
-    mm, _ = lift_factors(m)
-    if kind == "wang" and mm == 1 and m >= 5:
-        return wang_packing(m, seed=rng)
-    sol = solve_lift(PackingProblem(kind, m), seed=int(rng.integers(2**31)), time_limit=deadline.remaining(),
-                     solver=solver)
-    return sol.tiling
-
-
-def solve_lift(problem: PackingProblem, *, seed=None, time_limit=None, workers=None, progress=False,
-               solver=None) -> Solution:
-    """A packing over ``C = m*k`` colours as a base packing over ``m`` colours plus a ``k``-ary
-    layer found by SAT (module docstring). Pins are honoured when the lifted space holds them."""
-    from tilesolve.encodings.packing import features_of_packing
-
-    if problem.kind == "wang" and problem.colors_v is not None and problem.colors_v != problem.colors:
-        raise MethodNotApplicable("method 'lift' needs C_h = C_v; use 'outer' or 'sat'")
-    m, k = lift_factors(problem.colors)
-    rows, cols = problem.shape
-    check_search_size(problem, rows * cols * k**4, route="lift")
-    t0 = time.perf_counter()
-    deadline = Deadline(time_limit)
-    base_info = []
-
-    def domains(rng):
-        if m == 1:
-            return lift_domains(problem, None, 1)
-        base = _base_packing(problem.kind, m, rng, solver, deadline)
-        if base is None:
-            raise _NoBase()
-        base_info.append(f"base packing over {m} colours, {k}-ary layer by SAT")
-        return lift_domains(problem, features_of_packing(PackingProblem(problem.kind, m), base), m)
-
-    try:
-        sol = _restricted_search(problem, "lift", domains, seed=seed, time_limit=time_limit, solver=solver)
-    except _NoBase:
-        return _unknown("lift", PACKING_SAT_SOLVER, seed, t0, time_limit, deadline,
-                        f"no base packing over {m} colours found", {})
-    if sol.tiling is not None and seed is not None and not problem.fixed:
-        # A random symmetry (translation, rotation, reflection, colour permutation) hides the
-        # base layer's colour classes: the classes c mod m map to unrelated colours.
-        from tilesolve.constructive.packing import random_symmetry
-
-        sol = sol.replace(tiling=random_symmetry(sol.tiling, problem.kind, problem.colors, seed=seed))
-        base_info.append(base_info.pop() + ", then a random symmetry" if base_info else "a random symmetry")
-    return sol.replace(notes=tuple(base_info[-1:]) + sol.notes) if base_info else sol
-
-
-class _NoBase(Exception):
-    """The base search of a lift ran out of time."""
-
-
-def embedding_pins(sub_grid, kind: str, sub_colors: int, colors: int, at: tuple[int, int] | None = None):
-    """Pins that place a packing over ``sub_colors`` colours inside a packing over ``colors``.
-
-    The sub-packing's tiles keep their colours (a tile over ``C' < C`` colours is also a tile
-    over ``C``), re-indexed by eq. 2.1 / 2.5. ``at`` is the top-left cell of the block; the
-    default is the bottom-left corner, as in Figs. 5.11-5.12. The block needs its interior
-    edges (or corners) to match, which a toroidal packing's do; its own wrap-around is not
-    used.
-
-    Examples
-    --------
-    >>> from tilesolve.constructive.packing import corner_packing_odd
-    >>> pins = embedding_pins(corner_packing_odd(3), "corner", 3, 4)
-    >>> len(pins), pins[0][:2]
-    (81, (7, 0))
-    """
-    from tilesolve.model.tiles import TileSet
-
-    sub = np.asarray(sub_grid, dtype=np.int64)
-    small, big = TileSet(kind, sub_colors), TileSet(kind, colors)
-    if sub_colors >= colors:
-        raise MethodNotApplicable(f"an embedded packing needs fewer colours than {colors}, got {sub_colors}")
-    n = colors * colors
-    h = sub.shape[0]
-    r0, c0 = (n - h, 0) if at is None else at
-    if not (0 <= r0 <= n - h and 0 <= c0 <= n - sub.shape[1]):
-        raise MethodNotApplicable(f"a {sub.shape[0]}x{sub.shape[1]} block does not fit at {(r0, c0)} in {n}x{n}")
-    idx = big.index(*small.colors_of(sub))
-    return tuple((r0 + r, c0 + c, int(idx[r, c])) for r in range(sub.shape[0]) for c in range(sub.shape[1]))
-
-
-#: First per-attempt budget (seconds) of the ``recursive`` route; it doubles with every attempt.
-RECURSIVE_ATTEMPT_S = 5.0
-
-
-def solve_recursive(problem: PackingProblem, *, seed=None, time_limit=None, workers=None, progress=False,
-                    solver=None) -> Solution:
-    """Figs. 5.11-5.12: pin a packing over ``C - 1`` colours in the bottom-left corner and let
-    SAT place the remaining tiles around it.
-
-    Not every sub-packing can be completed, and a completion that does not exist is slow to
-    refute, so each attempt draws a new random sub-packing and gets a budget that doubles
-    (from :data:`RECURSIVE_ATTEMPT_S`). C = 3 around a C = 2 packing takes about a second;
-    C = 4 around a C = 3 packing was not found in 150 s even around the notes' own C = 3 block
-    (use ``lift`` for C = 4).
-    """
-    from tilesolve.constructive.packing import corner_packing_odd
-    from tilesolve.encodings.packing import encode_packing
-
-    if problem.colors < 3:
-        raise MethodNotApplicable("a recursive packing embeds a packing over C-1 >= 2 colours; C must be >= 3")
-    if problem.colors_v is not None and problem.colors_v != problem.colors:
-        raise MethodNotApplicable("method 'recursive' needs C_h = C_v")
-    check_search_size(problem, route="recursive")
-    t0 = time.perf_counter()
-    deadline = Deadline(time_limit)
-    rng = rng_from_seed(seed)
-    sub_problem = PackingProblem(problem.kind, problem.colors - 1)
-    tries, stats, r = 0, {}, None
-    while not deadline.expired():
-        tries += 1
-        budget = RECURSIVE_ATTEMPT_S * 2 ** (tries - 1)
-        rem = deadline.remaining()
-        attempt = Deadline(budget if rem is None else min(budget, rem))
-        if problem.kind == "corner" and sub_problem.colors % 2 == 1:
-            sub = corner_packing_odd(sub_problem.colors, seed=rng)
-        else:
-            s = solve_lift(sub_problem, seed=int(rng.integers(2**31)), time_limit=attempt.remaining(), solver=solver)
-            if s.tiling is None:
-                continue
-            sub = s.tiling
-        pins = embedding_pins(sub, problem.kind, sub_problem.colors, problem.colors)
-        full = PackingProblem(problem.kind, problem.colors, problem.colors_v, tuple(pins) + problem.fixed)
-        enc = encode_packing(full)
-        r = _run_sat(enc, solver=solver, deadline=attempt, rng=rng)
-        stats = _stats(enc, r, attempts=tries)
-        if r.status is Status.SAT:
-            note = (f"embeds a packing over {sub_problem.colors} colours in rows {pins[0][0]}-{pins[-1][0]}, "
-                    f"columns 0-{sub.shape[1] - 1} (attempt {tries})")
-            return Solution(Status.SAT, enc.decode(r.model), "recursive", r.solver, seed, time.perf_counter() - t0,
-                            stats=stats, notes=(note,))
-        if "interrupted" in (r.reason or ""):
-            break
-    reason = r.reason if r is not None else "no attempt finished"
-    return _unknown("recursive", PACKING_SAT_SOLVER, seed, t0, time_limit, deadline, reason, stats, tries)
+    return unknown_solution("cpsat", "cp-sat", seed, t0, time_limit, deadline, r.reason, stats)

@@ -272,7 +272,7 @@ def escalate(route: Callable[..., Solution], problem: Any, *, name: str, seed: i
 
     Examples
     --------
-    >>> from tilesolve.engine.packing import solve_lift
+    >>> from tilesolve.packing_search import solve_lift
     >>> from tilesolve.model.packing import PackingProblem
     >>> s = escalate(solve_lift, PackingProblem("corner", 4), name="lift packing", seed=1)
     >>> s.status.value, s.seed, s.tiling.shape  # decided alone in well under QUICK_S
