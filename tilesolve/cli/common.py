@@ -106,8 +106,8 @@ def build_problem(
     for what, c, numbers in [("condition", c, (*c.tiles, c.limit or 0)) for c in conds] + \
                             [("count", k, (k.tile, k.low, k.high or 0)) for k in tile_counts]:
         if max(numbers) > MAX_INT:
-            raise InvalidProblem(f"{what} {c}: {max(numbers):,} is absurdly large (at most {MAX_INT:,}; "
-                                 "a limit of inf means no limit)")
+            hint = "; a limit of inf means no limit" if what == "condition" else ""
+            raise InvalidProblem(f"{what} {c}: {big(max(numbers))} is absurdly large (at most {MAX_INT:,}{hint})")
     fixed = read_tiling(fix, allow_free=True, what="partial tiling") if fix else None
     target = read_tiling(closest_to, what="target tiling") if closest_to else None
     try:

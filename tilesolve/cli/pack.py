@@ -120,7 +120,7 @@ def pack(ctx, kind, colors, colors_v, method, fix, seed, time_limit, workers, cl
         enc = facade.FAMILY.encode(problem)
         with outs.commit():
             write_dimacs(enc, dimacs)
-        say(f"wrote {dimacs}: {enc.n_vars:,} variables, {len(enc.clauses):,} clauses ({problem.describe()})")
+        say(f"wrote {'the encoding' if dimacs == '-' else dimacs}: {enc.n_vars:,} variables, {len(enc.clauses):,} clauses ({problem.describe()})")
         return
     sol = facade.solve(problem, method=method, seed=seed, time_limit=time_limit, workers=workers, cluster=cluster,
                        progress=progress_wanted())
