@@ -305,37 +305,9 @@ def wang() -> None:
     """Wang tilings of boards with any tile set W ⊂ C^4 (Def. 2 of the brick paper)."""
 
 
-def _read_tiles(path: str):
-    from tilesolve.model.board import WangTileSet, wang_from_nesw
-
-    data = read_json(path)
-    if isinstance(data, list):
-        data = {"tiles": data}
-    if not isinstance(data, dict) or not isinstance(data.get("tiles"), list):
-        raise InvalidProblem(f"{path}: expected {{\"colors\": K, \"tiles\": [[W, N, E, S], ...]}} or a list of tiles")
-    tiles = data["tiles"]
-    if not tiles:
-        raise InvalidProblem(f"{path}: the tile set is empty")
-    if not all(isinstance(t, list) and len(t) == 4 and all(isinstance(c, int) and not isinstance(c, bool) for c in t)
-               for t in tiles):
-        raise InvalidProblem(f"{path}: each tile must be a list of 4 integer colours")
-    order = str(data.get("order", "WNES")).upper()
-    if order not in ("WNES", "NESW"):
-        raise InvalidProblem(f"{path}: 'order' must be WNES (tilesolve's leg order) or NESW")
-    if order == "NESW":
-        tiles = wang_from_nesw(tiles).tolist()
-    colors = data.get("colors", 1 + max(max(t) for t in tiles))
-    if isinstance(colors, bool) or not isinstance(colors, int):
-        raise InvalidProblem(f"{path}: 'colors' must be an integer")
-    try:
-        return WangTileSet(tiles, colors)
-    except InvalidProblem as exc:
-        raise InvalidProblem(f"{path}: {exc}") from None
-
-
 @wang.command(name="solve", context_settings=opt.CONTEXT_SETTINGS, epilog=BOARD_HELP + "\n\n" + opt.EXIT_HELP)
 @click.option("--tiles", "tiles_path", required=True, type=click.Path(dir_okay=False), metavar="TILES.json",
-              help='{"colors": K, "tiles": [[W, N, E, S], ...], "order": "WNES"|"NESW"} or a list of tiles.')
+              help='A tilesolve/wang-tileset file (tiles as [N, E, S, W]); older {"tiles": [[W, N, E, S], ...]} files too.')
 @board_opt
 @boundary_opt
 @opt.seed_opt
@@ -357,7 +329,11 @@ def wang_solve(ctx, tiles_path, board_spec, boundary, seed, method, time_limit, 
     from tilesolve.model.board import BoardProblem
 
     outs = Outputs(output, svg)
-    ts = _read_tiles(tiles_path)
+    from tilesolve.io.tileset_json import read_tileset
+
+    ts, tile_notes = read_tileset(tiles_path)
+    for note in tile_notes:
+        say(f"note: {note}")
     board = read_board_spec(board_spec)
     if seed is None:
         seed = secrets.randbelow(2**31)

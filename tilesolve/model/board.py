@@ -597,6 +597,26 @@ class WangTileSet:
         ok = ((g[:, 0] == g[:, 2]) & (g[:, 1] != g[:, 3])) | ((g[:, 0] != g[:, 2]) & (g[:, 1] == g[:, 3]))
         return cls(g[ok], k, is_brick=True)
 
+    @classmethod
+    def from_nesw(cls, tiles, n_colors: int) -> "WangTileSet":
+        """A tile set from tiles given in tilesolve's public edge order N, E, S, W (class notes
+        §2.7; tile-set files, :class:`~tilesolve.model.tiles.TileSet`)."""
+        return cls(wang_from_nesw(tiles), n_colors)
+
+    @classmethod
+    def from_tileset(cls, tileset) -> "WangTileSet":
+        """The Wang tiles of a :class:`~tilesolve.model.tiles.TileSet` (complete or compact),
+        as a board tile set (one palette of ``max(C_h, C_v)`` colours)."""
+        if tileset.kind != "wang":
+            raise InvalidProblem("corner tiles are not Wang tiles; convert their Wang images "
+                                 "(TileSet.as_wang()) instead")
+        return cls.from_nesw(tileset.table(), max(tileset.colors, tileset.cv))
+
+    def nesw(self) -> np.ndarray:
+        """The tiles in the public edge order N, E, S, W (the board model keeps the brick
+        paper's legs l1..l4 = W, N, E, S internally; this is the one seam)."""
+        return wang_to_nesw(self.tiles)
+
     def __len__(self) -> int:
         return int(self.tiles.shape[0])
 

@@ -14,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 
 from tilesolve.verify.dappled import Violation
+from tilesolve.verify.grid import grid_violations
 
 __all__ = ["packing_violations", "is_packing"]
 
@@ -87,31 +88,11 @@ def packing_violations(grid, kind: str, colors: int, *, colors_v: int | None = N
                                  f"(first at row {where[0][0]}, col {where[0][1]})", r, c))
     for t in np.flatnonzero(counts == 0):
         out.append(Violation("missing", f"tile {int(t)} is missing"))
-    # Matching, toroidal: compare each cell with its east and south neighbours.
-    east = np.roll(g, -1, axis=1)
-    south = np.roll(g, -1, axis=0)
-    if kind == "wang":
-        radices = (ch, cv, ch, cv)
-        n_, e_, s_, w_ = _decode(g, radices)
-        _, _, _, w_east = _decode(east, radices)
-        n_south, _, _, _ = _decode(south, radices)
-        checks = [(e_ != w_east, "east edge colour {a} meets west edge colour {b} of tile {t} to its east",
-                   e_, w_east, east),
-                  (s_ != n_south, "south edge colour {a} meets north edge colour {b} of tile {t} below",
-                   s_, n_south, south)]
-    else:
-        radices = (ch,) * 4
-        ne, se, sw, nw = _decode(g, radices)
-        _, _, sw_e, nw_e = _decode(east, radices)
-        ne_s, _, _, nw_s = _decode(south, radices)
-        checks = [(ne != nw_e, "NE corner colour {a} meets NW corner colour {b} of tile {t} to its east", ne, nw_e, east),
-                  (se != sw_e, "SE corner colour {a} meets SW corner colour {b} of tile {t} to its east", se, sw_e, east),
-                  (sw != nw_s, "SW corner colour {a} meets NW corner colour {b} of tile {t} below", sw, nw_s, south),
-                  (se != ne_s, "SE corner colour {a} meets NE corner colour {b} of tile {t} below", se, ne_s, south)]
-    for bad, text, a, b, other in checks:
-        for r, c in np.argwhere(bad):
-            out.append(Violation("match", f"tile {int(g[r, c])}: " + text.format(a=int(a[r, c]), b=int(b[r, c]),
-                                                                                  t=int(other[r, c])), int(r), int(c)))
+    # Matching, toroidal: the shared grid-tiling checker over the tiles' colours (eq. 2.1 / 2.5
+    # digits: N, E, S, W for Wang tiles, NE, SE, SW, NW for corner tiles).
+    radices = (ch, cv, ch, cv) if kind == "wang" else (ch,) * 4
+    colours = np.stack(_decode(np.arange(n, dtype=np.int64), radices), axis=1)
+    out += grid_violations(g, colours, kind=kind, toroidal=True)
     for r, c, t in fixed:
         r, c, t = int(r), int(c), int(t)
         if not (0 <= r < rows and 0 <= c < cols):
