@@ -24,7 +24,7 @@ import click
 from tilesolve import __version__
 from tilesolve.cli.common import CliError, usage_error
 from tilesolve.cli.options import CONTEXT_SETTINGS, EXIT_HELP
-from tilesolve.cli.outputs import catch_sigterm, interruption
+from tilesolve.cli.outputs import interruption, sigterm_as_interrupt
 from tilesolve.errors import TilesolveError
 from tilesolve.io.atomic import remove_temporaries
 
@@ -132,9 +132,9 @@ def main(argv: list[str] | None = None) -> int:
     Every error is one line ``tilesolve: error: ...`` (exit 2 for usage); Ctrl-C exits 130 and
     SIGTERM 143, both leaving no file of this run.
     """
-    catch_sigterm()
     try:
-        rv = main_group.main(args=argv, prog_name="tilesolve", standalone_mode=False)
+        with sigterm_as_interrupt():
+            rv = main_group.main(args=argv, prog_name="tilesolve", standalone_mode=False)
     except click.exceptions.NoArgsIsHelpError as exc:
         exc.show()
         return exc.exit_code

@@ -28,7 +28,7 @@ from typing import Iterator
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.atomic import commit_together, probe_writable
 
-__all__ = ["Outputs", "check_target", "stop_if_interrupted", "catch_sigterm", "interruption"]
+__all__ = ["Outputs", "check_target", "stop_if_interrupted", "sigterm_as_interrupt", "interruption"]
 
 _state = {"terminated": False, "pid": 0}
 
@@ -144,11 +144,20 @@ def _on_sigterm(signum, frame) -> None:
     raise KeyboardInterrupt
 
 
-def catch_sigterm() -> None:
-    """Make SIGTERM in this process behave as Ctrl-C, remembered for the exit code (143)."""
+@contextlib.contextmanager
+def sigterm_as_interrupt() -> Iterator[None]:
+    """Inside the block, SIGTERM in this process behaves as Ctrl-C, remembered for the exit
+    code (143); after it, SIGTERM ends the process at once again, as by default."""
     _state["pid"] = os.getpid()
-    with contextlib.suppress(ValueError, OSError):  # not in the main thread, or no SIGTERM
-        signal.signal(signal.SIGTERM, _on_sigterm)
+    try:
+        previous = signal.signal(signal.SIGTERM, _on_sigterm)
+    except (ValueError, OSError, AttributeError):  # not the main thread, or no SIGTERM here
+        yield
+        return
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
 
 
 def interruption() -> tuple[int, str]:
