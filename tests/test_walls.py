@@ -234,3 +234,11 @@ def test_dappling_period_and_bad_input():
         wall_window(0, 0, 2, 2, seed=-1)
     with pytest.raises(InvalidProblem):
         brick_tile_set(2)
+
+
+def test_appendix_b_helpers_sit_in_their_own_slot():
+    # the compiled solver relies on it: vd2T only fills V[i+1, j+1], hd2L only H[i, j+1], ...
+    for fills in APPENDIX_B.values():
+        for fill in fills:
+            for slot, name in enumerate(fill):
+                assert name not in ("vd2T", "hd2L", "vd2B", "hd2R") or name == ("vd2T", "hd2L", "vd2B", "hd2R")[slot]

@@ -389,16 +389,16 @@ def _wall_kernel(x0, y0, w, h, nc, p, fixed, bh, bv, bo, opt, nopt, out):
                 option = 0
             else:
                 option = (_raw(bo, bi, bj) * nopt[case]) >> 32
-            for k in range(4):
-                src = opt[case, option, k]
-                if src == 8:
-                    o[8] = _d2_nb(_raw(bv, bi + 1, bj + 1), nc, o[0], o[1])
-                elif src == 9:
-                    o[9] = _d2_nb(_raw(bh, bi, bj + 1), nc, o[3], o[2])
-                elif src == 10:
-                    o[10] = _d2_nb(_raw(bv, bi + 1, bj), nc, o[4], o[5])
-                elif src == 11:
-                    o[11] = _d2_nb(_raw(bh, bi + 1, bj + 1), nc, o[6], o[7])
+            # App. B puts vd2T only in the first slot, hd2L in the second, vd2B in the third and
+            # hd2R in the fourth: compute a helper only when its slot asks for it.
+            if opt[case, option, 0] == 8:
+                o[8] = _d2_nb(_raw(bv, bi + 1, bj + 1), nc, o[0], o[1])
+            if opt[case, option, 1] == 9:
+                o[9] = _d2_nb(_raw(bh, bi, bj + 1), nc, o[3], o[2])
+            if opt[case, option, 2] == 10:
+                o[10] = _d2_nb(_raw(bv, bi + 1, bj), nc, o[4], o[5])
+            if opt[case, option, 3] == 11:
+                o[11] = _d2_nb(_raw(bh, bi + 1, bj + 1), nc, o[6], o[7])
             vt1, hl1 = o[opt[case, option, 0]], o[opt[case, option, 1]]
             vb1, hr1 = o[opt[case, option, 2]], o[opt[case, option, 3]]
             for dj in range(2):
