@@ -118,14 +118,9 @@ def tile_set(kind: str, method: str, colors: int, variant: str = "complete") -> 
 def make_hash(name, colors: int, seed=None):
     """A 2-D lattice hash whose range is a multiple of ``colors`` (so ``h % colors`` is uniform).
 
-    ``name`` is ``"long"`` (§3.4.3, :func:`tiling_hash`), ``"table"`` (§3.4.1, eq. 3.3, a table
-    of the smallest multiple of ``colors`` that is at least 256) or a hash object with
-    ``row_tables`` and ``range`` (returned as is).
+    ``name`` is ``"long"`` (§3.4.3, :func:`tiling_hash`) or ``"table"`` (§3.4.1, eq. 3.3, a
+    table of the smallest multiple of ``colors`` that is at least 256 entries).
     """
-    if hasattr(name, "row_tables"):
-        if name.range % colors:
-            raise InvalidProblem(f"hash range {name.range} is not a multiple of {colors} colours")
-        return name
     if name == "long":
         return tiling_hash(colors, seed=seed)
     if name == "table":
@@ -154,7 +149,7 @@ def direct_corner(x0, y0, w, h, *, colors: int, seed=None, hash="long") -> np.nd
     Returns
     -------
     numpy.ndarray
-        ``(h, w)`` eq. 2.5 indices, row 0 at the top.
+        ``(h, w)`` eq. 2.5 indices (int32 when C**4 < 2**31), row 0 at the top.
 
     Examples
     --------
@@ -190,7 +185,7 @@ def direct_wang(x0, y0, w, h, *, colors: int, seed=None, algorithm: str = "edges
     Returns
     -------
     numpy.ndarray
-        ``(h, w)`` eq. 2.1 indices, row 0 at the top.
+        ``(h, w)`` eq. 2.1 indices (int32 when C**4 < 2**31), row 0 at the top.
 
     Notes
     -----
@@ -255,8 +250,8 @@ def scanline_corner(x0, y0, w, h, *, colors: int, seed=None, variant: str = "com
     """Window of the scanline stochastic corner tiling (§3.2.2, Lagae and Dutré 2006).
 
     As :func:`scanline_wang`; the corners on the window's top and west edges are the SE
-    corners the virtual cells just outside the window choose. ``variant="compact"``: the ``2 C**3`` tiles of :class:`TileSet`
-    (``SE = NE + NW + SW + k``, ``k`` in ``{0, 1}``).
+    corners the virtual cells just outside the window choose. ``variant="compact"``: the
+    ``2 C**3`` tiles of :class:`TileSet` (``SE = NE + NW + SW + k``, ``k`` in ``{0, 1}``).
 
     Returns
     -------
