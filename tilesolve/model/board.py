@@ -301,7 +301,8 @@ class Board:
 
         The index of every cell is looked up in the grid padded by one cell all round, the
         padding holding ``-1`` (the wall) or, where sides are identified, the cells of the
-        opposite side (reversed for a twist): four gathers, no per-cell Python.
+        opposite side (reversed for a twist): one shifted view of the padded grid per leg,
+        no per-cell Python.
         """
         H, Wd, wrap_rows, wrap_cols = int(spec[0]), int(spec[1]), spec[2], spec[3]
         if wrap_rows not in _WRAPS or wrap_cols not in _WRAPS:
@@ -310,9 +311,8 @@ class Board:
         m = np.asarray(mask, dtype=bool)
         if m.shape != (H, Wd):
             raise InvalidProblem(f"a mask of shape {m.shape} does not fit a {Wd}x{H} grid")
-        flat = m.ravel()
-        cells = np.flatnonzero(flat)
-        n = cells.size
+        rows, cols = np.nonzero(m)
+        n = rows.size
         if n == 0:
             raise InvalidProblem("the board mask has no cells")
         pad = np.full((H + 2, Wd + 2), -1, dtype=np.int64)
@@ -326,12 +326,11 @@ class Board:
             flip = slice(None, None, -1) if wrap_rows == "twist" else slice(None)
             pad[0, 1:-1] = index[-1, flip]
             pad[-1, 1:-1] = index[0, flip]
-        rows, cols = np.divmod(cells, Wd)
-        at = (rows + 1) * (Wd + 2) + (cols + 1)
-        flat_pad = pad.ravel()
+        full = n == H * Wd
         nc = np.empty((n, 4), dtype=np.int64)
         for k, (dr, dc) in _DELTA.items():
-            np.take(flat_pad, at + (dr * (Wd + 2) + dc), out=nc[:, k])
+            seen = pad[1 + dr : H + 1 + dr, 1 + dc : Wd + 1 + dc]  # the neighbour across leg k
+            nc[:, k] = seen.ravel() if full else seen[m]
         nl = np.where(nc >= 0, (np.arange(4, dtype=np.int64) + 2) % 4, np.int64(-1))
         wall = nc < 0
         nl[wall] = np.arange(int(np.count_nonzero(wall)), dtype=np.int64)
