@@ -185,6 +185,7 @@ def count(
     For T = {0,1} and L = {H_0^2, V_1^2} the counts are OEIS A206994 (Remark 1.4).
     """
     from tilesolve.constructive.dappled_count import count_dappled
+    from tilesolve.engine.progress import status_line
 
     if method not in COUNT_METHODS:
         raise InvalidProblem(f"unknown count method {method!r}; choose one of {', '.join(COUNT_METHODS)}")
@@ -194,7 +195,8 @@ def count(
     note = None
     if method in ("auto", "transfer"):
         try:
-            value = count_dappled(problem, progress=progress)
+            with status_line("counting (transfer matrix)", progress) as show:
+                value = count_dappled(problem, progress=lambda done, total: show(f"{done}/{total} row sweeps"))
             return CountResult(value, Status.SAT, "transfer", time.perf_counter() - t0)
         except MethodNotApplicable as exc:
             if method == "transfer":

@@ -3,15 +3,13 @@
 
 from __future__ import annotations
 
-import secrets
-
 import click
 
 from tilesolve.cli import options as opt
 from tilesolve.cli.common import big, human_bytes, say
 from tilesolve.cli.outputs import Outputs, stop_if_interrupted
 from tilesolve.errors import InvalidProblem
-from tilesolve.io.jsonio import read_json
+from tilesolve.family import draw_seed
 
 __all__ = ["brick", "wang", "BOARD_HELP"]
 
@@ -49,20 +47,16 @@ line_opts = opt.compose(
 
 
 def _boundary(spec: str, board, n_colors: int, seed: int):
-    import numpy as np
-
+    """``--boundary``: random (seeded), free, or a boundary file (:func:`tilesolve.io.board_json.read_boundary`)."""
     from tilesolve.model.board import random_boundary
 
     if spec == "random":
         return random_boundary(board, n_colors, seed=seed)
     if spec == "free":
         return None
-    data = read_json(spec)
-    if isinstance(data, dict):
-        data = data.get("boundary")
-    if not isinstance(data, list) or not all(v is None or (isinstance(v, int) and not isinstance(v, bool)) for v in data):
-        raise InvalidProblem(f"{spec}: a boundary file holds a list of colours (null = free), or an object with 'boundary'")
-    return np.array([-1 if v is None else v for v in data], dtype=np.int64)
+    from tilesolve.io.board_json import read_boundary
+
+    return read_boundary(spec)
 
 
 def _svg_ok(svg, n_cells: int) -> None:
@@ -193,7 +187,7 @@ def solve(ctx, board_spec, colors, boundary, seed, method, time_limit, max_h, ma
     tileset = WangTileSet.brick(colors)
     board = read_board_spec(board_spec)
     if seed is None:
-        seed = secrets.randbelow(2**31)
+        seed = draw_seed()
     problem = BoardProblem(board, tileset, _boundary(boundary, board, colors, seed),
                            max_h=max_h, max_v=max_v)
     _run(ctx, problem, method, seed, time_limit, outs, output, svg)
@@ -226,7 +220,7 @@ def wall(ctx, size, max_line, max_v, colors, seed, output, svg) -> None:
     _svg_ok(svg, rows * cols)
     _brick_colors(colors)
     if seed is None:
-        seed = secrets.randbelow(2**31)
+        seed = draw_seed()
     problem, sol = brick_wall(rows, cols, max_line, max_v=max_v, n_colors=colors, seed=seed)
     _finish(ctx, problem, sol, outs, output, svg)
 
@@ -287,7 +281,7 @@ def crosscheck(ctx, board_spec, colors, boundary, seed, time_limit, trials) -> N
     """
     from tilesolve import board as facade
 
-    base = secrets.randbelow(2**31) if seed is None else seed
+    base = draw_seed() if seed is None else seed
     ok = True
     for i in range(trials):
         problem = _brick_problem(board_spec, colors, boundary, base + i)
@@ -336,6 +330,6 @@ def wang_solve(ctx, tiles_path, board_spec, boundary, seed, method, time_limit, 
         say(f"note: {note}")
     board = read_board_spec(board_spec)
     if seed is None:
-        seed = secrets.randbelow(2**31)
+        seed = draw_seed()
     problem = BoardProblem(board, ts, _boundary(boundary, board, ts.n_colors, seed))
     _run(ctx, problem, method, seed, time_limit, outs, output, svg)

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import secrets
-
 import click
 
 from tilesolve.cli import options as opt
@@ -11,6 +9,7 @@ from tilesolve.cli.common import build_problem, progress_wanted, say
 from tilesolve.cli.outputs import Outputs, stop_if_interrupted
 from tilesolve.errors import InvalidProblem
 from tilesolve.dappled import COUNT_METHODS, METHODS
+from tilesolve.family import draw_seed
 
 method_opt = click.option(
     "--method",
@@ -118,9 +117,6 @@ def solve(ctx, method, seed, time_limit, initial, output, svg, png, repeat, grid
     extra: list[str] = []
     if repeat > 1 and not problem.cyclic:
         extra.append("note: --repeat draws copies side by side; without --cyclic the seams may break the conditions")
-    if seed is None:
-        seed = secrets.randbelow(2**31)  # recorded in the output, so every run can be repeated
-
     sol = facade.solve(problem, method=method, seed=seed, time_limit=time_limit, initial=init, progress=progress_wanted())
 
     written: list[str] = []
@@ -206,7 +202,7 @@ def crosscheck(ctx, seed, time_limit, trials, **problem_kw) -> None:
     from tilesolve import dappled as facade
 
     problem = build_problem(**problem_kw)
-    base = secrets.randbelow(2**31) if seed is None else seed
+    base = draw_seed() if seed is None else seed
     ok = True
     click.echo(f"crosscheck: {problem.describe()}")
     for i in range(trials):

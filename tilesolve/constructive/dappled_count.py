@@ -49,7 +49,6 @@ whose conditions all lie along one axis are supported). Problems whose tensor wo
 from __future__ import annotations
 
 import math
-import sys
 from collections import defaultdict
 from dataclasses import dataclass
 from functools import lru_cache
@@ -803,9 +802,10 @@ def count_dappled(
         Any number of tiles; conditions on single tiles or subsets (§6 item 2), uniform or
         per-cell (§3.1) limits; fixed cells (partial tiling, §6 item 7); cyclic problems (§3.2)
         when all their conditions lie along one axis.
-    progress : callable or bool, optional
-        Called as ``progress(done, total)`` after each row of each residue computation;
-        ``True`` prints a progress line on stderr, ``False``/``None`` stays silent.
+    progress : callable, optional
+        Called as ``progress(done, total)`` after each row of each residue computation (the
+        facade draws it with :func:`tilesolve.engine.progress.status_line`; constructive
+        code never writes to the terminal itself).
     max_memory : int
         Refuse (before allocating) when the estimated working memory exceeds this many bytes.
     orientation : {None, 'rows', 'cols'}
@@ -829,9 +829,7 @@ def count_dappled(
     >>> count_dappled(DappledProblem.from_strings("3x3", ["H0=2", "V1=2"]))  # OEIS A206994: T(3,3)
     174
     """
-    if progress is True:
-        progress = _stderr_progress
-    elif not progress:
+    if not callable(progress):
         progress = None
     plan, fr, aut, bound = _plan(problem, orientation, max_memory)
     if plan.route in ("trivial", "lines"):
@@ -853,11 +851,6 @@ def count_dappled(
     if _STRIP_BOUND and n_primes >= 2 and fr.rows >= 3:
         n_primes = min(n_primes, _n_primes(min(bound, _strip_bound(fr))))
     return _transfer_count(fr, aut, n_primes, progress)
-
-
-def _stderr_progress(done: int, total: int) -> None:
-    sys.stderr.write(f"\rcounting: {done}/{total} row sweeps" + ("\n" if done == total else ""))
-    sys.stderr.flush()
 
 
 def _sub_frame(fr: _Frame, r0: int, r1: int) -> _Frame:

@@ -17,10 +17,12 @@ The procedure (§4.2-4.3)
 ------------------------
 The plane is cut into 2x2 blocks with bottom-left cell ``(i', j') = (i - i % 2, j - j % 2)``.
 Their outer edges get pseudo-random colours ``h(i, j) = ℋ(i, j) % nc`` (even ``j``) and
-``v(i, j) = 𝒱(i, j) % nc`` (even ``i``; ``%`` of a hash value is computed as the multiply-shift
-``(u * k) >> 32`` of its 32 bits ``u``, see ``_reduce``); the four inner edges come from the base-case solver of
-App. B, which lists, for each of the 16 patterns of equal opposite outer edges, one to three
-fillings (:data:`APPENDIX_B`); tilesolve picks one with a third hash of the block.
+``v(i, j) = 𝒱(i, j) % nc`` (even ``i``); the four inner edges come from the base-case solver
+of App. B, which lists, for each of the 16 patterns of equal opposite outer edges, one to
+three fillings (:data:`APPENDIX_B`); tilesolve picks one with a third hash of the block.
+Every ``u % k`` of a hash value ``u`` (32 bits) is computed as the multiply-shift
+``(u * k) >> 32``, which spreads the values over ``0 .. k-1`` as evenly as ``%`` does and
+needs no division (``_reduce``).
 
 Procedural dappling limits lines to ``n`` bricks by making some blocks 2x2 checkerboards:
 a block whose opposite outer edges all differ can only be filled with one horizontal and one
@@ -290,20 +292,19 @@ class _ScalarWall:
             option = 0  # odd n: one checkerboard type (bottom-left tile vertical)
         else:
             option = _reduce(self.raw(self.oo, bi, bj), int(_NOPT[case]))
-        picks = _OPT[case, option]
-        val = {}
 
         def source(s):
             if s < 8:
                 return o[s]
-            if s not in val:
-                val[s] = (self.d2(self.vv, bi + 1, bj + 1, o[_VT0], o[_VT2]) if s == _VD2T else
-                          self.d2(self.hh, bi, bj + 1, o[_HL2], o[_HL0]) if s == _HD2L else
-                          self.d2(self.vv, bi + 1, bj, o[_VB0], o[_VB2]) if s == _VD2B else
-                          self.d2(self.hh, bi + 1, bj + 1, o[_HR0], o[_HR2]))
-            return val[s]
+            if s == _VD2T:
+                return self.d2(self.vv, bi + 1, bj + 1, o[_VT0], o[_VT2])
+            if s == _HD2L:
+                return self.d2(self.hh, bi, bj + 1, o[_HL2], o[_HL0])
+            if s == _VD2B:
+                return self.d2(self.vv, bi + 1, bj, o[_VB0], o[_VB2])
+            return self.d2(self.hh, bi + 1, bj + 1, o[_HR0], o[_HR2])
 
-        vt1, hl1, vb1, hr1 = (source(int(s)) for s in picks)
+        vt1, hl1, vb1, hr1 = (source(int(s)) for s in _OPT[case, option])
         di, dj = i - bi, j - bj
         if dj == 0:
             return (o[_VB0], hl1, vb1, o[_HL0]) if di == 0 else (vb1, hr1, o[_VB2], o[_HR0])

@@ -192,26 +192,6 @@ def _stop_reason(stop: str, time_limit: float | None) -> str:
     return "interrupted (Ctrl-C)"
 
 
-class _UnionFind:
-    def __init__(self) -> None:
-        self.parent: dict[int, int] = {}
-
-    def find(self, x: int) -> int:
-        parent = self.parent
-        root = x
-        while parent.get(root, root) != root:
-            root = parent[root]
-        while parent.get(x, x) != root:
-            parent[x], x = root, parent[x]
-        return root
-
-    def union(self, a: int, b: int) -> int:
-        ra, rb = self.find(a), self.find(b)
-        if ra != rb:
-            self.parent[rb] = ra
-        return ra
-
-
 class _Component:
     """Clauses of one connected component and (for large ones) a live incremental RC2."""
 
@@ -362,7 +342,9 @@ def solve_lazy(
     if any(ref[v] != (l > 0) for v, l in soft_of.items()):
         raise ValueError("the reference assignment must satisfy every soft literal")
     n_hard = len(hard)
-    uf = _UnionFind()
+    from networkx.utils import UnionFind
+
+    uf = UnionFind()  # variables joined by a clause share a component
     comps: dict[int, _Component] = {}  # root variable -> component
     cur = ref.copy()
     stats = {"rounds": 0, "component_solves": 0, "lower_bound": 0, "active_clauses": 0}
@@ -385,12 +367,12 @@ def solve_lazy(
             for i, c in enumerate(new):
                 if i % 4096 == 0 and deadline.expired():
                     raise _Stopped("time limit")
-                roots = {uf.find(abs(v)) for v in c}
+                roots = {uf[abs(v)] for v in c}
                 parts = [comps.pop(r) for r in roots if r in comps]
                 root = abs(c[0])
                 for v in c[1:]:
                     uf.union(root, abs(v))
-                root = uf.find(root)
+                root = uf[root]
                 if parts:
                     parts.sort(key=lambda k: len(k.clauses), reverse=True)
                     base = parts[0]

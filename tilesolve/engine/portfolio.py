@@ -5,8 +5,8 @@ finishes in a second where another needs minutes. :func:`run_portfolio` runs sev
 at once and keeps the first *decisive* answer (``sat``, ``optimal``, or a proved ``unsat``);
 the other runs are stopped. A portfolio in which every run ends ``unknown`` is ``unknown``,
 never ``unsat`` (DESIGN.md, "Status"). :func:`escalate` is how a facade runs a heavy-tailed
-route: one seed in this process, joined by worker processes on the other cores when it has
-not decided within :data:`QUICK_S` seconds.
+route: one seed in this process, joined by worker processes on the other (idle) cores when
+it has not decided within :data:`QUICK_S` seconds.
 
 Where the runs go (DESIGN.md, "Parallel and distributed work")
 --------------------------------------------------------------
@@ -102,7 +102,7 @@ __all__ = ["run_portfolio", "escalate", "DEFAULT_WORKERS", "GRACE_S", "CONNECT_T
 
 #: Processes when the caller names none: the machines tilesolve targets have two cores (as
 #: :data:`tilesolve.engine.cpsat.DEFAULT_CPSAT_WORKERS`). For :func:`escalate` this process
-#: counts as one of them.
+#: counts as one of them, and the others start only on idle cores.
 DEFAULT_WORKERS = 2
 
 #: Seconds the runs get, past ``time_limit``, to report before they are stopped: each run
@@ -113,7 +113,8 @@ GRACE_S = 1.0
 CONNECT_TIMEOUT_S = 5.0
 
 #: Seconds :func:`escalate`'s first run goes alone before worker processes join it (most
-#: packings up to C = 6 take well under a second, and then no process is started).
+#: packings up to C = 6 take well under a second, and then no process is started); by
+#: default they join only on idle cores, looked for every QUICK_S seconds.
 QUICK_S = 5.0
 #: Per-run budget of the first wave of worker runs in :func:`escalate`; it doubles with every
 #: wave, so a seed stuck in a heavy tail is abandoned for a fresh one (a restart strategy).
@@ -223,8 +224,14 @@ def escalate(route: Callable[..., Solution], problem: Any, *, name: str, seed: i
     that double with every wave (a restart strategy against heavy tails). The first decisive
     run wins: a worker that wins stops the first run (:func:`tilesolve.engine.result.stop_on`:
     at its next solver call, within 50 ms), the first run that wins terminates the workers.
-    The first run is never thrown away, so on ``workers`` free cores this is never slower
-    than the single seed (``benchmarks/bench_portfolio.py``).
+
+    The first run is never thrown away, and by default (``workers=None``) a worker starts
+    only on a core that sat idle over the last :data:`QUICK_S` seconds (Linux: /proc/stat;
+    checked again every :data:`QUICK_S` seconds until one is): a worker on a busy machine
+    takes its CPU from the first run (Linux shares the CPU between sessions, and the first
+    run and its workers are one session), which made a loaded 2-core machine twice as slow
+    (``benchmarks/bench_portfolio.py``). So the default is never slower than the single
+    seed, up to the start-up of a worker. A ``workers`` the caller names is obeyed.
 
     With ``cluster``, every run goes to the Dask cluster (seeds ``seed + 1, ...``); with
     ``workers=1`` and no cluster, this is the plain call.
@@ -244,8 +251,8 @@ def escalate(route: Callable[..., Solution], problem: Any, *, name: str, seed: i
     time_limit : float, optional
         Wall-clock budget of the whole search in seconds.
     workers : int, optional
-        Processes, this one included (default :data:`DEFAULT_WORKERS`; 1 on Windows, which
-        has no local workers).
+        Processes, this one included. Default: up to :data:`DEFAULT_WORKERS`, as idle cores
+        allow (above); 1 on Windows, which has no local workers.
     cluster : str or distributed.Client, optional
         A Dask scheduler address or client (:func:`run_portfolio`).
     progress : bool
@@ -279,6 +286,7 @@ def escalate(route: Callable[..., Solution], problem: Any, *, name: str, seed: i
     ('sat', 1, (16, 16))
     """
     _refuse_while_importing_main()
+    workers_given = workers is not None
     if workers is None:  # no local workers on Windows (module docstring, Limits): one seed
         workers = DEFAULT_WORKERS if os.name == "posix" or cluster is not None else 1
     n = workers
@@ -291,7 +299,7 @@ def escalate(route: Callable[..., Solution], problem: Any, *, name: str, seed: i
         task = functools.partial(_wave_run, route, problem, seed0, n, FIRST_BUDGET_S, time_limit, solver)
         seeds = [seed0 + i for i in range(1, PORTFOLIO_SEEDS + 1)]
         return run_portfolio(task, seeds, cluster=cluster, time_limit=time_limit, progress=progress, label=name)
-    return _Escalation(route, problem, name, seed0, time_limit, n - 1, solver).run(progress)
+    return _Escalation(route, problem, name, seed0, time_limit, n - 1, workers_given, solver).run(progress)
 
 
 def _wave_run(route, problem, seed0, per_wave, first_budget, time_limit, solver, *, seed):
@@ -307,9 +315,11 @@ class _Escalation:
     """:func:`escalate` on local processes: the first run in the calling thread, the worker
     pool driven by a helper thread (which also started the workers, so that they die with it)."""
 
-    def __init__(self, route, problem, name, seed0, time_limit, helpers, solver) -> None:
+    def __init__(self, route, problem, name, seed0, time_limit, helpers, obey, solver) -> None:
         self.route, self.problem, self.name, self.seed0 = route, problem, name, seed0
-        self.time_limit, self.helpers, self.solver = time_limit, helpers, solver
+        self.time_limit, self.solver = time_limit, solver
+        self.helpers = helpers  # at most this many workers; all of them when the caller named them (obey)
+        self.obey = obey
         self.clock = Deadline(time_limit)
         self.first_done = threading.Event()  # the first run has returned
         self.stop_first = threading.Event()  # a worker decided (or failed): stop the first run
@@ -341,22 +351,29 @@ class _Escalation:
         return self._outcome(first)
 
     def _helper(self) -> None:
-        if self.first_done.wait(QUICK_S):
-            return
-        rem = self.clock.remaining()
-        if rem is not None and rem < 1.0:  # workers could not start in time
-            return
-        task = functools.partial(_wave_run, self.route, self.problem, self.seed0, self.helpers, FIRST_BUDGET_S,
-                                 rem, self.solver)
+        before = _cpu_times()
+        while not self.first_done.wait(QUICK_S):
+            rem = self.clock.remaining()
+            if rem is not None and rem < 1.0:  # workers could not start in time
+                return
+            after = _cpu_times()
+            n = self.helpers if self.obey else min(self.helpers, _idle_cores(before, after, self.helpers))
+            before = after
+            if n >= 1:
+                self._drive_pool(n, rem)
+                return
+
+    def _drive_pool(self, n: int, rem: float | None) -> None:
+        task = functools.partial(_wave_run, self.route, self.problem, self.seed0, n, FIRST_BUDGET_S, rem,
+                                 self.solver)
         seeds = [self.seed0 + i for i in range(1, PORTFOLIO_SEEDS + 1)]
-        where = f"on {_processes(self.helpers)} beside seed {self.seed0} in this process"
+        where = f"on {_processes(n)} beside seed {self.seed0} in this process"
         pool = None
         try:
-            self.pool = pool = _Pool(task, seeds, self.helpers, Deadline(rem), self.name, where)
+            self.pool = pool = _Pool(task, seeds, n, Deadline(rem), self.name, where)
             pool.start()
             self.winner, self.stop, self.stopped = pool.drive(
-                lambda text: self.show(f"seed {self.seed0} here; {text} in {_processes(self.helpers)}"),
-                wake=self.wake_r)
+                lambda text: self.show(f"seed {self.seed0} here; {text} in {_processes(n)}"), wake=self.wake_r)
         except BaseException as exc:  # noqa: BLE001 - re-raised by the caller's thread
             self.error = exc
         finally:
@@ -375,13 +392,31 @@ class _Escalation:
             return pool.runs.won(*self.winner).replace(time_s=elapsed)
         if first.status in _DECISIVE:
             note = (f"portfolio: seed {self.seed0} decided it in this process; {_runs(pool.runs.started)} "
-                    f"started beside it on {_processes(self.helpers)}")
+                    f"started beside it on {_processes(pool.n)}")
         else:
             stop = "the first run ended" if self.stop == "stopped" else self.stop
             note = f"portfolio beside seed {self.seed0}: {pool.runs.summary(stop, self.stopped)}"
         stats = dict(first.stats, run_time_s=first.time_s, portfolio_runs=pool.runs.started,
-                     portfolio_workers=self.helpers)
+                     portfolio_workers=pool.n)
         return first.replace(time_s=elapsed, stats=stats, notes=first.notes + (note,))
+
+
+def _cpu_times() -> tuple[float, float] | None:
+    """(idle, total) CPU time of the machine so far, in clock ticks (Linux: /proc/stat)."""
+    try:
+        with open("/proc/stat") as f:
+            ticks = [float(x) for x in f.readline().split()[1:]]
+    except (OSError, ValueError):
+        return None
+    return ticks[3] + ticks[4], sum(ticks[:8])  # idle + iowait; user .. steal (guests are in user)
+
+
+def _idle_cores(before, after, otherwise: int) -> int:
+    """Cores that sat idle between two :func:`_cpu_times` samples, rounded; ``otherwise``
+    where the machine does not tell."""
+    if before is None or after is None or after[1] <= before[1]:
+        return otherwise
+    return int((after[0] - before[0]) / (after[1] - before[1]) * (os.cpu_count() or 1) + 0.5)
 
 
 def _processes(n: int) -> str:

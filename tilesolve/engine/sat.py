@@ -11,8 +11,9 @@ PySAT solvers differ in what they can do (checked against ``pysat.solvers`` 1.9)
 * MiniSat-family solvers (Glucose, Maple*, MiniSat, MergeSat, Ergo) support
   ``interrupt()``: a :class:`threading.Timer` interrupts ``solve_limited``.
 * CaDiCaL (all versions) and Kissat cannot be interrupted but accept a conflict budget:
-  the search runs in conflict-budget slices sized from the measured conflict rate, and the
-  deadline is checked between slices (CaDiCaL keeps its learnt clauses across calls).
+  the search runs in conflict-budget slices on a fixed schedule (so that the answer does not
+  depend on the machine's speed), the deadline is checked between slices, and a slice that
+  would run past it is shortened (CaDiCaL keeps its learnt clauses across calls).
 * Lingeling supports neither; a time limit is refused for it.
 
 Loading the clauses into the solver counts against the limit too: they go in chunks of
@@ -72,6 +73,9 @@ DEFAULT_SAT_SOLVER = "cadical153"
 #: Clauses handed to the solver per call while loading (a deadline check between calls;
 #: about 0.1 s of loading each on a laptop core).
 LOAD_CHUNK = 1 << 14
+
+#: Conflict budget of the first slice and the largest one (solvers without ``interrupt``).
+SLICE_CONFLICTS = (2000, 32000)
 
 #: Solvers whose random seed PySAT's ``configure`` can set, and the option's name.
 _SEED_OPTION = {"cadical153": "seed", "cadical195": "seed", "cadical300": "seed", "glucose42": "rnd-seed"}
@@ -276,6 +280,7 @@ class SatSession:
             self.set_phases(seeded_phases(self._s.nof_vars(), seed))
         self.load_time = time.perf_counter() - t0
         self._mode = self._probe_limits()
+        self._rate: float | None = None  # conflicts per second in the last budget slice
 
     def _probe_limits(self) -> str:
         try:
@@ -376,24 +381,29 @@ class SatSession:
     def _solve_sliced(self, assumptions: list[int], deadline: Deadline, stop: threading.Event):
         """Conflict-budget slices for solvers without ``interrupt`` (CaDiCaL, Kissat).
 
-        Slices last about half a second (or what is left of the time limit), so the
-        deadline and a stop request are honoured within about a second.
+        Where a slice ends changes the search (the solver backtracks to the top level), so
+        the slices follow a fixed schedule (:data:`SLICE_CONFLICTS`: doubling, then constant)
+        and the same formula and seed give the same model whatever the machine's speed.
+        Only a slice predicted (from the measured conflict rate) to run past the deadline is
+        shortened to what is left, so the deadline is honoured within about one short slice;
+        a stop request (Ctrl-C) is seen between slices.
         """
-        budget = 2000
+        first, cap = SLICE_CONFLICTS
+        budget = first
         while True:
             rem = deadline.remaining()
             if stop.is_set() or (rem is not None and rem <= 0):
                 return None
+            run = budget
+            if rem is not None and self._rate is not None:
+                run = int(min(budget, max(50.0, self._rate * rem)))
             t = time.perf_counter()
-            self._s.conf_budget(int(budget))
+            self._s.conf_budget(run)
             answer = self._s.solve_limited(assumptions=assumptions)
             if answer is not None:
                 return answer
-            spent = max(time.perf_counter() - t, 1e-4)
-            rate = budget / spent
-            rem = deadline.remaining()
-            horizon = 0.5 if rem is None else min(0.5, rem)
-            budget = int(min(2 * budget, max(100.0, rate * horizon)))
+            self._rate = run / max(time.perf_counter() - t, 1e-4)
+            budget = min(2 * budget, cap)
 
     def get_model(self) -> list[int] | None:
         return self._s.get_model()

@@ -75,7 +75,7 @@ from tilesolve.model.board import LEG_NAMES, Board, BoardProblem, GridSpec, Wang
 from tilesolve.model.solution import Solution
 
 __all__ = ["BOARD_SOLUTION", "VERSIONS", "COMPACT_MIN_CELLS", "board_solution_to_dict", "board_solution_from_dict",
-           "write_board_solution", "read_board_solution"]
+           "write_board_solution", "read_board_solution", "read_boundary"]
 
 BOARD_SOLUTION = "tilesolve/board-solution"
 #: Versions of ``tilesolve/board-solution`` this module reads.
@@ -243,3 +243,16 @@ def write_board_solution(path: str | os.PathLike, problem: BoardProblem, solutio
 def read_board_solution(path: str | os.PathLike) -> tuple[BoardProblem, Solution]:
     """Read a ``tilesolve/board-solution`` file (version 1 or 2) as ``(problem, solution)``."""
     return board_solution_from_dict(read_json(path), path)
+
+
+def read_boundary(path: str | os.PathLike) -> np.ndarray:
+    """A boundary file: a JSON list of colours by boundary-leg number (``null`` = free), or an
+    object whose ``"boundary"`` field is that list. Returns colours with ``-1`` for free legs."""
+    data = read_json(path)
+    if isinstance(data, dict):
+        data = data.get("boundary")
+    if not isinstance(data, list) or not all(v is None or (isinstance(v, int) and not isinstance(v, bool))
+                                             for v in data):
+        raise InvalidProblem(f"{path}: a boundary file holds a list of colours (null = free), "
+                             "or an object with 'boundary'")
+    return np.array([-1 if v is None else v for v in data], dtype=np.int64)

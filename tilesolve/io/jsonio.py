@@ -313,6 +313,15 @@ def decode_array(value: Any, what: str, source: Any, *, ndim: int | None = None)
     (``int8`` for ``bits`` and ``int8``, ``int16`` for ``uint8``, ...), so a large grid costs
     no more memory read than written; lists come back as ``int64``.
 
+    Examples
+    --------
+    >>> decode_array({"dtype": "bits", "shape": [2, 3], "data": "cA=="}, "tiling", "t.json").tolist()
+    [[0, 1, 1], [1, 0, 0]]
+    >>> decode_array({"dtype": "uint8", "shape": [2], "data": "AAE"}, "tiling", "t.json")
+    Traceback (most recent call last):
+    ...
+    tilesolve.errors.InvalidProblem: t.json: 'tiling': 'data' is not valid base64
+
     Raises
     ------
     InvalidProblem

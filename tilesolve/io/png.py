@@ -28,7 +28,7 @@ from tilesolve.errors import InvalidProblem
 from tilesolve.io.atomic import write_bytes_atomic
 from tilesolve.io.svg import tile_colour
 
-__all__ = ["MAX_PNG_PIXELS", "tiling_image", "write_png"]
+__all__ = ["MAX_PNG_PIXELS", "tiling_image", "write_png", "edge_image", "write_board_png", "write_packing_png"]
 
 #: Largest picture written (pixels): 1 GiB of palette indices.
 MAX_PNG_PIXELS = 1 << 30
@@ -99,3 +99,79 @@ def write_png(path: str | os.PathLike, tiling, **kwargs) -> None:
     buf = io.BytesIO()
     tiling_image(tiling, **kwargs).save(buf, format="PNG", optimize=False)
     write_bytes_atomic(path, buf.getvalue())
+
+
+def _side_masks(scale: int, kind: str) -> np.ndarray:
+    """``(4, scale, scale)`` masks of the four parts of a cell: the N, E, S, W triangles
+    (Wang tiles) or the NE, SE, SW, NW quadrants (corner tiles), in that order."""
+    y, x = np.mgrid[0:scale, 0:scale] + 0.5
+    if kind == "corner":
+        h = scale / 2
+        return np.stack([(y < h) & (x >= h), (y >= h) & (x >= h), (y >= h) & (x < h), (y < h) & (x < h)])
+    d1, d2 = y - x, y + x - scale
+    return np.stack([(d1 < 0) & (d2 < 0), (d1 < 0) & (d2 >= 0), (d1 >= 0) & (d2 >= 0), (d1 >= 0) & (d2 < 0)])
+
+
+def edge_image(colours, positions, shape: tuple[int, int], kind: str = "wang", *, scale: int | None = None,
+               palette=None) -> Image.Image:
+    """A palette image of cells drawn by their four side (or corner) colours.
+
+    Parameters
+    ----------
+    colours : array-like of int, shape (n_cells, 4)
+        N, E, S, W edge colours (Wang) or NE, SE, SW, NW corner colours (corner).
+    positions : array-like of int, shape (n_cells, 2)
+        ``(row, col)`` of each cell in a ``shape`` grid (cells not listed stay blank).
+    """
+    c = np.asarray(colours, dtype=np.int64).reshape(-1, 4)
+    pos = np.asarray(positions, dtype=np.int64).reshape(-1, 2)
+    rows, cols = shape
+    if scale is None:
+        scale = max(4, min(24, _TARGET_PX // max(rows, cols, 1)))
+    if rows * cols * scale * scale > MAX_PNG_PIXELS:
+        raise InvalidProblem(f"a {cols * scale}x{rows * scale} px PNG is larger than the {MAX_PNG_PIXELS:,} px limit")
+    hi = int(c.max()) if c.size else 0
+    if hi >= 254:
+        raise InvalidProblem(f"PNG pictures support at most 254 colours, got colour {hi}")
+    masks = _side_masks(scale, kind)
+    part = np.argmax(masks, axis=0)  # which side each pixel of a cell shows
+    cells = np.zeros((rows, cols, scale, scale), dtype=np.uint8)
+    cells[pos[:, 0], pos[:, 1]] = (c[:, part] + 1).astype(np.uint8)
+    if scale >= 8:  # a thin outline around each cell
+        cells[pos[:, 0], pos[:, 1], 0, :] = 255
+        cells[pos[:, 0], pos[:, 1], :, 0] = 255
+    img = Image.fromarray(np.ascontiguousarray(cells.transpose(0, 2, 1, 3).reshape(rows * scale, cols * scale)))
+    pal = [255] * (256 * 3)
+    for k in range(hi + 1):
+        pal[3 * (k + 1): 3 * (k + 2)] = _rgb(palette(k) if palette else tile_colour(k))
+    pal[255 * 3: 256 * 3] = _GRID_RGB
+    img.putpalette(pal)
+    return img
+
+
+def _save(path, img: Image.Image) -> None:
+    buf = io.BytesIO()
+    img.save(buf, format="PNG", optimize=False)
+    write_bytes_atomic(path, buf.getvalue())
+
+
+def write_board_png(path: str | os.PathLike, problem, tiling, **kwargs) -> None:
+    """PNG of a board tiling: each cell's legs as N, E, S, W triangles at its ``[row, col]`` label."""
+    from tilesolve.model.board import wang_to_nesw
+
+    lab = np.asarray(problem.board.labels)
+    shape = tuple(int(v) + 1 for v in lab.max(axis=0))
+    _save(path, edge_image(wang_to_nesw(tiling), lab, shape, "wang", **kwargs))
+
+
+def write_packing_png(path: str | os.PathLike, grid, kind: str, colors: int, *, colors_v: int | None = None,
+                      **kwargs) -> None:
+    """PNG of a packing (or any grid of tile indices, eq. 2.1 / 2.5), in the notes' colours (§2.7)."""
+    from tilesolve.io.svg_packing import colour_of
+    from tilesolve.model.tiles import TileSet
+
+    g = np.asarray(grid, dtype=np.int64)
+    colours = np.stack(TileSet(kind, colors, colors_v).colors_of(g.ravel()), axis=1)
+    rows, cols = g.shape
+    positions = np.stack(np.divmod(np.arange(g.size), cols), axis=1)
+    _save(path, edge_image(colours, positions, (rows, cols), kind, palette=colour_of, **kwargs))

@@ -27,22 +27,17 @@ __all__ = ["board_drawing", "write_board_svg", "brick_ids"]
 _PX = 720
 
 
-def _find(parent, x):
-    while parent[x] != x:
-        parent[x] = parent[parent[x]]
-        x = parent[x]
-    return x
-
-
 def brick_ids(problem: BoardProblem, tiling) -> np.ndarray:
     """``(n_cells, 4)`` brick id of each cell's corner regions TL, TR, BL, BR.
 
     Regions are merged across joins between cells whose labels are grid neighbours
     (E-W: TR~TL, BR~BL; S-N: BL~TL, BR~TR).
     """
+    from networkx.utils import UnionFind
+
     b = problem.board
     n = b.n_cells
-    parent = np.arange(4 * n)
+    uf = UnionFind(range(4 * n))
     lab = b.labels
     TL, TR, BL, BR = 0, 1, 2, 3
     for a in range(n):
@@ -53,10 +48,8 @@ def brick_ids(problem: BoardProblem, tiling) -> np.ndarray:
             if lab[w, 0] - lab[a, 0] != dr or lab[w, 1] - lab[a, 1] != dc:
                 continue  # a join across a seam: drawn as an identification, not merged
             for x, y in pairs:
-                ra, rb = _find(parent, 4 * a + x), _find(parent, 4 * w + y)
-                if ra != rb:
-                    parent[max(ra, rb)] = min(ra, rb)
-    roots = np.array([_find(parent, i) for i in range(4 * n)])
+                uf.union(4 * a + x, 4 * w + y)
+    roots = np.array([uf[i] for i in range(4 * n)])
     _, ids = np.unique(roots, return_inverse=True)
     return ids.reshape(n, 4)
 

@@ -303,6 +303,16 @@ class Board:
         padding holding ``-1`` (the wall) or, where sides are identified, the cells of the
         opposite side (reversed for a twist): one shifted view of the padded grid per leg,
         no per-cell Python.
+
+        Examples
+        --------
+        >>> m = Board.mobius(3, 4)
+        >>> m.grid_spec
+        GridSpec(rows=3, cols=4, wrap_rows=None, wrap_cols='twist')
+        >>> hole = m.restrict(m.labels[:, 1] != 2)  # drop column 2
+        >>> again = Board.from_grid_spec(hole.grid_spec, hole.mask_of())
+        >>> bool((again.nbr_cell == hole.nbr_cell).all() and (again.nbr_leg == hole.nbr_leg).all())
+        True
         """
         H, Wd, wrap_rows, wrap_cols = int(spec[0]), int(spec[1]), spec[2], spec[3]
         if wrap_rows not in _WRAPS or wrap_cols not in _WRAPS:

@@ -36,7 +36,8 @@ def _prepare(grid, tiles, kind: str, labels):
         return None, None, [Violation("shape", f"unknown tile kind {kind!r}; choose wang or corner")]
     t = np.asarray(tiles)
     if t.ndim != 2 or t.shape[1] != 4 or not np.issubdtype(t.dtype, np.integer):
-        return None, None, [Violation("shape", f"tile colours must be an (n_tiles, 4) integer array, got shape {t.shape}")]
+        return None, None, [Violation("shape", "tile colours must be an (n_tiles, 4) integer array, "
+                                               f"got shape {t.shape}")]
     g = np.asarray(grid)
     if g.ndim != 2:
         return None, None, [Violation("shape", f"grid must be 2-D, got shape {g.shape}")]

@@ -1,0 +1,41 @@
+"""`tilesolve draw FILE -o pic.svg|png`: every family's solution files drawn through the registry."""
+
+import shutil
+import subprocess
+from pathlib import Path
+
+import pytest
+from PIL import Image
+
+SCRIPT = shutil.which("tilesolve")
+
+
+def run(*args, cwd: Path):
+    return subprocess.run([SCRIPT, *args], cwd=cwd, capture_output=True, text=True, timeout=300)
+
+
+@pytest.mark.parametrize("make", [
+    ("dappled", "solve", "--size", "9x7", "--cond", "H0=2,V1=2", "--seed", "1", "-o", "s.json"),
+    ("brick", "solve", "--board", "mobius:8x4", "--seed", "1", "-o", "s.json"),
+    ("pack", "--kind", "corner", "--colors", "3", "--seed", "1", "-o", "s.json"),
+])
+def test_every_family_draws_svg_and_png(tmp_path, make):
+    assert run(*make, cwd=tmp_path).returncode == 0
+    for pic in ("s.svg", "s.png"):
+        proc = run("draw", "s.json", "-o", pic, cwd=tmp_path)
+        assert proc.returncode == 0, proc.stderr
+    assert (tmp_path / "s.svg").read_text().lstrip().startswith(("<?xml", "<svg"))
+    with Image.open(tmp_path / "s.png") as img:
+        assert img.size[0] > 0 and len(img.getcolors(maxcolors=1 << 16)) > 2  # not a blank picture
+
+
+def test_draw_refuses_what_it_cannot_draw(tmp_path):
+    fixed = tmp_path / "fix.txt"
+    fixed.write_text("1???\n?0??\n?011\n?0??\n")
+    proc = run("dappled", "solve", "--size", "4x4", "--cond", "H0=2,V1=2", "--cyclic", "--fix", "fix.txt",
+               "-o", "u.json", cwd=tmp_path)
+    assert proc.returncode == 1  # Example 6.2: unsat
+    proc = run("draw", "u.json", "-o", "u.svg", cwd=tmp_path)
+    assert proc.returncode == 1 and "nothing to draw" in proc.stderr and not (tmp_path / "u.svg").exists()
+    proc = run("draw", "u.json", "-o", "u.gif", cwd=tmp_path)
+    assert proc.returncode == 2 and proc.stderr.startswith("tilesolve: error:") and "svg or .png" in proc.stderr
