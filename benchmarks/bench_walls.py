@@ -82,7 +82,8 @@ def main() -> None:
             _, peak = tracemalloc.get_traced_memory()
             tracemalloc.stop()
             per_cell = t / cells
-            print(f"{label:<8}{cells:>12,}{t:>10.3f}{cpu:>8.3f}{cells / t / 1e6:>10.1f}{peak / 2**20:>9.1f}{peak_rss_mib():>9.0f}"
+            print(f"{label:<8}{cells:>12,}{t:>10.3f}{cpu:>8.3f}{cells / t / 1e6:>10.1f}{peak / 2**20:>9.1f}"
+                  f"{peak_rss_mib():>9.0f}"
                   f"{per_cell * 1e6:>10.4f}{py_per_cell * 1e6:>16.1f}{py_per_cell / per_cell:>9.0f}")
             del out
     print(f"baseline: per-cell Python transcription on {100 * 100:,} cells (same tiles as the compiled window); "
