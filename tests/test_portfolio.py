@@ -378,6 +378,34 @@ def test_escalate_keeps_the_first_run_with_the_whole_time_limit(workers, monkeyp
         assert s.notes == () and "portfolio_runs" not in s.stats
 
 
+@pytest.mark.parametrize("idle, started", [(0.0, False), (0.2, False), (0.5, True), (1.0, True)])
+def test_escalate_by_default_starts_workers_only_on_idle_cores(idle, started, monkeypatch):
+    clock = iter(range(1, 10**6))
+
+    def cpu_times():  # the machine's (idle, total) ticks: a fixed fraction of 2 cores idle
+        total = 100.0 * next(clock)
+        return idle * total, total
+
+    monkeypatch.setattr(pf, "_cpu_times", cpu_times)
+    monkeypatch.setattr(pf.os, "cpu_count", lambda: 2)
+    monkeypatch.setattr(pf, "QUICK_S", 0.1)
+    s = _escalate({1: "sleep:1"})  # workers=None: the default
+    assert s.status is Status.SAT and s.seed == 1 and s.stats["pid"] == os.getpid()
+    assert ("portfolio_workers" in s.stats) is started
+    if started:
+        assert s.stats["portfolio_workers"] == 1  # DEFAULT_WORKERS = 2: this process and one worker
+
+
+def test_idle_cores_from_cpu_time_samples(monkeypatch):
+    monkeypatch.setattr(pf.os, "cpu_count", lambda: 4)
+    assert pf._idle_cores((100.0, 1000.0), (175.0, 1100.0), 9) == 3  # 75 % of 4 cores
+    assert pf._idle_cores((100.0, 1000.0), (110.0, 1100.0), 9) == 0
+    assert pf._idle_cores(None, (110.0, 1100.0), 9) == 9  # the machine does not tell
+    if sys.platform.startswith("linux"):
+        idle, total = pf._cpu_times()
+        assert 0 <= idle <= total
+
+
 def test_escalate_worker_that_decides_stops_the_first_run(at_once):
     t0 = time.perf_counter()
     s = _escalate({1: "wait", 3: "sat"}, workers=3)  # the first run alone would wait forever
