@@ -75,7 +75,7 @@ DEFAULT_SAT_SOLVER = "cadical153"
 LOAD_CHUNK = 1 << 14
 
 #: Conflict budget of the first slice and the largest one (solvers without ``interrupt``).
-SLICE_CONFLICTS = (2000, 32000)
+SLICE_CONFLICTS = (100, 32000)
 
 #: Solvers whose random seed PySAT's ``configure`` can set, and the option's name.
 _SEED_OPTION = {"cadical153": "seed", "cadical195": "seed", "cadical300": "seed", "glucose42": "rnd-seed"}
