@@ -70,6 +70,9 @@ def unsat_solution(formula, r: Result, *, method: str, seed, t0: float, stats: d
         return unknown(f"{solver} reported unsatisfiable; its DRAT proof of {len(r.proof)} lines was not checked "
                        "(checking turned off)")
     if deadline is not None:
+        if deadline.expired():
+            return unknown(f"{solver} reported unsatisfiable; its DRAT proof was not checked: time limit of "
+                           f"{deadline.time_limit:.3g} s reached before the check")
         proof_time_limit = deadline.remaining()
     chk = check_drat(formula, r.proof, max_size=PROOF_CHECK_MAX_SIZE, time_limit=proof_time_limit)
     stats.update(proof_status=chk.status, proof_lemmas=chk.lemmas, proof_check_s=round(chk.time_s, 6))
