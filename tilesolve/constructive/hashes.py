@@ -27,7 +27,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from tilesolve._random import rng_from_seed
-from tilesolve.constructive._lattice_kernels import outer_rows
+from tilesolve.constructive._lattice_kernels import (
+    FNV_PRIME,
+    XORSHIFT_STAR,
+    fnv_xorshift_u64,
+    outer_rows,
+)
 from tilesolve.errors import InvalidProblem
 
 __all__ = [
@@ -46,10 +51,7 @@ __all__ = [
 
 #: FNV-1a 64-bit offset basis and prime (Fowler, Noll, Vo).
 FNV_OFFSET = 0xCBF29CE484222325
-FNV_PRIME = 0x100000001B3
 MASK64 = (1 << 64) - 1
-#: Output multiplier of xorshift64* (Vigna, 2014).
-XORSHIFT_STAR = 0x2545F4914F6CDD1D
 _MASK32 = (1 << 32) - 1
 
 
@@ -291,30 +293,6 @@ def perlin_hash(*, seed=None) -> LongPeriodHash:
 
 
 # --------------------------------------------------------------------------- FNV + xorshift
-def fnv_xorshift_u64(basis, x, y):
-    """The FNV-1a / xorshift mix on ``uint64`` operands (numpy arrays, numpy scalars, or numba).
-
-    ``basis`` is the FNV state after the seed words (see :class:`FnvXorshift`); ``x`` and
-    ``y`` are the coordinates as two's-complement ``uint64``. Each coordinate is fed to
-    FNV-1a as its low and its high 32-bit word; the state then seeds Vigna's xorshift64*
-    generator (shifts 12, 25, 27, output multiplier 0x2545F4914F6CDD1D) and its first output
-    is the hash ("peek a value", 004 §4.2). The output multiplication matters: without it the
-    high bits hardly depend on the low bits of ``y``. Only operators appear here, so numpy
-    and numba compile the same arithmetic.
-    """
-    m32 = np.uint64(0xFFFFFFFF)
-    p = np.uint64(FNV_PRIME)
-    h = basis
-    h = (h ^ (x & m32)) * p
-    h = (h ^ (x >> np.uint64(32))) * p
-    h = (h ^ (y & m32)) * p
-    h = (h ^ (y >> np.uint64(32))) * p
-    h = h ^ (h >> np.uint64(12))
-    h = h ^ (h << np.uint64(25))
-    h = h ^ (h >> np.uint64(27))
-    return h * np.uint64(XORSHIFT_STAR)
-
-
 @dataclass(frozen=True)
 class FnvXorshift:
     """The hash of the procedural walls (004 §4.2): FNV-1a seeds xorshift64*, one value is peeked.
@@ -322,8 +300,9 @@ class FnvXorshift:
     The paper names the scheme and nothing more. tilesolve's reading: FNV-1a (64-bit) over
     the 32-bit words of ``seed`` (low, high), ``stream`` and then ``x`` (low, high) and ``y``
     (low, high), the words treated as FNV's "octets"; the result seeds xorshift64*, whose
-    first output is the hash (see :func:`fnv_xorshift_u64`). ``stream`` separates independent hashes of
-    one seed (the paper's ``ℋ`` and ``𝒱``). The *value* of the hash is its high 32 bits
+    first output is the hash (see :func:`fnv_xorshift_u64`, in ``_lattice_kernels`` with the
+    compiled code that inlines it). ``stream`` separates independent hashes of one seed (the
+    paper's ``ℋ`` and ``𝒱``). The *value* of the hash is its high 32 bits
     ``u`` (FNV's low bits mix poorly: bit 0 of FNV-1a is the parity of the inputs' bit 0), and
     :meth:`colour` reduces it to ``0 .. k-1`` as ``(u * k) >> 32``, the division-free range
     reduction (Lemire) that stands for the paper's ``ℋ(i, j) % k``: each colour gets

@@ -57,9 +57,9 @@ Public functions return numpy arrays; ``seed`` is a non-negative integer.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
-from tilesolve.constructive.hashes import FnvXorshift, fnv_xorshift_u64
+from tilesolve.constructive._lattice_kernels import d1, d2, wall_kernel
+from tilesolve.constructive.hashes import FnvXorshift
 from tilesolve.errors import InvalidProblem
 from tilesolve.model.board import WangTileSet
 
@@ -194,26 +194,6 @@ def _reduce(raw, k):
     return (raw * k) >> 32
 
 
-def _d1(raw, nc, c):
-    """``vd1``/``hd1`` (App. B): a colour unlike ``c`` from the hash value ``raw``."""
-    m = (raw * (nc - 1)) >> 32
-    return m if m < c else m + 1
-
-
-def _d2(raw, nc, c1, c2):
-    """``vd2``/``hd2`` (App. B, ``m'`` reconstructed; see the module docstring): unlike ``c1`` and ``c2``."""
-    if c1 == c2:  # vd1 (written out: the compiled form cannot call the Python one)
-        m = (raw * (nc - 1)) >> 32
-        return m if m < c1 else m + 1
-    m = (raw * (nc - 2)) >> 32
-    lo, hi = min(c1, c2), max(c1, c2)
-    if m < lo:
-        return m
-    if m < hi - 1:
-        return m + 1
-    return m + 2
-
-
 def block_fillings(outer, colors: int, raws=(0, 0, 0, 0)) -> list[tuple[int, int, int, int]]:
     """Every App. B filling ``(V[i+1, j+1], H[i, j+1], V[i+1, j], H[i+1, j+1])`` of one 2x2 block.
 
@@ -227,8 +207,8 @@ def block_fillings(outer, colors: int, raws=(0, 0, 0, 0)) -> list[tuple[int, int
     """
     o = [int(x) for x in outer]
     nc = int(colors)
-    helpers = [_d2(raws[0], nc, o[_VT0], o[_VT2]), _d2(raws[1], nc, o[_HL2], o[_HL0]),
-               _d2(raws[2], nc, o[_VB0], o[_VB2]), _d2(raws[3], nc, o[_HR0], o[_HR2])]
+    helpers = [d2(raws[0], nc, o[_VT0], o[_VT2]), d2(raws[1], nc, o[_HL2], o[_HL0]),
+               d2(raws[2], nc, o[_VB0], o[_VB2]), d2(raws[3], nc, o[_HR0], o[_HR2])]
     vals = o + helpers
     case = _case(o)
     return [tuple(vals[int(s)] for s in _OPT[case, k]) for k in range(int(_NOPT[case]))]
@@ -251,10 +231,10 @@ class _ScalarWall:
         return hsh.scalar(i, j) >> 32
 
     def d1(self, hsh, i, j, c):
-        return _d1(self.raw(hsh, i, j), self.nc, c)
+        return d1(self.raw(hsh, i, j), self.nc, c)
 
     def d2(self, hsh, i, j, c1, c2):
-        return _d2(self.raw(hsh, i, j), self.nc, c1, c2)
+        return d2(self.raw(hsh, i, j), self.nc, c1, c2)
 
     def h(self, i, j):
         return _reduce(self.raw(self.hh, i, j), self.nc)
@@ -309,118 +289,6 @@ class _ScalarWall:
         if dj == 0:
             return (o[_VB0], hl1, vb1, o[_HL0]) if di == 0 else (vb1, hr1, o[_VB2], o[_HR0])
         return (o[_VT0], o[_HL2], vt1, hl1) if di == 0 else (vt1, o[_HR2], o[_VT2], hr1)
-
-
-# ------------------------------------------------------------------------------------ compiled form
-# The kernels that inline the hash of hashes.py are not cached on disk: numba's cache does not
-# notice a change in another module and would keep running the old hash.
-_fnv = njit(fnv_xorshift_u64)
-_d1_nb = njit(cache=True)(_d1)
-_d2_nb = njit(cache=True)(_d2)
-
-
-@njit
-def _raw(basis, i, j):
-    return np.int64(_fnv(basis, np.uint64(i), np.uint64(j)) >> np.uint64(32))
-
-
-@njit
-def _wall_kernel(x0, y0, w, h, nc, p, fixed, bh, bv, bo, opt, nopt, out):
-    """:class:`_ScalarWall` over a window, each hash evaluated once.
-
-    Lattice arrays: ``hr[r, c]`` the ℋ value at ``(bi0 + c, bj0 - 2 + 2 r)`` (even rows, one
-    block row of margin each side for the dappling neighbours), ``vr[r, s]`` the 𝒱 value at
-    ``(bi0 - 2 + 2 s, bj0 + r)``; ``hp``/``vp`` the colours ``h'``/``v'``.
-    """
-    bi0, bj0 = x0 - x0 % 2, y0 - y0 % 2
-    xl, yl = x0 + w - 1, y0 + h - 1
-    nbc, nbr = (xl - xl % 2 - bi0) // 2 + 1, (yl - yl % 2 - bj0) // 2 + 1
-    hr = np.empty((nbr + 3, 2 * nbc), dtype=np.int64)
-    for r in range(nbr + 3):
-        for c in range(2 * nbc):
-            hr[r, c] = _raw(bh, bi0 + c, bj0 - 2 + 2 * r)
-    vr = np.empty((2 * nbr, nbc + 3), dtype=np.int64)
-    for r in range(2 * nbr):
-        for s in range(nbc + 3):
-            vr[r, s] = _raw(bv, bi0 - 2 + 2 * s, bj0 + r)
-    # Residues modulo the dappling period of the even block coordinates (i', j').
-    pp = max(p, 1)
-    ires = np.empty(nbc + 1, dtype=np.int64)
-    for s in range(nbc + 1):
-        ires[s] = (bi0 + 2 * s) % pp
-    jres = np.empty(nbr + 1, dtype=np.int64)
-    for t in range(nbr + 1):
-        jres[t] = (bj0 + 2 * t) % pp
-    hp = np.empty((nbr + 1, 2 * nbc), dtype=np.int64)
-    for t in range(nbr + 1):
-        j4 = (bj0 + 2 * t) & 3
-        for c in range(2 * nbc):
-            v0 = hr[t + 1, c]
-            if p == 2 and j4 == 2:
-                hp[t, c] = _d2_nb(v0, nc, (hr[t, c] * nc) >> 32, (hr[t + 2, c] * nc) >> 32)
-            elif p > 2 and ires[c // 2] == jres[t]:
-                hp[t, c] = _d1_nb(v0, nc, (hr[t + 2, c] * nc) >> 32)
-            else:
-                hp[t, c] = (v0 * nc) >> 32
-    vp = np.empty((2 * nbr, nbc + 1), dtype=np.int64)
-    for r in range(2 * nbr):
-        for s in range(nbc + 1):
-            v0 = vr[r, s + 1]
-            if p == 2 and ((bi0 + 2 * s) & 3) == 2:
-                vp[r, s] = _d2_nb(v0, nc, (vr[r, s] * nc) >> 32, (vr[r, s + 2] * nc) >> 32)
-            elif p > 2 and ires[s] == jres[r // 2]:
-                vp[r, s] = _d1_nb(v0, nc, (vr[r, s + 2] * nc) >> 32)
-            else:
-                vp[r, s] = (v0 * nc) >> 32
-    o = np.empty(12, dtype=np.int64)
-    for tb in range(nbr):
-        bj = bj0 + 2 * tb
-        for sb in range(nbc):
-            bi = bi0 + 2 * sb
-            o[0] = vp[2 * tb + 1, sb]  # VT0
-            o[1] = vp[2 * tb + 1, sb + 1]  # VT2
-            o[2] = hp[tb, 2 * sb]  # HL0
-            o[3] = hp[tb + 1, 2 * sb]  # HL2
-            o[4] = vp[2 * tb, sb]  # VB0
-            o[5] = vp[2 * tb, sb + 1]  # VB2
-            o[6] = hp[tb, 2 * sb + 1]  # HR0
-            o[7] = hp[tb + 1, 2 * sb + 1]  # HR2
-            case = 8 * (o[3] == o[2]) + 4 * (o[6] == o[7]) + 2 * (o[0] == o[1]) + (o[4] == o[5])
-            if fixed and (p == 2 or ires[sb] == jres[tb]):
-                option = 0
-            else:
-                option = (_raw(bo, bi, bj) * nopt[case]) >> 32
-            # App. B puts vd2T only in the first slot, hd2L in the second, vd2B in the third and
-            # hd2R in the fourth: compute a helper only when its slot asks for it.
-            if opt[case, option, 0] == 8:
-                o[8] = _d2_nb(_raw(bv, bi + 1, bj + 1), nc, o[0], o[1])
-            if opt[case, option, 1] == 9:
-                o[9] = _d2_nb(_raw(bh, bi, bj + 1), nc, o[3], o[2])
-            if opt[case, option, 2] == 10:
-                o[10] = _d2_nb(_raw(bv, bi + 1, bj), nc, o[4], o[5])
-            if opt[case, option, 3] == 11:
-                o[11] = _d2_nb(_raw(bh, bi + 1, bj + 1), nc, o[6], o[7])
-            vt1, hl1 = o[opt[case, option, 0]], o[opt[case, option, 1]]
-            vb1, hr1 = o[opt[case, option, 2]], o[opt[case, option, 3]]
-            for dj in range(2):
-                j = bj + dj
-                if j < y0 or j > yl:
-                    continue
-                r = yl - j
-                for di in range(2):
-                    i = bi + di
-                    if i < x0 or i > xl:
-                        continue
-                    c = i - x0
-                    if dj == 0 and di == 0:
-                        out[r, c, 0], out[r, c, 1], out[r, c, 2], out[r, c, 3] = o[4], hl1, vb1, o[2]
-                    elif dj == 0:
-                        out[r, c, 0], out[r, c, 1], out[r, c, 2], out[r, c, 3] = vb1, hr1, o[5], o[6]
-                    elif di == 0:
-                        out[r, c, 0], out[r, c, 1], out[r, c, 2], out[r, c, 3] = o[0], o[3], vt1, hl1
-                    else:
-                        out[r, c, 0], out[r, c, 1], out[r, c, 2], out[r, c, 3] = vt1, o[7], o[1], hr1
-    return out
 
 
 _LIMIT = (1 << 62) - 8
@@ -479,12 +347,13 @@ def wall_window(x0, y0, w, h, *, colors: int = 3, max_line: int | None = None, s
     rows = max(2, min(h, _STRIP_CELLS // w))
     for top in range(0, h, rows):
         hh = min(rows, h - top)
-        _wall_kernel(x0, y0 + h - top - hh, w, hh, nc, p, fixed, basis[0], basis[1], basis[2], _OPT, _NOPT,
+        wall_kernel(x0, y0 + h - top - hh, w, hh, nc, p, fixed, basis[0], basis[1], basis[2], _OPT, _NOPT,
                      out[top: top + hh])
     return out
 
 
-def wall_tile_scalar(i, j, *, colors: int = 3, max_line: int | None = None, seed: int = 0) -> tuple[int, int, int, int]:
+def wall_tile_scalar(i, j, *, colors: int = 3, max_line: int | None = None,
+                     seed: int = 0) -> tuple[int, int, int, int]:
     """Leg colours ``(W, N, E, S)`` of cell ``(i, j)``: the same procedure, one cell, plain Python.
 
     A straight transcription of §4.2-4.3 (what a shader does per pixel); :func:`wall_window`
