@@ -8,7 +8,7 @@ file would keep running an old copy of it.
 A 2-D permutation-table hash (eq. 3.3, or the sum of eq. 3.6) is evaluated a row at a time
 from its *row tables* (see ``PermutationHash.row_tables``): ``twice[i]`` is table ``i``
 written twice (so ``P[(a + b) % N] = twice[a + b]`` for ``a, b < N``), ``sizes[i]`` its size,
-``px[c, i] = P_i[x_c % N_i]`` for the columns ``x_c`` of the row, and ``red[s]`` the final
+``px[i, c] = P_i[x_c % N_i]`` for the columns ``x_c`` of the row, and ``red[s]`` the final
 reduction ``(s % range) % modulus`` of a sum ``s``, looked up instead of divided.
 
 Lattice rows are produced from south to north; outputs are ``[row, col]`` with row 0 at the
@@ -27,25 +27,32 @@ XORSHIFT_STAR = 0x2545F4914F6CDD1D
 
 
 @njit(cache=True)
-def hash_row(twice, sizes, px, red, y, ym, out):
-    """``out[c] = red[sum_i twice[i, y % sizes[i] + px[c, i]]]``: the hash of ``(x_c, y)``."""
-    m = sizes.shape[0]
-    for i in range(m):
-        ym[i] = y % sizes[i]
-    for c in range(px.shape[0]):
-        s = 0
-        for i in range(m):
-            s += twice[i, ym[i] + px[c, i]]
-        out[c] = red[s]
+def hash_row(twice, sizes, px, red, y, acc, out):
+    """``out[c] = red[sum_i twice[i, y % sizes[i] + px[i, c]]]``: the hash of ``(x_c, y)``.
+
+    ``acc`` is int32 scratch of at least ``px.shape[1]`` entries. Table by table, so that the
+    inner loop over the columns has no dependency between iterations.
+    """
+    n = px.shape[1]
+    for c in range(n):
+        acc[c] = 0
+    for i in range(sizes.shape[0]):
+        yi = y % sizes[i]
+        t = twice[i]
+        p = px[i]
+        for c in range(n):
+            acc[c] += t[yi + p[c]]
+    for c in range(n):
+        out[c] = red[acc[c]]
 
 
 @njit(cache=True)
 def outer_rows(twice, sizes, px, red, ys):
     """The hash on the grid ``ys x xs`` (rows in ``ys`` order), int32."""
-    out = np.empty((ys.shape[0], px.shape[0]), dtype=np.int32)
-    ym = np.empty(sizes.shape[0], dtype=np.int64)
+    out = np.empty((ys.shape[0], px.shape[1]), dtype=np.int32)
+    acc = np.empty(px.shape[1], dtype=np.int32)
     for r in range(ys.shape[0]):
-        hash_row(twice, sizes, px, red, ys[r], ym, out[r])
+        hash_row(twice, sizes, px, red, ys[r], acc, out[r])
     return out
 
 
@@ -53,12 +60,12 @@ def outer_rows(twice, sizes, px, red, ys):
 def direct_corner(twice, sizes, px, red, y0, c, out):
     """§3.3.1: NE, SE, SW, NW = h(x+1, y+1), h(x+1, y), h(x, y), h(x, y+1); ``px`` covers x0 .. x0 + w."""
     h, w = out.shape
-    ym = np.empty(sizes.shape[0], dtype=np.int64)
+    acc = np.empty(w + 1, dtype=np.int32)
     south = np.empty(w + 1, dtype=np.int32)
     north = np.empty(w + 1, dtype=np.int32)
-    hash_row(twice, sizes, px, red, y0, ym, south)
+    hash_row(twice, sizes, px, red, y0, acc, south)
     for dy in range(h):
-        hash_row(twice, sizes, px, red, y0 + dy + 1, ym, north)
+        hash_row(twice, sizes, px, red, y0 + dy + 1, acc, north)
         r = h - 1 - dy
         for x in range(w):
             out[r, x] = ((north[x + 1] * c + south[x + 1]) * c + south[x]) * c + north[x]
@@ -72,15 +79,14 @@ def direct_wang_sums(t1, s1, p1, r1, t2, s2, p2, r2, y0, c, out):
     same tables twice): N = NW + NE, E = NE + SE, S = SE + SW, W = SW + NW of the corner
     values, mod C; ``px`` covers x0 .. x0 + w."""
     h, w = out.shape
-    ym1 = np.empty(s1.shape[0], dtype=np.int64)
-    ym2 = np.empty(s2.shape[0], dtype=np.int64)
+    acc = np.empty(w + 1, dtype=np.int32)
     hs, hn = np.empty(w + 1, dtype=np.int32), np.empty(w + 1, dtype=np.int32)
     vs, vn = np.empty(w + 1, dtype=np.int32), np.empty(w + 1, dtype=np.int32)
-    hash_row(t1, s1, p1, r1, y0, ym1, hs)
-    hash_row(t2, s2, p2, r2, y0, ym2, vs)
+    hash_row(t1, s1, p1, r1, y0, acc, hs)
+    hash_row(t2, s2, p2, r2, y0, acc, vs)
     for dy in range(h):
-        hash_row(t1, s1, p1, r1, y0 + dy + 1, ym1, hn)
-        hash_row(t2, s2, p2, r2, y0 + dy + 1, ym2, vn)
+        hash_row(t1, s1, p1, r1, y0 + dy + 1, acc, hn)
+        hash_row(t2, s2, p2, r2, y0 + dy + 1, acc, vn)
         r = h - 1 - dy
         for x in range(w):
             n = (hn[x] + hn[x + 1]) % c
@@ -100,15 +106,15 @@ def direct_wang_edges(twice, sizes, podd, peven, red, y0, c, out):
     ``podd`` covers the columns 2x + 1 (x0 .. x0 + w - 1), ``peven`` the columns 2x (x0 .. x0 + w).
     """
     h, w = out.shape
-    ym = np.empty(sizes.shape[0], dtype=np.int64)
+    acc = np.empty(w + 1, dtype=np.int32)
     south = np.empty(w, dtype=np.int32)
     north = np.empty(w, dtype=np.int32)
     mid = np.empty(w + 1, dtype=np.int32)
-    hash_row(twice, sizes, podd, red, 2 * y0, ym, south)
+    hash_row(twice, sizes, podd, red, 2 * y0, acc, south)
     for dy in range(h):
         y = y0 + dy
-        hash_row(twice, sizes, podd, red, 2 * y + 2, ym, north)
-        hash_row(twice, sizes, peven, red, 2 * y + 1, ym, mid)
+        hash_row(twice, sizes, podd, red, 2 * y + 2, acc, north)
+        hash_row(twice, sizes, peven, red, 2 * y + 1, acc, mid)
         r = h - 1 - dy
         for x in range(w):
             out[r, x] = ((north[x] * c + mid[x + 1]) * c + south[x]) * c + mid[x]
@@ -127,14 +133,14 @@ def scanline_wang(twice, sizes, px, red, y0, c, compact, out):
     colour ``v % C``.
     """
     h, w = out.shape
-    ym = np.empty(sizes.shape[0], dtype=np.int64)
+    acc = np.empty(w + 1, dtype=np.int32)
     v = np.empty(w + 1, dtype=np.int32)
     south = np.empty(w, dtype=np.int64)
-    hash_row(twice, sizes, px, red, y0 + h, ym, v)
+    hash_row(twice, sizes, px, red, y0 + h, acc, v)
     for x in range(w):
         south[x] = v[x + 1] % c if compact else (v[x + 1] // c) % c
     for r in range(h):
-        hash_row(twice, sizes, px, red, y0 + h - 1 - r, ym, v)
+        hash_row(twice, sizes, px, red, y0 + h - 1 - r, acc, v)
         east = v[0] % c
         for x in range(w):
             n, wc, pick = south[x], east, v[x + 1]
@@ -156,15 +162,15 @@ def scanline_corner(twice, sizes, px, red, y0, c, compact, out):
     on the window's top and west edges are the SE corners ``v % C`` of the virtual cells north and
     west of it."""
     h, w = out.shape
-    ym = np.empty(sizes.shape[0], dtype=np.int64)
+    acc = np.empty(w + 1, dtype=np.int32)
     v = np.empty(w + 1, dtype=np.int32)
     above = np.empty(w + 1, dtype=np.int64)
     below = np.empty(w + 1, dtype=np.int64)
-    hash_row(twice, sizes, px, red, y0 + h, ym, v)
+    hash_row(twice, sizes, px, red, y0 + h, acc, v)
     for x in range(w + 1):
         above[x] = v[x] % c
     for r in range(h):
-        hash_row(twice, sizes, px, red, y0 + h - 1 - r, ym, v)
+        hash_row(twice, sizes, px, red, y0 + h - 1 - r, acc, v)
         below[0] = v[0] % c
         for x in range(w):
             nw, ne, sw = above[x], above[x + 1], below[x]

@@ -231,10 +231,10 @@ def _row_tables(parts, xs, rng: int, modulus: int | None):
     xs = _as_int64(xs).reshape(-1)
     m, big = len(parts), 2 * max(p.size for p in parts)
     twice = np.zeros((m, big), dtype=np.int32)
-    px = np.empty((xs.size, m), dtype=np.int32)
+    px = np.empty((m, xs.size), dtype=np.int32)
     for i, p in enumerate(parts):
         twice[i, : 2 * p.size] = np.concatenate([p.table, p.table])
-        px[:, i] = p.table[xs % p.size]
+        px[i] = p.table[xs % p.size]
     sizes = np.array([p.size for p in parts], dtype=np.int64)
     red = (np.arange(int(sizes.sum()), dtype=np.int64) % rng) % (rng if modulus is None else int(modulus))
     return twice, sizes, px, red.astype(np.int32)
