@@ -242,3 +242,15 @@ def test_appendix_b_helpers_sit_in_their_own_slot():
         for fill in fills:
             for slot, name in enumerate(fill):
                 assert name not in ("vd2T", "hd2L", "vd2B", "hd2R") or name == ("vd2T", "hd2L", "vd2B", "hd2R")[slot]
+
+
+def test_line_lengths_counts_runs_by_hand():
+    h_tile, v_tile = [0, 1, 0, 2], [0, 1, 2, 1]  # (W, N, E, S): W = E horizontal; N = S vertical
+    legs = np.array([[h_tile, h_tile, v_tile, h_tile],
+                     [v_tile, h_tile, v_tile, v_tile],
+                     [v_tile, v_tile, v_tile, h_tile]])
+    assert orientation(legs).tolist() == [[True, True, False, True], [False, True, False, False],
+                                          [False, False, False, True]]
+    hor, ver = line_lengths(legs)
+    assert sorted(hor.tolist()) == [1, 1, 1, 2]  # rows: HH.H / .H.. / ...H
+    assert sorted(ver.tolist()) == [1, 1, 2, 3]  # columns, top down: HVV / HHV / VVV / HVH
