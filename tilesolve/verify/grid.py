@@ -43,24 +43,25 @@ def _prepare(grid, tiles, kind: str, labels):
         return None, None, [Violation("shape", f"grid must be 2-D, got shape {g.shape}")]
     if g.size and not np.issubdtype(g.dtype, np.integer):
         return None, None, [Violation("tile", "grid must hold integer tile numbers")]
-    g = g.astype(np.int64, copy=False)
     n = t.shape[0]
     if labels is None:
         bad = (g < 0) | (g >= n)
-        k = np.where(bad, 0, g)
+        k = np.where(bad, 0, g) if bad.any() else g
         what = f"0..{n - 1}"
     else:
         lab = np.asarray(labels, dtype=np.int64).reshape(-1)
         if lab.shape[0] != n:
             return None, None, [Violation("shape", f"{lab.shape[0]} labels for {n} tiles")]
         order = np.argsort(lab, kind="stable")
-        pos = np.searchsorted(lab[order], g).clip(0, max(n - 1, 0))
+        pos = np.searchsorted(lab[order], g.astype(np.int64, copy=False)).clip(0, max(n - 1, 0))
         k = order[pos] if n else np.zeros_like(g)
         bad = (lab[k] != g) if n else np.ones(g.shape, dtype=bool)
         what = "the tile set"
     problems = [Violation("tile", f"tile {int(g[r, c])} is not in {what}", int(r), int(c))
                 for r, c in np.argwhere(bad)]
-    return k, t.astype(np.int64, copy=False), problems
+    # The smallest integer type that holds the colours keeps big grids cheap to check.
+    dt = np.min_scalar_type(int(t.max())) if t.size and int(t.min()) >= 0 else np.int64
+    return k, t.astype(dt, copy=False), problems
 
 
 def _mismatch_masks(k: np.ndarray, t: np.ndarray, kind: str, toroidal: bool):
