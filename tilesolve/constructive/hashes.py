@@ -16,7 +16,9 @@ for the hashes to be defined on the whole lattice.
   to seed a xorshift random number generator from which we peek a value").
 
 Tables are drawn from a seed, so the same seed gives the same hash; the tables themselves
-(:attr:`PermutationHash.table`, :attr:`LongPeriodHash.tables`) are what a port needs.
+(:attr:`PermutationHash.table`, :attr:`LongPeriodHash.tables`) are what a port needs. On a
+grid of points, ``outer(xs, ys)`` evaluates the table hashes in compiled code, and
+``row_tables`` hands the same tables to the compiled tilings (:mod:`._lattice_kernels`).
 """
 
 from __future__ import annotations
@@ -49,7 +51,7 @@ __all__ = [
     "XORSHIFT_STAR",
 ]
 
-#: FNV-1a 64-bit offset basis and prime (Fowler, Noll, Vo).
+#: FNV-1a 64-bit offset basis (Fowler, Noll, Vo); the prime is ``FNV_PRIME``.
 FNV_OFFSET = 0xCBF29CE484222325
 MASK64 = (1 << 64) - 1
 _MASK32 = (1 << 32) - 1
