@@ -79,7 +79,7 @@ def test_unsat_pins_and_unknown_exit_codes(tmp_path):
     assert proc.returncode == 1
     assert json.loads((tmp_path / "u.json").read_text())["status"] == "unsat"
     proc = run("verify", "u.json", cwd=tmp_path)
-    assert proc.returncode == 1 and "no packing" in proc.stdout
+    assert proc.returncode == 1 and "no tiling" in proc.stdout
     proc = run("pack", "--kind", "corner", "--colors", "4", "--method", "sat", "--time-limit", "1", "-o", "t.json",
                cwd=tmp_path)
     assert proc.returncode == 3
@@ -88,9 +88,11 @@ def test_unsat_pins_and_unknown_exit_codes(tmp_path):
 
 def test_bad_input_is_one_line(tmp_path):
     assert "at least 2" in one_line_error(run("pack", "--kind", "wang", "--colors", "1", cwd=tmp_path))
-    line = one_line_error(run("pack", "--kind", "corner", "--colors", "1000", "--method", "sat", "-o", "x.json",
+    line = one_line_error(run("pack", "--kind", "corner", "--colors", "20", "--method", "sat", "-o", "x.json",
                               cwd=tmp_path))
     assert "variables" in line and "clauses" in line
+    line = one_line_error(run("pack", "--kind", "corner", "--colors", "1000", "-o", "x.json", cwd=tmp_path))
+    assert "1,000,000,000,000 tiles" in line and "TiB" in line  # refused before the tile set is built
     assert not (tmp_path / "x.json").exists()
     assert "odd" in one_line_error(run("pack", "--kind", "corner", "--colors", "4", "--method", "euler", cwd=tmp_path))
     assert "--kind" in one_line_error(run("pack", "--colors", "2", cwd=tmp_path))
