@@ -39,7 +39,7 @@ import time
 import numpy as np
 
 from tilesolve._random import rng_from_seed
-from tilesolve.errors import MethodNotApplicable
+from tilesolve.errors import InternalError, MethodNotApplicable
 from tilesolve.model.board import LEG_NAMES, BoardProblem
 from tilesolve.model.solution import Solution, Status
 
@@ -282,7 +282,7 @@ def solve_linear(problem: BoardProblem, *, seed=None) -> Solution:
                 stats=stats,
             )
     if (col < 0).any():  # pragma: no cover - every leg is coloured above
-        raise AssertionError("internal error: the linear algorithm left legs uncoloured")
+        raise InternalError("the linear algorithm left legs uncoloured")
     return Solution(Status.SAT, col, "linear", None, seed, time.perf_counter() - t0, stats=stats)
 
 

@@ -31,7 +31,7 @@ import numpy as np
 
 from tilesolve._random import rng_from_seed
 from tilesolve.constructive import _dappled_kernels as _k
-from tilesolve.errors import InvalidProblem, MethodNotApplicable
+from tilesolve.errors import InternalError, InvalidProblem, MethodNotApplicable
 from tilesolve.model.dappled import DappledProblem
 
 __all__ = [
@@ -193,7 +193,7 @@ def algorithm1(tiling, p, q, *, order: str = "row") -> np.ndarray:
             )
     bad = _k.alg1_kernel(g, P, Q, col_order)
     if bad:  # pragma: no cover - impossible when every limit is >= 2 (Prop. 2.1)
-        raise RuntimeError(f"Algorithm 1 reached outside the grid {bad} times; this is a bug")
+        raise InternalError(f"Algorithm 1 reached outside the grid {bad} times")
     return g
 
 
@@ -456,7 +456,7 @@ def trivial(tiling, n_tiles: int, p, q, *, cyclic: bool = False, seed=None) -> n
         P = Q = np.zeros((n_tiles, 1, 1), np.int32)
     fails = _k.greedy_kernel(g, n_tiles, P, Q, cyclic, pc, qc, seed_int)
     if fails:  # pragma: no cover - excluded by the guarantee
-        raise RuntimeError(f"the trivial algorithm found no admissible tile at {fails} cells; this is a bug")
+        raise InternalError(f"the trivial algorithm found no admissible tile at {fails} cells")
     return g
 
 

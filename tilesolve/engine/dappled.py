@@ -31,7 +31,7 @@ from tilesolve.engine.maxsat import DEFAULT_MAXSAT_ORACLE, RC2Options, solve_laz
 from tilesolve.engine.routes import sat_route
 from tilesolve.deadline import Deadline, TimeLimitReached
 from tilesolve.engine.sat import DEFAULT_SAT_SOLVER, ModelEnumerator, solve_cnf
-from tilesolve.errors import InvalidProblem
+from tilesolve.errors import InternalError, InvalidProblem
 from tilesolve.model.dappled import DappledProblem
 from tilesolve.model.run import RunOptions
 from tilesolve.model.solution import Solution, Status
@@ -207,7 +207,7 @@ def solve_maxsat(
         tiling = enc.decode(r.model)
         dist = int((tiling != problem.closest_to).sum())
         if dist != r.cost:  # the decoder and the soft clauses disagree: a bug, never a result
-            raise RuntimeError(f"MaxSAT cost {r.cost} differs from the Hamming distance {dist} of its tiling")
+            raise InternalError(f"MaxSAT cost {r.cost} differs from the Hamming distance {dist} of its tiling")
         stats["lower_bound"] = dist
         return Solution(Status.OPTIMAL, tiling, "maxsat", r.solver, seed, time.perf_counter() - t0,
                         objective=dist, stats=stats)
@@ -219,7 +219,7 @@ def solve_maxsat(
             return sat.replace(method="maxsat", time_s=time.perf_counter() - t0,
                                stats={**stats, **sat.stats}).with_note(f"{r.solver} found the hard clauses unsatisfiable")
         if sat.status is Status.SAT:  # cannot happen; never report a wrong UNSAT
-            raise RuntimeError(f"{r.solver} said unsatisfiable but {sat.solver} found a tiling")
+            raise InternalError(f"{r.solver} said unsatisfiable but {sat.solver} found a tiling")
         return Solution(Status.UNKNOWN, None, "maxsat", r.solver, seed, time.perf_counter() - t0,
                         reason=f"{r.solver} found no tiling; certifying it ran out of time", stats=stats)
     return Solution(Status.UNKNOWN, None, "maxsat", r.solver, seed, time.perf_counter() - t0, reason=r.reason,
@@ -268,7 +268,7 @@ def solve_cpsat(
         tiling = m.decode(r.model)
         obj = int((tiling != problem.closest_to).sum()) if m.objective else None
         if m.objective and obj != r.cost:
-            raise RuntimeError(f"CP-SAT objective {r.cost} differs from the Hamming distance {obj}")
+            raise InternalError(f"CP-SAT objective {r.cost} differs from the Hamming distance {obj}")
         return Solution(r.status, tiling, "cpsat", "cp-sat", seed, time.perf_counter() - t0, objective=obj,
                         reason=r.reason, stats=stats)
     return Solution(r.status, None, "cpsat", "cp-sat", seed, time.perf_counter() - t0, reason=r.reason, stats=stats)

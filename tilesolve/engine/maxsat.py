@@ -34,7 +34,7 @@ import numpy as np
 from tilesolve.deadline import Deadline
 from tilesolve.engine.result import Result, run_interruptible
 from tilesolve.engine.sat import LOAD_CHUNK, _chunks, _millions, _size_of, canonical_solver_name, seeded_phases
-from tilesolve.errors import MethodNotApplicable
+from tilesolve.errors import InternalError, MethodNotApplicable
 from tilesolve.model.solution import Status
 
 __all__ = ["DEFAULT_MAXSAT_ORACLE", "solve_wcnf", "solve_lazy", "RC2Options"]
@@ -417,5 +417,5 @@ def solve_lazy(
     model = np.where(cur[1:], idx, -idx).tolist()
     cost = sum(1 for v, l in soft_of.items() if cur[v] != (l > 0))
     if cost != stats["lower_bound"]:  # cannot happen: softs outside every component keep their value
-        raise RuntimeError(f"lazy decomposition: feasible cost {cost} differs from the bound {stats['lower_bound']}")
+        raise InternalError(f"lazy decomposition: feasible cost {cost} differs from the bound {stats['lower_bound']}")
     return Result(Status.OPTIMAL, model, time.perf_counter() - t0, None, stats, cost=cost, solver=solver_name)

@@ -19,7 +19,7 @@ import numpy as np
 
 from tilesolve._random import rng_from_seed
 from tilesolve.deadline import Deadline
-from tilesolve.errors import InvalidProblem
+from tilesolve.errors import InternalError, InvalidProblem
 from tilesolve.model.packing import PackingProblem
 from tilesolve.model.solution import Solution, Status
 
@@ -132,7 +132,7 @@ def solve_sat(problem: PackingProblem, *, seed=None, time_limit=None, workers=No
         return Solution(Status.SAT, enc.decode(r.model), "sat", r.solver, seed, time.perf_counter() - t0, stats=stats)
     if r.status is Status.UNSAT:
         if not problem.fixed:  # the anchor only breaks symmetry: an UNSAT here would be a bug
-            raise AssertionError("internal error: the unpinned packing encoding was reported unsatisfiable")
+            raise InternalError("the unpinned packing encoding was reported unsatisfiable")
         rem = deadline.remaining()
         return unsat_solution(enc.clauses, r, method="sat", seed=seed, t0=t0, stats=stats, check_proof=True,
                               proof_time_limit=None if rem is None else max(rem, 1.0))
@@ -157,7 +157,7 @@ def solve_cpsat(problem: PackingProblem, *, seed=None, time_limit=None, workers=
     if r.status is Status.SAT:
         return Solution(Status.SAT, enc.decode(r.model), "cpsat", "cp-sat", seed, time.perf_counter() - t0, stats=stats)
     if r.status is Status.UNSAT and not problem.fixed:
-        raise AssertionError("internal error: the unpinned packing model was reported infeasible")
+        raise InternalError("the unpinned packing model was reported infeasible")
     if r.status is Status.UNSAT:
         return Solution(Status.UNSAT, None, "cpsat", "cp-sat", seed, time.perf_counter() - t0, reason=r.reason,
                         stats=stats)
