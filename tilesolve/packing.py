@@ -27,8 +27,7 @@ Methods
     Wang only: random Eulerian N/S edge columns, then SAT for the E/W edges and the tiles.
 ``lift``
     A packing over ``m`` colours repeated over the torus plus a ``k``-ary layer found by SAT
-    (``C = m*k``): corner and Wang C = 4 in a fraction of a second, C = 6 in about a second,
-    C = 8 in 10-20 s (:mod:`tilesolve.engine.packing`).
+    (``C = m*k``), :mod:`tilesolve.packing_search`; measured times in README ("Performance").
 ``recursive``
     A packing over ``C - 1`` colours pinned in the bottom-left corner, completed by SAT
     (Figs. 5.11-5.12).

@@ -66,14 +66,14 @@ def _parse_fix(items) -> tuple[tuple[int, int, int], ...]:
                    "over random Eulerian circuits; known: the notes' C=4 packings; sat/cpsat: the full search "
                    "(random-looking, C <= 3, proves pins contradictory); hybrid (Wang): random Eulerian N/S "
                    "columns, SAT for the rest; lift: a packing over C/k colours plus a k-ary layer by SAT "
-                   "(corner C=4 in 0.1 s, C=8 in 10-20 s); recursive: a C-1 packing pinned in the "
+                   "(even C up to 12 and beyond; timings in README); recursive: a C-1 packing pinned in the "
                    "bottom-left corner, SAT for the rest (Figs. 5.11-5.12). auto picks by kind and C.")
 @click.option("--fix", "fix", multiple=True, metavar="R,C,T", help="Pin tile T at row R, column C (repeatable).")
 @opt.seed_opt
 @opt.time_limit_opt
 @click.option("--workers", type=click.IntRange(1, 256), default=None, metavar="N",
               help="CP-SAT workers; for sat/hybrid/lift/recursive, the processes of the seed portfolio that starts "
-                   "when the first run has not finished in 5 s (1: one seed, reproducible) [default: 2].")
+                   "beside a first run that has not decided quickly (1: one seed, reproducible) [default: 2].")
 @click.option("--cluster", default=None, metavar="ADDRESS",
               help="Run the seed portfolio on this Dask scheduler (e.g. tcp://host:8786) instead of local "
                    "processes; needs pip install \"tilesolve[cluster]\".")
@@ -114,6 +114,13 @@ def pack(ctx, kind, colors, colors_v, method, fix, seed, time_limit, workers, cl
     outs = Outputs(output, svg, dimacs)
     check_colors(kind, colors, colors_v)
     problem = PackingProblem(kind, colors, colors_v, _parse_fix(fix))
+    if svg:
+        from tilesolve.io.svg_packing import MAX_SVG_TILES
+
+        if problem.n_tiles > MAX_SVG_TILES:
+            rows, cols = problem.shape
+            raise InvalidProblem(f"a {rows}x{cols} packing is too large for SVG (at most {MAX_SVG_TILES:,} tiles); "
+                                 "write the JSON with -o instead")
     if dimacs:
         from tilesolve.io.dimacs import write_dimacs
 
