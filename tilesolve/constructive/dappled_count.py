@@ -38,12 +38,27 @@ turns ``H`` conditions into ``V`` ones, and the orientation with the smaller ten
 Problems with conditions along one axis only factor into independent lines and are counted by
 the one-dimensional programme directly.
 
+*Tori.* On a cyclic grid with conditions along both axes, runs wrap around the rows (handled
+by the cyclic row masks, as for one axis) and down the columns. A column's automaton state
+after the last row is exactly the state its first row continues from, so the count is the
+trace of the row transfer operator to the power ``rows``: ``sum over profiles s of
+(T^rows)[s, s]``, one sweep of the grid per start profile ``s`` (started from ``e_s`` with
+the ordinary transitions in the first row, read back at ``s``). For a word in which every
+``V`` condition resets, the state after it does not depend on where it started, so each
+tiling is counted once; a column inside one ``V`` set throughout never returns to its start
+state and is (rightly) never counted. Profiles whose row of classes breaks an ``H`` condition
+are skipped, and when the problem is the same in every column the diagonal is constant on
+the orbits of the column rotation, so one profile per orbit of the rotations and mirror images is swept (weighted by the
+orbit's size). The cost is the start profiles times one sweep; :func:`plan_count` estimates it and
+:func:`count_dappled` refuses above ``max_operations``.
+
 Limits
 ------
-Not supported (:class:`~tilesolve.errors.MethodNotApplicable`): global tile counts, a target
-tiling (``closest_to``), and cyclic problems with conditions along both axes (cyclic problems
-whose conditions all lie along one axis are supported). Problems whose tensor would exceed
-``max_memory`` bytes are refused before anything large is allocated.
+Not supported (:class:`~tilesolve.errors.MethodNotApplicable`): global tile counts and a
+target tiling (``closest_to``). Problems whose tensor would exceed ``max_memory`` bytes, and
+tori whose trace would take more than ``max_operations`` additions, are refused before
+anything large is allocated. Where only enumeration remains, :func:`enumeration_guard` says
+so before it starts, with an estimate, and asks for a time limit or ``force``.
 """
 
 from __future__ import annotations
@@ -57,13 +72,35 @@ from typing import Callable
 import numba as nb
 import numpy as np
 
+from tilesolve.deadline import Deadline
 from tilesolve.errors import InvalidProblem, MethodNotApplicable
 from tilesolve.model.dappled import DappledProblem
 
-__all__ = ["count_dappled", "plan_count", "CountPlan", "DEFAULT_MAX_MEMORY"]
+__all__ = [
+    "count_dappled",
+    "plan_count",
+    "CountPlan",
+    "enumeration_guard",
+    "ENUMERATION_RATE",
+    "DEFAULT_MAX_MEMORY",
+    "DEFAULT_MAX_OPERATIONS",
+    "OPERATIONS_PER_SECOND",
+]
 
 #: Default ceiling on the working memory of one count (bytes).
 DEFAULT_MAX_MEMORY = 2 * 2**30
+
+#: Default ceiling on the estimated modular additions of a torus count (a few minutes).
+DEFAULT_MAX_OPERATIONS = 10**11
+
+#: Modular additions per second assumed by time estimates (one laptop core, numba).
+OPERATIONS_PER_SECOND = 5 * 10**8
+
+#: Tilings per second assumed for a count by enumeration (a SAT call and a blocking clause each).
+ENUMERATION_RATE = 1000
+
+#: Enumerations estimated to finish within this many seconds start without being asked for.
+ENUMERATION_FREE_S = 10.0
 
 _PRIME_TOP = 2**62  # residues < p < 2**62, so a sum of two residues fits in int64
 
@@ -340,7 +377,8 @@ class CountPlan:
     ----------
     route : str
         ``"trivial"`` (no condition left), ``"lines"`` (conditions along one axis only: a product
-        of independent lines) or ``"transfer"`` (the profile tensor).
+        of independent lines), ``"transfer"`` (the profile tensor) or ``"torus"`` (the trace of
+        the transfer operator, cyclic problems with conditions along both axes).
     transposed : bool
         The sweep runs over the columns of the original problem.
     rows, cols : int
@@ -359,6 +397,8 @@ class CountPlan:
         Estimated peak working memory of the tensor route.
     operations : int
         Estimated modular additions.
+    start_profiles : int
+        Sweeps per prime of the ``"torus"`` route (1 otherwise).
     """
 
     route: str
@@ -372,6 +412,12 @@ class CountPlan:
     bound_bits: int
     memory_bytes: int
     operations: int
+    start_profiles: int = 1
+
+    @property
+    def seconds(self) -> float:
+        """Rough time estimate (:data:`OPERATIONS_PER_SECOND`)."""
+        return self.operations / OPERATIONS_PER_SECOND
 
 
 def _tensor_size(fr: _Frame) -> tuple[_Automaton, int, int, int]:
@@ -439,10 +485,7 @@ def _plan(
     if orientation not in (None, "rows", "cols"):
         raise InvalidProblem(f"orientation must be None, 'rows' or 'cols', got {orientation!r}")
     if fr.cyclic and fr.H and fr.V:
-        raise MethodNotApplicable(
-            "exact counting of cyclic problems needs all conditions along one axis (runs would wrap "
-            "vertically and horizontally at once); use method 'enumerate'"
-        )
+        return _plan_torus(fr, orientation, max_memory)
     if not fr.H and not fr.V:
         free = int((fr.fixed < 0).sum())
         bound = int(fr.weights.sum()) ** free
@@ -453,12 +496,11 @@ def _plan(
 
     candidates = []
     if fr.cyclic:
-        # Runs may wrap only along the rows of the sweep: put every condition on the H side.
+        # Runs wrap along the rows of the sweep by the row masks: put every condition on the
+        # H side. Sweeping the other way, they wrap down the columns: the torus trace.
         want = "cols" if fr.V else "rows"
         if orientation not in (None, want):
-            raise MethodNotApplicable(
-                f"a cyclic count must sweep across the conditions' axis; use orientation {want!r}"
-            )
+            return _plan_torus(fr, orientation, max_memory)
         candidates.append(fr.transpose() if fr.V else fr)
     else:
         if orientation in (None, "rows"):
@@ -494,6 +536,76 @@ def _plan(
     return plan, cand, aut, bound
 
 
+def _shift_invariant(fr: _Frame) -> bool:
+    """True when every column of the frame is alike (per-cell limits and fixed cells)."""
+    arrays = [c.limit for c in fr.H + fr.V] + [fr.fixed]
+    return all(bool((a == a[:, :1]).all()) for a in arrays)
+
+
+def _torus_starts(fr: _Frame, aut: _Automaton) -> tuple[np.ndarray, np.ndarray]:
+    """Start profiles of the trace and their weights (orbit sizes under column rotation and
+    mirroring when every column is alike)."""
+    s, W = aut.s, fr.cols
+    n = s**W
+    idx = np.arange(n, dtype=np.int64)
+    if fr.H:
+        member = np.array([c.member for c in fr.H], dtype=np.bool_)
+        lims = np.ascontiguousarray(np.stack([c.limit[fr.rows - 1] for c in fr.H]))
+        ok = _row_valid(fr.K, W, member, lims, True)[_class_patterns(aut.state_cls, fr.K, W)].astype(bool)
+    else:
+        ok = np.ones(n, dtype=bool)
+    if not _shift_invariant(fr) or W == 1:
+        return idx[ok], np.ones(int(ok.sum()), dtype=np.int64)
+    # Alike columns: the problem is also the same read right to left (uniform rows), so the
+    # orbits are those of the dihedral group (rotations of the profile and of its mirror).
+    top = s ** (W - 1)
+    mirror = np.zeros(n, dtype=np.int64)
+    rest = idx.copy()
+    for _ in range(W):
+        mirror = mirror * s + rest % s
+        rest //= s
+    canon = np.minimum(idx, mirror)
+    for start in (idx, mirror):
+        rot = start.copy()
+        for _ in range(W - 1):
+            rot = (rot % top) * s + rot // top  # the profile shifted by one column
+            np.minimum(canon, rot, out=canon)
+    reps, sizes = np.unique(canon[ok], return_counts=True)
+    return reps, sizes.astype(np.int64)
+
+
+def _plan_torus(fr: _Frame, orientation: str | None, max_memory: int):
+    """Plan the trace count of a torus (conditions along both axes, see the module doc)."""
+    candidates = []
+    if orientation in (None, "rows"):
+        candidates.append(fr)
+    if orientation in (None, "cols"):
+        candidates.append(fr.transpose())
+    sized = []
+    for cand in candidates:
+        try:
+            aut, n, mem, ops = _tensor_size(cand)
+        except MethodNotApplicable:
+            if len(candidates) == 1:
+                raise
+            continue
+        if n > 1 << 24:  # start profiles are listed explicitly: refuse before allocating them
+            sized.append((cand, aut, n, mem + 16 * n, ops * n, None))
+            continue
+        starts = _torus_starts(cand, aut)
+        sized.append((cand, aut, n, mem + 16 * n, ops * max(1, len(starts[0])), starts))
+    if not sized:
+        raise MethodNotApplicable("exact counting: the column run states are too many in both orientations")
+    sized.sort(key=lambda t: (t[3] > max_memory, t[4]))
+    cand, aut, n, mem, ops, starts = sized[0]
+    bound = _count_bound(cand)
+    k = _n_primes(bound) if bound > 0 else 0
+    n_starts = n if starts is None else len(starts[0])
+    plan = CountPlan("torus", cand.transposed, cand.rows, cand.cols, cand.K, aut.s, n, k, bound.bit_length(), mem,
+                     ops * max(k, 1), n_starts)
+    return plan, cand, aut, bound
+
+
 def plan_count(
     problem: DappledProblem, *, orientation: str | None = None, max_memory: int = DEFAULT_MAX_MEMORY
 ) -> CountPlan:
@@ -510,6 +622,8 @@ def plan_count(
     >>> pl = plan_count(p)
     >>> pl.route, pl.column_states, pl.tensor_states, pl.n_primes
     ('transfer', 3, 531441, 3)
+    >>> plan_count(DappledProblem.from_strings("4x4", ["H0=2", "V1=2"], cyclic=True)).route
+    'torus'
     """
     return _plan(problem, orientation, max_memory)[0]
 
@@ -732,15 +846,18 @@ def _row_valid(K, W, member, limits, cyclic):
 
 
 # ================================================================================= counting
-def _build_maps(fr: _Frame, aut: _Automaton):
-    """Per-cell axis maps in CSR form, deduplicated: (map_id (rows, cols), indptr, indices, weights)."""
+def _build_maps(fr: _Frame, aut: _Automaton, torus: bool = False):
+    """Per-cell axis maps in CSR form, deduplicated: (map_id (rows, cols), indptr, indices, weights).
+
+    With ``torus`` the first row continues from the start profile's states (ordinary
+    transitions) instead of from the empty column."""
     s = aut.s
     table: dict[tuple[int, int, bool], int] = {}
     ptrs, idxs, wts = [], [], []
     map_id = np.empty((fr.rows, fr.cols), dtype=np.int64)
     for r in range(fr.rows):
         for c in range(fr.cols):
-            key = (int(aut.key_of_cell[r, c]), int(fr.fixed[r, c]), r == 0)
+            key = (int(aut.key_of_cell[r, c]), int(fr.fixed[r, c]), r == 0 and not torus)
             if key not in table:
                 k, f, first = key
                 indptr = [0]
@@ -793,6 +910,8 @@ def count_dappled(
     progress: Callable[[int, int], object] | None = None,
     max_memory: int = DEFAULT_MAX_MEMORY,
     orientation: str | None = None,
+    max_operations: int | None = DEFAULT_MAX_OPERATIONS,
+    deadline: Deadline | None = None,
 ) -> int:
     """Exact number of tilings that satisfy ``problem`` (dappled paper, Def. 1.1 and Remark 1.4).
 
@@ -800,8 +919,8 @@ def count_dappled(
     ----------
     problem : DappledProblem
         Any number of tiles; conditions on single tiles or subsets (§6 item 2), uniform or
-        per-cell (§3.1) limits; fixed cells (partial tiling, §6 item 7); cyclic problems (§3.2)
-        when all their conditions lie along one axis.
+        per-cell (§3.1) limits; fixed cells (partial tiling, §6 item 7); cyclic problems (§3.2),
+        tori with conditions along both axes by the trace of the transfer operator.
     progress : callable, optional
         Called as ``progress(done, total)`` after each row of each residue computation (the
         facade draws it with :func:`tilesolve.engine.progress.status_line`; constructive
@@ -811,6 +930,11 @@ def count_dappled(
     orientation : {None, 'rows', 'cols'}
         Force the sweep over rows (as given) or over columns (transposed); ``None`` picks the
         cheaper one and counts one-axis problems as a product of lines.
+    max_operations : int or None
+        Refuse a torus count whose estimated modular additions exceed this (the message gives
+        the estimate); ``None`` for no ceiling.
+    deadline : Deadline, optional
+        Checked after every row sweep; raises :class:`~tilesolve.deadline.TimeLimitReached`.
 
     Returns
     -------
@@ -820,14 +944,18 @@ def count_dappled(
     Raises
     ------
     MethodNotApplicable
-        Global counts, a target tiling, cyclic problems with conditions along both axes, or a
-        state space larger than ``max_memory`` allows (the message gives the estimate).
+        Global counts, a target tiling, a state space larger than ``max_memory`` allows, or a
+        torus above ``max_operations`` (the message gives the estimate).
+    TimeLimitReached
+        The deadline passed (the message says how far the count got).
 
     Examples
     --------
     >>> from tilesolve.model.dappled import DappledProblem
     >>> count_dappled(DappledProblem.from_strings("3x3", ["H0=2", "V1=2"]))  # OEIS A206994: T(3,3)
     174
+    >>> count_dappled(DappledProblem.from_strings("4x4", ["H0=2", "V1=2"], cyclic=True))  # a torus
+    90
     """
     if not callable(progress):
         progress = None
@@ -847,10 +975,31 @@ def count_dappled(
             "use method 'enumerate' or a smaller grid"
         )
     assert aut is not None
+    if plan.route == "torus":
+        if max_operations is not None and plan.operations > max_operations:
+            raise MethodNotApplicable(
+                f"exact counting of this torus sweeps the grid once per start profile: {plan.start_profiles:,} "
+                f"sweeps of a {aut.s}^{fr.cols} = {plan.tensor_states:,}-state tensor, about {plan.operations:.2g} "
+                f"additions (~{_duration(plan.seconds)}; limit {max_operations:.2g})"
+            )
+        starts = _torus_starts(fr, aut)
+        n_primes = plan.n_primes
+        if _STRIP_BOUND and n_primes >= 2 and fr.rows >= 3:
+            # The strips' own counts (rows wrap, columns do not) bound the torus count too.
+            n_primes = min(n_primes, _n_primes(min(bound, _strip_bound(fr))))
+        return _transfer_count(fr, aut, n_primes, progress, deadline, starts)
     n_primes = plan.n_primes
     if _STRIP_BOUND and n_primes >= 2 and fr.rows >= 3:
         n_primes = min(n_primes, _n_primes(min(bound, _strip_bound(fr))))
-    return _transfer_count(fr, aut, n_primes, progress)
+    return _transfer_count(fr, aut, n_primes, progress, deadline)
+
+
+def _duration(seconds: float) -> str:
+    """``"3 s"``, ``"2.5 h"``, ``"4e+03 years"``: a rough duration for estimates."""
+    for unit, size in (("years", 3.15e7), ("days", 86400), ("h", 3600), ("min", 60)):
+        if seconds >= 2 * size:
+            return f"{seconds / size:.2g} {unit}"
+    return f"{seconds:.2g} s"
 
 
 def _sub_frame(fr: _Frame, r0: int, r1: int) -> _Frame:
@@ -879,10 +1028,15 @@ def _strip_bound(fr: _Frame) -> int:
     return total
 
 
-def _transfer_count(fr: _Frame, aut: _Automaton, n_primes: int, progress) -> int:
-    """The profile-tensor programme, modulo ``n_primes`` primes, combined by CRT."""
+def _transfer_count(fr: _Frame, aut: _Automaton, n_primes: int, progress, deadline: Deadline | None = None,
+                    starts: tuple[np.ndarray, np.ndarray] | None = None) -> int:
+    """The profile-tensor programme, modulo ``n_primes`` primes, combined by CRT.
+
+    With ``starts`` (start profiles and weights), the torus trace: one sweep per start
+    profile, from it and back to it (module doc)."""
     s, W, R = aut.s, fr.cols, fr.rows
-    map_id, indptr, indices, weights = _build_maps(fr, aut)
+    torus = starts is not None
+    map_id, indptr, indices, weights = _build_maps(fr, aut, torus)
 
     # H masks: one per distinct row of limits; with several, rebuilt from the class patterns.
     row_key: list[bytes] = []
@@ -908,28 +1062,34 @@ def _transfer_count(fr: _Frame, aut: _Automaton, n_primes: int, progress) -> int
     t = np.empty(s**W, dtype=np.int64)
     no_mask = np.ones(1, dtype=np.uint8)
     residues = []
-    total = len(primes) * R
+    profiles, mult = starts if torus else (np.zeros(1, dtype=np.int64), np.ones(1, dtype=np.int64))
+    total = len(primes) * R * len(profiles)
     done = 0
     cur_key, cur_mask = None, None
     for p in primes:
-        t[:] = 0
-        t[0] = 1
-        for r in range(R):
-            mask = no_mask
-            if fr.H:
-                if single_mask is not None:
-                    mask = single_mask
-                else:
-                    if cur_key != row_key[r]:
-                        cur_key, cur_mask = row_key[r], valid[row_key[r]][pat]
-                    mask = cur_mask
-            _sweep_row(
-                t, s, bounds, map_id[r], indptr, indices, weights, np.int64(p), mask, bool(fr.H), sc1, sc2, chunk
-            )
-            done += 1
-            if progress is not None:
-                progress(done, total)
-        residues.append(int(_sum_mod(t, np.int64(p))))
+        acc = 0
+        for sigma, w in zip(profiles.tolist(), mult.tolist()):
+            t[:] = 0
+            t[sigma] = 1
+            for r in range(R):
+                mask = no_mask
+                if fr.H:
+                    if single_mask is not None:
+                        mask = single_mask
+                    else:
+                        if cur_key != row_key[r]:
+                            cur_key, cur_mask = row_key[r], valid[row_key[r]][pat]
+                        mask = cur_mask
+                _sweep_row(
+                    t, s, bounds, map_id[r], indptr, indices, weights, np.int64(p), mask, bool(fr.H), sc1, sc2, chunk
+                )
+                done += 1
+                if progress is not None:
+                    progress(done, total)
+                if deadline is not None:
+                    deadline.check(f"counting ({done:,} of {total:,} row sweeps)")
+            acc += w * (int(t[sigma]) if torus else int(_sum_mod(t, np.int64(p))))
+        residues.append(acc % p)
     return _crt(residues, primes)
 
 
@@ -949,3 +1109,58 @@ def _axis_groups(s: int, W: int) -> np.ndarray:
     n_groups = -(-W // per)
     edges = [round(i * W / n_groups) for i in range(n_groups + 1)]
     return np.array(edges, dtype=np.int64)
+
+
+def _big(n: int) -> str:
+    return f"{n:,}" if n < 10**6 else (f"{float(n):.2g}" if n.bit_length() < 1000 else f"2^{n.bit_length() - 1}")
+
+
+def enumeration_guard(problem: DappledProblem, *, time_limit: float | None = None, force: bool = False,
+                      why: str | None = None) -> None:
+    """Say before it starts when a count can only enumerate, and how long that may take.
+
+    Counting by enumeration finds the tilings one at a time (a SAT call and a blocking clause
+    each, about :data:`ENUMERATION_RATE` a second), so its time grows with the count itself.
+    The estimate uses the rigorous upper bound of the transfer-matrix planner (the product of
+    the single-line counts, global counts and targets left out). Enumerations estimated at
+    more than :data:`ENUMERATION_FREE_S` seconds start only with a time limit (the run then
+    ends ``unknown`` with the tilings found so far) or with ``force``.
+
+    Parameters
+    ----------
+    problem : DappledProblem
+    time_limit : float, optional
+    force : bool
+    why : str, optional
+        Why the transfer matrix does not apply (starts the message).
+
+    Raises
+    ------
+    MethodNotApplicable
+        Without a time limit or ``force``, when the estimate is above the threshold.
+
+    Examples
+    --------
+    >>> from tilesolve.model.dappled import DappledProblem
+    >>> p = DappledProblem.from_strings("12x12", ["H0=2", "V1=2"], counts=["1=70"])
+    >>> enumeration_guard(p, time_limit=5)
+    >>> enumeration_guard(p)
+    Traceback (most recent call last):
+    ...
+    tilesolve.errors.MethodNotApplicable: only enumeration can count this problem, one tiling at a time: up to 6e+38 tilings (~1.9e+28 years at about 1000 a second); give a time limit (--time-limit) or force it (force=True, --force)
+    """
+    if time_limit is not None or force:
+        return
+    import dataclasses
+
+    relaxed = dataclasses.replace(problem, counts=(), closest_to=None)
+    bound = _count_bound(_frame_of(relaxed))
+    seconds = bound / ENUMERATION_RATE
+    if seconds <= ENUMERATION_FREE_S:
+        return
+    head = f"{why}; " if why else ""
+    raise MethodNotApplicable(
+        f"{head}only enumeration can count this problem, one tiling at a time: up to {_big(bound)} tilings "
+        f"(~{_duration(seconds)} at about {ENUMERATION_RATE} a second); give a time limit (--time-limit) or force "
+        "it (force=True, --force)"
+    )
