@@ -85,6 +85,7 @@ CASES: dict[str, list[tuple[str, str]]] = {
         ("indices without svg", "--kind corner --colors 3 --indices"),
         ("method unknown", "--kind corner --colors 3 --method magic"),
         ("svg under /proc", "--kind corner --colors 4 -o keep.json --svg /proc/x.svg"),
+        ("svg of 83,521 tiles", "--kind corner --colors 17 --method euler -o keep.json --svg x.svg"),
         ("output is a directory", "--kind corner --colors 3 -o adir"),
         ("time limit negative", "--kind corner --colors 3 --time-limit -1"),
     ],

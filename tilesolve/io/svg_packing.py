@@ -24,12 +24,15 @@ from tilesolve.io.atomic import atomic_write
 from tilesolve.io.svg import tile_colour
 from tilesolve.model.tiles import TileSet
 
-__all__ = ["NOTES_COLOURS", "colour_of", "packing_drawing", "packing_svg_string", "write_packing_svg"]
+__all__ = ["NOTES_COLOURS", "MAX_SVG_TILES", "colour_of", "packing_drawing", "packing_svg_string", "write_packing_svg"]
 
 #: §2.7: "red, yellow, green, cyan and blue for respectively 0, 1, 2, 3 and 4".
 NOTES_COLOURS = ("#E53935", "#FDD835", "#43A047", "#26C6DA", "#1E88E5")
 
 _MAX_SIDE = 4096  # tiles; C = 64 packings are 4096 x 4096
+
+#: Most tiles drawn in one SVG (C = 16 packings have 65,536 tiles).
+MAX_SVG_TILES = 65536
 
 
 def colour_of(k: int) -> str:
@@ -41,8 +44,8 @@ def packing_drawing(grid, kind: str, colors: int, *, colors_v: int | None = None
     """An svgwrite Drawing of a packing (``grid[row, col]``, row 0 at the top)."""
     g = np.asarray(grid, dtype=np.int64)
     rows, cols = g.shape
-    if rows * cols > 65536:
-        raise InvalidProblem(f"a {rows}x{cols} packing is too large for SVG (at most 65,536 tiles)")
+    if rows * cols > MAX_SVG_TILES:
+        raise InvalidProblem(f"a {rows}x{cols} packing is too large for SVG (at most {MAX_SVG_TILES:,} tiles)")
     ts = TileSet(kind, colors, colors_v)
     a, b, c, d = ts.colors_of(g)
     px = cell or max(6.0, min(48.0, 720.0 / max(rows, cols)))
