@@ -41,7 +41,10 @@ class Solution:
     ----------
     status : Status
     tiling : numpy.ndarray or None
-        ``tiling[row, col]`` (row 0 at the top), ``None`` unless ``status.has_tiling``.
+        The family's tiling, ``None`` unless ``status.has_tiling``: a grid ``tiling[row, col]``
+        (row 0 at the top) of tiles (dappled) or tile indices (packings, eq. 2.1 / 2.5), or
+        the ``(n_cells, 4)`` leg colours of a board tiling (legs l1..l4 = W, N, E, S). The
+        family's verifier (``Family.verify``) says what it must satisfy.
     method : str
         The route that produced it: ``"constructive"``, ``"sat"``, ``"maxsat"``, ``"cpsat"``...
     solver : str or None
