@@ -7,8 +7,9 @@ Run from anywhere::
 
 Odd C use the triangular-shift de Bruijn construction (class notes §5.5; proof in
 ``tilesolve.constructive.packing.corner_packing_odd``); even C the ``lift`` search: a packing
-over C/2 colours repeated over the torus plus a binary layer found by SAT. C = 8 (4,096
-tiles on a 64x64 torus) takes 10-20 s; the notes' backtracking needed 280 CPU-days for C = 4.
+over C/2 colours repeated over the torus plus a binary layer found by SAT. C = 8 is 4,096
+tiles on a 64x64 torus (timings in README, "Performance"); the notes' backtracking needed
+280 CPU-days for C = 4.
 Every packing is checked by the independent verifier before it is drawn. The CLI
 equivalent of one picture is ``tilesolve pack --kind corner --colors 6 --seed 1 --svg c6.svg``.
 """

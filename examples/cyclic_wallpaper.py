@@ -2,7 +2,7 @@
 
 Run from anywhere::
 
-    python examples/cyclic_wallpaper.py            # writes examples/wallpaper.svg and .png
+    python examples/cyclic_wallpaper.py            # writes ./wallpaper.svg and .png
     python examples/cyclic_wallpaper.py OUT_DIR
 
 With ``cyclic=True`` runs wrap around both edges (Kaji et al., Dappled tiling, §3.2), so
@@ -21,7 +21,7 @@ from tilesolve.io.svg import write_svg
 from tilesolve.model import DappledProblem
 from tilesolve.verify import dappled_violations
 
-out = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parent
+out = Path(sys.argv[1]) if len(sys.argv) > 1 else Path.cwd()
 out.mkdir(parents=True, exist_ok=True)
 
 problem = DappledProblem.from_strings("12x12", ["H0=2", "V1=2"], cyclic=True)

@@ -2,7 +2,7 @@
 
 Run from anywhere::
 
-    python examples/quickstart.py            # writes examples/quickstart.svg and .json
+    python examples/quickstart.py            # writes ./quickstart.svg and .json
     python examples/quickstart.py OUT_DIR
 
 The same as ``tilesolve dappled solve --size 24x16 --cond H0=2 --cond V1=3 --seed 7
@@ -18,7 +18,7 @@ from tilesolve.io.svg import write_svg
 from tilesolve.model import DappledProblem
 from tilesolve.verify import dappled_violations
 
-out = Path(sys.argv[1]) if len(sys.argv) > 1 else Path(__file__).resolve().parent
+out = Path(sys.argv[1]) if len(sys.argv) > 1 else Path.cwd()
 out.mkdir(parents=True, exist_ok=True)
 
 # 24 columns x 16 rows, tiles {0, 1}: no horizontal run of tile 0 longer than 2,

@@ -135,7 +135,8 @@ def _finish(ctx, problem, sol, outs, output, svg) -> None:
     if not outs and sol.status.has_tiling:
         click.echo(board_text(problem, sol.tiling), nl=False)
     say(f"{sol.status.value}: {problem.describe()}")
-    say(f"  method {sol.method}" + (f", solver {sol.solver}" if sol.solver else "") + f", {sol.time_s:.3f} s")
+    say(f"  method {sol.method}" + (f", solver {sol.solver}" if sol.solver else "")
+        + (f", seed {sol.seed}" if sol.seed is not None else "") + f", {sol.time_s:.3f} s")
     if sol.reason:
         say(f"  {'why' if sol.status.value == 'unsat' else 'stopped'}: {sol.reason}")
     for note in sol.notes:
