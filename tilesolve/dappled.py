@@ -184,7 +184,8 @@ def count(
     blocking clauses (any problem, small counts); ``"auto"`` prefers the transfer matrix.
     For T = {0,1} and L = {H_0^2, V_1^2} the counts are OEIS A206994 (Remark 1.4).
     """
-    from tilesolve.constructive.dappled_count import count_dappled
+    from tilesolve.constructive.dappled_count import DEFAULT_MAX_OPERATIONS, count_dappled, enumeration_guard
+    from tilesolve.deadline import Deadline, TimeLimitReached
     from tilesolve.engine.progress import status_line
 
     if method not in COUNT_METHODS:
@@ -192,19 +193,28 @@ def count(
     if problem.closest_to is not None:
         raise InvalidProblem("counting ignores a closest-to target; drop it")
     t0 = time.perf_counter()
+    deadline = Deadline(time_limit)
     note = None
     if method in ("auto", "transfer"):
         try:
             with status_line("counting (transfer matrix)", progress) as show:
-                value = count_dappled(problem, progress=lambda done, total: show(f"{done}/{total} row sweeps"))
+                value = count_dappled(problem, progress=lambda done, total: show(f"{done}/{total} row sweeps"),
+                                      deadline=deadline,
+                                      max_operations=None if (time_limit is not None or force) else
+                                      DEFAULT_MAX_OPERATIONS)
             return CountResult(value, Status.SAT, "transfer", time.perf_counter() - t0)
+        except TimeLimitReached as exc:
+            return CountResult(None, Status.UNKNOWN, "transfer", time.perf_counter() - t0, str(exc))
         except MethodNotApplicable as exc:
             if method == "transfer":
                 raise
+            if method == "auto":
+                enumeration_guard(problem, time_limit=time_limit, force=force,
+                                  why=f"the transfer matrix does not apply ({exc})")
             note = f"transfer matrix not applicable ({exc}); counted by solver enumeration"
     from tilesolve.engine.dappled import count_by_enumeration
 
-    res = count_by_enumeration(problem, time_limit=time_limit, progress=progress)
+    res = count_by_enumeration(problem, time_limit=deadline.remaining(), progress=progress)
     if not res.complete:
         return CountResult(None, Status.UNKNOWN, "enumerate", time.perf_counter() - t0,
                            f"{res.reason or 'stopped'} after {res.count} tilings" + (f"; {note}" if note else ""))

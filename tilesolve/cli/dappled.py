@@ -151,8 +151,10 @@ def solve(ctx, method, seed, time_limit, initial, output, svg, png, repeat, grid
 @opt.problem_options(closest=False)
 @count_method_opt
 @opt.time_limit_opt
+@click.option("--force", is_flag=True, help="Start a count estimated to take very long (a large torus, or an "
+              "enumeration) without a time limit.")
 @click.pass_context
-def count(ctx, method, time_limit, **problem_kw) -> None:
+def count(ctx, method, time_limit, force, **problem_kw) -> None:
     """Count the L-dappled tilings exactly; the count is the last line of stdout.
 
     \b
@@ -166,7 +168,7 @@ def count(ctx, method, time_limit, **problem_kw) -> None:
     from tilesolve.model.solution import Status
 
     problem = build_problem(**problem_kw)
-    res = facade.count(problem, method=method, time_limit=time_limit, progress=progress_wanted())
+    res = facade.count(problem, method=method, time_limit=time_limit, progress=progress_wanted(), force=force)
     stop_if_interrupted(res)
     exact = res.value is not None and res.status != Status.UNKNOWN
     say(f"{'count' if exact else 'unknown'}: {problem.describe()}")

@@ -982,12 +982,16 @@ def count_dappled(
                 f"sweeps of a {aut.s}^{fr.cols} = {plan.tensor_states:,}-state tensor, about {plan.operations:.2g} "
                 f"additions (~{_duration(plan.seconds)}; limit {max_operations:.2g})"
             )
+        if deadline is not None:
+            deadline.check("planning the count")
         starts = _torus_starts(fr, aut)
         n_primes = plan.n_primes
         if _STRIP_BOUND and n_primes >= 2 and fr.rows >= 3:
             # The strips' own counts (rows wrap, columns do not) bound the torus count too.
             n_primes = min(n_primes, _n_primes(min(bound, _strip_bound(fr))))
         return _transfer_count(fr, aut, n_primes, progress, deadline, starts)
+    if deadline is not None:
+        deadline.check("planning the count")
     n_primes = plan.n_primes
     if _STRIP_BOUND and n_primes >= 2 and fr.rows >= 3:
         n_primes = min(n_primes, _n_primes(min(bound, _strip_bound(fr))))
