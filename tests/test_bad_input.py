@@ -56,6 +56,7 @@ CASES: dict[str, list[tuple[str, str]]] = {
         ("output in a missing directory", "--size 4x4 -o nodir/x.json"),
         ("output where a file is the directory", "--size 4x4 -o garbage.bin/x.json"),
         ("output twice", "--size 4x4 -o keep.json --svg ./keep.json"),
+        ("output name too long", f"--size 4x4 -o {'x' * 300}.json"),
         ("stdout twice", "--size 4x4 -o - --svg -"),
         ("output under /proc", "--size 4x4 -o keep.json --png /proc/x.png"),
         ("repeat zero", "--size 4x4 --svg a.svg --repeat 0"),
