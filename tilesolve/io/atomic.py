@@ -95,7 +95,7 @@ def _is_direct(path: str) -> bool:
 
 
 def _pid_alive(pid: int) -> bool:
-    if pid == os.getpid():
+    if pid == os.getpid() or os.name == "nt":  # Windows' os.kill(pid, 0) would terminate it
         return True
     try:
         os.kill(pid, 0)
