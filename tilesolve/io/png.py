@@ -20,13 +20,16 @@ from __future__ import annotations
 
 import io
 import os
+from typing import TYPE_CHECKING
 
 import numpy as np
-from PIL import Image
 
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.atomic import write_bytes_atomic
 from tilesolve.io.svg import tile_colour
+
+if TYPE_CHECKING:  # pillow is imported by the functions that draw, not by importing this module
+    from PIL import Image
 
 __all__ = ["MAX_PNG_PIXELS", "tiling_image", "write_png", "edge_image", "write_board_png", "write_packing_png"]
 
@@ -84,6 +87,8 @@ def tiling_image(tiling, *, scale: int | None = None, repeat: int = 1, grid: boo
     if grid and scale >= 3:
         idx[::scale, :] = 255
         idx[:, ::scale] = 255
+    from PIL import Image
+
     img = Image.fromarray(np.ascontiguousarray(idx))  # mode "L"; putpalette makes it "P"
     palette = [0] * (256 * 3)
     palette[0:3] = _rgb(tile_colour(-1))
@@ -140,6 +145,8 @@ def edge_image(colours, positions, shape: tuple[int, int], kind: str = "wang", *
     if scale >= 8:  # a thin outline around each cell
         cells[pos[:, 0], pos[:, 1], 0, :] = 255
         cells[pos[:, 0], pos[:, 1], :, 0] = 255
+    from PIL import Image
+
     img = Image.fromarray(np.ascontiguousarray(cells.transpose(0, 2, 1, 3).reshape(rows * scale, cols * scale)))
     pal = [255] * (256 * 3)
     for k in range(hi + 1):

@@ -20,13 +20,15 @@ from __future__ import annotations
 import colorsys
 import os
 import textwrap
-from typing import Iterable, Sequence
+from typing import TYPE_CHECKING, Iterable, Sequence
 
 import numpy as np
-import svgwrite
 
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.atomic import atomic_write
+
+if TYPE_CHECKING:  # svgwrite is imported by the functions that draw, not by importing this module
+    import svgwrite
 
 __all__ = ["PALETTE", "FREE_COLOUR", "MAX_SVG_CELLS", "tile_colour", "check_svg_size", "tiling_drawing", "svg_string", "write_svg"]
 
@@ -181,6 +183,8 @@ def tiling_drawing(
     swatch_rows = -(-len(shown_tiles) // per_row)
     legend_h = (swatch_rows * 20 + len(lines) * 16 + 12) if legend else 0
     total_w, total_h = width + 2 * margin, pic_h + legend_h + 2 * margin
+
+    import svgwrite
 
     dwg = svgwrite.Drawing(size=(f"{total_w:g}", f"{total_h:g}"), profile="full", debug=False)
     dwg.viewbox(0, 0, total_w, total_h)
