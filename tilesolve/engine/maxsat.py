@@ -121,9 +121,11 @@ def solve_wcnf(
     deadline : Deadline, optional
         The whole run's deadline (replaces ``time_limit``).
     seed : int, optional
-        Draws the oracle's initial phases (:func:`~tilesolve.engine.sat.seeded_phases`):
+        Shuffles the order of the soft clauses (which steers the cores RC2 meets first) and
+        draws the oracle's initial phases (:func:`~tilesolve.engine.sat.seeded_phases`):
         where several assignments reach the optimum, different seeds may end in different
-        ones; the same seed gives the same one (RC2 and its oracle are deterministic).
+        ones; the same seed gives the same one (RC2 and its oracle are deterministic). The
+        optimum itself does not depend on the seed.
 
     Examples
     --------
@@ -141,6 +143,11 @@ def solve_wcnf(
     solver_name = f"rc2/{name}"
     soft = [int(lit) for lit in soft]
     wts = [1] * len(soft) if weights is None else [int(wt) for wt in weights]
+    if seed is not None:  # the order of the soft clauses steers which cores RC2 meets first
+        from tilesolve._random import rng_from_seed
+
+        order = rng_from_seed(seed).permutation(len(soft)).tolist()
+        soft, wts = [soft[i] for i in order], [wts[i] for i in order]
     n_hard = _size_of(hard)
     top = hard.max_var() if hasattr(hard, "max_var") else 0
     if not hasattr(hard, "max_var"):
