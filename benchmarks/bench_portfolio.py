@@ -49,18 +49,19 @@ def run(args, seed: int, workers: int | None, out: Path) -> dict:
         cmd += ["--workers", str(workers)]
     if out.exists():
         out.unlink()
-    t0 = time.perf_counter()
-    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    _, status, usage = os.wait4(proc.pid, 0)
-    wall = time.perf_counter() - t0
-    proc.returncode = os.waitstatus_to_exitcode(status)
-    stderr = proc.stderr.read()
-    proc.stderr.close()
+    log = out.with_suffix(".log")
+    with open(log, "w") as err:
+        t0 = time.perf_counter()
+        proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=err)
+        _, wait_status, usage = os.wait4(proc.pid, 0)  # rusage of the command and its workers
+        wall = time.perf_counter() - t0
+    proc.returncode = os.waitstatus_to_exitcode(wait_status)
+    stderr = log.read_text()
     lines = [line.strip() for line in stderr.splitlines() if line.strip()]
     note = next((line[len("note: "):] for line in lines if line.startswith("note: portfolio")), "")
-    if not note and out.exists():
-        note = f"seed {json.loads(out.read_text()).get('seed', seed)} alone"
     status = _STATUS.get(proc.returncode, f"exit {proc.returncode}")
+    if not note and status == "sat":
+        note = f"seed {json.loads(out.read_text()).get('seed', seed)} alone"
     return {"wall": wall, "cpu": usage.ru_utime + usage.ru_stime, "rss": usage.ru_maxrss / 1024, "status": status,
             "note": note or (lines[0] if lines else "")}
 
