@@ -9,10 +9,12 @@ CP-SAT's presolve often finds a first solution of a satisfaction model by itself
 ("trivial exploration"), the same whatever ``random_seed`` says. So a seeded satisfaction
 run hints every reported variable with a value drawn from the seed (unless the model
 carries its own hint, e.g. a target tiling) and turns presolve off, so that the hint steers
-the search: different seeds then give different solutions where there are many, and with
-one worker the same seed gives the same solution. With several workers CP-SAT races its
-subsolvers, and which one answers first may differ between runs (``num_workers=1`` for
-exact repetition). Optimisation runs keep presolve; their optimum may be unique.
+the search: different seeds then give different solutions where there are many. With several
+workers a seeded satisfaction run uses CP-SAT's interleaved search (batches of one task: as
+fast as one worker on dappled models, and deterministic whatever the number of workers), so
+the same seed gives the same solution. Optimisation runs keep presolve and the parallel
+portfolio: their optimum value is exact, but which optimal solution is reported may differ
+between runs with several workers (``num_workers=1`` repeats it exactly).
 """
 
 from __future__ import annotations
@@ -94,9 +96,13 @@ def solve_cp_model(
     prm.num_workers = int(num_workers)
     if seed is not None:
         prm.random_seed = int(seed)
-        if not has_objective and not model.proto.solution_hint.vars:
-            _seeded_hint(model, variables, seed, deadline)
+        if not has_objective:
+            if not model.proto.solution_hint.vars:
+                _seeded_hint(model, variables, seed, deadline)
             prm.cp_model_presolve = False
+            if num_workers > 1:  # deterministic whatever the number of workers (see "Seeds")
+                prm.interleave_search = True
+                prm.interleave_batch_size = 1
     if deadline.expired():
         return Result(Status.UNKNOWN, None, time.perf_counter() - t0, None, {"workers": num_workers},
                       solver="cp-sat", reason=f"time limit of {time_limit:.3g} s reached before CP-SAT started")
