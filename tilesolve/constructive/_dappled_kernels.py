@@ -1,4 +1,4 @@
-"""Compiled hot loops of the dappled constructions (private; see ``dappled.py``).
+"""Hot loops of the dappled constructions (private; see ``dappled.py``).
 
 Coordinates are ``g[row, col]``; the paper's ``f(i, j)`` is ``g[j, i]``. All kernels work in
 place on an ``int8`` tiling and visit cells by weight ``row + col`` (anti-diagonals), as the
@@ -19,16 +19,17 @@ from diagonal ``d - 2`` and so are those of the at most one already-visited cell
 from __future__ import annotations
 
 import numpy as np
-from numba import njit, uint32
 
-__all__ = ["alg1_kernel", "cyclic_kernel", "greedy_kernel"]
+from tilesolve.constructive._jit import Kernels, kernel, rand32, seed_state, u32
+
+__all__ = ["alg1_kernel", "cyclic_kernel", "greedy_kernel", "KERNELS"]
 
 #: Stands for "no limit" inside the cyclic kernel.
 _NONE = 1 << 30
 
 
-@njit(cache=True, nogil=True)
-def alg1_kernel(g, P, Q, col_order):  # pragma: no cover - compiled
+@kernel(nogil=True)
+def alg1_kernel(g, P, Q, col_order):
     """Algorithm 1 of the dappled paper, in place on ``g`` (int8, values 0/1).
 
     ``P[t, r, c]`` / ``Q[t, r, c]`` are the H / V limits of tile ``t`` for runs ending at
@@ -59,13 +60,13 @@ def alg1_kernel(g, P, Q, col_order):  # pragma: no cover - compiled
             h = 1 + (hp if left == t else 0)
             v = 1 + (vp if up == t else 0)
             # limit 0 = unlimited: as uint32, 0 - 1 is the largest value and never < run - 1
-            if (uint32(P[t, r, c] - 1) < uint32(h - 1)) | (uint32(Q[t, r, c] - 1) < uint32(v - 1)):
+            if (u32(P[t, r, c] - 1) < u32(h - 1)) | (u32(Q[t, r, c] - 1) < u32(v - 1)):
                 # step (I): flip
                 t = 1 - t
                 g[r, c] = t
                 h = 1 + (hp if left == t else 0)
                 v = 1 + (vp if up == t else 0)
-                if (uint32(P[t, r, c] - 1) < uint32(h - 1)) | (uint32(Q[t, r, c] - 1) < uint32(v - 1)):
+                if (u32(P[t, r, c] - 1) < u32(h - 1)) | (u32(Q[t, r, c] - 1) < u32(v - 1)):
                     if r == 0 or c == 0:
                         bad += 1
                     else:
@@ -92,8 +93,8 @@ def alg1_kernel(g, P, Q, col_order):  # pragma: no cover - compiled
     return bad
 
 
-@njit(cache=True, nogil=True, inline="always")
-def _cyc_limit(lim, pos, last, strengthen, init_run):  # pragma: no cover - compiled
+@kernel(nogil=True, inline="always")
+def _cyc_limit(lim, pos, last, strengthen, init_run):
     """ViolateCyc's limit for one condition (Algorithm 2, cases (i)-(iv) of §3.2)."""
     if lim == 0:
         return _NONE
@@ -107,8 +108,8 @@ def _cyc_limit(lim, pos, last, strengthen, init_run):  # pragma: no cover - comp
     return lim  # (iv)
 
 
-@njit(cache=True, nogil=True)
-def _violate_cyc(g, t, h, v, r, c, p, q, strengthen):  # pragma: no cover - compiled
+@kernel(nogil=True)
+def _violate_cyc(g, t, h, v, r, c, p, q, strengthen):
     """ViolateCyc(g, [r, c]) for tile ``t`` with non-wrapping runs ``h`` (left), ``v`` (up)."""
     R, C = g.shape
     kh = 0
@@ -126,16 +127,16 @@ def _violate_cyc(g, t, h, v, r, c, p, q, strengthen):  # pragma: no cover - comp
     return v > lv
 
 
-@njit(cache=True, nogil=True)
-def _runs(g, Hr, Vr, k1, r, c, t):  # pragma: no cover - compiled
+@kernel(nogil=True)
+def _runs(g, Hr, Vr, k1, r, c, t):
     """Runs of tile ``t`` ending at ``[r, c]`` from the runs stored for diagonal ``d - 1``."""
     h = Hr[k1, r] + 1 if (c > 0 and g[r, c - 1] == t) else 1
     v = Vr[k1, r - 1] + 1 if (r > 0 and g[r - 1, c] == t) else 1
     return h, v
 
 
-@njit(cache=True, nogil=True)
-def cyclic_kernel(g, p, q, r0, c0, strengthen, col_order, recheck):  # pragma: no cover - compiled
+@kernel(nogil=True)
+def cyclic_kernel(g, p, q, r0, c0, strengthen, col_order, recheck):
     """Algorithm 2 of the dappled paper (ViolateCyc), in place on ``g``.
 
     ``p[t]``, ``q[t]`` are uniform limits (0 = unlimited). Cells with ``row < r0`` or
@@ -226,8 +227,8 @@ def cyclic_kernel(g, p, q, r0, c0, strengthen, col_order, recheck):  # pragma: n
     return bad
 
 
-@njit(cache=True, nogil=True)
-def _greedy_ok(g, t, hprev, vprev, r, c, P, Q, cyclic, pc, qc):  # pragma: no cover - compiled
+@kernel(nogil=True)
+def _greedy_ok(g, t, hprev, vprev, r, c, P, Q, cyclic, pc, qc):
     """May tile ``t`` go at ``[r, c]`` given the (final) cells before it in row-major order?"""
     R, C = g.shape
     h = hprev + 1 if (c > 0 and g[r, c - 1] == t) else 1
@@ -263,8 +264,8 @@ def _greedy_ok(g, t, hprev, vprev, r, c, P, Q, cyclic, pc, qc):  # pragma: no co
     return True
 
 
-@njit(cache=True, nogil=True)
-def greedy_kernel(g, n, P, Q, cyclic, pc, qc, seed):  # pragma: no cover - compiled
+@kernel(nogil=True)
+def greedy_kernel(g, n, P, Q, cyclic, pc, qc, seed):
     """The trivial algorithm for ``|T| >= 3`` (§2), in place on ``g``, row-major order.
 
     Keeps each initial tile that breaks no condition given the cells before it; otherwise
@@ -273,7 +274,7 @@ def greedy_kernel(g, n, P, Q, cyclic, pc, qc, seed):  # pragma: no cover - compi
     qualified (0 whenever the caller's guarantee holds).
     """
     R, C = g.shape
-    np.random.seed(seed)
+    state = seed_state(seed)
     vrun = np.zeros(C, np.int32)
     cand = np.empty(n, np.int64)
     fails = 0
@@ -290,8 +291,17 @@ def greedy_kernel(g, n, P, Q, cyclic, pc, qc, seed):  # pragma: no cover - compi
                 if m == 0:
                     fails += 1
                 else:
-                    t = cand[np.random.randint(0, m)]
+                    t = cand[(rand32(state) * m) >> 32]  # uniform up to m / 2**32
                     g[r, c] = t
             hprev = hprev + 1 if (c > 0 and g[r, c - 1] == t) else 1
             vrun[c] = vrun[c] + 1 if (r > 0 and g[r - 1, c] == t) else 1
     return fails
+
+
+#: Cells from which compiling pays: numba's import, set-up and cache load cost about 0.75 s of
+#: CPU, the kernels run at about 5 us a cell interpreted and a few ns compiled (measured by
+#: ``benchmarks/bench_startup.py``).
+THRESHOLD = 150_000
+
+#: The plain and compiled namespaces of this module.
+KERNELS = Kernels(globals(), THRESHOLD)

@@ -191,7 +191,7 @@ def algorithm1(tiling, p, q, *, order: str = "row") -> np.ndarray:
                 f"Algorithm 1 needs every limit {name} >= 2 (Remark 2.2: with a limit of 1 it can get stuck); "
                 "use method 'sat'"
             )
-    bad = _k.alg1_kernel(g, P, Q, col_order)
+    bad = _k.KERNELS.pick(g.size).alg1_kernel(g, P, Q, col_order)
     if bad:  # pragma: no cover - impossible when every limit is >= 2 (Prop. 2.1)
         raise InternalError(f"Algorithm 1 reached outside the grid {bad} times")
     return g
@@ -257,7 +257,7 @@ def algorithm2(tiling, p, q, *, order: str = "row") -> np.ndarray:
             "Algorithm 2 needs every cyclic limit p_t, q_t > 2 (Example 3.3; limits >= the grid side count as "
             "side - 1); use Remark 3.4 for L = {H_0^p, V_1^q} or method 'sat'"
         )
-    _k.cyclic_kernel(g, pv, qv, 0, 0, True, col_order, True)
+    _k.KERNELS.pick(g.size).cyclic_kernel(g, pv, qv, 0, 0, True, col_order, True)
     return g
 
 
@@ -378,7 +378,7 @@ def remark34(tiling, p, q, *, order: str = "row", recheck: bool = True) -> np.nd
     if (0 < pv[0] < 2) or (0 < qv[1] < 2):
         raise MethodNotApplicable("Remark 3.4 needs p, q >= 2 (Remark 2.2); use method 'sat'")
     _remark34_frame(g)
-    _k.cyclic_kernel(g, pv, qv, 2, 2, True, col_order, recheck)
+    _k.KERNELS.pick(g.size).cyclic_kernel(g, pv, qv, 2, 2, True, col_order, recheck)
     return g
 
 
@@ -454,7 +454,7 @@ def trivial(tiling, n_tiles: int, p, q, *, cyclic: bool = False, seed=None) -> n
                 "seam); use method 'sat'"
             )
         P = Q = np.zeros((n_tiles, 1, 1), np.int32)
-    fails = _k.greedy_kernel(g, n_tiles, P, Q, cyclic, pc, qc, seed_int)
+    fails = _k.KERNELS.pick(g.size).greedy_kernel(g, n_tiles, P, Q, cyclic, pc, qc, seed_int)
     if fails:  # pragma: no cover - excluded by the guarantee
         raise InternalError(f"the trivial algorithm found no admissible tile at {fails} cells")
     return g
