@@ -432,6 +432,16 @@ def test_escalate_undecided_keeps_the_first_runs_reason_and_summarises_the_worke
     assert s.notes[-1].startswith("portfolio beside seed 1: no run decided: ")
 
 
+def test_escalate_ctrl_c_stops_the_first_run_and_the_workers(at_once, ctrl_c):
+    t0 = time.perf_counter()
+    threading.Timer(1.0, os.kill, (os.getpid(), signal.SIGINT)).start()
+    s = _escalate({}, workers=3)
+    assert time.perf_counter() - t0 < BOUND_S
+    assert s.status is Status.UNKNOWN and s.reason == "interrupted" and s.seed == 1
+    assert s.notes == ("portfolio beside seed 1: no run decided: 2 runs stopped (the first run ended); "
+                       "62 seeds not started (the first run ended)",)
+
+
 def test_escalate_reraises_a_worker_error_and_stops_the_first_run(at_once):
     t0 = time.perf_counter()
     with pytest.raises(InvalidProblem, match="bad input for seed 2"):
