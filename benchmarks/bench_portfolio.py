@@ -4,13 +4,13 @@ against the default portfolio, whole ``tilesolve pack`` commands.
 For each seed, the same command runs three times in a row, so that a busy machine slows
 all alike: ``--workers 1`` (the baseline: one seed, in one process), the default (this
 process runs the seed; after ``QUICK_S`` = 5 s a worker process runs fresh seeds beside it,
-if a core is idle) and ``--workers 2`` (the worker starts whatever the load). The problem is a corner packing over C = 8 colours by ``lift``
-(a 64 x 64 torus, 4,096 tiles; one seed takes 10-20 s on an idle core). Each row gives the
-wall time of the whole command (interpreter start, search, verification, writing the JSON),
-the peak resident memory of the command's own process, its throughput in placed tiles per
-second, the status, the seed that decided and where, and for the portfolio row the ratio of
-its time to the baseline's (< 1: faster). The last rows sum the times over the seeds.
-``cpu_s`` is the CPU time of the command and its workers.
+if a core is idle) and ``--workers 2`` (the worker starts whatever the load). The problem
+is a corner packing over C = 8 colours by ``lift`` (a 64 x 64 torus, 4,096 tiles; one seed
+takes 10-20 s on an idle core). Each row gives the wall time of the whole command
+(interpreter start, search, verification, writing the JSON), the CPU time of the command
+and its workers, the peak resident memory of the command's own process, its throughput in
+placed tiles per second, the status, the seed that decided and where, and the ratio of its
+time to the baseline's (< 1: faster). The last rows sum the times over the seeds.
 
 Run: ``python benchmarks/bench_portfolio.py [--seeds 1 2 3] [--colors 8] [--time-limit S]``
 """
@@ -76,7 +76,8 @@ def main() -> None:
     print(f"corner packing C = {args.colors} by lift ({args.colors**2} x {args.colors**2}, {tiles:,} tiles), "
           f"--time-limit {args.time_limit:g}, {os.cpu_count()} cores, load average "
           f"{' '.join(f'{x:.1f}' for x in os.getloadavg())}")
-    print(f"{'seed':>4} {'run':20s} {'time_s':>8} {'cpu_s':>7} {'peak_MiB':>8} {'tiles/s':>8} {'status':8s} {'ratio':>6}  decided by")
+    print(f"{'seed':>4} {'run':20s} {'time_s':>8} {'cpu_s':>7} {'peak_MiB':>8} {'tiles/s':>8} {'status':8s} "
+          f"{'ratio':>6}  decided by")
     totals = {"single": 0.0, "portfolio": 0.0, "workers 2": 0.0}
     with tempfile.TemporaryDirectory() as tmp:
         out = Path(tmp) / "pack.json"
@@ -90,8 +91,8 @@ def main() -> None:
                 ratio = "" if base is None else f"{r['wall'] / base:6.2f}"
                 base = r["wall"] if base is None else base
                 rate = tiles / r["wall"] if r["status"] == "sat" else 0.0
-                print(f"{seed:>4} {label:20s} {r['wall']:8.2f} {r['cpu']:7.1f} {r['rss']:8.0f} {rate:8.0f} {r['status']:8s} "
-                      f"{ratio:>6}  {r['note'][:110]}", flush=True)
+                print(f"{seed:>4} {label:20s} {r['wall']:8.2f} {r['cpu']:7.1f} {r['rss']:8.0f} {rate:8.0f} "
+                      f"{r['status']:8s} {ratio:>6}  {r['note'][:110]}", flush=True)
     print(f"{'all':>4} {'single, total':20s} {totals['single']:8.2f}")
     for key in ("portfolio", "workers 2"):
         print(f"{'all':>4} {key + ', total':20s} {totals[key]:8.2f} {'':7} {'':8} {'':8} {'':8} "
