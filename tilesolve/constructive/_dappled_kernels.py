@@ -298,10 +298,11 @@ def greedy_kernel(g, n, P, Q, cyclic, pc, qc, seed):
     return fails
 
 
-#: Cells from which compiling pays: numba's import, set-up and cache load cost about 0.75 s of
-#: CPU, the kernels run at about 5 us a cell interpreted and a few ns compiled (measured by
-#: ``benchmarks/bench_startup.py``).
-THRESHOLD = 150_000
+#: Cells from which compiling pays. In fresh processes on a loaded machine numba's import,
+#: set-up and cache load cost 0.75-1.1 s of CPU; the kernels run at about 3 us a cell
+#: interpreted for Algorithm 1 and about 6 us for the trivial algorithm, a few ns compiled:
+#: crossovers between about 150,000 and 350,000 cells (``benchmarks/bench_startup.py``).
+THRESHOLD = 250_000
 
 #: The plain and compiled namespaces of this module.
 KERNELS = Kernels(globals(), THRESHOLD)

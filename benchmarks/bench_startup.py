@@ -1,0 +1,154 @@
+"""Start-up cost of whole commands, against plain-Python baselines measured in the same run.
+
+Every row is one command run as a fresh process ``--repeat`` times: the median wall time,
+the median CPU time of the process (user + sys, from ``os.wait4``; on a loaded machine this
+is the steadier figure), its peak resident memory, and the ratio of the median CPU time to
+the row's baseline. Goals (issue 9, "Start-up"):
+
+* ``tilesolve --version`` <= 3x ``python -c pass``;
+* ``tilesolve dappled solve --size 100x100 --cond H0=2,V1=2 -o out.json`` no slower than a
+  plain script doing the same job: Algorithm 1 of the dappled paper (§2) for
+  ``L = {H_0^2, V_1^2}`` on a random 100x100 tiling, in pure Python with numpy for the
+  random start, written as JSON (the script is written to a temporary directory);
+* compiled kernels loaded only when the problem is large enough: the second table runs the
+  dappled kernels interpreted and compiled (numba, warm cache) in fresh processes around
+  ``_dappled_kernels.THRESHOLD`` and prints the CPU time of each.
+
+``tilesolve brick solve --board rect:100x100`` is listed against ``python -c "import numpy"``.
+
+Usage::
+
+    python benchmarks/bench_startup.py               # 9 runs a command
+    python benchmarks/bench_startup.py --repeat 5 --no-crossover
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+#: Algorithm 1 (dappled paper §2) for L = {H_0^2, V_1^2}, as a short stand-alone script.
+PLAIN_SCRIPT = '''\
+import json, sys
+import numpy as np
+
+R = C = 100
+P, Q = {0: 2}, {1: 2}  # H_0^2: at most 2 zeros in a row; V_1^2: at most 2 ones in a column
+g = np.random.default_rng().integers(0, 2, size=(R, C)).tolist()
+
+
+def violate(r, c):
+    t = g[r][c]
+    p, q = P.get(t), Q.get(t)
+    if p and c >= p and all(g[r][c - k] == t for k in range(1, p + 1)):
+        return True
+    return bool(q and r >= q and all(g[r - k][c] == t for k in range(1, q + 1)))
+
+
+for d in range(R + C - 1):  # cells by weight i + j
+    for r in range(max(0, d - C + 1), min(d, R - 1) + 1):
+        c = d - r
+        if violate(r, c):
+            g[r][c] = 1 - g[r][c]  # step (I)
+            if violate(r, c):  # step (II)
+                t = g[r - 1][c - 1]
+                g[r][c], g[r][c - 1], g[r - 1][c] = t, 1 - t, 1 - t
+with open(sys.argv[1], "w") as f:
+    json.dump({"rows": R, "cols": C, "conditions": ["H0=2", "V1=2"], "tiling": g}, f)
+'''
+
+#: Runs one dappled route on an n x n grid, interpreted or compiled (argv: mode, n, n_tiles):
+#: Algorithm 1 for |T| = 2, the trivial algorithm for |T| = 3.
+CROSSOVER_SCRIPT = '''\
+import sys
+from tilesolve.constructive import _dappled_kernels as K
+from tilesolve.constructive.dappled import make_dappled
+from tilesolve.model import DappledProblem
+
+K.KERNELS.mode = sys.argv[1]
+n, n_tiles = int(sys.argv[2]), int(sys.argv[3])
+make_dappled(DappledProblem.from_strings(f"{n}x{n}", ["H0=2", "V1=2"], n_tiles=n_tiles), seed=1)
+'''
+
+
+def run_once(argv: list[str]) -> tuple[float, float, float]:
+    """Wall seconds, CPU seconds (user + sys) and peak RSS (MiB) of one run of ``argv``."""
+    t = time.perf_counter()
+    proc = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    _, status, ru = os.wait4(proc.pid, 0)
+    wall = time.perf_counter() - t
+    proc.returncode = os.waitstatus_to_exitcode(status)
+    err = proc.stderr.read().decode(errors="replace")
+    proc.stderr.close()
+    if proc.returncode != 0:
+        raise SystemExit(f"{' '.join(argv)} exited {proc.returncode}: {err.strip()}")
+    return wall, ru.ru_utime + ru.ru_stime, ru.ru_maxrss / 1024
+
+
+def measure(argv: list[str], repeat: int) -> tuple[float, float, float]:
+    """Medians of wall and CPU time, and the largest peak RSS, over ``repeat`` runs (one warm-up)."""
+    run_once(argv)
+    runs = [run_once(argv) for _ in range(repeat)]
+    return (statistics.median(r[0] for r in runs), statistics.median(r[1] for r in runs), max(r[2] for r in runs))
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--repeat", type=int, default=9)
+    ap.add_argument("--no-crossover", action="store_true", help="skip the interpreted/compiled table")
+    args = ap.parse_args()
+    py = sys.executable
+    tilesolve = shutil.which("tilesolve") or os.path.join(os.path.dirname(py), "tilesolve")
+    with tempfile.TemporaryDirectory() as tmp:
+        script = os.path.join(tmp, "dappled_alg1.py")
+        with open(script, "w") as f:
+            f.write(PLAIN_SCRIPT)
+        cross = os.path.join(tmp, "crossover.py")
+        with open(cross, "w") as f:
+            f.write(CROSSOVER_SCRIPT)
+        out = os.path.join(tmp, "out.json")
+        rows = [  # label, argv, baseline label
+            ("python -c pass", [py, "-c", "pass"], None),
+            ('python -c "import numpy"', [py, "-c", "import numpy"], None),
+            ("tilesolve --version", [tilesolve, "--version"], "python -c pass"),
+            ("plain Algorithm 1 script 100x100", [py, script, out], None),
+            ("tilesolve dappled solve 100x100", [tilesolve, "dappled", "solve", "--size", "100x100", "--cond",
+                                                 "H0=2,V1=2", "-o", out], "plain Algorithm 1 script 100x100"),
+            ("tilesolve brick solve rect:100x100", [tilesolve, "brick", "solve", "--board", "rect:100x100", "-o",
+                                                    out], 'python -c "import numpy"'),
+        ]
+        res: dict[str, tuple[float, float, float]] = {}
+        print(f"whole commands, {args.repeat} runs each (median; CPU = user + sys of the process)")
+        print(f"{'command':36s} {'wall s':>8s} {'CPU s':>8s} {'peak RSS MiB':>13s} {'CPU ratio':>10s}  baseline")
+        for label, argv, base in rows:
+            res[label] = measure(argv, args.repeat)
+            wall, cpu, rss = res[label]
+            ratio = f"{cpu / res[base][1]:.2f}x" if base else ""
+            print(f"{label:36s} {wall:8.3f} {cpu:8.3f} {rss:13.1f} {ratio:>10s}  {base or ''}", flush=True)
+        print("goals: --version <= 3x python -c pass; dappled solve <= 1x the plain script")
+        if args.no_crossover:
+            return
+        from tilesolve.constructive._dappled_kernels import THRESHOLD
+
+        print(f"\ndappled kernels interpreted vs compiled (fresh process, warm numba cache; "
+              f"THRESHOLD = {THRESHOLD:,} cells)")
+        print(f"{'route':12s} {'side':>6s} {'cells':>9s} {'plain CPU s':>12s} {'compiled CPU s':>15s} "
+              f"{'plain/compiled':>15s}")
+        base = measure([py, "-c", "from tilesolve.constructive import dappled"], args.repeat)[1]
+        for route, n_tiles in (("algorithm1", "2"), ("trivial", "3")):
+            run_once([py, cross, "compiled", "8", n_tiles])  # fill the cache
+            for n in (250, 350, 450, 600):
+                plain = measure([py, cross, "plain", str(n), n_tiles], max(3, args.repeat // 3))[1] - base
+                comp = measure([py, cross, "compiled", str(n), n_tiles], max(3, args.repeat // 3))[1] - base
+                print(f"{route:12s} {n:6d} {n * n:9,d} {plain:12.3f} {comp:15.3f} {plain / comp:14.2f}x", flush=True)
+        print("(CPU beyond importing tilesolve.constructive.dappled; the threshold belongs where the ratio crosses 1)")
+
+
+if __name__ == "__main__":
+    main()
