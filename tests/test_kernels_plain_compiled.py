@@ -113,8 +113,11 @@ def test_compiled_namespace_calls_compiled_helpers():
     assert ks.pick(10) is sys.modules[__name__] and not ks.loaded
     comp = ks.compiled()
     assert comp._toy_sum(a) == _toy_sum(a) == 145
-    # the compiled kernel was typed with the compiled helper (nopython mode rejects a plain one)
-    assert comp._toy_sum.signatures and comp._toy_step.signatures
+    # nopython mode typed the kernel (a plain-function helper would be a typing error), and its
+    # globals are the compiled copy, where the helper is a dispatcher
+    assert comp._toy_sum.signatures
+    assert comp._toy_sum.py_func.__globals__["_toy_step"] is comp._toy_step
+    assert hasattr(comp._toy_step, "py_func") and comp._toy_step.py_func is not _toy_step
     assert _toy_sum is globals()["_toy_sum"] and not hasattr(_toy_sum, "signatures")
 
 
