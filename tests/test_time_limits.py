@@ -156,3 +156,27 @@ def test_cli_short_time_limit_on_a_large_unsat_proof_never_reports_unsat():
     else:
         assert text.startswith("unknown") and ("time limit" in text or "not checked" in text)
         assert "unsat:" not in text
+
+
+def test_a_cardinality_encoding_that_cannot_fit_is_refused_before_it_starts():
+    # One uninterruptible PySAT call would build ~60 M clauses: the estimate refuses it at once.
+    from tilesolve import family
+
+    p = DappledProblem.from_strings("512x512", ["H0=2", "V1=2"], counts=["1=..78643"])
+    s = family.solve(p, "sat", time_limit=3, seed=1)
+    assert s.status is Status.UNKNOWN and s.tiling is None
+    assert "cardinality encoding of count 1=0..78643" in s.reason and "cannot fit" in s.reason
+
+
+def test_the_pipeline_turns_a_route_out_of_time_into_unknown():
+    from tilesolve import family
+    from tilesolve.model.board import Board, BoardProblem, WangTileSet
+
+    calls = []
+
+    def route(problem, run):
+        calls.append(run.deadline.time_limit)
+        raise TimeLimitReached("time limit of 3 s reached while encoding (5 clauses built)")
+
+    s = family.solve(BoardProblem(Board.rect(2, 2), WangTileSet.brick(3)), route, time_limit=3, seed=1)
+    assert calls == [3] and s.status is Status.UNKNOWN and s.reason.endswith("while encoding (5 clauses built)")

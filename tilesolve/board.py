@@ -61,7 +61,7 @@ def sat(problem: BoardProblem, run: RunOptions) -> Solution:
     from tilesolve.engine.sat import DEFAULT_SAT_SOLVER
 
     t0 = time.perf_counter()
-    return sat_route(encode_wang(problem), run, solver=run.solver or DEFAULT_SAT_SOLVER, t0=t0)
+    return sat_route(encode_wang(problem, deadline=run.deadline), run, solver=run.solver or DEFAULT_SAT_SOLVER, t0=t0)
 
 
 def cpsat(problem: BoardProblem, run: RunOptions) -> Solution:
@@ -70,8 +70,8 @@ def cpsat(problem: BoardProblem, run: RunOptions) -> Solution:
     from tilesolve.engine.cpsat import DEFAULT_CPSAT_WORKERS, solve_cp_model
 
     t0 = time.perf_counter()
-    cp = build_cpsat_wang(problem)
-    r = solve_cp_model(cp.model, cp.bools, time_limit=run.time_limit, seed=run.seed,
+    cp = build_cpsat_wang(problem, deadline=run.deadline)
+    r = solve_cp_model(cp.model, cp.bools, deadline=run.deadline, seed=run.seed,
                        num_workers=run.workers or DEFAULT_CPSAT_WORKERS)
     tiling = cp.decode(r.model) if r.status.has_tiling else None
     return Solution(Status.SAT if tiling is not None else r.status, tiling, "cpsat", "cp-sat", run.seed,
@@ -279,7 +279,7 @@ FAMILY = register(Family(
     codecs=(Codec(BOARD_SOLUTION, VERSIONS, _read_solution, _write_solution),),
     draw=_draw,
     demos=DEMOS,
-    commands=("tilesolve.cli.brick:brick", "tilesolve.cli.brick:wang"),
+    commands=("tilesolve.cli.board:brick", "tilesolve.cli.board:wang"),
     route_help={
         "linear": "the linear algorithm of §4 (numba)",
         "sat": "CNF + PySAT, any tile set, line limits; unsat with a checked DRAT proof",

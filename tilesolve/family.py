@@ -44,7 +44,7 @@ import secrets
 from dataclasses import dataclass, field
 from typing import Any, Callable, Iterable, Mapping, Sequence
 
-from tilesolve.deadline import Deadline
+from tilesolve.deadline import Deadline, TimeLimitReached
 from tilesolve.errors import InternalError, InvalidProblem, MethodNotApplicable
 from tilesolve.model.run import RunOptions
 from tilesolve.model.solution import CountResult, Solution, Status
@@ -362,13 +362,16 @@ def run_route(fam: Family, problem: Any, method: str | Route, run: RunOptions) -
         notes.append(f"auto chose {name!r}")
     with status_line(f"{fam.name}: solving with {name!r}", run.progress):
         try:
-            sol = route(problem, run)
-        except MethodNotApplicable as exc:
-            if method != "auto" or fam.fallback is None or name == fam.fallback:
-                raise
-            notes.append(f"{name!r} not applicable ({exc}); solved with {fam.fallback!r}")
-            name = fam.fallback
-            sol = fam.routes[name](problem, run)
+            try:
+                sol = route(problem, run)
+            except MethodNotApplicable as exc:
+                if method != "auto" or fam.fallback is None or name == fam.fallback:
+                    raise
+                notes.append(f"{name!r} not applicable ({exc}); solved with {fam.fallback!r}")
+                name = fam.fallback
+                sol = fam.routes[name](problem, run)
+        except TimeLimitReached as exc:  # a route out of time while encoding or building
+            sol = Solution(Status.UNKNOWN, None, name, None, run.seed, run.deadline.elapsed(), reason=str(exc))
     bad = fam.verify(problem, sol.tiling) if sol.status.has_tiling else ()
     if bad and method == "auto" and fam.fallback is not None and name != fam.fallback:
         notes.append(f"{name!r} output failed verification ({len(bad)} violations, first: {bad[0]}); "
@@ -393,19 +396,22 @@ def run_route(fam: Family, problem: Any, method: str | Route, run: RunOptions) -
     )
 
 
-def interrupted(solution: Solution) -> bool:
-    """True when Ctrl-C stopped the run (routes return ``unknown`` with reason "interrupted ...").
+def interrupted(result: Solution | CountResult) -> bool:
+    """True when Ctrl-C stopped the run: the engine catches it inside a solver and returns
+    ``unknown`` with a reason (a note, for counts) starting with "interrupted".
 
     The CLI exits 130 and writes nothing for such an answer; a time limit is not an interruption.
     """
-    return solution.status is Status.UNKNOWN and (solution.reason or "").startswith("interrupted")
+    why = getattr(result, "reason", None) or getattr(result, "note", None) or ""
+    return result.status is Status.UNKNOWN and why.startswith("interrupted")
 
 
-def raise_if_interrupted(solution: Solution) -> Solution:
-    """Return ``solution``, or raise KeyboardInterrupt if Ctrl-C stopped it (loops over routes stop)."""
-    if interrupted(solution):
+def raise_if_interrupted(result):
+    """Return ``result``, or raise KeyboardInterrupt if Ctrl-C stopped it (so loops over routes,
+    trials or demos stop, and the CLI exits 130 without writing)."""
+    if interrupted(result):
         raise KeyboardInterrupt
-    return solution
+    return result
 
 
 def count(problem: Any, *, method: str = "auto", time_limit: float | None = None, progress: bool = False,

@@ -46,7 +46,7 @@ import numpy as np
 from pysat.card import CardEnc, EncType
 from pysat.formula import CNF, WCNF, IDPool
 
-from tilesolve.deadline import Deadline
+from tilesolve.deadline import Deadline, TimeLimitReached
 from tilesolve.encodings import ClauseSet
 from tilesolve.errors import InvalidProblem
 from tilesolve.model.dappled import Condition, DappledProblem
@@ -463,6 +463,8 @@ def encode_cnf(
         check()
         lits = _tile_lits(p, k.tile).ravel().tolist()
         n = len(lits)
+        if deadline is not None and deadline.time_limit is not None:
+            _card_fits(k, n, card, deadline)
         before = pool.top
         clauses: list[list[int]] = []
         if k.low > 0:
@@ -484,6 +486,36 @@ def encode_cnf(
         pool=pool,
         aux_ranges=aux_ranges,
     )
+
+
+#: Seconds per clause assumed for PySAT's cardinality encodings (one uninterruptible call each;
+#: 3-15 µs were measured on a busy laptop core), to refuse one that cannot fit the time left.
+CARD_SECONDS_PER_CLAUSE = 3e-6
+
+
+def _card_clauses(n: int, bound: int, enctype: int) -> float:
+    """Rough clause count of one cardinality constraint over ``n`` literals (measured shapes)."""
+    if enctype == EncType.seqcounter:
+        return 2.0 * n * max(1, bound)
+    if enctype in (EncType.cardnetwrk, EncType.sortnetwrk):
+        return 0.7 * n * max(1.0, np.log2(max(n, 2))) ** 2
+    return float(n)  # others: too varied to model; only their size in literals is certain
+
+
+def _card_fits(k, n: int, card: CardEncoding, deadline: Deadline) -> None:
+    """Raise :class:`TimeLimitReached` before a cardinality encoding that cannot fit the time left."""
+    est = 0.0
+    if k.low > 0:
+        est += _card_clauses(n, n - k.low, card.enctype(n, n - k.low))
+    if k.high is not None and k.high < n:
+        est += _card_clauses(n, k.high, card.enctype(n, k.high))
+    need = est * CARD_SECONDS_PER_CLAUSE
+    left = deadline.remaining()
+    if left is not None and need > left:
+        raise TimeLimitReached(
+            f"time limit of {deadline.time_limit:.3g} s reached while encoding: the cardinality encoding of count "
+            f"{k} (~{_millions(int(est))} clauses, ~{need:.2g} s) cannot fit in the {left:.2g} s left"
+        )
 
 
 def encode_wcnf(

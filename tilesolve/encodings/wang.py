@@ -21,6 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from tilesolve.deadline import Deadline
 from tilesolve.encodings import ClauseSet
 from tilesolve.model.board import BoardProblem
 
@@ -121,8 +122,11 @@ def _exactly_one(first: np.ndarray, k: int) -> list[np.ndarray]:
     return blocks
 
 
-def encode_wang(problem: BoardProblem) -> WangEncoding:
+def encode_wang(problem: BoardProblem, *, deadline: Deadline | None = None) -> WangEncoding:
     """Encode ``problem`` as CNF (see the module docstring).
+
+    A ``deadline`` is checked after every block of clauses
+    (:class:`~tilesolve.deadline.TimeLimitReached` when it has passed).
 
     Examples
     --------
@@ -135,7 +139,7 @@ def encode_wang(problem: BoardProblem) -> WangEncoding:
     k = problem.n_colors
     eid, ne = board.leg_edges()
     n = board.n_cells
-    cs = ClauseSet()
+    cs = _CheckedClauseSet(deadline)
     blocks = _exactly_one(1 + np.arange(ne, dtype=np.int64) * k, k)
     cs.add_array(blocks[0], "edge has a colour")
     for b in blocks[1:]:
@@ -175,7 +179,24 @@ def encode_wang(problem: BoardProblem) -> WangEncoding:
                 np.stack([-y.ravel(), x(np.repeat(eid[:, leg], m), np.tile(tiles[:, leg], n))], axis=1),
                 "tile fixes its leg colours",
             )
-    return WangEncoding(cs, eid, ne, k, top, h_var, v_var)
+    out = ClauseSet()
+    out.blocks = cs.blocks
+    return WangEncoding(out, eid, ne, k, top, h_var, v_var)
+
+
+class _CheckedClauseSet(ClauseSet):
+    """A ClauseSet under construction that checks a deadline after every block added."""
+
+    def __init__(self, deadline: Deadline | None) -> None:
+        super().__init__()
+        self.deadline = deadline
+
+    def add_array(self, lits, label: str, grid_only: bool = True) -> None:
+        super().add_array(lits, label, grid_only)
+        if self.deadline is not None:
+            n = len(self)
+            built = f"{n / 1e6:.1f} M" if n >= 100_000 else f"{n:,}"
+            self.deadline.check(f"encoding ({built} clauses built)")
 
 
 @dataclass
@@ -193,11 +214,13 @@ class CpSatWang:
         return v.argmax(axis=1)[self.edge_of_leg]
 
 
-def build_cpsat_wang(problem: BoardProblem) -> CpSatWang:
+def build_cpsat_wang(problem: BoardProblem, *, deadline: Deadline | None = None) -> CpSatWang:
     """CP-SAT model: an integer colour per edge, a table constraint (allowed tuples = W) per
     cell, boundary colours fixed; one-hot Booleans channelled to the integers for read-back.
 
-    Line-length limits are not modelled here (use the SAT route for them).
+    Line-length limits are not modelled here (use the SAT route for them). Building costs a
+    few Python calls per edge and cell, so a ``deadline`` is checked every 4096 of them
+    (:class:`~tilesolve.deadline.TimeLimitReached`).
     """
     from ortools.sat.python import cp_model
 
@@ -209,9 +232,14 @@ def build_cpsat_wang(problem: BoardProblem) -> CpSatWang:
     k = problem.n_colors
     eid, ne = board.leg_edges()
     m = cp_model.CpModel()
+    def check(i: int, total: int, what: str) -> None:
+        if deadline is not None and i % 4096 == 0:
+            deadline.check(f"building the CP-SAT model ({i:,} of {total:,} {what})")
+
     ints = [m.new_int_var(0, k - 1, f"e{e}") for e in range(ne)]
     bools = []
     for e in range(ne):
+        check(e, ne, "edges")
         bs = [m.new_bool_var(f"e{e}c{c}") for c in range(k)]
         m.add_exactly_one(bs)
         m.add(ints[e] == sum(c * b for c, b in enumerate(bs)))
@@ -223,5 +251,6 @@ def build_cpsat_wang(problem: BoardProblem) -> CpSatWang:
             m.add(ints[eid[a, leg]] == col)
     table = [tuple(int(v) for v in t) for t in problem.tileset.tiles]
     for a in range(board.n_cells):
+        check(a, board.n_cells, "cells")
         m.add_allowed_assignments([ints[int(e)] for e in eid[a]], table)
     return CpSatWang(m, bools, eid, ne, k)

@@ -1,0 +1,146 @@
+"""Do time limits hold? Whole commands through the console script, every route, up to 2048x2048.
+
+Issue 9, defect 3: ``tilesolve dappled solve --size 2048x2048 --cond H0=3,V1=3 --cyclic
+--method cpsat --time-limit 3`` took 131 s. The promise now: a run ends within its time limit
+plus 1 s + 10 % (the margin covers the last deadline check's granularity: a strip of window
+clauses, a chunk of 16k clauses loaded, a CP-SAT building chunk, a conflict slice, 256 proof
+steps), measured from the moment the run starts. A whole command also pays the CLI's fixed
+start-up (interpreter, numpy, PySAT, OR-tools, numba imports, reading the problem) and writing
+its output; that part is measured here as the baseline: the same command on a 4x4 grid.
+
+Each row runs one command, writes its answer to a JSON file in a temporary folder (never
+``/dev/null``), and prints:
+
+    limit      the --time-limit (s)
+    wall       the command's wall-clock time (s), start-up included
+    run        the run's own time (``time_s`` in the answer: from the start of the run)
+    over run   run - limit (s): the guarantee, within 1 s + 10 % of the limit
+    over wall  wall - limit - baseline wall of the same command on a 4x4 grid (s)
+    ratio      wall / (limit + baseline)
+    MiB        peak resident memory of the command
+    exit, why  exit code (0 sat, 1 unsat, 3 unknown) and the reason it stopped
+
+Usage::
+
+    python benchmarks/bench_time_limits.py            # every route, sizes up to 2048x2048
+    python benchmarks/bench_time_limits.py --quick    # 512x512 at most
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+LIMIT = 3.0
+
+DAPPLED = ["dappled", "solve", "--cond", "H0=3,V1=3", "--cyclic"]
+
+
+def commands(sizes: list[int], target_dir: str) -> list[tuple[str, str, list[str], list[str]]]:
+    """(label, size, command for the size, the same command on the baseline size)."""
+    out = []
+    for n in sizes:
+        size = f"{n}x{n}"
+        for method in ("sat", "cpsat", "maxsat", "auto"):
+            cmd = DAPPLED + ["--size", size, "--method", method]
+            base = DAPPLED + ["--size", "4x4", "--method", method]
+            if method == "maxsat":  # a closest tiling needs a target: all zeros
+                target = os.path.join(target_dir, f"zeros{n}.txt")
+                with open(target, "w") as fh:
+                    fh.write(("0" * n + "\n") * n)
+                small = os.path.join(target_dir, "zeros4.txt")
+                with open(small, "w") as fh:
+                    fh.write(("0" * 4 + "\n") * 4)
+                cmd += ["--closest-to", target]
+                base += ["--closest-to", small]
+            out.append((f"dappled {method}", size, cmd, base))
+        cnt = ["dappled", "solve", "--cond", "H0=2,V1=2", "--count", f"1=..{n * n * 3 // 10}", "--method", "sat"]
+        out.append(("dappled sat+count", size, cnt[:2] + ["--size", size] + cnt[2:],
+                    cnt[:2] + ["--size", "4x4"] + cnt[2:]))
+        brick = ["brick", "solve", "--colors", "3"]
+        for method, extra in (("sat", ["--max-h", "3", "--max-v", "3"]), ("cpsat", [])):
+            out.append((f"brick {method}", size, brick + extra + ["--board", f"torus:{n}x{n}", "--method", method],
+                        brick + extra + ["--board", "torus:4x4", "--method", method]))
+    for c in (8, 16):
+        for method in ("sat", "cpsat", "lift"):
+            cmd = ["pack", "--kind", "corner", "--colors", str(c), "--method", method, "--workers", "1"]
+            out.append((f"pack {method}", f"C={c}", cmd, ["pack", "--kind", "corner", "--colors", "2", "--method",
+                                                          method, "--workers", "1"]))
+    out.append(("dappled count torus", "12x12", ["dappled", "count", "--size", "12x12", "--cond", "H0=2,V1=2",
+                                                 "--cyclic"], ["dappled", "count", "--size", "4x4", "--cond",
+                                                               "H0=2,V1=2", "--cyclic"]))
+    return out
+
+
+def run(exe: list[str], args: list[str], limit: float, out_json: str | None) -> dict:
+    """Run one command; wall time, peak memory (``os.wait4``), exit code and the answer."""
+    cmd = exe + args + ["--time-limit", f"{limit:g}"]
+    if out_json is not None:
+        cmd += ["-o", out_json]
+    t0 = time.perf_counter()
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    _, status, usage = os.wait4(proc.pid, 0)
+    wall = time.perf_counter() - t0
+    err = proc.stderr.read()
+    proc.stderr.close()
+    proc.returncode = os.waitstatus_to_exitcode(status)
+    run_s, why = None, ""
+    if out_json is not None and os.path.exists(out_json):
+        with open(out_json) as fh:
+            doc = json.load(fh)
+        run_s = doc.get("time_s")
+        why = doc.get("reason") or ""
+        os.remove(out_json)
+    else:  # count prints its summary only: "method transfer, 2.008 s" and a note
+        for line in err.splitlines():
+            s = line.strip()
+            if s.startswith("method ") and s.endswith(" s"):
+                run_s = float(s.rsplit(",", 1)[1].split()[0])
+            elif s.startswith("note:") or s.startswith("tilesolve: error:"):
+                why = s.split(":", 1)[1].strip()
+    return {"wall": wall, "run": run_s, "exit": proc.returncode, "why": why, "mib": usage.ru_maxrss / 1024}
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="sizes up to 512x512")
+    ap.add_argument("--limit", type=float, default=LIMIT, help="time limit of every command (s)")
+    args = ap.parse_args()
+    exe_path = shutil.which("tilesolve", path=os.path.dirname(sys.executable))
+    exe = [exe_path] if exe_path else [sys.executable, "-m", "tilesolve.cli.main"]
+    sizes = [64, 512] if args.quick else [64, 512, 2048]
+    limit = args.limit
+    print(f"time limit {limit:g} s for every command; promise: run <= limit + 1 s + 10 % "
+          f"= {limit + 1 + 0.1 * limit:.2f} s")
+    head = (f"{'route':<20} {'size':>9} {'limit':>5} {'wall':>7} {'run':>7} {'over run':>8} {'base':>6} "
+            f"{'over wall':>9} {'ratio':>6} {'MiB':>6} {'exit':>4}  why")
+    print(head)
+    print("-" * len(head))
+    worst = 0.0
+    with tempfile.TemporaryDirectory() as tmp:
+        for label, size, cmd, base_cmd in commands(sizes, tmp):
+            is_count = cmd[1] == "count"
+            out = None if is_count else os.path.join(tmp, "answer.json")
+            base = run(exe, base_cmd, limit, None if is_count else os.path.join(tmp, "base.json"))
+            r = run(exe, cmd, limit, out)
+            over_run = None if r["run"] is None else r["run"] - limit
+            if over_run is not None:
+                worst = max(worst, over_run)
+            over_wall = r["wall"] - limit - base["wall"]
+            ratio = r["wall"] / (limit + base["wall"])
+            run_txt = f"{r['run']:7.2f}" if r["run"] is not None else f"{'-':>7}"
+            over_txt = f"{over_run:+8.2f}" if over_run is not None else f"{'-':>8}"
+            print(f"{label:<20} {size:>9} {limit:5.1f} {r['wall']:7.2f} {run_txt} {over_txt} {base['wall']:6.2f} "
+                  f"{over_wall:+9.2f} {ratio:6.2f} {r['mib']:6.0f} {r['exit']:>4}  {r['why'][:90]}", flush=True)
+    bound = 1 + 0.1 * limit
+    print(f"worst run overshoot {worst:+.2f} s (promise: <= {bound:.2f} s): {'held' if worst <= bound else 'BROKEN'}")
+
+
+if __name__ == "__main__":
+    main()
