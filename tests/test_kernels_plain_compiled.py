@@ -143,3 +143,31 @@ def test_u32_and_rng_agree_on_both_paths():
         assert _jit.u32(np.int32(x)) == comp.u32(np.int32(x)) == x % 2**32
     s1, s2 = _jit.seed_state(12345), comp.seed_state(12345)
     assert [int(_jit.rand32(s1)) for _ in range(50)] == [int(comp.rand32(s2)) for _ in range(50)]
+
+
+def test_brick_linear_plain_equals_compiled(monkeypatch):
+    from tilesolve.constructive import _brick_kernels as BK
+    from tilesolve.constructive.brick import solve_linear
+    from tilesolve.errors import MethodNotApplicable
+    from tilesolve.model.board import Board, BoardProblem, WangTileSet, parse_board_spec, random_boundary
+
+    rng = np.random.default_rng(14)
+    boards = [Board.random_holes(int(rng.integers(1, 20)), int(rng.integers(1, 20)), float(rng.random() * 0.5),
+                                 seed=int(rng.integers(2**31))) for _ in range(30)]
+    boards += [parse_board_spec(f"{kind}:{int(rng.integers(2, 12))}x{int(rng.integers(2, 12))}")
+               for kind in ("rect", "torus", "cylinder", "mobius", "klein") for _ in range(3)]
+    for board in boards:
+        k = int(rng.choice([3, 4]))
+        beta = random_boundary(board, k, seed=int(rng.integers(2**31)))
+        beta[rng.random(beta.size) < 0.3] = -1
+        prob = BoardProblem(board, WangTileSet.brick(k), beta)
+        seed = int(rng.integers(2**31))
+        out = []
+        for mode in ("plain", "compiled"):
+            monkeypatch.setattr(BK.KERNELS, "mode", mode)
+            try:
+                sol = solve_linear(prob, seed=seed)
+                out.append((sol.status, None if sol.tiling is None else sol.tiling.tolist(), sol.reason))
+            except MethodNotApplicable as e:
+                out.append(str(e))
+        assert out[0] == out[1]

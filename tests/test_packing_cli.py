@@ -126,16 +126,12 @@ def test_json_round_trip_and_bad_files(tmp_path):
 
 
 def test_demo_entry_writes_verified_pictures(tmp_path):
-    from tilesolve.cli.demo import DEMOS
-    from tilesolve.cli.pack import demo_packing
-
-    assert demo_packing in DEMOS
-    res = demo_packing(tmp_path, 1, 60.0)
-    assert res.ok
+    p = run("demo", "--family", "packing", "--out", "pics", cwd=tmp_path)
+    assert p.returncode == 0, p.stderr
     for name in ("packing-wang3", "packing-corner4"):
-        problem, sol = read_packing(tmp_path / f"{name}.json")
+        problem, sol = read_packing(tmp_path / "pics" / f"{name}.json")
         assert is_packing(sol.tiling, problem.kind, problem.colors)
-        assert (tmp_path / f"{name}.svg").exists()
+        assert (tmp_path / "pics" / f"{name}.svg").exists()
 
 
 def test_lift_and_recursive_from_the_command_line(tmp_path):

@@ -469,7 +469,8 @@ def _run_script(tmp_path: Path, code: str) -> subprocess.CompletedProcess:
 
 def test_readme_packing_example_runs_as_a_script_without_main_guard(tmp_path):
     # The README's second Python example, verbatim: corner C = 8 takes longer than QUICK_S,
-    # so a worker starts beside the first run (it used to re-run the script and die).
+    # so a worker starts beside the first run if a core is idle (the worker used to re-run
+    # the script and die). The next test starts workers whatever the load.
     r = _run_script(tmp_path, """\
         from tilesolve import packing
         from tilesolve.model.packing import PackingProblem

@@ -6,10 +6,10 @@ import click
 
 from tilesolve.cli import options as opt
 from tilesolve.cli.common import build_problem, progress_wanted, say
-from tilesolve.cli.outputs import Outputs, stop_if_interrupted
+from tilesolve.cli.outputs import Outputs
 from tilesolve.errors import InvalidProblem
 from tilesolve.dappled import COUNT_METHODS, METHODS
-from tilesolve.family import draw_seed
+from tilesolve.family import draw_seed, raise_if_interrupted
 
 method_opt = click.option(
     "--method",
@@ -169,7 +169,7 @@ def count(ctx, method, time_limit, force, **problem_kw) -> None:
 
     problem = build_problem(**problem_kw)
     res = facade.count(problem, method=method, time_limit=time_limit, progress=progress_wanted(), force=force)
-    stop_if_interrupted(res)
+    raise_if_interrupted(res)
     exact = res.value is not None and res.status != Status.UNKNOWN
     say(f"{'count' if exact else 'unknown'}: {problem.describe()}")
     say(f"  method {res.method}, {res.time_s:.3f} s")

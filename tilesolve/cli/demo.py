@@ -36,7 +36,7 @@ def demo(ctx, out_dir: str, seed: int, time_limit: float, only: tuple[str, ...])
 
     Exit 0 when every demo produced its picture, 1 otherwise.
     """
-    from tilesolve.family import draw_solution, get, iter_demos, solve, write_solution
+    from tilesolve.family import draw_solution, get, iter_demos, raise_if_interrupted, solve, write_solution
 
     for name in only:
         get(name)  # an unknown family name is a usage error, before anything is written
@@ -49,7 +49,8 @@ def demo(ctx, out_dir: str, seed: int, time_limit: float, only: tuple[str, ...])
             continue
         n += 1
         problem = d.make()
-        sol = solve(problem, d.method, seed=seed, time_limit=time_limit, workers=1, progress=progress_wanted())
+        sol = raise_if_interrupted(solve(problem, d.method, seed=seed, time_limit=time_limit, workers=1,
+                                         progress=progress_wanted()))
         write_solution(out / f"{d.name}.json", problem, sol)
         click.echo(f"{d.name:16s} {d.caption}: {sol.status.value} by {sol.method} in {sol.time_s:.2f} s")
         if sol.status.has_tiling:

@@ -12,7 +12,7 @@ them together when the block ends cleanly: a failure of any write leaves no file
 Interruptions (README, "Exit codes"): Ctrl-C exits 130 and SIGTERM exits 143, writing
 nothing and leaving existing files as they were. The engine turns Ctrl-C inside a solver
 into an ``unknown`` result whose reason starts with ``"interrupted"``;
-:func:`stop_if_interrupted` is the one place that recognises such a result, and turns it
+:func:`tilesolve.family.raise_if_interrupted` is the one place that recognises such a result, and turns it
 back into the interruption it was, before any file is written. A *time limit* is not an
 interruption: its ``unknown`` record is written as documented (exit 3).
 """
@@ -28,7 +28,7 @@ from typing import Iterator
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.atomic import commit_together, probe_writable
 
-__all__ = ["Outputs", "check_target", "stop_if_interrupted", "sigterm_as_interrupt", "interruption"]
+__all__ = ["Outputs", "check_target", "sigterm_as_interrupt", "interruption"]
 
 _state = {"terminated": False, "pid": 0}
 
@@ -109,28 +109,14 @@ class Outputs:
         """Stage the writes of the block and commit them together at its end.
 
         ``result`` (a solution or a count) is checked first: an interrupted one ends the run
-        here, before anything is written (:func:`stop_if_interrupted`).
+        here, before anything is written (:func:`tilesolve.family.raise_if_interrupted`).
         """
         if result is not None:
-            stop_if_interrupted(result)
+            from tilesolve.family import raise_if_interrupted
+
+            raise_if_interrupted(result)
         with commit_together():
             yield
-
-
-def stop_if_interrupted(result) -> None:
-    """Raise ``KeyboardInterrupt`` if ``result`` is the engine's record of an interruption.
-
-    The engine catches Ctrl-C inside a solver and returns ``unknown`` with a reason (or, for
-    counts, a note) starting with ``"interrupted"``. The CLI does not write that record: it
-    exits 130 (143 after SIGTERM) as if the interruption had reached it directly.
-    """
-    from tilesolve.model.solution import Status
-
-    if getattr(result, "status", None) is not Status.UNKNOWN:
-        return
-    why = getattr(result, "reason", None) or getattr(result, "note", None) or ""
-    if why.startswith("interrupted"):
-        raise KeyboardInterrupt
 
 
 def _on_sigterm(signum, frame) -> None:

@@ -1,19 +1,25 @@
-"""Compiled inner loops of the linear brick Wang algorithm (see :mod:`tilesolve.constructive.brick`).
+"""Inner loops of the linear brick Wang algorithm (see :mod:`tilesolve.constructive.brick`).
 
 Conditions on a leg (§4.1) are pairs ``(kind, colour)``: ``EXACT`` (c), ``NOT`` (¬c),
 ``ANY`` (∗) and ``EMPTY`` (no colour; only reached from an empty input).
 Leg colours live in an ``(n, 4)`` array, ``-1`` = not yet chosen.
+
+Callers take the functions from ``KERNELS.pick(cells)``: plain Python on small boards,
+numba-compiled on large ones, the same output on both (see :mod:`._jit`).
 """
 
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+
+from tilesolve.constructive._jit import Kernels, kernel
+from tilesolve.constructive._jit import rand32 as _rand
+from tilesolve.constructive._jit import seed_state as _seed_state
 
 EXACT, NOT, ANY, EMPTY = 0, 1, 2, 3
 
 
-@njit(cache=True)
+@kernel()
 def four_cycle_at(nc, a, out):
     """A chordless 4-cycle a-b-d-c through cell ``a`` using two consecutive legs of ``a``
     (a 2x2 block: four corners). Writes the cells to ``out``; False when there is none."""
@@ -50,7 +56,7 @@ def four_cycle_at(nc, a, out):
     return False
 
 
-@njit(cache=True)
+@kernel()
 def _dfs(nc, nl, s, label, comp, order, m, parent_leg, stack, nxt, pref, legs):
     comp[s] = label
     order[m] = s
@@ -77,7 +83,7 @@ def _dfs(nc, nl, s, label, comp, order, m, parent_leg, stack, nxt, pref, legs):
     return m
 
 
-@njit(cache=True)
+@kernel()
 def components(nc, nl):
     """Components of G' by depth-first search, rooted at a 4-cycle where there is one.
 
@@ -120,7 +126,7 @@ def components(nc, nl):
     return comp, order, parent_leg, st, hq[:ncomp].copy(), is_tree
 
 
-@njit(cache=True)
+@kernel()
 def dfs_tree(nc, nl, sources, allowed):
     """Depth-first spanning forest from ``sources`` over cells with ``allowed``.
 
@@ -159,7 +165,7 @@ def dfs_tree(nc, nl, sources, allowed):
     return order[:m].copy(), parent_leg
 
 
-@njit(cache=True)
+@kernel()
 def quad_legs(nc, nl, roots):
     """Cycle arrays (cells, ins, outs, ptr) for the 4-cycles through ``roots``."""
     L = roots.shape[0]
@@ -182,7 +188,7 @@ def quad_legs(nc, nl, roots):
     return cells, ins, outs, ptr
 
 
-@njit(cache=True)
+@kernel()
 def _in_cond(c, kind, val):
     if kind == EXACT:
         return c == val
@@ -191,7 +197,7 @@ def _in_cond(c, kind, val):
     return kind == ANY
 
 
-@njit(cache=True)
+@kernel()
 def _meet_nonempty(k1, v1, k2, v2):
     """Do two conditions share a colour? (#C >= 3)"""
     if k1 == EMPTY or k2 == EMPTY:
@@ -203,7 +209,7 @@ def _meet_nonempty(k1, v1, k2, v2):
     return True
 
 
-@njit(cache=True)
+@kernel()
 def out_cond(kinds, vals, out):
     """The weakest condition on leg ``out`` given the other three (Figure 2, §4.1).
 
@@ -227,7 +233,7 @@ def out_cond(kinds, vals, out):
     return kinds[o], vals[o]  # neq only: c_out = c_o
 
 
-@njit(cache=True)
+@kernel()
 def _pick(kind, val, avoid, C, r):
     if kind == EXACT:
         if val != avoid:
@@ -242,7 +248,7 @@ def _pick(kind, val, avoid, C, r):
     return -1
 
 
-@njit(cache=True)
+@kernel()
 def _pick_common(k1, v1, k2, v2, C, r):
     if k1 == EXACT:
         return v1 if _in_cond(v1, k2, v2) else -1
@@ -257,7 +263,7 @@ def _pick_common(k1, v1, k2, v2, C, r):
     return -1
 
 
-@njit(cache=True)
+@kernel()
 def choose_tile(kinds, vals, C, r, first_mode, out):
     """Fill ``out`` with a brick tile meeting the four conditions; False when none exists."""
     for t in range(2):
@@ -286,27 +292,7 @@ def choose_tile(kinds, vals, C, r, first_mode, out):
     return False
 
 
-@njit(cache=True)
-def _rand(state):
-    """xorshift64 step on ``state[0]``; returns 32 random bits (cheaper than numpy.random)."""
-    x = state[0]
-    x ^= (x << np.uint64(13)) & np.uint64(0xFFFFFFFFFFFFFFFF)
-    x ^= x >> np.uint64(7)
-    x ^= (x << np.uint64(17)) & np.uint64(0xFFFFFFFFFFFFFFFF)
-    state[0] = x
-    return np.int64(x >> np.uint64(32))
-
-
-@njit(cache=True)
-def _seed_state(seed):
-    st = np.empty(1, np.uint64)
-    st[0] = np.uint64(seed) * np.uint64(2654435761) + np.uint64(88172645463325252)
-    if st[0] == 0:
-        st[0] = np.uint64(1)
-    return st
-
-
-@njit(cache=True)
+@kernel()
 def _set(col, nc, nl, a, k, c):
     col[a, k] = c
     b = nc[a, k]
@@ -314,7 +300,7 @@ def _set(col, nc, nl, a, k, c):
         col[b, nl[a, k]] = c
 
 
-@njit(cache=True)
+@kernel()
 def _leg_conds(col, a, kinds, vals):
     for k in range(4):
         if col[a, k] >= 0:
@@ -325,7 +311,7 @@ def _leg_conds(col, a, kinds, vals):
             vals[k] = -1
 
 
-@njit(cache=True)
+@kernel()
 def tile_outside(order, parent_leg, skip, nc, nl, col, C, seed):
     """Theorem 7 steps 2-3: tile ``order`` from its end (leaves first); each cell's parent
     leg is still free, so by the three-boundary condition a tile always exists.
@@ -352,7 +338,7 @@ def tile_outside(order, parent_leg, skip, nc, nl, col, C, seed):
     return -1
 
 
-@njit(cache=True)
+@kernel()
 def solve_cycle(cells, ins, outs, nc, nl, col, C, seed):
     """§4.3: tile a chordless cycle whose other legs are already fixed (or free boundary).
 
@@ -426,7 +412,7 @@ def solve_cycle(cells, ins, outs, nc, nl, col, C, seed):
     return False
 
 
-@njit(cache=True)
+@kernel()
 def solve_cycles(cells, ins, outs, ptr, nc, nl, col, C, seed):
     """:func:`solve_cycle` on each cycle ``ptr[i]:ptr[i+1]``; the first that fails, or -1."""
     for i in range(ptr.size - 1):
@@ -436,7 +422,7 @@ def solve_cycles(cells, ins, outs, ptr, nc, nl, col, C, seed):
     return -1
 
 
-@njit(cache=True)
+@kernel()
 def solve_trees(order, parent_leg, is_tree, comp, nc, nl, col, C, seed, cond_k, cond_v):
     """§4.2 on every tree component (cells of ``order`` whose component has ``is_tree``).
 
@@ -502,3 +488,11 @@ def solve_trees(order, parent_leg, is_tree, comp, nc, nl, col, C, seed, cond_k, 
         for k in range(4):
             _set(col, nc, nl, a, k, tile[k])
     return -1
+
+
+#: Cells from which compiling pays (numba's import, set-up and cache load against the
+#: interpreted kernels; measured by ``benchmarks/bench_startup.py``).
+THRESHOLD = 40_000
+
+#: The plain and compiled namespaces of this module.
+KERNELS = Kernels(globals(), THRESHOLD)

@@ -190,9 +190,10 @@ def solve_linear(problem: BoardProblem, *, seed=None) -> Solution:
         Not brick tiles, line limits, or a non-planar board where the cycle solver fails
         (Remark 11 does not apply); the message says why.
     """
-    from tilesolve.constructive import _brick_kernels as K
+    from tilesolve.constructive._brick_kernels import KERNELS
 
     t0 = time.perf_counter()
+    K = KERNELS.pick(problem.board.n_cells)
     if not problem.tileset.is_brick:
         raise MethodNotApplicable("the linear algorithm is for brick Wang tiles (Def. 9); use method 'sat'")
     if problem.has_line_limits:

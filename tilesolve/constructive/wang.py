@@ -40,8 +40,9 @@ def default_core(problem: BoardProblem) -> np.ndarray:
     """Cells of ``U``: a chordless 2x2 block of cells in each component of G' (a cycle
     with four corners, which Lemma 10 / Remark 11 make a core for brick tiles), or the
     component's first cell where there is none."""
-    from tilesolve.constructive import _brick_kernels as K
+    from tilesolve.constructive._brick_kernels import KERNELS
 
+    K = KERNELS.pick(problem.board.n_cells)
     nc, nl = problem.board.nbr_cell, problem.board.nbr_leg
     comp, order, parent_leg, starts, has_quad, is_tree = K.components(nc, nl)
     core = np.zeros(problem.board.n_cells, bool)
@@ -99,8 +100,9 @@ def theorem7_solve(problem: BoardProblem, core=None, *, core_solver: Callable[..
     wa, wl = np.nonzero(nc < 0)
     col[wa, wl] = problem.boundary[nl[wa, wl]]
     # spanning forest of the cells outside U, rooted at U (the wall of G|T\U)
-    from tilesolve.constructive import _brick_kernels as K
+    from tilesolve.constructive._brick_kernels import KERNELS
 
+    K = KERNELS.pick(n)
     sources = np.flatnonzero(keep)
     order, parent_leg = K.dfs_tree(nc, nl, sources, ~keep)
     reached = np.zeros(n, bool)

@@ -1,5 +1,5 @@
-"""``tilesolve brick solve | wall`` and ``tilesolve wang solve``: thin layers over
-:mod:`tilesolve.board` and :mod:`tilesolve.walls`."""
+"""The board family's commands: ``tilesolve brick solve | wall | count | crosscheck`` and
+``tilesolve wang solve``, thin layers over :mod:`tilesolve.board` and :mod:`tilesolve.walls`."""
 
 from __future__ import annotations
 
@@ -7,9 +7,9 @@ import click
 
 from tilesolve.cli import options as opt
 from tilesolve.cli.common import big, human_bytes, say
-from tilesolve.cli.outputs import Outputs, stop_if_interrupted
+from tilesolve.cli.outputs import Outputs
 from tilesolve.errors import InvalidProblem
-from tilesolve.family import draw_seed
+from tilesolve.family import draw_seed, raise_if_interrupted
 
 __all__ = ["brick", "wang", "BOARD_HELP"]
 
@@ -255,7 +255,7 @@ def count(ctx, board_spec, colors, boundary, seed, time_limit) -> None:
 
     problem = _brick_problem(board_spec, colors, boundary, 0 if seed is None else seed)
     res = facade.count(problem, time_limit=time_limit)
-    stop_if_interrupted(res)
+    raise_if_interrupted(res)
     say(f"{'count' if res.value is not None else 'unknown'}: {problem.describe()}  ({res.time_s:.3f} s)")
     if res.value is None:
         say(f"  stopped: {res.note}")
