@@ -490,9 +490,10 @@ def solve_trees(order, parent_leg, is_tree, comp, nc, nl, col, C, seed, cond_k, 
     return -1
 
 
-#: Cells from which compiling pays (numba's import, set-up and cache load against the
-#: interpreted kernels; measured by ``benchmarks/bench_startup.py``).
-THRESHOLD = 40_000
+#: Cells from which compiling pays: numba's import, set-up and cache load cost about 0.8 s of
+#: CPU, the linear algorithm runs at about 35 us a cell interpreted (a 100x100 rectangle in
+#: 0.36 s), so the crossover is near 25,000 cells (``benchmarks/bench_startup.py``).
+THRESHOLD = 25_000
 
 #: The plain and compiled namespaces of this module.
 KERNELS = Kernels(globals(), THRESHOLD)
