@@ -344,10 +344,11 @@ def solve_lazy(
     name = _check_oracle(solver, time_limit)
     if any(not b.grid_only for b in getattr(hard, "blocks", [])):
         raise MethodNotApplicable("lazy decomposition needs clauses over grid variables only (no counts)")
-    soft_of = {abs(int(l)): int(l) for l in soft}
+    soft_arr = np.asarray(soft, dtype=np.int64).ravel()
     ref = np.asarray(reference, dtype=bool)
-    if any(ref[v] != (l > 0) for v, l in soft_of.items()):
+    if (ref[np.abs(soft_arr)] != (soft_arr > 0)).any():
         raise ValueError("the reference assignment must satisfy every soft literal")
+    soft_of = dict(zip(np.abs(soft_arr).tolist(), soft_arr.tolist()))
     n_hard = len(hard)
     from networkx.utils import UnionFind
 
@@ -362,6 +363,8 @@ def solve_lazy(
 
     try:
         while True:
+            if deadline.expired():
+                raise _Stopped("time limit")
             new: list[list[int]] = []
             for block, rows in hard.falsified(cur):
                 new.extend(block.lits[rows].tolist() if block.lits is not None else [block.ragged[i] for i in rows])
@@ -422,7 +425,7 @@ def solve_lazy(
     stats["largest_component"] = max((len(k.clauses) for k in comps.values()), default=0)
     idx = np.arange(1, cur.size, dtype=np.int64)
     model = np.where(cur[1:], idx, -idx).tolist()
-    cost = sum(1 for v, l in soft_of.items() if cur[v] != (l > 0))
+    cost = int((cur[np.abs(soft_arr)] != (soft_arr > 0)).sum())
     if cost != stats["lower_bound"]:  # cannot happen: softs outside every component keep their value
         raise InternalError(f"lazy decomposition: feasible cost {cost} differs from the bound {stats['lower_bound']}")
     return Result(Status.OPTIMAL, model, time.perf_counter() - t0, None, stats, cost=cost, solver=solver_name)
