@@ -132,12 +132,26 @@ def _search(name: str):
     raw = getattr(engine if name in ("sat", "cpsat") else packing_search, f"solve_{name}")
 
     def route(problem: PackingProblem, run: RunOptions) -> Solution:
+        clashes = problem.pin_clashes()
+        if clashes and name not in ("sat", "cpsat"):
+            # A restricted search never proves unsat and would retry forever: pins that clash
+            # are refuted on the full formula instead (unsat with a checked proof).
+            try:
+                sol = sat(problem, run)
+            except InvalidProblem:
+                raise InvalidProblem(f"the pinned tiles clash: {clashes[0]}") from None
+            return sol.replace(notes=(f"the pins clash, so {name!r} was not run: decided on the full formula",)
+                               + sol.notes)
         if name not in PORTFOLIO_ROUTES:
-            return raw(problem, seed=run.seed, time_limit=run.time_limit, workers=run.workers, solver=run.solver)
-        from tilesolve.engine.portfolio import escalate
+            sol = raw(problem, seed=run.seed, time_limit=run.time_limit, workers=run.workers, solver=run.solver)
+        else:
+            from tilesolve.engine.portfolio import escalate
 
-        return escalate(raw, problem, name=f"{name} packing", seed=run.seed, time_limit=run.time_limit,
-                        workers=run.workers, cluster=run.cluster, progress=run.progress, solver=run.solver)
+            sol = escalate(raw, problem, name=f"{name} packing", seed=run.seed, time_limit=run.time_limit,
+                           workers=run.workers, cluster=run.cluster, progress=run.progress, solver=run.solver)
+        if sol.status is Status.UNSAT and clashes:
+            sol = sol.replace(reason=f"{sol.reason}; in words: " + "; ".join(clashes))
+        return sol
 
     route.__name__ = name
     route.__doc__ = raw.__doc__

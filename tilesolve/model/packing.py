@@ -14,6 +14,7 @@ cannot be completed) are a problem with no packing, answered ``unsat``, not an e
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 from tilesolve.errors import InvalidProblem
@@ -66,9 +67,44 @@ class PackingProblem:
             fixed.append((r, c, t))
         object.__setattr__(self, "fixed", tuple(fixed))
 
-    @property
+    @functools.cached_property
     def tiles(self) -> TileSet:
         return TileSet(self.kind, self.colors, self.colors_v)
+
+    def pin_clashes(self) -> list[str]:
+        """Why the pinned tiles cannot all hold in any packing, in words (empty when no two
+        pins clash): a tile pinned at two cells (each tile appears once), a cell given two
+        tiles, or side-by-side pins whose shared edge (Wang) or corners (corner) differ on
+        the torus (class notes §2.7)."""
+        out: list[str] = []
+        rows, cols = self.shape
+        at: dict[tuple[int, int], int] = {}
+        where: dict[int, tuple[int, int]] = {}
+        for r, c, t in self.fixed:
+            if (r, c) in at and at[(r, c)] != t:
+                out.append(f"cell ({r}, {c}) is given tiles {at[(r, c)]} and {t}")
+            if t in where and where[t] != (r, c):
+                out.append(f"tile {t} is pinned at {where[t]} and at {(r, c)}, but a packing holds each tile once")
+            at.setdefault((r, c), t)
+            where.setdefault(t, (r, c))
+        sides = self.tiles.sides
+        # (own side, neighbour side) pairs that must agree, for the east and the south neighbour
+        if self.kind == "wang":
+            pairs = {(0, 1): ((1, 3),), (1, 0): ((2, 0),)}
+        else:  # NE SE SW NW
+            pairs = {(0, 1): ((0, 3), (1, 2)), (1, 0): ((2, 3), (1, 0))}
+        for (r, c), t in at.items():
+            for (dr, dc), checks in pairs.items():
+                u = at.get(((r + dr) % rows, (c + dc) % cols))
+                if u is None:
+                    continue
+                a, b = self.tiles.colors_of(t), self.tiles.colors_of(u)
+                for i, j in checks:
+                    if a[i] != b[j]:
+                        where_ = "east of" if dc else "below"
+                        out.append(f"tile {u} cannot sit {where_} tile {t} at ({r}, {c}): {sides[i]} colour {a[i]} "
+                                   f"meets {sides[j]} colour {b[j]}")
+        return out
 
     @property
     def shape(self) -> tuple[int, int]:
