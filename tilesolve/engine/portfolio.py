@@ -141,8 +141,8 @@ def run_portfolio(
     ----------
     task : callable
         ``task(seed=seed) -> Solution``: one independent randomised search that honours its
-        own time limit. The seed is passed by keyword, so a :func:`functools.partial` of an
-        engine route works as it is, e.g. ``partial(tilesolve.engine.packing.solve_lift,
+        own time limit. The seed is passed by keyword, so a :func:`functools.partial` of a
+        raw route works as it is, e.g. ``partial(tilesolve.packing_search.solve_lift,
         problem, time_limit=60)``. Must pickle (module docstring).
     seeds : iterable of int
         One run per seed, started in this order (a seed starts when a worker is free).
@@ -239,9 +239,10 @@ def escalate(route: Callable[..., Solution], problem: Any, *, name: str, seed: i
     Parameters
     ----------
     route : callable
-        The raw route, ``route(problem, *, seed, time_limit, solver) -> Solution``: an engine
-        search such as :func:`tilesolve.engine.packing.solve_lift`, never a facade. Workers
-        run it, so it must pickle (a module-level function).
+        The raw route, ``route(problem, *, seed, time_limit, solver) -> Solution``: a search
+        such as :func:`tilesolve.packing_search.solve_lift` or
+        :func:`tilesolve.engine.packing.solve_sat`, never a facade's ``solve``. Workers run
+        it, so it must pickle (a module-level function).
     problem : object
         The problem handed to ``route`` (pickled to the workers).
     name : str
