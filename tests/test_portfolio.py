@@ -242,6 +242,22 @@ def test_progress_line_on_a_terminal(monkeypatch):
     assert out.endswith("\r\033[K")  # erased when the call returns
 
 
+def test_portfolio_line_inside_the_pipelines_line_draws_no_second_line(monkeypatch):
+    class Terminal(io.StringIO):
+        def isatty(self):
+            return True
+
+    term = Terminal()
+    monkeypatch.setattr(sys, "stderr", term)
+    with progress.status_line("packing: solving with 'fake'", True, every=0.01):
+        s = run_portfolio(task(s0="sleep:0.3", s1="sleep:0.3", s2="sat"), range(3), workers=1, progress=True,
+                          label="fake search")
+    assert s.status is Status.SAT
+    drawn = [part for part in term.getvalue().split("\r\033[K") if part]
+    assert any(": fake search: " in part and " runs finished, 1 running ... " in part for part in drawn)
+    assert all(part.startswith("  packing: solving with 'fake'") for part in drawn)  # one line, the outer one
+
+
 def test_no_progress_line_off_a_terminal(monkeypatch):
     term = io.StringIO()
     monkeypatch.setattr(sys, "stderr", term)

@@ -15,6 +15,9 @@ from typing import Callable, Iterator
 
 __all__ = ["ticker", "status_line"]
 
+#: The detail cells of the lines being drawn (outermost first): a nested line writes there.
+_drawn: list[list[str]] = []
+
 
 @contextlib.contextmanager
 def ticker(label: str, enabled: bool, *, every: float = 0.5) -> Iterator[None]:
@@ -35,13 +38,28 @@ def status_line(label: str, enabled: bool, *, every: float = 0.5) -> Iterator[Ca
     the elapsed seconds on stderr while the ``with`` block runs.
 
     Yields ``set_detail(text)``; the line reads ``label: text ... N s`` and is erased when the
-    ``with`` block ends. Does nothing unless ``enabled`` and stderr is a terminal.
+    ``with`` block ends. Does nothing unless ``enabled`` and stderr is a terminal. Nested in
+    another line (the solve pipeline's, around a seed portfolio's), it draws no line of its
+    own: the outer line's detail shows ``label: text`` until the block ends.
 
     >>> with status_line("search", enabled=False) as set_detail:
     ...     set_detail("1 of 4 runs finished")
     """
     if not (enabled and sys.stderr.isatty()):
         yield lambda text: None
+        return
+    if _drawn:
+        outer = _drawn[-1]
+        before = outer[0]
+
+        def set_inner(text: str) -> None:
+            outer[0] = f"{label}: {text}" if text else label
+
+        set_inner("")
+        try:
+            yield set_inner
+        finally:
+            outer[0] = before
         return
     stop = threading.Event()
     t0 = time.perf_counter()
@@ -58,9 +76,11 @@ def status_line(label: str, enabled: bool, *, every: float = 0.5) -> Iterator[Ca
 
     thread = threading.Thread(target=run, daemon=True)
     thread.start()
+    _drawn.append(detail)
     try:
         yield set_detail
     finally:
+        _drawn.remove(detail)
         stop.set()
         thread.join()
         sys.stderr.write("\r\033[K")
