@@ -236,7 +236,10 @@ def build_cpsat_wang(problem: BoardProblem, *, deadline: Deadline | None = None)
         if deadline is not None and i % 4096 == 0:
             deadline.check(f"building the CP-SAT model ({i:,} of {total:,} {what})")
 
-    ints = [m.new_int_var(0, k - 1, f"e{e}") for e in range(ne)]
+    ints = []
+    for e in range(ne):
+        check(e, ne, "edge variables")
+        ints.append(m.new_int_var(0, k - 1, f"e{e}"))
     bools = []
     for e in range(ne):
         check(e, ne, "edges")
