@@ -44,6 +44,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from tilesolve.deadline import Deadline
 from tilesolve.encodings import ClauseSet
 from tilesolve.model.packing import PackingProblem
 
@@ -315,20 +316,29 @@ def encode_packing(problem: PackingProblem, *, anchor_tile: int | None = 0, amo_
     return enc
 
 
-def build_cpsat_packing(problem: PackingProblem, *, anchor_tile: int | None = 0):
+def build_cpsat_packing(problem: PackingProblem, *, anchor_tile: int | None = 0, deadline: Deadline | None = None):
     """CP-SAT model of the same encoding, with native exactly-one constraints.
 
     Returns ``(model, place, enc)``; ``place`` is the list of the placement Booleans in
-    variable order, which :meth:`PackingEncoding.decode` reads back.
+    variable order, which :meth:`PackingEncoding.decode` reads back. Building costs a Python
+    call per constraint, so a ``deadline`` is checked every 4096 of them
+    (:class:`~tilesolve.deadline.TimeLimitReached`).
     """
     from ortools.sat.python import cp_model
 
     enc = encode_packing(problem, anchor_tile=anchor_tile, amo_tiles=False)
     m = cp_model.CpModel()
+    total = len(enc.clauses)
+    if deadline is not None:
+        deadline.check(f"building the CP-SAT model (0 of {total:,} constraints added)")
     bools = [None] + [m.new_bool_var(f"v{i}") for i in range(1, enc.n_vars + 1)]
+    done = 0
     for block in enc.clauses.blocks:
         exactly_one = block.label in ("cell holds a tile", "tile is placed")
-        for chunk in block.lists():
+        for chunk in block.lists(4096):
+            if deadline is not None:
+                deadline.check(f"building the CP-SAT model ({done:,} of {total:,} constraints added)")
+            done += len(chunk)
             for cl in chunk:
                 if exactly_one:
                     m.add_exactly_one([bools[v] for v in cl])
