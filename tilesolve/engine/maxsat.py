@@ -367,7 +367,11 @@ def solve_lazy(
                 raise _Stopped("time limit")
             new: list[list[int]] = []
             for block, rows in hard.falsified(cur):
-                new.extend(block.lits[rows].tolist() if block.lits is not None else [block.ragged[i] for i in rows])
+                for lo in range(0, len(rows), 1 << 16):  # list conversion is slow: deadline checks between parts
+                    if deadline.expired():
+                        raise _Stopped("time limit")
+                    part = rows[lo : lo + (1 << 16)]
+                    new.extend(block.lits[part].tolist() if block.lits is not None else [block.ragged[i] for i in part])
             if not new:
                 break
             if any(len(c) == 0 for c in new):
