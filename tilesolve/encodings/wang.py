@@ -18,6 +18,7 @@ Nothing here calls a solver (DESIGN.md, "Encodings").
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Iterator
 
 import numpy as np
 
@@ -112,14 +113,14 @@ def line_windows(nbr_cell: np.ndarray, nbr_leg: np.ndarray, axis: str, length: i
     return np.stack(cols, axis=1)[ok]
 
 
-def _exactly_one(first: np.ndarray, k: int) -> list[np.ndarray]:
-    """Clauses saying exactly one of ``first[:, None] + arange(k)`` is true (pairwise AMO)."""
+def _exactly_one(first: np.ndarray, k: int) -> Iterator[np.ndarray]:
+    """Clauses saying exactly one of ``first[:, None] + arange(k)`` is true (pairwise AMO),
+    one block at a time (the caller checks its deadline between blocks)."""
     lits = first[:, None] + np.arange(k)[None, :]
-    blocks = [lits]
+    yield lits
     for i in range(k):
         for j in range(i + 1, k):
-            blocks.append(np.stack([-lits[:, i], -lits[:, j]], axis=1))
-    return blocks
+            yield np.stack([-lits[:, i], -lits[:, j]], axis=1)
 
 
 def encode_wang(problem: BoardProblem, *, deadline: Deadline | None = None) -> WangEncoding:
@@ -139,11 +140,11 @@ def encode_wang(problem: BoardProblem, *, deadline: Deadline | None = None) -> W
     k = problem.n_colors
     eid, ne = board.leg_edges()
     n = board.n_cells
+    if deadline is not None:
+        deadline.check("encoding (numbering the edges)")
     cs = _CheckedClauseSet(deadline)
-    blocks = _exactly_one(1 + np.arange(ne, dtype=np.int64) * k, k)
-    cs.add_array(blocks[0], "edge has a colour")
-    for b in blocks[1:]:
-        cs.add_array(b, "edge has at most one colour")
+    for i, b in enumerate(_exactly_one(1 + np.arange(ne, dtype=np.int64) * k, k)):
+        cs.add_array(b, "edge has a colour" if i == 0 else "edge has at most one colour")
     top = ne * k
     x = lambda e, c: 1 + e * k + c  # noqa: E731
     # boundary constraints
