@@ -11,8 +11,9 @@ the row's baseline. Goals (issue 9, "Start-up"):
   ``L = {H_0^2, V_1^2}`` on a random 100x100 tiling, in pure Python with numpy for the
   random start, written as JSON (the script is written to a temporary directory);
 * compiled kernels loaded only when the problem is large enough: the second table runs the
-  dappled kernels interpreted and compiled (numba, warm cache) in fresh processes around
-  ``_dappled_kernels.THRESHOLD`` and prints the CPU time of each.
+  dappled kernels (Algorithm 1, the trivial algorithm) and the linear brick algorithm
+  interpreted and compiled (numba, warm cache) in fresh processes around each module's
+  ``THRESHOLD`` and prints the CPU time of each.
 
 ``tilesolve brick solve --board rect:100x100`` is listed against ``python -c "import numpy"``.
 
@@ -77,6 +78,19 @@ make_dappled(DappledProblem.from_strings(f"{n}x{n}", ["H0=2", "V1=2"], n_tiles=n
 '''
 
 
+#: The linear brick algorithm (brick paper §4) on an n x n rectangle, interpreted or compiled.
+BRICK_SCRIPT = '''\
+import sys
+from tilesolve.constructive import _brick_kernels as K
+from tilesolve.constructive.brick import solve_linear
+from tilesolve.model.board import BoardProblem, WangTileSet, parse_board_spec, random_boundary
+
+K.KERNELS.mode = sys.argv[1]
+board = parse_board_spec(f"rect:{sys.argv[2]}x{sys.argv[2]}")
+solve_linear(BoardProblem(board, WangTileSet.brick(3), random_boundary(board, 3, seed=1)), seed=1)
+'''
+
+
 def run_once(argv: list[str]) -> tuple[float, float, float]:
     """Wall seconds, CPU seconds (user + sys) and peak RSS (MiB) of one run of ``argv``."""
     t = time.perf_counter()
@@ -112,6 +126,9 @@ def main() -> None:
         cross = os.path.join(tmp, "crossover.py")
         with open(cross, "w") as f:
             f.write(CROSSOVER_SCRIPT)
+        brick = os.path.join(tmp, "brick.py")
+        with open(brick, "w") as f:
+            f.write(BRICK_SCRIPT)
         out = os.path.join(tmp, "out.json")
         rows = [  # label, argv, baseline label
             ("python -c pass", [py, "-c", "pass"], None),
@@ -134,20 +151,24 @@ def main() -> None:
         print("goals: --version <= 3x python -c pass; dappled solve <= 1x the plain script")
         if args.no_crossover:
             return
-        from tilesolve.constructive._dappled_kernels import THRESHOLD
+        from tilesolve.constructive import _brick_kernels, _dappled_kernels
 
-        print(f"\ndappled kernels interpreted vs compiled (fresh process, warm numba cache; "
-              f"THRESHOLD = {THRESHOLD:,} cells)")
+        print(f"\nkernels interpreted vs compiled (fresh process, warm numba cache; THRESHOLD = "
+              f"{_dappled_kernels.THRESHOLD:,} cells dappled, {_brick_kernels.THRESHOLD:,} brick)")
         print(f"{'route':12s} {'side':>6s} {'cells':>9s} {'plain CPU s':>12s} {'compiled CPU s':>15s} "
               f"{'plain/compiled':>15s}")
-        base = measure([py, "-c", "from tilesolve.constructive import dappled"], args.repeat)[1]
-        for route, n_tiles in (("algorithm1", "2"), ("trivial", "3")):
-            run_once([py, cross, "compiled", "8", n_tiles])  # fill the cache
-            for n in (250, 350, 450, 600):
-                plain = measure([py, cross, "plain", str(n), n_tiles], max(3, args.repeat // 3))[1] - base
-                comp = measure([py, cross, "compiled", str(n), n_tiles], max(3, args.repeat // 3))[1] - base
+        cases = [("algorithm1", [cross], ["2"], (250, 350, 450, 600), "tilesolve.constructive.dappled"),
+                 ("trivial", [cross], ["3"], (250, 350, 450, 600), "tilesolve.constructive.dappled"),
+                 ("brick", [brick], [], (100, 150, 200, 300), "tilesolve.constructive.brick")]
+        reps = max(3, args.repeat // 3)
+        for route, script_argv, extra, sides, module in cases:
+            run_once([py, *script_argv, "compiled", "8", *extra])  # fill the cache
+            base = measure([py, "-c", f"import {module}, tilesolve.model"], reps)[1]
+            for n in sides:
+                plain = measure([py, *script_argv, "plain", str(n), *extra], reps)[1] - base
+                comp = measure([py, *script_argv, "compiled", str(n), *extra], reps)[1] - base
                 print(f"{route:12s} {n:6d} {n * n:9,d} {plain:12.3f} {comp:15.3f} {plain / comp:14.2f}x", flush=True)
-        print("(CPU beyond importing tilesolve.constructive.dappled; the threshold belongs where the ratio crosses 1)")
+        print("(CPU beyond importing the route's module; a threshold belongs where the ratio crosses 1)")
 
 
 if __name__ == "__main__":

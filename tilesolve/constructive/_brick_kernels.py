@@ -490,10 +490,11 @@ def solve_trees(order, parent_leg, is_tree, comp, nc, nl, col, C, seed, cond_k, 
     return -1
 
 
-#: Cells from which compiling pays: numba's import, set-up and cache load cost about 0.8 s of
-#: CPU, the linear algorithm runs at about 35 us a cell interpreted (a 100x100 rectangle in
-#: 0.36 s), so the crossover is near 25,000 cells (``benchmarks/bench_startup.py``).
-THRESHOLD = 25_000
+#: Cells from which compiling pays: numba's import, set-up and cache load cost 0.8-1.5 s of
+#: CPU on a loaded machine, the linear algorithm runs at about 35 us a cell interpreted (a
+#: 100x100 rectangle in 0.4 s); ``benchmarks/bench_startup.py`` measured the crossover near
+#: 40,000 cells (a 200x200 rectangle).
+THRESHOLD = 40_000
 
 #: The plain and compiled namespaces of this module.
 KERNELS = Kernels(globals(), THRESHOLD)

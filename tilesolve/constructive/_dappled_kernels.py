@@ -299,9 +299,9 @@ def greedy_kernel(g, n, P, Q, cyclic, pc, qc, seed):
 
 
 #: Cells from which compiling pays. In fresh processes on a loaded machine numba's import,
-#: set-up and cache load cost 0.75-1.1 s of CPU; the kernels run at about 3 us a cell
-#: interpreted for Algorithm 1 and about 6 us for the trivial algorithm, a few ns compiled:
-#: crossovers between about 150,000 and 350,000 cells (``benchmarks/bench_startup.py``).
+#: set-up and cache load cost 0.75-1.3 s of CPU; the kernels run at about 3-5 us a cell
+#: interpreted, a few ns compiled. ``benchmarks/bench_startup.py`` measured the crossover
+#: near 250,000 cells for Algorithm 1 and 360,000 for the trivial algorithm.
 THRESHOLD = 250_000
 
 #: The plain and compiled namespaces of this module.
