@@ -764,8 +764,7 @@ class _Pool:
         self.workers: list[_Worker] = []
 
     def start(self) -> None:
-        main = _main_of_parent()
-        for _ in range(self.n):
+        for _ in range(self.n):  # all interpreters start at once; each then reads its pipe
             parent_end, child_end = multiprocessing.Pipe()
             fd = child_end.fileno()
             try:
@@ -773,10 +772,15 @@ class _Pool:
                                            pass_fds=(fd,), stdin=subprocess.DEVNULL)
             finally:
                 child_end.close()
-            w = _Worker(process, parent_end)
-            self.workers.append(w)
-            parent_end.send(sys.path)
-            parent_end.send((main, self.blob))
+            self.workers.append(_Worker(process, parent_end))
+        main = _main_of_parent()
+        for w in self.workers:
+            try:
+                w.conn.send(sys.path)
+                w.conn.send((main, self.blob))
+            except OSError:  # the interpreter could not start, or was killed from outside
+                raise BrokenProcessPool(f"a {self.label} worker process is gone "
+                                        f"(exit code {w.process.wait()})") from None
             self.assign(w)
 
     def busy(self) -> list[_Worker]:
