@@ -780,7 +780,7 @@ class _Pool:
                 w.conn.send((main, self.blob))
             except OSError:  # the interpreter could not start, or was killed from outside
                 raise BrokenProcessPool(f"a {self.label} worker process is gone "
-                                        f"(exit code {w.process.wait()})") from None
+                                        f"(exit code {w.process.poll()})") from None
             self.assign(w)
 
     def busy(self) -> list[_Worker]:
