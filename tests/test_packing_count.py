@@ -63,7 +63,7 @@ def test_corner_count_agrees_with_sat_enumeration():
     """Independent route: all models of the CNF without symmetry breaking (projected on placements)."""
     enc = encode_packing(PackingProblem("corner", 2), anchor_tile=None)
     res = count_models(enc.clauses, list(range(1, enc.n_placements + 1)))
-    assert res.complete and res.count == 32
+    assert res.exact and res.value == 32
 
 
 def test_orbit_representatives_are_packings():

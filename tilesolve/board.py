@@ -161,13 +161,14 @@ def count(problem: BoardProblem, *, method: str = "auto", time_limit: float | No
 
     if method not in ("auto", "enumerate"):
         raise InvalidProblem(f"unknown count method {method!r}; choose auto or enumerate")
+    from tilesolve.engine.progress import status_line
+
     t0 = time.perf_counter()
     enc = encode_wang(problem)
-    mc = count_models(enc.clauses, enc.projection(), time_limit=time_limit)
-    if not mc.complete:
-        return CountResult(None, Status.UNKNOWN, "enumerate", time.perf_counter() - t0,
-                           f"stopped after {mc.count} tilings: {mc.reason}")
-    return CountResult(mc.count, Status.SAT, "enumerate", time.perf_counter() - t0)
+    with status_line("counting by enumeration", progress) as show:
+        res = count_models(enc.clauses, enc.projection(), time_limit=time_limit,
+                           on_model=lambda n: show(f"{n:,} tilings so far"))
+    return res.replace(time_s=time.perf_counter() - t0)
 
 
 def crosscheck(problem: BoardProblem, *, seed: int | None = None, time_limit: float | None = None,

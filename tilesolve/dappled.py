@@ -215,10 +215,8 @@ def count(
     from tilesolve.engine.dappled import count_by_enumeration
 
     res = count_by_enumeration(problem, time_limit=deadline.remaining(), progress=progress)
-    if not res.complete:
-        return CountResult(None, Status.UNKNOWN, "enumerate", time.perf_counter() - t0,
-                           f"{res.reason or 'stopped'} after {res.count} tilings" + (f"; {note}" if note else ""))
-    return CountResult(res.count, Status.SAT, "enumerate", time.perf_counter() - t0, note)
+    notes = [n for n in (res.note, note) if n]
+    return res.replace(time_s=time.perf_counter() - t0, note="; ".join(notes) or None)
 
 
 def crosscheck(problem: DappledProblem, *, seed: int | None = None, time_limit: float | None = None) -> CrosscheckReport:

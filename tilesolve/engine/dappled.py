@@ -13,7 +13,7 @@ function                   question
 :func:`solve_maxsat`       the closest tiling to ``closest_to``, proved optimal (§6 item 3)
 :func:`solve_cpsat`        either question with OR-tools CP-SAT
 :func:`enumerate_tilings`  every tiling, one by one (blocking clauses)
-:func:`count_by_enumeration`  how many tilings (exact when ``complete``)
+:func:`count_by_enumeration`  how many tilings (a CountResult: exact, or unknown)
 =========================  ==================================================================
 """
 
@@ -30,11 +30,11 @@ from tilesolve.engine.cpsat import DEFAULT_CPSAT_WORKERS, solve_cp_model
 from tilesolve.engine.maxsat import DEFAULT_MAXSAT_ORACLE, RC2Options, solve_lazy, solve_wcnf
 from tilesolve.engine.routes import sat_route
 from tilesolve.deadline import Deadline, TimeLimitReached
-from tilesolve.engine.sat import DEFAULT_SAT_SOLVER, ModelEnumerator, solve_cnf
+from tilesolve.engine.sat import DEFAULT_SAT_SOLVER, ModelEnumerator, count_models, solve_cnf
 from tilesolve.errors import InternalError, InvalidProblem
 from tilesolve.model.dappled import DappledProblem
 from tilesolve.model.run import RunOptions
-from tilesolve.model.solution import Solution, Status
+from tilesolve.model.solution import CountResult, Solution, Status
 
 __all__ = [
     "solve_sat",
@@ -44,7 +44,6 @@ __all__ = [
     "count_by_enumeration",
     "tiling_satisfies_encoding",
     "TilingEnumerator",
-    "TilingCount",
     "MAXSAT_METHODS",
 ]
 
@@ -326,30 +325,6 @@ def enumerate_tilings(
     return TilingEnumerator(problem, limit, time_limit, solver)
 
 
-class TilingCount(tuple):
-    """``(count, complete)``: ``count`` tilings found, ``complete`` when that is all of them.
-
-    Unpacks as a pair; ``time_s`` and ``reason`` (why it stopped early) are attributes.
-    """
-
-    def __new__(cls, count: int, complete: bool, time_s: float = 0.0, reason: str | None = None):
-        self = super().__new__(cls, (int(count), bool(complete)))
-        self.time_s = time_s
-        self.reason = reason
-        return self
-
-    @property
-    def count(self) -> int:
-        return self[0]
-
-    @property
-    def complete(self) -> bool:
-        return self[1]
-
-    def __repr__(self) -> str:
-        return f"TilingCount(count={self[0]}, complete={self[1]}, time_s={self.time_s:.3g}, reason={self.reason!r})"
-
-
 def count_by_enumeration(
     problem: DappledProblem,
     time_limit: float | None = None,
@@ -357,8 +332,9 @@ def count_by_enumeration(
     limit: int | None = None,
     solver: str = DEFAULT_SAT_SOLVER,
     progress: bool = False,
-) -> TilingCount:
-    """Count tilings by enumeration: ``(count, complete)`` (exact if complete, else a lower bound).
+) -> CountResult:
+    """Count tilings by enumeration (:func:`tilesolve.engine.sat.count_models` on the CNF,
+    projected on the grid variables): exact, or ``unknown`` with ``stats["found"]`` a lower bound.
 
     Parameters
     ----------
@@ -369,27 +345,13 @@ def count_by_enumeration(
     --------
     On a 2x2 grid no run of three fits, so all 16 tilings satisfy ``{H0^2, V1^2}``:
 
-    >>> count, complete = count_by_enumeration(DappledProblem.from_strings("2x2", ["H0=2", "V1=2"]))
-    >>> count, complete
-    (16, True)
+    >>> count_by_enumeration(DappledProblem.from_strings("2x2", ["H0=2", "V1=2"])).value
+    16
     """
-    import sys
+    from tilesolve.engine.progress import status_line
 
-    t0 = time.perf_counter()
-    e = TilingEnumerator(problem, limit, time_limit, solver)
-    show = progress and sys.stderr.isatty()
-    last = t0
-    try:
-        for _ in e._enum:
-            if show and time.perf_counter() - last > 0.5:
-                last = time.perf_counter()
-                sys.stderr.write(f"\r  {e.count:,} tilings so far ({last - t0:.0f} s)")
-                sys.stderr.flush()
-    except KeyboardInterrupt:
-        return TilingCount(e.count, False, time.perf_counter() - t0, "interrupted (Ctrl-C)")
-    finally:
-        if show:
-            sys.stderr.write("\r\033[K")
-            sys.stderr.flush()
-    return TilingCount(e.count, e.complete, time.perf_counter() - t0, e.reason)
-
+    _check_problem(problem)
+    enc = encode_cnf(problem)
+    with status_line("counting by enumeration", progress) as show:
+        return count_models(enc.hard, enc.projection(), solver=solver, time_limit=time_limit, limit=limit,
+                            on_model=lambda n: show(f"{n:,} tilings so far"))

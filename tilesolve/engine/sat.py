@@ -45,15 +45,14 @@ from __future__ import annotations
 
 import threading
 import time
-from dataclasses import dataclass
-from typing import Iterable, Iterator, Sequence
+from typing import Callable, Iterable, Iterator, Sequence
 
 import numpy as np
 
 from tilesolve.deadline import Deadline
 from tilesolve.engine.result import Result, run_interruptible
 from tilesolve.errors import BackendUnavailable, InvalidProblem, MethodNotApplicable
-from tilesolve.model.solution import Status
+from tilesolve.model.solution import CountResult, Status
 
 __all__ = [
     "DEFAULT_SAT_SOLVER",
@@ -513,16 +512,6 @@ class ModelEnumerator:
                 s.add_clause(block.tolist())
 
 
-@dataclass(frozen=True)
-class ModelCount:
-    """Result of :func:`count_models`: ``count`` models, ``complete`` if that is all."""
-
-    count: int
-    complete: bool
-    time_s: float
-    reason: str | None = None
-
-
 def count_models(
     formula,
     projection: Iterable[int],
@@ -530,16 +519,31 @@ def count_models(
     solver: str = DEFAULT_SAT_SOLVER,
     time_limit: float | None = None,
     limit: int | None = None,
-) -> ModelCount:
-    """Count projected models by enumeration (exact when ``complete``).
+    on_model: Callable[[int], object] | None = None,
+) -> CountResult:
+    """Count projected models by enumeration with blocking clauses.
+
+    Returns a :class:`~tilesolve.model.solution.CountResult`: the exact count (status
+    ``sat``), or ``None`` with status ``unknown`` when a limit, the time limit or Ctrl-C
+    stopped it (``note`` says which, starting with "interrupted" for Ctrl-C;
+    ``stats["found"]`` is the number of models seen, a lower bound). ``on_model(count)`` is
+    called after each model (progress).
 
     Examples
     --------
-    >>> count_models([[1, 2]], [1, 2]).count
+    >>> count_models([[1, 2]], [1, 2]).value
     3
     """
     t0 = time.perf_counter()
     e = ModelEnumerator(formula, projection, solver=solver, limit=limit, time_limit=time_limit)
-    for _ in e:
-        pass
-    return ModelCount(e.count, e.complete, time.perf_counter() - t0, e.reason)
+    try:
+        for _ in e:
+            if on_model is not None:
+                on_model(e.count)
+    except KeyboardInterrupt:
+        return CountResult(None, Status.UNKNOWN, "enumerate", time.perf_counter() - t0,
+                           f"interrupted (Ctrl-C) after {e.count} models", {"found": e.count})
+    if not e.complete:
+        return CountResult(None, Status.UNKNOWN, "enumerate", time.perf_counter() - t0,
+                           f"{e.reason or 'stopped'} after {e.count} models", {"found": e.count})
+    return CountResult(e.count, Status.SAT, "enumerate", time.perf_counter() - t0, None, {"found": e.count})

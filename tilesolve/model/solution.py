@@ -101,6 +101,9 @@ class CountResult:
         """True when ``value`` is the exact count."""
         return self.value is not None and self.status is Status.SAT
 
+    def replace(self, **changes: Any) -> "CountResult":
+        return replace(self, **changes)
+
 
 @dataclass
 class CrosscheckReport:
