@@ -59,3 +59,22 @@ def test_tileset_converter_keeps_the_edges(colors, colors_v, variant):
     assert grid_violations([[a, b]], table) == []
     with pytest.raises(InvalidProblem, match="corner tiles are not Wang tiles"):
         WangTileSet.from_tileset(TileSet("corner", 2))
+
+
+def test_cli_writes_a_tileset_file_that_wang_solve_reads(tmp_path):
+    import shutil
+    import subprocess
+
+    def run(*args):
+        return subprocess.run([shutil.which("tilesolve"), *args], cwd=tmp_path, capture_output=True, text=True,
+                              timeout=300)
+
+    p = run("tiles", "--kind", "wang", "--colors", "3", "--set", "compact", "-o", "c3.json", "--png", "c3.png")
+    assert p.returncode == 0, p.stderr
+    ts, _ = read_tileset(tmp_path / "c3.json")
+    assert len(ts) == 18 and (tmp_path / "c3.png").stat().st_size > 0
+    p = run("wang", "solve", "--tiles", "c3.json", "--board", "torus:4x4", "--boundary", "free", "-o", "w.json")
+    assert p.returncode == 0, p.stderr
+    assert run("verify", "w.json").returncode == 0
+    p = run("tiles", "--kind", "corner", "--colors", "2", "-o", "x.json")
+    assert p.returncode == 2 and "corner tiles have no such file" in p.stderr and not (tmp_path / "x.json").exists()

@@ -32,7 +32,11 @@ __all__ = ["tiles"]
                    "sums: the C^3 Wang tiles whose edges are sums of corner colours (§3.3.2.2).")
 @click.option("--svg", type=click.Path(dir_okay=False, allow_dash=True), metavar="OUT.svg",
               help="Also draw the set: one tile per index, in index order, labelled ('-' for stdout).")
-def tiles(kind: str, colors: int, variant: str, svg: str | None) -> None:
+@click.option("--png", type=click.Path(dir_okay=False), metavar="OUT.png",
+              help="Also draw the set as PNG (large sets), tiles in index order.")
+@click.option("-o", "--output", type=click.Path(dir_okay=False, allow_dash=True), metavar="OUT.json",
+              help="Write a Wang set as a tilesolve/wang-tileset file (tiles as [N, E, S, W]) for wang solve --tiles.")
+def tiles(kind: str, colors: int, variant: str, svg: str | None, png: str | None, output: str | None) -> None:
     """Print the indices of the tiles of a Wang or corner tile set (class notes §2.7, §3.2-3.3).
 
     Wang tile N E S W over C colours has index ((N*C + E)*C + S)*C + W (eq. 2.1); corner
@@ -44,17 +48,30 @@ def tiles(kind: str, colors: int, variant: str, svg: str | None) -> None:
       tilesolve tiles --kind wang --colors 2 --set compact        # 0 3 5 6 9 10 12 15 (notes Fig. 3.2)
       tilesolve tiles --kind corner --colors 3 --set compact --svg c3.svg
       tilesolve tiles --kind wang --colors 3 --set sums
+      tilesolve tiles --kind wang --colors 3 --set compact -o compact3.json --png compact3.png
     """
+    from tilesolve.errors import InvalidProblem
     from tilesolve.model.tiles import TileSet
 
-    outs = Outputs(svg)
+    outs = Outputs(output, svg, png)
     check_colors(kind, colors)
+    if output and kind != "wang":
+        raise InvalidProblem("-o writes Wang tile-set files; corner tiles have no such file (draw them with --svg/--png)")
     ts = TileSet(kind, colors, variant=variant)
-    if svg:
-        from tilesolve.io.svg_tileset import write_tileset_svg
+    with outs.commit():
+        if svg:
+            from tilesolve.io.svg_tileset import write_tileset_svg
 
-        with outs.commit():
             write_tileset_svg(svg, ts)
-    say(ts.describe() + (f"; wrote {svg}" if outs.files else ""))
-    if svg != "-":
+        if png:
+            from tilesolve.io.png import write_tileset_png
+
+            write_tileset_png(png, ts)
+        if output:
+            from tilesolve.io.tileset_json import write_tileset
+            from tilesolve.model.board import WangTileSet
+
+            write_tileset(output, WangTileSet.from_tileset(ts), name=ts.describe())
+    say(ts.describe() + (f"; wrote {', '.join(outs.files)}" if outs.files else ""))
+    if "-" not in (svg, output):
         click.echo(" ".join(map(str, ts.indices.tolist())))

@@ -31,7 +31,8 @@ from tilesolve.io.svg import tile_colour
 if TYPE_CHECKING:  # pillow is imported by the functions that draw, not by importing this module
     from PIL import Image
 
-__all__ = ["MAX_PNG_PIXELS", "tiling_image", "write_png", "edge_image", "write_board_png", "write_packing_png"]
+__all__ = ["MAX_PNG_PIXELS", "tiling_image", "write_png", "edge_image", "write_board_png", "write_packing_png",
+           "write_tileset_png"]
 
 #: Largest picture written (pixels): 1 GiB of palette indices.
 MAX_PNG_PIXELS = 1 << 30
@@ -182,3 +183,17 @@ def write_packing_png(path: str | os.PathLike, grid, kind: str, colors: int, *, 
     rows, cols = g.shape
     positions = np.stack(np.divmod(np.arange(g.size), cols), axis=1)
     _save(path, edge_image(colours, positions, (rows, cols), kind, palette=colour_of, **kwargs))
+
+
+def write_tileset_png(path: str | os.PathLike, tiles, **kwargs) -> None:
+    """PNG sheet of a :class:`~tilesolve.model.tiles.TileSet`: its tiles in index order, row by
+    row, with a blank cell between neighbours (the notes' colours, §2.7)."""
+    from tilesolve.io.svg_packing import colour_of
+
+    colours = tiles.table()
+    n = len(colours)
+    per_row = int(np.ceil(np.sqrt(n)))
+    k = np.arange(n)
+    positions = np.stack([2 * (k // per_row), 2 * (k % per_row)], axis=1)
+    shape = (2 * int(np.ceil(n / per_row)) - 1, 2 * per_row - 1)
+    _save(path, edge_image(colours, positions, shape, tiles.kind, palette=colour_of, **kwargs))
