@@ -39,3 +39,21 @@ def test_draw_refuses_what_it_cannot_draw(tmp_path):
     assert proc.returncode == 1 and "nothing to draw" in proc.stderr and not (tmp_path / "u.svg").exists()
     proc = run("draw", "u.json", "-o", "u.gif", cwd=tmp_path)
     assert proc.returncode == 2 and proc.stderr.startswith("tilesolve: error:") and "svg or .png" in proc.stderr
+
+
+def test_a_solution_draws_itself_in_a_notebook():
+    from tilesolve import board, dappled
+    from tilesolve.model import DappledProblem
+    from tilesolve.model.board import Board, BoardProblem, WangTileSet
+
+    s = dappled.solve(DappledProblem.from_strings("8x6", ["H0=2", "V1=2"]), seed=1)
+    assert "<svg" in s._repr_svg_() and s._repr_png_().startswith(b"\x89PNG")
+    big = dappled.solve(DappledProblem.from_strings("600x600", ["H0=2", "V1=2"]), seed=1)
+    assert big._repr_svg_() is None and big._repr_png_().startswith(b"\x89PNG")  # SVG refused, PNG drawn
+    b = board.solve(BoardProblem(Board.torus(4, 6), WangTileSet.brick(3)), seed=2)
+    assert "<svg" in b._repr_svg_()
+    import numpy as np
+
+    unsat = dappled.solve(DappledProblem.from_strings("3x1", ["H0=1"], fixed=np.array([[0, 0, -1]])), seed=1)
+    assert unsat.status.value == "unsat"
+    assert unsat._repr_svg_() is None and unsat._repr_png_() is None

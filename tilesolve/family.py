@@ -39,6 +39,7 @@ Examples
 
 from __future__ import annotations
 
+import functools
 import os
 import secrets
 from dataclasses import dataclass, field
@@ -72,6 +73,7 @@ __all__ = [
     "write_solution",
     "solution_text",
     "backend_report",
+    "render",
     "iter_demos",
     "draw_solution",
     "ENTRY_POINT_GROUP",
@@ -393,6 +395,7 @@ def run_route(fam: Family, problem: Any, method: str | Route, run: RunOptions) -
         notes=tuple(notes) + sol.notes,
         time_s=run.deadline.elapsed(),
         seed=run.seed if sol.seed is None else sol.seed,
+        renderer=functools.partial(render, problem) if fam.draw is not None else None,
     )
 
 
@@ -566,6 +569,19 @@ def backend_report() -> tuple[list[tuple[str, ...]], list[tuple[str, ...]], bool
         rows.append((b.name, b.kind, "yes" if ok else ("no (optional)" if b.optional else "NO"), info, b.used_by))
     routes = [(fam.name, route, fam.route_help.get(route, "")) for fam in families() for route in fam.routes]
     return rows, routes, missing
+
+
+def render(problem: Any, solution: Solution, fmt: str) -> str | bytes:
+    """The picture of ``solution`` as SVG text or PNG bytes (``Solution._repr_svg_`` /
+    ``_repr_png_`` call it through ``Solution.renderer``)."""
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, f"picture.{fmt}")
+        draw_solution(path, problem, solution, fmt=fmt)
+        with open(path, "rb") as f:
+            data = f.read()
+    return data.decode("utf-8") if fmt == "svg" else data
 
 
 def iter_demos() -> Iterable[tuple[Family, Demo]]:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import enum
 from dataclasses import dataclass, field, replace
-from typing import Any
+from typing import Any, Callable
 
 import numpy as np
 
@@ -60,6 +60,10 @@ class Solution:
         Things the user should know (e.g. "constructive route fell back to sat").
     stats : dict
         Free-form numbers: variables, clauses, proof size, lower bound...
+    renderer : callable, optional
+        ``renderer(solution, fmt) -> str | bytes``: the picture of this solution as ``"svg"``
+        or ``"png"``; set by :func:`tilesolve.family.solve` from the family's drawing, so a
+        solution draws itself in a notebook (``_repr_svg_`` / ``_repr_png_``).
     """
 
     status: Status
@@ -72,6 +76,23 @@ class Solution:
     reason: str | None = None
     notes: tuple[str, ...] = ()
     stats: dict[str, Any] = field(default_factory=dict)
+    renderer: Callable[["Solution", str], Any] | None = field(default=None, repr=False, compare=False)
+
+    def _repr_svg_(self) -> str | None:
+        """SVG for notebooks (``None`` without a tiling, or when the family cannot draw it as SVG)."""
+        return self._picture("svg")
+
+    def _repr_png_(self) -> bytes | None:
+        """PNG for notebooks (large grids, where SVG is refused)."""
+        return self._picture("png")
+
+    def _picture(self, fmt: str):
+        if self.renderer is None or not self.status.has_tiling:
+            return None
+        try:
+            return self.renderer(self, fmt)
+        except Exception:  # noqa: BLE001 - a picture that cannot be drawn is simply not shown
+            return None
 
     def with_note(self, note: str) -> "Solution":
         return replace(self, notes=self.notes + (note,))
