@@ -1,4 +1,5 @@
-"""PNG pictures of tilings (pillow), for tilings too large for SVG.
+"""PNG pictures of tilings, for tilings too large for SVG (files streamed row by row with pypng;
+in-memory images with pillow).
 
 A palette image (one byte per pixel) with the same colours as :mod:`tilesolve.io.svg`;
 ``scale`` pixels per cell (default: about 1024 px on the longest side, at least 1 px per
@@ -25,7 +26,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from tilesolve.errors import InvalidProblem
-from tilesolve.io.atomic import write_bytes_atomic
+from tilesolve.io.atomic import atomic_write, write_bytes_atomic
 from tilesolve.io.svg import tile_colour
 
 if TYPE_CHECKING:  # pillow is imported by the functions that draw, not by importing this module
@@ -34,8 +35,8 @@ if TYPE_CHECKING:  # pillow is imported by the functions that draw, not by impor
 __all__ = ["MAX_PNG_PIXELS", "tiling_image", "write_png", "edge_image", "write_board_png", "write_packing_png",
            "write_tileset_png"]
 
-#: Largest picture written (pixels): 1 GiB of palette indices.
-MAX_PNG_PIXELS = 1 << 30
+#: Largest picture written (pixels); pictures stream row by row, so this bounds time, not memory.
+MAX_PNG_PIXELS = 1 << 32
 _TARGET_PX = 1024
 _GRID_RGB = (51, 51, 51)
 
@@ -44,20 +45,8 @@ def _rgb(hex_colour: str) -> tuple[int, int, int]:
     return tuple(int(hex_colour[i : i + 2], 16) for i in (1, 3, 5))  # type: ignore[return-value]
 
 
-def tiling_image(tiling, *, scale: int | None = None, repeat: int = 1, grid: bool | None = None) -> Image.Image:
-    """A palette-mode :class:`PIL.Image.Image` of ``tiling`` (``tiling[row, col]``, row 0 on top).
-
-    Parameters
-    ----------
-    tiling : array-like of int
-        Tile numbers (``-1`` = free cell).
-    scale : int, optional
-        Pixels per cell; default ``max(1, 1024 // longest side)``, at most 16.
-    repeat : int
-        Show ``repeat x repeat`` copies.
-    grid : bool, optional
-        Draw a 1 px border between cells (default: when ``scale >= 8``).
-    """
+def _tiling_layout(tiling, scale: int | None, repeat: int, grid: bool | None):
+    """``(palette indices per cell, scale, grid, palette)`` of a tiling picture (checks sizes)."""
     t = np.asarray(tiling)
     if t.ndim != 2 or t.size == 0 or not np.issubdtype(t.dtype, np.integer):
         raise InvalidProblem("a picture needs a non-empty 2-D grid of tile numbers")
@@ -81,30 +70,60 @@ def tiling_image(tiling, *, scale: int | None = None, repeat: int = 1, grid: boo
     if hi >= 254:
         raise InvalidProblem(f"PNG pictures support at most 254 tile kinds, got tile {hi}")
     idx = (t.astype(np.int16) + 1).clip(0, 255).astype(np.uint8)
-    if repeat > 1:
-        idx = np.tile(idx, (repeat, repeat))
-    if scale > 1:
-        idx = np.repeat(np.repeat(idx, scale, axis=0), scale, axis=1)
-    if grid and scale >= 3:
-        idx[::scale, :] = 255
-        idx[:, ::scale] = 255
+    palette = [_rgb(tile_colour(-1))] + [_rgb(tile_colour(k)) for k in range(hi + 1)]
+    palette += [(0, 0, 0)] * (255 - len(palette)) + [_GRID_RGB]
+    return idx, repeat, scale, bool(grid and scale >= 3), palette
+
+
+def _pixel_rows(idx: np.ndarray, repeat: int, scale: int, grid: bool):
+    """The picture's pixel rows, one at a time (``scale`` rows per cell row)."""
+    for _ in range(repeat):
+        for row in idx:
+            line = np.repeat(np.tile(row, repeat), scale)
+            if grid:
+                line = line.copy()
+                line[::scale] = 255
+            for k in range(scale):
+                yield np.full_like(line, 255) if grid and k == 0 else line
+
+
+def tiling_image(tiling, *, scale: int | None = None, repeat: int = 1, grid: bool | None = None) -> "Image.Image":
+    """A palette-mode :class:`PIL.Image.Image` of ``tiling`` (``tiling[row, col]``, row 0 on top).
+
+    Parameters
+    ----------
+    tiling : array-like of int
+        Tile numbers (``-1`` = free cell).
+    scale : int, optional
+        Pixels per cell; default ``max(1, 1024 // longest side)``, at most 16.
+    repeat : int
+        Show ``repeat x repeat`` copies.
+    grid : bool, optional
+        Draw a 1 px border between cells (default: when ``scale >= 8``).
+    """
     from PIL import Image
 
-    img = Image.fromarray(np.ascontiguousarray(idx))  # mode "L"; putpalette makes it "P"
-    palette = [0] * (256 * 3)
-    palette[0:3] = _rgb(tile_colour(-1))
-    for k in range(hi + 1):
-        palette[3 * (k + 1) : 3 * (k + 2)] = _rgb(tile_colour(k))
-    palette[255 * 3 : 256 * 3] = _GRID_RGB
-    img.putpalette(palette)
+    idx, repeat, scale, grid, palette = _tiling_layout(tiling, scale, repeat, grid)
+    pixels = np.stack(list(_pixel_rows(idx, repeat, scale, grid)))
+    img = Image.fromarray(np.ascontiguousarray(pixels))  # mode "L"; putpalette makes it "P"
+    img.putpalette([v for rgb in palette for v in rgb])
     return img
 
 
-def write_png(path: str | os.PathLike, tiling, **kwargs) -> None:
-    """Write the PNG picture of ``tiling`` to ``path`` atomically (arguments of :func:`tiling_image`)."""
-    buf = io.BytesIO()
-    tiling_image(tiling, **kwargs).save(buf, format="PNG", optimize=False)
-    write_bytes_atomic(path, buf.getvalue())
+def write_png(path: str | os.PathLike, tiling, *, scale: int | None = None, repeat: int = 1,
+              grid: bool | None = None) -> None:
+    """Write the PNG picture of ``tiling`` (arguments of :func:`tiling_image`) atomically.
+
+    The picture is streamed row by row (pypng), so a huge grid costs one pixel row of memory
+    besides the tiling itself, however many pixels the picture has.
+    """
+    import png
+
+    idx, repeat, scale, grid, palette = _tiling_layout(tiling, scale, repeat, grid)
+    height, width = idx.shape[0] * repeat * scale, idx.shape[1] * repeat * scale
+    writer = png.Writer(width, height, palette=palette, bitdepth=8, compression=6)
+    with atomic_write(path, "wb") as f:
+        writer.write_packed(f, (row.tobytes() for row in _pixel_rows(idx, repeat, scale, grid)))
 
 
 def _side_masks(scale: int, kind: str) -> np.ndarray:
