@@ -57,3 +57,16 @@ def test_a_solution_draws_itself_in_a_notebook():
     unsat = dappled.solve(DappledProblem.from_strings("3x1", ["H0=1"], fixed=np.array([[0, 0, -1]])), seed=1)
     assert unsat.status.value == "unsat"
     assert unsat._repr_svg_() is None and unsat._repr_png_() is None
+
+
+@pytest.mark.parametrize("grid, scale, repeat", [(True, 9, 2), (False, 1, 1), (None, 3, 3)])
+def test_streamed_png_has_the_in_memory_pixels(tmp_path, grid, scale, repeat):
+    import numpy as np
+
+    from tilesolve.io.png import tiling_image, write_png
+
+    t = np.random.default_rng(1).integers(-1, 4, (23, 17)).astype(np.int8)
+    write_png(tmp_path / "t.png", t, scale=scale, repeat=repeat, grid=grid)
+    with Image.open(tmp_path / "t.png") as img:
+        streamed = np.asarray(img.convert("RGB"))
+    assert np.array_equal(streamed, np.asarray(tiling_image(t, scale=scale, repeat=repeat, grid=grid).convert("RGB")))
