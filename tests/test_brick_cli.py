@@ -4,13 +4,11 @@ board solutions: exit codes, one-line errors, and a JSON any tool can re-check."
 from __future__ import annotations
 
 import json
-import os
 import shutil
 import subprocess
 import sys
 from pathlib import Path
 
-import numpy as np
 import pytest
 from click.testing import CliRunner
 
