@@ -550,47 +550,6 @@ def _run_inline(task, seeds: list[int], deadline: Deadline, progress: bool, labe
     return runs.undecided(stop, stopped)
 
 
-def _runs(n: int) -> str:
-    return f"{n} run{'s' * (n != 1)}"
-
-
-# ------------------------------------------------------------------------ in this process
-
-
-def _run_single(task, seed: int, progress: bool, label: str) -> Solution:
-    """One seed: the plain call (its own Solution, unchanged), Ctrl-C giving ``unknown``."""
-    t0 = time.perf_counter()
-    with status_line(label, progress) as show:
-        show("1 run")
-        try:
-            return task(seed=seed)
-        except KeyboardInterrupt:
-            pass
-    return Solution(Status.UNKNOWN, seed=seed, time_s=time.perf_counter() - t0, reason="interrupted")
-
-
-def _run_inline(task, seeds: list[int], deadline: Deadline, progress: bool, label: str) -> Solution:
-    runs = _Runs(seeds, "in this process (1 worker)", 1, deadline)
-    stop, stopped = None, 0
-    with status_line(label, progress) as show:
-        try:
-            for seed in seeds:
-                if deadline.expired():
-                    stop = "time limit"
-                    break
-                runs.started += 1
-                show(runs.detail(1))
-                sol = task(seed=seed)
-                if sol.status in _DECISIVE:
-                    return runs.won(seed, sol)
-                if runs.record(seed, sol):
-                    stop = "interrupted"
-                    break
-        except KeyboardInterrupt:
-            stop, stopped = "interrupted", 1
-    return runs.undecided(stop, stopped)
-
-
 # ------------------------------------------------------------------- local worker processes
 
 
