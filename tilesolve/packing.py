@@ -32,10 +32,11 @@ Methods
     A packing over ``C - 1`` colours pinned in the bottom-left corner, completed by SAT
     (Figs. 5.11-5.12).
 
-Heavy-tailed searches (:data:`PORTFOLIO_ROUTES`) get :data:`~tilesolve.engine.portfolio.QUICK_S` seconds in-process;
-if undecided, a portfolio of fresh seeds runs on both cores (``workers``) or on a Dask
-cluster (``cluster``), with per-run budgets that double with every wave
-(:mod:`tilesolve.engine.portfolio`).
+Heavy-tailed searches (:data:`PORTFOLIO_ROUTES`) go through
+:func:`tilesolve.engine.portfolio.escalate`: the first seed keeps running in this process; if
+it has not decided after :data:`~tilesolve.engine.portfolio.QUICK_S` seconds, fresh seeds run
+beside it on idle cores (``workers``, always when given explicitly) or on a Dask cluster
+(``cluster``), with per-run budgets that double with every wave.
 
 Examples
 --------
@@ -222,8 +223,8 @@ def solve(
         Seconds for the whole run; expiry gives status ``unknown``.
     workers : int, optional
         CP-SAT workers for ``cpsat`` (default 2); for the heavy-tailed searches
-        (:data:`PORTFOLIO_ROUTES`), the local processes of the portfolio (default 2; ``1``
-        runs one seed only).
+        (:data:`PORTFOLIO_ROUTES`), the processes of the portfolio, this one included
+        (default: up to 2, as idle cores allow; ``1`` runs one seed only).
     cluster : str or distributed.Client, optional
         A Dask scheduler address (``tcp://host:8786``): the portfolio's runs go there instead.
     solver : str, optional

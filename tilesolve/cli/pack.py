@@ -73,7 +73,8 @@ def _parse_fix(items) -> tuple[tuple[int, int, int], ...]:
 @opt.time_limit_opt
 @click.option("--workers", type=click.IntRange(1, 256), default=None, metavar="N",
               help="CP-SAT workers; for sat/hybrid/lift/recursive, the processes of the seed portfolio that starts "
-                   "beside a first run that has not decided quickly (1: one seed, reproducible) [default: 2].")
+                   "beside a first run that has not decided quickly, this one included (1: one seed, reproducible) "
+                   "[default: up to 2, as idle cores allow].")
 @click.option("--cluster", default=None, metavar="ADDRESS",
               help="Run the seed portfolio on this Dask scheduler (e.g. tcp://host:8786) instead of local "
                    "processes; needs pip install \"tilesolve[cluster]\".")
