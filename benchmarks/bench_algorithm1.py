@@ -80,9 +80,12 @@ def main(argv=None) -> int:
 
     import numpy as np
 
+    from tilesolve.constructive._dappled_kernels import KERNELS
     from tilesolve.constructive.dappled import algorithm1
     from tilesolve.model import DappledProblem
     from tilesolve.verify import is_dappled
+
+    KERNELS.mode = "compiled"  # the numba kernel at every size (small grids would run interpreted)
 
     p, q = [2, 0], [0, 2]  # {H_0^2, V_1^2}
     rng = np.random.default_rng(0)
