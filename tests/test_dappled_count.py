@@ -459,9 +459,17 @@ def test_progress_callback_sees_every_row_sweep():
 def test_deadline_stops_a_count():
     from tilesolve.deadline import Deadline, TimeLimitReached
 
-    class Spent(Deadline):
-        def expired(self) -> bool:
-            return True
+    class AfterChecks(Deadline):  # expires once it has been asked n times (no clock)
+        def __init__(self, n: int) -> None:
+            super().__init__(5)
+            self.left = n
 
+        def expired(self) -> bool:
+            self.left -= 1
+            return self.left < 0
+
+    torus = P("6x6", ["H0=2", "V1=2"], cyclic=True)
+    with pytest.raises(TimeLimitReached, match=r"time limit of 5 s reached while planning the count"):
+        count_dappled(torus, deadline=AfterChecks(0))
     with pytest.raises(TimeLimitReached, match=r"while counting \(1 of \d+ row sweeps\)"):
-        count_dappled(P("6x6", ["H0=2", "V1=2"], cyclic=True), deadline=Spent(5))
+        count_dappled(torus, deadline=AfterChecks(1))

@@ -155,6 +155,10 @@ class DappledEncoding:
         problem, which lets tests check a tiling (e.g. a constructive one) against the
         encoding.
         """
+        return self._literal_array(tiling).tolist()
+
+    def _literal_array(self, tiling) -> np.ndarray:
+        """:meth:`literals` as an int64 array (no Python list of millions of ints)."""
         t = np.asarray(tiling)
         p = self.problem
         if t.shape != p.shape:
@@ -163,9 +167,9 @@ class DappledEncoding:
             raise InvalidProblem(f"tiling holds tiles outside 0..{p.n_tiles - 1}")
         gv = self.grid_vars()
         if not self.one_hot:
-            return np.where(t == 1, gv, -gv).ravel().tolist()
+            return np.where(t == 1, gv, -gv).ravel()
         onehot = t[:, :, None] == np.arange(p.n_tiles)[None, None, :]
-        return np.where(onehot, gv, -gv).ravel().tolist()
+        return np.where(onehot, gv, -gv).ravel()
 
     def decode(self, model: Sequence[int] | np.ndarray) -> np.ndarray:
         """Turn a solver model (signed DIMACS literals) into ``tiling[row, col]`` (int8).
@@ -190,7 +194,7 @@ class DappledEncoding:
     def target_values(self, tiling) -> np.ndarray:
         """Boolean grid assignment (``v[var]``) of a tiling; auxiliary variables false."""
         val = np.zeros(self.n_vars + 1, dtype=bool)
-        lits = np.asarray(self.literals(tiling), dtype=np.int64)
+        lits = self._literal_array(tiling)
         val[np.abs(lits)] = lits > 0
         return val
 
@@ -557,7 +561,7 @@ def encode_wcnf(
     if target is None:
         raise InvalidProblem("a closest-tiling encoding needs a target tiling (closest_to)")
     enc = encode_cnf(problem, card_encoding=card_encoding, deadline=deadline)
-    enc.soft = np.asarray(enc.literals(target), dtype=np.int64)
+    enc.soft = enc._literal_array(target)
     if enc.one_hot:
         enc.soft = enc.soft[enc.soft > 0]
     return enc
