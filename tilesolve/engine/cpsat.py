@@ -9,10 +9,11 @@ CP-SAT's presolve often finds a first solution of a satisfaction model by itself
 ("trivial exploration"), the same whatever ``random_seed`` says. So a seeded satisfaction
 run hints every reported variable with a value drawn from the seed (unless the model
 carries its own hint, e.g. a target tiling) and turns presolve off, so that the hint steers
-the search: different seeds then give different solutions where there are many. With several
-workers a seeded satisfaction run uses CP-SAT's interleaved search (batches of one task: as
-fast as one worker on dappled models, and deterministic whatever the number of workers), so
-the same seed gives the same solution. Optimisation runs keep presolve and the parallel
+the search: different seeds then give different solutions where there are many. A seeded
+satisfaction run uses one worker, so the same seed gives the same solution (one worker is as
+fast as several on these hinted models; CP-SAT's interleaved search, the other deterministic
+mode, aborts the process on some trivially decided models with presolve off, ortools 9.15:
+"Check failed: heuristics.fixed_search != nullptr"). Optimisation runs keep presolve and the parallel
 portfolio: their optimum value is exact, but which optimal solution is reported may differ
 between runs with several workers (``num_workers=1`` repeats it exactly).
 """
@@ -100,9 +101,7 @@ def solve_cp_model(
             if not model.proto.solution_hint.vars:
                 _seeded_hint(model, variables, seed, deadline)
             prm.cp_model_presolve = False
-            if num_workers > 1:  # deterministic whatever the number of workers (see "Seeds")
-                prm.interleave_search = True
-                prm.interleave_batch_size = 1
+            prm.num_workers = 1  # deterministic (see "Seeds")
     if deadline.expired():
         return Result(Status.UNKNOWN, None, time.perf_counter() - t0, None, {"workers": num_workers},
                       solver="cp-sat", reason=f"time limit of {time_limit:.3g} s reached before CP-SAT started")
