@@ -230,7 +230,7 @@ def _ragged_groups(keys: np.ndarray, lits: np.ndarray, n_groups: int) -> list[li
 
 
 def encode_packing(problem: PackingProblem, *, anchor_tile: int | None = 0, amo_tiles: bool = True,
-                   domains: np.ndarray | None = None) -> PackingEncoding:
+                   domains: np.ndarray | None = None, deadline: Deadline | None = None) -> PackingEncoding:
     """CNF of a packing problem.
 
     Parameters
@@ -245,6 +245,8 @@ def encode_packing(problem: PackingProblem, *, anchor_tile: int | None = 0, amo_
         ``(features, max colours)`` booleans: the colours each feature may take (default: all,
         :func:`full_domains`). An empty domain, or a tile no cell can hold, gives an empty
         clause (unsatisfiable).
+    deadline : Deadline, optional
+        Checked between blocks of clauses (:class:`~tilesolve.deadline.TimeLimitReached`).
 
     Examples
     --------
@@ -273,6 +275,14 @@ def encode_packing(problem: PackingProblem, *, anchor_tile: int | None = 0, amo_
     top = n_place + int(domains.sum())
     enc = PackingEncoding(problem, ClauseSet(), top, cf, pc, pt, feat_ids, amo_tiles=amo_tiles, restricted=restricted)
     cs = enc.clauses
+
+    def check() -> None:
+        if deadline is not None:
+            n = len(cs)
+            deadline.check(f"encoding ({n / 1e6:.1f} M clauses built)" if n >= 100_000
+                           else f"encoding ({n:,} clauses built)")
+
+    check()
     # Features: exactly one colour of the domain (grouped by domain size for numpy blocks).
     sizes = domains.sum(axis=1)
     if (sizes == 0).any():
@@ -284,12 +294,15 @@ def encode_packing(problem: PackingProblem, *, anchor_tile: int | None = 0, amo_
         for a in range(k):
             for b in range(a + 1, k):
                 cs.add_array(-np.stack([lits[:, a], lits[:, b]], axis=1), "feature has one colour")
+            check()
     # Links between placements and features.
     pv = np.arange(1, n_place + 1, dtype=np.int64)
     tab = ts.table()
     fv = feat_ids[cf[pc], tab[pt]]  # (placements, 4)
     for s in range(4):
+        check()
         cs.add_array(np.stack([-pv, fv[:, s]], axis=1), f"placement implies side {ts.sides[s]}")
+    check()
     cs.add_array(np.concatenate([-fv, pv[:, None]], axis=1), "sides imply placement")
     cs.add_lists(_ragged_groups(pc, pv, enc.n_cells), "cell holds a tile")
     by_tile = _ragged_groups(pt, pv, n)
@@ -297,7 +310,9 @@ def encode_packing(problem: PackingProblem, *, anchor_tile: int | None = 0, amo_
     if amo_tiles:
         pool = IDPool(start_from=top + 1)
         ragged = []
-        for group in by_tile:
+        for i, group in enumerate(by_tile):
+            if i % 256 == 0:
+                check()
             if len(group) > 1:
                 ragged.extend(CardEnc.atmost(group, 1, vpool=pool, encoding=EncType.seqcounter).clauses)
         cs.add_lists(ragged, "tile placed at most once", grid_only=False)
@@ -326,7 +341,7 @@ def build_cpsat_packing(problem: PackingProblem, *, anchor_tile: int | None = 0,
     """
     from ortools.sat.python import cp_model
 
-    enc = encode_packing(problem, anchor_tile=anchor_tile, amo_tiles=False)
+    enc = encode_packing(problem, anchor_tile=anchor_tile, amo_tiles=False, deadline=deadline)
     m = cp_model.CpModel()
     total = len(enc.clauses)
     if deadline is not None:

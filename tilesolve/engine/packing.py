@@ -18,7 +18,7 @@ import time
 import numpy as np
 
 from tilesolve._random import rng_from_seed
-from tilesolve.deadline import Deadline
+from tilesolve.deadline import Deadline, TimeLimitReached
 from tilesolve.errors import InternalError, InvalidProblem
 from tilesolve.model.packing import PackingProblem
 from tilesolve.model.solution import Solution, Status
@@ -86,7 +86,7 @@ def _random_phases(enc, rng) -> list[int]:
 def run_packing_sat(enc, *, solver, deadline: Deadline, rng, with_proof: bool = False):
     from tilesolve.engine.sat import solve_cnf
 
-    return solve_cnf(enc.clauses, solver=solver or PACKING_SAT_SOLVER, time_limit=deadline.remaining(),
+    return solve_cnf(enc.clauses, solver=solver or PACKING_SAT_SOLVER, deadline=deadline,
                      with_proof=with_proof, seed=int(rng.integers(2**31)), phases=_random_phases(enc, rng))
 
 
@@ -121,7 +121,10 @@ def solve_sat(problem: PackingProblem, *, seed=None, time_limit=None, workers=No
     deadline = Deadline(time_limit)
     rng = rng_from_seed(seed)
     anchor = None if problem.fixed else (int(rng.integers(problem.n_tiles)) if seed is not None else 0)
-    enc = encode_packing(problem, anchor_tile=anchor)
+    try:
+        enc = encode_packing(problem, anchor_tile=anchor, deadline=deadline)
+    except TimeLimitReached as exc:
+        return unknown_solution("sat", solver or PACKING_SAT_SOLVER, seed, t0, None, deadline, str(exc), {})
     encode_s = time.perf_counter() - t0
     if deadline.expired():
         return unknown_solution("sat", solver or PACKING_SAT_SOLVER, seed, t0, time_limit, deadline,
@@ -133,9 +136,8 @@ def solve_sat(problem: PackingProblem, *, seed=None, time_limit=None, workers=No
     if r.status is Status.UNSAT:
         if not problem.fixed:  # the anchor only breaks symmetry: an UNSAT here would be a bug
             raise InternalError("the unpinned packing encoding was reported unsatisfiable")
-        rem = deadline.remaining()
         return unsat_solution(enc.clauses, r, method="sat", seed=seed, t0=t0, stats=stats, check_proof=True,
-                              proof_time_limit=None if rem is None else max(rem, 1.0))
+                              deadline=deadline)
     return unknown_solution("sat", r.solver, seed, t0, time_limit, deadline, r.reason, stats)
 
 
@@ -149,10 +151,12 @@ def solve_cpsat(problem: PackingProblem, *, seed=None, time_limit=None, workers=
     t0 = time.perf_counter()
     deadline = Deadline(time_limit)
     anchor = None if problem.fixed else (int(rng_from_seed(seed).integers(problem.n_tiles)) if seed is not None else 0)
-    model, place, enc = build_cpsat_packing(problem, anchor_tile=anchor)
+    try:
+        model, place, enc = build_cpsat_packing(problem, anchor_tile=anchor, deadline=deadline)
+    except TimeLimitReached as exc:
+        return unknown_solution("cpsat", "cp-sat", seed, t0, None, deadline, str(exc), {})
     stats = packing_stats(enc, encode_s=round(time.perf_counter() - t0, 6))
-    r = solve_cp_model(model, place, time_limit=deadline.remaining(), num_workers=workers or DEFAULT_CPSAT_WORKERS,
-                       seed=seed)
+    r = solve_cp_model(model, place, deadline=deadline, num_workers=workers or DEFAULT_CPSAT_WORKERS, seed=seed)
     stats.update({k: v for k, v in r.stats.items() if k in ("conflicts", "branches", "workers")})
     if r.status is Status.SAT:
         return Solution(Status.SAT, enc.decode(r.model), "cpsat", "cp-sat", seed, time.perf_counter() - t0, stats=stats)
