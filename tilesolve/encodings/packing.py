@@ -305,17 +305,20 @@ def encode_packing(problem: PackingProblem, *, anchor_tile: int | None = 0, amo_
     check()
     cs.add_array(np.concatenate([-fv, pv[:, None]], axis=1), "sides imply placement")
     cs.add_lists(_ragged_groups(pc, pv, enc.n_cells), "cell holds a tile")
+    check()
     by_tile = _ragged_groups(pt, pv, n)
     cs.add_lists(by_tile, "tile is placed")
+    check()
     if amo_tiles:
         pool = IDPool(start_from=top + 1)
-        ragged = []
+        ragged: list = []
         for i, group in enumerate(by_tile):
-            if i % 256 == 0:
-                check()
             if len(group) > 1:
                 ragged.extend(CardEnc.atmost(group, 1, vpool=pool, encoding=EncType.seqcounter).clauses)
-        cs.add_lists(ragged, "tile placed at most once", grid_only=False)
+            if len(ragged) >= 1 << 15 or i == len(by_tile) - 1:  # in parts, with deadline checks
+                cs.add_lists(ragged, "tile placed at most once", grid_only=False)
+                ragged = []
+                check()
         enc.n_vars = max(top, pool.top)
     # Pins: unit clauses on placements; a pin its cell's domains exclude is unsatisfiable here.
     pins = list(problem.fixed)
@@ -346,7 +349,11 @@ def build_cpsat_packing(problem: PackingProblem, *, anchor_tile: int | None = 0,
     total = len(enc.clauses)
     if deadline is not None:
         deadline.check(f"building the CP-SAT model (0 of {total:,} constraints added)")
-    bools = [None] + [m.new_bool_var(f"v{i}") for i in range(1, enc.n_vars + 1)]
+    bools = [None]
+    for lo in range(1, enc.n_vars + 1, 4096):
+        if deadline is not None:
+            deadline.check(f"building the CP-SAT model ({lo - 1:,} of {enc.n_vars:,} variables created)")
+        bools.extend(m.new_bool_var(f"v{i}") for i in range(lo, min(enc.n_vars, lo + 4095) + 1))
     done = 0
     for block in enc.clauses.blocks:
         exactly_one = block.label in ("cell holds a tile", "tile is placed")
