@@ -258,7 +258,18 @@ def families() -> list[Family]:
 
 
 def get(name: str) -> Family:
-    """The family called ``name``."""
+    """The family called ``name`` (only its own entry point is loaded, if it is not registered yet)."""
+    if name in _REGISTRY:
+        return _REGISTRY[name]
+    if not _LOADED:
+        from importlib.metadata import entry_points
+
+        for ep in entry_points(group=ENTRY_POINT_GROUP, name=name):
+            fam = ep.load()
+            if isinstance(fam, Family):
+                _REGISTRY.setdefault(fam.name, fam)
+        if name in _REGISTRY:
+            return _REGISTRY[name]
     _load_builtin()
     try:
         return _REGISTRY[name]
@@ -268,6 +279,9 @@ def get(name: str) -> Family:
 
 def family_of(problem: Any) -> Family:
     """The family whose problem type ``problem`` is."""
+    for fam in list(_REGISTRY.values()):  # usually registered already, by importing its facade
+        if isinstance(problem, fam.problem_type):
+            return fam
     for fam in families():
         if isinstance(problem, fam.problem_type):
             return fam

@@ -59,7 +59,7 @@ class TilesolveGroup(click.Group):
         return list(_family_commands()) + list(GENERIC)  # families first, in registry order
 
     def get_command(self, ctx: click.Context, name: str):
-        target = GENERIC.get(name) or _family_commands().get(name)
+        target = GENERIC.get(name) or _family_command(name)
         if target is None:
             return None
         module, attr = target.split(":")
@@ -74,6 +74,19 @@ GENERIC = {
     "demo": "tilesolve.cli.demo:demo",
     "backends": "tilesolve.cli.backends:backends",
 }
+
+
+def _family_command(name: str) -> str | None:
+    """The "module:attribute" of family command ``name``; a family named like the command
+    (``dappled``) is looked up alone, without loading the others."""
+    from tilesolve.errors import InvalidProblem
+    from tilesolve.family import get
+
+    try:
+        own = {t.split(":")[1]: t for t in get(name).commands}
+    except InvalidProblem:
+        own = {}
+    return own.get(name) or _family_commands().get(name)
 
 
 def _family_commands() -> dict[str, str]:
