@@ -142,7 +142,7 @@ BAD_INPUTS = {
     "missing size": ["--cond", "H0=2"],
     "output directory missing": ["--size", "4x3", "--cond", "H0=2", "--svg", "nodir/x.svg"],
     "svg too large": ["--size", "1000x1000", "--cond", "H0=2", "--svg", "big.svg"],
-    "png too large": ["--size", "10000x10000", "--cond", "H0=2", "--png", "big.png", "--repeat", "4"],
+    "png too large": ["--size", "10000x10000", "--cond", "H0=2", "--png", "big.png", "--repeat", "16"],
     "initial tiling of wrong shape": ["--size", "5x5", "--cond", "H0=2", "--initial", "wrong-shape.txt"],
 }
 
