@@ -3,7 +3,7 @@ defect 8).
 
 Each route is run through the one pipeline (:func:`tilesolve.family.solve`) with ``workers=1``.
 The problems have many solutions, so the seed has room to matter: SAT draws the solver's
-initial phases from it, CP-SAT a solution hint (presolve off), MaxSAT the oracle's phases
+initial phases from it, CP-SAT a solution hint (presolve off, one worker), MaxSAT the oracle's phases
 (the optimum distance is unique, the optimal tiling is not), and the packing searches their
 random domains, phases and symmetries.
 """
@@ -58,7 +58,7 @@ def test_same_seed_same_output_other_seeds_other_solutions(case):
 
 
 def test_cpsat_seeded_satisfaction_repeats_with_two_workers():
-    # Interleaved search: deterministic whatever the number of workers.
+    # A seeded satisfaction run uses one CP-SAT worker: deterministic whatever the workers asked for.
     first, _ = _tiling(_dappled, "cpsat", 5, workers=2)
     assert all(np.array_equal(first, _tiling(_dappled, "cpsat", 5, workers=2)[0]) for _ in range(3))
     assert np.array_equal(first, _tiling(_dappled, "cpsat", 5, workers=1)[0])
