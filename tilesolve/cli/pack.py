@@ -172,6 +172,11 @@ def count_cmd(ctx, kind, colors, up_to_symmetry, time_limit) -> None:
     """Count all packings (C = 2); the count is the last line of output.
 
     The notes (§5.5.3) publish 32 corner packings (1 up to symmetry) and 203,520 Wang packings.
+
+    \b
+    Examples:
+      tilesolve pack count --kind wang --colors 2                     # 203520
+      tilesolve pack count --kind corner --colors 2 --up-to-symmetry  # 1
     """
     from tilesolve import packing as facade
     from tilesolve.model.packing import PackingProblem
