@@ -21,6 +21,7 @@ __all__ = [
     "ClauseBlock",
     "ClauseSet",
     "Encoding",
+    "cardinality",
     "DappledEncoding",
     "encode_cnf",
     "encode_wcnf",
@@ -167,6 +168,24 @@ class ClauseSet:
             if bad.size:
                 out.append((b, bad))
         return out
+
+
+def cardinality(kind: str, lits, bound: int, **kwargs) -> list[list[int]]:
+    """The clauses of ``pysat.card.CardEnc.<kind>(lits, bound, **kwargs)`` (``"atmost"`` or
+    ``"atleast"``).
+
+    PySAT's C extension reports Ctrl-C during an encoding as its own error ("Caught keyboard
+    interrupt"); it becomes ``KeyboardInterrupt`` here, so a user's Ctrl-C reads the same
+    wherever it lands.
+    """
+    from pysat.card import CardEnc
+
+    try:
+        return getattr(CardEnc, kind)(lits, bound=bound, **kwargs).clauses
+    except Exception as exc:
+        if "keyboard interrupt" in str(exc).lower():
+            raise KeyboardInterrupt from None
+        raise
 
 
 class Encoding(Protocol):

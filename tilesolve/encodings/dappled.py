@@ -43,11 +43,11 @@ from dataclasses import dataclass, field
 from typing import Any, Iterable, Iterator, Sequence
 
 import numpy as np
-from pysat.card import CardEnc, EncType
+from pysat.card import EncType
 from pysat.formula import CNF, WCNF, IDPool
 
 from tilesolve.deadline import Deadline, TimeLimitReached
-from tilesolve.encodings import ClauseSet
+from tilesolve.encodings import ClauseSet, cardinality
 from tilesolve.errors import InvalidProblem
 from tilesolve.model.dappled import Condition, DappledProblem
 
@@ -472,11 +472,9 @@ def encode_cnf(
         before = pool.top
         clauses: list[list[int]] = []
         if k.low > 0:
-            enc = CardEnc.atleast(lits, bound=k.low, vpool=pool, encoding=card.enctype(n, n - k.low))
-            clauses += enc.clauses
+            clauses += cardinality("atleast", lits, k.low, vpool=pool, encoding=card.enctype(n, n - k.low))
         if k.high is not None and k.high < n:
-            enc = CardEnc.atmost(lits, bound=k.high, vpool=pool, encoding=card.enctype(n, k.high))
-            clauses += enc.clauses
+            clauses += cardinality("atmost", lits, k.high, vpool=pool, encoding=card.enctype(n, k.high))
         hard.add_lists(clauses, f"count {k}", grid_only=False)
         if pool.top > before:
             aux_ranges.append((before + 1, pool.top, f"cardinality encoding of count {k}"))

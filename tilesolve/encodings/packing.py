@@ -45,7 +45,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from tilesolve.deadline import Deadline
-from tilesolve.encodings import ClauseSet
+from tilesolve.encodings import ClauseSet, cardinality
 from tilesolve.model.packing import PackingProblem
 
 __all__ = [
@@ -254,7 +254,7 @@ def encode_packing(problem: PackingProblem, *, anchor_tile: int | None = 0, amo_
     >>> enc.n_placements, enc.restricted
     (256, False)
     """
-    from pysat.card import CardEnc, EncType
+    from pysat.card import EncType
     from pysat.formula import IDPool
 
     ts = problem.tiles
@@ -314,7 +314,7 @@ def encode_packing(problem: PackingProblem, *, anchor_tile: int | None = 0, amo_
         ragged: list = []
         for i, group in enumerate(by_tile):
             if len(group) > 1:
-                ragged.extend(CardEnc.atmost(group, 1, vpool=pool, encoding=EncType.seqcounter).clauses)
+                ragged.extend(cardinality("atmost", group, 1, vpool=pool, encoding=EncType.seqcounter))
             if len(ragged) >= 1 << 15 or i == len(by_tile) - 1:  # in parts, with deadline checks
                 cs.add_lists(ragged, "tile placed at most once", grid_only=False)
                 ragged = []
