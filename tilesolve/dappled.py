@@ -83,7 +83,7 @@ def sat(problem: DappledProblem, run: RunOptions) -> Solution:
     from tilesolve.engine.dappled import solve_sat
     from tilesolve.engine.sat import DEFAULT_SAT_SOLVER
 
-    sol = solve_sat(problem, time_limit=run.time_limit, seed=run.seed, solver=run.solver or DEFAULT_SAT_SOLVER)
+    sol = solve_sat(problem, deadline=run.deadline, seed=run.seed, solver=run.solver or DEFAULT_SAT_SOLVER)
     return sol.replace(notes=_solver_notes(run, "sat") + sol.notes)
 
 
@@ -91,7 +91,7 @@ def maxsat(problem: DappledProblem, run: RunOptions) -> Solution:
     """The closest tiling to ``closest_to``, proved optimal (§6 item 3)."""
     from tilesolve.engine.dappled import solve_maxsat
 
-    sol = solve_maxsat(problem, time_limit=run.time_limit, seed=run.seed)
+    sol = solve_maxsat(problem, deadline=run.deadline, seed=run.seed)
     return sol.replace(notes=_solver_notes(run, "maxsat") + sol.notes)
 
 
@@ -100,7 +100,7 @@ def cpsat(problem: DappledProblem, run: RunOptions) -> Solution:
     from tilesolve.engine.cpsat import DEFAULT_CPSAT_WORKERS
     from tilesolve.engine.dappled import solve_cpsat
 
-    sol = solve_cpsat(problem, time_limit=run.time_limit, seed=run.seed,
+    sol = solve_cpsat(problem, deadline=run.deadline, seed=run.seed,
                       num_workers=run.workers or DEFAULT_CPSAT_WORKERS)
     return sol.replace(notes=_solver_notes(run, "cpsat") + sol.notes)
 

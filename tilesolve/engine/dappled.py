@@ -60,6 +60,7 @@ def solve_sat(
     problem: DappledProblem,
     *,
     time_limit: float | None = None,
+    deadline: Deadline | None = None,
     solver: str = DEFAULT_SAT_SOLVER,
     seed: int | None = None,
 ) -> Solution:
@@ -73,6 +74,8 @@ def solve_sat(
         :func:`solve_maxsat` for the closest tiling.
     time_limit : float, optional
         Seconds, encoding included; expiry gives ``Status.UNKNOWN``, never ``UNSAT``.
+    deadline : Deadline, optional
+        The whole run's deadline (instead of ``time_limit``; messages name its limit).
     solver : str
         PySAT solver name (see :func:`tilesolve.engine.sat.proof_solvers`). UNSAT answers
         carry the DRAT proof it logged, checked by :mod:`tilesolve.verify.drat`
@@ -99,7 +102,7 @@ def solve_sat(
     """
     _check_problem(problem)
     t0 = time.perf_counter()
-    run = RunOptions(seed, Deadline(time_limit))
+    run = RunOptions(seed, deadline or Deadline(time_limit))
     try:
         enc = encode_cnf(problem, deadline=run.deadline)
     except TimeLimitReached as exc:
@@ -145,6 +148,7 @@ def solve_maxsat(
     problem: DappledProblem,
     *,
     time_limit: float | None = None,
+    deadline: Deadline | None = None,
     method: str = "auto",
     solver: str = DEFAULT_MAXSAT_ORACLE,
     seed: int | None = None,
@@ -182,9 +186,9 @@ def solve_maxsat(
     if method not in MAXSAT_METHODS:
         raise InvalidProblem(f"unknown MaxSAT method {method!r}; choose one of {', '.join(MAXSAT_METHODS)}")
     t0 = time.perf_counter()
-    deadline = Deadline(time_limit)
+    deadline = deadline or Deadline(time_limit)
     if problem.closest_to is None:
-        sol = solve_sat(problem, time_limit=time_limit, seed=seed)
+        sol = solve_sat(problem, deadline=deadline, seed=seed)
         return sol.with_note("no closest_to target: solved as a satisfaction problem")
     try:
         enc = encode_wcnf(problem, deadline=deadline)
@@ -212,8 +216,7 @@ def solve_maxsat(
                         objective=dist, stats=stats)
     if r.status is Status.UNSAT:
         # Certify infeasibility with a proof-logging SAT run on the same hard clauses.
-        rem = deadline.remaining()
-        sat = solve_sat(dataclasses.replace(problem, closest_to=None), time_limit=rem, seed=seed)
+        sat = solve_sat(dataclasses.replace(problem, closest_to=None), deadline=deadline, seed=seed)
         if sat.status is Status.UNSAT:
             return sat.replace(method="maxsat", time_s=time.perf_counter() - t0,
                                stats={**stats, **sat.stats}).with_note(f"{r.solver} found the hard clauses unsatisfiable")
@@ -229,6 +232,7 @@ def solve_cpsat(
     problem: DappledProblem,
     *,
     time_limit: float | None = None,
+    deadline: Deadline | None = None,
     num_workers: int = DEFAULT_CPSAT_WORKERS,
     seed: int | None = None,
     hint: bool = True,
@@ -252,7 +256,7 @@ def solve_cpsat(
     """
     _check_problem(problem)
     t0 = time.perf_counter()
-    deadline = Deadline(time_limit)
+    deadline = deadline or Deadline(time_limit)
     try:
         m = build_cpsat(problem, deadline=deadline)
     except TimeLimitReached as exc:
