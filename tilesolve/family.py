@@ -243,12 +243,16 @@ def _load_builtin() -> None:
     from importlib.metadata import entry_points
 
     for ep in sorted(entry_points(group=ENTRY_POINT_GROUP), key=lambda e: e.name):
-        if ep.name in _REGISTRY:
-            continue
-        fam = ep.load()
-        if not isinstance(fam, Family):
-            raise InternalError(f"entry point {ep.value} is not a tilesolve Family")
-        _REGISTRY[fam.name] = fam
+        if ep.name not in _REGISTRY:
+            _load_entry(ep)
+
+
+def _load_entry(ep) -> None:
+    """Import one entry point's family (its facade registers it) and record it."""
+    fam = ep.load()
+    if not isinstance(fam, Family):
+        raise InternalError(f"entry point {ep.value} is not a tilesolve Family")
+    _REGISTRY.setdefault(fam.name, fam)
 
 
 def families() -> list[Family]:
@@ -265,9 +269,7 @@ def get(name: str) -> Family:
         from importlib.metadata import entry_points
 
         for ep in entry_points(group=ENTRY_POINT_GROUP, name=name):
-            fam = ep.load()
-            if isinstance(fam, Family):
-                _REGISTRY.setdefault(fam.name, fam)
+            _load_entry(ep)
         if name in _REGISTRY:
             return _REGISTRY[name]
     _load_builtin()
