@@ -452,22 +452,17 @@ def read_document(path: str | os.PathLike) -> tuple[Family, Codec, dict]:
 
 
 def _identify(doc: Any, source: str) -> tuple[Family, Codec]:
-    if not isinstance(doc, dict):
-        raise InvalidProblem(f"{source}: not a tilesolve file (expected a JSON object with a 'format' field)")
-    fmt = doc.get("format")
+    """The family and codec of a parsed document, its ``format`` and ``version`` checked."""
+    from tilesolve.io.jsonio import check_document
+
+    fmt = doc.get("format") if isinstance(doc, dict) else None
     if not isinstance(fmt, str):
-        raise InvalidProblem(f"{source}: not a tilesolve file (no 'format' field)")
+        check_document(doc, source, {})  # raises: not a tilesolve file
     try:
         fam, codec = codec_of(fmt)
     except InvalidProblem as exc:
         raise InvalidProblem(f"{source}: {exc}") from None
-    version = doc.get("version")
-    if isinstance(version, bool) or not isinstance(version, int):
-        raise InvalidProblem(f"{source}: 'version' must be an integer, got {version!r}")
-    if version not in codec.versions:
-        known = ", ".join(map(str, sorted(codec.versions)))
-        raise InvalidProblem(f"{source}: {fmt} version {version} is not supported (this tilesolve reads "
-                             f"version {known}); upgrade tilesolve?")
+    check_document(doc, source, {fmt: codec.versions})
     return fam, codec
 
 
