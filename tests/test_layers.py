@@ -29,7 +29,7 @@ PACKAGE = Path(__file__).resolve().parents[1] / "tilesolve"
 
 BASE = {"tilesolve", "tilesolve.errors", "tilesolve.deadline", "tilesolve._random", "tilesolve._lazy"}
 FACADES = {"tilesolve.family", "tilesolve.dappled", "tilesolve.board", "tilesolve.wang", "tilesolve.packing",
-           "tilesolve.walls", "tilesolve.packing_search"}
+           "tilesolve.walls", "tilesolve.packing_search", "tilesolve.stochastic"}
 
 #: layer -> the layers it may import
 ALLOWED = {

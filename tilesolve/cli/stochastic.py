@@ -1,0 +1,111 @@
+"""``tilesolve tiling``: a window of a stochastic Wang or corner tiling (class notes ch. 3).
+
+::
+
+    tilesolve tiling --kind wang|corner [--method auto|scanline|direct] [--set complete|compact|sums]
+                     --colors C --region X0,Y0,WxH [--seed S] [-o T.json] [--png T.png] [--svg T.svg]
+"""
+
+from __future__ import annotations
+
+import re
+
+import click
+
+from tilesolve.cli import options as opt
+from tilesolve.cli.common import progress_wanted, say
+from tilesolve.cli.outputs import Outputs
+from tilesolve.errors import InvalidProblem
+
+__all__ = ["tiling", "parse_region"]
+
+_REGION = re.compile(r"\s*([+-]?\d+)\s*,\s*([+-]?\d+)\s*,\s*(\d+)\s*[xX]\s*(\d+)\s*")
+
+
+def parse_region(text: str) -> tuple[int, int, int, int]:
+    """``"X0,Y0,WxH"`` -> ``(x0, y0, w, h)``.
+
+    >>> parse_region("-8,3,16x4")
+    (-8, 3, 16, 4)
+    """
+    m = _REGION.fullmatch(text)
+    if m is None:
+        raise InvalidProblem(f"--region takes X0,Y0,WxH (e.g. -8,0,32x16), got {text!r}")
+    x0, y0, w, h = (int(g) for g in m.groups())
+    return x0, y0, w, h
+
+
+@click.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP,
+               short_help="Stochastic Wang/corner tilings: a window of the plane, scanline or direct.")
+@click.option("--kind", type=click.Choice(["wang", "corner"]), required=True,
+              help="Wang tiles (coloured edges) or corner tiles (coloured corners).")
+@click.option("--method", type=click.Choice(["auto", "scanline", "direct"]), default="auto", show_default=True,
+              help="scanline: west to east, north to south, each tile a hashed choice among those that fit "
+                   "(§3.2; complete or compact sets); direct: each tile from hashes of the lattice around it, "
+                   "the same in every window (§3.3; complete or sums sets). auto: direct unless the set is compact.")
+@click.option("--set", "variant", type=click.Choice(["complete", "compact", "sums"]), default="complete",
+              show_default=True,
+              help="Tile set: all C^4 tiles; the compact scanline sets (2C^2 Wang, 2C^3 corner tiles, §3.2); "
+                   "the C^3 sums Wang tiles of the direct compact algorithm (§3.3.2.2).")
+@click.option("--colors", type=int, required=True, metavar="C", help="Number of colours C.")
+@click.option("--region", required=True, metavar="X0,Y0,WxH",
+              help="The window: W columns by H rows whose SW tile is (X0, Y0); y points north, coordinates may "
+                   "be negative.")
+@click.option("--hash", "hash_", type=click.Choice(["long", "table"]), default="long", show_default=True,
+              help="Lattice hash (§3.4): the long-period hash of §3.4.3 or one permutation table.")
+@click.option("--algorithm", type=click.Choice(["edges", "two"]), default="edges", show_default=True,
+              help="direct, complete Wang set: hashes at the edges (§3.3.2.3) or two hashes at the corners "
+                   "(§3.3.2.1).")
+@opt.seed_opt
+@click.option("-o", "--output", type=click.Path(dir_okay=False, allow_dash=True), metavar="T.json",
+              help="Write the tiling JSON here ('-' for stdout). Without outputs the grid is printed.")
+@click.option("--png", type=click.Path(dir_okay=False), metavar="T.png", help="Also draw the window as PNG.")
+@click.option("--svg", type=click.Path(dir_okay=False, allow_dash=True), metavar="T.svg",
+              help="Also draw the window as SVG (at most 65,536 tiles; '-' for stdout).")
+@click.option("--indices", is_flag=True, help="Write tile numbers on the SVG tiles (needs --svg).")
+@click.pass_context
+def tiling(ctx, kind, method, variant, colors, region, hash_, algorithm, seed, output, png, svg, indices) -> None:
+    """Tile a window of the plane with a stochastic Wang or corner tiling.
+
+    The same seed gives the same tiling; with the direct method (and scanline on a complete
+    set) every window shows the same tiles where windows overlap. Every window is checked by
+    the independent verifier before it is written.
+
+    \b
+    Examples:
+      tilesolve tiling --kind wang --method scanline --set compact --colors 2 --region 0,0,32x16 --seed 1 -o t.json --svg t.svg
+      tilesolve tiling --kind corner --method direct --colors 3 --region -20,-10,40x20 --seed 1 --png c.png
+      tilesolve tiling --kind wang --method direct --set sums --colors 3 --region 1000000,0,8x4 --seed 2
+      tilesolve verify t.json
+    """
+    from tilesolve import stochastic as facade
+    from tilesolve.family import draw_solution, write_solution
+    from tilesolve.model.stochastic import StochasticProblem
+
+    if indices and not svg:
+        raise InvalidProblem("--indices labels the SVG tiles: add --svg FILE")
+    outs = Outputs(output, png, svg)
+    problem = StochasticProblem(kind, colors, parse_region(region), variant, hash_, algorithm)
+    if svg:
+        from tilesolve.io.svg_packing import MAX_SVG_TILES
+
+        if problem.n_cells > MAX_SVG_TILES:
+            rows, cols = problem.shape
+            raise InvalidProblem(f"a {cols}x{rows} window is too large for SVG (at most {MAX_SVG_TILES:,} tiles); "
+                                 "use --png")
+    sol = facade.solve(problem, method=method, seed=seed, progress=progress_wanted())
+    with outs.commit(sol):
+        if output:
+            write_solution(output, problem, sol)
+        if png:
+            draw_solution(png, problem, sol, fmt="png")
+        if svg:
+            draw_solution(svg, problem, sol, fmt="svg", indices=indices)
+    if not outs:
+        width = len(str(int(sol.tiling.max())))
+        for row in sol.tiling.tolist():
+            click.echo(" ".join(f"{v:{width}d}" for v in row))
+    say(f"{sol.status.value}: {problem.describe()} by {sol.method}, seed {sol.seed}, in {sol.time_s:.2f} s")
+    if outs.files:
+        say(f"  wrote {', '.join(outs.files)}")
+    ctx.exit(sol.status.exit_code)
