@@ -17,7 +17,8 @@ SCRIPT = shutil.which("tilesolve")
 ROOT = Path(__file__).resolve().parents[1]
 COMMANDS = [("dappled", "solve"), ("dappled", "count"), ("dappled", "crosscheck"), ("brick", "solve"),
             ("brick", "wall"), ("brick", "count"), ("brick", "crosscheck"), ("wang", "solve"), ("pack",),
-            ("pack", "count"), ("tiles",), ("verify",), ("draw",), ("export", "dimacs"), ("demo",), ("backends",)]
+            ("pack", "count"), ("tiles",), ("verify",), ("draw",), ("export", "dimacs"), ("demo",), ("backends",),
+            ("tiling",)]
 
 
 def run(args, cwd):
