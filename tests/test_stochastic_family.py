@@ -197,3 +197,18 @@ def test_cli_demo(tmp_path):
     for d in FAMILY.demos:
         assert (tmp_path / "pics" / f"{d.name}.svg").exists()
         assert run(["verify", f"pics/{d.name}.json"], tmp_path).returncode == 0
+
+
+def test_png_streamed_in_bands_is_the_tile_by_tile_picture(tmp_path, monkeypatch):
+    from PIL import Image
+
+    from tilesolve.io import stochastic_png
+    from tilesolve.io.png import write_packing_png
+
+    for kind, colors in (("wang", 3), ("corner", 4)):
+        g = family.solve(StochasticProblem(kind, colors, (-5, -5, 60, 40)), seed=3).tiling
+        write_packing_png(tmp_path / "whole.png", g, kind, colors)
+        monkeypatch.setattr(stochastic_png, "BAND_PIXELS", 1 << 12)  # many bands
+        stochastic_png.write_window_png(tmp_path / "bands.png", g, kind, colors)
+        a, b = (np.asarray(Image.open(tmp_path / f).convert("RGB")) for f in ("whole.png", "bands.png"))
+        assert a.shape == b.shape and np.array_equal(a, b)

@@ -135,11 +135,12 @@ def _write(problem: StochasticProblem, sol: Solution) -> dict:
 
 def _draw(problem: StochasticProblem, sol: Solution, path, fmt: str, *, indices: bool = False,
           title: str | None = None, **_ignored) -> None:
-    """SVG (each tile drawn with its edge or corner colours, the notes' palette of §2.7) or PNG."""
+    """SVG (each tile drawn with its edge or corner colours, the notes' palette of §2.7) or PNG
+    (the same drawing, streamed band by band: :func:`tilesolve.io.stochastic_png.write_window_png`)."""
     if fmt == "png":
-        from tilesolve.io.png import write_packing_png
+        from tilesolve.io.stochastic_png import write_window_png
 
-        write_packing_png(path, sol.tiling, problem.kind, problem.colors)
+        write_window_png(path, sol.tiling, problem.kind, problem.colors)
         return
     from tilesolve.io.svg_packing import MAX_SVG_TILES, write_packing_svg
 
