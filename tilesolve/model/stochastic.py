@@ -40,8 +40,8 @@ HASHES: tuple[str, ...] = ("long", "table")
 #: Direct algorithms for the complete Wang set: a hash at the tile edges (§3.3.2.3) or two
 #: hashes at the corners (§3.3.2.1).
 WANG_DIRECT: tuple[str, ...] = ("edges", "two")
-#: Most tiles in one window: the grid (4 bytes a tile) and its independent check (about 20
-#: bytes a tile more) stay within about 1.5 GiB.
+#: Most tiles in one window: building, checking and writing one take about 32 bytes a tile
+#: (measured: 0.6 GB at peak for 4096 x 4096 compact corner tiles), about 2 GiB here.
 MAX_WINDOW_TILES = 1 << 26
 #: Largest tile set: the verifier holds a colour table of 4 integers per tile (C = 32 complete).
 MAX_SET_TILES = 1 << 20
@@ -49,7 +49,7 @@ MAX_SET_TILES = 1 << 20
 #: evaluates ``2x + 2`` and ``2y + 2``, which must stay within 64-bit signed integers.
 LATTICE = (-(1 << 63) // 2 + 2, ((1 << 63) - 1) // 2 - 2)
 
-_BYTES_PER_TILE = 24
+_BYTES_PER_TILE = 32
 
 
 def _int(v, name: str) -> int:
