@@ -118,6 +118,14 @@ CASES: dict[str, list[tuple[str, str]]] = {
         ("max-line 10^30", f"--size 4x4 --max-line {BIG}"),
         ("colors 10^30", f"--size 4x4 --max-line 2 --colors {BIG}"),
     ],
+    "wall": [
+        ("region garbage", "--region abc --max-line 2"),
+        ("region 10^30 wide", f"--region 0,0,{BIG}x2 --max-line 2 -o keep.json"),
+        ("region off the plane", f"--region {BIG},0,4x4 --max-line 2 -o keep.json"),
+        ("max-line zero", "--region 0,0,4x4 --max-line 0"),
+        ("colors two", "--region 0,0,4x4 --max-line 2 --colors 2"),
+        ("method unknown", "--region 0,0,4x4 --max-line 2 --method magic"),
+    ],
     "brick count": [
         ("colors 1000", "--board rect:2x2 --colors 1000"),
         ("board garbage", "--board rect:axb"),

@@ -41,7 +41,7 @@ from tilesolve.model.solution import CountResult, CrosscheckReport, Solution, St
 from tilesolve.verify.board import board_violations
 
 __all__ = [
-    "FAMILY", "SOLVERS", "METHODS", "linear", "sat", "cpsat", "theorem7", "wall", "solve",
+    "FAMILY", "SOLVERS", "METHODS", "linear", "sat", "cpsat", "theorem7", "wall", "procedural", "solve",
     "enumerate_tilings", "count", "CountResult", "crosscheck", "CrosscheckReport",
 ]
 
@@ -95,6 +95,14 @@ def wall(problem: BoardProblem, run: RunOptions) -> Solution:
     return wall_route(problem, run)
 
 
+def procedural(problem: BoardProblem, run: RunOptions) -> Solution:
+    """A window of the infinite procedural brick wall (004 §3-4, App. B; :mod:`tilesolve.walls`):
+    brick tiles on a rectangle, free boundary, ``max_h == max_v``; family option ``origin``."""
+    from tilesolve.walls import procedural_route
+
+    return procedural_route(problem, run)
+
+
 def _deadline(time_limit):
     from tilesolve.deadline import Deadline
 
@@ -102,7 +110,8 @@ def _deadline(time_limit):
 
 
 #: Solving routes by name. ``"auto"`` is not an entry: it picks one (:func:`auto_method`).
-SOLVERS = {"linear": linear, "sat": sat, "cpsat": cpsat, "theorem7": theorem7, "wall": wall}
+SOLVERS = {"linear": linear, "sat": sat, "cpsat": cpsat, "theorem7": theorem7, "wall": wall,
+           "procedural": procedural}
 METHODS: tuple[str, ...] = ("auto",) + tuple(SOLVERS)
 
 
@@ -121,12 +130,14 @@ def solve(problem: BoardProblem, *, method: str | Any = "auto", seed: int | None
     Parameters
     ----------
     problem : BoardProblem
-    method : {"auto", "linear", "sat", "cpsat", "theorem7", "wall"} or callable
+    method : {"auto", "linear", "sat", "cpsat", "theorem7", "wall", "procedural"} or callable
         ``"linear"`` is the linear algorithm of §4 (brick Wang tiles, no line limits);
         ``"theorem7"`` tiles outside a small core leaves first and solves the core by SAT
         (any three-boundary tile set); ``"wall"`` makes a brick wall without long lines from
-        a dappled tiling; ``"auto"`` uses ``wall`` or ``linear`` where they apply and falls
-        back to SAT, saying why in ``Solution.notes``. A callable is a route ``(problem, run)``.
+        a dappled tiling; ``"procedural"`` cuts a window at (0, 0) from the infinite procedural
+        wall (``tilesolve.family.solve`` with ``options={"origin": (x0, y0)}`` moves it);
+        ``"auto"`` uses ``wall`` or ``linear`` where they apply and falls back to SAT, saying
+        why in ``Solution.notes``. A callable is a route ``(problem, run)``.
     seed : int, optional
         Drawn and recorded when not given.
     time_limit : float, optional
@@ -280,12 +291,13 @@ FAMILY = register(Family(
     codecs=(Codec(BOARD_SOLUTION, VERSIONS, _read_solution, _write_solution),),
     draw=_draw,
     demos=DEMOS,
-    commands=("tilesolve.cli.board:brick", "tilesolve.cli.board:wang"),
+    commands=("tilesolve.cli.board:brick", "tilesolve.cli.board:wang", "tilesolve.cli.board:wall"),
     route_help={
         "linear": "the linear algorithm of §4 (numba)",
         "sat": "CNF + PySAT, any tile set, line limits; unsat with a checked DRAT proof",
         "cpsat": "OR-tools CP-SAT table constraints",
         "theorem7": "Theorem 7: leaves first, the core by SAT",
         "wall": "brick walls without long lines from a dappled tiling (dappled §4)",
+        "procedural": "a window of the infinite procedural brick wall (004 §4; one line limit; option origin)",
     },
 ))

@@ -1,5 +1,6 @@
-"""The board family's commands: ``tilesolve brick solve | wall | count | crosscheck`` and
-``tilesolve wang solve``, thin layers over :mod:`tilesolve.board` and :mod:`tilesolve.walls`."""
+"""The board family's commands: ``tilesolve brick solve | wall | count | crosscheck``,
+``tilesolve wang solve`` and ``tilesolve wall``, thin layers over :mod:`tilesolve.board` and
+:mod:`tilesolve.walls`."""
 
 from __future__ import annotations
 
@@ -11,7 +12,7 @@ from tilesolve.cli.outputs import Outputs
 from tilesolve.errors import InvalidProblem
 from tilesolve.family import draw_seed, raise_if_interrupted
 
-__all__ = ["brick", "wang", "BOARD_HELP"]
+__all__ = ["brick", "wang", "wall", "BOARD_HELP", "parse_region"]
 
 BOARD_HELP = (
     "\b\nBoards (SPEC): rect:WxH, torus:WxH, cylinder:WxH, mobius:WxH (Example 5: columns "
@@ -118,7 +119,7 @@ def _run(ctx, problem, method, seed, time_limit, outs, output, svg) -> None:
     _finish(ctx, problem, sol, outs, output, svg)
 
 
-def _finish(ctx, problem, sol, outs, output, svg) -> None:
+def _finish(ctx, problem, sol, outs, output, svg, png=None) -> None:
     from tilesolve.io.board_json import write_board_solution
 
     written = []
@@ -132,6 +133,11 @@ def _finish(ctx, problem, sol, outs, output, svg) -> None:
             write_board_svg(svg, problem, sol.tiling, title=problem.board.describe(),
                             notes=[f"{sol.status.value} by {sol.method}, seed {sol.seed}"])
             written.append(svg)
+        if png and sol.status.has_tiling:
+            from tilesolve.io.png import write_board_png
+
+            write_board_png(png, problem, sol.tiling)
+            written.append(png)
     if not outs and sol.status.has_tiling:
         click.echo(board_text(problem, sol.tiling), nl=False)
     say(f"{sol.status.value}: {problem.describe()}")
@@ -194,7 +200,7 @@ def solve(ctx, board_spec, colors, boundary, seed, method, time_limit, max_h, ma
     _run(ctx, problem, method, seed, time_limit, outs, output, svg)
 
 
-@brick.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP)
+@brick.command(name="wall", context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP)
 @click.option("--size", required=True, metavar="WxH", help="Wall size: W columns by H rows.")
 @click.option("--max-line", type=opt.positive_int, required=True, metavar="N",
               help="No horizontal line through more than N cells (and no vertical one, unless --max-v).")
@@ -204,7 +210,7 @@ def solve(ctx, board_spec, colors, boundary, seed, method, time_limit, max_h, ma
 @opt.output_opt
 @svg_opt
 @click.pass_context
-def wall(ctx, size, max_line, max_v, colors, seed, output, svg) -> None:
+def brick_wall_cmd(ctx, size, max_line, max_v, colors, seed, output, svg) -> None:
     """A brick wall without long lines, from a dappled tiling (dappled paper §4).
 
     \b
@@ -334,3 +340,72 @@ def wang_solve(ctx, tiles_path, board_spec, boundary, seed, method, time_limit, 
         seed = draw_seed()
     problem = BoardProblem(board, ts, _boundary(boundary, board, ts.n_colors, seed))
     _run(ctx, problem, method, seed, time_limit, outs, output, svg)
+
+
+def parse_region(text: str) -> tuple[int, int, int, int]:
+    """``--region X0,Y0,WxH``: ``(x0, y0, rows, cols)``; ``(x0, y0)`` is the bottom-left cell.
+
+    >>> parse_region("-40,12,64x40")
+    (-40, 12, 40, 64)
+    """
+    import re
+
+    from tilesolve.model.board import MAX_BOARD_CELLS
+
+    m = re.match(r"^\s*([+-]?\d+)\s*,\s*([+-]?\d+)\s*,\s*(\d+)\s*[xX×]\s*(\d+)\s*$", str(text))
+    if not m:
+        raise InvalidProblem(f"cannot read region {text!r}: expected X0,Y0,WxH, e.g. -40,12,64x40 "
+                             "(bottom-left cell x -40, y 12; 64 columns, 40 rows)")
+    x0, y0, w, h = (int(g) for g in m.groups())
+    if w < 1 or h < 1:
+        raise InvalidProblem(f"region size must be positive, got {w}x{h} (WxH)")
+    if w * h > MAX_BOARD_CELLS:
+        raise InvalidProblem(f"region {w}x{h} has {big(w * h)} cells; a board has at most {big(MAX_BOARD_CELLS)}")
+    return x0, y0, h, w
+
+
+@click.command(name="wall", context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP,
+               short_help="A window of an infinite brick wall without long lines.")
+@click.option("--region", required=True, metavar="X0,Y0,WxH",
+              help="The window: bottom-left cell (X0, Y0) of the infinite wall (y grows upwards), "
+                   "W columns by H rows.")
+@click.option("--max-line", type=opt.positive_int, required=True, metavar="N",
+              help="No line (horizontal or vertical) through more than N bricks.")
+@colors_opt
+@opt.seed_opt
+@click.option("--method", type=click.Choice(("procedural", "dappled")), default="procedural", show_default=True,
+              help="procedural: the window of the infinite procedural wall (004 §4); dappled: a finite wall "
+                   "from a dappled tiling (dappled paper §4; the origin is not used).")
+@opt.output_opt
+@svg_opt
+@opt.png_opt
+@click.pass_context
+def wall(ctx, region, max_line, colors, seed, method, output, svg, png) -> None:
+    """A brick wall in which no line runs through more than N bricks, cut from an infinite wall.
+
+    The procedural wall (Derouet-Jourdan, Salvati, Jonchier, 004 §3-4, App. B) gives every
+    cell of the plane its tile from the cell's coordinates and the seed alone: the same seed
+    gives the same wall, and windows at different origins are parts of one wall that agree
+    where they overlap. The answer is checked with the board verifier (line limits included).
+
+    \b
+    Example:
+      tilesolve wall --region -40,12,64x40 --max-line 4 --seed 7 -o wall.json --png wall.png
+      tilesolve wall --region 0,0,30x20 --max-line 3 --colors 4 --seed 7 --svg wall.svg
+      tilesolve wall --region 0,0,30x20 --max-line 2 --method dappled --seed 1 -o d.json
+
+    Without -o, --svg or --png the wall is printed as text: each cell's leg colours W N E S.
+    """
+    from tilesolve import family
+    from tilesolve.walls import wall_problem
+
+    outs = Outputs(output, svg, png)
+    x0, y0, rows, cols = parse_region(region)
+    _svg_ok(svg, rows * cols)
+    _brick_colors(colors)
+    if seed is None:
+        seed = draw_seed()
+    problem = wall_problem(rows, cols, max_line, n_colors=colors)
+    route = "procedural" if method == "procedural" else "wall"
+    sol = raise_if_interrupted(family.solve(problem, route, seed=seed, options={"origin": (x0, y0)}))
+    _finish(ctx, problem, sol, outs, output, svg, png)

@@ -1,0 +1,151 @@
+"""The board family's ``procedural`` route (procedural walls of 004 §3-4, App. B) and
+``tilesolve wall``: every window verifies with its line limit, windows of one seed are parts
+of one infinite wall, bad input is one line with exit 2 and no file."""
+
+from __future__ import annotations
+
+import json
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+from tilesolve.cli.main import main_group
+from tilesolve.errors import InvalidProblem, MethodNotApplicable
+from tilesolve.family import solve
+from tilesolve.model.board import Board, BoardProblem, WangTileSet
+from tilesolve.verify.board import board_violations
+from tilesolve.walls import wall_problem
+
+
+def plane(tiling, x0, y0, rows, cols) -> dict:
+    """``{(x, y): legs}`` of a window's board tiling (board row 0 is the top row, y grows upwards)."""
+    t = np.asarray(tiling).reshape(rows, cols, 4)
+    return {(x0 + c, y0 + rows - 1 - r): tuple(int(v) for v in t[r, c]) for r in range(rows) for c in range(cols)}
+
+
+@pytest.mark.parametrize("n", range(1, 7))
+def test_random_windows_verify_with_max_line(n):
+    rng = np.random.default_rng(100 + n)
+    for _ in range(4):
+        rows, cols = (int(v) for v in rng.integers(1, 24, size=2))
+        x0, y0 = (int(v) for v in rng.integers(-10**12, 10**12, size=2))
+        colors = int(rng.integers(3, 6))
+        p = wall_problem(rows, cols, n, n_colors=colors)
+        s = solve(p, "procedural", seed=int(rng.integers(0, 2**31)), options={"origin": (x0, y0)})
+        assert s.status.value == "sat" and s.method == "procedural"
+        assert s.tiling.shape == (rows * cols, 4)
+        assert board_violations(s.tiling, p) == []
+        assert s.tiling.min() >= 0 and s.tiling.max() < colors
+
+
+def test_line_limit_is_reached_and_kept():
+    """A large window has lines of exactly n bricks somewhere (the limit is not trivially met)."""
+    from tilesolve.constructive.walls import line_lengths
+
+    for n in range(1, 7):
+        p = wall_problem(60, 60, n)
+        s = solve(p, "procedural", seed=11)
+        hor, ver = line_lengths(s.tiling.reshape(60, 60, 4))
+        assert max(hor.max(), ver.max()) == n
+
+
+def test_overlapping_windows_agree():
+    a = (-7, 3, 12, 15)  # x0, y0, rows, cols
+    b = (0, 9, 20, 11)
+    seen = {}
+    for x0, y0, rows, cols in (a, b):
+        s = solve(wall_problem(rows, cols, 4), "procedural", seed=21, options={"origin": (x0, y0)})
+        seen[(x0, y0)] = plane(s.tiling, x0, y0, rows, cols)
+    wa, wb = seen[(-7, 3)], seen[(0, 9)]
+    shared = wa.keys() & wb.keys()
+    assert len(shared) == 8 * 6  # x 0..7, y 9..14
+    assert all(wa[k] == wb[k] for k in shared)
+
+
+def test_same_seed_same_wall_other_seed_other_wall():
+    p = wall_problem(10, 10, 3)
+    one = solve(p, "procedural", seed=5, options={"origin": (4, -2)}).tiling
+    assert np.array_equal(one, solve(p, "procedural", seed=5, options={"origin": (4, -2)}).tiling)
+    assert not np.array_equal(one, solve(p, "procedural", seed=6, options={"origin": (4, -2)}).tiling)
+    assert not np.array_equal(one, solve(p, "procedural", seed=5, options={"origin": (5, -2)}).tiling)
+
+
+def test_route_preconditions():
+    with pytest.raises(MethodNotApplicable, match="'wall' or 'sat'"):
+        solve(wall_problem(4, 4, 2, max_v=3), "procedural", seed=1)
+    fixed = BoardProblem(Board.rect(3, 3), WangTileSet.brick(3), [0] * 12, max_h=2, max_v=2)
+    with pytest.raises(MethodNotApplicable, match="'sat'"):
+        solve(fixed, "procedural", seed=1)
+    with pytest.raises(MethodNotApplicable, match="'sat'"):
+        solve(BoardProblem(Board.rect(3, 3), WangTileSet.brick(3), None), "procedural", seed=1)
+    with pytest.raises(InvalidProblem, match="origin"):
+        solve(wall_problem(3, 3, 2), "procedural", seed=1, options={"origin": (1.5, 0)})
+    with pytest.raises(InvalidProblem, match="2\\*\\*62"):
+        solve(wall_problem(3, 3, 2), "procedural", seed=1, options={"origin": (2**62, 0)})
+
+
+def invoke(*args):
+    return CliRunner().invoke(main_group, list(args), catch_exceptions=False)
+
+
+def test_cli_writes_verifiable_drawable_file(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    r = invoke("wall", "--region", "-40,12,30x20", "--max-line", "3", "--colors", "4", "--seed", "7",
+               "-o", "w.json", "--svg", "w.svg", "--png", "w.png")
+    assert r.exit_code == 0, r.output
+    doc = json.loads(Path("w.json").read_text())
+    assert doc["max_h"] == 3 and doc["max_v"] == 3 and doc["colors"] == 4 and doc["method"] == "procedural"
+    assert "<svg" in Path("w.svg").read_text()[:300]
+    assert Path("w.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    v = invoke("verify", "w.json")
+    assert v.exit_code == 0 and "ok:" in v.output
+    d = invoke("draw", "w.json", "-o", "again.svg")
+    assert d.exit_code == 0 and "<svg" in Path("again.svg").read_text()[:300]
+
+
+def test_cli_text_same_seed_and_shared_cells(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+
+    def text(region, seed=3, method="procedural"):
+        r = invoke("wall", "--region", region, "--max-line", "2", "--seed", str(seed), "--method", method)
+        assert r.exit_code == 0, r.output
+        return [line.split() for line in r.stdout.splitlines()]
+
+    a = text("0,0,8x6")
+    assert a == text("0,0,8x6")
+    b = text("4,2,8x6")  # x 4..11, y 2..7: shares x 4..7, y 2..5 with a
+    # board row r of a window at y0 with 6 rows is y = y0 + 5 - r
+    for y in range(2, 6):
+        assert a[5 - y][4:8] == b[7 - y][0:4]
+    assert text("0,0,8x6", method="dappled") != a
+
+
+def test_brick_wall_still_works(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    r = invoke("brick", "wall", "--size", "9x7", "--max-line", "2", "--seed", "3", "-o", "b.json")
+    assert r.exit_code == 0, r.output
+    assert json.loads(Path("b.json").read_text())["method"] == "wall"
+
+
+@pytest.mark.parametrize("args, msg", [
+    (["--region", "0,0,6x4", "--max-line", "0"], "--max-line"),
+    (["--region", "0,0,6x4", "--max-line", "2", "--colors", "2"], "#C >= 3"),
+    (["--region", "0,0,0x4", "--max-line", "2"], "positive"),
+    (["--region", "0,0,6", "--max-line", "2"], "X0,Y0,WxH"),
+    (["--region", "0,0,100000x100000", "--max-line", "2"], "cells"),
+    (["--region", "9000000000000000000,0,6x4", "--max-line", "2"], "2**62"),
+])
+def test_bad_input_one_line_exit_2_no_file(tmp_path, args, msg):
+    exe = Path(sys.executable).parent / "tilesolve"
+    script = str(exe) if exe.exists() else shutil.which("tilesolve")
+    r = subprocess.run([script, "wall", *args, "-o", "x.json"], cwd=tmp_path, capture_output=True, text=True,
+                       timeout=300)
+    assert r.returncode == 2, r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("tilesolve: error:") and msg in lines[0], r.stderr
+    assert not (tmp_path / "x.json").exists()
