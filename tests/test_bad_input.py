@@ -126,6 +126,14 @@ CASES: dict[str, list[tuple[str, str]]] = {
         ("colors two", "--region 0,0,4x4 --max-line 2 --colors 2"),
         ("method unknown", "--region 0,0,4x4 --max-line 2 --method magic"),
     ],
+    "tiling": [
+        ("region garbage", "--kind wang --method direct --colors 2 --region abc"),
+        ("region 10^30 wide", f"--kind wang --method direct --colors 2 --region 0,0,{BIG}x2 -o keep.json"),
+        ("region off the plane", f"--kind corner --method direct --colors 2 --region {BIG},0,4x4 -o keep.json"),
+        ("colors zero", "--kind wang --method direct --colors 0 --region 0,0,4x4"),
+        ("kind unknown", "--kind hex --method direct --colors 2 --region 0,0,4x4"),
+        ("method not applicable", "--kind corner --method direct --set compact --colors 2 --region 0,0,4x4 -o keep.json"),
+    ],
     "brick count": [
         ("colors 1000", "--board rect:2x2 --colors 1000"),
         ("board garbage", "--board rect:axb"),

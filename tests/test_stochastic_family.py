@@ -1,4 +1,4 @@
-"""The stochastic Wang/corner tiling family ("wang", class notes ch. 3) on the family contract:
+"""The stochastic Wang/corner tiling family ("stochastic", class notes ch. 3) on the family contract:
 the generic pipeline, reproducibility, random access of the direct route, the file format,
 and the CLI promises through the console script (tiling, verify, draw, demo)."""
 
@@ -37,7 +37,7 @@ def run(args, cwd):
 
 
 def test_registered_under_its_entry_point():
-    assert family.get("wang") is FAMILY
+    assert family.get("stochastic") is FAMILY
     assert family.family_of(StochasticProblem("wang", 2, (0, 0, 1, 1))) is FAMILY
 
 
@@ -192,7 +192,7 @@ def test_cli_bad_input_one_line_exit_2(tmp_path, args):
 
 
 def test_cli_demo(tmp_path):
-    r = run(["demo", "--family", "wang", "--out", "pics"], tmp_path)
+    r = run(["demo", "--family", "stochastic", "--out", "pics"], tmp_path)
     assert r.returncode == 0, r.stderr
     for d in FAMILY.demos:
         assert (tmp_path / "pics" / f"{d.name}.svg").exists()

@@ -160,7 +160,7 @@ DEMOS = (
 )
 
 FAMILY = register(Family(
-    name="wang",
+    name="stochastic",
     title="stochastic Wang and corner tilings of windows of the plane, scanline and direct (class notes ch. 3)",
     problem_type=StochasticProblem,
     routes=SOLVERS,
