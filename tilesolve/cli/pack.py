@@ -96,11 +96,11 @@ def pack(ctx, kind, colors, colors_v, method, fix, seed, time_limit, workers, cl
     \b
     Examples:
       tilesolve pack --kind wang --colors 4 -o wang4.json --svg wang4.svg
-      tilesolve pack --kind corner --colors 3 --method sat --seed 1 -o c3.json
+      tilesolve pack --kind wang --colors 3 --method sat --seed 1 -o w3.json
       tilesolve pack --kind corner --colors 5 --method euler -o c5.json
       tilesolve pack --kind wang --colors 4 --method hybrid --seed 1 -o w4.json
       tilesolve pack --kind corner --colors 8 --method lift --seed 1 -o c8.json
-      tilesolve pack --kind corner --colors 3 --method recursive --svg c3.svg --indices
+      tilesolve pack --kind corner --colors 3 --method recursive --seed 1 --svg c3.svg --indices
       tilesolve pack count --kind wang --colors 2 --up-to-symmetry
       tilesolve verify wang4.json
     """
