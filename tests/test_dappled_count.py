@@ -143,8 +143,13 @@ def test_torus_matches_brute_force(problem):
     # Conditions along both axes on a torus: the trace of the transfer operator (issue 9).
     expected = brute_count(problem)
     assert count_dappled(problem) == expected
-    assert count_dappled(problem, orientation="rows") == expected
-    assert count_dappled(problem, orientation="cols") == expected
+    for orientation in ("rows", "cols"):  # a forced orientation may be refused as too costly
+        try:
+            got = count_dappled(problem, orientation=orientation)
+        except MethodNotApplicable as exc:
+            assert "additions" in str(exc), exc
+            continue
+        assert got == expected
 
 
 @pytest.mark.parametrize("n, value", [(3, 174), (4, 90), (5, 31990), (6, 7855316)])

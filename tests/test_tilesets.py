@@ -145,8 +145,8 @@ def test_cli_compact_corner_three_colours():
 
 
 @pytest.mark.parametrize("args,words", [
-    (("--kind", "wang", "--colors", "1"), "--colors must be >= 2"),
-    (("--kind", "wang", "--colors", "0", "--set", "compact"), "--colors must be >= 2"),
+    (("--kind", "wang", "--colors", "1"), "--colors must be at least 2"),
+    (("--kind", "wang", "--colors", "0", "--set", "compact"), "--colors must be at least 2"),
     (("--kind", "corner", "--colors", "3", "--set", "sums"), "only for Wang"),
 ])
 def test_cli_bad_input_is_one_line_and_exit_2(tmp_path, args, words):

@@ -39,7 +39,6 @@ from typing import Any
 
 import numpy as np
 
-from tilesolve.constructive.stochastic import stochastic_window
 from tilesolve.errors import InvalidProblem
 from tilesolve.family import Codec, Demo, Family, RunOptions, register
 from tilesolve.family import solve as _solve
@@ -53,9 +52,13 @@ __all__ = ["FAMILY", "SOLVERS", "METHODS", "solve", "auto_method", "scanline", "
 
 
 def _route(method: str):
-    """The route running the ``method`` algorithm of :func:`stochastic_window` on a problem."""
+    """The route running the ``method`` algorithm of
+    :func:`tilesolve.constructive.stochastic.stochastic_window` on a problem (compiled kernels
+    load only when a route runs)."""
 
     def route(problem: StochasticProblem, run: RunOptions) -> Solution:
+        from tilesolve.constructive.stochastic import stochastic_window
+
         t0 = time.perf_counter()
         grid = stochastic_window(problem.kind, method, problem.window, colors=problem.colors, seed=run.seed,
                                  variant=problem.variant, algorithm=problem.algorithm, hash=problem.hash)
