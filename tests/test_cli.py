@@ -9,31 +9,19 @@ from __future__ import annotations
 
 import json
 import os
-import shutil
 import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 from click.testing import CliRunner
+from clitools import SCRIPT
 
 from tilesolve.io import jsonio
 from tilesolve.model.dappled import DappledProblem
 from tilesolve.model.solution import Solution, Status
 
 
-def _script() -> str:
-    here = Path(sys.executable).parent / ("tilesolve.exe" if os.name == "nt" else "tilesolve")
-    if here.exists():
-        return str(here)
-    found = shutil.which("tilesolve")
-    if not found:
-        pytest.fail("the `tilesolve` console script is not installed (pip install .)")
-    return found
-
-
-SCRIPT = _script()
 
 
 def run(*args: str, cwd: Path, timeout: float = 120) -> subprocess.CompletedProcess:
