@@ -38,6 +38,10 @@ from tilesolve.constructive._lattice_kernels import (
 from tilesolve.errors import InvalidProblem
 
 __all__ = [
+    "MAX_WINDOW_CELLS",
+    "LATTICE_BOUND",
+    "check_int",
+    "check_window",
     "permutation_table",
     "PermutationHash",
     "LongPeriodHash",
@@ -50,6 +54,38 @@ __all__ = [
     "MASK64",
     "XORSHIFT_STAR",
 ]
+
+#: Largest window (cells) the lattice generators (stochastic tilings, procedural walls) build at once.
+MAX_WINDOW_CELLS = 1 << 28
+#: Coordinates addressed by the hashes stay below this in absolute value (lattice points up to
+#: ``x0 + w + 1``, and twice that for the edge hash, must fit in 64 bits).
+LATTICE_BOUND = (1 << 62) - 8
+
+
+def check_int(v, name: str, lo: int | None = None) -> int:
+    """``v`` as an int (numpy integers too), at least ``lo``; one-line errors otherwise."""
+    if isinstance(v, bool) or not isinstance(v, (int, np.integer)):
+        raise InvalidProblem(f"{name} must be an integer, got {v!r}")
+    v = int(v)
+    if lo is not None and v < lo:
+        raise InvalidProblem(f"{name} must be >= {lo}, got {v}")
+    return v
+
+
+def check_window(x0, y0, w, h, *, what: str = "window") -> tuple[int, int, int, int]:
+    """``(x0, y0, w, h)`` of a window ``[x0, x0 + w) x [y0, y0 + h)`` of the infinite lattice,
+    checked: integers, positive sizes, inside :data:`LATTICE_BOUND`, at most
+    :data:`MAX_WINDOW_CELLS` cells (the message gives the memory it would need)."""
+    x0, y0 = check_int(x0, "x0"), check_int(y0, "y0")
+    w, h = check_int(w, "width", 1), check_int(h, "height", 1)
+    b = LATTICE_BOUND
+    if not (-b <= x0 and x0 + w <= b and -b <= y0 and y0 + h <= b):
+        raise InvalidProblem(f"{what} [{x0}, {x0 + w}) x [{y0}, {y0 + h}) leaves the 63-bit lattice the hashes address "
+                             "(|coordinates| < 2**62)")
+    if w * h > MAX_WINDOW_CELLS:
+        raise InvalidProblem(f"a {what} of {w} x {h} = {w * h:,} cells needs about {w * h * 4 / 2**30:.1f} GiB; "
+                             f"tilesolve builds at most {MAX_WINDOW_CELLS:,} cells at once: ask for smaller windows")
+    return x0, y0, w, h
 
 #: FNV-1a 64-bit offset basis (Fowler, Noll, Vo); the prime is ``FNV_PRIME``.
 FNV_OFFSET = 0xCBF29CE484222325

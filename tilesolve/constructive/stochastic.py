@@ -45,7 +45,7 @@ import numpy as np
 
 from tilesolve._random import rng_from_seed
 from tilesolve.constructive import _lattice_kernels as _k
-from tilesolve.constructive.hashes import PermutationHash, permutation_table, tiling_hash
+from tilesolve.constructive.hashes import PermutationHash, check_int, check_window, permutation_table, tiling_hash
 from tilesolve.errors import InvalidProblem, MethodNotApplicable
 from tilesolve.model.tiles import TileSet
 
@@ -53,7 +53,6 @@ __all__ = [
     "METHODS",
     "WANG_DIRECT",
     "HASHES",
-    "MAX_WINDOW_CELLS",
     "tile_set",
     "make_hash",
     "direct_corner",
@@ -67,35 +66,9 @@ METHODS = ("direct", "scanline")
 #: Direct algorithms for Wang tiles: two hash functions (§3.3.2.1), a hash at the edges (§3.3.2.3).
 WANG_DIRECT = ("edges", "two")
 HASHES = ("long", "table")
-#: Largest window (cells) any function here builds in memory.
-MAX_WINDOW_CELLS = 1 << 28
-_I64 = (-(1 << 63), (1 << 63) - 1)
 
 
 # ------------------------------------------------------------------------------------ checks
-def _check_int(v, name: str, lo: int | None = None) -> int:
-    if isinstance(v, bool) or not isinstance(v, (int, np.integer)):
-        raise InvalidProblem(f"{name} must be an integer, got {v!r}")
-    v = int(v)
-    if lo is not None and v < lo:
-        raise InvalidProblem(f"{name} must be >= {lo}, got {v}")
-    return v
-
-
-def _check_window(x0, y0, w, h) -> tuple[int, int, int, int]:
-    x0, y0 = _check_int(x0, "x0"), _check_int(y0, "y0")
-    w, h = _check_int(w, "width", 1), _check_int(h, "height", 1)
-    # Lattice points up to x0 + w + 1 (and twice that for the edge hash) must stay in 64 bits.
-    lo, hi = _I64[0] // 2 + 2, _I64[1] // 2 - 2
-    if not (lo <= x0 and x0 + w <= hi and lo <= y0 and y0 + h <= hi):
-        raise InvalidProblem(f"window [{x0}, {x0 + w}) x [{y0}, {y0 + h}) leaves the 63-bit lattice "
-                             f"({lo} .. {hi}) the hashes address")
-    if w * h > MAX_WINDOW_CELLS:
-        raise InvalidProblem(f"window of {w} x {h} = {w * h:,} tiles needs about {w * h * 4 / 2**30:.1f} GiB; "
-                             f"tilesolve builds at most {MAX_WINDOW_CELLS:,} tiles at once: ask for smaller windows")
-    return x0, y0, w, h
-
-
 def tile_set(kind: str, method: str, colors: int, variant: str = "complete") -> TileSet:
     """The :class:`TileSet` that ``method`` tiles with; raises when the notes give no such algorithm.
 
@@ -105,7 +78,7 @@ def tile_set(kind: str, method: str, colors: int, variant: str = "complete") -> 
     """
     if method not in METHODS:
         raise InvalidProblem(f"unknown method {method!r}; choose one of {', '.join(METHODS)}")
-    ts = TileSet(kind, _check_int(colors, "colors", 1), variant=variant)
+    ts = TileSet(kind, check_int(colors, "colors", 1), variant=variant)
     if method == "direct" and variant == "compact":
         hint = ("use variant 'sums' (the direct algorithm for compact sets, §3.3.2.2) or method 'scanline'"
                 if kind == "wang" else "the notes have none (§3.5); use method 'scanline'")
@@ -157,8 +130,8 @@ def direct_corner(x0, y0, w, h, *, colors: int, seed=None, hash="long") -> np.nd
     >>> g.shape, bool((direct_corner(-1, 6, 1, 1, colors=3, seed=1) == g[1, 1]).all())
     ((3, 4), True)
     """
-    x0, y0, w, h = _check_window(x0, y0, w, h)
-    c = _check_int(colors, "colors", 1)
+    x0, y0, w, h = check_window(x0, y0, w, h)
+    c = check_int(colors, "colors", 1)
     tables = make_hash(hash, c, seed).row_tables(np.arange(x0, x0 + w + 1), c)
     return _k.direct_corner(*tables, y0, c, np.empty((h, w), dtype=_out_dtype(c)))
 
@@ -192,8 +165,8 @@ def direct_wang(x0, y0, w, h, *, colors: int, seed=None, algorithm: str = "edges
     §3.3.2.1 prints the W edge as ``(c_SW^c + c_NW^v) % C``; ``c_SW^c`` is read as
     ``c_SW^v`` (vertical edges use ``h_v``, as the E edge does).
     """
-    x0, y0, w, h = _check_window(x0, y0, w, h)
-    c = _check_int(colors, "colors", 1)
+    x0, y0, w, h = check_window(x0, y0, w, h)
+    c = check_int(colors, "colors", 1)
     tile_set("wang", "direct", c, variant)
     if variant == "complete" and algorithm not in WANG_DIRECT:
         raise InvalidProblem(f"unknown direct Wang algorithm {algorithm!r}; choose one of {', '.join(WANG_DIRECT)}")
@@ -238,8 +211,8 @@ def scanline_wang(x0, y0, w, h, *, colors: int, seed=None, variant: str = "compl
     numpy.ndarray
         ``(h, w)`` eq. 2.1 indices (int32 when C**4 < 2**31), row 0 at the top.
     """
-    x0, y0, w, h = _check_window(x0, y0, w, h)
-    c = _check_int(colors, "colors", 1)
+    x0, y0, w, h = check_window(x0, y0, w, h)
+    c = check_int(colors, "colors", 1)
     tile_set("wang", "scanline", c, variant)
     compact = variant == "compact"
     tables = _choice_tables(x0, w, seed, hash, math.lcm(c, 2) if compact else c * c)
@@ -258,8 +231,8 @@ def scanline_corner(x0, y0, w, h, *, colors: int, seed=None, variant: str = "com
     numpy.ndarray
         ``(h, w)`` eq. 2.5 indices (int32 when C**4 < 2**31), row 0 at the top.
     """
-    x0, y0, w, h = _check_window(x0, y0, w, h)
-    c = _check_int(colors, "colors", 1)
+    x0, y0, w, h = check_window(x0, y0, w, h)
+    c = check_int(colors, "colors", 1)
     tile_set("corner", "scanline", c, variant)
     compact = variant == "compact"
     tables = _choice_tables(x0, w, seed, hash, math.lcm(c, 2) if compact else c)

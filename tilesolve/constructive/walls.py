@@ -59,14 +59,13 @@ from __future__ import annotations
 import numpy as np
 
 from tilesolve.constructive._lattice_kernels import d1, d2, wall_kernel
-from tilesolve.constructive.hashes import FnvXorshift
+from tilesolve.constructive.hashes import LATTICE_BOUND, FnvXorshift, check_int, check_window
 from tilesolve.errors import InvalidProblem
 from tilesolve.model.board import WangTileSet
 
 __all__ = [
     "APPENDIX_B",
     "SOURCES",
-    "MAX_WALL_CELLS",
     "brick_tile_set",
     "dappling_period",
     "wall_window",
@@ -76,8 +75,6 @@ __all__ = [
     "line_lengths",
 ]
 
-#: Largest window (cells) :func:`wall_window` builds in memory (4 bytes a cell).
-MAX_WALL_CELLS = 1 << 28
 
 #: Names of the values a 2x2 filling is made of: the eight outer edges of block ``(i, j)``
 #: (``VT0 = V[i, j+1]``, ``VT2 = V[i+2, j+1]``, ``HL0 = H[i, j]``, ``HL2 = H[i, j+2]``,
@@ -125,24 +122,15 @@ _VT0, _VT2, _HL0, _HL2, _VB0, _VB2, _HR0, _HR2, _VD2T, _HD2L, _VD2B, _HD2R = ran
 
 
 # ------------------------------------------------------------------------------------ checks
-def _check_int(v, name: str, lo: int | None = None) -> int:
-    if isinstance(v, bool) or not isinstance(v, (int, np.integer)):
-        raise InvalidProblem(f"{name} must be an integer, got {v!r}")
-    v = int(v)
-    if lo is not None and v < lo:
-        raise InvalidProblem(f"{name} must be >= {lo}, got {v}")
-    return v
-
-
 def _check_params(colors, max_line, seed) -> tuple[int, int, int]:
     """``(nc, P, seed)``: ``P`` is the dappling period (0: no limit), see :func:`dappling_period`."""
-    nc = _check_int(colors, "colors")
+    nc = check_int(colors, "colors")
     if nc < 3:
         raise InvalidProblem(f"brick walls need at least 3 colours (004 §3.1, App. A), got {nc}")
     if nc > 127:
         raise InvalidProblem(f"tilesolve draws walls with at most 127 colours, got {nc}")
     p = dappling_period(max_line)
-    s = _check_int(seed, "seed", 0)
+    s = check_int(seed, "seed", 0)
     if s >= 1 << 64:
         raise InvalidProblem(f"seed must be below 2**64, got {s}")
     return nc, p, s
@@ -156,7 +144,7 @@ def dappling_period(max_line) -> int:
     """
     if max_line is None:
         return 0
-    n = _check_int(max_line, "max_line")
+    n = check_int(max_line, "max_line")
     if n < 1:
         raise InvalidProblem(f"the maximum line length must be >= 1 brick, got {n}")
     return n if n % 2 == 0 else n + 1
@@ -173,7 +161,7 @@ def brick_tile_set(colors: int = 3) -> WangTileSet:
     >>> len(brick_tile_set(3)), len(brick_tile_set(4))
     (36, 96)
     """
-    nc = _check_int(colors, "colors")
+    nc = check_int(colors, "colors")
     if nc < 3:
         raise InvalidProblem(f"brick walls need at least 3 colours, got {nc}")
     v0, htop, v1, hbot = np.meshgrid(*[np.arange(nc)] * 4, indexing="ij")
@@ -291,21 +279,7 @@ class _ScalarWall:
         return (o[_VT0], o[_HL2], vt1, hl1) if di == 0 else (vt1, o[_HR2], o[_VT2], hr1)
 
 
-_LIMIT = (1 << 62) - 8
 _STRIP_CELLS = 1 << 16
-
-
-def _check_window(x0, y0, w, h) -> tuple[int, int, int, int]:
-    x0, y0 = _check_int(x0, "x0"), _check_int(y0, "y0")
-    w, h = _check_int(w, "width", 1), _check_int(h, "height", 1)
-    if not (-_LIMIT <= x0 and x0 + w <= _LIMIT and -_LIMIT <= y0 and y0 + h <= _LIMIT):
-        raise InvalidProblem(f"wall window [{x0}, {x0 + w}) x [{y0}, {y0 + h}) leaves the plane tilesolve "
-                             f"addresses (|coordinates| < 2**62)")
-    if w * h > MAX_WALL_CELLS:
-        raise InvalidProblem(f"a wall window of {w} x {h} = {w * h:,} cells needs about {w * h * 4 / 2**30:.1f} GiB; "
-                             f"tilesolve builds at most {MAX_WALL_CELLS:,} cells at once: ask for smaller windows "
-                             "(or stream them)")
-    return x0, y0, w, h
 
 
 def wall_window(x0, y0, w, h, *, colors: int = 3, max_line: int | None = None, seed: int = 0) -> np.ndarray:
@@ -337,7 +311,7 @@ def wall_window(x0, y0, w, h, *, colors: int = 3, max_line: int | None = None, s
     >>> t.shape, tuple(int(x) for x in t[1, 0]) == wall_tile_scalar(-3, 5, colors=3, max_line=2, seed=1)
     ((2, 4, 4), True)
     """
-    x0, y0, w, h = _check_window(x0, y0, w, h)
+    x0, y0, w, h = check_window(x0, y0, w, h, what="wall window")
     nc, p, s = _check_params(colors, max_line, seed)
     fixed = max_line is not None and int(max_line) % 2 == 1
     out = np.empty((h, w, 4), dtype=np.int8)
@@ -360,8 +334,8 @@ def wall_tile_scalar(i, j, *, colors: int = 3, max_line: int | None = None,
     is its compiled, window-at-a-time form and agrees with it bit for bit.
     """
     nc, p, s = _check_params(colors, max_line, seed)
-    i, j = _check_int(i, "i"), _check_int(j, "j")
-    if not (-_LIMIT <= i < _LIMIT and -_LIMIT <= j < _LIMIT):
+    i, j = check_int(i, "i"), check_int(j, "j")
+    if not (-LATTICE_BOUND <= i < LATTICE_BOUND and -LATTICE_BOUND <= j < LATTICE_BOUND):
         raise InvalidProblem(f"cell ({i}, {j}) is outside |coordinates| < 2**62")
     return _ScalarWall(nc, p, max_line is not None and int(max_line) % 2 == 1, s).tile(i, j)
 
