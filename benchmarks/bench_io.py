@@ -24,9 +24,9 @@ import argparse
 import os
 import tempfile
 import time
-import tracemalloc
 
 import numpy as np
+from _measure import peak_mib  # noqa: E402 - benchmarks/ is on sys.path
 
 
 def timed(fn, repeat: int) -> float:
@@ -36,15 +36,6 @@ def timed(fn, repeat: int) -> float:
         fn()
         t_best = min(t_best, time.perf_counter() - t)
     return t_best
-
-
-def peak_mib(fn) -> float:
-    tracemalloc.start()
-    try:
-        fn()
-        return tracemalloc.get_traced_memory()[1] / 2**20
-    finally:
-        tracemalloc.stop()
 
 
 def measure(label, size, cells, t_solve, write, read, path, repeat, results):

@@ -23,9 +23,9 @@ from __future__ import annotations
 
 import argparse
 import time
-import tracemalloc
 
 import numpy as np
+from _measure import peak_mib  # noqa: E402 - benchmarks/ is on sys.path
 
 
 # ----------------------------------------------------------------------------- baselines
@@ -77,15 +77,6 @@ def best(fn, repeat: int) -> tuple[float, object]:
         out = fn()
         t_best = min(t_best, time.perf_counter() - t)
     return t_best, out
-
-
-def peak_mib(fn) -> float:
-    tracemalloc.start()
-    try:
-        fn()
-        return tracemalloc.get_traced_memory()[1] / 2**20
-    finally:
-        tracemalloc.stop()
 
 
 def row(what, size, cells, t_old, t_new, m_old, m_new, note=""):

@@ -29,22 +29,9 @@ import tracemalloc
 import numpy as np
 
 from tilesolve.constructive.walls import _ScalarWall, dappling_period, wall_window
+from _measure import best  # noqa: E402 - benchmarks/ is on sys.path
 
 COLORS, SEED = 3, 7
-
-
-def best(fn, repeat: int):
-    """Best wall-clock and best CPU time (this process) of ``repeat`` runs, and the last output.
-
-    On a shared machine the CPU time is the better measure of one core's work."""
-    out, t_best, cpu_best = None, np.inf, np.inf
-    for _ in range(repeat):
-        out = None  # free the previous result first: the peak is one call's
-        t, c = time.perf_counter(), time.process_time()
-        out = fn()
-        t_best = min(t_best, time.perf_counter() - t)
-        cpu_best = min(cpu_best, time.process_time() - c)
-    return t_best, cpu_best, out
 
 
 def peak_rss_mib() -> float:

@@ -1,0 +1,33 @@
+"""Measuring helpers the benchmark scripts share (imported as ``_measure``: scripts run from
+this folder, so it is on ``sys.path``)."""
+
+from __future__ import annotations
+
+import time
+import tracemalloc
+
+import numpy as np
+
+
+def best(fn, repeat: int):
+    """Best wall-clock and best CPU time (this process) of ``repeat`` runs, and the last output.
+
+    On a shared machine the CPU time is the better measure of one core's work."""
+    out, t_best, cpu_best = None, np.inf, np.inf
+    for _ in range(repeat):
+        out = None  # free the previous result first: the peak is one call's
+        t, c = time.perf_counter(), time.process_time()
+        out = fn()
+        t_best = min(t_best, time.perf_counter() - t)
+        cpu_best = min(cpu_best, time.process_time() - c)
+    return t_best, cpu_best, out
+
+
+def peak_mib(fn) -> float:
+    """Peak Python-traced memory (MiB) of one call of ``fn`` (numpy buffers included)."""
+    tracemalloc.start()
+    try:
+        fn()
+        return tracemalloc.get_traced_memory()[1] / 2**20
+    finally:
+        tracemalloc.stop()
