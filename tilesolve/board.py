@@ -33,7 +33,7 @@ from typing import Any, Iterator
 import numpy as np
 
 from tilesolve.errors import InvalidProblem, MethodNotApplicable
-from tilesolve.family import Codec, Demo, Family, RunOptions, raise_if_interrupted, register
+from tilesolve.family import Codec, Demo, Family, Field, Form, RunOptions, form_size, raise_if_interrupted, register
 from tilesolve.family import solve as _solve
 from tilesolve.io.board_json import BOARD_SOLUTION, VERSIONS
 from tilesolve.model.board import BoardProblem
@@ -41,7 +41,7 @@ from tilesolve.model.solution import CountResult, CrosscheckReport, Solution, St
 from tilesolve.verify.board import board_violations
 
 __all__ = [
-    "FAMILY", "SOLVERS", "METHODS", "linear", "sat", "cpsat", "theorem7", "wall", "procedural", "solve",
+    "FAMILY", "SOLVERS", "METHODS", "linear", "sat", "cpsat", "theorem7", "wall", "procedural", "npd", "solve",
     "enumerate_tilings", "count", "CountResult", "crosscheck", "CrosscheckReport",
 ]
 
@@ -103,6 +103,15 @@ def procedural(problem: BoardProblem, run: RunOptions) -> Solution:
     return procedural_route(problem, run)
 
 
+def npd(problem: BoardProblem, run: RunOptions) -> Solution:
+    """The repeatable non-procedural wall NPD (004 App. A; :mod:`tilesolve.walls`): brick
+    tiles on a torus (one period) or a rectangle (a window of the repeating wall), both line
+    limits; family options ``period`` and ``origin``."""
+    from tilesolve.walls import npd_route
+
+    return npd_route(problem, run)
+
+
 def _deadline(time_limit):
     from tilesolve.deadline import Deadline
 
@@ -111,7 +120,7 @@ def _deadline(time_limit):
 
 #: Solving routes by name. ``"auto"`` is not an entry: it picks one (:func:`auto_method`).
 SOLVERS = {"linear": linear, "sat": sat, "cpsat": cpsat, "theorem7": theorem7, "wall": wall,
-           "procedural": procedural}
+           "procedural": procedural, "npd": npd}
 METHODS: tuple[str, ...] = ("auto",) + tuple(SOLVERS)
 
 
@@ -130,12 +139,13 @@ def solve(problem: BoardProblem, *, method: str | Any = "auto", seed: int | None
     Parameters
     ----------
     problem : BoardProblem
-    method : {"auto", "linear", "sat", "cpsat", "theorem7", "wall", "procedural"} or callable
+    method : {"auto", "linear", "sat", "cpsat", "theorem7", "wall", "procedural", "npd"} or callable
         ``"linear"`` is the linear algorithm of §4 (brick Wang tiles, no line limits);
         ``"theorem7"`` tiles outside a small core leaves first and solves the core by SAT
         (any three-boundary tile set); ``"wall"`` makes a brick wall without long lines from
         a dappled tiling; ``"procedural"`` cuts a window at (0, 0) from the infinite procedural
         wall (``tilesolve.family.solve`` with ``options={"origin": (x0, y0)}`` moves it);
+        ``"npd"`` makes a wall that repeats (004 App. A) on a torus or a rectangle;
         ``"auto"`` uses ``wall`` or ``linear`` where they apply and falls back to SAT, saying
         why in ``Solution.notes``. A callable is a route ``(problem, run)``.
     seed : int, optional
@@ -277,6 +287,106 @@ DEMOS = (
          _mobius_demo),
 )
 
+#: Board shapes the studio's form offers (``--board KIND:WxH``; ``mask``: a rectangle with painted holes).
+FORM_BOARDS = ("rect", "torus", "cylinder", "mobius", "klein", "ring", "mask")
+
+
+def _form_holes(values):
+    grid = values.get("mask")
+    if values["board"] != "mask":
+        return None
+    rows, cols = form_size(values["size"])
+    keep = np.ones((rows, cols), dtype=bool) if grid is None else np.array(grid, dtype=np.int64) != 0
+    return keep
+
+
+def _form_boundary(values, board):
+    from tilesolve.model.board import random_boundary
+
+    spec = values["boundary"].strip()
+    if spec == "random":
+        return random_boundary(board, values["colors"], seed=values["seed"])
+    if spec == "free":
+        return None
+    legs = [v.strip() for v in spec.split(",")]
+    if len(legs) != board.n_boundary:
+        raise InvalidProblem(f"boundary colours: the board has {board.n_boundary} boundary legs, "
+                             f"{len(legs)} colours given (or write random or free)")
+    try:
+        return np.array([-1 if v in ("-", "") else int(v) for v in legs], dtype=np.int64)
+    except ValueError:
+        raise InvalidProblem("boundary colours: a comma-separated colour per boundary leg, - for free") from None
+
+
+def _form_build(values) -> tuple[BoardProblem, dict]:
+    """The studio form's brick board (the ``brick solve`` options; painted holes make a mask board)."""
+    from tilesolve.model.board import Board, WangTileSet, parse_board_spec
+
+    if not 3 <= values["colors"]:
+        raise InvalidProblem(f"brick Wang tiles need #C >= 3 colours (Def. 9), got {values['colors']}")
+    keep = _form_holes(values)
+    board = Board.mask(keep) if keep is not None else parse_board_spec(f"{values['board']}:{values['size']}")
+    return BoardProblem(board, WangTileSet.brick(values["colors"]), _form_boundary(values, board),
+                        max_h=values["max_h"], max_v=values["max_v"]), {}
+
+
+def _form_command(values) -> tuple[list[str], dict[str, str]]:
+    import json
+
+    files = {}
+    keep = _form_holes(values)
+    if keep is not None:
+        files["mask.txt"] = "".join("".join("#" if k else "." for k in row) + "\n" for row in keep.tolist())
+        spec = "mask:mask.txt"
+    else:
+        spec = f"{values['board']}:{values['size']}"
+    words = ["brick", "solve", "--board", spec, "--colors", str(values["colors"])]
+    boundary = values["boundary"].strip()
+    if boundary in ("random", "free"):
+        words += ["--boundary", boundary]
+    else:
+        files["boundary.json"] = json.dumps([None if v.strip() in ("-", "") else int(v) for v in boundary.split(",")])
+        words += ["--boundary", "boundary.json"]
+    for name in ("max_h", "max_v"):
+        if values[name] is not None:
+            words += [f"--{name.replace('_', '-')}", str(values[name])]
+    return words, files
+
+
+def _form_window(values, x0: int, y0: int, rows: int, cols: int):
+    """One window of the infinite procedural brick wall (004 §4) with the form's line limit."""
+    from tilesolve.walls import wall_problem
+
+    line = values["max_h"] or values["max_v"] or 3
+    return wall_problem(rows, cols, line, n_colors=values["colors"]), "procedural", {"origin": (x0, y0)}
+
+
+def _mask_extent(values) -> tuple[int, int, int, int]:
+    rows, cols = form_size(values["size"])
+    return rows, cols, 0, 1
+
+
+FORM = Form(
+    fields=(
+        Field("board", "choice", "board", "rect", "the board's shape; mask: a rectangle with painted holes",
+              choices=FORM_BOARDS, option="--board"),
+        Field("size", "size", "size (WxH)", "24x16", "W columns by H rows", high=1 << 20, option="--board"),
+        Field("colors", "int", "colours #C", 3, "edge colours of the brick tiles (Def. 9)", low=3, high=8,
+              option="--colors"),
+        Field("boundary", "text", "boundary colours", "random", "random, free, or a colour per boundary leg "
+              "(comma-separated, - = free; legs numbered by cell, then W N E S)", option="--boundary"),
+        Field("max_h", "int", "longest horizontal line", None, "no horizontal line through more cells (SAT route)",
+              low=1, high=1 << 20, option="--max-h"),
+        Field("max_v", "int", "longest vertical line", None, "no vertical line through more cells (SAT route)",
+              low=1, high=1 << 20, option="--max-v"),
+        Field("mask", "cells", "holes (mask boards)", None, "click cells to make holes (0) or cells (1)",
+              option="--board", extent=_mask_extent),
+    ),
+    build=_form_build,
+    command=_form_command,
+    window=_form_window,
+)
+
 FAMILY = register(Family(
     name="board",
     title="Wang tilings of boards: brick Wang tiles, the linear algorithm, any tile set by SAT "
@@ -292,6 +402,7 @@ FAMILY = register(Family(
     draw=_draw,
     demos=DEMOS,
     commands=("tilesolve.cli.board:brick", "tilesolve.cli.board:wang", "tilesolve.cli.board:wall"),
+    form=FORM,
     route_help={
         "linear": "the linear algorithm of §4 (numba)",
         "sat": "CNF + PySAT, any tile set, line limits; unsat with a checked DRAT proof",
@@ -299,5 +410,6 @@ FAMILY = register(Family(
         "theorem7": "Theorem 7: leaves first, the core by SAT",
         "wall": "brick walls without long lines from a dappled tiling (dappled §4)",
         "procedural": "a window of the infinite procedural brick wall (004 §4; one line limit; option origin)",
+        "npd": "a repeatable wall on a torus or a window of one (004 App. A; options period, origin)",
     },
 ))

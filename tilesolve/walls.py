@@ -14,7 +14,11 @@ provides two routes of the board family:
     a window of the infinite procedural wall of Derouet-Jourdan, Salvati and Jonchier
     (004 §3-4, App. B; :func:`tilesolve.constructive.walls.wall_window`): every cell's tile is a
     function of its absolute coordinates and the seed, so two windows of the same seed agree
-    on the cells they share. It needs one line limit ``n = max_h = max_v`` (004 §4.3).
+    on the cells they share. It needs one line limit ``n = max_h = max_v`` (004 §4.3);
+``npd``
+    the repeatable non-procedural wall NPD (004 App. A; :func:`npd_route`): a cyclic dappling
+    (dappled paper §3.2) with the border constraint, then the Wang tiling on top, so that the
+    wall tiles the torus (one period) or any window of the plane it repeats over.
 
 Examples
 --------
@@ -27,6 +31,10 @@ Examples
 >>> s = solve(q, "procedural", seed=5, options={"origin": (-100, 40)})
 >>> board_violations(s.tiling, q), s.method
 ([], 'procedural')
+>>> t = npd_problem(8, 12, 4)
+>>> s = solve(t, "npd", seed=2)
+>>> t.board.kind, board_violations(s.tiling, t), s.method
+('torus', [], 'npd')
 """
 
 from __future__ import annotations
@@ -40,13 +48,23 @@ from tilesolve.model.board import Board, BoardProblem, WangTileSet
 from tilesolve.model.run import RunOptions
 from tilesolve.model.solution import Solution, Status
 
-__all__ = ["wall_problem", "is_free_wall", "wall_route", "procedural_route", "brick_wall"]
+__all__ = ["wall_problem", "npd_problem", "is_free_wall", "wall_route", "procedural_route", "npd_route",
+           "brick_wall"]
 
 
 def wall_problem(rows: int, cols: int, max_line: int, *, max_v: int | None = None, n_colors: int = 3) -> BoardProblem:
     """The board problem of a ``rows x cols`` brick wall with lines of at most ``max_line``
     cells across and ``max_v`` (default ``max_line``) down."""
     return BoardProblem(Board.rect(rows, cols), WangTileSet.brick(n_colors), None, max_h=int(max_line),
+                        max_v=int(max_line if max_v is None else max_v))
+
+
+def npd_problem(rows: int, cols: int, max_line: int, *, max_v: int | None = None,
+                n_colors: int = 3) -> BoardProblem:
+    """The board problem of one period of a repeatable wall: brick tiles on the
+    ``rows x cols`` torus (:meth:`Board.torus`), lines of at most ``max_line`` cells across
+    and ``max_v`` (default ``max_line``) down, across the seams too (004 App. A)."""
+    return BoardProblem(Board.torus(rows, cols), WangTileSet.brick(n_colors), None, max_h=int(max_line),
                         max_v=int(max_line if max_v is None else max_v))
 
 
@@ -140,6 +158,104 @@ def procedural_route(problem: BoardProblem, run: RunOptions) -> Solution:
             f"of the infinite wall of seed {run.seed}")
     return Solution(Status.SAT, legs.reshape(rows * cols, 4), "procedural", None, run.seed,
                     time.perf_counter() - t0, notes=(note,))
+
+
+def _period(value, default: tuple[int, int]) -> tuple[int, int]:
+    """The ``period`` option: two integers ``(width, height)`` in cells."""
+    if value is None:
+        return default
+    try:
+        w, h = value
+    except (TypeError, ValueError):
+        raise InvalidProblem(f"the wall's period must be two integers (width, height), got {value!r}") from None
+    for v in (w, h):
+        if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 1:
+            raise InvalidProblem(f"the wall's period must be two positive integers (width, height), got {value!r}")
+    return int(w), int(h)
+
+
+def npd_route(problem: BoardProblem, run: RunOptions) -> Solution:
+    """The repeatable non-procedural wall NPD (004 App. A) on a torus, or a window of it.
+
+    A cyclic dappling of one period (dappled paper §3.2: Algorithm 2 or Remark 3.4 where they
+    apply, SAT otherwise, through the dappled family's own verified pipeline) with the limits of
+    :func:`tilesolve.constructive.npd.cyclic_limits` (the border constraint: two vertical tiles
+    in every row, two horizontal ones in every column), then App. A's Algorithm 1
+    (:func:`tilesolve.constructive.npd.npd_legs`) colours the edges row by row and column by
+    column so that the period closes on itself. ``run.seed`` seeds both steps: the same seed
+    gives the same wall.
+
+    Parameters
+    ----------
+    problem : BoardProblem
+        Brick tiles (``problem.n_colors >= 3``), both line limits ``max_h``/``max_v`` (they may
+        differ), no fixed boundary leg, on either
+
+        * a torus ``Board.torus(rows, cols)`` (:func:`npd_problem`): the period itself; the
+          limits hold across the seams; or
+        * a rectangle ``Board.rect(rows, cols)`` (:func:`wall_problem`): a window of the plane
+          tiled by repeating one period.
+    run : RunOptions
+        ``run.seed``; ``run.time_limit`` bounds the dappling; family options:
+
+        ``period``: ``(width, height)`` of the repeating period in cells; default the board's
+        ``(cols, rows)``; on a torus it must be the board's.
+        ``origin``: ``(x0, y0)``, default ``(0, 0)``, as in :func:`procedural_route`: board
+        cell ``(r, c)`` is wall cell ``(x0 + c, y0 + rows - 1 - r)`` (``y`` grows upwards),
+        i.e. cell ``(height - 1 - y mod height, x mod width)`` of the period. The window at
+        ``(0, 0)`` of the period's size is the period itself.
+
+    Returns
+    -------
+    Solution
+        ``sat``: ``(n_cells, 4)`` leg colours (W, N, E, S) in the board's cell order, method
+        ``"npd"``, ``solver`` the dappling's solver, notes naming the period and the dappling's
+        route. On a torus an ``unsat`` dappling gives ``unsat`` (a brick wall of the torus with
+        these limits exists exactly when the cyclic dappling does; the dappled route's proof
+        is checked there), a time limit ``unknown``.
+
+    Raises
+    ------
+    InvalidProblem
+        A period under 3x3 cells (no repeatable wall with line limits exists), a malformed
+        ``period``/``origin``, or a torus whose ``period`` is not the board's.
+    MethodNotApplicable
+        Not brick tiles on a free torus or rectangle with both limits; or, on a rectangle, no
+        wall repeats with that period (the cyclic dappling is unsatisfiable: choose another
+        period or method ``wall``).
+    """
+    from tilesolve import dappled
+    from tilesolve.constructive.npd import cyclic_limits, npd_legs, periodic_window
+    from tilesolve.model.dappled import DappledProblem, parse_condition
+
+    kind = problem.board.kind
+    if not (kind in ("torus", "rect") and problem.tileset.is_brick and problem.max_h is not None
+            and problem.max_v is not None and bool((problem.boundary < 0).all())):
+        raise MethodNotApplicable("the npd route needs brick tiles on a torus or a rectangle with a free boundary "
+                                  "and both line limits; use method 'sat'")
+    rows, cols = (int(v) + 1 for v in problem.board.labels.max(axis=0))
+    pw, ph = _period(run.option("period"), (cols, rows))
+    if kind == "torus" and (pw, ph) != (cols, rows):
+        raise InvalidProblem(f"on a torus the period is the board ({cols}x{rows}), got period {pw}x{ph}")
+    x0, y0 = _origin(run.option("origin", (0, 0)))
+    p, q = cyclic_limits(ph, pw, problem.max_h, problem.max_v)
+    t0 = time.perf_counter()
+    dp = DappledProblem(ph, pw, 2, (parse_condition(f"H0={p}"), parse_condition(f"V1={q}")), cyclic=True)
+    ds = dappled.solve(dp, seed=run.seed, time_limit=run.time_limit)
+    notes = tuple(f"dappled: {n}" for n in ds.notes) + (
+        f"period {pw}x{ph}: cyclic dappling H0={p}, V1={q} by {ds.method!r}",)
+    if not ds.status.has_tiling:
+        if ds.status is Status.UNSAT and kind == "rect":
+            raise MethodNotApplicable(f"no wall with lines <= {problem.max_h} across and {problem.max_v} down "
+                                      f"repeats with period {pw}x{ph} (the cyclic dappling is unsatisfiable); "
+                                      f"choose another period or use method 'wall'")
+        return Solution(ds.status, None, "npd", ds.solver, run.seed, time.perf_counter() - t0, reason=ds.reason,
+                        notes=notes)
+    period = npd_legs(ds.tiling, problem.n_colors, seed=run.seed)
+    legs = periodic_window(period, x0, y0, cols, rows)
+    lab = problem.board.labels
+    tiling = legs[lab[:, 0], lab[:, 1]].astype(np.int8)
+    return Solution(Status.SAT, tiling, "npd", ds.solver, run.seed, time.perf_counter() - t0, notes=notes)
 
 
 def brick_wall(rows: int, cols: int, max_line: int, *, max_v: int | None = None, n_colors: int = 3,
