@@ -34,7 +34,7 @@ from typing import Any
 import numpy as np
 
 from tilesolve.errors import InvalidProblem, MethodNotApplicable
-from tilesolve.family import Codec, Demo, Family, RunOptions, raise_if_interrupted, register
+from tilesolve.family import Codec, Demo, Family, Field, Form, RunOptions, form_size, raise_if_interrupted, register
 from tilesolve.family import solve as _solve
 from tilesolve.io.jsonio import DAPPLED_FORMATS, DAPPLED_PROBLEM, DAPPLED_SOLUTION
 from tilesolve.model.dappled import DappledProblem
@@ -351,6 +351,69 @@ DEMOS = (
          lambda: DappledProblem.from_strings("30x18", ["H0=2", "V0=2", "H1=2", "V1=2", "H2=2", "V2=2"], n_tiles=3)),
 )
 
+def _cells_extent(values) -> tuple[int, int, int, int]:
+    rows, cols = form_size(values["size"])
+    return rows, cols, 0, values["tiles"] - 1
+
+
+def _form_grid(values, name: str):
+    grid = values.get(name)
+    if grid is None or all(v < 0 for row in grid for v in row):
+        return None
+    return np.array(grid, dtype=np.int64)
+
+
+def _form_build(values) -> tuple[DappledProblem, dict]:
+    """The studio form's problem (the ``dappled solve`` options, painted cells as arrays)."""
+    import re
+
+    target = _form_grid(values, "target")
+    if target is not None and (target < 0).any():
+        raise InvalidProblem("target tiling: paint every cell (or clear it) to ask for the closest tiling")
+    conds = [c for c in re.split(r"[,\s]+(?![^{]*\})", values["cond"].strip()) if c]
+    counts = values["count"].split() if values["count"] else ()
+    return DappledProblem.from_strings(values["size"], conds, n_tiles=values["tiles"], cyclic=values["cyclic"],
+                                       counts=counts, fixed=_form_grid(values, "fixed"), closest_to=target), {}
+
+
+def _grid_text(grid) -> str:
+    return "".join("".join("?" if v < 0 else str(v) for v in row) + "\n" for row in grid)
+
+
+def _form_command(values) -> tuple[list[str], dict[str, str]]:
+    words = ["dappled", "solve", "--size", values["size"], "--tiles", str(values["tiles"])]
+    if values["cond"].strip():
+        words += ["--cond", values["cond"].strip()]
+    if values["cyclic"]:
+        words.append("--cyclic")
+    for k in (values["count"] or "").split():
+        words += ["--count", k]
+    files = {}
+    for name, option in (("fixed", "--fix"), ("target", "--closest-to")):
+        if _form_grid(values, name) is not None:
+            files[f"{name}.txt"] = _grid_text(values[name])
+            words += [option, f"{name}.txt"]
+    return words, files
+
+
+FORM = Form(
+    fields=(
+        Field("size", "size", "size (WxH)", "16x12", "W columns by H rows", high=1 << 22, option="--size"),
+        Field("tiles", "int", "tiles |T|", 2, "tiles 0..K-1", low=2, high=10, option="--tiles"),
+        Field("cond", "text", "conditions", "H0=2, V1=2", "e.g. H0=2 (no horizontal run of tile 0 longer "
+              "than 2), V{0,1}=3", option="--cond"),
+        Field("cyclic", "bool", "cyclic (torus)", False, "runs wrap around both edges (§3.2)", option="--cyclic"),
+        Field("count", "text", "tile counts", "", "e.g. 1=30..34 (tile 1 on 30 to 34 cells)", option="--count"),
+        Field("fixed", "cells", "fixed cells", None, "click a cell to fix its tile", option="--fix",
+              extent=_cells_extent),
+        Field("target", "cells", "closest-to target", None, "paint a target: the nearest dappled tiling "
+              "(Hamming distance) is found", option="--closest-to", extent=_cells_extent),
+    ),
+    build=_form_build,
+    command=_form_command,
+    cells=lambda problem, sol: sol.tiling,
+)
+
 FAMILY = register(Family(
     name="dappled",
     title="dappled tilings: no long runs of a tile (Kaji, Derouet-Jourdan, Ochiai 2016)",
@@ -369,6 +432,7 @@ FAMILY = register(Family(
     draw=_draw,
     demos=DEMOS,
     commands=("tilesolve.cli.dappled:dappled",),
+    form=FORM,
     route_help={
         "constructive": "Algorithm 1, |T| >= 3, Algorithm 2 / Remark 3.4 (numba)",
         "sat": "CNF + PySAT (CaDiCaL), unsat with a checked DRAT proof",

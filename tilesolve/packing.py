@@ -58,7 +58,7 @@ import numpy as np
 from tilesolve._random import rng_from_seed
 from tilesolve.engine.packing import PACKING_SAT_SOLVER
 from tilesolve.errors import InvalidProblem, MethodNotApplicable
-from tilesolve.family import Codec, Demo, Family, RunOptions, register
+from tilesolve.family import Codec, Demo, Family, Field, Form, RunOptions, register
 from tilesolve.family import solve as _solve
 from tilesolve.io.packing_json import PACKING, VERSIONS
 from tilesolve.model.packing import PackingProblem
@@ -312,6 +312,47 @@ DEMOS = (
          lambda: PackingProblem("corner", 4), method="lift", draw_options={"indices": True}),
 )
 
+def _pins_extent(values) -> tuple[int, int, int, int]:
+    cv = values["colors"] if values["colors_v"] is None or values["kind"] != "wang" else values["colors_v"]
+    return values["colors"] ** 2, cv**2, 0, values["colors"] ** 2 * cv**2 - 1
+
+
+def _form_pins(values) -> tuple[tuple[int, int, int], ...]:
+    grid = values.get("pins") or []
+    return tuple((r, c, t) for r, row in enumerate(grid) for c, t in enumerate(row) if t >= 0)
+
+
+def _form_build(values) -> tuple[PackingProblem, dict]:
+    """The studio form's packing (the ``pack`` options; painted pins as ``fixed``)."""
+    colors_v = values["colors_v"] if values["kind"] == "wang" else None
+    return PackingProblem(values["kind"], values["colors"], colors_v, fixed=_form_pins(values)), {}
+
+
+def _form_command(values) -> tuple[list[str], dict[str, str]]:
+    words = ["pack", "--kind", values["kind"], "--colors", str(values["colors"])]
+    if values["kind"] == "wang" and values["colors_v"] is not None:
+        words += ["--colors-v", str(values["colors_v"])]
+    for r, c, t in _form_pins(values):
+        words += ["--fix", f"{r},{c},{t}"]
+    return words, {}
+
+
+FORM = Form(
+    fields=(
+        Field("kind", "choice", "tiles", "wang", "Wang tiles (coloured edges) or corner tiles (coloured corners)",
+              choices=("wang", "corner"), option="--kind"),
+        Field("colors", "int", "colours C", 3, "C >= 2: the complete set has C^4 tiles", low=2, high=6,
+              option="--colors"),
+        Field("colors_v", "int", "vertical colours C_v", None, "Wang tiles only: colours of the E/W edges",
+              low=2, high=6, option="--colors-v"),
+        Field("pins", "cells", "pinned tiles", None, "click a cell to pin its tile (§5.5.4 puzzles)",
+              option="--fix", extent=_pins_extent),
+    ),
+    build=_form_build,
+    command=_form_command,
+    cells=lambda problem, sol: sol.tiling,
+)
+
 FAMILY = register(Family(
     name="packing",
     title="tile packings: every tile of a complete Wang or corner set once on a torus (class notes §5.5)",
@@ -325,6 +366,7 @@ FAMILY = register(Family(
     draw=_draw,
     demos=DEMOS,
     commands=("tilesolve.cli.pack:pack", "tilesolve.cli.tiles:tiles"),
+    form=FORM,
     route_help={
         "euler": "Eulerian constructions (Wang outer product, odd-C corner de Bruijn torus)",
         "outer": "the constructions over random Eulerian circuits",

@@ -40,7 +40,7 @@ from typing import Any
 import numpy as np
 
 from tilesolve.errors import InvalidProblem
-from tilesolve.family import Codec, Demo, Family, RunOptions, register
+from tilesolve.family import Codec, Demo, Family, Field, Form, RunOptions, form_size, register
 from tilesolve.family import solve as _solve
 from tilesolve.io.stochastic_json import STOCHASTIC_TILING, VERSIONS
 from tilesolve.model.solution import Solution, Status
@@ -162,6 +162,50 @@ DEMOS = (
          lambda: StochasticProblem("corner", 3, (-12, -8, 24, 16)), method="direct"),
 )
 
+def _form_problem(values, window) -> StochasticProblem:
+    return StochasticProblem(values["kind"], values["colors"], window, values["set"], values["hash"],
+                             values["algorithm"])
+
+
+def _form_build(values) -> tuple[StochasticProblem, dict]:
+    """The studio form's window (the ``tiling`` options)."""
+    rows, cols = form_size(values["size"])
+    return _form_problem(values, (values["x0"], values["y0"], cols, rows)), {}
+
+
+def _form_command(values) -> tuple[list[str], dict[str, str]]:
+    rows, cols = form_size(values["size"])
+    return ["tiling", "--kind", values["kind"], "--set", values["set"], "--colors", str(values["colors"]),
+            f"--region={values['x0']},{values['y0']},{cols}x{rows}", "--hash", values["hash"],
+            "--algorithm", values["algorithm"]], {}
+
+
+def _form_window(values, x0: int, y0: int, rows: int, cols: int):
+    """Any window of the plane (the ``direct`` route gives every window the same tiles)."""
+    return _form_problem(values, (x0, y0, cols, rows)), "auto", {}
+
+
+FORM = Form(
+    fields=(
+        Field("kind", "choice", "tiles", "corner", "Wang (edges) or corner tiles", choices=("wang", "corner"),
+              option="--kind"),
+        Field("set", "choice", "tile set", "complete", "complete (§2.7), compact (§3.2) or sums (§3.3.2.2)",
+              choices=("complete", "compact", "sums"), option="--set"),
+        Field("colors", "int", "colours C", 3, "number of colours", low=2, high=8, option="--colors"),
+        Field("x0", "int", "window x0", 0, "west-most cell column", low=-(1 << 40), high=1 << 40, option="--region"),
+        Field("y0", "int", "window y0", 0, "south-most cell row (y grows northwards)", low=-(1 << 40),
+              high=1 << 40, option="--region"),
+        Field("size", "size", "window (WxH)", "32x20", "W columns by H rows", high=1 << 22, option="--region"),
+        Field("hash", "choice", "hash", "long", "lattice hash of the generators (§3.4)", choices=("long", "table"),
+              option="--hash"),
+        Field("algorithm", "choice", "direct algorithm", "edges", "complete Wang sets: hashes at the edges "
+              "(§3.3.2.3) or two at the corners (§3.3.2.1)", choices=("edges", "two"), option="--algorithm"),
+    ),
+    build=_form_build,
+    command=_form_command,
+    window=_form_window,
+)
+
 FAMILY = register(Family(
     name="stochastic",
     title="stochastic Wang and corner tilings of windows of the plane, scanline and direct (class notes ch. 3)",
@@ -173,6 +217,7 @@ FAMILY = register(Family(
     draw=_draw,
     demos=DEMOS,
     commands=("tilesolve.cli.stochastic:tiling",),
+    form=FORM,
     route_help={
         "scanline": "west to east, north to south, each tile a hashed choice among those that fit (§3.2)",
         "direct": "each tile from hashes of the lattice around it: random access (§3.3)",
