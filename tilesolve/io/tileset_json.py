@@ -7,8 +7,12 @@ Tiles are written in tilesolve's public edge order N, E, S, W (class notes §2.7
       "order": ["N", "E", "S", "W"],
       "colors": 3,                       # colours are 0 .. colors-1
       "tiles": [[0, 1, 2, 0], ...],      # one [N, E, S, W] per tile
-      "name": "optional name", "comment": "optional text"
+      "name": "optional name", "comment": "optional text",
+      "about": {...}                     # optional: where the set comes from, what is known
     }
+
+``about`` (an object) is kept as it is; the built-in sets (:mod:`tilesolve.io.builtin_tilesets`)
+use it for their title, sources and literature verdict.
 
 Files without a header are read as before the format existed: a JSON list of tiles, or
 ``{"colors": K, "tiles": [...], "order": "WNES" | "NESW"}`` (order default W, N, E, S, the
@@ -30,7 +34,7 @@ __all__ = ["WANG_TILESET", "VERSIONS", "tileset_to_dict", "tileset_from_data", "
 WANG_TILESET = "tilesolve/wang-tileset"
 #: Versions of the tile-set format this module reads and writes.
 VERSIONS = frozenset({1})
-_KEYS = {"format", "version", "order", "colors", "tiles", "name", "comment", "created_by"}
+_KEYS = {"format", "version", "order", "colors", "tiles", "name", "comment", "created_by", "about"}
 
 
 def tileset_to_dict(tileset: WangTileSet, *, name: str | None = None) -> dict:
@@ -60,6 +64,8 @@ def tileset_from_data(data: Any, source: str = "<tile set>") -> tuple[WangTileSe
         extra = set(data) - _KEYS
         if extra:
             raise InvalidProblem(f"{source}: unknown field {sorted(extra)[0]!r}")
+        if "about" in data and not isinstance(data["about"], dict):
+            raise InvalidProblem(f"{source}: 'about' must be an object")
         if data.get("order", ["N", "E", "S", "W"]) != ["N", "E", "S", "W"]:
             raise InvalidProblem(f"{source}: 'order' must be [\"N\", \"E\", \"S\", \"W\"]")
         tiles = wang_from_nesw(_tiles(data.get("tiles"), source)).tolist()
