@@ -29,7 +29,8 @@ PACKAGE = Path(__file__).resolve().parents[1] / "tilesolve"
 
 BASE = {"tilesolve", "tilesolve.errors", "tilesolve.deadline", "tilesolve._random", "tilesolve._lazy"}
 FACADES = {"tilesolve.family", "tilesolve.dappled", "tilesolve.board", "tilesolve.wang", "tilesolve.packing",
-           "tilesolve.walls", "tilesolve.packing_search", "tilesolve.stochastic"}
+           "tilesolve.walls", "tilesolve.packing_search", "tilesolve.stochastic",
+           "tilesolve.wall_render", "tilesolve.crosscheck_windows"}
 
 #: layer -> the layers it may import
 ALLOWED = {

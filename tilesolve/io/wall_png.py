@@ -1,0 +1,130 @@
+"""PNG files of brick-wall maps, streamed band by band (004 §3.2, Fig. 9, 10, 19).
+
+The pixels come from :mod:`tilesolve.constructive.wall_maps` (via
+:func:`tilesolve.wall_render.write_wall_png`, which computes one band of cell rows at a time);
+this module only knows how a map becomes PNG bytes:
+
+``id``
+    8-bit palette: one of :data:`N_BRICK_COLOURS` colours per brick id, dark mortar lines
+    (palette index :data:`MORTAR`) where a pixel lies within a line's half width of a brick edge;
+``distance``
+    8-bit grey: the distance to the brick's nearest edge, 0 on the edge, 255 from
+    :data:`DISTANCE_FULL` cells inwards;
+``uv``
+    8-bit RGB: red = ``u``, green = ``v`` (the brick's Cartesian parameterization, Fig. 10
+    left), blue 0.
+
+The file is written through pypng's row writer from an iterator of bands, atomically (a
+temporary file renamed at the end): memory is one band, whatever the picture's size.
+
+Examples
+--------
+>>> import numpy as np, os, tempfile
+>>> path = os.path.join(tempfile.mkdtemp(), "g.png")
+>>> write_bands_png(path, 3, 2, iter([np.zeros((1, 3), np.uint8), np.full((1, 3), 255, np.uint8)]), "distance")
+>>> from PIL import Image
+>>> with Image.open(path) as img:
+...     img.size, img.mode
+((3, 2), 'L')
+"""
+
+from __future__ import annotations
+
+import colorsys
+import os
+from typing import Iterable
+
+import numpy as np
+
+from tilesolve.errors import InvalidProblem
+from tilesolve.io.atomic import atomic_write
+
+__all__ = ["N_BRICK_COLOURS", "MORTAR", "DISTANCE_FULL", "MAP_KINDS", "brick_palette", "map_pixels",
+           "write_bands_png"]
+
+#: Brick colours of the ``id`` map (palette indices ``0 .. N_BRICK_COLOURS - 1``).
+N_BRICK_COLOURS = 254
+#: Palette index of mortar pixels in the ``id`` map.
+MORTAR = 255
+#: Distance (cells) drawn as full white in the ``distance`` map.
+DISTANCE_FULL = 0.5
+#: Map kind -> PNG colour planes (1: palette or grey, 3: RGB).
+MAP_KINDS = {"id": 1, "distance": 1, "uv": 3}
+_MORTAR_RGB = (58, 52, 48)
+
+
+def brick_palette() -> list[tuple[int, int, int]]:
+    """The 256-entry palette of the ``id`` map: brick colours spread by the golden ratio over
+    hue (as the SVG's bricks, :mod:`tilesolve.io.svg_board`), then the mortar colour."""
+    pal = []
+    for i in range(N_BRICK_COLOURS):
+        hue = (0.07 + 0.618034 * i) % 1.0
+        r, g, b = colorsys.hls_to_rgb(hue, 0.5 + 0.1 * ((i * 7) % 3 - 1), 0.45)
+        pal.append((round(r * 255), round(g * 255), round(b * 255)))
+    pal += [_MORTAR_RGB] * (256 - len(pal))
+    return pal
+
+
+def map_pixels(kind: str, *, colour_index=None, distance=None, u=None, v=None, mortar_px: float = 0.0,
+               ppc: int = 1) -> np.ndarray:
+    """PNG pixel values of one band of a map (``uint8``, ``(H, W)`` or ``(H, W, 3)``).
+
+    Parameters
+    ----------
+    kind : {"id", "distance", "uv"}
+    colour_index : numpy.ndarray of int, optional
+        Brick colour index ``0 .. N_BRICK_COLOURS - 1`` per pixel (``id``).
+    distance : numpy.ndarray of float, optional
+        Distance to the brick's edges in cells (``id`` mortar, ``distance``).
+    u, v : numpy.ndarray of float, optional
+        Cartesian UV in ``[0, 1]`` (``uv``).
+    mortar_px : float
+        Half width of the mortar lines in pixels (``id``; 0: none).
+    ppc : int
+        Pixels per cell (converts ``distance`` to pixels for the mortar).
+    """
+    if kind == "id":
+        px = np.asarray(colour_index).astype(np.uint8)
+        if mortar_px > 0:
+            px[np.asarray(distance) * ppc < mortar_px] = MORTAR
+        return px
+    if kind == "distance":
+        return np.minimum(np.asarray(distance) * np.float32(255 / DISTANCE_FULL) + np.float32(0.5), 255).astype(np.uint8)
+    if kind == "uv":
+        out = np.zeros(np.shape(u) + (3,), dtype=np.uint8)
+        out[..., 0] = np.clip(np.asarray(u) * 255 + 0.5, 0, 255)
+        out[..., 1] = np.clip(np.asarray(v) * 255 + 0.5, 0, 255)
+        return out
+    raise InvalidProblem(f"unknown wall map {kind!r}; choose one of {', '.join(MAP_KINDS)}")
+
+
+def write_bands_png(path: str | os.PathLike, width: int, height: int, bands: Iterable[np.ndarray], kind: str, *,
+                    compression: int = 6) -> None:
+    """Write ``height`` pixel rows, given as consecutive bands (arrays of :func:`map_pixels`), as a PNG.
+
+    Only one band is in memory at a time; the file appears (atomically) once every row is
+    written, and a failure or Ctrl-C leaves no file.
+    """
+    import png
+
+    if kind not in MAP_KINDS:
+        raise InvalidProblem(f"unknown wall map {kind!r}; choose one of {', '.join(MAP_KINDS)}")
+    if kind == "id":
+        writer = png.Writer(width, height, palette=brick_palette(), bitdepth=8, compression=compression)
+    else:
+        writer = png.Writer(width, height, greyscale=kind == "distance", bitdepth=8, compression=compression)
+
+    def rows():
+        n = 0
+        for band in bands:
+            flat = np.ascontiguousarray(band).reshape(band.shape[0], -1)
+            if flat.shape[1] != width * MAP_KINDS[kind]:
+                raise InvalidProblem(f"a band of {flat.shape[1]} values per row does not fit a {width} px wide "
+                                     f"{kind} map")
+            n += flat.shape[0]
+            yield from flat
+        if n != height:
+            raise InvalidProblem(f"the bands gave {n} pixel rows for a {height} px high picture")
+
+    with atomic_write(path, "wb") as f:
+        writer.write_packed(f, (row.tobytes() for row in rows()))

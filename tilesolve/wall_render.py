@@ -1,0 +1,179 @@
+"""Pictures of procedural brick walls of any size: brick ids, distance to the edges, UV (004 §3.2).
+
+A window of the infinite procedural wall (:func:`tilesolve.constructive.walls.wall_window`)
+is drawn as bricks (004 §3.2, Fig. 9-10, 19): the bricks are merged from the edge structure
+(:mod:`tilesolve.constructive.wall_maps`: every brick is the brick around one lattice vertex)
+and written as one of three maps (:mod:`tilesolve.io.wall_png`):
+
+``id``
+    a colour per brick id (the vertex's absolute coordinates), mortar lines when cells are at
+    least 4 px wide;
+``distance``
+    distance from each pixel to its brick's nearest edge;
+``uv``
+    the brick's Cartesian UV parameterization (Fig. 10, left).
+
+:func:`write_wall_png` never holds the region: it computes a band of cell rows at a time
+(the band and a one-cell halo from ``wall_window``, random access making the bands agree),
+converts it to pixels and streams them to the file. Each band is also checked with the
+board verifier (:func:`tilesolve.verify.board.board_violations`, line limits included) on
+the band grown by ``max_line`` rows upwards, so that every vertical line crossing a band
+border is seen whole once.
+
+Examples
+--------
+>>> import os, tempfile
+>>> path = os.path.join(tempfile.mkdtemp(), "w.png")
+>>> rep = write_wall_png(path, (-5, 3, 12, 8), colors=3, max_line=2, seed=1, kind="uv", ppc=4)
+>>> rep.size_px, rep.verified_cells
+((48, 32), 96)
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from tilesolve.errors import InternalError, InvalidProblem
+
+__all__ = ["RenderReport", "write_wall_png", "wall_map_pixels", "default_ppc", "BAND_PIXELS", "MAX_RENDER_PIXELS"]
+
+#: Pixels computed per band: the map arrays take about 60 bytes a pixel while a band is
+#: converted, so a band stays near 250 MiB whatever the picture's size.
+BAND_PIXELS = 1 << 22
+#: Largest picture (pixels): streaming bounds memory, this bounds the time a render may take.
+MAX_RENDER_PIXELS = 1 << 32
+_TARGET_PX = 1024
+
+
+@dataclass(frozen=True)
+class RenderReport:
+    """What :func:`write_wall_png` drew: picture size, cells, bands, verified cells, time."""
+
+    size_px: tuple[int, int]
+    cells: int
+    bands: int
+    verified_cells: int
+    time_s: float
+
+
+def default_ppc(w: int, h: int) -> int:
+    """Pixels per cell when none is given: about 1024 px on the longer side, 1 to 32."""
+    return max(1, min(32, _TARGET_PX // max(int(w), int(h))))
+
+
+def wall_map_pixels(legs_halo, kind: str, *, colors: int, ppc: int, origin: tuple[int, int]) -> np.ndarray:
+    """PNG pixel values (:func:`tilesolve.io.wall_png.map_pixels`) of the inner cells of a legs
+    array with a one-cell halo (:func:`tilesolve.constructive.wall_maps.wall_maps`)."""
+    from tilesolve.constructive.wall_maps import id_colour_index, wall_maps
+    from tilesolve.io.wall_png import N_BRICK_COLOURS, map_pixels
+
+    m = wall_maps(legs_halo, colors, ppc, origin=origin)
+    if kind == "id":
+        return map_pixels("id", colour_index=id_colour_index(m.vx, m.vy, N_BRICK_COLOURS), distance=m.distance,
+                          mortar_px=max(0.5, ppc / 24) if ppc >= 4 else 0.0, ppc=ppc)
+    return map_pixels(kind, distance=m.distance, u=m.u, v=m.v)
+
+
+def write_wall_png(path, region: tuple[int, int, int, int], *, colors: int = 3, max_line: int | None = None,
+                   seed: int = 0, kind: str = "id", ppc: int | None = None, verify: bool = True,
+                   compression: int = 6, progress: Callable[[str], None] | None = None) -> RenderReport:
+    """Draw the window ``region = (x0, y0, w, h)`` of the procedural wall as a PNG map, streamed.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The PNG file (written atomically).
+    region : (int, int, int, int)
+        Bottom-left cell ``(x0, y0)`` (``y`` north) and size ``w x h`` in cells; any size up
+        to :data:`MAX_RENDER_PIXELS` pixels.
+    colors, max_line, seed
+        The wall (:func:`tilesolve.constructive.walls.wall_window`).
+    kind : {"id", "distance", "uv"}
+        The map (module docstring).
+    ppc : int, optional
+        Pixels per cell side (default :func:`default_ppc`).
+    verify : bool
+        Check every band with the board verifier (module docstring); a violation is an
+        :class:`~tilesolve.errors.InternalError` and no file is written.
+    compression : int
+        zlib level of the PNG (0-9).
+    progress : callable, optional
+        Called with a line of text after each band.
+
+    Returns
+    -------
+    RenderReport
+    """
+    from tilesolve.constructive.hashes import LATTICE_BOUND, check_int
+    from tilesolve.constructive.walls import wall_window
+    from tilesolve.io.wall_png import MAP_KINDS, write_bands_png
+
+    x0, y0 = check_int(region[0], "x0"), check_int(region[1], "y0")
+    w, h = check_int(region[2], "width", 1), check_int(region[3], "height", 1)
+    b = LATTICE_BOUND - 2
+    if not (-b <= x0 and x0 + w <= b and -b <= y0 and y0 + h <= b):
+        raise InvalidProblem(f"wall region [{x0}, {x0 + w}) x [{y0}, {y0 + h}) leaves the lattice the hashes "
+                             "address (|coordinates| < 2**62, one cell of margin for the bricks around it)")
+    if kind not in MAP_KINDS:
+        raise InvalidProblem(f"unknown wall map {kind!r}; choose one of {', '.join(MAP_KINDS)}")
+    ppc = default_ppc(w, h) if ppc is None else check_int(ppc, "pixels per cell", 1)
+    width, height = w * ppc, h * ppc
+    if width * height > MAX_RENDER_PIXELS:
+        raise InvalidProblem(f"a {width:,} x {height:,} px picture is larger than the {MAX_RENDER_PIXELS:,} px limit; "
+                             "lower the pixels per cell or the region")
+    wall_window(x0, y0, 1, 1, colors=colors, max_line=max_line, seed=seed)  # checks colours, n and seed first
+    band = max(1, min(h, BAND_PIXELS // (w * ppc * ppc)))
+    n_bands = -(-h // band)
+    checker = _BandChecker(colors, max_line) if verify else None
+    t0 = time.perf_counter()
+    state = {"verified": 0}
+
+    def bands():
+        for k, top in enumerate(range(0, h, band)):
+            hh = min(band, h - top)
+            yb = y0 + h - top - hh  # the band's bottom row (y north)
+            legs = wall_window(x0 - 1, yb - 1, w + 2, hh + 2, colors=colors, max_line=max_line, seed=seed)
+            if checker is not None:
+                state["verified"] += checker.check(x0, yb, w, hh, legs[1:-1, 1:-1], seed, last=top + hh >= h)
+            yield wall_map_pixels(legs, kind, colors=colors, ppc=ppc, origin=(x0, yb))
+            if progress is not None:
+                progress(f"band {k + 1}/{n_bands}: {top + hh:,} of {h:,} rows, {time.perf_counter() - t0:.1f} s")
+
+    write_bands_png(path, width, height, bands(), kind, compression=compression)
+    return RenderReport((width, height), w * h, n_bands, state["verified"], time.perf_counter() - t0)
+
+
+class _BandChecker:
+    """Board-verifies consecutive bands, each grown by the ``max_line`` rows above it (taken
+    from the previous band), so that no vertical line escapes across a band border."""
+
+    def __init__(self, colors: int, max_line: int | None) -> None:
+        self.colors, self.n = colors, max_line
+        self.keep = 0 if max_line is None else int(max_line)
+        self.above: np.ndarray | None = None
+        self._problems: dict[tuple[int, int], object] = {}
+
+    def _problem(self, rows: int, cols: int):
+        from tilesolve.model.board import Board, BoardProblem, WangTileSet
+
+        key = (rows, cols)
+        if key not in self._problems:  # bands share one shape (the last one may differ)
+            self._problems = {key: BoardProblem(Board.rect(rows, cols), WangTileSet.brick(self.colors), None,
+                                                max_h=self.n, max_v=self.n)}
+        return self._problems[key]
+
+    def check(self, x0: int, yb: int, w: int, hh: int, legs: np.ndarray, seed: int, *, last: bool) -> int:
+        from tilesolve.verify.board import board_violations
+
+        part = legs if self.above is None or self.keep == 0 else np.concatenate([self.above, legs])
+        bad = board_violations(part.reshape(-1, 4), self._problem(part.shape[0], w))
+        if bad:
+            raise InternalError(f"the procedural wall of seed {seed} fails the board verifier in the band of rows "
+                                f"y {yb}..{yb + hh - 1}, x {x0}..{x0 + w - 1}: {bad[0]}")
+        if self.keep and not last:
+            self.above = part[-self.keep:].copy()
+        return hh * w
