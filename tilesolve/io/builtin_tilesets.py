@@ -11,8 +11,9 @@ that source's edge order) and what the literature says about the set:
     it). These are the sources' statements, not results computed by tilesolve.
 
 Where a second public source lists the same set, its tiles are kept too (``sources[i].tiles``,
-in that source's own order and labels); the tests check that both transcriptions are the same
-tile set up to a relabelling of the colours on each axis (an isomorphism of tile sets).
+in that source's own order and labels, with ``turned`` degrees where that source draws the set
+rotated clockwise); the tests check that both transcriptions are the same tile set up to a
+relabelling of the colours on each axis (an isomorphism of tile sets).
 
 Examples
 --------
