@@ -49,7 +49,7 @@ from tilesolve.model.run import RunOptions
 from tilesolve.model.solution import Solution, Status
 
 __all__ = ["wall_problem", "npd_problem", "is_free_wall", "wall_route", "procedural_route", "npd_route",
-           "brick_wall"]
+           "brick_wall", "LINE_METHODS", "line_statistics"]
 
 
 def wall_problem(rows: int, cols: int, max_line: int, *, max_v: int | None = None, n_colors: int = 3) -> BoardProblem:
@@ -265,3 +265,87 @@ def brick_wall(rows: int, cols: int, max_line: int, *, max_v: int | None = None,
 
     problem = wall_problem(rows, cols, max_line, max_v=max_v, n_colors=n_colors)
     return problem, solve(problem, method="wall", seed=seed)
+
+
+#: The generators :func:`line_statistics` measures: the procedural wall (PD, 004 §4.3), the
+#: repeatable wall on Kaji's cyclic dappling (NPD, 004 App. A) and the finite wall on Kaji's
+#: dappling (the ``wall`` route, dappled paper §4, Algorithm 1).
+LINE_METHODS = ("procedural", "npd", "wall")
+
+#: At most this many cells per measured wall (the whole run holds one wall at a time).
+MAX_STATS_CELLS = 1 << 22
+
+
+def line_statistics(method: str, n: int, *, width: int = 128, height: int = 128, samples: int = 4, seed: int = 0,
+                    colors: int = 3):
+    """Line-length histograms of ``samples`` walls of one generator (004 §5, Fig. 22).
+
+    Sample ``k`` uses seed ``seed + k``. ``procedural``: the window at ``(0, 0)`` of
+    ``width x height`` cells of the infinite wall, computed with a margin of ``n`` cells and
+    counted by first cell (:func:`tilesolve.constructive.wall_stats.wall_lines`); ``npd``: the
+    ``width x height`` torus (one period), lines wrapping the seams; ``wall``: the finite
+    ``width x height`` rectangle, every line. The ``npd`` and ``wall`` walls come through
+    :func:`tilesolve.family.solve`, so the board verifier checks them (line limit included);
+    every sample's longest line is checked against ``n`` here as well.
+
+    Returns
+    -------
+    tilesolve.constructive.wall_stats.LineHistogram
+
+    Raises
+    ------
+    InvalidProblem
+        Unknown method, ``n < 1``, ``colors < 3``, sizes under 1 (3 for ``npd``) or over
+        :data:`MAX_STATS_CELLS` cells, ``samples < 1``.
+    InternalError
+        A wall with a line longer than ``n`` (a bug).
+
+    Examples
+    --------
+    >>> h = line_statistics("npd", 4, width=16, height=16, samples=1)
+    >>> h.longest[0] <= 4 and h.longest[1] <= 4, int(h.horizontal.sum()) > 0
+    (True, True)
+    """
+    from tilesolve.constructive.hashes import check_int
+    from tilesolve.constructive.wall_stats import LineHistogram, histogram, wall_lines
+    from tilesolve.constructive.walls import wall_window
+    from tilesolve.errors import InternalError
+    from tilesolve.family import solve
+
+    if method not in LINE_METHODS:
+        raise InvalidProblem(f"unknown wall generator {method!r}; choose one of {', '.join(LINE_METHODS)}")
+    n = check_int(n, "max_line")
+    if n < 1:
+        raise InvalidProblem(f"the maximum line length must be >= 1 brick, got {n}")
+    w, h, k, s0 = (check_int(v, name) for v, name in ((width, "width"), (height, "height"), (samples, "samples"),
+                                                      (seed, "seed")))
+    if min(w, h) < 1 or k < 1 or s0 < 0:
+        raise InvalidProblem(f"need width, height, samples >= 1 and seed >= 0, got {w}, {h}, {k}, {s0}")
+    if w * h > MAX_STATS_CELLS:
+        raise InvalidProblem(f"a {w}x{h} wall is over the {MAX_STATS_CELLS:,} cells measured at once; "
+                             f"take more samples of a smaller size")
+    hor = np.zeros(n, np.int64)
+    ver = np.zeros(n, np.int64)
+    longest = [0, 0]
+    for seed_k in range(s0, s0 + k):
+        if method == "procedural":
+            legs = wall_window(-n, -n, w + 2 * n, h + 2 * n, colors=colors, max_line=n, seed=seed_k)
+            lines = wall_lines(legs, margin=n)
+        else:
+            make = npd_problem if method == "npd" else wall_problem
+            problem = make(h, w, n, n_colors=colors)
+            sol = solve(problem, method, seed=seed_k)
+            if not sol.status.has_tiling:
+                raise InvalidProblem(f"no {method} wall of {w}x{h} cells with lines <= {n} ({sol.status.value}); "
+                                     f"try another size")
+            lab = problem.board.labels
+            legs = np.empty((h, w, 4), np.int64)
+            legs[lab[:, 0], lab[:, 1]] = sol.tiling
+            lines = wall_lines(legs, cyclic=method == "npd")
+        for d, (a, into) in enumerate(zip(lines, (hor, ver))):
+            top = int(a.max()) if a.size else 0
+            if top > n:
+                raise InternalError(f"{method} wall of seed {seed_k} has a line of {top} bricks, over n = {n}")
+            longest[d] = max(longest[d], top)
+            into += histogram(a, n)
+    return LineHistogram(method, n, hor, ver, (longest[0], longest[1]), k, k * w * h)
