@@ -1,0 +1,74 @@
+"""``tilesolve studio``: the local web page over every family (:mod:`tilesolve.studio`)."""
+
+from __future__ import annotations
+
+import ipaddress
+
+import click
+
+from tilesolve.cli import options as opt
+from tilesolve.cli.common import say
+from tilesolve.errors import InvalidProblem
+
+__all__ = ["studio", "is_loopback"]
+
+
+def is_loopback(host: str) -> bool:
+    """True for ``localhost`` and loopback addresses (127.0.0.0/8, ::1)."""
+    if host == "localhost":
+        return True
+    try:
+        return ipaddress.ip_address(host).is_loopback
+    except ValueError:
+        return False
+
+
+@click.command(context_settings=opt.CONTEXT_SETTINGS, short_help="The studio: a local web page to design, solve, "
+               "check and export tilings.")
+@click.option("--port", type=click.IntRange(0, 65535), default=8765, show_default=True, metavar="P",
+              help="TCP port (0: any free port).")
+@click.option("--host", default="127.0.0.1", show_default=True, metavar="H",
+              help="Address to listen on; anything but loopback makes the studio reachable from other machines.")
+@click.option("--no-browser", is_flag=True, help="Do not open the page in a web browser.")
+def studio(port, host, no_browser) -> None:
+    """Serve the studio page: pick a family, fill its form, solve, edit by clicking, pan over
+    infinite walls and tilings, export the CLI's files and the command that reproduces them.
+
+    \b
+    Example:
+      tilesolve studio --port 8765 --no-browser     # then open http://127.0.0.1:8765/
+
+    Ctrl-C stops the server. Needs the studio extra: pip install 'tilesolve[studio]'.
+    """
+    try:
+        import uvicorn
+
+        from tilesolve.studio.app import create_app
+    except ImportError as exc:
+        raise InvalidProblem(f"the studio needs {exc.name}: pip install 'tilesolve[studio]'") from None
+    if not is_loopback(host):
+        say(f"tilesolve: warning: --host {host} serves the studio to other machines; it has no login")
+    config = uvicorn.Config(create_app(), host=host, port=port, log_level="warning")
+    server = uvicorn.Server(config)
+
+    def _announce() -> None:
+        """Once the server listens: say where, and open the page unless --no-browser."""
+        import threading
+
+        while not server.started:
+            if server.should_exit:
+                return
+            threading.Event().wait(0.05)
+        bound = server.servers[0].sockets[0].getsockname()[1] if server.servers else port
+        shown = "127.0.0.1" if host in ("0.0.0.0", "::") else host
+        url = f"http://{'[' + shown + ']' if ':' in shown else shown}:{bound}/"
+        say(f"tilesolve studio on {url} (Ctrl-C stops it)")
+        if not no_browser:
+            import webbrowser
+
+            webbrowser.open(url)
+
+    import threading
+
+    threading.Thread(target=_announce, daemon=True).start()
+    server.run()

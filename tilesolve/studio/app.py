@@ -1,0 +1,250 @@
+"""The studio's server: a Starlette app over the family registry.
+
+Endpoints (JSON in and out; every user mistake is HTTP 400 ``{"error": "<the CLI's one-line
+message>"}``):
+
+``GET /``                           the page (``static/index.html``)
+``GET /api/families``               every family with a form: name, title, methods, fields, views
+``POST /api/check``                 ``{family, values}`` -> the problem's description, the
+                                    painted grids' extents, the CLI command
+``POST /api/solve``                 ``{family, values, method, time_limit}`` -> ``{id}`` (a job)
+``GET /api/jobs/{id}?wait=S``       the job: state, elapsed time, and when done its result
+                                    (status, method, verdict, picture, solution JSON, command)
+``POST /api/jobs/{id}/cancel``      end a running solve
+``GET /api/jobs/{id}/solution.json|picture.svg|picture.png``  the exports (the CLI's files)
+``GET /api/view/{family}.png?values=JSON&x=&y=&n=``  one n x n window of an infinite
+                                    procedural view (pan and zoom), x/y its bottom-left cell
+
+The page sends values, never paths: no endpoint reads or writes a file named by a request.
+Request bodies are limited to :data:`MAX_BODY` bytes before they are read, and every size in
+a form is checked against its field's limit before anything is allocated.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import functools
+import json
+import os
+import threading
+from collections import OrderedDict
+from typing import Any
+
+import anyio
+from starlette.applications import Starlette
+from starlette.requests import Request
+from starlette.responses import FileResponse, JSONResponse, Response
+from starlette.routing import Mount, Route
+from starlette.staticfiles import StaticFiles
+
+from tilesolve import family
+from tilesolve.errors import InvalidProblem, TilesolveError
+from tilesolve.studio import worker
+from tilesolve.studio.jobs import Jobs, TooBusy
+
+__all__ = ["create_app", "MAX_BODY", "MAX_VIEW_CELLS", "STATIC"]
+
+#: Largest request body (bytes): a painted 1024 x 1024 grid fits.
+MAX_BODY = 8 << 20
+#: Largest window side of a procedural view tile (cells).
+MAX_VIEW_CELLS = 128
+#: Most view tiles kept (an LRU of PNG bytes).
+VIEW_CACHE = 512
+
+STATIC = os.path.join(os.path.dirname(__file__), "static")
+
+
+def _error(message: str, status: int = 400) -> JSONResponse:
+    return JSONResponse({"error": " ".join(str(message).split())}, status_code=status)
+
+
+async def _body(request: Request) -> dict:
+    """The JSON object of a request, at most :data:`MAX_BODY` bytes (refused before reading more)."""
+    length = request.headers.get("content-length")
+    if length is not None and (not length.isdigit() or int(length) > MAX_BODY):
+        raise InvalidProblem(f"request too large (at most {MAX_BODY:,} bytes)")
+    data = bytearray()
+    async for chunk in request.stream():
+        data += chunk
+        if len(data) > MAX_BODY:
+            raise InvalidProblem(f"request too large (at most {MAX_BODY:,} bytes)")
+    try:
+        doc = json.loads(data or b"{}")
+    except (ValueError, UnicodeDecodeError):
+        raise InvalidProblem("the request is not JSON") from None
+    if not isinstance(doc, dict):
+        raise InvalidProblem("the request must be a JSON object")
+    return doc
+
+
+def _guard(handler):
+    """Turn library errors into HTTP 400 ``{"error": ...}`` (413 for a large body, 429 when busy)."""
+
+    @functools.wraps(handler)
+    async def wrapped(request: Request) -> Response:
+        try:
+            return await handler(request)
+        except TooBusy as exc:
+            return _error(str(exc), 429)
+        except InvalidProblem as exc:
+            return _error(str(exc), 413 if str(exc).startswith("request too large") else 400)
+        except TilesolveError as exc:
+            return _error(str(exc), 400)
+        except (RecursionError, MemoryError, OverflowError, ValueError) as exc:
+            return _error(f"bad request: {type(exc).__name__}: {exc}", 400)
+
+    return wrapped
+
+
+def _family_json(fam: family.Family) -> dict:
+    return {"name": fam.name, "title": fam.title, "methods": list(fam.methods),
+            "route_help": dict(fam.route_help), "fields": [f.public() for f in fam.form.fields],
+            "view": fam.form.window is not None}
+
+
+def create_app(*, warm: bool = True) -> Starlette:
+    """The studio app. ``warm`` starts the solve forkserver (and compiles the view routes) in
+    the background at start-up."""
+    jobs = Jobs()
+    views: OrderedDict[tuple, bytes] = OrderedDict()
+    views_lock = threading.Lock()
+
+    async def index(request: Request) -> Response:
+        return FileResponse(os.path.join(STATIC, "index.html"))
+
+    @_guard
+    async def families(request: Request) -> Response:
+        return JSONResponse({"families": [_family_json(f) for f in family.families() if f.form is not None]})
+
+    def _check(doc: dict) -> dict:
+        fam, vals, problem, _ = worker.pose(doc.get("family"), doc.get("values"))
+        worker.check_run(fam, doc.get("method", "auto"), doc.get("time_limit"))
+        grids = {f.name: list(f.extent(vals)) for f in fam.form.fields if f.kind == "cells"}
+        return {"describe": problem.describe() if hasattr(problem, "describe") else fam.name, "cells": grids,
+                "seed": vals["seed"], "command": worker.command_line(fam, vals, doc.get("method", "auto"), vals["seed"])}
+
+    @_guard
+    async def check(request: Request) -> Response:
+        doc = await _body(request)
+        return JSONResponse(await anyio.to_thread.run_sync(_check, doc))
+
+    @_guard
+    async def solve(request: Request) -> Response:
+        doc = await _body(request)
+        checked = await anyio.to_thread.run_sync(_check, doc)  # bad input: 400 now, not in the job
+        values = dict(doc.get("values") or {}, seed=checked["seed"])
+        job = jobs.start(doc["family"], values, doc.get("method", "auto"), doc.get("time_limit"))
+        return JSONResponse({"id": job.id, "seed": checked["seed"]})
+
+    def _job(request: Request):
+        try:
+            return jobs.get(request.path_params["id"])
+        except KeyError:
+            raise InvalidProblem(f"no job {request.path_params['id']!r} (finished jobs are kept a while)") from None
+
+    @_guard
+    async def job_state(request: Request) -> Response:
+        job = _job(request)
+        try:
+            wait = min(max(float(request.query_params.get("wait", 0)), 0.0), 10.0)
+        except ValueError:
+            raise InvalidProblem("wait must be a number of seconds") from None
+        if wait and not job.done.is_set():
+            await anyio.to_thread.run_sync(job.done.wait, wait)
+        return JSONResponse(job.public())
+
+    @_guard
+    async def cancel(request: Request) -> Response:
+        job = _job(request)
+        await anyio.to_thread.run_sync(jobs.cancel, job.id)
+        return JSONResponse(job.public())
+
+    def _export(job, what: str) -> tuple[bytes | str, str]:
+        if job.result is None:
+            raise InvalidProblem(f"job {job.id} has no solution ({job.state})")
+        text = job.result["json"]
+        if what == "solution.json":
+            return text, "application/json"
+        fmt = what.rsplit(".", 1)[1]
+        fam, codec = family.codec_of(json.loads(text)["format"])
+        problem, sol = codec.read(json.loads(text), "solution.json")
+        if not sol.status.has_tiling:
+            raise InvalidProblem(f"status {sol.status.value}: no tiling to draw")
+        data = family.render(problem, sol, fmt)
+        return data, "image/svg+xml" if fmt == "svg" else "image/png"
+
+    @_guard
+    async def export(request: Request) -> Response:
+        job = _job(request)
+        what = request.path_params["what"]
+        if what not in ("solution.json", "picture.svg", "picture.png"):
+            raise InvalidProblem(f"no export {what!r}; exports are solution.json, picture.svg, picture.png")
+        data, media = await anyio.to_thread.run_sync(_export, job, what)
+        name = f"{job.family}-{job.result['seed']}.{what.rsplit('.', 1)[1]}"
+        return Response(data, media_type=media, headers={"Content-Disposition": f'attachment; filename="{name}"'})
+
+    def _view(name: str, raw: str, x: int, y: int, n: int) -> bytes:
+        fam, vals, _, _ = worker.pose(name, json.loads(raw))
+        if fam.form.window is None:
+            raise InvalidProblem(f"{fam.name} problems have no infinite view")
+        key = (fam.name, json.dumps(vals, sort_keys=True), x, y, n)
+        with views_lock:
+            if key in views:
+                views.move_to_end(key)
+                return views[key]
+        problem, method, options = fam.form.window(vals, x, y, n, n)
+        sol = family.solve(problem, method, seed=vals["seed"], options=options)
+        if not sol.status.has_tiling:
+            raise InvalidProblem(f"window ({x}, {y}): {sol.status.value}: {sol.reason or 'no tiling'}")
+        data = family.render(problem, sol, "png")
+        with views_lock:
+            views[key] = data
+            while len(views) > VIEW_CACHE:
+                views.popitem(last=False)
+        return data
+
+    @_guard
+    async def view(request: Request) -> Response:
+        q = request.query_params
+        try:
+            x, y, n = int(q.get("x", 0)), int(q.get("y", 0)), int(q.get("n", 32))
+        except ValueError:
+            raise InvalidProblem("x, y and n must be whole numbers") from None
+        if not 1 <= n <= MAX_VIEW_CELLS:
+            raise InvalidProblem(f"a view window is 1..{MAX_VIEW_CELLS} cells wide, got {n}")
+        raw = q.get("values", "{}")
+        if len(raw) > 100_000:
+            raise InvalidProblem("values too long")
+        data = await anyio.to_thread.run_sync(_view, request.path_params["family"], raw, x, y, n)
+        return Response(data, media_type="image/png", headers={"Cache-Control": "max-age=3600"})
+
+    def _warm_views() -> None:
+        for fam in family.families():
+            if fam.form is not None and fam.form.window is not None:
+                try:
+                    _view(fam.name, json.dumps({"seed": 0}), 0, 0, 8)
+                except TilesolveError:
+                    continue
+
+    @contextlib.asynccontextmanager
+    async def lifespan(app):
+        if warm:
+            threading.Thread(target=jobs.warm, daemon=True).start()
+            threading.Thread(target=_warm_views, daemon=True).start()
+        yield
+        jobs.close()
+
+    routes = [
+        Route("/", index),
+        Route("/api/families", families),
+        Route("/api/check", check, methods=["POST"]),
+        Route("/api/solve", solve, methods=["POST"]),
+        Route("/api/jobs/{id}", job_state),
+        Route("/api/jobs/{id}/cancel", cancel, methods=["POST"]),
+        Route("/api/jobs/{id}/{what}", export),
+        Route("/api/view/{family}.png", view),
+        Mount("/static", StaticFiles(directory=STATIC), name="static"),
+    ]
+    app = Starlette(routes=routes, lifespan=lifespan)
+    app.state.jobs = jobs
+    return app
