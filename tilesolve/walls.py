@@ -274,6 +274,8 @@ LINE_METHODS = ("procedural", "npd", "wall")
 
 #: At most this many cells per measured wall (the whole run holds one wall at a time).
 MAX_STATS_CELLS = 1 << 22
+#: The longest line limit measured (the histograms have one bin per length).
+MAX_STATS_LINE = 256
 
 
 def line_statistics(method: str, n: int, *, width: int = 128, height: int = 128, samples: int = 4, seed: int = 0,
@@ -295,8 +297,8 @@ def line_statistics(method: str, n: int, *, width: int = 128, height: int = 128,
     Raises
     ------
     InvalidProblem
-        Unknown method, ``n < 1``, ``colors < 3``, sizes under 1 (3 for ``npd``) or over
-        :data:`MAX_STATS_CELLS` cells, ``samples < 1``.
+        Unknown method, ``n`` outside ``1 ..`` :data:`MAX_STATS_LINE`, ``colors < 3``, sizes
+        under 1 (3 for ``npd``), ``samples < 1``, more than :data:`MAX_STATS_CELLS` cells in all.
     InternalError
         A wall with a line longer than ``n`` (a bug).
 
@@ -315,25 +317,28 @@ def line_statistics(method: str, n: int, *, width: int = 128, height: int = 128,
     if method not in LINE_METHODS:
         raise InvalidProblem(f"unknown wall generator {method!r}; choose one of {', '.join(LINE_METHODS)}")
     n = check_int(n, "max_line")
-    if n < 1:
-        raise InvalidProblem(f"the maximum line length must be >= 1 brick, got {n}")
+    if not 1 <= n <= MAX_STATS_LINE:
+        raise InvalidProblem(f"the maximum line length must be 1..{MAX_STATS_LINE} bricks here, got {n}")
     w, h, k, s0 = (check_int(v, name) for v, name in ((width, "width"), (height, "height"), (samples, "samples"),
                                                       (seed, "seed")))
+    nc = check_int(colors, "colors")
+    if not 3 <= nc <= 127:
+        raise InvalidProblem(f"brick walls take 3..127 colours here (004 §3.1), got {nc}")
     if min(w, h) < 1 or k < 1 or s0 < 0:
         raise InvalidProblem(f"need width, height, samples >= 1 and seed >= 0, got {w}, {h}, {k}, {s0}")
-    if w * h > MAX_STATS_CELLS:
-        raise InvalidProblem(f"a {w}x{h} wall is over the {MAX_STATS_CELLS:,} cells measured at once; "
-                             f"take more samples of a smaller size")
+    if w * h > MAX_STATS_CELLS or k > MAX_STATS_CELLS // (w * h):
+        raise InvalidProblem(f"{k} walls of {w}x{h} cells are over the {MAX_STATS_CELLS:,} cells measured in "
+                             f"one run; take fewer or smaller samples")
     hor = np.zeros(n, np.int64)
     ver = np.zeros(n, np.int64)
     longest = [0, 0]
     for seed_k in range(s0, s0 + k):
         if method == "procedural":
-            legs = wall_window(-n, -n, w + 2 * n, h + 2 * n, colors=colors, max_line=n, seed=seed_k)
+            legs = wall_window(-n, -n, w + 2 * n, h + 2 * n, colors=nc, max_line=n, seed=seed_k)
             lines = wall_lines(legs, margin=n)
         else:
             make = npd_problem if method == "npd" else wall_problem
-            problem = make(h, w, n, n_colors=colors)
+            problem = make(h, w, n, n_colors=nc)
             sol = solve(problem, method, seed=seed_k)
             if not sol.status.has_tiling:
                 raise InvalidProblem(f"no {method} wall of {w}x{h} cells with lines <= {n} ({sol.status.value}); "
