@@ -39,7 +39,7 @@ import numpy as np
 
 from tilesolve.errors import InternalError, InvalidProblem
 
-__all__ = ["RenderReport", "write_wall_png", "wall_map_pixels", "default_ppc", "BAND_PIXELS", "MAX_RENDER_PIXELS"]
+__all__ = ["RenderReport", "write_wall_png", "wall_source", "wall_map_pixels", "default_ppc", "BAND_PIXELS", "MAX_RENDER_PIXELS"]
 
 #: Pixels computed per band: the map arrays take about 60 bytes a pixel while a band is
 #: converted, so a band stays near 250 MiB whatever the picture's size.
@@ -78,10 +78,47 @@ def wall_map_pixels(legs_halo, kind: str, *, colors: int, ppc: int, origin: tupl
     return map_pixels(kind, distance=m.distance, u=m.u, v=m.v)
 
 
+def wall_source(method: str, *, colors: int, max_line: int | None, seed: int,
+                period: tuple[int, int] | None = None) -> Callable[[int, int, int, int], np.ndarray]:
+    """``window(x0, y0, w, h) -> (h, w, 4)`` legs of an infinite wall, any window at any time.
+
+    ``procedural``: :func:`tilesolve.constructive.walls.wall_window`. ``npd``: the repeatable
+    wall of 004 App. A, one ``period = (width, height)`` solved once by the board family's
+    ``npd`` route on a torus, then indexed (:func:`tilesolve.constructive.npd.periodic_window`),
+    so that a window of any size costs the period's memory.
+    """
+    from tilesolve.constructive.walls import wall_window
+
+    if method == "procedural":
+        wall_window(0, 0, 1, 1, colors=colors, max_line=max_line, seed=seed)  # checks colours, n and seed first
+        return lambda x0, y0, w, h: wall_window(x0, y0, w, h, colors=colors, max_line=max_line, seed=seed)
+    if method != "npd":
+        raise InvalidProblem(f"unknown wall method {method!r}; choose procedural or npd")
+    from tilesolve.constructive.npd import periodic_window
+    from tilesolve.errors import MethodNotApplicable
+    from tilesolve.family import raise_if_interrupted, solve
+    from tilesolve.walls import npd_problem
+
+    if max_line is None or period is None:
+        raise InvalidProblem("the npd wall needs a line limit and a period")
+    pw, ph = (int(v) for v in period)
+    problem = npd_problem(ph, pw, max_line, n_colors=colors)
+    sol = raise_if_interrupted(solve(problem, "npd", seed=seed))
+    if not sol.status.has_tiling:
+        raise MethodNotApplicable(f"no wall with lines <= {max_line} repeats with period {pw}x{ph} "
+                                  f"({sol.status.value}{': ' + sol.reason if sol.reason else ''}); "
+                                  "choose another period or method 'procedural'")
+    legs = np.zeros((ph, pw, 4), dtype=np.int8)
+    lab = problem.board.labels
+    legs[lab[:, 0], lab[:, 1]] = sol.tiling
+    return lambda x0, y0, w, h: periodic_window(legs, x0, y0, w, h)
+
+
 def write_wall_png(path, region: tuple[int, int, int, int], *, colors: int = 3, max_line: int | None = None,
-                   seed: int = 0, kind: str = "id", ppc: int | None = None, verify: bool = True,
+                   seed: int = 0, method: str = "procedural", period: tuple[int, int] | None = None,
+                   kind: str = "id", ppc: int | None = None, verify: bool = True,
                    compression: int = 6, progress: Callable[[str], None] | None = None) -> RenderReport:
-    """Draw the window ``region = (x0, y0, w, h)`` of the procedural wall as a PNG map, streamed.
+    """Draw the window ``region = (x0, y0, w, h)`` of an infinite wall as a PNG map, streamed.
 
     Parameters
     ----------
@@ -92,6 +129,9 @@ def write_wall_png(path, region: tuple[int, int, int, int], *, colors: int = 3, 
         to :data:`MAX_RENDER_PIXELS` pixels.
     colors, max_line, seed
         The wall (:func:`tilesolve.constructive.walls.wall_window`).
+    method, period
+        ``procedural`` (004 §4) or ``npd`` (App. A, repeating ``period = (width, height)``;
+        default the region's size), see :func:`wall_source`.
     kind : {"id", "distance", "uv"}
         The map (module docstring).
     ppc : int, optional
@@ -109,7 +149,6 @@ def write_wall_png(path, region: tuple[int, int, int, int], *, colors: int = 3, 
     RenderReport
     """
     from tilesolve.constructive.hashes import LATTICE_BOUND, check_int
-    from tilesolve.constructive.walls import wall_window
     from tilesolve.io.wall_png import MAP_KINDS, write_bands_png
 
     x0, y0 = check_int(region[0], "x0"), check_int(region[1], "y0")
@@ -125,7 +164,8 @@ def write_wall_png(path, region: tuple[int, int, int, int], *, colors: int = 3, 
     if width * height > MAX_RENDER_PIXELS:
         raise InvalidProblem(f"a {width:,} x {height:,} px picture is larger than the {MAX_RENDER_PIXELS:,} px limit; "
                              "lower the pixels per cell or the region")
-    wall_window(x0, y0, 1, 1, colors=colors, max_line=max_line, seed=seed)  # checks colours, n and seed first
+    window = wall_source(method, colors=colors, max_line=max_line, seed=seed,
+                         period=(w, h) if period is None else period)
     band = max(1, min(h, BAND_PIXELS // (w * ppc * ppc)))
     n_bands = -(-h // band)
     checker = _BandChecker(colors, max_line) if verify else None
@@ -136,7 +176,7 @@ def write_wall_png(path, region: tuple[int, int, int, int], *, colors: int = 3, 
         for k, top in enumerate(range(0, h, band)):
             hh = min(band, h - top)
             yb = y0 + h - top - hh  # the band's bottom row (y north)
-            legs = wall_window(x0 - 1, yb - 1, w + 2, hh + 2, colors=colors, max_line=max_line, seed=seed)
+            legs = window(x0 - 1, yb - 1, w + 2, hh + 2)
             if checker is not None:
                 state["verified"] += checker.check(x0, yb, w, hh, legs[1:-1, 1:-1], seed, last=top + hh >= h)
             yield wall_map_pixels(legs, kind, colors=colors, ppc=ppc, origin=(x0, yb))
