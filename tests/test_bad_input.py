@@ -126,6 +126,16 @@ CASES: dict[str, list[tuple[str, str]]] = {
         ("colors two", "--region 0,0,4x4 --max-line 2 --colors 2"),
         ("method unknown", "--region 0,0,4x4 --max-line 2 --method magic"),
     ],
+    "wall-lines": [
+        ("max-line zero", "--max-line 0 -o keep.json"),
+        ("max-line 10^30", f"--max-line {BIG} -o keep.json"),
+        ("size garbage", "--size abc"),
+        ("size 10^30", f"--size {BIG}x2 -o keep.json"),
+        ("npd period too small", "--method npd --size 2x8 --max-line 2 -o keep.json"),
+        ("colors two", "--colors 2 -o keep.json"),
+        ("samples zero", "--samples 0 --max-line 2"),
+        ("method unknown", "--method magic"),
+    ],
     "tiling": [
         ("region garbage", "--kind wang --method direct --colors 2 --region abc"),
         ("region 10^30 wide", f"--kind wang --method direct --colors 2 --region 0,0,{BIG}x2 -o keep.json"),
