@@ -1,4 +1,4 @@
-"""A small independent forward DRAT proof checker (pure Python, no solver imports).
+"""tilesolve's own DRAT proof checker: backward, core-first, compiled; no size cut-off.
 
 When a SAT solver says "unsatisfiable", tilesolve keeps the solver's DRAT proof and checks
 it here, so that an ``unsat`` answer (e.g. the dappled paper's Example 6.2, §6 item 7) is a
@@ -10,32 +10,70 @@ clausal proofs*, SAT 2014):
   reaches a conflict — or, failing that, **RAT** on its first literal ``l``: for every
   clause ``D`` of ``F`` containing ``-l`` the resolvent ``C | (D - {-l})`` is RUP;
 * accepted lemmas are added to ``F``; ``d`` lines delete clauses from ``F``;
-* the proof is valid when ``F`` becomes inconsistent under unit propagation (the empty
-  clause is RUP).
+* the proof is valid when it contains the empty clause and the empty clause is RUP where it
+  stands (a proof without its final ``0`` line is rejected).
 
-Like drat-trim, deletions of clauses that are currently the reason of a top-level unit
-are ignored (keeping a clause can only make RUP easier and RAT harder, so ignoring a
-deletion never accepts an invalid proof). The checker works forwards with two watched
-literals per clause. It imports nothing from the solvers or encodings it checks.
+Two engines check the same rules:
+
+``"backward"`` (the default)
+    drat-trim's method (§4 of the paper): a forward pass adds lemmas with top-level unit
+    propagation until the formula is refuted by propagation; a backward pass checks only the
+    lemmas the refutation uses, marking from the final conflict back (core-first
+    propagation, two watched literals). Lemmas nothing uses are not checked, as in
+    drat-trim: they cannot make the refutation wrong. ``lemmas="all"`` checks every lemma.
+    The loops (:mod:`tilesolve.verify._drat_kernels`) run compiled by numba on large proofs
+    and interpreted on small ones (:data:`COMPILE_FROM` literals), with the same verdicts.
+``"forward"``
+    A plain-Python forward checker that checks every lemma in order (the reference the
+    backward engine is tested against, and the baseline of ``benchmarks/bench_drat.py``).
+
+Like drat-trim, deletions of unit clauses and of clauses that are currently the reason of a
+top-level unit are ignored (keeping a clause can only make RUP easier and RAT harder, so
+ignoring a deletion never accepts an invalid proof). The checker imports nothing from the
+solvers or encodings it checks.
+
+A proof is bound to its formula by :func:`cnf_sha256`, the SHA-256 of the formula written
+by :func:`dimacs_bytes` (the exact bytes ``--proof-dir`` stores next to the proof).
 
 Examples
 --------
 >>> f = [[1, 2], [1, -2], [-1, 2], [-1, -2]]
 >>> check_drat(f, ["1 0", "0"]).verified
 True
->>> r = check_drat([[-2, 3]], ["2 0"])
+>>> check_drat(f + [[3, 4]], ["-3 0", "1 0", "0"]).verified  # "-3" is not used: not checked
+True
+>>> r = check_drat(f + [[3, 4]], ["-3 0", "1 0", "0"], lemmas="all")
 >>> r.status, r.reason
-('failed', 'lemma 1 (proof line 1: 2 0) is neither RUP nor RAT')
+('failed', 'lemma 1 (proof line 1: -3 0) is neither RUP nor RAT')
 """
 
 from __future__ import annotations
 
+import hashlib
 import os
+import sys
+import threading
 import time
-from dataclasses import dataclass
+import types
+import warnings
+from dataclasses import dataclass, field
 from typing import Iterable, Sequence
 
-__all__ = ["DratResult", "check_drat", "parse_drat"]
+import numpy as np
+
+from tilesolve.verify import _drat_kernels as K
+
+__all__ = ["DratResult", "check_drat", "parse_drat", "dimacs_bytes", "cnf_sha256", "formula_arrays",
+           "COMPILE_FROM", "ENGINES"]
+
+ENGINES = ("backward", "forward")
+
+#: Literals (formula + proof) from which the compiled kernels are used (importing numba and
+#: loading its cache costs about half a second; the interpreted kernels do ~20k literals in that).
+COMPILE_FROM = 20_000
+
+#: Proof steps per kernel call between two deadline checks.
+_CHUNK = 4096
 
 
 @dataclass(frozen=True)
@@ -44,14 +82,21 @@ class DratResult:
 
     Attributes
     ----------
-    status : {"verified", "failed", "skipped", "unknown"}
+    status : {"verified", "failed", "unknown"}
         ``verified``: the proof refutes the formula; ``failed``: a lemma is neither RUP
-        nor RAT, or the proof never derives the empty clause; ``skipped``: over the size
-        guard, not checked; ``unknown``: the time guard stopped the check.
+        nor RAT, or the proof has no empty clause, or its empty clause is not RUP;
+        ``unknown``: the time limit stopped the check.
     reason : str
         One line for humans.
     lemmas, deletions, rat_lemmas, ignored_deletions : int
-        Counts of proof steps seen.
+        Counts of proof steps seen (``rat_lemmas``: lemmas accepted as RAT only).
+    checked : int
+        Lemmas checked (the ones the refutation uses, or all with ``lemmas="all"``).
+    core : numpy.ndarray or None
+        Indices of the formula clauses the refutation uses (backward engine, verified).
+    trivial : bool
+        The formula is refuted by unit propagation alone: no lemma is needed.
+    engine : str
     time_s : float
     """
 
@@ -61,11 +106,141 @@ class DratResult:
     deletions: int = 0
     rat_lemmas: int = 0
     ignored_deletions: int = 0
+    checked: int = 0
+    core: np.ndarray | None = field(default=None, repr=False, compare=False)
+    trivial: bool = False
+    engine: str = "backward"
     time_s: float = 0.0
 
     @property
     def verified(self) -> bool:
         return self.status == "verified"
+
+
+# ----------------------------------------------------------------------------- formulas
+def formula_arrays(formula) -> tuple[np.ndarray, np.ndarray, list[tuple[str, int, int]]]:
+    """Flatten a formula into ``(literals, sizes, blocks)``.
+
+    ``formula`` is a list of clauses, an object with ``clauses`` (PySAT's CNF) or one with
+    ``blocks`` of labelled clauses (each with ``label`` and a 2-D ``lits`` array or a
+    ``ragged`` list, as tilesolve's encodings build them). ``blocks`` lists
+    ``(label, first clause, count)`` (one unlabelled block for plain lists).
+    """
+    parts: list[np.ndarray] = []
+    sizes: list[np.ndarray] = []
+    blocks: list[tuple[str, int, int]] = []
+    n = 0
+
+    def ragged(cls, label):
+        nonlocal n
+        cls = [list(c) for c in cls]
+        sz = np.fromiter((len(c) for c in cls), np.int64, len(cls))
+        flat = np.fromiter((int(x) for c in cls for x in c), np.int64, int(sz.sum()))
+        parts.append(flat)
+        sizes.append(sz)
+        blocks.append((label, n, len(cls)))
+        n += len(cls)
+
+    if hasattr(formula, "blocks"):
+        for b in formula.blocks:
+            if getattr(b, "lits", None) is not None:
+                a = np.asarray(b.lits, np.int64)
+                parts.append(a.reshape(-1))
+                sizes.append(np.full(a.shape[0], a.shape[1], np.int64))
+                blocks.append((str(b.label), n, a.shape[0]))
+                n += a.shape[0]
+            else:
+                ragged(b.ragged, str(b.label))
+    else:
+        ragged(formula.clauses if hasattr(formula, "clauses") else formula, "")
+    lits = np.concatenate(parts) if parts else np.zeros(0, np.int64)
+    sz = np.concatenate(sizes) if sizes else np.zeros(0, np.int64)
+    return lits, sz, blocks
+
+
+def dimacs_bytes(formula) -> bytes:
+    """The formula in DIMACS CNF, exactly as :func:`cnf_sha256` hashes it.
+
+    One header ``p cnf V C`` (``V`` the largest variable), then one clause per line ending in
+    `` 0``; ASCII, ``\\n`` line ends, no comments.
+
+    >>> dimacs_bytes([[1, -2], [2]])
+    b'p cnf 2 2\\n1 -2 0\\n2 0\\n'
+    """
+    lits, sizes, _ = formula_arrays(formula)
+    n_vars = int(np.abs(lits).max()) if lits.size else 0
+    ends = np.cumsum(sizes)
+    tokens = np.insert(lits, ends, 0)
+    words = tokens.astype(str).astype(object)
+    zero = tokens == 0
+    words[zero] = "0\n"
+    body = " ".join(words.tolist()).replace("\n ", "\n") if len(words) else ""
+    return f"p cnf {n_vars} {len(sizes)}\n{body}".encode("ascii")
+
+
+def cnf_sha256(formula) -> str:
+    """SHA-256 (hex) of :func:`dimacs_bytes` of ``formula``: what a proof is bound to.
+
+    >>> cnf_sha256([[1], [-1]])[:12]
+    'ac42a371b5a1'
+    """
+    return hashlib.sha256(dimacs_bytes(formula)).hexdigest()
+
+
+# ----------------------------------------------------------------------------- proofs
+_DEL = 4611686018427387903  # stands for a "d" while numpy reads the numbers
+
+
+def _proof_text(proof) -> str | bytes:
+    """The proof as text (or the raw bytes of a binary proof)."""
+    is_path = isinstance(proof, os.PathLike) or (
+        isinstance(proof, str) and "\n" not in proof and not proof.strip().endswith(" 0") and os.path.isfile(proof)
+    )
+    if is_path:
+        with open(proof, "rb") as fh:
+            proof = fh.read()
+    if isinstance(proof, (bytes, bytearray)):
+        data = bytes(proof)
+        if data[:1] in (b"a", b"d") and any(b > 127 or b == 0 for b in data[:64]):
+            return data
+        return data.decode("ascii")
+    if isinstance(proof, str):
+        return proof
+    return "\n".join(line if isinstance(line, str) else line.decode("ascii") for line in proof)
+
+
+def _proof_arrays(proof) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(literals, sizes, is_deletion)`` of every proof line, read by numpy."""
+    text = _proof_text(proof)
+    if isinstance(text, bytes):
+        steps = _parse_binary(text)
+        sizes = np.fromiter((len(c) for _, c in steps), np.int64, len(steps))
+        lits = np.fromiter((x for _, c in steps for x in c), np.int64, int(sizes.sum()))
+        return lits, sizes, np.fromiter((d for d, _ in steps), np.int8, len(steps))
+    if "c" in text:
+        text = "\n".join(ln for ln in text.splitlines() if not ln.lstrip().startswith("c"))
+    bad = set(text) - set("0123456789-d \t\r\n")
+    if bad:
+        raise ValueError(f"unexpected character {sorted(bad)[0]!r}")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        toks = np.fromstring(text.replace("d", f" {_DEL} "), dtype=np.int64, sep=" ") if text.strip() else \
+            np.zeros(0, np.int64)
+    if toks.size and toks[-1] != 0:
+        raise ValueError("the last proof line does not end with 0")
+    is_d = toks == _DEL
+    zeros = np.flatnonzero(toks == 0)
+    starts = np.concatenate(([0], zeros[:-1] + 1)) if zeros.size else zeros
+    dels = np.zeros(zeros.size, np.int8)
+    if is_d.any():
+        where = np.flatnonzero(is_d)
+        clause_of = np.searchsorted(zeros, where)
+        if not np.array_equal(where, starts[clause_of]) or np.unique(clause_of).size != where.size:
+            raise ValueError("a 'd' that does not start a proof line")
+        dels[clause_of] = 1
+    keep = ~is_d & (toks != 0)
+    sizes = (zeros - starts - dels).astype(np.int64)
+    return toks[keep], sizes, dels
 
 
 def _read_varint(data: bytes, i: int) -> tuple[int, int]:
@@ -85,31 +260,16 @@ def parse_drat(proof) -> list[tuple[bool, list[int]]]:
 
     Accepts a list of text lines (as :meth:`pysat.solvers.Solver.get_proof` returns), a
     string, a path to a file, or bytes in text or binary DRAT format.
+
+    >>> parse_drat(["1 2 0", "d 1 2 0", "0"])
+    [(False, [1, 2]), (True, [1, 2]), (False, [])]
     """
-    is_path = isinstance(proof, os.PathLike) or (
-        isinstance(proof, str) and "\n" not in proof and not proof.strip().endswith(" 0") and os.path.isfile(proof)
-    )
-    if is_path:
-        with open(proof, "rb") as fh:
-            proof = fh.read()
-    if isinstance(proof, (bytes, bytearray)):
-        data = bytes(proof)
-        if data[:1] in (b"a", b"d") and any(b > 127 or b == 0 for b in data[:64]):
-            return _parse_binary(data)
-        proof = data.decode("ascii")
-    if isinstance(proof, str):
-        proof = proof.splitlines()
-    out: list[tuple[bool, list[int]]] = []
-    for line in proof:
-        s = line.strip() if isinstance(line, str) else line.decode("ascii").strip()
-        if not s or s[0] == "c":
-            continue
-        delete = s[0] == "d"
-        toks = s[1:].split() if delete else s.split()
-        nums = [int(t) for t in toks]
-        if not nums or nums[-1] != 0:
-            raise ValueError(f"DRAT line does not end with 0: {s!r}")
-        out.append((delete, nums[:-1]))
+    lits, sizes, dels = _proof_arrays(proof)
+    flat = lits.tolist()
+    out, i = [], 0
+    for d, n in zip(dels.tolist(), sizes.tolist()):
+        out.append((bool(d), flat[i:i + n]))
+        i += n
     return out
 
 
@@ -129,6 +289,30 @@ def _parse_binary(data: bytes) -> list[tuple[bool, list[int]]]:
             lits.append(-(x >> 1) if x & 1 else x >> 1)
         out.append((tag == 0x64, lits))
     return out
+
+
+# ----------------------------------------------------------------------------- kernels
+_COMPILED: types.SimpleNamespace | None = None
+_LOCK = threading.Lock()
+
+
+def _kernels(work: int, mode: str = "auto"):
+    """The kernel namespace: the module itself (interpreted) or its numba-compiled copy."""
+    global _COMPILED
+    if mode == "plain" or (mode == "auto" and _COMPILED is None and work < COMPILE_FROM):
+        return K
+    with _LOCK:
+        if _COMPILED is None:
+            import numba
+
+            ns = dict(vars(K))
+            funcs = {k: v for k, v in ns.items() if isinstance(v, types.FunctionType) and v.__module__ == K.__name__}
+            for name, func in funcs.items():
+                clone = types.FunctionType(func.__code__, ns, func.__name__, func.__defaults__, func.__closure__)
+                clone.__qualname__ = func.__qualname__
+                ns[name] = numba.njit(cache=True)(clone)
+            _COMPILED = types.SimpleNamespace(**{k: v for k, v in ns.items() if not k.startswith("__")})
+        return _COMPILED
 
 
 class _Checker:
@@ -283,27 +467,42 @@ class _Checker:
         return True
 
 
+def _codes(lits: np.ndarray) -> np.ndarray:
+    return 2 * np.abs(lits) + (lits < 0)
+
+
+def _shown(lits: Sequence[int]) -> str:
+    lits = list(lits)
+    return " ".join(map(str, lits[:12])) + (" ..." if len(lits) > 12 else "")
+
+
 def check_drat(
     formula: Iterable[Iterable[int]],
     proof,
     *,
-    max_size: int | None = 20_000_000,
     time_limit: float | None = None,
+    engine: str = "backward",
+    lemmas: str = "core",
+    kernels: str = "auto",
 ) -> DratResult:
-    """Check that a DRAT ``proof`` refutes ``formula``.
+    """Check that a DRAT ``proof`` refutes ``formula``, whatever its size.
 
     Parameters
     ----------
-    formula : iterable of iterable of int
-        The clauses the solver was given (DIMACS literals).
+    formula
+        The clauses the solver was given (see :func:`formula_arrays`).
     proof : list of str, str, bytes or path
         Text or binary DRAT (see :func:`parse_drat`).
-    max_size : int or None
-        Size guard: total literals of formula plus proof above which the check is
-        ``skipped`` (pure Python is slow; a proof of millions of lemmas would take hours).
     time_limit : float or None
         Seconds after which the check stops with status ``unknown`` (reading the formula and
         the proof count).
+    engine : {"backward", "forward"}
+        See the module docstring.
+    lemmas : {"core", "all"}
+        Backward engine: check the lemmas the refutation uses, or every lemma before the
+        refutation (the forward engine always checks all).
+    kernels : {"auto", "plain", "compiled"}
+        Backward engine: interpreted or numba-compiled loops (``auto``: by size).
 
     Returns
     -------
@@ -315,73 +514,197 @@ def check_drat(
 
     >>> check_drat([[1, 2], [-1, 2], [1, -2], [-1, -2]], ["3 1 0", "-3 -1 0", "1 0", "0"]).status
     'verified'
+    >>> check_drat([[1], [-1]], ["0"]).trivial
+    True
     """
+    if engine not in ENGINES:
+        raise ValueError(f"engine must be one of {ENGINES}, got {engine!r}")
+    if lemmas not in ("core", "all"):
+        raise ValueError(f"lemmas must be 'core' or 'all', got {lemmas!r}")
     t0 = time.perf_counter()
 
+    def elapsed() -> float:
+        return time.perf_counter() - t0
+
     def out_of_time() -> bool:
-        return time_limit is not None and time.perf_counter() - t0 > time_limit
+        return time_limit is not None and elapsed() > time_limit
 
     def stopped(doing: str, **counts) -> DratResult:
         return DratResult("unknown", f"time limit of {time_limit:.3g} s reached while {doing}",
-                          time_s=time.perf_counter() - t0, **counts)
+                          engine=engine, time_s=elapsed(), **counts)
 
-    clauses: list[list[int]] = []
-    for c in formula:
-        clauses.append(list(map(int, c)))
-        if len(clauses) % 4096 == 0 and out_of_time():
-            return stopped(f"reading the formula ({len(clauses):,} clauses read)")
+    f_lits, f_sizes, _ = formula_arrays(formula)
+    if out_of_time():
+        return stopped("reading the formula")
     try:
-        steps = parse_drat(proof)
+        p_lits, p_sizes, p_del = _proof_arrays(proof)
     except (ValueError, UnicodeDecodeError, IndexError) as exc:
-        return DratResult("failed", f"unreadable proof: {exc}", time_s=time.perf_counter() - t0)
-    size = sum(len(c) for c in clauses) + sum(len(s[1]) for s in steps)
-    if max_size is not None and size > max_size:
-        return DratResult(
-            "skipped",
-            f"formula plus proof have {size:,} literals, over the {max_size:,} the checker takes",
-            lemmas=sum(1 for d, _ in steps if not d),
-            time_s=time.perf_counter() - t0,
-        )
+        return DratResult("failed", f"unreadable proof: {exc}", engine=engine, time_s=elapsed())
     if out_of_time():
         return stopped("reading the proof")
-    n_vars = 0
-    for c in clauses:
-        for x in c:
-            n_vars = max(n_vars, abs(x))
-    for _, c in steps:
-        for x in c:
-            n_vars = max(n_vars, abs(x))
+    if engine == "forward":
+        return _check_forward(f_lits, f_sizes, p_lits, p_sizes, p_del, t0, time_limit)
+
+    n_f, n_s = len(f_sizes), len(p_sizes)
+    n_cl = n_f + n_s
+    lits = _codes(np.concatenate((f_lits, p_lits)))
+    size = np.concatenate((f_sizes, p_sizes))
+    start = np.zeros(n_cl + 1, np.int64)
+    np.cumsum(size, out=start[1:])
+    is_del = p_del
+    n_lemmas = int(n_s - is_del.sum())
+    n_dels = int(is_del.sum())
+    pivot = np.full(n_s, -1, np.int64)
+    nonempty = p_sizes > 0
+    pivot[nonempty] = lits[start[n_f:n_cl][nonempty]]
+    n_vars = int(lits.max() >> 1) if lits.size else 0
+    L = 2 * n_vars + 2
+    k = _kernels(int(lits.size), kernels)
+    taut = np.zeros(n_cl, np.int8)
+    chash = np.zeros(n_cl, np.int64)
+    k.prepare(lits, start, size, taut, chash, n_cl)
+    active = np.zeros(n_cl, np.int8)
+    core = np.zeros(n_cl, np.int8)
+    val = np.zeros(L, np.int8)
+    reason = np.full(n_vars + 1, -1, np.int64)
+    tpos = np.zeros(n_vars + 1, np.int64)
+    trail = np.zeros(n_vars + 1, np.int64)
+    st = np.zeros(3, np.int64)
+    head = np.full(L, -1, np.int64)
+    nxt = np.full(2 * n_cl, -1, np.int64)
+    prv = np.full(2 * n_cl, -1, np.int64)
+    cap = 1 << max(4, int(2 * n_cl).bit_length())
+    ht_key = np.zeros(cap, np.int64)
+    ht_head = np.full(cap, -1, np.int64)
+    same_prev = np.full(n_cl, -1, np.int64)
+    mark = np.full(L, -1, np.int64)
+    tl_before = np.zeros(n_s, np.int64)
+    target = np.full(n_s, -1, np.int64)
+    counts = np.array([-1, -1, 0, 0, -1], np.int64)
+    done = np.zeros(n_vars + 1, np.int8)
+    seen = np.zeros(n_vars + 1, np.int8)
+    stack = np.zeros(max(n_vars + 1, int(size.max(initial=0))) * 2 + 2, np.int64)
+
+    def result(status: str, reason_: str, checked: int = 0, rats: int = 0, core_ids=None,
+               trivial: bool = False) -> DratResult:
+        return DratResult(status, reason_, n_lemmas, n_dels, rats, int(counts[2]), checked, core_ids, trivial,
+                          "backward", elapsed())
+
+    # forward pass: until unit propagation refutes the formula
+    refuted = 0
+    j = -1
+    while not refuted and j < n_s:
+        j1 = min(n_s, max(j, 0) + _CHUNK)
+        refuted = k.forward(n_f, n_s, is_del, lits, start, size, taut, chash, active, val, reason, tpos, trail, st,
+                            head, nxt, prv, core, ht_key, ht_head, same_prev, mark, tl_before, target, counts, j, j1)
+        if counts[4] >= 0:
+            line = int(counts[4]) + 1
+            return result("failed", f"the empty clause (proof line {line}) is not RUP: unit propagation "
+                                    "does not refute the formula there")
+        j = j1
+        if out_of_time():
+            return result("unknown", f"time limit of {time_limit:.3g} s reached while checking the proof "
+                                     f"(forward pass, step {j:,} of {n_s:,})")
+    if not refuted:
+        return result("failed", "the proof never derives the empty clause")
+    confl_step = int(counts[1])
+    later = np.flatnonzero((is_del[confl_step + 1:] == 0) & (p_sizes[confl_step + 1:] == 0))
+    if later.size == 0:
+        return result("failed", "the proof has no empty clause (unit propagation refutes the formula after "
+                                f"proof line {confl_step + 1}, but the proof never says so)")
+    # backward pass from the conflict
+    k.analyze(int(counts[0]), -1, 0, lits, start, size, reason, tpos, trail, st, core, done, seen, stack)
+    if lemmas == "all":
+        core[n_f:n_cl][is_del == 0] = 1
+    st[1] = st[2] = st[0]
+    out = np.zeros(4, np.int64)
+    j = confl_step + 1
+    while j > 0:
+        j1 = max(0, j - _CHUNK)
+        j = k.backward(n_f, is_del, pivot, lits, start, size, taut, active, val, reason, tpos, trail, st, head,
+                       nxt, prv, core, done, seen, stack, tl_before, target, out, j, j1)
+        if out[0] != K.OK:
+            step = int(out[1])
+            number = int((is_del[: step + 1] == 0).sum())
+            shown = _shown(p_lits[start[n_f + step] - start[n_f]:][: p_sizes[step]].tolist())
+            return result("failed", f"lemma {number} (proof line {step + 1}: {shown} 0) is neither RUP nor RAT",
+                          int(out[2]), int(out[3]))
+        if out_of_time():
+            return result("unknown", f"time limit of {time_limit:.3g} s reached while checking the proof "
+                                     f"(backward pass, {int(out[2]):,} lemmas checked, step {j:,} to go)",
+                          int(out[2]), int(out[3]))
+    checked = int(out[2])
+    core_ids = np.flatnonzero(core[:n_f])
+    trivial = confl_step < 0 or checked == 0
+    if trivial:
+        why = (f"unit propagation on {core_ids.size} input clause(s) refutes the formula; "
+               f"the proof's {n_lemmas} lemma(s) are not needed")
+    else:
+        why = (f"DRAT proof checked: {checked} of {n_lemmas} lemma(s) used and checked "
+               f"({int(out[3])} by RAT), resting on {core_ids.size} of {n_f} input clauses")
+    return result("verified", why, checked, int(out[3]), core_ids, trivial)
+
+
+def _split(lits: np.ndarray, sizes: np.ndarray) -> list[list[int]]:
+    flat = lits.tolist()
+    out, i = [], 0
+    for n in sizes.tolist():
+        out.append(flat[i:i + n])
+        i += n
+    return out
+
+
+def _check_forward(f_lits, f_sizes, p_lits, p_sizes, p_del, t0: float, time_limit: float | None) -> DratResult:
+    """The forward engine: every lemma checked in order, plain Python."""
+    clauses = _split(f_lits, f_sizes)
+    steps = list(zip(p_del.astype(bool).tolist(), _split(p_lits, p_sizes)))
+    n_vars = int(max(np.abs(f_lits).max(initial=0), np.abs(p_lits).max(initial=0)))
+
+    def elapsed() -> float:
+        return time.perf_counter() - t0
+
+    def out_of_time() -> bool:
+        return time_limit is not None and elapsed() > time_limit
+
     chk = _Checker(n_vars)
     for i, c in enumerate(clauses, 1):
         chk.add(c)
         if i % 4096 == 0 and out_of_time():
-            return stopped(f"loading the formula into the checker ({i:,} of {len(clauses):,} clauses)")
+            return DratResult("unknown", f"time limit of {time_limit:.3g} s reached while loading the formula "
+                                         f"into the checker ({i:,} of {len(clauses):,} clauses)",
+                              engine="forward", time_s=elapsed())
     lemmas = deletions = rats = ignored = 0
+    trivial = chk.inconsistent
 
     def result(status: str, reason: str) -> DratResult:
-        return DratResult(status, reason, lemmas, deletions, rats, ignored, time.perf_counter() - t0)
+        return DratResult(status, reason, lemmas, deletions, rats, ignored, lemmas, None, trivial, "forward",
+                          elapsed())
 
     for step, (is_del, lits) in enumerate(steps, 1):
-        if chk.inconsistent:
-            break
         if step % 256 == 0 and out_of_time():
             return result("unknown", f"time limit of {time_limit:.3g} s reached while checking the proof "
                                      f"(step {step:,} of {len(steps):,})")
         if is_del:
             deletions += 1
-            if chk.delete(lits) == "ignored":
+            if not chk.inconsistent and chk.delete(lits) == "ignored":
                 ignored += 1
             continue
         lemmas += 1
+        if not lits:
+            if chk.inconsistent or chk.rup(lits):
+                return result("verified", f"DRAT proof of {lemmas} lemmas ({deletions} deletions) checked, "
+                                          "every lemma")
+            return result("failed", f"the empty clause (proof line {step}) is not RUP: unit propagation "
+                                    "does not refute the formula there")
+        if chk.inconsistent:
+            continue
         if not chk.rup(lits):
             if not chk.rat(lits):
-                shown = " ".join(map(str, lits[:12])) + (" ..." if len(lits) > 12 else "")
-                return result("failed", f"lemma {lemmas} (proof line {step}: {shown} 0) is neither RUP nor RAT")
+                return result("failed", f"lemma {lemmas} (proof line {step}: {_shown(lits)} 0) is neither RUP "
+                                        "nor RAT")
             rats += 1
         chk.add(lits)
-    if not chk.inconsistent:
-        return result("failed", "the proof never derives the empty clause")
-    return result(
-        "verified",
-        f"DRAT proof of {lemmas} lemmas ({deletions} deletions) checked",
-    )
+    if chk.inconsistent:
+        return result("failed", "the proof has no empty clause (unit propagation refutes the formula, but the "
+                                "proof never says so)")
+    return result("failed", "the proof never derives the empty clause")

@@ -1,0 +1,506 @@
+"""Loops of the backward DRAT checker (:mod:`tilesolve.verify.drat`), numpy only.
+
+Written once as plain functions over numpy arrays; :mod:`tilesolve.verify.drat` runs them
+interpreted on small proofs and compiled by numba (``njit``, rebuilt from the same code) on
+large ones. Nothing here is shared with the solvers whose proofs are checked.
+
+The method is drat-trim's (Wetzler, Heule, Hunt, *DRAT-trim: Efficient checking and trimming
+using expressive clausal proofs*, SAT 2014, §4): a forward pass adds the lemmas and applies
+the deletions with top-level unit propagation until the formula is refuted by propagation;
+a backward pass then undoes the steps one by one and checks only the lemmas marked as used
+(the *core*), starting from the clauses of the final conflict. Each check propagates core
+clauses first and other clauses only when the core stalls, so the marked set stays small.
+
+Data layout
+-----------
+Literal ``l`` has code ``2|l| + (l < 0)``; ``code ^ 1`` is its negation. Every clause (the
+formula's, then one per proof line, deletions included) is ``lits[start[c]:start[c] + size[c]]``
+after removing repeated literals. Clause ``c`` owns two watch nodes ``2c`` and ``2c + 1``
+watching its literals in positions 0 and 1, kept in doubly linked lists per literal
+(``head``, ``nxt``, ``prv``): moving, removing and restoring a watch is O(1) and no watch
+list ever holds a stale entry. Invariant between checks: a watched literal that is false
+has a true partner watch (the trail is closed under unit propagation).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+MASK = 0x3FFFFFFFFFFFFFFF
+
+# status codes of the backward pass (read by tilesolve.verify.drat)
+OK, LEMMA_FAILED, NO_EMPTY, EMPTY_NOT_RUP = 0, 1, 2, 3
+
+
+def lit_hash(code):
+    """A 62-bit mix of one literal code (the same interpreted and compiled)."""
+    return ((code * 2654435761) ^ (code * 40503 + 97)) & MASK
+
+
+def prepare(lits, start, size, taut, chash, n_cl):
+    """Drop repeated literals, flag tautologies and hash every clause (order-free)."""
+    top = 0
+    for c in range(n_cl):
+        b = start[c]
+        if size[c] > 0:
+            m = lits[b]
+            for k in range(b, b + size[c]):
+                if lits[k] > m:
+                    m = lits[k]
+            if m > top:
+                top = m
+    mark = np.full(top + 2, -1, np.int64)
+    for c in range(n_cl):
+        b = start[c]
+        n = 0
+        h = 0
+        for k in range(b, b + size[c]):
+            x = lits[k]
+            if mark[x] == c:
+                continue
+            if mark[x ^ 1] == c:
+                taut[c] = 1
+            mark[x] = c
+            lits[b + n] = x
+            n += 1
+            h = (h + lit_hash(x)) & MASK
+        size[c] = n
+        chash[c] = (h + n) & MASK
+
+
+def ht_slot(ht_key, ht_head, h):
+    """Open-addressing slot of hash ``h`` (its own or the first empty one)."""
+    m = ht_key.shape[0] - 1
+    i = h & m
+    while ht_head[i] >= 0 and ht_key[i] != h:
+        i = (i + 1) & m
+    return i
+
+
+def ht_insert(ht_key, ht_head, same_prev, chash, c):
+    i = ht_slot(ht_key, ht_head, chash[c])
+    same_prev[c] = ht_head[i]
+    ht_key[i] = chash[c]
+    ht_head[i] = c
+
+
+def find_clause(ht_key, ht_head, same_prev, chash, lits, start, size, active, mark, d):
+    """The most recent active clause with the literals of clause ``d`` (-1 if none)."""
+    i = ht_slot(ht_key, ht_head, chash[d])
+    if ht_head[i] < 0:
+        return -1
+    b = start[d]
+    for k in range(b, b + size[d]):
+        mark[lits[k]] = d
+    c = ht_head[i]
+    while c >= 0:
+        if active[c] == 1 and size[c] == size[d]:
+            ok = True
+            bc = start[c]
+            for k in range(bc, bc + size[c]):
+                if mark[lits[k]] != d:
+                    ok = False
+                    break
+            if ok:
+                return c
+        c = same_prev[c]
+    return -1
+
+
+def link(head, nxt, prv, node, code):
+    h = head[code]
+    nxt[node] = h
+    prv[node] = -1
+    if h >= 0:
+        prv[h] = node
+    head[code] = node
+
+
+def unlink(head, nxt, prv, node, code):
+    p = prv[node]
+    n = nxt[node]
+    if p >= 0:
+        nxt[p] = n
+    else:
+        head[code] = n
+    if n >= 0:
+        prv[n] = p
+
+
+def assign(val, reason, tpos, trail, st, code, c):
+    val[code] = 1
+    val[code ^ 1] = -1
+    v = code >> 1
+    reason[v] = c
+    tpos[v] = st[0]
+    trail[st[0]] = code
+    st[0] += 1
+
+
+def backtrack(val, reason, trail, st, p):
+    for i in range(p, st[0]):
+        code = trail[i]
+        val[code] = 0
+        val[code ^ 1] = 0
+        reason[code >> 1] = -1
+    st[0] = p
+    st[1] = p
+    st[2] = p
+
+
+def attach(lits, start, size, val, head, nxt, prv, c):
+    """Watch two literals of clause ``c`` (size >= 2): true first, then unassigned, then false.
+
+    Returns the number of non-false literals among the two watched (0: conflict, 1 with the
+    first unassigned: unit).
+    """
+    b = start[c]
+    n = size[c]
+    for pos in range(2):
+        best = -1
+        for k in range(b + pos, b + n):
+            x = val[lits[k]]
+            if best < 0 or x > val[lits[best]]:
+                best = k
+                if x == 1:
+                    break
+        t = lits[b + pos]
+        lits[b + pos] = lits[best]
+        lits[best] = t
+    link(head, nxt, prv, 2 * c, lits[b])
+    link(head, nxt, prv, 2 * c + 1, lits[b + 1])
+    free = 0
+    if val[lits[b]] != -1:
+        free += 1
+    if val[lits[b + 1]] != -1:
+        free += 1
+    return free
+
+
+def detach(lits, start, head, nxt, prv, c):
+    b = start[c]
+    unlink(head, nxt, prv, 2 * c, lits[b])
+    unlink(head, nxt, prv, 2 * c + 1, lits[b + 1])
+
+
+def visit(code, mode, lits, start, size, val, reason, tpos, trail, st, head, nxt, prv, core):
+    """Clauses watching ``code``'s negation, now false. ``mode``: 1 core only, 0 others, 2 all.
+
+    Returns a falsified clause, or -1.
+    """
+    f = code ^ 1
+    node = head[f]
+    while node >= 0:
+        nn = nxt[node]
+        c = node >> 1
+        if mode == 2 or core[c] == mode:
+            s = node & 1
+            b = start[c]
+            other = lits[b + 1 - s]
+            if val[other] != 1:
+                found = -1
+                for k in range(b + 2, b + size[c]):
+                    if val[lits[k]] != -1:
+                        found = k
+                        break
+                if found >= 0:
+                    x = lits[found]
+                    lits[found] = f
+                    lits[b + s] = x
+                    unlink(head, nxt, prv, node, f)
+                    link(head, nxt, prv, node, x)
+                elif val[other] == -1:
+                    return c
+                else:
+                    assign(val, reason, tpos, trail, st, other, c)
+        node = nn
+    return -1
+
+
+def propagate(core_first, lits, start, size, val, reason, tpos, trail, st, head, nxt, prv, core):
+    """Unit propagation from the queue heads ``st[1]`` (core) and ``st[2]`` (others).
+
+    Without ``core_first`` every clause is visited in one pass (``st[1]`` only).
+    """
+    while True:
+        while st[1] < st[0]:
+            code = trail[st[1]]
+            st[1] += 1
+            c = visit(code, 1 if core_first else 2, lits, start, size, val, reason, tpos, trail, st,
+                      head, nxt, prv, core)
+            if c >= 0:
+                return c
+        if not core_first or st[2] >= st[0]:
+            return -1
+        code = trail[st[2]]
+        st[2] += 1
+        c = visit(code, 0, lits, start, size, val, reason, tpos, trail, st, head, nxt, prv, core)
+        if c >= 0:
+            return c
+
+
+def justify(v0, lits, start, size, reason, core, done, stack):
+    """Mark the reasons of top-level variable ``v0`` and of everything they rest on."""
+    top = 0
+    stack[top] = v0
+    top += 1
+    marked = 0
+    while top > 0:
+        top -= 1
+        v = stack[top]
+        if done[v] == 1:
+            continue
+        done[v] = 1
+        r = reason[v]
+        if r < 0:
+            continue
+        if core[r] == 0:
+            core[r] = 1
+            marked += 1
+        b = start[r]
+        for k in range(b, b + size[r]):
+            u = lits[k] >> 1
+            if u != v and done[u] == 0:
+                stack[top] = u
+                top += 1
+    return marked
+
+
+def analyze(confl, true_var, p, lits, start, size, reason, tpos, trail, st, core, done, seen, stack):
+    """Mark the clauses a conflict (clause ``confl``, or a lemma literal already true on
+    variable ``true_var``) rests on: the part of the trail above ``p`` by a backward walk,
+    the top level by :func:`justify`.
+    """
+    if confl >= 0:
+        core[confl] = 1
+        b = start[confl]
+        for k in range(b, b + size[confl]):
+            u = lits[k] >> 1
+            if tpos[u] >= p:
+                seen[u] = 1
+            else:
+                justify(u, lits, start, size, reason, core, done, stack)
+    if true_var >= 0:
+        if tpos[true_var] >= p:
+            seen[true_var] = 1
+        else:
+            justify(true_var, lits, start, size, reason, core, done, stack)
+    for i in range(st[0] - 1, p - 1, -1):
+        v = trail[i] >> 1
+        if seen[v] == 0:
+            continue
+        seen[v] = 0
+        r = reason[v]
+        if r < 0:
+            continue
+        core[r] = 1
+        b = start[r]
+        for k in range(b, b + size[r]):
+            u = lits[k] >> 1
+            if u == v:
+                continue
+            if tpos[u] >= p:
+                seen[u] = 1
+            else:
+                justify(u, lits, start, size, reason, core, done, stack)
+
+
+def refutes(c, extra, skip, lits, start, size, val, reason, tpos, trail, st, head, nxt, prv, core, done, seen,
+            stack):
+    """Whether assigning the negation of clause ``c`` (and of clause ``extra`` but its literal
+    ``skip``, for a RAT resolvent; ``extra`` -1 for none) and propagating gives a conflict.
+    The clauses used are marked; the trail is restored.
+    """
+    p = st[0]
+    true_var = -1
+    confl = -1
+    for part in range(2):
+        cc = c if part == 0 else extra
+        if cc < 0 or true_var >= 0:
+            continue
+        b = start[cc]
+        for k in range(b, b + size[cc]):
+            x = lits[k]
+            if part == 1 and x == skip:
+                continue
+            if val[x] == 1:
+                true_var = x >> 1
+                break
+            if val[x] == 0:
+                assign(val, reason, tpos, trail, st, x ^ 1, -1)
+    if true_var < 0:
+        confl = propagate(True, lits, start, size, val, reason, tpos, trail, st, head, nxt, prv, core)
+    ok = true_var >= 0 or confl >= 0
+    if ok:
+        analyze(confl, true_var, p, lits, start, size, reason, tpos, trail, st, core, done, seen, stack)
+    backtrack(val, reason, trail, st, p)
+    return ok
+
+
+def truncate(p, lits, start, size, val, reason, trail, st, head, nxt, prv, done):
+    """Shrink the top-level trail to length ``p`` and re-establish the watch invariant: a
+    clause whose false watch was excused by a partner watch that is now unassigned gets a
+    non-false literal in its place."""
+    old = st[0]
+    for i in range(p, old):
+        done[trail[i] >> 1] = 0
+    backtrack(val, reason, trail, st, p)
+    for i in range(p, old):
+        code = trail[i]
+        node = head[code]
+        while node >= 0:
+            nn = nxt[node]
+            c = node >> 1
+            s = 1 - (node & 1)
+            b = start[c]
+            w = lits[b + s]
+            if val[w] == -1:
+                for k in range(b + 2, b + size[c]):
+                    x = lits[k]
+                    if val[x] != -1:
+                        lits[k] = w
+                        lits[b + s] = x
+                        unlink(head, nxt, prv, node ^ 1, w)
+                        link(head, nxt, prv, node ^ 1, x)
+                        break
+            node = nn
+
+
+def forward(n_formula, n_steps, is_del, lits, start, size, taut, chash, active, val, reason, tpos, trail, st,
+            head, nxt, prv, core, ht_key, ht_head, same_prev, mark, tl_before, target, counts, j0, j1):
+    """Forward pass over proof steps ``j0 .. j1 - 1`` (``j0 == -1``: load the formula first).
+
+    ``counts``: [conflict clause, conflict step (-1: the formula), ignored deletions,
+    missing deletions, first empty lemma step]. Returns 1 once propagation refutes the
+    formula (the pass stops there), else 0.
+    """
+    if j0 < 0:
+        for c in range(n_formula):
+            active[c] = 1
+            ht_insert(ht_key, ht_head, same_prev, chash, c)
+            if size[c] == 0:
+                counts[0] = c
+                counts[1] = -1
+                return 1
+        for c in range(n_formula):
+            if taut[c] == 0 and size[c] >= 2:
+                attach(lits, start, size, val, head, nxt, prv, c)
+        for c in range(n_formula):
+            if taut[c] == 0 and size[c] == 1:
+                x = lits[start[c]]
+                if val[x] == -1:
+                    counts[0] = c
+                    counts[1] = -1
+                    return 1
+                if val[x] == 0:
+                    assign(val, reason, tpos, trail, st, x, c)
+        confl = propagate(False, lits, start, size, val, reason, tpos, trail, st, head, nxt, prv, core)
+        if confl >= 0:
+            counts[0] = confl
+            counts[1] = -1
+            return 1
+        j0 = 0
+    for j in range(j0, j1):
+        c = n_formula + j
+        tl_before[j] = st[0]
+        if is_del[j] == 1:
+            t = find_clause(ht_key, ht_head, same_prev, chash, lits, start, size, active, mark, c)
+            target[j] = t
+            if t < 0:
+                counts[3] += 1
+                continue
+            ignore = size[t] == 1
+            if not ignore and taut[t] == 0:
+                for k in range(start[t], start[t] + size[t]):
+                    x = lits[k]
+                    if val[x] == 1 and reason[x >> 1] == t:
+                        ignore = True
+                        break
+            if ignore:
+                target[j] = -2
+                counts[2] += 1
+                continue
+            active[t] = 0
+            if taut[t] == 0:
+                detach(lits, start, head, nxt, prv, t)
+            continue
+        if size[c] == 0:
+            counts[4] = j
+            return 0
+        active[c] = 1
+        ht_insert(ht_key, ht_head, same_prev, chash, c)
+        if taut[c] == 1:
+            continue
+        confl = -1
+        if size[c] == 1:
+            x = lits[start[c]]
+            if val[x] == -1:
+                confl = c
+            elif val[x] == 0:
+                assign(val, reason, tpos, trail, st, x, c)
+        else:
+            free = attach(lits, start, size, val, head, nxt, prv, c)
+            if free == 0:
+                confl = c
+            elif free == 1 and val[lits[start[c]]] == 0:
+                assign(val, reason, tpos, trail, st, lits[start[c]], c)
+        if confl < 0:
+            confl = propagate(False, lits, start, size, val, reason, tpos, trail, st, head, nxt, prv, core)
+        if confl >= 0:
+            counts[0] = confl
+            counts[1] = j
+            return 1
+    return 0
+
+
+def backward(n_formula, is_del, pivot, lits, start, size, taut, active, val, reason, tpos, trail, st, head, nxt,
+             prv, core, done, seen, stack, tl_before, target, out, j0, j1):
+    """Backward pass over proof steps ``j0 - 1`` down to ``j1`` (``j0 > j1``).
+
+    ``out``: [status, failing step, lemmas checked, RAT lemmas]. Returns the step reached.
+    """
+    for j in range(j0 - 1, j1 - 1, -1):
+        c = n_formula + j
+        if is_del[j] == 1:
+            t = target[j]
+            if t >= 0:
+                active[t] = 1
+                if taut[t] == 0:
+                    attach(lits, start, size, val, head, nxt, prv, t)
+            continue
+        active[c] = 0
+        if taut[c] == 0 and size[c] >= 2:
+            detach(lits, start, head, nxt, prv, c)
+        if tl_before[j] < st[0]:
+            truncate(tl_before[j], lits, start, size, val, reason, trail, st, head, nxt, prv, done)
+        if core[c] == 0:
+            continue
+        out[2] += 1
+        if refutes(c, -1, 0, lits, start, size, val, reason, tpos, trail, st, head, nxt, prv, core, done, seen,
+                   stack):
+            continue
+        # RAT on the lemma's first literal: every resolvent with a clause holding its negation is RUP
+        pv = pivot[j]
+        ok = pv >= 0
+        if ok:
+            for d in range(c):
+                if active[d] == 0 or taut[d] == 1:
+                    continue
+                has = False
+                for k in range(start[d], start[d] + size[d]):
+                    if lits[k] == pv ^ 1:
+                        has = True
+                        break
+                if not has:
+                    continue
+                core[d] = 1
+                if not refutes(c, d, pv ^ 1, lits, start, size, val, reason, tpos, trail, st, head, nxt, prv, core,
+                               done, seen, stack):
+                    ok = False
+                    break
+        if not ok:
+            out[0] = LEMMA_FAILED
+            out[1] = j
+            return j
+        out[3] += 1
+    return j1
