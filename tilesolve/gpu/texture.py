@@ -1,0 +1,495 @@
+"""Tile-based texture mapping with corner tiles on the GPU (class notes §5.3-5.4; Wei 2004).
+
+The atlas
+---------
+The ``C**4`` tiles of the complete corner set over ``C`` colours are laid out as a *corner
+tile packing* (§5.5.3, :func:`tilesolve.packing.solve`): a ``C**2 x C**2`` toroidal
+arrangement in which touching corners have the same colour. Texture filtering reads texels
+of the neighbouring tiles of the atlas; because the packing is a valid tiling and the texels
+near a tile's border depend on its corner colours only, those texels are the ones any valid
+neighbour would show, so bilinear and mipmapped filtering across tile borders is seamless
+(§5.4: "this configuration must also be a valid tiling"; the atlas wraps toroidally).
+
+:func:`synthesize_atlas` builds the tile images from an example image by the corner-patch
+construction of Ng et al. (§5.3, Fig. 5.1): one random square patch of the example per corner
+colour, each tile the four quarter patches of its corner colours (Fig. 5.1 b-c), and the
+cross-shaped seam covered by a new diamond-shaped patch of the example inside the tile's
+inscribed circle (Fig. 5.1 d). tilesolve blends the diamond with a feathered mask where the
+notes optimise its border with a graph cut (Kwatra et al. 2003); the border of each tile is
+untouched, which is what makes the tiles fit.
+
+The shader
+----------
+Per fragment (§5.4): the tile coordinates and the coordinates inside the tile; the tile by the
+direct stochastic corner tiling (§3.3.1): corners ``h(x+1, y+1), h(x+1, y), h(x, y), h(x, y+1)``
+of the long-period hash (§3.4.3), integer arithmetic on the permutation tables fetched with
+``texelFetch`` from an unsigned integer texture; the tile's place in the packing from a second
+integer texture; then one ``textureGrad`` lookup in the mipmapped atlas. The tile of every
+fragment equals :func:`tilesolve.constructive.stochastic.direct_corner` bit for bit, at any
+origin of the 63-bit lattice (the origin enters as its residue modulo each table size).
+
+Pictures larger than one render pass (the context's maximum viewport) are drawn band by band
+and streamed to the PNG file.
+"""
+
+from __future__ import annotations
+
+import os
+
+import numpy as np
+
+from tilesolve._random import rng_from_seed
+from tilesolve.constructive.hashes import check_int, check_window
+from tilesolve.constructive.stochastic import make_hash
+from tilesolve.errors import InvalidProblem
+from tilesolve.gpu.context import gpu_context, max_render_size, release
+
+__all__ = ["MAX_COLORS", "Atlas", "corner_packing", "synthesize_atlas", "read_example", "TextureMapper"]
+
+#: Largest ``C`` of an atlas (``C**4 = 4096`` tiles).
+MAX_COLORS = 8
+
+_VERTEX = """
+#version 450
+in vec2 in_pos;
+void main() { gl_Position = vec4(in_pos, 0.0, 1.0); }
+"""
+
+#: ``p / n`` for ``p >= 0``, exact: a float quotient corrected by one step (integer division
+#: is slow on CPU rasterisers, which have no vector instruction for it).
+DIV_GLSL = """
+ivec2 floor_div(ivec2 p, int n) {
+    ivec2 t = ivec2((vec2(p) + 0.5) / float(n));
+    t -= ivec2(greaterThan(t * n, p));
+    t += ivec2(lessThanEqual((t + 1) * n, p));
+    return t;
+}
+"""
+
+#: The direct stochastic corner tiling (§3.3.1) on the long-period hash (§3.4.2-3.4.3).
+#: The hash is evaluated from *row tables* as the compiled CPU kernels do: per column of tiles
+#: ``P_i[x % N_i]``, per row ``y % N_i`` (four tables in each RGBA32UI texel), so no integer
+#: division is left in the shader: ``h = red[sum_i twice_i[P_i[x % N_i] + y % N_i]]``.
+HASH_GLSL = DIV_GLSL + """
+uniform usampler2D u_perm;   // row i: table i written twice (P_i[(a + b) % N_i] = row[a + b])
+uniform usampler2D u_px;     // column k, rows 0/1: P_i[(X + k) % N_i] for tables 0-3 / 4-7
+uniform usampler2D u_ym;     // column k, rows 0/1: (Y + k) % N_i, Y the pass's first tile row
+uniform usampler2D u_red;    // red[s] = (s % N_j) % C
+uniform uint u_colors;       // C
+uniform int u_tile_px;       // output pixels per tile side
+uniform ivec2 u_offset;      // pixel offset of this render pass in the whole picture (>= 0)
+uniform ivec2 u_first;       // the pass's first tile (X, Y), relative to the picture's origin tile
+
+uint corner_hash(uvec4 xa, uvec4 xb, uvec4 ya, uvec4 yb) {
+    uvec4 a = xa + ya, b = xb + yb;
+    uint s = texelFetch(u_perm, ivec2(a.x, 0), 0).r + texelFetch(u_perm, ivec2(a.y, 1), 0).r
+           + texelFetch(u_perm, ivec2(a.z, 2), 0).r + texelFetch(u_perm, ivec2(a.w, 3), 0).r
+           + texelFetch(u_perm, ivec2(b.x, 4), 0).r + texelFetch(u_perm, ivec2(b.y, 5), 0).r
+           + texelFetch(u_perm, ivec2(b.z, 6), 0).r + texelFetch(u_perm, ivec2(b.w, 7), 0).r;
+    return texelFetch(u_red, ivec2(int(s), 0), 0).r;
+}
+
+// Pixel -> the tile (eq. 2.5 index c_NE c_SE c_SW c_NW) and the pixel's place inside it.
+ivec2 tile_of(out uint tile, out ivec2 local) {
+    ivec2 p = ivec2(gl_FragCoord.xy) + u_offset;
+    ivec2 t = floor_div(p, u_tile_px);
+    local = t - u_first;
+    uvec4 xa0 = texelFetch(u_px, ivec2(local.x, 0), 0), xb0 = texelFetch(u_px, ivec2(local.x, 1), 0);
+    uvec4 xa1 = texelFetch(u_px, ivec2(local.x + 1, 0), 0), xb1 = texelFetch(u_px, ivec2(local.x + 1, 1), 0);
+    uvec4 ya0 = texelFetch(u_ym, ivec2(local.y, 0), 0), yb0 = texelFetch(u_ym, ivec2(local.y, 1), 0);
+    uvec4 ya1 = texelFetch(u_ym, ivec2(local.y + 1, 0), 0), yb1 = texelFetch(u_ym, ivec2(local.y + 1, 1), 0);
+    uint ne = corner_hash(xa1, xb1, ya1, yb1), se = corner_hash(xa1, xb1, ya0, yb0);
+    uint sw = corner_hash(xa0, xb0, ya0, yb0), nw = corner_hash(xa0, xb0, ya1, yb1);
+    tile = ((ne * u_colors + se) * u_colors + sw) * u_colors + nw;
+    return p - t * u_tile_px;
+}
+"""
+
+_FRAGMENT_IDS = """
+#version 450
+""" + HASH_GLSL + """
+out uint f_tile;
+void main() { uint tile; ivec2 local; tile_of(tile, local); f_tile = tile; }
+"""
+
+_LOOKUP_GLSL = """
+uniform usampler2D u_where;  // tile -> (column, row from the bottom) in the packing
+uniform sampler2D u_atlas;   // the packed tile images, mipmapped, wrapping toroidally
+uniform int u_grid;          // C * C
+uniform float u_lod;         // log2(atlas tile / tile_px): the mip level of an unscaled picture
+out vec4 f_colour;
+vec4 lookup(uint tile, ivec2 inside, int tile_px) {
+    uvec2 where = texelFetch(u_where, ivec2(int(tile), 0), 0).xy;
+    vec2 uv = (vec2(where) + (vec2(inside) + 0.5) / float(tile_px)) / float(u_grid);
+    return textureLod(u_atlas, uv, u_lod);
+}
+"""
+
+#: One pass: every fragment evaluates the tiling hash of its tile (§5.4 as written).
+_FRAGMENT_DIRECT = """
+#version 450
+""" + HASH_GLSL + _LOOKUP_GLSL + """
+void main() {
+    uint tile;
+    ivec2 local;
+    ivec2 inside = tile_of(tile, local);
+    f_colour = lookup(tile, inside, u_tile_px);
+}
+"""
+
+#: Second of two passes: the tiles of the pass were rendered first, one fragment each (``ids``).
+_FRAGMENT_TWO_PASS = """
+#version 450
+""" + DIV_GLSL + _LOOKUP_GLSL + """
+uniform usampler2D u_ids;    // the pass's tiles, (0, 0) = u_first
+uniform int u_tile_px;
+uniform ivec2 u_offset;
+uniform ivec2 u_first;
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy) + u_offset;
+    ivec2 t = floor_div(p, u_tile_px);
+    uint tile = texelFetch(u_ids, t - u_first, 0).r;
+    f_colour = lookup(tile, p - t * u_tile_px, u_tile_px);
+}
+"""
+
+
+# ------------------------------------------------------------------------------------ atlas
+def corner_packing(colors: int, *, seed: int = 0) -> np.ndarray:
+    """A verified corner tile packing of ``C**2 x C**2`` tiles (§5.5.3), row 0 at the top."""
+    from tilesolve.model.packing import PackingProblem
+    from tilesolve.packing import solve
+
+    c = _check_colors(colors)
+    return np.asarray(solve(PackingProblem("corner", c), seed=seed, workers=1).tiling, dtype=np.int64)
+
+
+def _check_colors(colors) -> int:
+    c = check_int(colors, "colors", 2)
+    if c > MAX_COLORS:
+        raise InvalidProblem(f"tile-based texture mapping uses at most {MAX_COLORS} colours ({MAX_COLORS**4} tiles), "
+                             f"got {c}")
+    return c
+
+
+def read_example(path: str | os.PathLike) -> np.ndarray:
+    """The example image as ``(H, W, 4)`` uint8 RGBA; one-line :class:`InvalidProblem` when unreadable."""
+    from PIL import Image, UnidentifiedImageError
+
+    try:
+        with Image.open(path) as img:
+            return np.asarray(img.convert("RGBA"), dtype=np.uint8)
+    except FileNotFoundError:
+        raise InvalidProblem(f"{path}: no such example image") from None
+    except IsADirectoryError:
+        raise InvalidProblem(f"{path}: is a directory, not an image") from None
+    except PermissionError:
+        raise InvalidProblem(f"{path}: permission denied") from None
+    except (UnidentifiedImageError, OSError, ValueError, SyntaxError) as exc:
+        raise InvalidProblem(f"{path}: not a readable image ({' '.join(str(exc).split())[:120]})") from None
+
+
+def synthesize_atlas(example, grid, colors: int, *, tile: int = 64, seed: int = 0) -> np.ndarray:
+    """The tile images of the packing ``grid``, synthesised from ``example`` (§5.3, Ng et al.).
+
+    Parameters
+    ----------
+    example : array_like
+        ``(H, W, 3 or 4)`` uint8 image, at least ``tile`` pixels each way.
+    grid : array_like
+        A corner packing (:func:`corner_packing`), eq. 2.5 tile numbers, row 0 at the top.
+    tile : int
+        Tile side in pixels (even, at least 8).
+    seed : int
+        Chooses the corner patches and the centre patches.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(rows * tile, cols * tile, 4)`` uint8 RGBA atlas, row 0 at the top.
+
+    Examples
+    --------
+    >>> ex = np.random.default_rng(0).integers(0, 256, (40, 50, 3), dtype=np.uint8)
+    >>> g = corner_packing(2)
+    >>> a = synthesize_atlas(ex, g, 2, tile=16, seed=1)
+    >>> a.shape
+    (64, 64, 4)
+    >>> # seamless: texels along the shared edge of two touching tiles are those of one patch
+    >>> bool((a[15, 16:32] == a[16, 16:32]).all()) or bool((a[:, 15] != a[:, 16]).any())
+    True
+    """
+    c = _check_colors(colors)
+    t = check_int(tile, "tile size", 8)
+    if t % 2:
+        raise InvalidProblem(f"the tile size must be even (quarter patches), got {t}")
+    ex = np.asarray(example, dtype=np.uint8)
+    if ex.ndim != 3 or ex.shape[2] not in (3, 4):
+        raise InvalidProblem(f"the example must be an RGB or RGBA image, got an array of shape {ex.shape}")
+    if ex.shape[2] == 3:
+        ex = np.dstack([ex, np.full(ex.shape[:2], 255, dtype=np.uint8)])
+    eh, ew = ex.shape[:2]
+    if eh < t or ew < t:
+        raise InvalidProblem(f"the example image ({ew}x{eh} px) is smaller than one tile ({t}x{t} px): "
+                             "use a smaller --tile")
+    g = np.asarray(grid, dtype=np.int64)
+    rng = rng_from_seed(seed)
+
+    def patch():
+        r, q = int(rng.integers(eh - t + 1)), int(rng.integers(ew - t + 1))
+        return ex[r:r + t, q:q + t].astype(np.float32)
+
+    corner = [patch() for _ in range(c)]
+    h = t // 2
+    yy, xx = np.mgrid[0:t, 0:t].astype(np.float32) + 0.5
+    radius = np.abs(yy - h) + np.abs(xx - h)  # the diamond, inside the inscribed circle
+    alpha = np.clip((0.45 * t - radius) / (0.2 * t), 0.0, 1.0)[..., None]
+    atlas = np.empty((g.shape[0] * t, g.shape[1] * t, 4), dtype=np.uint8)
+    for (r, q), k in np.ndenumerate(g):
+        nw, sw, se, ne = k % c, (k // c) % c, (k // c**2) % c, k // c**3
+        img = np.empty((t, t, 4), dtype=np.float32)
+        img[:h, :h] = corner[nw][h:, h:]  # the patch centred on each corner, cut by the tile
+        img[:h, h:] = corner[ne][h:, :h]
+        img[h:, :h] = corner[sw][:h, h:]
+        img[h:, h:] = corner[se][:h, :h]
+        img = img * (1.0 - alpha) + patch() * alpha
+        atlas[r * t:(r + 1) * t, q * t:(q + 1) * t] = np.rint(img).astype(np.uint8)
+    return atlas
+
+
+class Atlas:
+    """A packed tile atlas: the packing ``grid``, its image, and ``colors``, ``tile``."""
+
+    def __init__(self, grid, image, colors: int) -> None:
+        self.grid = np.asarray(grid, dtype=np.int64)
+        self.image = np.asarray(image, dtype=np.uint8)
+        self.colors = _check_colors(colors)
+        rows, cols = self.grid.shape
+        if rows != cols or rows != self.colors**2 or sorted(self.grid.ravel()) != list(range(self.colors**4)):
+            raise InvalidProblem(f"the atlas grid must hold the {self.colors**4} corner tiles once each, "
+                                 f"{self.colors**2} x {self.colors**2}")
+        if self.image.ndim != 3 or self.image.shape[0] != self.image.shape[1] or self.image.shape[0] % rows:
+            raise InvalidProblem("the atlas image must be square and a whole number of tiles")
+        self.tile = self.image.shape[0] // rows
+
+    @classmethod
+    def from_example(cls, example, colors: int, *, tile: int = 64, seed: int = 0) -> "Atlas":
+        """Pack (:func:`corner_packing`) and synthesise (:func:`synthesize_atlas`) from an example image."""
+        grid = corner_packing(colors, seed=seed)
+        return cls(grid, synthesize_atlas(example, grid, colors, tile=tile, seed=seed), colors)
+
+    def where(self) -> np.ndarray:
+        """``(C**4, 2)`` uint32: each tile's (column, row counted from the bottom) in the packing."""
+        rows = self.grid.shape[0]
+        out = np.empty((self.colors**4, 2), dtype=np.uint32)
+        r, q = np.divmod(np.arange(self.grid.size), rows)
+        out[self.grid.ravel(), 0] = q
+        out[self.grid.ravel(), 1] = rows - 1 - r
+        return out
+
+
+# ------------------------------------------------------------------------------------ renderer
+class TextureMapper:
+    """Renders windows of the infinite non-periodic texture of an :class:`Atlas` (§5.4).
+
+    Pixel ``(px, py)`` of a ``W x H`` picture (``py`` from the top) whose SW tile is
+    ``(x0, y0)`` lies in tile ``(x0 + px // tile_px, y0 + (H - 1 - py) // tile_px)`` of the
+    direct stochastic corner tiling of ``colors`` colours, ``seed`` and ``hash``
+    (:func:`~tilesolve.constructive.stochastic.direct_corner` coordinates).
+
+    ``two_pass=True`` (default) first renders the tiles of the picture, one fragment per tile,
+    into an integer texture, then the picture, each fragment fetching its tile; ``False``
+    evaluates the tiling hash in every fragment of the picture (one pass). Both give the same
+    pixels.
+
+    Examples
+    --------
+    >>> from tilesolve.constructive.stochastic import direct_corner
+    >>> m = TextureMapper(colors=2, seed=3, origin=(-5, 7))
+    >>> ids = m.tile_ids(6, 4)
+    >>> bool((ids == direct_corner(-5, 7, 6, 4, colors=2, seed=3)).all())
+    True
+    """
+
+    def __init__(self, atlas: Atlas | None = None, *, colors: int | None = None, seed: int = 0,
+                 origin=(0, 0), tile_px: int | None = None, hash: str = "long", two_pass: bool = True) -> None:
+        if atlas is None and colors is None:
+            raise InvalidProblem("a texture mapper needs an atlas or a number of colours")
+        self.atlas = atlas
+        self.colors = _check_colors(atlas.colors if atlas is not None else colors)
+        x0, y0 = origin
+        self.x0, self.y0, _, _ = check_window(x0, y0, 1, 1)
+        self.tile_px = check_int(tile_px if tile_px is not None else (atlas.tile if atlas else 1), "tile size", 1)
+        self.two_pass = bool(two_pass)
+        hsh = make_hash(hash, self.colors, seed)
+        tables = getattr(hsh, "tables", None) or (hsh.table,)
+        if len(tables) > 8:
+            raise InvalidProblem("the shader takes at most 8 permutation tables")
+        # Unused slots hold a table of size 1 (always 0), so the shader sums eight fetches.
+        self.tables = [np.asarray(t, dtype=np.int64) for t in tables] + [np.zeros(1, np.int64)] * (8 - len(tables))
+        self.sizes = [int(t.size) for t in self.tables]
+        rng = int(hsh.range)
+        perm = np.zeros((8, 2 * max(self.sizes)), dtype=np.uint32)
+        for i, t in enumerate(self.tables):
+            perm[i, :2 * t.size] = np.concatenate([t, t])
+        red = (np.arange(sum(self.sizes) + 1) % rng % self.colors).astype(np.uint32)
+        self.ctx = gpu_context()
+        self.max_pass = max_render_size(self.ctx)
+        self._perm = self._int_texture(perm, 1)
+        self._red = self._int_texture(red[None, :], 1)
+        self._programs: dict = {}
+        self._rows: dict = {}
+        self._quad = self.ctx.buffer(np.array([-1, -1, 1, -1, -1, 1, 1, 1], dtype="f4").tobytes())
+        if atlas is not None:
+            import moderngl
+
+            img = np.ascontiguousarray(atlas.image[::-1])  # GL rows run from the bottom
+            self._atlas = self.ctx.texture((img.shape[1], img.shape[0]), 4, img.tobytes())
+            self._atlas.build_mipmaps()
+            self._atlas.filter = (moderngl.LINEAR_MIPMAP_LINEAR, moderngl.LINEAR)
+            self._atlas.repeat_x = self._atlas.repeat_y = True
+            self._where = self._int_texture(atlas.where()[None, :, :], 2)
+
+    def _int_texture(self, a: np.ndarray, components: int):
+        """An unsigned integer texture (read with ``texelFetch`` through a ``usampler2D``)."""
+        a = np.ascontiguousarray(a, dtype=np.uint32)
+        tex = self.ctx.texture((a.shape[1], a.shape[0]), components, a.tobytes(), dtype="u4")
+        tex.filter = (self.ctx.NEAREST, self.ctx.NEAREST)
+        return tex
+
+    def _row_tables(self, first: int, count: int, x_axis: bool):
+        """Row tables of ``count`` tile columns (``x_axis``) or rows from tile ``first`` of the picture."""
+        key = (x_axis, first, count)
+        if key not in self._rows:
+            if len(self._rows) > 16:
+                for tex in self._rows.values():
+                    tex.release()
+                self._rows.clear()
+            base = (self.x0 if x_axis else self.y0) + first
+            k = np.arange(count, dtype=np.int64)
+            out = np.empty((2, count, 4), dtype=np.uint32)
+            for i, t in enumerate(self.tables):
+                res = (base % t.size + k) % t.size
+                out[i // 4, :, i % 4] = t[res] if x_axis else res
+            self._rows[key] = self._int_texture(out, 4)
+        return self._rows[key]
+
+    def _program(self, kind: str):
+        if kind not in self._programs:
+            src = {"ids": _FRAGMENT_IDS, "direct": _FRAGMENT_DIRECT, "two_pass": _FRAGMENT_TWO_PASS}[kind]
+            prog = self.ctx.program(vertex_shader=_VERTEX, fragment_shader=src)
+            units = {"u_perm": 0, "u_px": 1, "u_ym": 2, "u_red": 3, "u_where": 4, "u_atlas": 5, "u_ids": 6}
+            for name, unit in units.items():
+                if name in prog:
+                    prog[name].value = unit
+            if "u_colors" in prog:
+                prog["u_colors"].value = self.colors
+            if "u_grid" in prog:
+                prog["u_grid"].value = self.colors**2
+                prog["u_lod"].value = float(np.log2(self.atlas.tile / self.tile_px))
+            self._programs[kind] = (prog, self.ctx.vertex_array(prog, [(self._quad, "2f", "in_pos")]))
+        return self._programs[kind]
+
+    def _draw(self, kind: str, fbo, offset, tile_px: int, first, count, ids=None) -> None:
+        """One pass into ``fbo``; ``offset`` is its lower-left pixel, ``first``/``count`` its tiles."""
+        prog, vao = self._program(kind)
+        prog["u_offset"].value = tuple(offset)
+        prog["u_first"].value = tuple(first)
+        prog["u_tile_px"].value = tile_px
+        fbo.use()
+        if kind != "two_pass":
+            self._perm.use(0)
+            self._row_tables(first[0], count[0] + 1, True).use(1)
+            self._row_tables(first[1], count[1] + 1, False).use(2)
+            self._red.use(3)
+        if kind != "ids":
+            self._where.use(4)
+            self._atlas.use(5)
+        if ids is not None:
+            ids.use(6)
+        vao.render(mode=self.ctx.TRIANGLE_STRIP)
+
+    def _check_pass(self, width, height) -> tuple[int, int]:
+        w, h = check_int(width, "width", 1), check_int(height, "height", 1)
+        if w > self.max_pass or h > self.max_pass:
+            raise InvalidProblem(f"one render pass is at most {self.max_pass} px each way; got {w}x{h}")
+        return w, h
+
+    def _need_atlas(self) -> None:
+        if self.atlas is None:
+            raise InvalidProblem("this texture mapper has no atlas (made with colors= only): pass an Atlas")
+
+    def tile_ids(self, width: int, height: int) -> np.ndarray:
+        """``(height, width)`` uint32 tile of each pixel, row 0 at the top, hashed per fragment."""
+        w, h = self._check_pass(width, height)
+        tex = self.ctx.texture((w, h), 1, dtype="u4")
+        fbo = self.ctx.framebuffer(color_attachments=[tex])
+        try:
+            n = ((w - 1) // self.tile_px + 1, (h - 1) // self.tile_px + 1)
+            self._draw("ids", fbo, (0, 0), self.tile_px, (0, 0), n)
+            return np.frombuffer(fbo.read(components=1, dtype="u4"), dtype=np.uint32).reshape(h, w)[::-1].copy()
+        finally:
+            fbo.release()
+            tex.release()
+
+    def _pass(self, fbo, offset, ids_fbo=None) -> None:
+        """Draw the picture's pixels ``offset + [0, fbo.size)`` (GL coordinates) into ``fbo``."""
+        (ox, oy), (w, h), t = offset, fbo.size, self.tile_px
+        first = (ox // t, oy // t)
+        count = ((ox + w - 1) // t - first[0] + 1, (oy + h - 1) // t - first[1] + 1)
+        if not self.two_pass:
+            self._draw("direct", fbo, offset, t, first, count)
+            return
+        self._draw("ids", ids_fbo, first, 1, first, count)
+        self._draw("two_pass", fbo, offset, t, first, count, ids=ids_fbo.color_attachments[0])
+
+    def _ids_target(self, w: int, h: int):
+        t = self.tile_px
+        n = (min(self.max_pass, (w - 1) // t + 2), min(self.max_pass, (h - 1) // t + 2))
+        return self.ctx.framebuffer(color_attachments=[self.ctx.texture(n, 1, dtype="u4")])
+
+    def frame(self, width: int, height: int):
+        """A render target and a function drawing one frame of the picture's lower-left pass into it."""
+        w, h = self._check_pass(width, height)
+        self._need_atlas()
+        fbo = self.ctx.simple_framebuffer((w, h), components=4)
+        ids = self._ids_target(w, h)
+
+        def draw() -> None:
+            self._pass(fbo, (0, 0), ids)
+
+        return fbo, draw
+
+    def bands(self, width: int, height: int):
+        """The picture as ``(rows, width, 4)`` uint8 bands from the top.
+
+        Each render pass is at most :func:`max_render_size` pixels each way (and about 16
+        million pixels); wider pictures take several passes per band.
+        """
+        self._need_atlas()
+        w, h = check_int(width, "width", 1), check_int(height, "height", 1)
+        band_h = max(1, min(self.max_pass, h, (1 << 24) // min(w, self.max_pass)))
+        pass_w = min(self.max_pass, w)
+        ids = self._ids_target(pass_w, band_h)
+        fbos: dict = {}
+        try:
+            for top in range(0, h, band_h):
+                bh = min(band_h, h - top)
+                band = np.empty((bh, w, 4), dtype=np.uint8)
+                for left in range(0, w, pass_w):
+                    pw = min(pass_w, w - left)
+                    if (pw, bh) not in fbos:
+                        fbos[(pw, bh)] = self.ctx.simple_framebuffer((pw, bh), components=4)
+                    fbo = fbos[(pw, bh)]
+                    self._pass(fbo, (left, h - top - bh), ids)
+                    px = np.frombuffer(fbo.read(components=4), dtype=np.uint8).reshape(bh, pw, 4)
+                    band[:, left:left + pw] = px[::-1]
+                yield band
+        finally:
+            for fbo in fbos.values():
+                release(fbo)
+            release(ids)
+
+    def image(self, width: int, height: int) -> np.ndarray:
+        """The whole picture, ``(height, width, 4)`` uint8, row 0 at the top."""
+        return np.concatenate(list(self.bands(width, height)), axis=0)

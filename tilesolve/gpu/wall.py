@@ -1,0 +1,467 @@
+"""The procedural wall of Derouet-Jourdan, Salvati and Jonchier as a shader (004 §4.2-4.3, App. B, §5.2).
+
+Edge colours
+------------
+The GLSL function ``wall_tile`` is :class:`tilesolve.constructive.walls` ``_ScalarWall.tile``
+written out for the GPU: the FNV-1a/xorshift64* hashes of 004 §4.2 on 64-bit integers
+(``GL_ARB_gpu_shader_int64``; the paper fell back to float hashes for lack of integers, §5.2),
+the multiply-shift reductions (``umulExtended``), procedural dappling (§4.3) and the 2x2 block
+solver of App. B (its table, :data:`~tilesolve.constructive.walls.APPENDIX_B`, compiled into the
+shader). Every cell's leg colours ``(W, N, E, S)`` equal
+:func:`~tilesolve.constructive.walls.wall_window` bit for bit, anywhere on the 63-bit lattice:
+coordinates are the picture's origin (64-bit, from the CPU) plus small non-negative offsets,
+so every modulo the shader takes is of a non-negative 32-bit number.
+
+Bricks
+------
+Leg colour ``c`` puts the brick edge crossing that side of the cell at ``(c + 1) / (nc + 1)``
+of it (as :mod:`tilesolve.io.svg_board` draws walls): a horizontal tile (``W = E``) has a
+horizontal mortar line across the cell and two half vertical ones, a vertical tile the converse.
+Each brick holds exactly one lattice point (the corners of the four cells around it), which
+serves as the brick's id; its rectangle is fixed by the four edges that meet at that point,
+two of them legs of the fragment's cell and two of the cell diagonally across the point. Per
+fragment the shader writes the brick, the distance to the brick's border (in cells), the UV of
+the fragment in the brick's rectangle (004 Fig. 10, Cartesian) and a colour: mortar near the
+border, otherwise a brick colour varied by a fourth hash stream of the brick id (004 Fig. 9 b).
+
+Passes
+------
+``per_fragment=False`` (default): a first pass computes each cell's legs once (one fragment per
+cell) into an RGBA8UI texture, the second shades the pixels from it. ``per_fragment=True``
+evaluates ``wall_tile`` in every fragment (twice: the cell and its diagonal neighbour), as 004
+§5.2 describes. Both give the same picture. Multisampling renders into a multisample target
+with per-sample shading and resolves it; the sample counts are those the context allows
+(Mesa llvmpipe: 1, 2, 4).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from tilesolve.constructive.hashes import FnvXorshift, check_int, check_window
+from tilesolve.constructive.walls import APPENDIX_B, SOURCES, dappling_period
+from tilesolve.errors import InvalidProblem
+from tilesolve.gpu.context import gpu_context, max_render_size, release
+from tilesolve.gpu.texture import DIV_GLSL
+
+__all__ = ["SAMPLE_COUNTS", "WallRenderer", "allowed_samples"]
+
+#: The sample counts of 004 Table 1 (and 4, which llvmpipe offers).
+SAMPLE_COUNTS = (1, 2, 4, 8, 16, 32)
+#: Extra cells around a pass: the dappling neighbours two cells away and the brick's diagonal cell.
+_MARGIN = 4
+
+
+def _option_glsl() -> str:
+    """App. B as GLSL constants: ``NOPT[case]`` and ``OPT[3 * case + option]`` (indices into :data:`SOURCES`)."""
+    nopt, opt = [], []
+    for case in range(16):
+        fills = APPENDIX_B[format(case, "04b")]
+        nopt.append(len(fills))
+        for k in range(3):
+            f = fills[k] if k < len(fills) else fills[0]
+            opt.append("ivec4(" + ", ".join(str(SOURCES.index(s)) for s in f) + ")")
+    return (f"const uint NOPT[16] = uint[16]({', '.join(f'{n}u' for n in nopt)});\n"
+            f"const ivec4 OPT[48] = ivec4[48]({', '.join(opt)});\n")
+
+
+_HEADER = "#version 450\n#extension GL_ARB_gpu_shader_int64 : require\n"
+
+WALL_GLSL = """
+uniform uvec2 u_basis[4];    // FNV-1a states after seed and stream (streams 0 H, 1 V, 2 option, 3 colour)
+uniform uvec2 u_origin[2];   // the 64-bit cell (I0, J0) of local (0, 0); I0, J0 are multiples of 4
+uniform uint u_nc;           // colours nc
+uniform int u_p;             // dappling period P (0: no limit)
+uniform bool u_fixed;        // odd max_line: one checkerboard type
+uniform int u_dres;          // (I0 - J0) % P + P * pad, so that u_dres + i - j >= 0 for local i, j
+
+""" + _option_glsl() + """
+// FNV-1a over the 32-bit words of x and y, then xorshift64* (004 §4.2); the high 32 bits.
+uint raw(int k, int i, int j) {
+    uint64_t x = packUint2x32(u_origin[0]) + uint64_t(i), y = packUint2x32(u_origin[1]) + uint64_t(j);
+    const uint64_t P = 0x100000001B3UL;
+    uint64_t h = packUint2x32(u_basis[k]);
+    h = (h ^ (x & 0xFFFFFFFFUL)) * P;
+    h = (h ^ (x >> 32)) * P;
+    h = (h ^ (y & 0xFFFFFFFFUL)) * P;
+    h = (h ^ (y >> 32)) * P;
+    h ^= h >> 12;
+    h ^= h << 25;
+    h ^= h >> 27;
+    return unpackUint2x32(h * 0x2545F4914F6CDD1DUL).y;
+}
+
+uint reduce(uint r, uint k) { uint hi, lo; umulExtended(r, k, hi, lo); return hi; }
+
+uint d1(uint r, uint c) { uint m = reduce(r, u_nc - 1u); return m < c ? m : m + 1u; }
+
+uint d2(uint r, uint c1, uint c2) {
+    if (c1 == c2) return d1(r, c1);
+    uint m = reduce(r, u_nc - 2u), lo = min(c1, c2), hi = max(c1, c2);
+    return m < lo ? m : (m < hi - 1u ? m + 1u : m + 2u);
+}
+
+bool diagonal(int i, int j) {   // block (i, j) is a checkerboard
+    if (u_p == 2) return true;
+    if (u_p < 2) return false;
+    int a = u_dres + i - j;
+    return a - u_p * floor_div(ivec2(a, 0), u_p).x == 0;
+}
+
+uint hc(int i, int j) { return reduce(raw(0, i, j), u_nc); }
+uint vc(int i, int j) { return reduce(raw(1, i, j), u_nc); }
+
+uint h1(int i, int j) {   // h'(i, j), even j
+    uint r = raw(0, i, j);
+    if (u_p == 2) return (j & 3) == 0 ? reduce(r, u_nc) : d2(r, hc(i, j - 2), hc(i, j + 2));
+    if (u_p > 2 && diagonal(i & ~1, j)) return d1(r, hc(i, j + 2));
+    return reduce(r, u_nc);
+}
+
+uint v1(int i, int j) {   // v'(i, j), even i
+    uint r = raw(1, i, j);
+    if (u_p == 2) return (i & 3) == 0 ? reduce(r, u_nc) : d2(r, vc(i - 2, j), vc(i + 2, j));
+    if (u_p > 2 && diagonal(i, j & ~1)) return d1(r, vc(i + 2, j));
+    return reduce(r, u_nc);
+}
+
+// Leg colours (W, N, E, S) of local cell (i, j): the 2x2 block, its App. B case and filling.
+uvec4 wall_tile(int i, int j) {
+    int bi = i & ~1, bj = j & ~1;
+    uint o[8] = uint[8](v1(bi, bj + 1), v1(bi + 2, bj + 1), h1(bi, bj), h1(bi, bj + 2),
+                        v1(bi, bj), v1(bi + 2, bj), h1(bi + 1, bj), h1(bi + 1, bj + 2));
+    int c = 8 * int(o[3] == o[2]) + 4 * int(o[6] == o[7]) + 2 * int(o[0] == o[1]) + int(o[4] == o[5]);
+    uint option = (u_fixed && diagonal(bi, bj)) ? 0u : reduce(raw(2, bi, bj), NOPT[c]);
+    ivec4 s = OPT[3 * c + int(option)];
+    bool east = (i & 1) == 1, north = (j & 1) == 1;
+    // Slot 0 vt1 (helper vd2T), 1 hl1 (hd2L), 2 vb1 (vd2B), 3 hr1 (hd2R): only the two this cell needs.
+    uint a, b;
+    if (!north) {
+        a = s.z < 8 ? o[s.z] : d2(raw(1, bi + 1, bj), o[4], o[5]);                 // vb1
+        b = east ? (s.w < 8 ? o[s.w] : d2(raw(0, bi + 1, bj + 1), o[6], o[7]))      // hr1
+                 : (s.y < 8 ? o[s.y] : d2(raw(0, bi, bj + 1), o[3], o[2]));         // hl1
+        return east ? uvec4(a, b, o[5], o[6]) : uvec4(o[4], b, a, o[2]);
+    }
+    a = s.x < 8 ? o[s.x] : d2(raw(1, bi + 1, bj + 1), o[0], o[1]);                  // vt1
+    b = east ? (s.w < 8 ? o[s.w] : d2(raw(0, bi + 1, bj + 1), o[6], o[7]))          // hr1
+             : (s.y < 8 ? o[s.y] : d2(raw(0, bi, bj + 1), o[3], o[2]));             // hl1
+    return east ? uvec4(a, o[7], o[1], b) : uvec4(o[0], o[3], a, b);
+}
+"""
+
+_VERTEX = """
+#version 450
+in vec2 in_pos;
+void main() { gl_Position = vec4(in_pos, 0.0, 1.0); }
+"""
+
+#: First pass: one fragment per cell (local cell = fragment + u_first): its legs, and the colour
+#: hash of its SW lattice point (the brick of that point).
+_FRAGMENT_CELLS = _HEADER + DIV_GLSL + WALL_GLSL + """
+uniform ivec2 u_first;
+layout(location = 0) out uvec4 f_legs;
+layout(location = 1) out uint f_shade;
+void main() {
+    ivec2 c = ivec2(gl_FragCoord.xy) + u_first;
+    f_legs = wall_tile(c.x, c.y);
+    f_shade = raw(3, c.x, c.y);
+}
+"""
+
+#: Second pass (or the only one, with PER_FRAGMENT): the bricks, per fragment or per sample.
+_SHADE_GLSL = """
+uniform int u_cell_px;       // pixels per cell side
+uniform ivec2 u_offset;      // this pass's lower-left pixel in the picture
+uniform ivec2 u_local0;      // local cell of the picture's SW cell
+uniform float u_mortar;      // half width of the mortar, in cells
+uniform usampler2D u_cells;  // first pass: legs of local cells u_first + texel
+uniform usampler2D u_shades; // first pass: colour hash of the lattice point u_first + texel
+uniform ivec2 u_first;
+layout(location = 0) out vec4 f_colour;
+#ifdef DATA
+layout(location = 1) out ivec2 f_brick;   // the brick's lattice point, relative to the picture's SW cell
+layout(location = 2) out vec4 f_geom;     // distance to the border (cells), u, v, 1 if horizontal tile
+#endif
+
+uvec4 legs(ivec2 c) {
+#ifdef PER_FRAGMENT
+    return wall_tile(c.x, c.y);
+#else
+    return texelFetch(u_cells, c - u_first, 0);
+#endif
+}
+
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy) + u_offset;
+    ivec2 cell = floor_div(p, u_cell_px);
+#ifdef SAMPLES
+    vec2 sub = gl_SamplePosition;
+#else
+    vec2 sub = vec2(0.5);
+#endif
+    vec2 f = (vec2(p - cell * u_cell_px) + sub) / float(u_cell_px);   // in the cell, from its SW corner
+    ivec2 c = cell + u_local0;
+    uvec4 t = legs(c);
+    float k = float(u_nc + 1u);
+    vec4 pos = (vec4(t) + 1.0) / k;   // where each leg's brick edge crosses its side
+    bool horizontal = t.x == t.z;
+    float ft = 1.0 - f.y;            // from the top of the cell, as the legs' positions count
+    bool upper, right;
+    if (horizontal) {
+        upper = ft < pos.x;
+        right = f.x >= (upper ? pos.y : pos.w);
+    } else {
+        right = f.x >= pos.y;
+        upper = ft < (right ? pos.z : pos.x);
+    }
+    ivec2 corner = ivec2(right ? 1 : 0, upper ? 1 : 0);   // the brick's lattice point: c + corner
+    uvec4 u = legs(c + 2 * corner - 1);                    // the cell diagonally across it
+    // Edges at the point (I, J): H[I-1, J], H[I, J], V[I, J], V[I, J-1].
+    uint hl, hr, vt, vb;
+    if (corner.x == corner.y) {   // this cell and its neighbour are LL and UR
+        uvec4 ll = corner.x == 1 ? t : u, ur = corner.x == 1 ? u : t;
+        hl = ll.y; hr = ur.w; vt = ur.x; vb = ll.z;
+    } else {                      // UL and LR
+        uvec4 ul = corner.x == 1 ? t : u, lr = corner.x == 1 ? u : t;
+        hl = ul.w; hr = lr.y; vt = ul.z; vb = lr.x;
+    }
+    vec2 q = f - vec2(corner);                            // relative to the lattice point
+    vec2 lo = vec2(-1.0 + (float(hl) + 1.0) / k, -(float(vb) + 1.0) / k);
+    vec2 hi = vec2((float(hr) + 1.0) / k, 1.0 - (float(vt) + 1.0) / k);
+    vec2 uv = (q - lo) / (hi - lo);
+    float dist = min(min(q.x - lo.x, hi.x - q.x), min(q.y - lo.y, hi.y - q.y));
+    ivec2 brick = c + corner - u_local0;
+#ifdef PER_FRAGMENT
+    uint shade = raw(3, c.x + corner.x, c.y + corner.y);
+#else
+    uint shade = texelFetch(u_shades, c + corner - u_first, 0).r;
+#endif
+    vec3 base = vec3(0.60, 0.27, 0.17) * (0.75 + 0.45 * float(shade >> 24) / 255.0)
+              + vec3(0.06, 0.03, 0.0) * float((shade >> 16) & 255u) / 255.0;
+    float edge = smoothstep(u_mortar, u_mortar + 0.06, dist);
+    vec3 mortar = vec3(0.78, 0.76, 0.72);
+    f_colour = vec4(mix(mortar, base * (0.8 + 0.2 * smoothstep(0.0, 0.25, dist)), edge), 1.0);
+#ifdef DATA
+    f_brick = brick;
+    f_geom = vec4(dist, uv, horizontal ? 1.0 : 0.0);
+#endif
+}
+"""
+
+
+def allowed_samples(ctx=None) -> tuple[int, ...]:
+    """The sample counts of :data:`SAMPLE_COUNTS` this context can render (llvmpipe: 1, 2, 4)."""
+    ctx = ctx or gpu_context()
+    return tuple(s for s in SAMPLE_COUNTS if s <= max(1, int(ctx.max_samples)))
+
+
+def _uvec2(v: int) -> tuple[int, int]:
+    v &= (1 << 64) - 1
+    return v & 0xFFFFFFFF, v >> 32
+
+
+class WallRenderer:
+    """Renders pictures of the procedural wall (004) on the GPU.
+
+    Pixel ``(px, py)`` of a ``W x H`` picture (``py`` from the top) lies in cell
+    ``(x0 + px // cell_px, y0 + (H - 1 - py) // cell_px)`` of
+    :func:`~tilesolve.constructive.walls.wall_window` (``j`` grows northwards).
+
+    Examples
+    --------
+    >>> from tilesolve.constructive.walls import wall_window
+    >>> r = WallRenderer(colors=3, max_line=4, seed=2, origin=(-7, 3))
+    >>> bool((r.cell_legs(10, 6) == wall_window(-7, 3, 10, 6, colors=3, max_line=4, seed=2)).all())
+    True
+    """
+
+    def __init__(self, *, colors: int = 3, max_line: int | None = None, seed: int = 0, origin=(0, 0),
+                 cell_px: int = 32, samples: int = 1, per_fragment: bool = False, mortar: float = 0.04) -> None:
+        self.nc = check_int(colors, "colors", 3)
+        if self.nc > 127:
+            raise InvalidProblem(f"tilesolve draws walls with at most 127 colours, got {self.nc}")
+        self.period = dappling_period(max_line)
+        self.fixed = max_line is not None and int(max_line) % 2 == 1
+        self.seed = check_int(seed, "seed", 0)
+        if self.seed >= 1 << 64:
+            raise InvalidProblem(f"seed must be below 2**64, got {self.seed}")
+        x0, y0 = origin
+        self.x0, self.y0, _, _ = check_window(x0, y0, 1, 1, what="wall window")
+        self.cell_px = check_int(cell_px, "cell size", 1)
+        self.per_fragment = bool(per_fragment)
+        self.mortar = float(mortar)
+        self.ctx = gpu_context()
+        self.max_pass = max_render_size(self.ctx)
+        s = check_int(samples, "samples", 1)
+        if s not in SAMPLE_COUNTS:
+            raise InvalidProblem(f"samples must be one of {', '.join(map(str, SAMPLE_COUNTS))}, got {s}")
+        allowed = allowed_samples(self.ctx)
+        if s not in allowed:
+            raise InvalidProblem(f"this OpenGL context ({self.ctx.info['GL_RENDERER']}) renders at most "
+                                 f"{allowed[-1]} samples per pixel; got {s}")
+        self.samples = s
+        self.basis = [FnvXorshift(self.seed, k).basis for k in range(4)]
+        # Local cell coordinates start at a multiple of 4 a margin south-west of the picture.
+        self.i0 = self.x0 - _MARGIN - self.x0 % 4
+        self.j0 = self.y0 - _MARGIN - self.y0 % 4
+        self.local0 = (self.x0 - self.i0, self.y0 - self.j0)
+        if self.x0 + (1 << 31) >= 1 << 62 or self.y0 + (1 << 31) >= 1 << 62:
+            raise InvalidProblem("the wall picture must stay inside |cell coordinates| < 2**62")
+        self._quad = self.ctx.buffer(np.array([-1, -1, 1, -1, -1, 1, 1, 1], dtype="f4").tobytes())
+        self._programs: dict = {}
+
+    def _program(self, kind: str):
+        if kind not in self._programs:
+            defines = ""
+            if kind == "cells":
+                src = _FRAGMENT_CELLS
+            else:
+                if self.per_fragment:
+                    defines += "#define PER_FRAGMENT\n"
+                if kind == "data":
+                    defines += "#define DATA\n"
+                if kind == "colour" and self.samples > 1:
+                    defines += "#define SAMPLES\n"
+                src = _HEADER + defines + DIV_GLSL + WALL_GLSL + _SHADE_GLSL
+            prog = self.ctx.program(vertex_shader=_VERTEX, fragment_shader=src)
+            if "u_basis" in prog:  # the compiler drops what a pass does not use (streams, uniforms)
+                basis = prog["u_basis"]
+                basis.value = [_uvec2(b) for b in self.basis[:basis.array_length]]
+            p = max(self.period, 1)
+            values = {"u_origin": [_uvec2(self.i0), _uvec2(self.j0)], "u_nc": self.nc, "u_p": self.period,
+                      "u_fixed": self.fixed, "u_dres": (self.i0 - self.j0) % p + p * -(-(1 << 16) // p),
+                      "u_cell_px": self.cell_px, "u_local0": self.local0, "u_mortar": self.mortar, "u_cells": 0,
+                      "u_shades": 1}
+            for name, value in values.items():
+                if name in prog:
+                    prog[name].value = value
+            self._programs[kind] = (prog, self.ctx.vertex_array(prog, [(self._quad, "2f", "in_pos")]))
+        return self._programs[kind]
+
+    def _check_pass(self, width, height) -> tuple[int, int]:
+        w, h = check_int(width, "width", 1), check_int(height, "height", 1)
+        if w > self.max_pass or h > self.max_pass:
+            raise InvalidProblem(f"one render pass is at most {self.max_pass} px each way; got {w}x{h}")
+        if (w // self.cell_px + 2 * _MARGIN) >= 1 << 15 or (h // self.cell_px + 2 * _MARGIN) >= 1 << 15:
+            raise InvalidProblem("one render pass covers at most 32,000 cells each way")
+        return w, h
+
+    def cell_legs(self, cols: int, rows: int) -> np.ndarray:
+        """``(rows, cols, 4)`` int8 legs ``(W, N, E, S)`` of the picture's cells, row 0 at the top
+        (the first pass alone; :func:`~tilesolve.constructive.walls.wall_window`'s layout)."""
+        w, h = self._check_pass(cols, rows)
+        tex = self.ctx.texture((w, h), 4, dtype="u1")
+        fbo = self.ctx.framebuffer(color_attachments=[tex])
+        try:
+            self._cells(fbo, self.local0)
+            out = np.frombuffer(fbo.read(components=4, dtype="u1"), dtype=np.uint8).reshape(h, w, 4)
+            return out[::-1].astype(np.int8)
+        finally:
+            fbo.release()
+            tex.release()
+
+    def _cells(self, fbo, first) -> None:
+        prog, vao = self._program("cells")
+        prog["u_first"].value = tuple(first)
+        fbo.use()
+        vao.render(mode=self.ctx.TRIANGLE_STRIP)
+
+    def _cells_target(self, w: int, h: int):
+        n = (min(self.max_pass, (w - 1) // self.cell_px + 3), min(self.max_pass, (h - 1) // self.cell_px + 3))
+        return self.ctx.framebuffer(color_attachments=[self.ctx.texture(n, 4, dtype="u1"),
+                                                       self.ctx.texture(n, 1, dtype="u4")])
+
+    def _pass(self, kind: str, fbo, offset, cells_fbo=None) -> None:
+        """Shade the picture's pixels ``offset + [0, fbo.size)`` (GL coordinates) into ``fbo``."""
+        prog, vao = self._program(kind)
+        (ox, oy), (w, h) = offset, fbo.size
+        first = (ox // self.cell_px + self.local0[0] - 1, oy // self.cell_px + self.local0[1] - 1)
+        if cells_fbo is not None:
+            self._cells(cells_fbo, first)
+            cells_fbo.color_attachments[0].use(0)
+            cells_fbo.color_attachments[1].use(1)
+        prog["u_offset"].value = (ox, oy)
+        if "u_first" in prog:
+            prog["u_first"].value = first
+        fbo.use()
+        vao.render(mode=self.ctx.TRIANGLE_STRIP)
+
+    def data(self, width: int, height: int) -> dict:
+        """One sample per pixel, row 0 at the top: ``colour`` (H, W, 4) uint8, ``brick`` (H, W, 2)
+        int32 lattice point of the brick relative to the picture's SW cell, ``distance``, ``u``,
+        ``v`` (float32, cells and brick fractions) and ``horizontal`` (bool, the cell's tile)."""
+        w, h = self._check_pass(width, height)
+        texs = [self.ctx.texture((w, h), 4), self.ctx.texture((w, h), 2, dtype="i4"),
+                self.ctx.texture((w, h), 4, dtype="f4")]
+        fbo = self.ctx.framebuffer(color_attachments=texs)
+        cells = None if self.per_fragment else self._cells_target(w, h)
+        try:
+            self._pass("data", fbo, (0, 0), cells)
+            colour = np.frombuffer(fbo.read(components=4, attachment=0), np.uint8).reshape(h, w, 4)
+            brick = np.frombuffer(fbo.read(components=2, attachment=1, dtype="i4"), np.int32).reshape(h, w, 2)
+            geom = np.frombuffer(fbo.read(components=4, attachment=2, dtype="f4"), np.float32).reshape(h, w, 4)
+        finally:
+            fbo.release()
+            for t in texs:
+                t.release()
+            if cells is not None:
+                release(cells)
+        geom = geom[::-1]
+        return {"colour": colour[::-1].copy(), "brick": brick[::-1].copy(), "distance": geom[..., 0].copy(),
+                "u": geom[..., 1].copy(), "v": geom[..., 2].copy(), "horizontal": geom[..., 3] > 0.5}
+
+    def _targets(self, w: int, h: int):
+        """``(draw target, resolved target or None)`` of a ``w x h`` pass."""
+        if self.samples == 1:
+            return self.ctx.simple_framebuffer((w, h), components=4), None
+        ms = self.ctx.framebuffer(color_attachments=[self.ctx.renderbuffer((w, h), 4, samples=self.samples)])
+        return ms, self.ctx.simple_framebuffer((w, h), components=4)
+
+    def frame(self, width: int, height: int):
+        """A render target and a function drawing one frame (the picture's lower-left pass) into it."""
+        w, h = self._check_pass(width, height)
+        target, resolved = self._targets(w, h)
+        cells = None if self.per_fragment else self._cells_target(w, h)
+
+        def draw() -> None:
+            self._pass("colour", target, (0, 0), cells)
+            if resolved is not None:
+                self.ctx.copy_framebuffer(resolved, target)
+
+        return resolved or target, draw
+
+    def bands(self, width: int, height: int):
+        """The picture as ``(rows, width, 4)`` uint8 RGBA bands from the top (passes as in
+        :meth:`tilesolve.gpu.texture.TextureMapper.bands`)."""
+        w, h = check_int(width, "width", 1), check_int(height, "height", 1)
+        band_h = max(1, min(self.max_pass, h, (1 << 24) // min(w, self.max_pass)))
+        pass_w = min(self.max_pass, w)
+        self._check_pass(pass_w, band_h)
+        cells = None if self.per_fragment else self._cells_target(pass_w, band_h)
+        made: dict = {}
+        try:
+            for top in range(0, h, band_h):
+                bh = min(band_h, h - top)
+                band = np.empty((bh, w, 4), dtype=np.uint8)
+                for left in range(0, w, pass_w):
+                    pw = min(pass_w, w - left)
+                    if (pw, bh) not in made:
+                        made[(pw, bh)] = self._targets(pw, bh)
+                    target, resolved = made[(pw, bh)]
+                    self._pass("colour", target, (left, h - top - bh), cells)
+                    if resolved is not None:
+                        self.ctx.copy_framebuffer(resolved, target)
+                    px = np.frombuffer((resolved or target).read(components=4), np.uint8).reshape(bh, pw, 4)
+                    band[:, left:left + pw] = px[::-1]
+                yield band
+        finally:
+            for pair in made.values():
+                for f in pair:
+                    if f is not None:
+                        release(f)
+            if cells is not None:
+                release(cells)
+
+    def image(self, width: int, height: int) -> np.ndarray:
+        """The whole picture, ``(height, width, 4)`` uint8, row 0 at the top."""
+        return np.concatenate(list(self.bands(width, height)), axis=0)
