@@ -28,13 +28,11 @@ _DIRECTIONS = ("vertical", "horizontal")
 
 def _rows(hists) -> list[dict]:
     """One table row per generator, limit and direction."""
-    from tilesolve.constructive.wall_stats import clamp_numbers
-
     out = []
     for h in hists:
         for d in _DIRECTIONS:
             counts = h.counts(d)
-            c = clamp_numbers(counts)
+            c = h.clamp(d)
             out.append({"method": h.method, "n": h.n, "direction": d, "lines": c["lines"],
                         "longest": h.longest[0 if d == "horizontal" else 1], "at_n": c["at_n"],
                         "at_n_minus_1": c["at_n_minus_1"], "ratio": c["ratio"],

@@ -178,6 +178,10 @@ class LineHistogram:
         c = self.counts(direction)
         return c / max(1, int(c.sum()))
 
+    def clamp(self, direction: str) -> dict[str, float]:
+        """:func:`clamp_numbers` of the ``horizontal`` or ``vertical`` counts."""
+        return clamp_numbers(self.counts(direction))
+
 
 def clamp_numbers(counts) -> dict[str, float]:
     """The clamp test of 004 §5 on a histogram of lengths ``1 .. n``.
