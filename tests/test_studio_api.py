@@ -1,0 +1,258 @@
+"""The studio's HTTP API (tilesolve.studio.app): every endpoint with valid, invalid,
+oversized and concurrent requests, through Starlette's TestClient."""
+
+from __future__ import annotations
+
+import base64
+import json
+import os
+import subprocess
+import sys
+import threading
+import time
+
+import numpy as np
+import pytest
+
+pytest.importorskip("starlette")
+from starlette.testclient import TestClient  # noqa: E402
+
+from tilesolve import family  # noqa: E402
+from tilesolve.studio.app import MAX_BODY, create_app  # noqa: E402
+from tilesolve.studio.jobs import MAX_RUNNING  # noqa: E402
+
+#: A search that runs for minutes: a corner packing with C = 4 by plain SAT (class notes §5.5).
+LONG = {"family": "packing", "values": {"kind": "corner", "colors": 4, "seed": 1}, "method": "sat"}
+
+
+def tiling_of(doc):
+    """(status, tiling) of a solution document, read by its family's codec."""
+    _, codec = family.codec_of(doc["format"])
+    _, sol = codec.read(doc, "solution.json")
+    return sol.status, np.asarray(sol.tiling)
+
+
+@pytest.fixture(scope="module")
+def client():
+    with TestClient(create_app(warm=False)) as c:
+        yield c
+
+
+def solve(client, body, wait=60.0):
+    r = client.post("/api/solve", json=body)
+    assert r.status_code == 200, r.text
+    job = r.json()["id"]
+    t0 = time.perf_counter()
+    while True:
+        state = client.get(f"/api/jobs/{job}?wait=2").json()
+        if state["state"] != "running" or time.perf_counter() - t0 > wait:
+            return state
+
+
+def test_the_page_and_its_scripts_are_served(client):
+    r = client.get("/")
+    assert r.status_code == 200 and "tilesolve studio" in r.text
+    assert client.get("/static/studio.js").status_code == 200
+
+
+def test_every_family_with_a_form_is_listed(client):
+    listed = {f["name"]: f for f in client.get("/api/families").json()["families"]}
+    assert set(listed) == {f.name for f in family.families() if f.form is not None}
+    assert {"dappled", "board", "packing", "stochastic"} <= set(listed)
+    assert listed["dappled"]["methods"][0] == "auto"
+    assert any(f["kind"] == "cells" for f in listed["dappled"]["fields"])
+    assert listed["board"]["view"] and listed["stochastic"]["view"] and not listed["dappled"]["view"]
+
+
+def test_check_describes_the_problem_and_the_painted_grids(client):
+    r = client.post("/api/check", json={"family": "dappled", "values": {"size": "7x5", "tiles": 3, "seed": 4}})
+    assert r.status_code == 200
+    doc = r.json()
+    assert doc["describe"].startswith("7x5 grid, |T|=3")
+    assert doc["cells"]["fixed"] == [5, 7, 0, 2]
+    assert doc["command"].endswith("--seed 4 -o solution.json")
+
+
+@pytest.mark.parametrize("body, message", [
+    ({"family": "nope"}, "unknown family 'nope'"),
+    ({"family": "dappled", "values": {"cond": "H0=x"}}, "cannot read condition"),
+    ({"family": "dappled", "values": {"size": "0x3"}}, "must be at least 1x1"),
+    ({"family": "dappled", "values": {"tiles": 2.5}}, "must be a whole number"),
+    ({"family": "dappled", "values": {"path": "/etc/passwd"}}, "unknown field 'path'"),
+    ({"family": "dappled", "values": {"fixed": [[0, 1]]}}, "the grid must be 16x12"),
+    ({"family": "dappled", "values": {"size": "2x1", "fixed": [[0, 7]]}}, "cell value 7 is outside 0..1"),
+    ({"family": "dappled", "method": "magic"}, "unknown method 'magic'"),
+    ({"family": "dappled", "time_limit": -1}, "time limit must be"),
+    ({"family": "board", "values": {"colors": 2}}, "must be in 3..8"),
+    ({"family": "board", "values": {"boundary": "1,2"}}, "boundary legs"),
+    ({"family": "stochastic", "values": {"kind": "hex"}}, "must be one of wang, corner"),
+])
+def test_bad_input_is_one_line_400(client, body, message):
+    for path in ("/api/check", "/api/solve"):
+        r = client.post(path, json=body)
+        assert r.status_code == 400, (path, r.text)
+        error = r.json()["error"]
+        assert message in error and "\n" not in error
+
+
+def test_the_messages_are_the_clis(client):
+    from tilesolve.errors import InvalidProblem
+    from tilesolve.model.dappled import parse_condition
+
+    with pytest.raises(InvalidProblem) as exc:
+        parse_condition("H0=x")
+    r = client.post("/api/check", json={"family": "dappled", "values": {"cond": "H0=x"}})
+    assert r.json()["error"] == str(exc.value)
+
+
+def test_sizes_are_refused_before_allocation(client):
+    r = client.post("/api/check", json={"family": "dappled", "values": {"size": "100000x100000"}})
+    assert r.status_code == 400 and "at most 4,194,304 here" in r.json()["error"]
+    r = client.post("/api/check", content=b"{" + b" " * (MAX_BODY + 1) + b"}",
+                    headers={"content-type": "application/json"})
+    assert r.status_code == 413 and "request too large" in r.json()["error"]
+    assert client.post("/api/check", content=b"[1, 2", headers={"content-type": "application/json"}).status_code == 400
+    r = client.get("/api/view/board.png?x=0&y=0&n=100000")
+    assert r.status_code == 400 and "1..128 cells" in r.json()["error"]
+
+
+@pytest.mark.parametrize("name", ["dappled", "board", "packing", "stochastic"])
+def test_each_family_solves_verifies_and_exports(client, name):
+    state = solve(client, {"family": name, "values": {"seed": 3}})
+    assert state["state"] == "done", state
+    res = state["result"]
+    assert res["status"] == "sat" and res["seed"] == 3
+    assert res["verdict"][0].startswith("ok: solution.json is a valid tiling")
+    assert family.verify_document(json.loads(res["json"])).ok
+    assert res["picture"]["format"] in ("svg", "png")
+    job = state["id"]
+    assert client.get(f"/api/jobs/{job}/solution.json").text == res["json"]
+    svg = client.get(f"/api/jobs/{job}/picture.svg")
+    assert svg.status_code == 200 and "<svg" in svg.text[:400]
+    png = client.get(f"/api/jobs/{job}/picture.png")
+    assert png.status_code == 200 and png.content[:8] == b"\x89PNG\r\n\x1a\n"
+    assert client.get(f"/api/jobs/{job}/secret.txt").status_code == 400
+    assert client.get("/api/jobs/j999999").status_code == 400
+
+
+def test_large_tilings_come_as_png(client):
+    state = solve(client, {"family": "dappled", "values": {"size": "64x64", "seed": 1}})
+    assert state["result"]["picture"]["format"] == "png"
+    assert base64.b64decode(state["result"]["picture"]["data"])[:4] == b"\x89PNG"
+
+
+def test_fixed_cells_are_kept(client):
+    fixed = [[-1] * 8 for _ in range(6)]
+    fixed[2][3], fixed[4][5] = 1, 0
+    state = solve(client, {"family": "dappled", "values": {"size": "8x6", "fixed": fixed, "seed": 2}})
+    cells = state["result"]["cells"]
+    assert cells[2][3] == 1 and cells[4][5] == 0
+
+
+def test_closest_tiling_of_a_painted_target(client):
+    target = [[0] * 6 for _ in range(4)]  # all tile 0: breaks H0=2 and V0=2 everywhere
+    state = solve(client, {"family": "dappled", "values": {"size": "6x4", "cond": "H0=2,V0=2", "target": target,
+                                                           "seed": 1}})
+    res = state["result"]
+    assert res["status"] == "optimal" and res["objective"] > 0 and res["method"] == "maxsat"
+
+
+def test_unsat_shows_the_reason(client):
+    state = solve(client, {"family": "dappled", "values": {"size": "3x1", "cond": "H0=1,H1=1", "tiles": 2,
+                                                           "fixed": [[0, 1, 1]], "seed": 1}})
+    res = state["result"]
+    assert res["status"] == "unsat" and res["reason"] and res["picture"] is None
+    assert client.get(f"/api/jobs/{state['id']}/picture.png").status_code == 400
+
+
+def test_clashing_pins_are_unsat_not_an_error(client):
+    state = solve(client, {"family": "packing", "values": {"pins": [[5] * 9] * 9, "seed": 1}})
+    assert state["result"]["status"] == "unsat" and "pinned at" in state["result"]["reason"]
+
+
+def test_cancel_a_long_search_and_the_server_goes_on(client):
+    job = client.post("/api/solve", json=LONG).json()["id"]
+    time.sleep(0.5)
+    assert client.get(f"/api/jobs/{job}").json()["state"] == "running"
+    # a small solve is not blocked by the long one
+    small = solve(client, {"family": "dappled", "values": {"size": "8x8", "seed": 1}}, wait=30)
+    assert small["state"] == "done"
+    state = client.post(f"/api/jobs/{job}/cancel").json()
+    assert state["state"] == "cancelled"
+    assert client.get(f"/api/jobs/{job}/solution.json").status_code == 400
+    assert solve(client, {"family": "dappled", "values": {"size": "8x8", "seed": 1}})["state"] == "done"
+
+
+def test_a_time_limit_gives_unknown(client):
+    state = solve(client, dict(LONG, time_limit=1))
+    assert state["result"]["status"] == "unknown"
+
+
+def test_too_many_solves_are_refused_not_queued(client):
+    jobs = [client.post("/api/solve", json=LONG).json()["id"] for _ in range(MAX_RUNNING)]
+    try:
+        r = client.post("/api/solve", json=LONG)
+        assert r.status_code == 429 and "solves are running" in r.json()["error"]
+    finally:
+        for job in jobs:
+            client.post(f"/api/jobs/{job}/cancel")
+    assert solve(client, {"family": "dappled", "values": {"size": "4x4", "seed": 1}})["state"] == "done"
+
+
+def test_concurrent_requests(client):
+    out = []
+
+    def one(i):
+        r = client.post("/api/check", json={"family": "dappled", "values": {"size": f"{4 + i}x4"}})
+        out.append(r.status_code)
+        out.append(solve(client, {"family": "stochastic", "values": {"seed": i}})["state"])
+
+    threads = [threading.Thread(target=one, args=(i,)) for i in range(4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert sorted(map(str, out)) == ["200"] * 4 + ["done"] * 4
+
+
+def test_view_tiles_agree_where_windows_overlap(client):
+    from PIL import Image
+    import io
+
+    values = json.dumps({"seed": 5, "max_h": 3})
+    a = client.get(f"/api/view/board.png?x=0&y=0&n=8&values={values}")
+    assert a.status_code == 200 and a.headers["content-type"] == "image/png"
+    b = client.get(f"/api/view/board.png?x=4&y=0&n=8&values={values}")
+    ia, ib = (Image.open(io.BytesIO(r.content)).convert("RGB") for r in (a, b))
+    w = ia.width // 8
+    assert ia.crop((4 * w, 0, 8 * w, ia.height)).tobytes() == ib.crop((0, 0, 4 * w, ib.height)).tobytes()
+    assert client.get(f"/api/view/stochastic.png?x=-1000&y=77&n=16&values={json.dumps({'seed': 1})}").status_code == 200
+    r = client.get("/api/view/dappled.png?x=0&y=0&n=8")
+    assert r.status_code == 400 and "no infinite view" in r.json()["error"]
+    assert client.get("/api/view/board.png?x=a").status_code == 400
+    assert client.get("/api/view/board.png?values=%7B").status_code == 400
+
+
+@pytest.mark.parametrize("body", [
+    {"family": "dappled", "values": {"size": "9x7", "cond": "H0=2, V1=3", "tiles": 3, "seed": 11,
+                                     "fixed": [[0] + [-1] * 8] + [[-1] * 9] * 6}},
+    {"family": "board", "values": {"board": "mask", "size": "6x5", "seed": 2, "boundary": "free", "max_h": 3,
+                                   "max_v": 3, "mask": [[1, 1, 1, 1, 1, 1]] * 4 + [[1, 0, 0, 1, 1, 1]]},
+     "method": "sat"},
+    {"family": "board", "values": {"seed": 4}},
+    {"family": "packing", "values": {"kind": "wang", "colors": 2, "seed": 1, "pins": [[3, -1, -1, -1]] + [[-1] * 4] * 3},
+     "method": "sat"},
+    {"family": "stochastic", "values": {"kind": "wang", "set": "compact", "colors": 2, "x0": -3, "y0": 2,
+                                        "seed": 9}},
+])
+def test_the_cli_command_reproduces_the_tiling(client, body, tmp_path):
+    res = solve(client, body)["result"]
+    exe = os.path.join(os.path.dirname(sys.executable), "tilesolve")
+    line = res["command"].replace("tilesolve ", exe + " ", 1) if "&&" not in res["command"] else \
+        res["command"].replace("&& tilesolve ", f"&& {exe} ")
+    run = subprocess.run(["bash", "-c", line], cwd=tmp_path, capture_output=True, text=True)
+    assert run.returncode == 0, (line, run.stderr)
+    ours, theirs = (tiling_of(json.loads(text)) for text in (res["json"], (tmp_path / "solution.json").read_text()))
+    assert ours[0] == theirs[0] and np.array_equal(ours[1], theirs[1])
+    verify = subprocess.run([exe, "verify", "solution.json"], cwd=tmp_path, capture_output=True, text=True)
+    assert verify.returncode == 0, verify.stderr
