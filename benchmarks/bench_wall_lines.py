@@ -34,7 +34,8 @@ def main() -> None:
     side, samples = (128, 2) if args.quick else (256, 8)
     print(f"Line lengths (004 Fig. 22): {side}x{side} walls, seeds 0..{samples - 1}, 3 colours; "
           "shares of lines by length; n/(n-1) = count at n / count at n-1")
-    print(f"{'method':<11}{'n':>3} {'dir':<11}{'lines':>8}{'max':>5}{'at n':>8}{'at n-1':>8}{'n/(n-1)':>9}  shares 1..n")
+    print(f"{'method':<11}{'n':>3} {'dir':<11}{'lines':>8}{'max':>5}{'at n':>8}{'at n-1':>8}{'n/(n-1)':>9}"
+          "  shares 1..n")
     for n in (4, 10):
         for m in LINE_METHODS:
             h = line_statistics(m, n, width=side, height=side, samples=samples, seed=0)

@@ -56,7 +56,8 @@ def test_window_lines_are_counted_once_and_whole():
     want_h, want_v = [], []
     for mask, out in ((hor, want_h), (~hor.T, want_v)):
         line, start, length = runs(mask)
-        keep = (line >= big_pad) & (line < mask.shape[0] - big_pad) & (start >= big_pad) & (start < mask.shape[1] - big_pad)
+        keep = ((line >= big_pad) & (line < mask.shape[0] - big_pad)
+                & (start >= big_pad) & (start < mask.shape[1] - big_pad))
         out.extend(sorted(length[keep].tolist()))
     got_h, got_v = wall_lines(padded, margin=n)
     assert sorted(got_h.tolist()) == want_h and sorted(got_v.tolist()) == want_v
