@@ -183,7 +183,8 @@ class Form:
     build : callable
         ``build(values) -> (problem, options)``: the problem (and the ``options`` of
         :func:`solve`) for checked values; raises :class:`InvalidProblem` with the CLI's messages.
-        ``values`` holds every field (defaults filled in) and ``"seed"`` (an int).
+        ``values`` holds every field (defaults filled in) and ``"seed"`` (an int, drawn when
+        not given: problems with random parts, e.g. a random boundary, use it).
     command : callable
         ``command(values) -> (words, files)``: the words of the ``tilesolve`` command (after
         ``tilesolve``) that poses the same problem, without seed, method and output options,
@@ -217,8 +218,8 @@ class Form:
         out: dict[str, Any] = {}
         for f in self.fields:
             out[f.name] = _field_value(f, given.get(f.name, f.default))
-        seed = given.get("seed", 0)
-        out["seed"] = _check_seed(seed)
+        seed = given.get("seed")
+        out["seed"] = draw_seed() if seed is None else _check_seed(seed)
         for f in self.fields:
             if f.kind == "cells" and out[f.name] is not None:
                 rows, cols, lo, hi = f.extent(out)
@@ -553,6 +554,8 @@ def run_route(fam: Family, problem: Any, method: str | Route, run: RunOptions) -
                 sol = fam.routes[name](problem, run)
         except TimeLimitReached as exc:  # a route out of time while encoding or building
             sol = Solution(Status.UNKNOWN, None, name, None, run.seed, run.deadline.elapsed(), reason=str(exc))
+    if _uncertified(sol) and "sat" in fam.routes and name != "sat":
+        sol = _certify_infeasible(fam, problem, run, name, sol)
     bad = fam.verify(problem, sol.tiling) if sol.status.has_tiling else ()
     if bad and method == "auto" and fam.fallback is not None and name != fam.fallback:
         notes.append(f"{name!r} output failed verification ({len(bad)} violations, first: {bad[0]}); "
@@ -576,6 +579,33 @@ def run_route(fam: Family, problem: Any, method: str | Route, run: RunOptions) -
         seed=run.seed if sol.seed is None else sol.seed,
         renderer=functools.partial(render, problem) if fam.draw is not None else None,
     )
+
+
+def _certify_infeasible(fam: Family, problem: Any, run: RunOptions, name: str, sol: Solution) -> Solution:
+    """CP-SAT's "infeasible" (no proof) re-decided by the family's ``sat`` route with a checked
+    DRAT proof, within what is left of the run's deadline; still ``unknown`` when that fails."""
+    from tilesolve.engine.progress import status_line
+
+    if run.deadline.expired():
+        return sol
+    with status_line(f"{fam.name}: certifying {name!r}'s infeasibility with 'sat'", run.progress):
+        try:
+            cert = fam.routes["sat"](problem, run)
+        except (TimeLimitReached, MethodNotApplicable):
+            return sol
+    if cert.status is Status.UNSAT:
+        return cert.with_note(f"{name!r} (CP-SAT) proved infeasibility without a proof; certified by the 'sat' route")
+    if cert.status.has_tiling:
+        raise InternalError(f"CP-SAT ({name!r}) said infeasible but the 'sat' route found a tiling")
+    return sol.replace(reason=f"{sol.reason}; the 'sat' route could not certify it: {cert.reason}")
+
+
+def _uncertified(sol: Solution) -> bool:
+    """An infeasibility claimed without a proof (CP-SAT's), reported ``unknown``."""
+    from tilesolve.engine.certificates import UNCERTIFIED
+
+    return sol.status is Status.UNKNOWN and (bool(sol.stats.get("cpsat_infeasible"))
+                                             or (sol.reason or "").startswith(UNCERTIFIED))
 
 
 def interrupted(result: Solution | CountResult) -> bool:
@@ -645,13 +675,37 @@ class FileReport:
         return self.exit_code == 0
 
 
-def verify_document(doc: dict, source: str = "<document>") -> FileReport:
+def writing_proofs(directory: str | os.PathLike | None):
+    """Context manager: write each checked unsat proof (CNF + DRAT) to ``directory``
+    (:func:`tilesolve.engine.certificates.writing_proofs`; the CLI's ``--proof-dir``)."""
+    from tilesolve.engine.certificates import writing_proofs as writing
+
+    return writing(directory)
+
+
+def _recheck_proof(sol: Solution, source: str, proof_dir: str | os.PathLike) -> FileReport:
+    """Re-check the proof files an unsat solution names (``tilesolve verify --proof-dir``)."""
+    from tilesolve.verify.drat import check_proof_files
+
+    name, digest = sol.stats.get("proof_name"), sol.stats.get("cnf_sha256")
+    if not isinstance(name, str) or not isinstance(digest, str):
+        return FileReport(1, (f"{source}: status unsat, but the file names no proof files to re-check "
+                              "(solve with --proof-dir DIR to write them)",))
+    ok, lines = check_proof_files(proof_dir, name, digest, sol.stats.get("drat_sha256"))
+    head = (f"ok: {source}: unsat re-checked: the DRAT proof refutes the CNF whose SHA-256 the file records"
+            if ok else f"{source}: the unsat claim is not confirmed by the proof files")
+    return FileReport(0 if ok else 1, (head,) + tuple(f"  {ln}" for ln in lines))
+
+
+def verify_document(doc: dict, source: str = "<document>", proof_dir: str | os.PathLike | None = None) -> FileReport:
     """Check every claim a solution document makes (``tilesolve verify``).
 
     The tiling must pass the family's independent verifier; the status must match the
     file's content (``sat``/``optimal`` need a tiling, ``unsat``/``unknown`` must hold none);
     ``optimal`` needs a problem with an objective and the recorded objective must equal the
-    tiling's value. Field types are checked by the family's codec.
+    tiling's value. Field types are checked by the family's codec. With ``proof_dir``, an
+    ``unsat`` answer's proof files (named in its stats) are re-checked: the CNF's SHA-256 must
+    be the recorded one and the DRAT proof must refute it.
     """
     fam, codec = _identify(doc, source)
     problem, sol = codec.read(doc, source)
@@ -662,6 +716,8 @@ def verify_document(doc: dict, source: str = "<document>") -> FileReport:
     if sol.tiling is None:
         if sol.status.has_tiling:
             false.append(f"status {sol.status.value!r} claims a tiling, but the file holds none")
+        elif proof_dir is not None and sol.status is Status.UNSAT:
+            return _recheck_proof(sol, source, proof_dir)
         else:
             why = f" ({sol.reason})" if sol.reason else ""
             return FileReport(sol.status.exit_code, (f"{source}: status {sol.status.value}{why}; "
@@ -690,11 +746,11 @@ def verify_document(doc: dict, source: str = "<document>") -> FileReport:
     return FileReport(0, (f"ok: {source} is a valid tiling of {what}",))
 
 
-def verify_file(path: str | os.PathLike) -> FileReport:
+def verify_file(path: str | os.PathLike, proof_dir: str | os.PathLike | None = None) -> FileReport:
     """:func:`verify_document` on a file (one-line errors for unreadable or malformed files)."""
     from tilesolve.io.jsonio import read_json
 
-    return verify_document(read_json(path), str(path))
+    return verify_document(read_json(path), str(path), proof_dir)
 
 
 def write_solution(path: str | os.PathLike, problem: Any, solution: Solution) -> None:

@@ -174,6 +174,7 @@ def brick() -> None:
 @opt.seed_opt
 @method_opt
 @opt.time_limit_opt
+@opt.proof_dir_opt
 @line_opts
 @opt.output_opt
 @svg_opt
@@ -317,6 +318,7 @@ def wang() -> None:
 @opt.seed_opt
 @method_opt
 @opt.time_limit_opt
+@opt.proof_dir_opt
 @opt.output_opt
 @svg_opt
 @click.pass_context

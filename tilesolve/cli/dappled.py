@@ -83,6 +83,7 @@ def _summary(problem, sol, written: list[str], extra: list[str]) -> None:
 @method_opt
 @opt.seed_opt
 @opt.time_limit_opt
+@opt.proof_dir_opt
 @opt.initial_opt
 @opt.output_opt
 @opt.picture_options

@@ -175,3 +175,24 @@ grid_opt = click.option(
     "--grid/--no-grid", default=None, help="Draw cell borders  [default: when cells are large enough]"
 )
 picture_options = compose(svg_opt, png_opt, repeat_opt, grid_opt)
+
+
+# ----------------------------------------------------------------------------- proofs
+def _proof_dir(ctx: click.Context, param: click.Parameter, value: str | None) -> str | None:
+    """Write the checked proofs of this command's unsat answers to ``value`` (see --proof-dir)."""
+    if value is not None:
+        from tilesolve.family import writing_proofs
+
+        ctx.with_resource(writing_proofs(value))
+    return value
+
+
+proof_dir_opt = click.option(
+    "--proof-dir",
+    type=click.Path(file_okay=False),
+    metavar="DIR",
+    expose_value=False,
+    callback=_proof_dir,
+    help="Write the CNF and the checked DRAT proof of an unsat answer to DIR (unsat-<digest>.cnf, "
+    ".drat) for any checker; 'tilesolve verify FILE --proof-dir DIR' re-checks them.",
+)

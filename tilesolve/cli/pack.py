@@ -71,6 +71,7 @@ def _parse_fix(items) -> tuple[tuple[int, int, int], ...]:
 @click.option("--fix", "fix", multiple=True, metavar="R,C,T", help="Pin tile T at row R, column C (repeatable).")
 @opt.seed_opt
 @opt.time_limit_opt
+@opt.proof_dir_opt
 @click.option("--workers", type=click.IntRange(1, 256), default=None, metavar="N",
               help="CP-SAT workers; for sat/hybrid/lift/recursive, the processes of the seed portfolio that starts "
                    "beside a first run that has not decided quickly, this one included (1: one seed, reproducible) "

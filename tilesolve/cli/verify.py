@@ -16,8 +16,11 @@ __all__ = ["verify"]
 
 @click.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP)
 @click.argument("file", type=click.Path(dir_okay=False))
+@click.option("--proof-dir", type=click.Path(file_okay=False, exists=True), metavar="DIR", default=None,
+              help="Re-check an unsat answer's proof: DIR holds the .cnf and .drat files the solving "
+              "command's --proof-dir wrote.")
 @click.pass_context
-def verify(ctx, file: str) -> None:
+def verify(ctx, file: str, proof_dir: str | None) -> None:
     """Check that the solution in FILE satisfies its own problem and claims.
 
     Re-checks exactly what the file holds (its problem fields and its tiling) with the
@@ -25,17 +28,24 @@ def verify(ctx, file: str) -> None:
     status must match its content (sat/optimal need a valid tiling, unsat/unknown hold
     none) and a recorded objective must equal the tiling's.
 
+    With --proof-dir, an unsat file's proof is re-checked: the CNF file's SHA-256 must be the
+    one the solution records, the proof's too, and the DRAT proof must refute the CNF
+    (tilesolve's own checker; the files suit drat-trim or any DRAT checker as well).
+
     \b
     Example:
       tilesolve dappled solve --size 12x8 --cond H0=2,V1=2 -o t.json
       tilesolve verify t.json
+      tilesolve dappled solve --size 4x4 --cond H0=1,V0=1 --fix proofdemo.txt -o u.json --proof-dir proofs
+      tilesolve verify u.json --proof-dir proofs
 
-    Exit 0 when the tiling is valid and every claim holds, 1 when a claim is false; a file
-    that records unsat (1) or unknown (3) and holds no tiling exits with its status's code.
+    Exit 0 when the tiling is valid and every claim holds (with --proof-dir: when the unsat
+    proof re-checks), 1 when a claim is false; a file that records unsat (1) or unknown (3)
+    and holds no tiling exits with its status's code.
     """
     from tilesolve.family import verify_file
 
-    report = verify_file(file)
+    report = verify_file(file, proof_dir)
     for line in report.lines:
         click.echo(line)
     ctx.exit(report.exit_code)

@@ -16,6 +16,14 @@ mode, aborts the process on some trivially decided models with presolve off, ort
 "Check failed: heuristics.fixed_search != nullptr"). Optimisation runs keep presolve and the parallel
 portfolio: their optimum value is exact, but which optimal solution is reported may differ
 between runs with several workers (``num_workers=1`` repeats it exactly).
+
+Infeasibility
+-------------
+SAT says unsat only with a checked proof (DESIGN.md), and CP-SAT logs none: an ``INFEASIBLE``
+answer comes back as ``UNKNOWN`` whose reason starts with
+:data:`tilesolve.engine.certificates.UNCERTIFIED`, flagged ``cpsat_infeasible`` in the stats.
+The pipeline (:func:`tilesolve.family.run_route`) then certifies it with the family's ``sat``
+route (a DRAT proof on the family's CNF encoding, checked), or leaves it ``unknown``.
 """
 
 from __future__ import annotations
@@ -24,6 +32,7 @@ import time
 from typing import Sequence
 
 from tilesolve.deadline import Deadline
+from tilesolve.engine.certificates import UNCERTIFIED
 from tilesolve.engine.result import Result, run_interruptible
 from tilesolve.errors import BackendUnavailable, InvalidProblem
 from tilesolve.model.solution import Status
@@ -147,7 +156,9 @@ def solve_cp_model(
                                 if has_objective else None)
         return Result(st, values, rt, None, stats, cost=cost, solver="cp-sat", reason=reason)
     if status == cp_model.INFEASIBLE:
-        return Result(Status.UNSAT, None, rt, None, stats, solver="cp-sat", reason="CP-SAT proved infeasibility")
+        # CP-SAT logs no proof: its word is not an unsat answer (see "Infeasibility").
+        return Result(Status.UNKNOWN, None, rt, None, {**stats, "cpsat_infeasible": True}, solver="cp-sat",
+                      reason=f"{UNCERTIFIED} CP-SAT proved infeasibility, but it logs no proof to check")
     if reason is None:
         reason = (f"time limit of {time_limit:.3g} s reached while solving" if time_limit is not None
                   else "CP-SAT gave up")

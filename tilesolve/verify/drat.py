@@ -63,7 +63,8 @@ import numpy as np
 
 from tilesolve.verify import _drat_kernels as K
 
-__all__ = ["DratResult", "check_drat", "parse_drat", "dimacs_bytes", "cnf_sha256", "formula_arrays",
+__all__ = ["DratResult", "check_drat", "parse_drat", "dimacs_bytes", "cnf_sha256", "formula_arrays", "read_dimacs",
+           "check_proof_files",
            "COMPILE_FROM", "ENGINES"]
 
 ENGINES = ("backward", "forward")
@@ -121,7 +122,8 @@ class DratResult:
 def formula_arrays(formula) -> tuple[np.ndarray, np.ndarray, list[tuple[str, int, int]]]:
     """Flatten a formula into ``(literals, sizes, blocks)``.
 
-    ``formula`` is a list of clauses, an object with ``clauses`` (PySAT's CNF) or one with
+    ``formula`` is a list of clauses, ``(literals, sizes)`` arrays (as :func:`read_dimacs`
+    gives), an object with ``clauses`` (PySAT's CNF) or one with
     ``blocks`` of labelled clauses (each with ``label`` and a 2-D ``lits`` array or a
     ``ragged`` list, as tilesolve's encodings build them). ``blocks`` lists
     ``(label, first clause, count)`` (one unlabelled block for plain lists).
@@ -141,6 +143,9 @@ def formula_arrays(formula) -> tuple[np.ndarray, np.ndarray, list[tuple[str, int
         blocks.append((label, n, len(cls)))
         n += len(cls)
 
+    if isinstance(formula, tuple) and len(formula) == 2 and isinstance(formula[0], np.ndarray):
+        lits, sz = formula  # already flat, as read_dimacs gives it
+        return np.asarray(lits, np.int64), np.asarray(sz, np.int64), [("", 0, len(sz))]
     if hasattr(formula, "blocks"):
         for b in formula.blocks:
             if getattr(b, "lits", None) is not None:
@@ -176,6 +181,61 @@ def dimacs_bytes(formula) -> bytes:
     words[zero] = "0\n"
     body = " ".join(words.tolist()).replace("\n ", "\n") if len(words) else ""
     return f"p cnf {n_vars} {len(sizes)}\n{body}".encode("ascii")
+
+
+def read_dimacs(data: bytes) -> tuple[np.ndarray, np.ndarray]:
+    """``(literals, sizes)`` of a DIMACS CNF text (comments and the header are skipped).
+
+    >>> lits, sizes = read_dimacs(b"c demo\\np cnf 2 2\\n1 -2 0\\n2 0\\n")
+    >>> lits.tolist(), sizes.tolist()
+    ([1, -2, 2], [2, 1])
+    """
+    text = data.decode("ascii")
+    body = "\n".join(ln for ln in text.splitlines() if not ln.lstrip().startswith(("c", "p", "%")))
+    if set(body) - set("0123456789- \t\r\n"):
+        raise ValueError("not a DIMACS CNF file")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        toks = np.fromstring(body, dtype=np.int64, sep=" ") if body.strip() else np.zeros(0, np.int64)
+    if toks.size and toks[-1] != 0:
+        raise ValueError("the last clause does not end with 0")
+    zeros = np.flatnonzero(toks == 0)
+    sizes = np.diff(np.concatenate(([-1], zeros))) - 1
+    return toks[toks != 0], sizes.astype(np.int64)
+
+
+def check_proof_files(directory, name: str, cnf_sha256: str, drat_sha256: str | None = None,
+                      time_limit: float | None = None) -> tuple[bool, list[str]]:
+    """Re-check ``<name>.cnf`` and ``<name>.drat`` in ``directory`` against recorded digests.
+
+    Returns ``(ok, lines)``: the CNF's SHA-256 must equal ``cnf_sha256`` (and the proof's
+    ``drat_sha256`` when given), and the proof must refute the CNF (:func:`check_drat`).
+    """
+    lines: list[str] = []
+    paths = [os.path.join(os.fspath(directory), name + ext) for ext in (".cnf", ".drat")]
+    missing = [p for p in paths if not os.path.isfile(p)]
+    if missing:
+        return False, [f"missing proof file {missing[0]}"]
+    with open(paths[0], "rb") as fh:
+        cnf = fh.read()
+    with open(paths[1], "rb") as fh:
+        proof = fh.read()
+    got = hashlib.sha256(cnf).hexdigest()
+    if got != cnf_sha256:
+        return False, [f"{paths[0]}: SHA-256 {got[:16]}... differs from the recorded {cnf_sha256[:16]}..."]
+    lines.append(f"{paths[0]}: SHA-256 matches the recorded {cnf_sha256[:16]}...")
+    if drat_sha256 is not None:
+        got = hashlib.sha256(proof).hexdigest()
+        if got != drat_sha256:
+            return False, lines + [f"{paths[1]}: SHA-256 {got[:16]}... differs from the recorded {drat_sha256[:16]}..."]
+        lines.append(f"{paths[1]}: SHA-256 matches the recorded {drat_sha256[:16]}...")
+    try:
+        formula = read_dimacs(cnf)
+    except (ValueError, UnicodeDecodeError) as exc:
+        return False, lines + [f"{paths[0]}: {exc}"]
+    r = check_drat(formula, proof, time_limit=time_limit)
+    lines.append(f"{paths[1]}: {r.status}: {r.reason} ({len(formula[1])} clauses, {r.time_s:.3g} s)")
+    return r.verified, lines
 
 
 def cnf_sha256(formula) -> str:
