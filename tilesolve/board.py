@@ -176,15 +176,30 @@ def enumerate_tilings(problem: BoardProblem, *, limit: int | None = None,
 
 def count(problem: BoardProblem, *, method: str = "auto", time_limit: float | None = None, progress: bool = False,
           force: bool = False) -> CountResult:
-    """Count the valid tilings of a (small) board problem exactly, by enumeration."""
+    """Count the valid tilings of a (small) board problem exactly.
+
+    ``method``: ``"transfer"`` (a transfer matrix over row words, :mod:`tilesolve.constructive.
+    wang_count`: free rectangles, cylinders and tori, any tile set), ``"enumerate"`` (SAT
+    enumeration, any board) or ``"auto"`` (transfer where it applies, else enumeration).
+    """
     from tilesolve.encodings.wang import encode_wang
     from tilesolve.engine.sat import count_models
 
-    if method not in ("auto", "enumerate"):
-        raise InvalidProblem(f"unknown count method {method!r}; choose auto or enumerate")
+    if method not in ("auto", "enumerate", "transfer"):
+        raise InvalidProblem(f"unknown count method {method!r}; choose auto, transfer or enumerate")
     from tilesolve.engine.progress import status_line
 
     t0 = time.perf_counter()
+    if method != "enumerate":
+        from tilesolve.constructive.wang_count import count_problem, transfer_applies
+        from tilesolve.deadline import TimeLimitReached
+
+        if method == "transfer" or transfer_applies(problem) is None:
+            try:
+                value = count_problem(problem, _deadline(time_limit))
+            except TimeLimitReached as exc:
+                return CountResult(None, Status.UNKNOWN, "transfer", time.perf_counter() - t0, note=str(exc))
+            return CountResult(value, Status.SAT, "transfer", time.perf_counter() - t0)
     enc = encode_wang(problem)
     with status_line("counting by enumeration", progress) as show:
         res = count_models(enc.clauses, enc.projection(), time_limit=time_limit,
