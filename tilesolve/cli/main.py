@@ -73,6 +73,7 @@ GENERIC = {
     "export": "tilesolve.cli.export:export",
     "demo": "tilesolve.cli.demo:demo",
     "backends": "tilesolve.cli.backends:backends",
+    "crosscheck": "tilesolve.cli.crosscheck:crosscheck",
     "wall-lines": "tilesolve.cli.wall_lines:wall_lines",
     "studio": "tilesolve.cli.studio:studio",
 }
