@@ -39,11 +39,12 @@ import numpy as np
 
 from tilesolve.errors import InternalError, InvalidProblem
 
-__all__ = ["RenderReport", "write_wall_png", "wall_source", "wall_map_pixels", "default_ppc", "BAND_PIXELS", "MAX_RENDER_PIXELS"]
+__all__ = ["RenderReport", "write_wall_png", "wall_source", "wall_map_pixels", "default_ppc", "BAND_PIXELS", "BAND_CELLS", "MAX_RENDER_PIXELS"]
 
-#: Pixels computed per band: the map arrays take about 60 bytes a pixel while a band is
-#: converted, so a band stays near 250 MiB whatever the picture's size.
+#: Pixels computed per band (1 to 3 bytes each, written as they are made).
 BAND_PIXELS = 1 << 22
+#: Cells per band: the board verifier takes about 1 KiB a cell (its board and arrays).
+BAND_CELLS = 1 << 18
 #: Largest picture (pixels): streaming bounds memory, this bounds the time a render may take.
 MAX_RENDER_PIXELS = 1 << 32
 _TARGET_PX = 1024
@@ -65,16 +66,35 @@ def default_ppc(w: int, h: int) -> int:
     return max(1, min(32, _TARGET_PX // max(int(w), int(h))))
 
 
-def wall_map_pixels(legs_halo, kind: str, *, colors: int, ppc: int, origin: tuple[int, int]) -> np.ndarray:
+def wall_map_pixels(legs_halo, kind: str, *, colors: int, ppc: int, origin: tuple[int, int],
+                    compiled: bool = True) -> np.ndarray:
     """PNG pixel values (:func:`tilesolve.io.wall_png.map_pixels`) of the inner cells of a legs
-    array with a one-cell halo (:func:`tilesolve.constructive.wall_maps.wall_maps`)."""
-    from tilesolve.constructive.wall_maps import id_colour_index, wall_maps
-    from tilesolve.io.wall_png import N_BRICK_COLOURS, map_pixels
+    array with a one-cell halo.
 
-    m = wall_maps(legs_halo, colors, ppc, origin=origin)
+    ``compiled`` runs the numba loop of :mod:`tilesolve.constructive._wall_map_kernels`;
+    otherwise the numpy arrays of :func:`tilesolve.constructive.wall_maps.wall_maps` are built
+    (the reference form; the same pixels).
+    """
+    from tilesolve.io.wall_png import DISTANCE_FULL, MAP_KINDS, MORTAR, N_BRICK_COLOURS, map_pixels
+
+    if kind not in MAP_KINDS:
+        raise InvalidProblem(f"unknown wall map {kind!r}; choose one of {', '.join(MAP_KINDS)}")
+    mortar_px = max(0.5, ppc / 24) if ppc >= 4 else 0.0
+    legs = np.ascontiguousarray(legs_halo, dtype=np.int8)
+    if compiled:
+        from tilesolve.constructive._wall_map_kernels import map_band
+
+        rows, cols = legs.shape[0] - 2, legs.shape[1] - 2
+        out = np.empty((rows * ppc, cols * ppc, MAP_KINDS[kind]), dtype=np.uint8)
+        map_band(legs, int(colors), int(ppc), int(origin[0]), int(origin[1]), ("id", "distance", "uv").index(kind),
+                 N_BRICK_COLOURS, MORTAR, float(mortar_px), float(DISTANCE_FULL), out)
+        return out if kind == "uv" else out[..., 0]
+    from tilesolve.constructive.wall_maps import id_colour_index, wall_maps
+
+    m = wall_maps(legs, colors, ppc, origin=origin)
     if kind == "id":
         return map_pixels("id", colour_index=id_colour_index(m.vx, m.vy, N_BRICK_COLOURS), distance=m.distance,
-                          mortar_px=max(0.5, ppc / 24) if ppc >= 4 else 0.0, ppc=ppc)
+                          mortar_px=mortar_px, ppc=ppc)
     return map_pixels(kind, distance=m.distance, u=m.u, v=m.v)
 
 
@@ -166,7 +186,7 @@ def write_wall_png(path, region: tuple[int, int, int, int], *, colors: int = 3, 
                              "lower the pixels per cell or the region")
     window = wall_source(method, colors=colors, max_line=max_line, seed=seed,
                          period=(w, h) if period is None else period)
-    band = max(1, min(h, BAND_PIXELS // (w * ppc * ppc)))
+    band = max(1, min(h, BAND_PIXELS // (w * ppc * ppc), BAND_CELLS // w))
     n_bands = -(-h // band)
     checker = _BandChecker(colors, max_line) if verify else None
     t0 = time.perf_counter()

@@ -58,9 +58,9 @@ class WallMaps:
     ----------
     vx, vy : numpy.ndarray of int64
         The brick id: absolute lattice coordinates of the brick's vertex (``vy`` grows north).
-    distance : numpy.ndarray of float32
+    distance : numpy.ndarray of float64
         Distance from the pixel's centre to the nearest edge of its brick, in cells.
-    u, v : numpy.ndarray of float32
+    u, v : numpy.ndarray of float64
         Cartesian UV coordinates inside the brick (004 Fig. 10, left): ``u`` from 0 at the
         brick's west edge to 1 at its east edge, ``v`` from 0 at its south edge to 1 at its
         north edge.
@@ -74,8 +74,9 @@ class WallMaps:
 
 
 def _positions(legs: np.ndarray, colors: int) -> np.ndarray:
-    """Leg positions ``p(k) = (k + 1) / (nc + 1)`` (float32), same shape as ``legs``."""
-    return (legs.astype(np.float32) + np.float32(1)) / np.float32(colors + 1)
+    """Leg positions ``p(k) = (k + 1) / (nc + 1)`` (float64, computed as ``(k + 1) * (1 / (nc + 1))``
+    like the compiled loop), same shape as ``legs``."""
+    return (legs.astype(np.float64) + 1.0) * (1.0 / (colors + 1))
 
 
 def brick_rectangles(legs, colors: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -90,8 +91,8 @@ def brick_rectangles(legs, colors: int) -> tuple[np.ndarray, np.ndarray, np.ndar
     p = _positions(t, colors)
     pn, pe = p[..., 1], p[..., 2]
     rows, cols = t.shape[0] - 1, t.shape[1] - 1
-    b = np.arange(1, cols + 1, dtype=np.float32)[None, :]
-    a = np.arange(1, rows + 1, dtype=np.float32)[:, None]
+    b = np.arange(1, cols + 1, dtype=np.float64)[None, :]
+    a = np.arange(1, rows + 1, dtype=np.float64)[:, None]
     left = b - 1 + pn[1:, :-1]
     right = b + pn[1:, 1:]
     top = a - 1 + pe[:-1, :-1]
@@ -132,7 +133,7 @@ def wall_maps(legs, colors: int, ppc: int, *, origin: tuple[int, int] = (0, 0)) 
     p = _positions(inner, colors)
     pw, pn, pe, ps = (p[..., k][:, None, :, None] for k in range(4))
     hor = (inner[..., 0] == inner[..., 2])[:, None, :, None]
-    s = (np.arange(ppc, dtype=np.float32) + np.float32(0.5)) / np.float32(ppc)
+    s = (np.arange(ppc, dtype=np.float64) + 0.5) / ppc
     uu, vv = s[None, None, None, :], s[None, :, None, None]
     # Which corner region of its cell each pixel is in (module docstring; 004 Fig. 7).
     top_h = vv < pw
@@ -144,8 +145,8 @@ def wall_maps(legs, colors: int, ppc: int, *, origin: tuple[int, int] = (0, 0)) 
     ai = (r + 1 - top).astype(np.int64)
     bi = (c + 1 - left).astype(np.int64)
     lft, rgt, tp, bot = (q[ai, bi] for q in brick_rectangles(t, colors))
-    x = (c + 1).astype(np.float32) + uu
-    y = (r + 1).astype(np.float32) + vv
+    x = (c + 1).astype(np.float64) + uu
+    y = (r + 1).astype(np.float64) + vv
     dist = np.minimum(np.minimum(x - lft, rgt - x), np.minimum(y - tp, bot - y))
     u = (x - lft) / (rgt - lft)
     v = (bot - y) / (bot - tp)
@@ -155,7 +156,7 @@ def wall_maps(legs, colors: int, ppc: int, *, origin: tuple[int, int] = (0, 0)) 
     vx = np.int64(x0) + bi
     vy = np.int64(y0 + rows) - ai
     out = [q.reshape(rows * ppc, cols * ppc) for q in np.broadcast_arrays(vx, vy, dist, u, v)]
-    return WallMaps(out[0], out[1], out[2].astype(np.float32), out[3].astype(np.float32), out[4].astype(np.float32))
+    return WallMaps(*out)
 
 
 def id_colour_index(vx, vy, n: int) -> np.ndarray:

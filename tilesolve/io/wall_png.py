@@ -89,7 +89,7 @@ def map_pixels(kind: str, *, colour_index=None, distance=None, u=None, v=None, m
             px[np.asarray(distance) * ppc < mortar_px] = MORTAR
         return px
     if kind == "distance":
-        return np.minimum(np.asarray(distance) * np.float32(255 / DISTANCE_FULL) + np.float32(0.5), 255).astype(np.uint8)
+        return np.minimum(np.asarray(distance, dtype=np.float64) * (255.0 / DISTANCE_FULL) + 0.5, 255).astype(np.uint8)
     if kind == "uv":
         out = np.zeros(np.shape(u) + (3,), dtype=np.uint8)
         out[..., 0] = np.clip(np.asarray(u) * 255 + 0.5, 0, 255)
