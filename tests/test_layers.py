@@ -30,7 +30,8 @@ PACKAGE = Path(__file__).resolve().parents[1] / "tilesolve"
 BASE = {"tilesolve", "tilesolve.errors", "tilesolve.deadline", "tilesolve._random", "tilesolve._lazy"}
 FACADES = {"tilesolve.family", "tilesolve.dappled", "tilesolve.board", "tilesolve.wang", "tilesolve.packing",
            "tilesolve.walls", "tilesolve.packing_search", "tilesolve.stochastic",
-           "tilesolve.wall_render", "tilesolve.crosscheck_windows"}
+           "tilesolve.wall_render", "tilesolve.crosscheck_windows",
+           "tilesolve.gpu", "tilesolve.gpu.context", "tilesolve.gpu.texture", "tilesolve.gpu.wall", "tilesolve.gpu.picture"}
 
 #: layer -> the layers it may import
 ALLOWED = {
@@ -43,7 +44,7 @@ ALLOWED = {
     "engine": {"base", "model", "encodings", "verify.drat"},
     "facades": {"base", "model", "verify", "verify.drat", "encodings", "constructive", "io", "engine"},
     "cli": {"base", "model", "io", "facades", "studio"},
-    "studio": {"base", "model", "io", "facades"},
+    "studio": {"base", "model", "verify", "verify.drat", "encodings", "constructive", "io", "engine", "facades"},
 }
 #: Third-party packages a verifier may use (DESIGN.md: "dependency-light (numpy only)").
 VERIFY_THIRD_PARTY = {"numpy", "__future__", "dataclasses", "typing", "time", "math", "itertools", "collections",

@@ -74,6 +74,8 @@ GENERIC = {
     "demo": "tilesolve.cli.demo:demo",
     "backends": "tilesolve.cli.backends:backends",
     "crosscheck": "tilesolve.cli.crosscheck:crosscheck",
+    "render": "tilesolve.cli.render:render",
+    "gpu": "tilesolve.cli.render:gpu",
     "wall-lines": "tilesolve.cli.wall_lines:wall_lines",
     "studio": "tilesolve.cli.studio:studio",
 }

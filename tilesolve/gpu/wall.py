@@ -367,7 +367,7 @@ class WallRenderer:
         vao.render(mode=self.ctx.TRIANGLE_STRIP)
 
     def _cells_target(self, w: int, h: int):
-        n = (min(self.max_pass, (w - 1) // self.cell_px + 3), min(self.max_pass, (h - 1) // self.cell_px + 3))
+        n = (min(self.max_pass, (w - 1) // self.cell_px + 4), min(self.max_pass, (h - 1) // self.cell_px + 4))
         return self.ctx.framebuffer(color_attachments=[self.ctx.texture(n, 4, dtype="u1"),
                                                        self.ctx.texture(n, 1, dtype="u4")])
 

@@ -1,0 +1,199 @@
+"""The GPU path against the CPU, pixel for pixel (Mesa llvmpipe through EGL in CI).
+
+Nothing here is skipped: a machine without an OpenGL context fails
+``test_a_context_can_be_created`` (CI installs ``libegl1 libegl-mesa0 libgl1 libgl1-mesa-dri``).
+The references are the CPU generators (:func:`direct_corner`, :func:`wall_window`) and, for the
+brick geometry, a numpy transcription below of the rule in :mod:`tilesolve.gpu.wall`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from tilesolve.constructive.stochastic import direct_corner
+from tilesolve.constructive.walls import wall_window
+from tilesolve.errors import InvalidProblem
+from tilesolve.gpu.context import gpu_info
+from tilesolve.gpu.texture import Atlas, TextureMapper, corner_packing, synthesize_atlas
+from tilesolve.gpu.wall import WallRenderer, allowed_samples
+
+HUGE = 2**61 + 12345
+
+
+def test_a_context_can_be_created():
+    info = gpu_info()
+    assert info["renderer"] and info["version"].startswith("4.")
+    assert info["extensions_int64"]
+    assert info["max_texture_size"] >= 4096 and min(info["max_viewport"]) >= 4096
+
+
+# ------------------------------------------------------------------------------------ texture mapping
+@pytest.mark.parametrize("colors,seed,origin,hash_,tile_px", [
+    (2, 0, (0, 0), "long", 1),
+    (3, 1, (-1000, -77), "long", 3),
+    (4, 9, (HUGE, -HUGE), "long", 1),
+    (5, 2, (-3, 5), "table", 2),
+    (3, 7, (-(2**40), 2**33), "table", 1),
+])
+def test_tile_ids_equal_the_direct_corner_tiling(colors, seed, origin, hash_, tile_px):
+    w, h = 97, 61
+    m = TextureMapper(colors=colors, seed=seed, origin=origin, hash=hash_, tile_px=tile_px)
+    gpu = m.tile_ids(w, h)
+    cols, rows = -(-w // tile_px), -(-h // tile_px)
+    cpu = direct_corner(origin[0], origin[1], cols, rows, colors=colors, seed=seed, hash=hash_)
+    cpu = np.repeat(np.repeat(cpu, tile_px, axis=0), tile_px, axis=1)[-h:, :w]  # pictures grow from the SW
+    assert np.array_equal(gpu, cpu)
+
+
+@pytest.fixture(scope="module")
+def atlas():
+    example = np.random.default_rng(5).integers(0, 256, (70, 90, 3), dtype=np.uint8)
+    return Atlas.from_example(example, 3, tile=16, seed=2)
+
+
+def _composite(at: Atlas, grid) -> np.ndarray:
+    """The picture the GPU must draw at one pixel per texel: each tile's atlas image, pasted."""
+    t, rows = at.tile, at.grid.shape[0]
+    pos = {int(k): divmod(i, rows) for i, k in enumerate(at.grid.ravel())}
+    out = np.empty((grid.shape[0] * t, grid.shape[1] * t, 4), dtype=np.uint8)
+    for (r, q), k in np.ndenumerate(grid):
+        ar, ac = pos[int(k)]
+        out[r * t:(r + 1) * t, q * t:(q + 1) * t] = at.image[ar * t:(ar + 1) * t, ac * t:(ac + 1) * t]
+    return out
+
+
+@pytest.mark.parametrize("two_pass", [True, False])
+@pytest.mark.parametrize("seed,origin", [(4, (-3, -9)), (11, (HUGE, 17))])
+def test_texture_pixels_are_the_atlas_tiles_of_the_cpu_tiling(atlas, two_pass, seed, origin):
+    m = TextureMapper(atlas, seed=seed, origin=origin, two_pass=two_pass)
+    gpu = m.image(16 * 9, 16 * 5)
+    cpu = _composite(atlas, direct_corner(origin[0], origin[1], 9, 5, colors=3, seed=seed))
+    assert np.array_equal(gpu, cpu)
+
+
+def test_pictures_larger_than_a_pass_are_drawn_in_passes(atlas):
+    m = TextureMapper(atlas, seed=1, origin=(-7, 2), tile_px=5)
+    whole = m.image(150, 110)
+    m.max_pass = 40  # as if the context's viewport were 40 px: 4 x 3 passes, cut inside tiles
+    assert np.array_equal(m.image(150, 110), whole)
+    w = WallRenderer(max_line=3, seed=2, origin=(-9, 4), cell_px=7)
+    whole = w.image(150, 110)
+    w.max_pass = 40
+    assert np.array_equal(w.image(150, 110), whole)
+
+
+def test_the_atlas_is_a_packing_with_borders_set_by_the_corners():
+    c, t = 2, 16
+    grid = corner_packing(c, seed=3)
+    assert sorted(grid.ravel().tolist()) == list(range(c**4))
+    assert grid.shape == (c * c, c * c)
+    ex = np.random.default_rng(1).integers(0, 256, (40, 40, 3), dtype=np.uint8)
+    img = synthesize_atlas(ex, grid, c, tile=t, seed=4)
+    tiles = {int(k): img[r * t:(r + 1) * t, q * t:(q + 1) * t] for (r, q), k in np.ndenumerate(grid)}
+    # eq. 2.5: k = ((NE c + SE) c + SW) c + NW; a tile's east column depends on NE and SE only,
+    # so every tile that can stand west of a given tile shows it the same texels (seamless).
+    for k, tile in tiles.items():
+        ne, se = k // c**3, (k // c**2) % c
+        for k2, other in tiles.items():
+            if (k2 // c**3, (k2 // c**2) % c) == (ne, se):
+                assert np.array_equal(tile[:, -1], other[:, -1])
+    # the atlas wraps: the packing's east neighbour of the last column is the first column
+    for r in range(c * c):
+        a, b = int(grid[r, -1]), int(grid[r, 0])
+        assert (a // c**3, (a // c**2) % c) == (b % c, (b // c) % c)  # NE, SE of a = NW, SW of b
+
+
+def test_example_smaller_than_a_tile_is_refused():
+    with pytest.raises(InvalidProblem, match="smaller than one tile"):
+        Atlas.from_example(np.zeros((10, 40, 3), dtype=np.uint8), 2, tile=16)
+
+
+# ------------------------------------------------------------------------------------ procedural walls
+@pytest.mark.parametrize("colors,max_line,seed,origin", [
+    (3, None, 0, (0, 0)),
+    (3, 1, 3, (-5, -5)),
+    (3, 2, 5, (-37, -11)),
+    (4, 3, 7, (HUGE, -HUGE)),
+    (3, 4, 1, (-1, 3)),
+    (5, 6, 2, (10, -9)),
+    (6, 7, 11, (123456789, -987654321)),
+])
+def test_wall_edge_colours_equal_the_cpu_wall(colors, max_line, seed, origin):
+    r = WallRenderer(colors=colors, max_line=max_line, seed=seed, origin=origin)
+    gpu = r.cell_legs(83, 47)
+    cpu = wall_window(origin[0], origin[1], 83, 47, colors=colors, max_line=max_line, seed=seed)
+    assert np.array_equal(gpu, cpu)
+
+
+def _bricks(legs: np.ndarray, nc: int, cell: int):
+    """Reference geometry per pixel centre from the CPU legs of cells ``[-1, w] x [-1, h]``
+    (``legs[r, c]`` is cell ``(c - 1, h - r)``): brick point, distance, u, v."""
+    hh, ww = legs.shape[0] - 2, legs.shape[1] - 2
+    py, px = np.mgrid[0:hh * cell, 0:ww * cell]
+    gy = hh * cell - 1 - py  # pixel row from the bottom
+    ci, cj = px // cell, gy // cell
+    fx, fy = (px % cell + 0.5) / cell, (gy % cell + 0.5) / cell
+
+    def at(i, j):  # legs of cell (i, j) (picture cells), each component an array
+        return legs[hh - j, i + 1].astype(np.int64).transpose(2, 0, 1)
+
+    W, N, E, S = at(ci, cj)
+    pos = lambda c: (c + 1) / (nc + 1)  # noqa: E731
+    ft = 1 - fy
+    horizontal = W == E
+    upper_h = ft < pos(W)
+    right_h = fx >= np.where(upper_h, pos(N), pos(S))
+    right_v = fx >= pos(N)
+    upper_v = ft < np.where(right_v, pos(E), pos(W))
+    right = np.where(horizontal, right_h, right_v)
+    upper = np.where(horizontal, upper_h, upper_v)
+    I, J = ci + right, cj + upper
+    ulW, ulN, ulE, ulS = at(I - 1, J)
+    urW, urN, urE, urS = at(I, J)
+    llW, llN, llE, llS = at(I - 1, J - 1)
+    lrW, lrN, lrE, lrS = at(I, J - 1)
+    assert np.array_equal(ulS, llN) and np.array_equal(urS, lrN)  # the legs of a tiling agree
+    assert np.array_equal(ulE, urW) and np.array_equal(llE, lrW)
+    qx, qy = fx + ci - I, fy + cj - J
+    lox, hix = -1 + pos(llN), pos(urS)
+    loy, hiy = -pos(lrW), 1 - pos(urW)
+    dist = np.minimum(np.minimum(qx - lox, hix - qx), np.minimum(qy - loy, hiy - qy))
+    return np.stack([I, J], axis=-1), dist, (qx - lox) / (hix - lox), (qy - loy) / (hiy - loy), horizontal
+
+
+@pytest.mark.parametrize("per_fragment", [False, True])
+@pytest.mark.parametrize("max_line,seed,origin", [(4, 1, (-5, -3)), (None, 8, (HUGE, -40)), (3, 2, (7, 100))])
+def test_wall_bricks_distance_and_uv_per_pixel(per_fragment, max_line, seed, origin):
+    cell, w, h, nc = 12, 14, 9, 3
+    r = WallRenderer(colors=nc, max_line=max_line, seed=seed, origin=origin, cell_px=cell, per_fragment=per_fragment)
+    d = r.data(w * cell, h * cell)
+    legs = wall_window(origin[0] - 1, origin[1] - 1, w + 2, h + 2, colors=nc, max_line=max_line, seed=seed)
+    brick, dist, u, v, horizontal = _bricks(legs, nc, cell)
+    assert np.array_equal(d["brick"], brick)
+    assert np.array_equal(d["horizontal"], horizontal)
+    assert np.allclose(d["distance"], dist, atol=1e-5)
+    assert np.allclose(d["u"], u, atol=1e-5) and np.allclose(d["v"], v, atol=1e-5)
+    assert (dist > 0).all() and (u > 0).all() and (u < 1).all()
+    # every brick is one colour away from the mortar
+    inner = dist > 0.26  # past the bevel (0.25 cells)
+    ids = brick[inner][:, 0] * 100003 + brick[inner][:, 1]
+    cols = d["colour"][inner].astype(np.int64) @ np.array([1, 256, 65536, 0])
+    for k in np.unique(ids)[:50]:
+        assert len(np.unique(cols[ids == k])) == 1
+
+
+def test_multisampling_as_far_as_the_context_allows():
+    allowed = allowed_samples()
+    assert allowed[0] == 1 and set(allowed) <= {1, 2, 4, 8, 16, 32}
+    one = WallRenderer(max_line=4, seed=3, cell_px=20).image(120, 80).astype(int)
+    for s in allowed[1:]:
+        many = WallRenderer(max_line=4, seed=3, cell_px=20, samples=s).image(120, 80).astype(int)
+        diff = np.abs(many - one).max(axis=2)
+        assert 0 < (diff > 0).mean() < 0.5  # only pixels on brick borders change
+    too_many = [s for s in (1, 2, 4, 8, 16, 32) if s not in allowed]
+    for s in too_many[:1]:
+        with pytest.raises(InvalidProblem, match="at most"):
+            WallRenderer(samples=s)
+    with pytest.raises(InvalidProblem, match="one of"):
+        WallRenderer(samples=3)
