@@ -249,6 +249,10 @@ def npd_route(problem: BoardProblem, run: RunOptions) -> Solution:
             raise MethodNotApplicable(f"no wall with lines <= {problem.max_h} across and {problem.max_v} down "
                                       f"repeats with period {pw}x{ph} (the cyclic dappling is unsatisfiable); "
                                       f"choose another period or use method 'wall'")
+        if ds.status is Status.UNSAT:
+            notes += ("the unsat proof is the cyclic dappling's: a brick wall of this torus with these limits "
+                      "colours its cells as such a dappling, two vertical tiles in a row and two horizontal in a "
+                      "column (004 App. A)",)
         return Solution(ds.status, None, "npd", ds.solver, run.seed, time.perf_counter() - t0, reason=ds.reason,
                         notes=notes)
     period = npd_legs(ds.tiling, problem.n_colors, seed=run.seed)
