@@ -57,15 +57,17 @@ def map_band(legs, nc, ppc, x0, y0, kind, n_colours, mortar, mortar_px, distance
                     else:
                         left = uu < n_
                         top = vv < (w_ if left else e_)
-                    ai = r + (0 if top else 1)  # vertex index (a - 1, b - 1) of brick_rectangles
-                    bi = c + (0 if left else 1)
-                    # brick around halo vertex (ai + 1, bi + 1)
-                    lft = bi + (legs[ai + 1, bi, 1] + 1.0) * q
-                    rgt = bi + 1 + (legs[ai + 1, bi + 1, 1] + 1.0) * q
-                    tp = ai + (legs[ai, bi, 2] + 1.0) * q
-                    bot = ai + 1 + (legs[ai + 1, bi, 2] + 1.0) * q
-                    x = (c + 1) + uu
-                    y = (r + 1) + vv
+                    da = 0 if top else 1
+                    db = 0 if left else 1
+                    ai = r + da  # the brick around halo vertex (ai + 1, bi + 1)
+                    bi = c + db
+                    # its edges relative to the pixel's own cell, as in wall_maps
+                    lft = (db - 1) + (legs[ai + 1, bi, 1] + 1.0) * q
+                    rgt = db + (legs[ai + 1, bi + 1, 1] + 1.0) * q
+                    tp = (da - 1) + (legs[ai, bi, 2] + 1.0) * q
+                    bot = da + (legs[ai + 1, bi, 2] + 1.0) * q
+                    x = uu
+                    y = vv
                     d = min(min(x - lft, rgt - x), min(y - tp, bot - y))
                     oy = r * ppc + py
                     ox = c * ppc + px

@@ -44,7 +44,7 @@ import numpy as np
 
 from tilesolve.errors import InvalidProblem
 
-__all__ = ["WallMaps", "wall_maps", "brick_rectangles", "id_colour_index", "MAPS"]
+__all__ = ["WallMaps", "wall_maps", "id_colour_index", "MAPS"]
 
 #: The maps :func:`wall_maps` computes, by the names the CLI uses (``--map``).
 MAPS = ("id", "distance", "uv")
@@ -77,27 +77,6 @@ def _positions(legs: np.ndarray, colors: int) -> np.ndarray:
     """Leg positions ``p(k) = (k + 1) / (nc + 1)`` (float64, computed as ``(k + 1) * (1 / (nc + 1))``
     like the compiled loop), same shape as ``legs``."""
     return (legs.astype(np.float64) + 1.0) * (1.0 / (colors + 1))
-
-
-def brick_rectangles(legs, colors: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """``(left, right, top, bottom)`` of the brick around each inner vertex of a legs array.
-
-    ``legs`` is ``(R, C, 4)`` (W, N, E, S; row 0 at the top). Vertex ``(a, b)`` is the top-left
-    corner of cell ``(a, b)``; the result has shape ``(R - 1, C - 1)`` for the vertices
-    ``a = 1..R-1``, ``b = 1..C-1``, in cell units with ``x`` east and ``y`` down, measured
-    from the top-left corner of cell ``(0, 0)`` (see the module docstring).
-    """
-    t = np.asarray(legs)
-    p = _positions(t, colors)
-    pn, pe = p[..., 1], p[..., 2]
-    rows, cols = t.shape[0] - 1, t.shape[1] - 1
-    b = np.arange(1, cols + 1, dtype=np.float64)[None, :]
-    a = np.arange(1, rows + 1, dtype=np.float64)[:, None]
-    left = b - 1 + pn[1:, :-1]
-    right = b + pn[1:, 1:]
-    top = a - 1 + pe[:-1, :-1]
-    bottom = a + pe[1:, :-1]
-    return left, right, top, bottom
 
 
 def wall_maps(legs, colors: int, ppc: int, *, origin: tuple[int, int] = (0, 0)) -> WallMaps:
@@ -141,12 +120,17 @@ def wall_maps(legs, colors: int, ppc: int, *, origin: tuple[int, int] = (0, 0)) 
     top = np.where(hor, top_h, vv < np.where(left, pw, pe))
     r = np.arange(rows)[:, None, None, None]
     c = np.arange(cols)[None, None, :, None]
-    # vertex (a, b) of the halo array, as an index into brick_rectangles' (a - 1, b - 1) grid
-    ai = (r + 1 - top).astype(np.int64)
-    bi = (c + 1 - left).astype(np.int64)
-    lft, rgt, tp, bot = (q[ai, bi] for q in brick_rectangles(t, colors))
-    x = (c + 1).astype(np.float64) + uu
-    y = (r + 1).astype(np.float64) + vv
+    # The pixel's brick is the one around halo vertex (ai + 1, bi + 1) (module docstring).
+    da, db = (~top).astype(np.int64), (~left).astype(np.int64)
+    ai, bi = r + da, c + db
+    pn_all, pe_all = _positions(t[..., 1], colors), _positions(t[..., 2], colors)
+    # Its edges relative to the pixel's own cell (translation-invariant arithmetic: a cell's
+    # pixels are the same in every window and every band).
+    lft = (db - 1) + pn_all[ai + 1, bi]
+    rgt = db + pn_all[ai + 1, bi + 1]
+    tp = (da - 1) + pe_all[ai, bi]
+    bot = da + pe_all[ai + 1, bi]
+    x, y = uu, vv
     dist = np.minimum(np.minimum(x - lft, rgt - x), np.minimum(y - tp, bot - y))
     u = (x - lft) / (rgt - lft)
     v = (bot - y) / (bot - tp)
