@@ -18,6 +18,7 @@ ROOT = Path(__file__).resolve().parents[1]
 COMMANDS = [("dappled", "solve"), ("dappled", "count"), ("dappled", "crosscheck"), ("brick", "solve"),
             ("brick", "wall"), ("brick", "count"), ("brick", "crosscheck"), ("wang", "solve"), ("wall",), ("pack",),
             ("pack", "count"), ("tiles",), ("verify",), ("draw",), ("export", "dimacs"), ("demo",), ("backends",),
+            ("render",), ("render", "texture"), ("render", "wall"), ("gpu",), ("gpu", "info"),
             ("tiling",), ("wall-lines",)]
 
 

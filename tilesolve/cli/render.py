@@ -35,15 +35,6 @@ _OUTPUT = click.option("-o", "--output", type=click.Path(dir_okay=False), metava
                        help="Write the picture here (PNG; rendered in passes when larger than the viewport).")
 
 
-def _origin(text: str) -> tuple[int, int]:
-    parts = text.split(",")
-    try:
-        x0, y0 = (int(p) for p in parts)
-    except ValueError:
-        raise InvalidProblem(f"--origin takes X0,Y0 (integers, e.g. -8,3), got {text!r}") from None
-    return x0, y0
-
-
 def _benchmark(renderer, width: int, height: int, frames: int) -> None:
     """Render ``frames`` frames of one pass and print the rate (the GPU finishes before the clock stops)."""
     side = renderer.max_pass
@@ -112,13 +103,13 @@ def texture(example, colors, size, tile, scale, origin, seed, hash_, per_fragmen
       tilesolve render texture --example bricks.png --colors 2 --tile 32 --scale 16 --size 640x480 --origin -1000,20 -o small.png --atlas atlas.png
       tilesolve render texture --example bricks.png --colors 3 --tile 32 --size 1920x1080 --benchmark 5
     """
-    from tilesolve.gpu.picture import parse_size, write_png
+    from tilesolve.gpu.picture import parse_origin, parse_size, write_png
     from tilesolve.gpu.texture import Atlas, TextureMapper, read_example
 
     _need_output(output, benchmark)
     outs = Outputs(output, atlas)
     w, h = parse_size(size)
-    x0, y0 = _origin(origin)
+    x0, y0 = parse_origin(origin)
     if tile % 2:
         raise InvalidProblem(f"--tile must be even (quarter patches), got {tile}")
     image = read_example(example)
@@ -168,13 +159,13 @@ def wall(size, max_line, colors, cell, samples, origin, seed, per_fragment, outp
       tilesolve render wall --size 640x480 --cell 24 --samples 4 --origin -100000,5 -o aa.png
       tilesolve render wall --size 1920x1080 --max-line 4 --benchmark 5
     """
-    from tilesolve.gpu.picture import parse_size, write_png
+    from tilesolve.gpu.picture import parse_origin, parse_size, write_png
     from tilesolve.gpu.wall import WallRenderer
 
     _need_output(output, benchmark)
     outs = Outputs(output)
     w, h = parse_size(size)
-    x0, y0 = _origin(origin)
+    x0, y0 = parse_origin(origin)
     t = time.perf_counter()
     renderer = WallRenderer(colors=colors, max_line=max_line, seed=seed, origin=(x0, y0), cell_px=cell,
                             samples=samples, per_fragment=per_fragment)

@@ -11,11 +11,12 @@ from __future__ import annotations
 import os
 import re
 
+from tilesolve.constructive.hashes import check_window
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.atomic import atomic_write
 from tilesolve.io.png import MAX_PNG_PIXELS
 
-__all__ = ["parse_size", "write_png"]
+__all__ = ["parse_size", "parse_origin", "write_png"]
 
 _SIZE = re.compile(r"\s*(\d+)\s*[xX]\s*(\d+)\s*")
 
@@ -35,6 +36,20 @@ def parse_size(text: str) -> tuple[int, int]:
     if w * h > MAX_PNG_PIXELS:
         raise InvalidProblem(f"a {w}x{h} picture is larger than the {MAX_PNG_PIXELS:,} pixel limit of PNG files")
     return w, h
+
+
+def parse_origin(text: str) -> tuple[int, int]:
+    """``"X0,Y0"`` -> ``(X0, Y0)``, a lattice cell the hashes address (``|X0|, |Y0| < 2**62``).
+
+    >>> parse_origin("-8,3")
+    (-8, 3)
+    """
+    try:
+        x0, y0 = (int(p) for p in text.split(","))
+    except ValueError:
+        raise InvalidProblem(f"an origin is X0,Y0 (integers, e.g. -8,3), got {text!r}") from None
+    x0, y0, _, _ = check_window(x0, y0, 1, 1, what="origin")
+    return x0, y0
 
 
 def write_png(path: str | os.PathLike, width: int, height: int, bands) -> None:
