@@ -11,7 +11,8 @@ clausal proofs*, SAT 2014):
   clause ``D`` of ``F`` containing ``-l`` the resolvent ``C | (D - {-l})`` is RUP;
 * accepted lemmas are added to ``F``; ``d`` lines delete clauses from ``F``;
 * the proof is valid when it contains the empty clause and the empty clause is RUP where it
-  stands (a proof without its final ``0`` line is rejected).
+  stands (a proof without its final ``0`` line is rejected, unless unit propagation on the
+  formula alone refutes it: then there is nothing to prove, as dratify also holds).
 
 Two engines check the same rules:
 
@@ -669,7 +670,7 @@ def check_drat(
         return result("failed", "the proof never derives the empty clause")
     confl_step = int(counts[1])
     later = np.flatnonzero((is_del[confl_step + 1:] == 0) & (p_sizes[confl_step + 1:] == 0))
-    if later.size == 0:
+    if later.size == 0 and confl_step >= 0:
         return result("failed", "the proof has no empty clause (unit propagation refutes the formula after "
                                 f"proof line {confl_step + 1}, but the proof never says so)")
     # backward pass from the conflict
@@ -764,6 +765,8 @@ def _check_forward(f_lits, f_sizes, p_lits, p_sizes, p_del, t0: float, time_limi
                                         "nor RAT")
             rats += 1
         chk.add(lits)
+    if trivial:
+        return result("verified", "unit propagation on the input clauses refutes the formula; no lemma is needed")
     if chk.inconsistent:
         return result("failed", "the proof has no empty clause (unit propagation refutes the formula, but the "
                                 "proof never says so)")
