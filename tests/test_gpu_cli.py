@@ -1,0 +1,70 @@
+"""``tilesolve render`` and ``tilesolve gpu`` through the console script, and what happens without GL."""
+
+from __future__ import annotations
+
+import os
+import re
+import subprocess
+import sys
+
+import numpy as np
+from clitools import ENV, SCRIPT, one_line_error, run, snapshot
+from PIL import Image
+
+from tilesolve.gpu.texture import Atlas, TextureMapper, read_example
+from tilesolve.gpu.wall import WallRenderer
+
+#: Points libglvnd at no EGL vendor: what a machine without Mesa's EGL looks like.
+NO_GL = dict(ENV, __EGL_VENDOR_LIBRARY_FILENAMES=os.devnull)
+
+
+def test_gpu_info_names_the_renderer(tmp_path):
+    proc = run("gpu", "info", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    assert re.search(r"^renderer: +\S", proc.stdout, re.M) and "OpenGL:" in proc.stdout
+    assert re.search(r"^samples: +1\b", proc.stdout, re.M)
+
+
+def test_render_wall_and_texture_write_the_library_pictures(tmp_path):
+    proc = run("render", "wall", "--size", "200x120", "--max-line", "3", "--cell", "16", "--seed", "4",
+               "--origin", "-50,7", "-o", "w.png", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    wall = np.asarray(Image.open(tmp_path / "w.png"))
+    assert np.array_equal(wall, WallRenderer(max_line=3, cell_px=16, seed=4, origin=(-50, 7)).image(200, 120))
+    proc = run("render", "texture", "--example", "w.png", "--colors", "2", "--tile", "16", "--scale", "8",
+               "--size", "150x90", "--seed", "2", "--origin", "3,-4", "-o", "t.png", "--atlas", "a.png", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    at = Atlas.from_example(read_example(tmp_path / "w.png"), 2, tile=16, seed=2)
+    want = TextureMapper(at, seed=2, origin=(3, -4), tile_px=8).image(150, 90)
+    assert np.array_equal(np.asarray(Image.open(tmp_path / "t.png")), want)
+    assert np.array_equal(np.asarray(Image.open(tmp_path / "a.png")), at.image)
+
+
+def test_benchmark_prints_frames_per_second(tmp_path):
+    proc = run("render", "wall", "--size", "320x200", "--benchmark", "3", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    assert re.search(r"^3 frames of 320x200 in [\d.]+ s: [\d.]+ fps \(", proc.stdout, re.M)
+    assert not list(tmp_path.iterdir())
+
+
+def test_without_gl_one_line_naming_the_packages_and_the_cpu_routes_still_work(tmp_path):
+    (tmp_path / "keep.png").write_bytes(b"earlier")
+    before = snapshot(tmp_path)
+    for args in (["render", "wall", "--size", "64x64", "-o", "keep.png"], ["gpu", "info"]):
+        proc = subprocess.run([SCRIPT, *args], cwd=tmp_path, capture_output=True, text=True, env=NO_GL, timeout=300)
+        line = one_line_error(proc)
+        assert "libegl1 libegl-mesa0 libgl1 libgl1-mesa-dri" in line
+    assert snapshot(tmp_path) == before
+    proc = subprocess.run([SCRIPT, "tiling", "--kind", "corner", "--method", "direct", "--colors", "2",
+                           "--region", "0,0,4x3", "--seed", "1"], cwd=tmp_path, capture_output=True, text=True,
+                          env=NO_GL, timeout=300)
+    assert proc.returncode == 0 and len(proc.stdout.split()) == 12, proc.stderr
+
+
+def test_version_and_cpu_modules_do_not_import_moderngl():
+    code = ("import contextlib, io, sys\nfrom tilesolve.cli.main import main\n"
+            "with contextlib.redirect_stdout(io.StringIO()):\n    assert main(['--version']) == 0\n"
+            "import tilesolve.stochastic, tilesolve.walls, tilesolve.packing\n"
+            "print('moderngl' in sys.modules, 'glcontext' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300, check=True)
+    assert out.stdout.split() == ["False", "False"]
