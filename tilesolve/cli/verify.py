@@ -36,7 +36,7 @@ def verify(ctx, file: str, proof_dir: str | None) -> None:
     Example:
       tilesolve dappled solve --size 12x8 --cond H0=2,V1=2 -o t.json
       tilesolve verify t.json
-      tilesolve dappled solve --size 4x4 --cond H0=1,V0=1 --fix proofdemo.txt -o u.json --proof-dir proofs
+      tilesolve dappled solve --size 3x3 --cond H0=1 --count 1=0 -o u.json --proof-dir proofs  # unsat
       tilesolve verify u.json --proof-dir proofs
 
     Exit 0 when the tiling is valid and every claim holds (with --proof-dir: when the unsat
