@@ -1,0 +1,586 @@
+"""Wang tile sets as transducers: the constructive route to "no tiling" and "periodic".
+
+Jeandel and Rao, *An aperiodic set of 11 Wang tiles* (Advances in Combinatorics, 2021), §2-3;
+class notes Part II §8.2 for Wang's procedure this route decides in part.
+
+A Wang tile ``(W, N, E, S)`` is a transition from state ``W`` to state ``E`` that reads ``N``
+and writes ``S``: the tile set is a transducer ``T`` whose states are the horizontal (W/E)
+colours. A bi-infinite path of ``T`` is a bi-infinite row of tiles; its input word is the row's
+top colours and its output word the bottom colours. Composing ``T`` with itself ``k`` times
+stacks rows: a transition of ``T^k`` is a column of ``k`` tiles that match vertically, reading
+the top colour of the column and writing its bottom colour. So
+
+* ``T^k`` has a bi-infinite path iff a bi-infinite strip of height ``k`` can be tiled; with no
+  such strip the set tiles no plane;
+* a cycle of ``T^k`` whose transitions each write what they read is a ``k x p`` block whose
+  bottom matches its top and whose right side matches its left: a torus, so a periodic tiling.
+
+Each step keeps what can lie on a bi-infinite path and merges what behaves alike
+(Jeandel-Rao §3):
+
+* *simplify*: only transitions on cycles (both ends in one strongly connected component) can
+  lie on a bi-infinite path of a finite transducer, and a limit of shifts of any strip tiling
+  uses only those (compactness);
+* *minimise*: states with the same future (forward bisimilar: the same labels lead to
+  equivalent states) are merged; bisimulation is a congruence for composition, so
+  ``T_k = min(scc(T_{k-1} ∘ T_1))`` realises the same strips as the full ``T^k``.
+
+Merged states would break a witness read off one column per transition, so every level keeps
+the transitions it merged (:class:`Level`) and :func:`unfold` turns a periodic cycle of the
+minimised ``T_k`` back into tiles: from any state of a class, bisimulation gives a transition
+with the same label into the next class; following the cycle lap after lap until the state
+at the start of a lap repeats gives a cycle of the unminimised level, whose upper part is a
+cycle of ``T_{k-1}`` to unfold in turn (its length may grow by whole laps).
+
+Verdicts
+--------
+``"empty"`` at ``k``: ``T_k`` has no transition. Every cycle of the full ``T^k`` projects to a
+cycle of ``T_k`` (each row of a cyclic strip is a cyclic row, by induction on ``k``), so the
+full ``T^k`` is acyclic: no ``k x w`` rectangle can be tiled for ``w`` one more than its
+longest path. :func:`strip_width` computes that ``w`` (minimised, not simplified: forward
+bisimulation keeps the longest path from every state); the certificate is that rectangle,
+refuted independently (the aperiodicity family refutes it by SAT with a checked proof).
+
+``"periodic"`` at ``k``: a tiling of a ``k x p`` torus as tile indices, checked independently
+(:func:`torus_tiling` gives the leg colours for the board verifier).
+
+``"undecided"``: neither up to the largest ``k`` reached (the ``k`` limit, the time limit or the
+size limit stopped the search). Aperiodic sets stay undecided for every ``k``.
+
+Examples
+--------
+>>> from tilesolve.model.board import WangTileSet
+>>> ts = WangTileSet.from_nesw([[0, 0, 0, 0]], 1)  # one tile, all sides colour 0
+>>> v = decide(ts, max_k=3)
+>>> v.verdict, v.k, v.torus.tolist()
+('periodic', 1, [[0]])
+>>> stack = WangTileSet.from_nesw([[0, 0, 1, 0]], 2)  # N=0, S=1: rows never stack
+>>> v = decide(stack, max_k=3)
+>>> v.verdict, v.k, strip_width(stack, v.k)
+('empty', 2, 1)
+>>> stairs = WangTileSet.from_nesw([[0, 0, 1, 0], [1, 0, 0, 0]], 2)  # S=1 under N=1 and back
+>>> v = decide(stairs, max_k=3)
+>>> v.verdict, v.torus.tolist()
+('periodic', [[0], [1]])
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from tilesolve.deadline import Deadline, TimeLimitReached
+from tilesolve.errors import InternalError, InvalidProblem
+from tilesolve.model.board import WangTileSet
+
+__all__ = [
+    "Transducer", "Level", "TransducerVerdict", "tile_transducer", "compose", "simplify", "minimize",
+    "periodic_cycle", "build_level", "unfold", "decide", "strip_width", "torus_tiling",
+    "DEFAULT_MAX_TRANSITIONS",
+]
+
+#: Largest number of candidate transitions one composition may build before the search stops
+#: undecided (about 50 bytes each while it is built).
+DEFAULT_MAX_TRANSITIONS = 20_000_000
+
+
+@dataclass(frozen=True, eq=False)
+class Transducer:
+    """A letter-to-letter transducer: labelled transitions between numbered states.
+
+    Attributes
+    ----------
+    n_states : int
+        States are ``0 .. n_states-1``.
+    src, dst, north, south : numpy.ndarray
+        ``(n_transitions,)`` int64: a transition goes from ``src`` to ``dst`` reading the top
+        colour ``north`` and writing the bottom colour ``south``.
+    """
+
+    n_states: int
+    src: np.ndarray
+    dst: np.ndarray
+    north: np.ndarray
+    south: np.ndarray
+
+    @property
+    def n_transitions(self) -> int:
+        return int(self.src.size)
+
+    def is_empty(self) -> bool:
+        return self.src.size == 0
+
+    def to_networkx(self):
+        """The transitions as a :class:`networkx.MultiDiGraph` (``north``, ``south`` and the
+        transition's ``index`` on each edge)."""
+        import networkx as nx
+
+        g = nx.MultiDiGraph()
+        g.add_nodes_from(range(self.n_states))
+        for i, (a, b, n, s) in enumerate(zip(self.src.tolist(), self.dst.tolist(), self.north.tolist(),
+                                             self.south.tolist())):
+            g.add_edge(a, b, north=n, south=s, index=i)
+        return g
+
+
+def _i64(a) -> np.ndarray:
+    return np.ascontiguousarray(a, dtype=np.int64)
+
+
+def tile_transducer(tileset: WangTileSet) -> Transducer:
+    """``T``: one transition ``W -> E`` reading ``N``, writing ``S`` per tile (Jeandel-Rao §2);
+    transition ``i`` is tile ``i`` of ``tileset.tiles``.
+
+    Examples
+    --------
+    >>> t = tile_transducer(WangTileSet.from_nesw([[0, 1, 0, 1], [0, 0, 0, 0]], 2))
+    >>> t.n_states, t.src.tolist(), t.dst.tolist(), t.north.tolist(), t.south.tolist()
+    (2, [0, 1], [0, 1], [0, 0], [0, 0])
+    """
+    t = _i64(tileset.tiles)  # W, N, E, S
+    return Transducer(int(tileset.n_colors), _i64(t[:, 0]), _i64(t[:, 2]), _i64(t[:, 1]), _i64(t[:, 3]))
+
+
+def _row_keys(rows: np.ndarray, sizes) -> np.ndarray | None:
+    """One int64 key per row of non-negative ``rows`` whose column ``c`` is below ``sizes[c]``
+    (mixed radix), or ``None`` when the keys could overflow."""
+    total = 1
+    for m in sizes:
+        total *= max(int(m), 1)
+    if total >= 2**62:
+        return None
+    key = np.zeros(rows.shape[0], np.int64)
+    for c, m in enumerate(sizes):
+        key = key * np.int64(max(int(m), 1)) + rows[:, c]
+    return key
+
+
+def _first_of_each(rows: np.ndarray, sizes) -> np.ndarray:
+    """Sorted indices of the first occurrence of each distinct row."""
+    key = _row_keys(rows, sizes)
+    if key is None:
+        _, first = np.unique(rows, axis=0, return_index=True)
+    else:
+        _, first = np.unique(key, return_index=True)
+    return np.sort(first)
+
+
+def _unique_rows(rows: np.ndarray, sizes) -> np.ndarray:
+    """The distinct rows in lexicographic order (the mixed-radix key keeps that order)."""
+    key = _row_keys(rows, sizes)
+    if key is None:
+        return np.unique(rows, axis=0)
+    _, first = np.unique(key, return_index=True)
+    return rows[first]
+
+
+def _renumber(src: np.ndarray, dst: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Dense numbers for the states transitions touch: ``(src, dst, old number of each)``."""
+    used, inv = np.unique(np.concatenate([src, dst]), return_inverse=True)
+    inv = inv.astype(np.int64).ravel()
+    return inv[: src.size], inv[src.size:], used
+
+
+def compose(top: Transducer, bottom: Transducer, *,
+            max_transitions: int = DEFAULT_MAX_TRANSITIONS) -> tuple[Transducer, np.ndarray, np.ndarray]:
+    """``top ∘ bottom``: ``bottom``'s rows under ``top``'s, where ``top`` writes what ``bottom``
+    reads. States are the pairs that transitions touch; transitions that agree on source,
+    target, input and output are merged.
+
+    Returns
+    -------
+    (Transducer, numpy.ndarray, numpy.ndarray)
+        The composition, and for each of its transitions the ``top`` and ``bottom``
+        transitions it is made of (the first such pair).
+
+    Raises
+    ------
+    InvalidProblem
+        When more than ``max_transitions`` candidate transitions would be built.
+
+    Examples
+    --------
+    >>> t = tile_transducer(WangTileSet.from_nesw([[0, 0, 0, 0]], 1))
+    >>> c, i, j = compose(t, t)
+    >>> c.n_states, c.n_transitions, i.tolist(), j.tolist()
+    (1, 1, [0], [0])
+    """
+    n_colours = int(max(top.south.max(initial=-1), bottom.north.max(initial=-1), top.north.max(initial=-1),
+                        bottom.south.max(initial=-1))) + 1
+    order = np.argsort(bottom.north, kind="stable")
+    counts = np.bincount(bottom.north, minlength=n_colours)
+    starts = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
+    per_top = counts[top.south].astype(np.int64)
+    total = int(per_top.sum())
+    if total > max_transitions:
+        raise InvalidProblem(f"a composition would have {total:,} candidate transitions, "
+                             f"more than the limit of {max_transitions:,}")
+    i = np.repeat(np.arange(top.src.size, dtype=np.int64), per_top)
+    offset = np.arange(total, dtype=np.int64) - np.repeat(np.cumsum(per_top) - per_top, per_top)
+    j = order[starts[top.south[i]] + offset]
+    nb = np.int64(bottom.n_states)
+    src, dst, _ = _renumber(top.src[i] * nb + bottom.src[j], top.dst[i] * nb + bottom.dst[j])
+    n = np.int64(max(int(src.max(initial=-1)), int(dst.max(initial=-1))) + 1)
+    north, south = top.north[i], bottom.south[j]
+    nv = np.int64(max(n_colours, 1))
+    first = _first_of_each(np.stack([src, dst, north, south], axis=1), [n, n, nv, nv])
+    first.sort()
+    src, dst, used = _renumber(src[first], dst[first])
+    return Transducer(int(used.size), src, dst, north[first], south[first]), i[first], j[first]
+
+
+def _trim(src: np.ndarray, dst: np.ndarray, n: int) -> np.ndarray:
+    """Transitions left after repeatedly removing states without an incoming or an outgoing
+    transition (no transition on a cycle is lost): a numpy pass that shrinks the graph
+    networkx then splits into components."""
+    keep = np.ones(src.size, bool)
+    while True:
+        has_in = np.bincount(dst[keep], minlength=n) > 0
+        has_out = np.bincount(src[keep], minlength=n) > 0
+        new = keep & has_in[src] & has_out[dst]
+        if np.count_nonzero(new) == np.count_nonzero(keep):
+            return keep
+        keep = new
+
+
+def simplify(t: Transducer) -> np.ndarray:
+    """Indices of the transitions of ``t`` that lie on a cycle: both ends in one strongly
+    connected component (Jeandel-Rao's simplification; networkx finds the components).
+
+    Examples
+    --------
+    >>> ts = WangTileSet.from_nesw([[0, 0, 0, 0], [0, 1, 0, 0]], 2)  # the second goes from 0 to 1
+    >>> simplify(tile_transducer(ts)).tolist()
+    [0]
+    """
+    import networkx as nx
+
+    idx = np.flatnonzero(_trim(t.src, t.dst, t.n_states))
+    if idx.size == 0:
+        return idx
+    g = nx.DiGraph()
+    g.add_edges_from(zip(t.src[idx].tolist(), t.dst[idx].tolist()))
+    label = np.full(t.n_states, -1, np.int64)
+    for c, comp in enumerate(nx.strongly_connected_components(g)):
+        label[list(comp)] = c
+    return idx[label[t.src[idx]] == label[t.dst[idx]]]
+
+
+def _is_stable(cls: np.ndarray, src: np.ndarray, label: np.ndarray, dst: np.ndarray, n_labels: int) -> bool:
+    """Exact check that the partition ``cls`` is a forward bisimulation: every state has the
+    same set of ``(label, class of target)`` as its class as a whole."""
+    n, m = cls.size, int(cls.max(initial=-1)) + 1
+    per_state = _unique_rows(np.stack([src, label, cls[dst]], axis=1), [n, n_labels, m])
+    per_class = _unique_rows(np.stack([cls[per_state[:, 0]], per_state[:, 1], per_state[:, 2]], axis=1),
+                             [m, n_labels, m])
+    n_state = np.bincount(per_state[:, 0], minlength=n)
+    n_class = np.bincount(per_class[:, 0], minlength=m)
+    return bool(np.array_equal(n_state, n_class[cls]))
+
+
+def minimize(t: Transducer) -> np.ndarray:
+    """The coarsest forward bisimulation of ``t`` (Jeandel-Rao §3): ``(n_states,)`` class of
+    each state, numbered ``0 .. m-1``. States with the same future (for every transition of one,
+    a transition of the other with the same input and output into an equivalent state) share
+    a class.
+
+    Partition refinement: each round splits classes by a 64-bit signature of the set of
+    ``(label, class of target)`` of each state; the final partition is checked exactly (a
+    signature collision would merge unequal states) and refined again with fresh
+    multipliers if the check fails.
+
+    Examples
+    --------
+    >>> t = tile_transducer(WangTileSet.from_nesw([[0, 0, 0, 0], [0, 1, 0, 1]], 2))
+    >>> minimize(t).tolist()  # colours 0 and 1 both loop reading and writing 0
+    [0, 0]
+    """
+    n = t.n_states
+    if n == 0:
+        return np.zeros(0, np.int64)
+    nv = int(max(t.north.max(initial=0), t.south.max(initial=0))) + 1
+    label = t.north * np.int64(nv) + t.south
+    salt = 0
+    while True:
+        mult = np.random.default_rng(0x7A45 + salt).integers(1, 2**62, size=2, dtype=np.int64) | 1
+        cls = np.zeros(n, np.int64)
+        n_cls = 1
+        while True:
+            pairs = _unique_rows(np.stack([t.src, label, cls[t.dst]], axis=1), [n, nv * nv, n_cls])
+            with np.errstate(over="ignore"):
+                x = (pairs[:, 1] * mult[0] + pairs[:, 2] + 1) * mult[1]
+                x ^= x >> np.int64(29)
+                x *= mult[0]
+            sig = np.zeros(n, np.int64)
+            if pairs.size:  # rows are grouped by state: one sum per state that has transitions
+                starts = np.flatnonzero(np.r_[True, pairs[1:, 0] != pairs[:-1, 0]])
+                with np.errstate(over="ignore"):
+                    sig[pairs[starts, 0]] = np.add.reduceat(x, starts)
+            _, new = np.unique(np.stack([cls, sig], axis=1), axis=0, return_inverse=True)
+            cls = new.astype(np.int64).ravel()
+            m = int(cls.max()) + 1
+            if m == n_cls:
+                break
+            n_cls = m
+        if _is_stable(cls, t.src, label, t.dst, nv * nv):
+            return cls
+        salt += 1
+
+
+def periodic_cycle(t: Transducer) -> np.ndarray | None:
+    """Indices of the transitions of a cycle of ``t`` each of which writes what it reads, in
+    order along the cycle, or ``None``. Each strongly connected part of those transitions
+    gives a shortest cycle through its least state (breadth-first search); the shortest of
+    these is returned."""
+    import networkx as nx
+
+    same = np.flatnonzero(t.north == t.south)
+    if same.size == 0:
+        return None
+    loops = same[t.src[same] == t.dst[same]]
+    if loops.size:
+        return loops[:1]
+    g = nx.DiGraph()
+    for e in same.tolist():
+        g.add_edge(int(t.src[e]), int(t.dst[e]), index=e)
+    best = None
+    for comp in nx.strongly_connected_components(g):
+        if len(comp) < 2:
+            continue
+        start = min(comp)
+        sub = g.subgraph(comp)
+        paths = nx.single_source_shortest_path(sub, start)  # one breadth-first search
+        last = min(sub.predecessors(start), key=lambda u: (len(paths[u]), u))
+        nodes = paths[last] + [start]
+        cycle = np.array([g.edges[a, b]["index"] for a, b in zip(nodes[:-1], nodes[1:])], np.int64)
+        if best is None or cycle.size < best.size:
+            best = cycle
+    return best
+
+
+@dataclass(frozen=True, eq=False)
+class Level:
+    """One step of the search: ``T_k`` and what it was made of.
+
+    Attributes
+    ----------
+    k : int
+        Rows stacked.
+    full : Transducer
+        The simplified, unminimised level: ``scc(T_{k-1} ∘ T_1)`` (for ``k = 1``, ``scc(T)``).
+    upper : numpy.ndarray
+        For each transition of ``full``, the transition of the previous level's :attr:`quotient`
+        above it (``-1`` for ``k = 1``).
+    tile : numpy.ndarray
+        For each transition of ``full``, the tile of its bottom row.
+    cls : numpy.ndarray
+        The class (state of :attr:`quotient`) of each state of ``full``.
+    quotient : Transducer
+        ``T_k``: ``full`` with the classes of :attr:`cls` merged (the minimised level).
+    """
+
+    k: int
+    full: Transducer
+    upper: np.ndarray
+    tile: np.ndarray
+    cls: np.ndarray
+    quotient: Transducer
+
+
+def _level(k: int, full: Transducer, upper: np.ndarray, tile: np.ndarray, minimise: bool) -> Level:
+    keep = simplify(full)
+    src, dst, _ = _renumber(full.src[keep], full.dst[keep])
+    n = int(max(src.max(initial=-1), dst.max(initial=-1))) + 1
+    full = Transducer(n, src, dst, full.north[keep], full.south[keep])
+    upper, tile = upper[keep], tile[keep]
+    cls = minimize(full) if minimise else np.arange(n, dtype=np.int64)
+    m = int(cls.max(initial=-1)) + 1
+    nv = int(max(full.north.max(initial=0), full.south.max(initial=0))) + 1
+    q = _unique_rows(np.stack([cls[full.src], cls[full.dst], full.north, full.south], axis=1), [m, m, nv, nv])
+    return Level(k, full, upper, tile, cls, Transducer(m, _i64(q[:, 0]), _i64(q[:, 1]), _i64(q[:, 2]),
+                                                       _i64(q[:, 3])))
+
+
+def build_level(tileset: WangTileSet, previous: Level | None, *, minimise: bool = True,
+                max_transitions: int = DEFAULT_MAX_TRANSITIONS) -> Level:
+    """``T_1`` (``previous=None``) or ``T_{k+1}`` from ``T_k``: compose with ``T``, simplify, and
+    minimise (or not: ``minimise=False`` keeps every state, for cross-checks)."""
+    base = tile_transducer(tileset)
+    if previous is None:
+        return _level(1, base, np.full(base.n_transitions, -1, np.int64), np.arange(base.n_transitions,
+                                                                                    dtype=np.int64), minimise)
+    comp, i, j = compose(previous.quotient, base, max_transitions=max_transitions)
+    return _level(previous.k + 1, comp, i, j, minimise)
+
+
+def _unfold_one(level: Level, cycle: np.ndarray) -> np.ndarray:
+    """A cycle of ``level.full`` whose image in the quotient is ``cycle`` (transitions of
+    ``level.quotient``) repeated a whole number of times."""
+    full, q, cls = level.full, level.quotient, level.cls
+    lookup: dict[tuple[int, int, int, int], int] = {}
+    for e, (a, b, n, s) in enumerate(zip(full.src.tolist(), cls[full.dst].tolist(), full.north.tolist(),
+                                         full.south.tolist())):
+        lookup.setdefault((a, n, s, b), e)
+    want = [(int(q.north[e]), int(q.south[e]), int(q.dst[e])) for e in cycle.tolist()]
+    x = int(np.flatnonzero(cls == q.src[cycle[0]])[0])
+    seen: dict[int, int] = {}
+    path: list[int] = []
+    while x not in seen:
+        seen[x] = len(path)
+        for n, s, b in want:
+            e = lookup.get((x, n, s, b))
+            if e is None:
+                raise InternalError(f"level {level.k}: the minimised transducer is not a bisimulation quotient")
+            path.append(e)
+            x = int(full.dst[e])
+    return np.asarray(path[seen[x]:], np.int64)
+
+
+def unfold(levels: list[Level], cycle: np.ndarray) -> np.ndarray:
+    """Tiles ``(k, p)`` (row 0 at the top) of the torus given by a periodic ``cycle`` of the
+    last level's quotient: unfold level by level (:class:`Level`), then repeat each row up to
+    the width of the widest."""
+    rows: list[np.ndarray] = []
+    cyc = np.asarray(cycle, np.int64)
+    for level in reversed(levels):
+        path = _unfold_one(level, cyc)
+        rows.append(level.tile[path])
+        cyc = level.upper[path]
+    rows.reverse()
+    width = max(r.size for r in rows)
+    return np.stack([np.tile(r, width // r.size) for r in rows])
+
+
+@dataclass(frozen=True)
+class TransducerVerdict:
+    """What the transducer search decided (Jeandel-Rao §3), with its certificate.
+
+    Attributes
+    ----------
+    verdict : str
+        ``"empty"`` (``T_k`` has no transition: the set tiles no plane), ``"periodic"`` (a
+        torus) or ``"undecided"``.
+    k : int
+        The ``k`` of the verdict; for ``"undecided"``, the largest ``k`` whose ``T_k`` was built
+        (0 when not even ``T_1`` was).
+    torus : numpy.ndarray or None
+        ``"periodic"`` only: ``(k, p)`` tile indices of a tiling of the ``k x p`` torus (row 0
+        at the top), to be checked on ``Board.torus(k, p)``.
+    reason : str
+        Why the search stopped, in words.
+    sizes : list of tuple
+        ``(k, states, transitions)`` of each (minimised) ``T_k`` built.
+    seconds : float
+        Wall-clock time of the search.
+    """
+
+    verdict: str
+    k: int
+    torus: np.ndarray | None = None
+    reason: str = ""
+    sizes: list = field(default_factory=list)
+    seconds: float = 0.0
+
+
+def decide(tileset: WangTileSet, *, max_k: int = 30, deadline: Deadline | None = None, minimise: bool = True,
+           max_transitions: int = DEFAULT_MAX_TRANSITIONS) -> TransducerVerdict:
+    """Search ``k = 1 .. max_k`` for an empty ``T_k`` or a periodic cycle (Jeandel-Rao §3).
+
+    Parameters
+    ----------
+    tileset : WangTileSet
+    max_k : int
+        Largest number of stacked rows tried.
+    deadline : Deadline, optional
+        Checked between levels; when it has passed the verdict is ``"undecided"`` with the
+        ``k`` reached.
+    minimise : bool
+        Merge bisimilar states at every level (default); ``False`` keeps them (slower, the
+        same verdicts).
+    max_transitions : int
+        Size limit of one composition (see :func:`compose`); reaching it ends the search
+        undecided.
+
+    Returns
+    -------
+    TransducerVerdict
+    """
+    if int(max_k) < 1:
+        raise InvalidProblem(f"the largest k must be at least 1, got {max_k}")
+    deadline = deadline or Deadline(None)
+    t0 = time.perf_counter()
+    levels: list[Level] = []
+    sizes: list[tuple[int, int, int]] = []
+
+    def stop(verdict: str, reason: str, torus=None) -> TransducerVerdict:
+        return TransducerVerdict(verdict, levels[-1].k if levels else 0, torus, reason, sizes,
+                                 time.perf_counter() - t0)
+
+    while True:
+        try:
+            deadline.check(f"building T_{len(levels) + 1}")
+            level = build_level(tileset, levels[-1] if levels else None, minimise=minimise,
+                                max_transitions=max_transitions)
+        except (TimeLimitReached, InvalidProblem) as e:
+            return stop("undecided", str(e))
+        levels.append(level)
+        q = level.quotient
+        sizes.append((level.k, q.n_states, q.n_transitions))
+        if q.is_empty():
+            return stop("empty", f"T_{level.k} has no transition")
+        cyc = periodic_cycle(q)
+        if cyc is not None:
+            torus = unfold(levels, cyc)
+            return stop("periodic", f"T_{level.k} has a cycle that writes what it reads: a "
+                                    f"{torus.shape[0]} x {torus.shape[1]} torus", torus)
+        if level.k >= int(max_k):
+            return stop("undecided", f"k limit {max_k} reached")
+
+
+def strip_width(tileset: WangTileSet, k: int, *, max_transitions: int = DEFAULT_MAX_TRANSITIONS) -> int | None:
+    """The least ``w`` such that no ``k x w`` rectangle can be tiled, or ``None`` when
+    rectangles of height ``k`` and every width can (the full ``T^k`` has a cycle).
+
+    The full ``T^k`` is built minimised but not simplified (forward bisimulation keeps the
+    set of finite label sequences from each state, so the longest path); ``w`` is its
+    longest path plus one. Raises :class:`InvalidProblem` past ``max_transitions``.
+
+    Examples
+    --------
+    >>> strip_width(WangTileSet.from_nesw([[0, 1, 0, 0]], 2), 1)  # E=1 never meets W=0
+    2
+    """
+    import networkx as nx
+
+    if int(k) < 1:
+        raise InvalidProblem(f"k must be at least 1, got {k}")
+    base = tile_transducer(tileset)
+
+    def quotient(t: Transducer) -> Transducer:
+        cls = minimize(t)
+        m = int(cls.max(initial=-1)) + 1
+        nv = int(max(t.north.max(initial=0), t.south.max(initial=0))) + 1
+        q = _unique_rows(np.stack([cls[t.src], cls[t.dst], t.north, t.south], axis=1), [m, m, nv, nv])
+        return Transducer(m, _i64(q[:, 0]), _i64(q[:, 1]), _i64(q[:, 2]), _i64(q[:, 3]))
+
+    t = quotient(base)
+    for _ in range(int(k) - 1):
+        if t.is_empty():
+            return 1
+        t = quotient(compose(t, base, max_transitions=max_transitions)[0])
+    if t.is_empty():
+        return 1
+    g = nx.DiGraph()
+    g.add_edges_from(zip(t.src.tolist(), t.dst.tolist()))
+    if not nx.is_directed_acyclic_graph(g):
+        return None
+    return int(nx.dag_longest_path_length(g)) + 1
+
+
+def torus_tiling(tileset: WangTileSet, torus) -> np.ndarray:
+    """Leg colours ``(k * p, 4)`` (W, N, E, S, cells in row-major order) of the ``(k, p)`` tile
+    indices ``torus``: the tiling of ``Board.torus(k, p)`` for the board verifier."""
+    idx = np.asarray(torus, dtype=np.int64)
+    return np.asarray(tileset.tiles, dtype=np.int64)[idx.ravel()]
