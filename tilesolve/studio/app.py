@@ -219,6 +219,7 @@ def create_app(*, warm: bool = True) -> Starlette:
         return Response(data, media_type="image/png", headers={"Cache-Control": "max-age=3600"})
 
     def _warm_views() -> None:
+        worker.compiled_kernels()
         for fam in family.families():
             if fam.form is not None and fam.form.window is not None:
                 try:

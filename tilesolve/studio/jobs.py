@@ -1,8 +1,8 @@
 """Studio solves in worker processes: progress, cancel, and a server that never breaks.
 
 Each solve runs :func:`tilesolve.studio.worker.solve_request` in its own process, forked
-from a *forkserver* that has imported (and compiled) the families once, so a process starts
-in milliseconds. Cancelling a solve ends its process: whatever the solver was doing, nothing
+from a *forkserver* that has imported (and compiled) the families once; a few processes are
+started ahead and wait for a request, so a solve starts at once. Cancelling a solve ends its process: whatever the solver was doing, nothing
 of it is left in the server, and other solves go on. A thread per job waits for the answer,
 so no request handler ever blocks the event loop.
 """
@@ -20,24 +20,30 @@ from typing import Any
 
 from tilesolve.errors import InvalidProblem
 
-__all__ = ["Job", "Jobs", "TooBusy", "MAX_RUNNING", "KEEP"]
+__all__ = ["Job", "Jobs", "TooBusy", "MAX_RUNNING", "KEEP", "SPARES"]
 
 #: Solves that may run at once (more are refused with a message, not queued).
 MAX_RUNNING = 4
 #: Finished jobs kept for their exports.
 KEEP = 32
+#: Worker processes started ahead of need.
+SPARES = 2
 
 
 class TooBusy(InvalidProblem):
     """Too many solves are running."""
 
 
-def _child(conn, request: tuple) -> None:
-    """The worker process: solve and send ``("ok", answer)``, ``("error", message)`` or
-    ``("internal", traceback)``."""
+def _child(conn) -> None:
+    """The worker process: wait for one request, solve it and send ``("ok", answer)``,
+    ``("error", message)`` or ``("internal", traceback)``, then end."""
     from tilesolve.errors import InvalidProblem as Bad
     from tilesolve.studio.worker import solve_request
 
+    try:
+        request = conn.recv()
+    except (EOFError, OSError):  # the server went away before giving this process a job
+        return
     try:
         conn.send(("ok", solve_request(*request)))
     except Bad as exc:
@@ -81,15 +87,48 @@ class Jobs:
     def __init__(self, preload: tuple[str, ...] = ("tilesolve.studio.warm",)) -> None:
         self._ctx = multiprocessing.get_context("forkserver")
         self._ctx.set_forkserver_preload(list(preload))
+        self._spares: list[tuple[Any, Any]] = []  # started processes waiting for their request
         self._jobs: OrderedDict[str, Job] = OrderedDict()
         self._lock = threading.Lock()
         self._ids = itertools.count(1)
+        self._closed = False
 
     def warm(self) -> None:
-        """Start the forkserver now (it imports and compiles the families once)."""
-        p = self._ctx.Process(target=time.sleep, args=(0,))
-        p.start()
-        p.join()
+        """Start the forkserver (it imports and compiles the families once) and the spare
+        processes now, so the first solve does not wait for them."""
+        self._refill()
+
+    def _spawn(self) -> tuple[Any, Any]:
+        mine, theirs = self._ctx.Pipe()
+        process = self._ctx.Process(target=_child, args=(theirs,), daemon=True)
+        process.start()
+        theirs.close()
+        return process, mine
+
+    def _refill(self) -> None:
+        """Keep :data:`SPARES` processes started and waiting (a solve then starts at once:
+        the process start, and its share of the main module's imports, is paid in advance)."""
+        while True:
+            with self._lock:
+                if self._closed or len(self._spares) >= SPARES:
+                    return
+            spare = self._spawn()
+            with self._lock:
+                self._spares.append(spare)
+
+    def _take(self) -> tuple[Any, Any]:
+        with self._lock:
+            while self._spares:
+                process, conn = self._spares.pop()
+                if process.is_alive():
+                    break
+                conn.close()
+            else:
+                process = None
+        if process is None:
+            process, conn = self._spawn()
+        threading.Thread(target=self._refill, daemon=True).start()
+        return process, conn
 
     def running(self) -> int:
         with self._lock:
@@ -99,7 +138,7 @@ class Jobs:
         """Start a solve (the request was checked by the caller)."""
         with self._lock:
             if sum(j.state == "running" for j in self._jobs.values()) >= MAX_RUNNING:
-                raise TooBusy(f"{MAX_RUNNING} solves are running; wait for one or cancel it")
+                raise TooBusy(f"at most {MAX_RUNNING} solves run at once; wait for one or cancel it")
             job = Job(f"j{next(self._ids)}", family, time_limit)
             self._jobs[job.id] = job
             while len(self._jobs) > KEEP + MAX_RUNNING:
@@ -107,12 +146,9 @@ class Jobs:
                 if old is None:
                     break
                 del self._jobs[old]
-        recv, send = self._ctx.Pipe(duplex=False)
-        job.process = self._ctx.Process(target=_child, args=(send, (family, values, method, time_limit)),
-                                        daemon=True)
-        job.process.start()
-        send.close()
-        threading.Thread(target=self._wait, args=(job, recv), daemon=True).start()
+        job.process, conn = self._take()
+        conn.send((family, values, method, time_limit))
+        threading.Thread(target=self._wait, args=(job, conn), daemon=True).start()
         return job
 
     def _wait(self, job: Job, conn) -> None:
@@ -122,7 +158,8 @@ class Jobs:
             kind, payload = "gone", None
         finally:
             conn.close()
-        job.process.join(5)
+        if kind == "gone":
+            job.process.join(5)  # for its exit code
         with self._lock:
             job.finished = time.perf_counter()
             if job.state == "running":
@@ -135,6 +172,7 @@ class Jobs:
                 else:
                     job.state, job.error = "error", f"the solver process ended (exit code {job.process.exitcode})"
         job.done.set()
+        job.process.join()
 
     def get(self, job_id: str) -> Job:
         with self._lock:
@@ -155,7 +193,13 @@ class Jobs:
         return job
 
     def close(self) -> None:
-        """End every running solve (server shutdown)."""
+        """End every running solve and the spare processes (server shutdown)."""
+        with self._lock:
+            self._closed = True
+            spares, self._spares = self._spares, []
+        for process, conn in spares:
+            conn.close()
+            process.join(5)
         for job in list(self._jobs.values()):
             if job.state == "running":
                 self.cancel(job.id)

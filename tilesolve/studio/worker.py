@@ -17,13 +17,23 @@ from typing import Any, Mapping
 from tilesolve import family
 from tilesolve.errors import InvalidProblem
 
-__all__ = ["pose", "solve_request", "picture", "command_line", "SVG_MAX_CELLS", "MAX_TIME_LIMIT"]
+__all__ = ["pose", "solve_request", "picture", "command_line", "compiled_kernels", "SVG_MAX_CELLS", "MAX_TIME_LIMIT"]
 
 #: Solutions with at most this many tiling entries are drawn as SVG; larger ones as PNG.
 SVG_MAX_CELLS = 2500
 
 #: Longest time limit a page may ask for (seconds).
 MAX_TIME_LIMIT = 3600.0
+
+
+def compiled_kernels() -> None:
+    """Load the numba-compiled constructive kernels now: a server lives long, so every solve
+    should take the compiled path, not only those above the one-shot threshold of
+    :mod:`tilesolve.constructive._jit`."""
+    from tilesolve.constructive import _brick_kernels, _dappled_kernels
+
+    for module in (_brick_kernels, _dappled_kernels):
+        module.KERNELS.compiled()
 
 
 def pose(name: str, values: Any) -> tuple[family.Family, dict, Any, Mapping]:
