@@ -9,6 +9,7 @@ import click
 from tilesolve.cli import options as opt
 from tilesolve.cli.common import big, human_bytes, progress_wanted, say
 from tilesolve.cli.outputs import Outputs
+from tilesolve.cli.wang_count import load_tileset, tileset_options, wang_count
 from tilesolve.errors import InvalidProblem
 from tilesolve.family import draw_seed, raise_if_interrupted
 
@@ -310,9 +311,11 @@ def wang() -> None:
     """Wang tilings of boards with any tile set W ⊂ C^4 (Def. 2 of the brick paper)."""
 
 
+wang.add_command(wang_count)
+
+
 @wang.command(name="solve", context_settings=opt.CONTEXT_SETTINGS, epilog=BOARD_HELP + "\n\n" + opt.EXIT_HELP)
-@click.option("--tiles", "tiles_path", required=True, type=click.Path(dir_okay=False), metavar="TILES.json",
-              help='A tilesolve/wang-tileset file (tiles as [N, E, S, W]); older {"tiles": [[W, N, E, S], ...]} files too.')
+@tileset_options
 @board_opt
 @boundary_opt
 @opt.seed_opt
@@ -322,12 +325,14 @@ def wang() -> None:
 @opt.output_opt
 @svg_opt
 @click.pass_context
-def wang_solve(ctx, tiles_path, board_spec, boundary, seed, method, time_limit, output, svg) -> None:
+def wang_solve(ctx, tiles_path, tiles_format, builtin, board_spec, boundary, seed, method, time_limit, output,
+               svg) -> None:
     """Tile a board with any Wang tile set, or prove it impossible.
 
     \b
     Example:
       tilesolve wang solve --tiles tiles.json --board torus:8x8 --boundary free -o t.json --svg t.svg
+      tilesolve wang solve --builtin jeandel-rao --board rect:12x12 --boundary free --svg jr.svg
 
     Without -o or --svg the tiling is printed as text: each cell's leg colours W N E S.
     """
@@ -335,9 +340,7 @@ def wang_solve(ctx, tiles_path, board_spec, boundary, seed, method, time_limit, 
     from tilesolve.model.board import BoardProblem
 
     outs = Outputs(output, svg)
-    from tilesolve.io.tileset_json import read_tileset
-
-    ts, tile_notes = read_tileset(tiles_path)
+    ts, tile_notes = load_tileset(tiles_path, tiles_format, builtin)
     for note in tile_notes:
         say(f"note: {note}")
     board = read_board_spec(board_spec)
@@ -408,8 +411,11 @@ def _check_held(rows: int, cols: int, svg) -> None:
                    "edges (grey); uv, the brick's Cartesian UV coordinates (red u, green v) (004 §3.2).")
 @click.option("--ppc", type=click.IntRange(1, 256), default=None, metavar="N",
               help="--png pixels per cell  [default: about 1024 px on the longer side, 1 to 32]")
+@click.option("--verify/--no-verify", "check", default=True, show_default=True,
+              help="Check every --png band with the board verifier (line limits included); the check takes "
+                   "most of the time of a large picture.")
 @click.pass_context
-def wall(ctx, region, max_line, colors, seed, method, period, output, svg, png, map_kind, ppc) -> None:
+def wall(ctx, region, max_line, colors, seed, method, period, output, svg, png, map_kind, ppc, check) -> None:
     """A brick wall in which no line runs through more than N bricks, cut from an infinite wall.
 
     The procedural wall (Derouet-Jourdan, Salvati, Jonchier, 004 §3-4, App. B) gives every
@@ -458,7 +464,8 @@ def wall(ctx, region, max_line, colors, seed, method, period, output, svg, png, 
         def draw(path):
             show = say if progress_wanted() else None
             return write_wall_png(path, (x0, y0, cols, rows), colors=colors, max_line=max_line, seed=seed,
-                                  method=method, period=(pw, ph), kind=map_kind or "id", ppc=ppc, progress=show)
+                                  method=method, period=(pw, ph), kind=map_kind or "id", ppc=ppc, verify=check,
+                                  progress=show)
     if held:
         from tilesolve.walls import wall_problem
 
@@ -473,8 +480,9 @@ def wall(ctx, region, max_line, colors, seed, method, period, output, svg, png, 
         f"lines <= {max_line}, {colors} colours")
     say(f"  method {method}, seed {seed}" + (f", period {pw}x{ph}" if method == "npd" else "")
         + f", {rep.time_s:.3f} s")
-    say(f"  {map_kind or 'id'} map {rep.size_px[0]}x{rep.size_px[1]} px, drawn in {rep.bands} band{'s' if rep.bands > 1 else ''}; "
-        f"{big(rep.verified_cells)} cells checked with the board verifier")
+    bands = f"{rep.bands} band{'s' if rep.bands > 1 else ''}"
+    checked = f"{big(rep.verified_cells)} cells checked with the board verifier" if check else "not verified"
+    say(f"  {map_kind or 'id'} map {rep.size_px[0]}x{rep.size_px[1]} px, drawn in {bands}; {checked}")
     if png != "-":
         say(f"  wrote {png}")
     ctx.exit(0)

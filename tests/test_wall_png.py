@@ -1,0 +1,167 @@
+"""Wall pictures written band by band (004 §3.2): the streamed PNG is the picture of the whole
+window, every band is verified, and `tilesolve wall` keeps its promises about outputs."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from tilesolve import wall_render
+from tilesolve.constructive.walls import wall_window
+from tilesolve.errors import InternalError, InvalidProblem
+from tilesolve.wall_render import wall_map_pixels, write_wall_png
+
+from clitools import one_line_error, run, snapshot
+
+
+def pixels(path) -> np.ndarray:
+    with Image.open(path) as img:
+        return np.asarray(img)
+
+
+@pytest.mark.parametrize("kind", ["id", "distance", "uv"])
+def test_bands_make_the_picture_of_the_whole_window(tmp_path, monkeypatch, kind):
+    region, ppc = (-31, 400, 23, 17), 5
+    x0, y0, w, h = region
+    legs = wall_window(x0 - 1, y0 - 1, w + 2, h + 2, colors=4, max_line=3, seed=9)
+    whole = wall_map_pixels(legs, kind, colors=4, ppc=ppc, origin=(x0, y0))
+    monkeypatch.setattr(wall_render, "BAND_CELLS", 3 * w)  # bands of 3 cell rows (the last one 2)
+    rep = write_wall_png(tmp_path / "w.png", region, colors=4, max_line=3, seed=9, kind=kind, ppc=ppc)
+    assert rep.bands == 6 and rep.size_px == (w * ppc, h * ppc) and rep.verified_cells == w * h
+    got = pixels(tmp_path / "w.png")
+    assert np.array_equal(got, whole)
+    with Image.open(tmp_path / "w.png") as img:
+        assert img.mode == {"id": "P", "distance": "L", "uv": "RGB"}[kind]
+
+
+def test_npd_pictures_repeat_the_period(tmp_path):
+    write_wall_png(tmp_path / "n.png", (0, 0, 24, 18), colors=3, max_line=3, seed=4, method="npd", period=(12, 9),
+                   kind="distance", ppc=2)
+    p = pixels(tmp_path / "n.png")
+    assert np.array_equal(p[:, :24], p[:, 24:]) and np.array_equal(p[:18], p[18:])
+
+
+def test_a_band_that_fails_the_verifier_leaves_no_file(tmp_path, monkeypatch):
+    real = wall_render.wall_source
+
+    def corrupted(*args, **kwargs):
+        window = real(*args, **kwargs)
+
+        def legs(x0, y0, w, h):
+            t = window(x0, y0, w, h).copy()
+            if y0 < 5:  # the second band down: a leg no neighbour agrees with
+                t[h // 2, w // 2, 1] = (t[h // 2, w // 2, 1] + 1) % 3
+            return t
+        return legs
+
+    monkeypatch.setattr(wall_render, "wall_source", corrupted)
+    monkeypatch.setattr(wall_render, "BAND_CELLS", 40)
+    with pytest.raises(InternalError, match="board verifier"):
+        write_wall_png(tmp_path / "w.png", (0, 0, 10, 10), colors=3, max_line=2, seed=1)
+    assert list(tmp_path.iterdir()) == []
+    # without the verifier the same picture is written
+    write_wall_png(tmp_path / "w.png", (0, 0, 10, 10), colors=3, max_line=2, seed=1, verify=False)
+    assert (tmp_path / "w.png").exists()
+
+
+def test_lines_crossing_band_borders_are_checked_whole(tmp_path, monkeypatch):
+    """A wall with horizontal lines of at most 2 bricks and longer vertical ones, checked
+    against n = 2 in bands of 2 rows: every band alone passes the verifier, the rows kept
+    from the band above catch the vertical lines that cross band borders."""
+    from tilesolve.constructive.npd import periodic_window
+    from tilesolve.constructive.walls import line_lengths
+    from tilesolve.model.board import Board, BoardProblem, WangTileSet
+    from tilesolve.verify.board import board_violations
+    from tilesolve.walls import brick_wall
+
+    problem, sol = brick_wall(44, 44, 2, max_v=8, seed=3)
+    wall = sol.tiling.reshape(44, 44, 4)
+    hor, ver = line_lengths(wall[:40, :40])
+    assert hor.max() <= 2 and ver.max() > 2
+    band = BoardProblem(Board.rect(2, 40), WangTileSet.brick(3), None, max_h=2, max_v=2)
+    assert all(not board_violations(wall[r:r + 2, :40].reshape(-1, 4), band) for r in range(0, 40, 2))
+    monkeypatch.setattr(wall_render, "BAND_CELLS", 2 * 40)
+    monkeypatch.setattr(wall_render, "wall_source",
+                        lambda method, **kw: lambda x0, y0, w, h: periodic_window(wall, x0, y0 + 4, w, h))
+    with pytest.raises(InternalError, match="board verifier"):
+        write_wall_png(tmp_path / "w.png", (0, 0, 40, 40), colors=3, max_line=2, seed=3)
+    assert not (tmp_path / "w.png").exists()
+
+
+def test_bad_input_to_the_library():
+    with pytest.raises(InvalidProblem, match="px limit"):
+        write_wall_png("never.png", (0, 0, 70_000, 70_000), colors=3, max_line=2, ppc=1)
+    with pytest.raises(InvalidProblem, match="unknown wall map"):
+        write_wall_png("never.png", (0, 0, 4, 4), colors=3, max_line=2, kind="phase")
+    with pytest.raises(InvalidProblem, match="2\\*\\*62"):
+        write_wall_png("never.png", ((1 << 62) - 3, 0, 4, 4), colors=3, max_line=2)
+    assert not Path("never.png").exists()
+
+
+# ----------------------------------------------------------------------------- the command
+def invoke(*args):
+    from click.testing import CliRunner
+
+    from tilesolve.cli.main import main_group
+
+    return CliRunner().invoke(main_group, list(args), catch_exceptions=False)
+
+
+def test_cli_png_maps_json_verify_and_draw(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    r = invoke("wall", "--region", "-12,30,20x15", "--max-line", "3", "--seed", "5", "-o", "w.json", "--png", "w.png",
+               "--map", "uv", "--ppc", "6")
+    assert r.exit_code == 0, r.output
+    assert pixels("w.png").shape == (90, 120, 3)
+    assert json.loads(Path("w.json").read_text())["method"] == "procedural"
+    v = invoke("verify", "w.json")
+    assert v.exit_code == 0 and "ok:" in v.output
+    d = invoke("draw", "w.json", "-o", "again.png")
+    assert d.exit_code == 0 and Path("again.png").read_bytes()[:4] == b"\x89PNG"
+    alone = invoke("wall", "--region", "-12,30,20x15", "--max-line", "3", "--seed", "5", "--png", "alone.png",
+                   "--map", "uv", "--ppc", "6")
+    assert alone.exit_code == 0 and "300 cells checked with the board verifier" in alone.stderr
+    assert Path("alone.png").read_bytes() == Path("w.png").read_bytes()
+    fast = invoke("wall", "--region", "-12,30,20x15", "--max-line", "3", "--seed", "5", "--png", "fast.png",
+                  "--map", "uv", "--ppc", "6", "--no-verify")
+    assert fast.exit_code == 0 and "not verified" in fast.stderr
+    assert Path("fast.png").read_bytes() == Path("w.png").read_bytes()
+
+
+def test_cli_npd_outputs_are_readable(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    r = invoke("wall", "--region", "5,5,30x20", "--max-line", "3", "--method", "npd", "--period", "12x9", "--seed",
+               "7", "-o", "n.json", "--png", "n.png")
+    assert r.exit_code == 0, r.output
+    assert json.loads(Path("n.json").read_text())["method"] == "npd"
+    assert invoke("verify", "n.json").exit_code == 0
+    assert invoke("draw", "n.json", "-o", "n.svg").exit_code == 0
+
+
+@pytest.mark.parametrize("args, msg", [
+    (["--region", "0,0,20000x20000", "-o", "keep.json"], "--png alone"),
+    (["--region", "0,0,2000x2000", "--svg", "x.svg"], "--png alone"),
+    (["--region", "0,0,70000x70000", "--png", "x.png", "--ppc", "1"], "px limit"),
+    (["--region", "0,0,20x20", "--map", "uv"], "add --png"),
+    (["--region", "0,0,20x20", "--period", "5x5", "--png", "x.png"], "--method npd"),
+    (["--region", "0,0,20x20", "--method", "dappled", "--png", "x.png", "--map", "id"], "finite"),
+    (["--region", "0,0,20x20", "--method", "npd", "--period", "2x8", "--png", "x.png"], "3x3"),
+])
+def test_cli_refusals_one_line_no_file(tmp_path, monkeypatch, args, msg):
+    monkeypatch.chdir(tmp_path)
+    Path("keep.json").write_text("{}\n")
+    before = snapshot(tmp_path)
+    r = invoke("wall", "--max-line", "2", "--seed", "1", *args)
+    lines = r.stderr.strip().splitlines()
+    assert r.exit_code == 2 and len(lines) == 1 and lines[0].startswith("tilesolve: error: ") and msg in lines[0], \
+        r.stderr
+    assert snapshot(tmp_path) == before
+
+
+def test_console_script_refuses_a_held_region_in_one_line(tmp_path):
+    r = run("wall", "--region", "0,0,20000x20000", "--max-line", "2", "-o", "w.json", cwd=tmp_path)
+    assert "about 83.4 GiB" in one_line_error(r) and not (tmp_path / "w.json").exists()
