@@ -196,6 +196,12 @@ CASES: dict[str, list[tuple[str, str]]] = {
     "backends": [
         ("extra argument", "everything"),
     ],
+    "studio": [
+        ("port not a number", "--port abc"),
+        ("port too large", "--port 70000"),
+        ("exit-after not positive", "--exit-after 0"),
+        ("extra argument", "everything"),
+    ],
     "render texture": [
         ("example missing", "--example missing.png --size 64x64 -o keep.json"),
         ("example not an image", "--example garbage.bin --size 64x64 -o out.png"),

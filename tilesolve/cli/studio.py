@@ -30,15 +30,18 @@ def is_loopback(host: str) -> bool:
 @click.option("--host", default="127.0.0.1", show_default=True, metavar="H",
               help="Address to listen on; anything but loopback makes the studio reachable from other machines.")
 @click.option("--no-browser", is_flag=True, help="Do not open the page in a web browser.")
-def studio(port, host, no_browser) -> None:
+@click.option("--exit-after", type=opt.Seconds(), default=None, metavar="S",
+              help="Stop the server after S seconds (scripts and smoke tests); by default it runs until Ctrl-C.")
+def studio(port, host, no_browser, exit_after) -> None:
     """Serve the studio page: pick a family, fill its form, solve, edit by clicking, pan over
     infinite walls and tilings, export the CLI's files and the command that reproduces them.
 
+    Run it as `tilesolve studio` and the page opens at http://127.0.0.1:8765/; Ctrl-C stops
+    the server. Needs the studio extra: pip install 'tilesolve[studio]'.
+
     \b
     Example:
-      tilesolve studio --port 8765 --no-browser     # then open http://127.0.0.1:8765/
-
-    Ctrl-C stops the server. Needs the studio extra: pip install 'tilesolve[studio]'.
+      tilesolve studio --port 0 --no-browser --exit-after 3     # serves on a free port for 3 s
     """
     try:
         import uvicorn
@@ -71,4 +74,8 @@ def studio(port, host, no_browser) -> None:
     import threading
 
     threading.Thread(target=_announce, daemon=True).start()
+    if exit_after is not None:
+        timer = threading.Timer(exit_after, lambda: setattr(server, "should_exit", True))
+        timer.daemon = True
+        timer.start()
     server.run()
