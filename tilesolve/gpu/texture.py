@@ -117,9 +117,7 @@ uniform usampler2D u_where;  // tile -> (column, row from the bottom) in the pac
 uniform sampler2D u_atlas;   // the packed tile images, mipmapped, wrapping toroidally
 uniform int u_grid;          // C * C
 uniform float u_lod;         // log2(atlas tile / tile_px): the mip level of an unscaled picture
-out vec4 f_colour;
-vec4 lookup(uint tile, ivec2 inside, int tile_px) {
-    uvec2 where = texelFetch(u_where, ivec2(int(tile), 0), 0).xy;
+vec4 lookup(uvec2 where, ivec2 inside, int tile_px) {
     vec2 uv = (vec2(where) + (vec2(inside) + 0.5) / float(tile_px)) / float(u_grid);
     return textureLod(u_atlas, uv, u_lod);
 }
@@ -129,27 +127,37 @@ vec4 lookup(uint tile, ivec2 inside, int tile_px) {
 _FRAGMENT_DIRECT = """
 #version 450
 """ + HASH_GLSL + _LOOKUP_GLSL + """
+out vec4 f_colour;
 void main() {
     uint tile;
     ivec2 local;
     ivec2 inside = tile_of(tile, local);
-    f_colour = lookup(tile, inside, u_tile_px);
+    f_colour = lookup(texelFetch(u_where, ivec2(int(tile), 0), 0).xy, inside, u_tile_px);
 }
 """
 
-#: Second of two passes: the tiles of the pass were rendered first, one fragment each (``ids``).
+#: First of two passes: one fragment per tile, writing the tile's place in the atlas.
+_FRAGMENT_PLACES = """
+#version 450
+""" + HASH_GLSL + """
+uniform usampler2D u_where;
+out uvec2 f_place;
+void main() { uint tile; ivec2 local; tile_of(tile, local); f_place = texelFetch(u_where, ivec2(int(tile), 0), 0).xy; }
+"""
+
+#: Second of two passes: each fragment fetches its tile's place (``places``) and samples the atlas.
 _FRAGMENT_TWO_PASS = """
 #version 450
 """ + DIV_GLSL + _LOOKUP_GLSL + """
-uniform usampler2D u_ids;    // the pass's tiles, (0, 0) = u_first
+uniform usampler2D u_places; // the pass's tiles' places in the atlas, (0, 0) = u_first
 uniform int u_tile_px;
 uniform ivec2 u_offset;
 uniform ivec2 u_first;
+out vec4 f_colour;
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy) + u_offset;
     ivec2 t = floor_div(p, u_tile_px);
-    uint tile = texelFetch(u_ids, t - u_first, 0).r;
-    f_colour = lookup(tile, p - t * u_tile_px, u_tile_px);
+    f_colour = lookup(texelFetch(u_places, t - u_first, 0).xy, p - t * u_tile_px, u_tile_px);
 }
 """
 
@@ -376,9 +384,10 @@ class TextureMapper:
 
     def _program(self, kind: str):
         if kind not in self._programs:
-            src = {"ids": _FRAGMENT_IDS, "direct": _FRAGMENT_DIRECT, "two_pass": _FRAGMENT_TWO_PASS}[kind]
+            src = {"ids": _FRAGMENT_IDS, "direct": _FRAGMENT_DIRECT, "places": _FRAGMENT_PLACES,
+                   "two_pass": _FRAGMENT_TWO_PASS}[kind]
             prog = self.ctx.program(vertex_shader=_VERTEX, fragment_shader=src)
-            units = {"u_perm": 0, "u_px": 1, "u_ym": 2, "u_red": 3, "u_where": 4, "u_atlas": 5, "u_ids": 6}
+            units = {"u_perm": 0, "u_px": 1, "u_ym": 2, "u_red": 3, "u_where": 4, "u_atlas": 5, "u_places": 6}
             for name, unit in units.items():
                 if name in prog:
                     prog[name].value = unit
@@ -386,18 +395,19 @@ class TextureMapper:
                 prog["u_colors"].value = self.colors
             if "u_grid" in prog:
                 prog["u_grid"].value = self.colors**2
+            if "u_lod" in prog:
                 prog["u_lod"].value = float(np.log2(self.atlas.tile / self.tile_px))
             self._programs[kind] = (prog, self.ctx.vertex_array(prog, [(self._quad, "2f", "in_pos")]))
         return self._programs[kind]
 
-    def _draw(self, kind: str, fbo, offset, tile_px: int, first, count, ids=None) -> None:
+    def _draw(self, kind: str, fbo, offset, tile_px: int, first, count, places=None) -> None:
         """One pass into ``fbo``; ``offset`` is its lower-left pixel, ``first``/``count`` its tiles."""
         prog, vao = self._program(kind)
         prog["u_offset"].value = tuple(offset)
         prog["u_first"].value = tuple(first)
         prog["u_tile_px"].value = tile_px
         fbo.use()
-        if kind != "two_pass":
+        if kind != "two_pass":  # the passes that hash
             self._perm.use(0)
             self._row_tables(first[0], count[0] + 1, True).use(1)
             self._row_tables(first[1], count[1] + 1, False).use(2)
@@ -405,8 +415,8 @@ class TextureMapper:
         if kind != "ids":
             self._where.use(4)
             self._atlas.use(5)
-        if ids is not None:
-            ids.use(6)
+        if places is not None:
+            places.use(6)
         vao.render(mode=self.ctx.TRIANGLE_STRIP)
 
     def _check_pass(self, width, height) -> tuple[int, int]:
@@ -440,13 +450,13 @@ class TextureMapper:
         if not self.two_pass:
             self._draw("direct", fbo, offset, t, first, count)
             return
-        self._draw("ids", ids_fbo, first, 1, first, count)
-        self._draw("two_pass", fbo, offset, t, first, count, ids=ids_fbo.color_attachments[0])
+        self._draw("places", ids_fbo, first, 1, first, count)
+        self._draw("two_pass", fbo, offset, t, first, count, places=ids_fbo.color_attachments[0])
 
     def _ids_target(self, w: int, h: int):
         t = self.tile_px
         n = (min(self.max_pass, (w - 1) // t + 2), min(self.max_pass, (h - 1) // t + 2))
-        return self.ctx.framebuffer(color_attachments=[self.ctx.texture(n, 1, dtype="u4")])
+        return self.ctx.framebuffer(color_attachments=[self.ctx.texture(n, 2, dtype="u4")])
 
     def frame(self, width: int, height: int):
         """A render target and a function drawing one frame of the picture's lower-left pass into it."""
