@@ -6,10 +6,11 @@ run's deadline and turns the backend's :class:`~tilesolve.engine.result.Result` 
 :class:`~tilesolve.model.solution.Solution`:
 
 - ``sat``: the decoded tiling (the pipeline then verifies it independently);
-- ``unsat``: only with a DRAT proof checked by :mod:`tilesolve.verify.drat`
-  (:mod:`tilesolve.engine.certificates`); a *restricted* formula (one that searches part of
-  the space, e.g. the lifted packings) proves nothing by being unsatisfiable, so its unsat
-  is reported ``unknown``;
+- ``unsat``: only with a DRAT proof checked by :mod:`tilesolve.verify.drat` whatever its size
+  (:mod:`tilesolve.engine.certificates`), bound to the SHA-256 of the exact CNF
+  (``stats["cnf_sha256"]``) and written to the ``--proof-dir`` when one is set; a
+  *restricted* formula (one that searches part of the space, e.g. the lifted packings)
+  proves nothing by being unsatisfiable, so its unsat is reported ``unknown``;
 - ``unknown``: time limit or Ctrl-C, never ``unsat``.
 """
 

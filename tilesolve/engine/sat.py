@@ -39,6 +39,7 @@ MapleCM, MapleSAT and Ergo do; Kissat, MergeSat, Minicard and the MiniSats do no
 Proofs are only as good as the solver's logging: MapleSAT was seen to emit a unit lemma
 that is neither RUP nor RAT (a cyclic 9x9 dappled problem with a count), which
 :mod:`tilesolve.verify.drat` rejects, so routes that check proofs report ``unknown``.
+Every proof is checked, whatever its size (:mod:`tilesolve.engine.certificates`).
 """
 
 from __future__ import annotations

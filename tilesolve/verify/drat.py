@@ -74,8 +74,27 @@ ENGINES = ("backward", "forward")
 #: loading its cache costs about half a second; the interpreted kernels do ~20k literals in that).
 COMPILE_FROM = 20_000
 
-#: Proof steps per kernel call between two deadline checks.
-_CHUNK = 4096
+#: Seconds a kernel call may take between two deadline checks (the steps per call adapt).
+_SLICE_S = 0.05
+
+
+class _Slices:
+    """Proof steps per kernel call: doubled while calls are quick, halved when slow."""
+
+    def __init__(self) -> None:
+        self.steps = 256
+        self.t = time.perf_counter()
+
+    def next(self) -> int:
+        return self.steps
+
+    def done(self) -> None:
+        now = time.perf_counter()
+        took, self.t = now - self.t, now
+        if took < _SLICE_S / 4:
+            self.steps = min(self.steps * 2, 1 << 20)
+        elif took > _SLICE_S:
+            self.steps = max(self.steps // 2, 16)
 
 
 @dataclass(frozen=True)
@@ -175,13 +194,28 @@ def dimacs_bytes(formula) -> bytes:
     """
     lits, sizes, _ = formula_arrays(formula)
     n_vars = int(np.abs(lits).max()) if lits.size else 0
-    ends = np.cumsum(sizes)
-    tokens = np.insert(lits, ends, 0)
-    words = tokens.astype(str).astype(object)
-    zero = tokens == 0
-    words[zero] = "0\n"
-    body = " ".join(words.tolist()).replace("\n ", "\n") if len(words) else ""
-    return f"p cnf {n_vars} {len(sizes)}\n{body}".encode("ascii")
+    head = f"p cnf {n_vars} {len(sizes)}\n".encode("ascii")
+    tok = np.insert(lits, np.cumsum(sizes), 0)  # each clause ends in 0
+    if tok.size == 0:
+        return head
+    # decimal digits written with numpy: one pass per digit position
+    neg = tok < 0
+    v = np.abs(tok)
+    nd = np.ones(tok.size, np.int64)
+    x = v // 10
+    while x.any():
+        nd += x > 0
+        x //= 10
+    off = np.zeros(tok.size + 1, np.int64)
+    np.cumsum(neg + nd + 1, out=off[1:])
+    buf = np.empty(int(off[-1]), np.uint8)
+    buf[off[:-1][neg]] = ord("-")
+    first = off[:-1] + neg
+    for k in range(int(nd.max())):
+        m = nd > k
+        buf[first[m] + nd[m] - 1 - k] = 48 + (v[m] // 10**k) % 10
+    buf[off[1:] - 1] = np.where(tok == 0, ord("\n"), ord(" "))
+    return head + buf.tobytes()
 
 
 def read_dimacs(data: bytes) -> tuple[np.ndarray, np.ndarray]:
@@ -654,8 +688,9 @@ def check_drat(
     # forward pass: until unit propagation refutes the formula
     refuted = 0
     j = -1
+    slices = _Slices()
     while not refuted and j < n_s:
-        j1 = min(n_s, max(j, 0) + _CHUNK)
+        j1 = min(n_s, max(j, 0) + slices.next())
         refuted = k.forward(n_f, n_s, is_del, lits, start, size, taut, chash, active, val, reason, tpos, trail, st,
                             head, nxt, prv, core, ht_key, ht_head, same_prev, mark, tl_before, target, counts, j, j1)
         if counts[4] >= 0:
@@ -663,6 +698,7 @@ def check_drat(
             return result("failed", f"the empty clause (proof line {line}) is not RUP: unit propagation "
                                     "does not refute the formula there")
         j = j1
+        slices.done()
         if out_of_time():
             return result("unknown", f"time limit of {time_limit:.3g} s reached while checking the proof "
                                      f"(forward pass, step {j:,} of {n_s:,})")
@@ -681,9 +717,10 @@ def check_drat(
     out = np.zeros(4, np.int64)
     j = confl_step + 1
     while j > 0:
-        j1 = max(0, j - _CHUNK)
+        j1 = max(0, j - slices.next())
         j = k.backward(n_f, is_del, pivot, lits, start, size, taut, active, val, reason, tpos, trail, st, head,
                        nxt, prv, core, done, seen, stack, tl_before, target, out, j, j1)
+        slices.done()
         if out[0] != K.OK:
             step = int(out[1])
             number = int((is_del[: step + 1] == 0).sum())
