@@ -1,0 +1,135 @@
+"""Aperiodicity checks of Wang tile sets, every answer a certificate (class notes Part II §8.2).
+
+Wang's procedure separates the tile sets that are not aperiodic: an ``n x n`` square that
+cannot be tiled proves the set tiles no plane (Extension Theorem, Grünbaum and Shephard
+§3.8), a tiled torus is a periodic tiling. :class:`~tilesolve.model.aperiodic.AperiodicProblem`
+asks for the largest tiled square up to a bound and for every (sheared) torus up to a bound;
+the answer is an :class:`~tilesolve.model.aperiodic.AperiodicReport` of certificates: witness
+tilings (verified by :func:`tilesolve.verify.aperiodic.aperiodic_violations`, which re-checks
+each one as a board tiling), refutations with checked DRAT proofs, and undecided boards with
+why. A report never calls a set aperiodic from search alone; for a built-in set it quotes the
+literature.
+
+Routes
+------
+``sat``
+    :mod:`tilesolve.engine.aperiodic`: squares by bisection (guided search for large
+    witnesses), periods as a parallel sweep (local processes or a Dask cluster), resumable
+    through a cache file (``options={"cache": PATH, "proof_dir": DIR}``).
+
+Examples
+--------
+>>> from tilesolve.model.board import WangTileSet
+>>> ws = WangTileSet.from_nesw([[0, 1, 1, 1], [1, 1, 0, 1]], 2)   # N, E, S, W: a 2-row period
+>>> s = solve(AperiodicProblem(ws, 3, 2), seed=1, workers=1)
+>>> s.tiling.largest_square, [c.status for c in s.tiling.periods]
+(3, ['refuted', 'refuted', 'tiles', 'tiles'])
+"""
+
+from __future__ import annotations
+
+from tilesolve.family import Codec, Family, RunOptions, register
+from tilesolve.family import solve as _solve
+from tilesolve.io.aperiodic_json import APERIODIC_REPORT, VERSIONS, report_from_dict, report_to_dict
+from tilesolve.model.aperiodic import AperiodicProblem, AperiodicReport, Certificate
+from tilesolve.model.solution import Solution, Status
+from tilesolve.verify.aperiodic import aperiodic_violations
+
+__all__ = ["AperiodicProblem", "AperiodicReport", "Certificate", "solve", "sat", "build_report", "FAMILY"]
+
+
+def build_report(problem: AperiodicProblem, squares, largest: int | None, periods) -> AperiodicReport:
+    """The report of decided certificates, with a conclusion that says exactly what they prove."""
+    squares, periods = tuple(squares), tuple(periods)
+    said = []
+    tiled = [c for c in periods if c.status == "tiles"]
+    if tiled:
+        said.append(f"The set tiles the plane periodically: the {tiled[0].board} is tiled (verified witness), so "
+                    "the set is not aperiodic.")
+    if problem.max_square:
+        if largest is None:
+            said.append("The square scan was not decided.")
+        elif largest < problem.max_square:
+            said.append(f"The set tiles no plane: the {largest + 1}x{largest + 1} square cannot be tiled (checked "
+                        f"proof), so by the Extension Theorem no tiling of the plane exists; the largest tiled "
+                        f"square is {largest}x{largest} (verified witness).")
+        else:
+            said.append(f"The set tiles every square up to {largest}x{largest} (verified witness at "
+                        f"{largest}x{largest}).")
+    if problem.max_period and not tiled:
+        refuted = sum(c.status == "refuted" for c in periods)
+        undecided = len(periods) - refuted
+        what = (f"every lattice of periods with sides at most {problem.max_period} (tori p x q, 1 <= p, q <= "
+                f"{problem.max_period}, every shear)" if problem.shears else
+                f"every torus p x q with 1 <= p, q <= {problem.max_period}")
+        if undecided == 0:
+            said.append(f"No periodic tiling with these periods: {what} is refuted, each with its checked proof "
+                        f"({refuted} refutations).")
+        else:
+            said.append(f"Of {what}, {refuted} are refuted (checked proofs) and {undecided} are undecided; "
+                        "no periodic tiling was found.")
+    if not tiled:
+        said.append("A finite search does not prove a set aperiodic; this report states only what was checked.")
+    lit = None
+    if problem.info:
+        lit = (f"{problem.info.get('reference', '')} (literature verdict: {problem.info.get('verdict', '?')}; "
+               "quoted, not checked here)").strip()
+    return AperiodicReport(squares, periods, largest, " ".join(said), lit)
+
+
+def sat(problem: AperiodicProblem, run: RunOptions) -> Solution:
+    """The SAT route (:mod:`tilesolve.engine.aperiodic`): squares by bisection, periods swept in
+    parallel; ``run.options``: ``proof_dir`` (CNF + DRAT of every refutation), ``cache`` (a
+    results file: decided lattices are read from it and added to it)."""
+    from tilesolve.engine.aperiodic import square_scan, sweep
+    from tilesolve.engine.certificates import writing_proofs
+    from tilesolve.engine.progress import status_line
+
+    proof_dir = run.option("proof_dir")
+    squares, largest = [], None
+    if problem.max_square:
+        with writing_proofs(proof_dir), status_line("squares", run.progress) as show:
+            try:
+                squares, largest = square_scan(problem.tileset, problem.max_square, run, show)
+            except KeyboardInterrupt:
+                return Solution(Status.UNKNOWN, None, "sat", None, run.seed, run.deadline.elapsed(),
+                                reason="interrupted (Ctrl-C) while scanning squares")
+        if squares and squares[-1].status == "undecided" and str(squares[-1].evidence.get("why")).startswith(
+                "interrupted"):
+            return Solution(Status.UNKNOWN, None, "sat", None, run.seed, run.deadline.elapsed(),
+                            reason="interrupted (Ctrl-C) while scanning squares")
+    periods = []
+    if problem.max_period:
+        names = [lat.name() for lat in problem.lattices()]
+        periods, interrupted = sweep(problem.tileset, names, run, cache=run.option("cache"), proof_dir=proof_dir)
+        if interrupted:
+            done = sum(c.status != "undecided" for c in periods)
+            return Solution(Status.UNKNOWN, None, "sat", None, run.seed, run.deadline.elapsed(),
+                            reason=f"interrupted (Ctrl-C) after {done} of {len(periods)} lattices were decided")
+    report = build_report(problem, squares, largest, periods)
+    n_und = len(report.undecided)
+    reason = None if report.complete else f"{n_und} board(s) undecided ({report.undecided[0].evidence.get('why')})"
+    stats = {"squares_decided": sum(c.status != "undecided" for c in squares),
+             "periods_tiled": sum(c.status == "tiles" for c in periods),
+             "periods_refuted": sum(c.status == "refuted" for c in periods), "undecided": n_und}
+    return Solution(Status.SAT, report, "sat", "cadical153", run.seed, run.deadline.elapsed(), reason=reason,
+                    stats=stats)
+
+
+def solve(problem: AperiodicProblem, method: str = "auto", **kwargs) -> Solution:
+    """:func:`tilesolve.family.solve` for aperiodicity checks (keyword arguments as there)."""
+    return _solve(problem, method, **kwargs)
+
+
+FAMILY = register(Family(
+    name="aperiodic",
+    title="aperiodicity checks of Wang tile sets: squares, tori and lattice periods, with certificates",
+    problem_type=AperiodicProblem,
+    routes={"sat": sat},
+    auto=lambda problem: "sat",
+    verify=lambda problem, report: aperiodic_violations(report, problem),
+    codecs=(Codec(APERIODIC_REPORT, VERSIONS, report_from_dict, report_to_dict),),
+    commands=("tilesolve.cli.aperiodic:aperiodic",),
+    route_help={"sat": "squares by bisection and (sheared) tori swept in parallel; witnesses verified, "
+                       "refutations with checked DRAT proofs (class notes Part II §8.2)"},
+))

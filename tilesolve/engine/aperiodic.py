@@ -1,0 +1,314 @@
+"""The SAT route of aperiodicity checks: squares by bisection, periods by parallel sweeps.
+
+Class notes Part II §8.2 (Wang's procedure). Every board is decided by
+:func:`tilesolve.engine.routes.sat_route` on the tile-selection CNF of
+:mod:`tilesolve.encodings.wang_tiles`: a model is a witness tiling (verified independently
+by the family's verifier), ``unsat`` comes only with a DRAT proof checked by
+:mod:`tilesolve.verify.drat`, and a time limit or Ctrl-C leaves the board *undecided*.
+
+Squares (:func:`square_scan`)
+    Tiling an ``n x n`` square implies tiling every smaller one, so the largest tiled
+    ``n <= N`` is found by bisection: ``N`` first (a witness ends the scan), then halving
+    between a tiled and a refuted size; the scan ends with a witness at ``n`` and a checked
+    refutation at ``n + 1``, which proves that the set tiles no plane (Extension Theorem).
+    Large witnesses are searched first in a *guided* restricted formula: only the pairs of
+    neighbouring tiles that occur in the interior of a smaller tiling (:data:`GUIDE_SIDE`) are
+    allowed. That cuts the Jeandel–Rao 100 x 100 square from 45 s to a few seconds; when the
+    guided formula has no model the full formula decides (a restricted "unsat" proves nothing).
+
+Periods (:func:`sweep`)
+    One SAT run per :class:`~tilesolve.model.aperiodic.Lattice`, on local worker processes
+    (``workers``, default both cores, through :mod:`tilesolve.engine.portfolio`'s workers) or
+    on a Dask cluster (``cluster``). Decided lattices are appended to a cache file as they
+    come in (JSON lines keyed by the tile set's digest), so a rerun skips them; a time limit or
+    Ctrl-C leaves the rest undecided (never refuted).
+"""
+
+from __future__ import annotations
+
+import functools
+import hashlib
+import json
+import os
+import time
+from typing import Any, Callable, Iterable, Sequence
+
+import numpy as np
+
+from tilesolve.deadline import Deadline
+from tilesolve.engine.progress import status_line
+from tilesolve.model.aperiodic import Certificate, board_of
+from tilesolve.model.board import WangTileSet
+from tilesolve.model.run import RunOptions
+from tilesolve.model.solution import Status
+
+__all__ = ["decide", "square_scan", "sweep", "tileset_digest", "read_cache", "GUIDE_SIDE", "DEFAULT_SOLVER"]
+
+#: Side of the square whose interior guides large witnesses (its border rows are dropped).
+GUIDE_SIDE = 30
+#: Squares at most this large are solved with the full formula directly.
+DIRECT_SIDE = 40
+#: The SAT solver (CaDiCaL logs DRAT proofs).
+DEFAULT_SOLVER = "cadical153"
+
+
+def tileset_digest(tileset: WangTileSet) -> str:
+    """SHA-256 of the (sorted) tiles and colour count: the cache key of a tile set."""
+    data = json.dumps({"colours": int(tileset.n_colors), "tiles": tileset.tiles.tolist()}, separators=(",", ":"))
+    return hashlib.sha256(data.encode()).hexdigest()
+
+
+def _certificate(name: str, sol, method: str = "sat") -> Certificate:
+    st = dict(sol.stats)
+    if sol.status is Status.SAT:
+        return Certificate(name, "tiles", np.asarray(sol.tiling, dtype=np.int64), method,
+                           {"solver": sol.solver, "variables": st.get("variables"), "clauses": st.get("clauses")},
+                           round(sol.time_s, 6))
+    if sol.status is Status.UNSAT:
+        keep = ("cnf_sha256", "drat_sha256", "proof_lines", "proof_lemmas", "proof_checked_lemmas", "proof_check_s",
+                "proof_name", "clauses", "variables")
+        ev = {k: st[k] for k in keep if k in st}
+        ev.update(solver=sol.solver, checker="tilesolve.verify.drat", reason=sol.reason)
+        return Certificate(name, "refuted", None, method, ev, round(sol.time_s, 6))
+    return Certificate(name, "undecided", None, method, {"why": sol.reason or "undecided"}, round(sol.time_s, 6))
+
+
+def decide(tileset: WangTileSet, name: str, run: RunOptions, *, allowed=None) -> Certificate:
+    """Decide whether ``tileset`` tiles the board called ``name`` (``"square 5x5"``,
+    ``"torus 3x4 shear 1"``) with the SAT route; ``allowed`` pairs make a guided
+    (restricted) search whose unsat is reported undecided."""
+    from tilesolve.deadline import TimeLimitReached
+    from tilesolve.encodings.wang_tiles import encode_tiles
+    from tilesolve.engine.routes import sat_route
+
+    t0 = time.perf_counter()
+    try:
+        enc = encode_tiles(board_of(name), tileset, allowed=allowed, deadline=run.deadline)
+    except TimeLimitReached as exc:
+        return Certificate(name, "undecided", None, "sat", {"why": str(exc)}, round(time.perf_counter() - t0, 6))
+    sol = sat_route(enc, run, solver=run.solver or DEFAULT_SOLVER, t0=t0)
+    return _certificate(name, sol, "sat guided" if allowed is not None else "sat")
+
+
+def _guide(grid: np.ndarray, m: int) -> tuple[np.ndarray, np.ndarray]:
+    """The E-W and N-S neighbour pairs in the interior of a tiling (its outer quarter dropped)."""
+    b = max(1, grid.shape[0] // 5)
+    inner = grid[b:-b, b:-b] if grid.shape[0] > 2 * b + 1 else grid
+    east = np.zeros((m, m), dtype=bool)
+    south = np.zeros((m, m), dtype=bool)
+    east[inner[:, :-1].ravel(), inner[:, 1:].ravel()] = True
+    south[inner[:-1, :].ravel(), inner[1:, :].ravel()] = True
+    return east, south
+
+
+def square_scan(tileset: WangTileSet, max_n: int, run: RunOptions,
+                show: Callable[[str], None] = lambda text: None) -> tuple[list[Certificate], int | None]:
+    """The largest ``n <= max_n`` for which ``tileset`` tiles an ``n x n`` square.
+
+    Returns the certificates decided (in the order decided) and that ``n`` (``0`` when not even
+    one tile fits, which cannot happen for a non-empty set; ``None`` when undecided).
+    """
+    certs: list[Certificate] = []
+    known_sat, known_unsat = 0, max_n + 1
+    guide = None
+
+    def at(n: int) -> Certificate:
+        nonlocal guide
+        name = f"square {n}x{n}"
+        show(f"deciding {name}")
+        if n > DIRECT_SIDE:
+            if guide is None:
+                g = decide(tileset, f"square {GUIDE_SIDE}x{GUIDE_SIDE}", run)
+                if g.status == "tiles":
+                    guide = _guide(g.tiling, len(tileset))
+            if guide is not None:
+                c = decide(tileset, name, run, allowed=guide)
+                if c.status == "tiles":
+                    return c
+        return decide(tileset, name, run)
+
+    n = max_n
+    while known_unsat - known_sat > 1:
+        c = at(n)
+        certs.append(c)
+        if c.status == "tiles":
+            known_sat = n
+        elif c.status == "refuted":
+            known_unsat = n
+        else:
+            return certs, None
+        n = (known_sat + known_unsat) // 2
+    return certs, known_sat
+
+
+# ------------------------------------------------------------------------------- sweeps
+def read_cache(path: str | os.PathLike | None, digest: str) -> dict[str, dict]:
+    """Decided certificates (as dicts) of the tile set with ``digest`` in a cache file."""
+    out: dict[str, dict] = {}
+    if path is None or not os.path.exists(path):
+        return out
+    with open(path, encoding="utf-8") as f:
+        for line in f:
+            try:
+                rec = json.loads(line)
+            except json.JSONDecodeError:  # a line cut by a kill: ignored, decided again
+                continue
+            if isinstance(rec, dict) and rec.get("tileset") == digest and rec.get("status") in ("tiles", "refuted"):
+                out[str(rec.get("board"))] = rec
+    return out
+
+
+def _append_cache(path, digest: str, cert: Certificate) -> None:
+    rec = {"tileset": digest, "board": cert.board, "status": cert.status, "method": cert.method,
+           "tiling": None if cert.tiling is None else cert.tiling.tolist(), "evidence": dict(cert.evidence),
+           "time_s": cert.time_s}
+    with open(path, "a", encoding="utf-8") as f:
+        f.write(json.dumps(rec, separators=(",", ":"), default=str) + "\n")
+
+
+def _from_cache(rec: dict) -> Certificate:
+    tiling = None if rec.get("tiling") is None else np.asarray(rec["tiling"], dtype=np.int64)
+    ev = dict(rec.get("evidence") or {})
+    ev["cached"] = True
+    return Certificate(rec["board"], rec["status"], tiling, str(rec.get("method", "sat")), ev,
+                       float(rec.get("time_s", 0.0)))
+
+
+def _job(tiles: list, n_colors: int, names: Sequence[str], end: float | None, solver: str | None,
+         proof_dir: str | None, seed0: int, *, seed: int) -> Certificate:
+    """One lattice of a sweep (``seed`` is its index in ``names``), in a worker process."""
+    from tilesolve.engine.certificates import writing_proofs
+
+    tileset = WangTileSet(np.asarray(tiles, dtype=np.int64), n_colors)
+    limit = None if end is None else max(end - time.time(), 1e-3)
+    run = RunOptions(seed=seed0, deadline=Deadline(limit), solver=solver)
+    with writing_proofs(proof_dir):
+        return decide(tileset, names[seed], run)
+
+
+def sweep(tileset: WangTileSet, names: Sequence[str], run: RunOptions, *, cache: str | os.PathLike | None = None,
+          proof_dir: str | os.PathLike | None = None, label: str = "periods") -> tuple[list[Certificate], bool]:
+    """Decide every board in ``names``; returns ``(certificates in order, interrupted)``.
+
+    ``run.workers`` local processes (default 2; 1 runs here), or ``run.cluster`` (a Dask
+    scheduler address or client). Decided boards are read from and appended to ``cache``.
+    """
+    digest = tileset_digest(tileset)
+    cached = read_cache(cache, digest)
+    result: dict[str, Certificate] = {n: _from_cache(cached[n]) for n in names if n in cached}
+    todo = [n for n in names if n not in result]
+    end = None if run.deadline.time_limit is None else time.time() + run.deadline.remaining()
+    task = functools.partial(_job, tileset.tiles.tolist(), int(tileset.n_colors), tuple(todo), end, run.solver,
+                             None if proof_dir is None else os.fspath(proof_dir), run.seed)
+    interrupted = False
+    counts = {"tiles": 0, "refuted": 0, "undecided": 0}
+    for c in result.values():
+        counts[c.status] += 1
+
+    def take(i: int, cert: Certificate) -> bool:
+        result[todo[i]] = cert
+        counts[cert.status] += 1
+        if cert.status != "undecided" and cache is not None:
+            _append_cache(cache, digest, cert)
+        return cert.status == "undecided" and str(cert.evidence.get("why", "")).startswith("interrupted")
+
+    with status_line(label, run.progress) as show:
+        def detail() -> str:
+            return (f"{len(result)}/{len(names)} decided or cached: {counts['tiles']} tiled, "
+                    f"{counts['refuted']} refuted, {counts['undecided']} undecided")
+
+        try:
+            if not todo:
+                pass
+            elif run.cluster is not None:
+                interrupted = _on_dask(task, len(todo), run, take, show, detail)
+            elif (run.workers or 2) > 1 and len(todo) > 1:
+                interrupted = _on_pool(task, len(todo), min(run.workers or 2, len(todo)), run, take, show, detail)
+            else:
+                for i in range(len(todo)):
+                    if run.deadline.expired():
+                        break
+                    show(detail())
+                    if take(i, task(seed=i)):
+                        interrupted = True
+                        break
+        except KeyboardInterrupt:
+            interrupted = True
+    why = "interrupted (Ctrl-C) before it was decided" if interrupted else \
+        f"time limit of {run.deadline.time_limit:.3g} s reached before it was decided" \
+        if run.deadline.time_limit is not None else "not decided"
+    return [result.get(n) or Certificate(n, "undecided", None, "sat", {"why": why}) for n in names], interrupted
+
+
+def _on_pool(task, n_jobs: int, n_workers: int, run: RunOptions, take, show, detail) -> bool:
+    """Every job on local worker processes; True when Ctrl-C stopped it."""
+    from multiprocessing.connection import wait as wait_for_any
+
+    from tilesolve.engine.portfolio import GRACE_S, _Pool, _unpack_exception
+
+    pool = _Pool(task, list(range(n_jobs)), n_workers, run.deadline, "aperiodic sweep")
+    try:
+        pool.start()
+        while True:
+            busy = pool.busy()
+            if not busy:
+                return False
+            show(detail())
+            timeout = None
+            if run.deadline.time_limit is not None:
+                timeout = run.deadline.time_limit + GRACE_S - run.deadline.elapsed()
+                if timeout <= 0:
+                    return False
+            ready = set(wait_for_any([w.conn for w in busy], min(timeout, 0.5) if timeout else 0.5))
+            for w in busy:
+                if w.conn not in ready:
+                    continue
+                kind, i, payload = pool._receive(w)
+                if kind == "error":
+                    raise _unpack_exception(payload)
+                if take(i, payload):
+                    return True
+                pool.assign(w)
+    except KeyboardInterrupt:
+        return True
+    finally:
+        pool.close()
+
+
+def _on_dask(task, n_jobs: int, run: RunOptions, take, show, detail) -> bool:
+    """Every job as a Dask future; True when Ctrl-C stopped it."""
+    from tilesolve.engine.portfolio import GRACE_S, _connect
+
+    client, owned = _connect(run.cluster)
+    from distributed import as_completed
+
+    futures: list = []
+    try:
+        futures = [client.submit(task, seed=i, pure=False) for i in range(n_jobs)]
+        index = {f.key: i for i, f in enumerate(futures)}
+        timeout = None
+        if run.deadline.time_limit is not None:
+            timeout = max(0.0, run.deadline.time_limit + GRACE_S - run.deadline.elapsed())
+        pending = as_completed(futures, loop=client.loop, timeout=timeout)
+        while True:
+            show(detail())
+            try:
+                fut = next(pending)
+            except StopIteration:
+                return False
+            except TimeoutError:
+                return False
+            if take(index[fut.key], fut.result()):
+                return True
+    except KeyboardInterrupt:
+        return True
+    finally:
+        if futures:
+            client.cancel(futures)
+        if owned:
+            client.close()
+
+
+def iter_names(lattices: Iterable) -> list[str]:
+    """Board names of lattices."""
+    return [lat.name() for lat in lattices]

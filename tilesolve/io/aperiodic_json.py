@@ -1,0 +1,140 @@
+"""The ``tilesolve/aperiodic-report`` file (version 1): an aperiodicity check and its certificates.
+
+::
+
+    {
+      "format": "tilesolve/aperiodic-report", "version": 1,
+      "name": "jeandel-rao",               # or null
+      "tileset": {"colours": 5, "sides": ["N", "E", "S", "W"], "tiles": [[4, 2, 1, 2], ...]},
+      "max_square": 40, "max_period": 6, "shears": false,
+      "largest_square": 40,                # null when squares were not asked or not decided
+      "conclusion": "...",                 # what the certificates prove, in words
+      "literature": "...",                 # a built-in set's literature note, or null
+      "squares": [CERT, ...], "periods": [CERT, ...],
+      "status": "sat", "method": "sat", "solver": null, "seed": 1, "time_s": 3.2,
+      "reason": null, "notes": [], "stats": {}
+    }
+
+    CERT = {"board": "torus 3x4 shear 1", "status": "tiles" | "refuted" | "undecided",
+            "method": "sat", "tiling": [[tile index, ...], ...] or null,
+            "evidence": {"cnf_sha256": ..., "drat_sha256": ..., ...}, "time_s": 0.1}
+
+Tile indices refer to ``tileset.tiles`` in the order written (sorted as tilesolve sorts a
+set). Readers reject unknown fields and malformed values with one line naming the file and
+field; the certificates' claims are checked by the family's verifier (``tilesolve verify``).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from tilesolve.errors import InvalidProblem
+from tilesolve.io.jsonio import check_document, provenance_to_dict, solution_from_provenance
+from tilesolve.model.aperiodic import STATUSES, AperiodicProblem, AperiodicReport, Certificate
+from tilesolve.model.board import WangTileSet
+from tilesolve.model.solution import Solution
+
+__all__ = ["APERIODIC_REPORT", "VERSIONS", "report_to_dict", "report_from_dict", "certificate_to_dict"]
+
+APERIODIC_REPORT = "tilesolve/aperiodic-report"
+VERSIONS = frozenset({1})
+
+_KEYS = {"format", "version", "name", "tileset", "max_square", "max_period", "shears", "largest_square",
+         "conclusion", "literature", "squares", "periods", "status", "method", "solver", "seed", "time_s", "reason",
+         "notes", "stats", "created_by", "comment"}
+_CERT_KEYS = {"board", "status", "method", "tiling", "evidence", "time_s"}
+
+
+def certificate_to_dict(c: Certificate) -> dict:
+    return {"board": c.board, "status": c.status, "method": c.method,
+            "tiling": None if c.tiling is None else np.asarray(c.tiling, dtype=np.int64).tolist(),
+            "evidence": dict(c.evidence), "time_s": c.time_s}
+
+
+def report_to_dict(problem: AperiodicProblem, solution: Solution) -> dict:
+    rep = solution.tiling if isinstance(solution.tiling, AperiodicReport) else AperiodicReport()
+    doc = {"format": APERIODIC_REPORT, "version": 1, "name": problem.name,
+           "tileset": {"colours": int(problem.tileset.n_colors), "sides": ["N", "E", "S", "W"],
+                       "tiles": problem.tileset.nesw().tolist()},
+           "max_square": problem.max_square, "max_period": problem.max_period, "shears": problem.shears,
+           "largest_square": rep.largest_square, "conclusion": rep.conclusion, "literature": rep.literature,
+           "squares": [certificate_to_dict(c) for c in rep.squares],
+           "periods": [certificate_to_dict(c) for c in rep.periods]}
+    doc.update(provenance_to_dict(solution))
+    return doc
+
+
+def _fail(source: Any, field: str, why: str) -> InvalidProblem:
+    return InvalidProblem(f"{source}: {field!r} {why}")
+
+
+def _int(doc: dict, key: str, source: Any, *, optional: bool = False) -> int | None:
+    v = doc.get(key)
+    if v is None and optional:
+        return None
+    if isinstance(v, bool) or not isinstance(v, int) or v < 0:
+        raise _fail(source, key, f"must be a non-negative integer, got {v!r}")
+    return v
+
+
+def _certificate(d: Any, where: str, source: Any) -> Certificate:
+    if not isinstance(d, dict) or not set(d) <= _CERT_KEYS or "board" not in d or "status" not in d:
+        raise _fail(source, where, f"must be an object with fields {sorted(_CERT_KEYS)}")
+    if d["status"] not in STATUSES or not isinstance(d["board"], str):
+        raise _fail(source, where, f"has a bad board or status (status one of {STATUSES})")
+    tiling = d.get("tiling")
+    if tiling is not None:
+        try:
+            tiling = np.asarray(tiling, dtype=np.int64)
+        except (TypeError, ValueError):
+            raise _fail(source, where + ".tiling", "must be rows of tile indices") from None
+        if tiling.ndim != 2:
+            raise _fail(source, where + ".tiling", "must be rows of tile indices")
+    ev = d.get("evidence", {})
+    if not isinstance(ev, dict):
+        raise _fail(source, where + ".evidence", "must be an object")
+    t = d.get("time_s", 0.0)
+    if isinstance(t, bool) or not isinstance(t, (int, float)):
+        raise _fail(source, where + ".time_s", "must be a number")
+    try:
+        return Certificate(d["board"], d["status"], tiling, str(d.get("method", "sat")), ev, float(t))
+    except InvalidProblem as exc:
+        raise InvalidProblem(f"{source}: {where}: {exc}") from None
+
+
+def report_from_dict(doc: dict, source: Any = "<document>") -> tuple[AperiodicProblem, Solution]:
+    check_document(doc, source, {APERIODIC_REPORT: VERSIONS})
+    extra = set(doc) - _KEYS
+    if extra:
+        raise _fail(source, sorted(extra)[0], "is not a field of a tilesolve/aperiodic-report file")
+    ts = doc.get("tileset")
+    if not isinstance(ts, dict) or not isinstance(ts.get("tiles"), list) or ts.get("sides") != ["N", "E", "S", "W"]:
+        raise _fail(source, "tileset", "must be {'colours': K, 'sides': ['N', 'E', 'S', 'W'], 'tiles': [...]}")
+    try:
+        tileset = WangTileSet.from_nesw(ts["tiles"], _int(ts, "colours", source))
+    except InvalidProblem as exc:
+        raise InvalidProblem(f"{source}: 'tileset': {exc}") from None
+    if not isinstance(doc.get("shears"), bool):
+        raise _fail(source, "shears", "must be true or false")
+    name = doc.get("name")
+    if name is not None and not isinstance(name, str):
+        raise _fail(source, "name", "must be a string or null")
+    try:
+        problem = AperiodicProblem(tileset, _int(doc, "max_square", source), _int(doc, "max_period", source),
+                                   doc["shears"], name)
+    except InvalidProblem as exc:
+        raise InvalidProblem(f"{source}: {exc}") from None
+    certs = {}
+    for key in ("squares", "periods"):
+        if not isinstance(doc.get(key), list):
+            raise _fail(source, key, "must be a list of certificates")
+        certs[key] = tuple(_certificate(d, f"{key}[{i}]", source) for i, d in enumerate(doc[key]))
+    for key in ("conclusion", "literature"):
+        if doc.get(key) is not None and not isinstance(doc[key], str):
+            raise _fail(source, key, "must be a string")
+    report = AperiodicReport(certs["squares"], certs["periods"], _int(doc, "largest_square", source, optional=True),
+                             doc.get("conclusion") or "", doc.get("literature"))
+    sol = solution_from_provenance(doc, source, report, what="report")
+    return problem, sol if sol.status.has_tiling else sol.replace(tiling=None)

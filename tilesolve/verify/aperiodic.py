@@ -1,0 +1,60 @@
+"""Independent checker of aperiodicity reports (class notes Part II §8.2).
+
+Every witness in a report is re-checked as a board tiling with
+:func:`tilesolve.verify.board.board_violations` (Def. 2: tiles of the set, joined legs of
+equal colour) on the square or (sheared) torus its name stands for; every refutation must
+carry the digests of its CNF and of its checked proof (SAT) or its route's evidence; the
+largest square claimed must have its witness, and the refuted square above it when it is
+below the bound. Numpy only; nothing here calls a solver or the code that wrote the report.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from tilesolve.model.aperiodic import AperiodicProblem, AperiodicReport, board_of, leg_colours, parse_board_name
+from tilesolve.model.board import BoardProblem
+from tilesolve.verify.board import board_violations
+from tilesolve.verify.dappled import Violation
+
+__all__ = ["aperiodic_violations"]
+
+
+def _witness(cert, problem: AperiodicProblem) -> list[Violation]:
+    rows, cols, _ = parse_board_name(cert.board)
+    t = np.asarray(cert.tiling)
+    if t.shape != (rows, cols):
+        return [Violation("shape", f"{cert.board}: witness has shape {t.shape}, expected ({rows}, {cols})")]
+    if t.size and (not np.issubdtype(t.dtype, np.integer) or t.min() < 0 or t.max() >= len(problem.tileset)):
+        return [Violation("tile", f"{cert.board}: tile indices outside 0..{len(problem.tileset) - 1}")]
+    board = board_of(cert.board)
+    bad = board_violations(leg_colours(problem.tileset, t), BoardProblem(board, problem.tileset))
+    return [Violation(v.kind, f"{cert.board}: {v.message}", v.row, v.col) for v in bad]
+
+
+def aperiodic_violations(report, problem: AperiodicProblem) -> list[Violation]:
+    """Every false claim in ``report`` (an :class:`AperiodicReport`) about ``problem``."""
+    if not isinstance(report, AperiodicReport):
+        return [Violation("shape", f"expected an aperiodicity report, got {type(report).__name__}")]
+    out: list[Violation] = []
+    for cert in report.squares + report.periods:
+        if cert.status == "tiles":
+            out += _witness(cert, problem)
+        elif cert.status == "refuted":
+            ev = cert.evidence
+            sat = str(cert.method).startswith("sat")
+            if sat and not (ev.get("cnf_sha256") and ev.get("drat_sha256")):
+                out.append(Violation("proof", f"{cert.board}: refuted by SAT without the digests of a checked proof"))
+            if not sat and not ev:
+                out.append(Violation("proof", f"{cert.board}: refuted by {cert.method!r} without evidence"))
+            if "guided" in str(cert.method):
+                out.append(Violation("proof", f"{cert.board}: a guided (restricted) search refutes nothing"))
+    n = report.largest_square
+    if n is not None:
+        squares = {parse_board_name(c.board)[:2]: c.status for c in report.squares}
+        if n > 0 and squares.get((n, n)) != "tiles":
+            out.append(Violation("square", f"largest square {n}x{n} claimed without its witness"))
+        if n < problem.max_square and squares.get((n + 1, n + 1)) != "refuted":
+            out.append(Violation("square", f"largest square {n}x{n} claimed, but the {n + 1}x{n + 1} square "
+                                           "is not refuted in the report"))
+    return out
