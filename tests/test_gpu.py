@@ -2,8 +2,8 @@
 
 Nothing here is skipped: a machine without an OpenGL context fails
 ``test_a_context_can_be_created`` (CI installs ``libegl1 libegl-mesa0 libgl1 libgl1-mesa-dri``).
-The references are the CPU generators (:func:`direct_corner`, :func:`wall_window`) and, for the
-brick geometry, a numpy transcription below of the rule in :mod:`tilesolve.gpu.wall`.
+The references are the CPU implementations: :func:`direct_corner`, :func:`wall_window` and, for
+the bricks, :func:`tilesolve.constructive.wall_maps.wall_maps`.
 """
 
 from __future__ import annotations
@@ -12,7 +12,8 @@ import numpy as np
 import pytest
 
 from tilesolve.constructive.stochastic import direct_corner
-from tilesolve.constructive.walls import wall_window
+from tilesolve.constructive.wall_maps import wall_maps
+from tilesolve.constructive.walls import orientation, wall_window
 from tilesolve.errors import InvalidProblem
 from tilesolve.gpu.context import gpu_info
 from tilesolve.gpu.texture import Atlas, TextureMapper, corner_packing, synthesize_atlas
@@ -126,58 +127,22 @@ def test_wall_edge_colours_equal_the_cpu_wall(colors, max_line, seed, origin):
     assert np.array_equal(gpu, cpu)
 
 
-def _bricks(legs: np.ndarray, nc: int, cell: int):
-    """Reference geometry per pixel centre from the CPU legs of cells ``[-1, w] x [-1, h]``
-    (``legs[r, c]`` is cell ``(c - 1, h - r)``): brick point, distance, u, v."""
-    hh, ww = legs.shape[0] - 2, legs.shape[1] - 2
-    py, px = np.mgrid[0:hh * cell, 0:ww * cell]
-    gy = hh * cell - 1 - py  # pixel row from the bottom
-    ci, cj = px // cell, gy // cell
-    fx, fy = (px % cell + 0.5) / cell, (gy % cell + 0.5) / cell
-
-    def at(i, j):  # legs of cell (i, j) (picture cells), each component an array
-        return legs[hh - j, i + 1].astype(np.int64).transpose(2, 0, 1)
-
-    W, N, E, S = at(ci, cj)
-    pos = lambda c: (c + 1) / (nc + 1)  # noqa: E731
-    ft = 1 - fy
-    horizontal = W == E
-    upper_h = ft < pos(W)
-    right_h = fx >= np.where(upper_h, pos(N), pos(S))
-    right_v = fx >= pos(N)
-    upper_v = ft < np.where(right_v, pos(E), pos(W))
-    right = np.where(horizontal, right_h, right_v)
-    upper = np.where(horizontal, upper_h, upper_v)
-    I, J = ci + right, cj + upper
-    ulW, ulN, ulE, ulS = at(I - 1, J)
-    urW, urN, urE, urS = at(I, J)
-    llW, llN, llE, llS = at(I - 1, J - 1)
-    lrW, lrN, lrE, lrS = at(I, J - 1)
-    assert np.array_equal(ulS, llN) and np.array_equal(urS, lrN)  # the legs of a tiling agree
-    assert np.array_equal(ulE, urW) and np.array_equal(llE, lrW)
-    qx, qy = fx + ci - I, fy + cj - J
-    lox, hix = -1 + pos(llN), pos(urS)
-    loy, hiy = -pos(lrW), 1 - pos(urW)
-    dist = np.minimum(np.minimum(qx - lox, hix - qx), np.minimum(qy - loy, hiy - qy))
-    return np.stack([I, J], axis=-1), dist, (qx - lox) / (hix - lox), (qy - loy) / (hiy - loy), horizontal
-
-
 @pytest.mark.parametrize("per_fragment", [False, True])
 @pytest.mark.parametrize("max_line,seed,origin", [(4, 1, (-5, -3)), (None, 8, (HUGE, -40)), (3, 2, (7, 100))])
-def test_wall_bricks_distance_and_uv_per_pixel(per_fragment, max_line, seed, origin):
+def test_wall_bricks_distance_and_uv_equal_the_cpu_wall_maps(per_fragment, max_line, seed, origin):
     cell, w, h, nc = 12, 14, 9, 3
     r = WallRenderer(colors=nc, max_line=max_line, seed=seed, origin=origin, cell_px=cell, per_fragment=per_fragment)
     d = r.data(w * cell, h * cell)
     legs = wall_window(origin[0] - 1, origin[1] - 1, w + 2, h + 2, colors=nc, max_line=max_line, seed=seed)
-    brick, dist, u, v, horizontal = _bricks(legs, nc, cell)
-    assert np.array_equal(d["brick"], brick)
-    assert np.array_equal(d["horizontal"], horizontal)
-    assert np.allclose(d["distance"], dist, atol=1e-5)
-    assert np.allclose(d["u"], u, atol=1e-5) and np.allclose(d["v"], v, atol=1e-5)
-    assert (dist > 0).all() and (u > 0).all() and (u < 1).all()
-    # every brick is one colour away from the mortar
-    inner = dist > 0.26  # past the bevel (0.25 cells)
-    ids = brick[inner][:, 0] * 100003 + brick[inner][:, 1]
+    m = wall_maps(legs, nc, cell, origin=origin)
+    assert np.array_equal(d["brick"][..., 0] + np.int64(origin[0]), m.vx)
+    assert np.array_equal(d["brick"][..., 1] + np.int64(origin[1]), m.vy)
+    assert np.array_equal(d["horizontal"], np.repeat(np.repeat(orientation(legs[1:-1, 1:-1]), cell, 0), cell, 1))
+    assert np.allclose(d["distance"], m.distance, atol=1e-5)
+    assert np.allclose(d["u"], m.u, atol=1e-5) and np.allclose(d["v"], m.v, atol=1e-5)
+    # every brick is one colour away from its border
+    inner = m.distance > 0.26  # past the bevel (0.25 cells)
+    ids = m.vx[inner] * 100003 + m.vy[inner]
     cols = d["colour"][inner].astype(np.int64) @ np.array([1, 256, 65536, 0])
     for k in np.unique(ids)[:50]:
         assert len(np.unique(cols[ids == k])) == 1
