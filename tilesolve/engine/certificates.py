@@ -11,8 +11,8 @@ Each checked proof is bound to the SHA-256 of the exact CNF it refutes, written 
 :func:`tilesolve.verify.drat.dimacs_bytes`; the Solution's stats record ``cnf_sha256``,
 ``drat_sha256`` (of the proof text, one step a line) and the checker's figures. Inside
 :func:`writing_proofs` (the CLI's ``--proof-dir``) the CNF and the proof are also written as
-``<name>.cnf`` and ``<name>.drat`` (``name``: ``unsat-`` and the first 16 hex digits of the CNF
-digest) for anyone to re-check with their own tools; ``tilesolve verify --proof-dir`` re-checks
+``<name>.cnf`` and ``<name>.drat`` (``name``: ``unsat-``, 16 hex digits of the CNF digest, ``-``,
+8 of the proof's; stats ``proof_name``) for anyone to re-check with their own tools; ``tilesolve verify --proof-dir`` re-checks
 them.
 
 When unit propagation alone refutes the formula (no lemma needed), the reason says which
@@ -50,6 +50,8 @@ def writing_proofs(directory: str | os.PathLike | None) -> Iterator[None]:
     """Within the block, every checked unsat proof is also written to ``directory``.
 
     ``None`` writes nothing. The directory is created when the first proof is written.
+    Routes run in other processes (the portfolio's workers) do not write here; their
+    Solutions still record the digests.
     """
     if directory is None:
         yield
@@ -159,7 +161,7 @@ def unsat_solution(formula, r: Result, *, method: str, seed, t0: float, stats: d
     stats["proof_core_clauses"] = int(chk.core.size) if chk.core is not None else None
     directory = _PROOF_DIR.get()
     if directory is not None:
-        name = "unsat-" + stats["cnf_sha256"][:16]
+        name = f"unsat-{stats['cnf_sha256'][:16]}-{stats['drat_sha256'][:8]}"
         os.makedirs(directory, exist_ok=True)
         _write_atomic(os.path.join(directory, name + ".cnf"), cnf)
         _write_atomic(os.path.join(directory, name + ".drat"), drat)
