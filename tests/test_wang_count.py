@@ -5,8 +5,8 @@ from __future__ import annotations
 
 import itertools
 
-import numpy as np
 import pytest
+from clitools import one_line_error, run
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -111,3 +111,32 @@ def test_refuses_absurd_rows():
         count_grid(ts, 100, 100)
     with pytest.raises(InvalidProblem, match="at least one row"):
         count_grid(ts, 0, 3)
+
+
+# ------------------------------------------------------------------ the commands
+def test_cli_wang_count_and_builtin_sets(tmp_path):
+    proc = run("wang", "count", "--builtin", "jeandel-rao", "--board", "rect:3x2", cwd=tmp_path)
+    assert proc.returncode == 0 and "by transfer" in proc.stderr
+    jr, _ = load("jeandel-rao")
+    assert int(proc.stdout.split()[-1]) == count_grid(jr, 2, 3)
+    # an n s w e file of the same set gives the same count through --tiles
+    (tmp_path / "jr.tiles").write_text("".join(f"{n} {s} {w} {e}\n" for n, e, s, w in jr.nesw().tolist()))
+    again = run("wang", "count", "--tiles", "jr.tiles", "--board", "rect:3x2", cwd=tmp_path)
+    assert again.returncode == 0 and again.stdout == proc.stdout
+    listing = run("tiles", "--builtin", cwd=tmp_path)
+    assert listing.returncode == 0 and "jeandel-rao " in listing.stdout and "aperiodic" in listing.stdout
+    printed = run("tiles", "--builtin", "kari-14", "-o", "k.json", cwd=tmp_path)
+    assert printed.returncode == 0 and len(printed.stdout.splitlines()) == 14
+    solved = run("wang", "solve", "--tiles", "k.json", "--board", "rect:4x4", "--boundary", "free", cwd=tmp_path)
+    assert solved.returncode == 0
+    solved = run("wang", "solve", "--builtin", "jeandel-rao", "--board", "torus:2x2", "--boundary", "free",
+                 cwd=tmp_path)
+    assert solved.returncode == 1  # no 2x2 period
+    assert "no built-in tile set" in one_line_error(run("wang", "count", "--builtin", "x", "--board", "rect:2x2",
+                                                        cwd=tmp_path))
+    assert "--tiles FILE or --builtin NAME" in one_line_error(
+        run("wang", "count", "--builtin", "jeandel-rao", "--tiles", "jr.tiles", "--board", "rect:2x2", cwd=tmp_path))
+    (tmp_path / "bad.tiles").write_text("0 1 2\n")
+    assert "line 1: a tile needs 4 colours" in one_line_error(
+        run("wang", "count", "--tiles", "bad.tiles", "--board", "rect:2x2", cwd=tmp_path))
+    assert not (tmp_path / "x.json").exists()

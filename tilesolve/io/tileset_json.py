@@ -37,12 +37,14 @@ VERSIONS = frozenset({1})
 _KEYS = {"format", "version", "order", "colors", "tiles", "name", "comment", "created_by", "about"}
 
 
-def tileset_to_dict(tileset: WangTileSet, *, name: str | None = None) -> dict:
+def tileset_to_dict(tileset: WangTileSet, *, name: str | None = None, about: dict | None = None) -> dict:
     """The JSON document of a tile set (tiles in N, E, S, W order)."""
     doc: dict[str, Any] = {"format": WANG_TILESET, "version": 1, "order": ["N", "E", "S", "W"],
                            "colors": tileset.n_colors, "tiles": tileset.nesw().tolist()}
     if name:
         doc["name"] = name
+    if about:
+        doc["about"] = about
     return doc
 
 
@@ -97,6 +99,7 @@ def read_tileset(path: str | os.PathLike) -> tuple[WangTileSet, list[str]]:
     return tileset_from_data(read_json(path), str(path))
 
 
-def write_tileset(path: str | os.PathLike, tileset: WangTileSet, *, name: str | None = None) -> None:
+def write_tileset(path: str | os.PathLike, tileset: WangTileSet, *, name: str | None = None,
+                  about: dict | None = None) -> None:
     """Write a tile set as a version-1 ``tilesolve/wang-tileset`` file, atomically."""
-    write_text_atomic(path, dumps(tileset_to_dict(tileset, name=name)))
+    write_text_atomic(path, dumps(tileset_to_dict(tileset, name=name, about=about)))
