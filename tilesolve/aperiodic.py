@@ -68,7 +68,7 @@ def build_report(problem: AperiodicProblem, squares, largest: int | None, period
         else:
             said.append(f"Of {what}, {refuted} are refuted (checked proofs) and {undecided} are undecided; "
                         "no periodic tiling was found.")
-    if not tiled:
+    if not tiled and not (largest is not None and largest < problem.max_square):
         said.append("A finite search does not prove a set aperiodic; this report states only what was checked.")
     lit = None
     if problem.info:

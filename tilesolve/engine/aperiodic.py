@@ -308,7 +308,3 @@ def _on_dask(task, n_jobs: int, run: RunOptions, take, show, detail) -> bool:
         if owned:
             client.close()
 
-
-def iter_names(lattices: Iterable) -> list[str]:
-    """Board names of lattices."""
-    return [lat.name() for lat in lattices]

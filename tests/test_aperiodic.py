@@ -1,0 +1,183 @@
+"""The aperiodicity family: lattices, the tile-selection CNF, squares, sweeps, reports, CLI."""
+
+from __future__ import annotations
+
+import itertools
+import json
+
+import numpy as np
+import pytest
+from clitools import one_line_error, run, snapshot
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from tilesolve.aperiodic import AperiodicProblem, solve
+from tilesolve.deadline import Deadline
+from tilesolve.encodings.wang_tiles import encode_tiles
+from tilesolve.engine.aperiodic import sweep
+from tilesolve.engine.sat import solve_cnf
+from tilesolve.errors import InvalidProblem
+from tilesolve.family import solution_text, verify_document
+from tilesolve.model.aperiodic import Certificate, Lattice, board_of, leg_colours
+from tilesolve.model.board import Board, BoardProblem, WangTileSet
+from tilesolve.model.run import RunOptions
+from tilesolve.model.solution import Status
+from tilesolve.verify.aperiodic import aperiodic_violations
+from tilesolve.verify.board import board_violations
+
+#: (R + C) mod 3 colours both ways: tile i has N = i, S = i + 1, W = i, E = i + 1 (mod 3), so
+#: crossing east shifts the row counter: it tiles the torus 3x1 only with shear 1.
+DIAGONAL = WangTileSet.from_nesw([[i, (i + 1) % 3, (i + 1) % 3, i] for i in range(3)], 3)
+#: One tile whose E and W differ: it tiles a single column only (no 1x2 rectangle).
+LONELY = WangTileSet.from_nesw([[0, 1, 0, 0]], 2)
+
+
+def _brute_tiles(board: Board, ws: WangTileSet) -> bool:
+    n = board.n_cells
+    for choice in itertools.product(range(len(ws)), repeat=n):
+        if not board_violations(ws.tiles[list(choice)], BoardProblem(board, ws)):
+            return True
+    return False
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.tuples(*[st.integers(0, 1)] * 4), min_size=1, max_size=4),
+       st.sampled_from([(1, 2, -1), (2, 2, -1), (2, 2, 0), (2, 1, 1), (1, 3, 0), (2, 3, 1), (3, 1, 2)]))
+def test_tile_cnf_agrees_with_brute_force(tiles, shape):
+    ws = WangTileSet(np.array(tiles), 2)
+    rows, cols, shear = shape
+    board = Board.rect(rows, cols) if shear < 0 else Lattice(rows, cols, shear).board()
+    enc = encode_tiles(board, ws)
+    r = solve_cnf(enc.hard)
+    assert (r.status is Status.SAT) == _brute_tiles(board, ws)
+    if r.status is Status.SAT:
+        grid = enc.decode(r.model)
+        assert not board_violations(leg_colours(ws, grid), BoardProblem(board, ws))
+
+
+def test_sheared_torus_unfolds_to_a_periodic_patch():
+    """A tiling of torus (p, q, s) repeated with periods (q, s), (0, p) tiles the plane."""
+    lat = Lattice(3, 1, 1)
+    enc = encode_tiles(lat.board(), DIAGONAL)
+    r = solve_cnf(enc.hard)
+    assert r.status is Status.SAT
+    t = enc.decode(r.model)
+    R, C = np.meshgrid(np.arange(7), np.arange(8), indexing="ij")
+    patch = t[(R + (C // lat.cols) * lat.shear) % lat.rows, C % lat.cols]
+    assert not board_violations(leg_colours(DIAGONAL, patch), BoardProblem(Board.rect(7, 8), DIAGONAL))
+    assert solve_cnf(encode_tiles(Lattice(3, 1, 0).board(), DIAGONAL).hard).status is Status.UNSAT
+
+
+def test_lattices_and_names():
+    p = AperiodicProblem(DIAGONAL, 0, 3, shears=True)
+    assert len(p.lattices()) == 3 * (1 + 2 + 3)
+    assert board_of("torus 3x1 shear 1").n_cells == 3
+    with pytest.raises(InvalidProblem, match="not a board name"):
+        board_of("torus 3 by 1")
+    with pytest.raises(InvalidProblem, match="too large"):
+        AperiodicProblem(DIAGONAL, 10**6, 0)
+    with pytest.raises(InvalidProblem, match="nothing to check"):
+        AperiodicProblem(DIAGONAL, 0, 0)
+
+
+def test_periodic_set_gives_a_verified_torus_witness():
+    s = solve(AperiodicProblem(DIAGONAL, 4, 3, shears=True), seed=1, workers=1)
+    rep = s.tiling
+    by = {c.board: c for c in rep.periods}
+    assert by["torus 3x1"].status == "refuted" and by["torus 3x1 shear 1"].status == "tiles"
+    assert by["torus 3x3"].status == "tiles"
+    assert by["torus 1x1"].evidence["cnf_sha256"] and by["torus 1x1"].evidence["drat_sha256"]
+    assert rep.largest_square == 4 and "not aperiodic" in rep.conclusion
+    assert rep.complete and not aperiodic_violations(rep, AperiodicProblem(DIAGONAL, 4, 3, True))
+
+
+def test_finite_set_stops_with_a_checked_refutation():
+    s = solve(AperiodicProblem(LONELY, 5, 0), seed=1)
+    rep = s.tiling
+    assert rep.largest_square == 1
+    refuted = [c for c in rep.squares if c.status == "refuted"]
+    assert {c.board for c in refuted} >= {"square 2x2"}
+    assert "tiles no plane" in rep.conclusion and "aperiodic" not in rep.conclusion.replace("not aperiodic", "")
+
+
+def test_report_round_trip_and_tampering_caught():
+    problem = AperiodicProblem(DIAGONAL, 3, 2, shears=True)
+    s = solve(problem, seed=2, workers=1)
+    doc = json.loads(solution_text(problem, s))
+    assert verify_document(doc).ok
+    bad = json.loads(json.dumps(doc))
+    sq = next(c for c in bad["squares"] if c["status"] == "tiles")
+    sq["tiling"][0][0] = (sq["tiling"][0][0] + 1) % 3
+    rep = verify_document(bad)
+    assert rep.exit_code == 1 and "square 3x3" in rep.lines[1]
+    bad = json.loads(json.dumps(doc))
+    ref = next(c for c in bad["periods"] if c["status"] == "refuted")
+    del ref["evidence"]["drat_sha256"]
+    assert "without the digests" in verify_document(bad).lines[1]
+    bad = json.loads(json.dumps(doc))
+    bad["largest_square"] = 2
+    assert verify_document(bad).exit_code == 1
+
+
+def _names(n):
+    return [lat.name() for lat in AperiodicProblem(DIAGONAL, 0, n, shears=True).lattices()]
+
+
+def test_sweep_workers_and_cache(tmp_path):
+    names = _names(3)
+    one, _ = sweep(DIAGONAL, names, RunOptions(seed=1, workers=1))
+    cache = tmp_path / "c.jsonl"
+    two, intr = sweep(DIAGONAL, names, RunOptions(seed=1, workers=2), cache=cache)
+    assert not intr and [c.status for c in one] == [c.status for c in two]
+    assert len(cache.read_text().splitlines()) == len(names)
+    again, _ = sweep(DIAGONAL, names, RunOptions(seed=1, workers=2), cache=cache)
+    assert all(c.evidence.get("cached") for c in again)
+    assert [c.status for c in again] == [c.status for c in one]
+
+
+def test_time_limit_leaves_boards_undecided_never_refuted():
+    jr = WangTileSet.from_nesw([(t, r, b, l) for r, t, l, b in [
+        (2, 4, 2, 1), (2, 2, 2, 0), (1, 1, 3, 1), (1, 2, 3, 2), (3, 1, 3, 3), (0, 1, 3, 1), (0, 0, 0, 1),
+        (3, 1, 0, 2), (0, 2, 1, 2), (1, 2, 1, 4), (3, 3, 1, 2)]], 5)
+    certs, _ = sweep(jr, ["torus 20x20", "torus 21x21"], RunOptions(seed=1, workers=1, deadline=Deadline(0.05)))
+    assert [c.status for c in certs] == ["undecided", "undecided"]
+    assert all("time limit" in c.evidence["why"] for c in certs)
+
+
+def test_sweep_on_a_dask_cluster():
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=":0") as lc:
+        certs, intr = sweep(DIAGONAL, _names(2), RunOptions(seed=1, cluster=lc.scheduler_address))
+    local, _ = sweep(DIAGONAL, _names(2), RunOptions(seed=1, workers=1))
+    assert not intr and [c.status for c in certs] == [c.status for c in local]
+
+
+def test_certificate_shape_checked():
+    with pytest.raises(InvalidProblem, match="needs tiling"):
+        Certificate("torus 1x1", "tiles")
+
+
+# ------------------------------------------------------------------------------------ CLI
+def test_cli_check_verify_and_duplicates(tmp_path):
+    (tmp_path / "t.json").write_text(json.dumps({"order": "NESW", "colors": 3, "tiles": [
+        [0, 1, 1, 0], [1, 2, 2, 1], [2, 0, 0, 2], [2, 0, 0, 2]]}))
+    proc = run("aperiodic", "check", "t.json", "--max-square", "3", "--max-period", "3", "--shears",
+               "--workers", "1", "--proof-dir", "proofs", "-o", "r.json", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    assert "duplicate" in proc.stderr and "not aperiodic" in proc.stdout
+    assert (tmp_path / "r.json.cache.jsonl").exists()
+    assert any(p.suffix == ".drat" for p in (tmp_path / "proofs").iterdir())
+    assert run("verify", "r.json", cwd=tmp_path).returncode == 0
+
+
+@pytest.mark.parametrize("tiles,msg", [
+    ([[0, 1, 0]], "4 integer colours"),
+    ([[0, 1, 0, 7]], "outside C"),
+    ([], "non-empty"),
+])
+def test_cli_bad_tile_sets(tmp_path, tiles, msg):
+    (tmp_path / "t.json").write_text(json.dumps({"colors": 2, "tiles": tiles}))
+    before = snapshot(tmp_path)
+    proc = run("aperiodic", "check", "t.json", "--max-square", "3", "-o", "r.json", cwd=tmp_path)
+    assert msg in one_line_error(proc)
+    assert snapshot(tmp_path) == before
