@@ -23,10 +23,18 @@ The shader
 Per fragment (§5.4): the tile coordinates and the coordinates inside the tile; the tile by the
 direct stochastic corner tiling (§3.3.1): corners ``h(x+1, y+1), h(x+1, y), h(x, y), h(x, y+1)``
 of the long-period hash (§3.4.3), integer arithmetic on the permutation tables fetched with
-``texelFetch`` from an unsigned integer texture; the tile's place in the packing from a second
-integer texture; then one ``textureGrad`` lookup in the mipmapped atlas. The tile of every
-fragment equals :func:`tilesolve.constructive.stochastic.direct_corner` bit for bit, at any
-origin of the 63-bit lattice (the origin enters as its residue modulo each table size).
+``texelFetch`` from unsigned integer textures; the tile's place in the packing from a second
+integer texture; then one ``textureLod`` lookup in the mipmapped atlas, at the mip level of
+the picture's scale (atlas texels per picture pixel), which is what a ``textureGrad`` with the
+continuous texture coordinates' derivatives would pick: the derivatives of the atlas
+coordinates jump at tile borders, so hardware derivatives cannot be used there. The tile of
+every fragment equals :func:`tilesolve.constructive.stochastic.direct_corner` bit for bit, at
+any origin of the 63-bit lattice (the origin enters as its residue modulo each table size).
+
+By default the hash runs once per tile: a first pass renders one fragment per tile of the
+picture and writes the tile's place in the atlas into an integer texture, and the second pass
+fetches it for each pixel. ``two_pass=False`` evaluates the hash in every fragment (§5.4 as
+written); both draw the same pixels.
 
 Pictures larger than one render pass (the context's maximum viewport) are drawn band by band
 and streamed to the PNG file.
