@@ -225,11 +225,14 @@ async function cancel() {
 }
 
 // ------------------------------------------------------------------ infinite view
-const view = studio.view = { x: 0, y: 0, zoom: 1, tiles: new Map(), key: "" };
+const view = studio.view = { x: 0, y: 0, zoom: 1, tiles: new Map(), range: "", values: "" };
 
 function resetView() {
-  view.tiles.clear(); $("tiles").innerHTML = "";
-  if (studio.fam && studio.fam.view) requestAnimationFrame(drawView);
+  view.tiles.clear(); $("tiles").innerHTML = ""; view.range = "";
+  if (!studio.fam || !studio.fam.view) return;
+  view.values = encodeURIComponent(JSON.stringify(Object.fromEntries(Object.entries(formValues()).filter(
+    ([k]) => !studio.fam.fields.some(f => f.name === k && f.kind === "cells")))));
+  requestAnimationFrame(drawView);
 }
 
 function drawView() {
@@ -239,8 +242,9 @@ function drawView() {
   const i0 = Math.floor(view.x / T), j0 = Math.floor(view.y / T);
   const i1 = Math.floor((view.x + w / view.zoom) / T), j1 = Math.floor((view.y + h / view.zoom) / T);
   if (i1 - i0 > 24 || j1 - j0 > 24) return;           // zoomed out too far: keep what is shown
-  const values = JSON.stringify(Object.fromEntries(Object.entries(formValues()).filter(
-    ([k]) => !studio.fam.fields.some(f => f.name === k && f.kind === "cells"))));
+  const range = `${i0},${j0},${i1},${j1}`;
+  if (range === view.range) return;                   // the same tiles: the transform was enough
+  view.range = range;
   for (let i = i0; i <= i1; i++) for (let j = j0; j <= j1; j++) {
     const key = i + "," + j;
     if (view.tiles.has(key)) continue;
@@ -248,7 +252,7 @@ function drawView() {
     img.style.left = i * T + "px"; img.style.top = j * T + "px"; img.style.width = img.style.height = T + "px";
     img.onerror = () => { $("view-info").textContent = "a view tile failed: check the form"; };
     img.src = `/api/view/${studio.fam.name}.png?x=${i * VIEW_N}&y=${-(j + 1) * VIEW_N}&n=${VIEW_N}` +
-              `&values=${encodeURIComponent(values)}`;
+              `&values=${view.values}`;
     $("tiles").appendChild(img); view.tiles.set(key, img);
   }
   if (view.tiles.size > 600) {                          // forget tiles far from the window
