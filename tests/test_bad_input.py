@@ -136,6 +136,18 @@ CASES: dict[str, list[tuple[str, str]]] = {
         ("samples zero", "--samples 0 --max-line 2"),
         ("method unknown", "--method magic"),
     ],
+    "aperiodic check": [
+        ("no tile set", "--max-square 3"),
+        ("tiles and builtin", "tiles.json --builtin jeandel-rao --max-square 3"),
+        ("builtin unknown", "--builtin nope --max-square 3 -o keep.json"),
+        ("nothing to check", "--builtin jeandel-rao -o keep.json"),
+        ("max square 10^30", f"--builtin jeandel-rao --max-square {BIG} -o keep.json"),
+        ("max period absurd", "--builtin jeandel-rao --max-period 5000 --shears -o keep.json"),
+        ("tiles wrong JSON", "wrong.json --max-square 3 -o keep.json"),
+        ("tiles binary", "garbage.bin --max-square 3"),
+        ("workers and cluster", "--builtin jeandel-rao --max-square 3 --workers 2 --cluster tcp://127.0.0.1:1"),
+        ("output is a directory", "--builtin jeandel-rao --max-square 3 -o adir"),
+    ],
     "tiling": [
         ("region garbage", "--kind wang --method direct --colors 2 --region abc"),
         ("region 10^30 wide", f"--kind wang --method direct --colors 2 --region 0,0,{BIG}x2 -o keep.json"),

@@ -29,7 +29,7 @@ PACKAGE = Path(__file__).resolve().parents[1] / "tilesolve"
 
 BASE = {"tilesolve", "tilesolve.errors", "tilesolve.deadline", "tilesolve._random", "tilesolve._lazy"}
 FACADES = {"tilesolve.family", "tilesolve.dappled", "tilesolve.board", "tilesolve.wang", "tilesolve.packing",
-           "tilesolve.walls", "tilesolve.packing_search", "tilesolve.stochastic",
+           "tilesolve.walls", "tilesolve.packing_search", "tilesolve.stochastic", "tilesolve.aperiodic",
            "tilesolve.wall_render", "tilesolve.crosscheck_windows",
            "tilesolve.gpu", "tilesolve.gpu.context", "tilesolve.gpu.texture", "tilesolve.gpu.wall", "tilesolve.gpu.picture"}
 
