@@ -152,7 +152,7 @@ def test_speed_goals_are_measured(page):
         pick(page, name)
         for field, value in values.items():
             fill(page, field, value)
-        page.wait_for_function(f"document.getElementById('describe').textContent.length > 0")
+        page.wait_for_function("document.getElementById('describe').textContent.length > 0")
         page.fill("#seed", "1")
         best = min((solve(page), page.evaluate("studio.timings.lastSolveMs"))[1] for _ in range(3))
         rows.append((f"{name} {values['size']}", best))

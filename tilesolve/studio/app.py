@@ -28,7 +28,6 @@ import json
 import os
 import threading
 from collections import OrderedDict
-from typing import Any
 
 import anyio
 from starlette.applications import Starlette
