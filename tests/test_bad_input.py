@@ -236,6 +236,7 @@ CASES: dict[str, list[tuple[str, str]]] = {
         ("size 10^30", f"--example garbage.bin --size {BIG}x{BIG} -o keep.json"),
         ("colors 9", "--example garbage.bin --colors 9 --size 8x8 -o out.png"),
         ("tile odd", "--example garbage.bin --tile 9 --size 8x8 -o out.png"),
+        ("atlas too large", "--example garbage.bin --colors 8 --tile 512 --size 8x8 -o out.png"),
         ("origin garbage", "--example garbage.bin --size 8x8 --origin a,b -o out.png"),
         ("origin 10^30", f"--example garbage.bin --size 8x8 --origin {BIG},0 -o out.png"),
         ("nothing to do", "--example garbage.bin --size 8x8"),

@@ -26,8 +26,8 @@ _ORIGIN = click.option("--origin", default="0,0", show_default=True, metavar="X0
 _SEED = click.option("--seed", type=click.IntRange(0, opt.MAX_SEED), default=0, show_default=True, metavar="N",
                      help="Seed of the hashes; the same seed gives the same picture.")
 _BENCH = click.option("--benchmark", type=click.IntRange(1, 100_000), default=None, metavar="FRAMES",
-                      help="Also render FRAMES frames of one pass (at most the context's viewport) and print "
-                           "the frames per second.")
+                      help="Also render FRAMES frames of the picture (its lower-left 4096x4096 px at most, one pass) "
+                           "and print the frames per second.")
 _PER_FRAGMENT = click.option("--per-fragment", is_flag=True,
                              help="Evaluate the tiling hash in every fragment (one pass) instead of once per "
                                   "tile in a first pass; the same picture.")
@@ -35,9 +35,13 @@ _OUTPUT = click.option("-o", "--output", type=click.Path(dir_okay=False), metava
                        help="Write the picture here (PNG; rendered in passes when larger than the viewport).")
 
 
+#: Largest side of a benchmark frame (a 4096 x 4096 RGBA frame is 64 MiB, 256 MiB with 4 samples).
+BENCH_SIDE = 4096
+
+
 def _benchmark(renderer, width: int, height: int, frames: int) -> None:
     """Render ``frames`` frames of one pass and print the rate (the GPU finishes before the clock stops)."""
-    side = renderer.max_pass
+    side = min(renderer.max_pass, BENCH_SIDE)
     w, h = min(width, side), min(height, side)
     fbo, draw = renderer.frame(w, h)
     draw()
@@ -76,7 +80,7 @@ def render() -> None:
               help="Corner colours: the atlas packs the C^4 corner tiles in a C^2 x C^2 tile packing.")
 @click.option("--size", required=True, metavar="WxH", help="Picture size in pixels (any size: rendered in passes).")
 @click.option("--tile", type=click.IntRange(8, 1024), default=64, show_default=True, metavar="PX",
-              help="Side of an atlas tile in texels (even).")
+              help="Side of an atlas tile in texels (even; the atlas, C^2 tiles a side, at most 16384 px).")
 @click.option("--scale", type=click.IntRange(1, 4096), default=None, metavar="PX",
               help="Pixels per tile side in the picture (default: --tile); smaller values use the atlas's mipmaps.")
 @_ORIGIN
@@ -104,14 +108,13 @@ def texture(example, colors, size, tile, scale, origin, seed, hash_, per_fragmen
       tilesolve render texture --example bricks.png --colors 3 --tile 32 --size 1920x1080 --benchmark 5
     """
     from tilesolve.gpu.picture import parse_origin, parse_size, write_png
-    from tilesolve.gpu.texture import Atlas, TextureMapper, read_example
+    from tilesolve.gpu.texture import Atlas, TextureMapper, check_atlas, read_example
 
     _need_output(output, benchmark)
     outs = Outputs(output, atlas)
     w, h = parse_size(size)
     x0, y0 = parse_origin(origin)
-    if tile % 2:
-        raise InvalidProblem(f"--tile must be even (quarter patches), got {tile}")
+    check_atlas(colors, tile)
     image = read_example(example)
     t = time.perf_counter()
     at = Atlas.from_example(image, colors, tile=tile, seed=seed)

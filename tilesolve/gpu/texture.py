@@ -52,10 +52,13 @@ from tilesolve.constructive.stochastic import make_hash
 from tilesolve.errors import InvalidProblem
 from tilesolve.gpu.context import gpu_context, max_render_size, release
 
-__all__ = ["MAX_COLORS", "Atlas", "corner_packing", "synthesize_atlas", "read_example", "TextureMapper"]
+__all__ = ["MAX_COLORS", "MAX_ATLAS", "Atlas", "check_atlas", "corner_packing", "synthesize_atlas", "read_example",
+           "TextureMapper"]
 
 #: Largest ``C`` of an atlas (``C**4 = 4096`` tiles).
 MAX_COLORS = 8
+#: Largest atlas side in texels: the texture size every OpenGL 4.5 context supports.
+MAX_ATLAS = 16384
 
 _VERTEX = """
 #version 450
@@ -188,6 +191,19 @@ def _check_colors(colors) -> int:
     return c
 
 
+def check_atlas(colors, tile) -> tuple[int, int]:
+    """``(C, tile)`` checked: ``2 <= C <= MAX_COLORS``, an even tile of at least 8 texels, and an
+    atlas (``C**2`` tiles a side) of at most :data:`MAX_ATLAS` texels a side."""
+    c = _check_colors(colors)
+    t = check_int(tile, "tile size", 8)
+    if t % 2:
+        raise InvalidProblem(f"the tile size must be even (quarter patches), got {t}")
+    if c * c * t > MAX_ATLAS:
+        raise InvalidProblem(f"an atlas of {c * c} x {c * c} tiles of {t} px is {c * c * t} px wide, more than the "
+                             f"{MAX_ATLAS} px every OpenGL 4.5 texture may have: use a smaller tile or fewer colours")
+    return c, t
+
+
 def read_example(path: str | os.PathLike) -> np.ndarray:
     """The example image as ``(H, W, 4)`` uint8 RGBA; one-line :class:`InvalidProblem` when unreadable."""
     from PIL import Image, UnidentifiedImageError
@@ -235,10 +251,7 @@ def synthesize_atlas(example, grid, colors: int, *, tile: int = 64, seed: int = 
     >>> bool((a[15, 16:32] == a[16, 16:32]).all()) or bool((a[:, 15] != a[:, 16]).any())
     True
     """
-    c = _check_colors(colors)
-    t = check_int(tile, "tile size", 8)
-    if t % 2:
-        raise InvalidProblem(f"the tile size must be even (quarter patches), got {t}")
+    c, t = check_atlas(colors, tile)
     ex = np.asarray(example, dtype=np.uint8)
     if ex.ndim != 3 or ex.shape[2] not in (3, 4):
         raise InvalidProblem(f"the example must be an RGB or RGBA image, got an array of shape {ex.shape}")
