@@ -207,6 +207,7 @@ def check_atlas(colors, tile) -> tuple[int, int]:
 def read_example(path: str | os.PathLike) -> np.ndarray:
     """The example image as ``(H, W, 4)`` uint8 RGBA; one-line :class:`InvalidProblem` when unreadable."""
     from PIL import Image, UnidentifiedImageError
+    from PIL.Image import DecompressionBombError
 
     try:
         with Image.open(path) as img:
@@ -217,6 +218,8 @@ def read_example(path: str | os.PathLike) -> np.ndarray:
         raise InvalidProblem(f"{path}: is a directory, not an image") from None
     except PermissionError:
         raise InvalidProblem(f"{path}: permission denied") from None
+    except DecompressionBombError:
+        raise InvalidProblem(f"{path}: the image has more pixels than Pillow's safety limit") from None
     except (UnidentifiedImageError, OSError, ValueError, SyntaxError) as exc:
         raise InvalidProblem(f"{path}: not a readable image ({' '.join(str(exc).split())[:120]})") from None
 
