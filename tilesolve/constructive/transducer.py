@@ -78,7 +78,7 @@ from tilesolve.model.board import WangTileSet
 __all__ = [
     "Transducer", "Level", "TransducerVerdict", "tile_transducer", "compose", "simplify", "minimize",
     "periodic_cycle", "build_level", "unfold", "decide", "strip_width", "torus_tiling",
-    "DEFAULT_MAX_TRANSITIONS",
+    "transducer_report", "DEFAULT_MAX_TRANSITIONS",
 ]
 
 #: Largest number of candidate transitions one composition may build before the search stops
@@ -584,3 +584,68 @@ def torus_tiling(tileset: WangTileSet, torus) -> np.ndarray:
     indices ``torus``: the tiling of ``Board.torus(k, p)`` for the board verifier."""
     idx = np.asarray(torus, dtype=np.int64)
     return np.asarray(tileset.tiles, dtype=np.int64)[idx.ravel()]
+
+
+def transducer_report(problem, run, *, refute) -> tuple[str, object]:
+    """The aperiodicity family's ``transducer`` route, given the SAT route to certify with.
+
+    Searches ``k = 1 .. max_k`` (the run option ``max_k``; default the problem's
+    ``max_period``, or ``max_square`` when no periods are asked) with :func:`decide`, then
+    turns the verdict into certificates (:mod:`tilesolve.model.aperiodic`):
+
+    * ``"periodic"``: the ``k x p`` torus witness (``periods``; the family's verifier checks
+      it on the board);
+    * ``"empty"``: the ``k x w`` rectangle of :func:`strip_width`, refuted by ``refute`` (the
+      SAT route with a checked DRAT proof); the certificate keeps the proof's evidence and
+      adds the transducer's (``transducer_k``, ``strip_width``). A rectangle that SAT tiles
+      would contradict the transducer: :class:`InternalError`;
+    * ``"undecided"``: no certificate, the conclusion says up to which ``k``.
+
+    Parameters
+    ----------
+    problem : AperiodicProblem
+    run : RunOptions
+    refute : callable
+        ``refute(board_name, run) -> Certificate`` deciding a board by SAT (e.g.
+        :func:`tilesolve.engine.aperiodic.decide` with the tile set bound).
+
+    Returns
+    -------
+    (str, AperiodicReport)
+        The verdict and the report.
+    """
+    from tilesolve.model.aperiodic import AperiodicReport, Certificate
+
+    ts = problem.tileset
+    max_k = int(run.option("max_k", problem.max_period or problem.max_square))
+    v = decide(ts, max_k=max_k, deadline=run.deadline)
+    sizes = [list(map(int, s)) for s in v.sizes]
+    ev = {"transducer_k": v.k, "reason": v.reason, "sizes": sizes, "transducer_s": round(v.seconds, 6)}
+    literature = (problem.info or {}).get("literature")
+    if v.verdict == "periodic":
+        k, p = v.torus.shape
+        cert = Certificate(f"torus {k}x{p}", "tiles", v.torus, "transducer", ev, round(v.seconds, 6))
+        return v.verdict, AperiodicReport(periods=(cert,), conclusion=(
+            f"The set tiles the {k}x{p} torus (found as a cycle of T_{v.k} that writes what it reads, "
+            f"Jeandel-Rao): it tiles the plane periodically, so it is not aperiodic."), literature=literature)
+    if v.verdict == "empty":
+        w = strip_width(ts, v.k)
+        if w is None:
+            raise InternalError(f"T_{v.k} is empty but the full T^{v.k} has a cycle")
+        name = f"square {v.k}x{w}"
+        sat = refute(name, run)
+        if sat.status == "tiles":
+            raise InternalError(f"the transducer says no {v.k}x{w} rectangle can be tiled, SAT tiled one")
+        cert = Certificate(name, sat.status, None, "transducer+sat", {**sat.evidence, **ev, "strip_width": w},
+                           round(v.seconds + sat.time_s, 6))
+        if sat.status == "refuted":
+            text = (f"T_{v.k} is empty (Jeandel-Rao): no strip of height {v.k} can be tiled, and the "
+                    f"{v.k}x{w} rectangle is refuted with a checked proof, so the set tiles no plane.")
+        else:
+            text = (f"T_{v.k} is empty (Jeandel-Rao): no strip of height {v.k} can be tiled; the SAT "
+                    f"refutation of the {v.k}x{w} rectangle is undecided ({sat.evidence.get('why', '')}).")
+        return v.verdict, AperiodicReport(squares=(cert,), conclusion=text, literature=literature)
+    return v.verdict, AperiodicReport(conclusion=(
+        f"Undecided by the transducer up to k = {v.k} ({v.reason}): T_k is not empty and has no cycle that "
+        f"writes what it reads, so the set tiles strips of every height up to {v.k} and no torus of "
+        f"height at most {v.k}."), literature=literature)
