@@ -125,6 +125,18 @@ CASES: dict[str, list[tuple[str, str]]] = {
         ("max-line zero", "--region 0,0,4x4 --max-line 0"),
         ("colors two", "--region 0,0,4x4 --max-line 2 --colors 2"),
         ("method unknown", "--region 0,0,4x4 --max-line 2 --method magic"),
+        ("held region too large", "--region 0,0,20000x20000 --max-line 2 -o keep.json"),
+        ("map without png", "--region 0,0,4x4 --max-line 2 --map uv -o keep.json"),
+        ("npd period too small", "--region 0,0,8x8 --max-line 2 --method npd --period 2x8 --png keep.png"),
+    ],
+    "crosscheck wall": [
+        ("trials zero", "--trials 0"),
+        ("colors two", "--colors 2"),
+        ("max-line zero", "--max-line 0"),
+    ],
+    "crosscheck tiling": [
+        ("kind unknown", "--kind hex"),
+        ("max-size zero", "--max-size 0"),
     ],
     "wall-lines": [
         ("max-line zero", "--max-line 0 -o keep.json"),

@@ -20,7 +20,7 @@ COMMANDS = [("dappled", "solve"), ("dappled", "count"), ("dappled", "crosscheck"
             ("pack", "count"), ("tiles",), ("verify",), ("draw",), ("export", "dimacs"), ("demo",), ("backends",),
             ("render",), ("render", "texture"), ("render", "wall"), ("gpu",), ("gpu", "info"),
             ("tiling",), ("aperiodic", "check"), ("wall-lines",), ("studio",),
-            ("wang", "count")]
+            ("wang", "count"), ("crosscheck", "wall"), ("crosscheck", "tiling")]
 
 
 def run(args, cwd):
