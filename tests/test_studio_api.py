@@ -228,6 +228,8 @@ def test_view_tiles_agree_where_windows_overlap(client):
     w = ia.width // 8
     assert ia.crop((4 * w, 0, 8 * w, ia.height)).tobytes() == ib.crop((0, 0, 4 * w, ib.height)).tobytes()
     assert client.get(f"/api/view/stochastic.png?x=-1000&y=77&n=16&values={json.dumps({'seed': 1})}").status_code == 200
+    unseeded = [client.get("/api/view/stochastic.png?x=0&y=0&n=8").content for _ in range(2)]
+    assert unseeded[0] == unseeded[1]  # windows of a view without a seed share seed 0
     r = client.get("/api/view/dappled.png?x=0&y=0&n=8")
     assert r.status_code == 400 and "no infinite view" in r.json()["error"]
     assert client.get("/api/view/board.png?x=a").status_code == 400

@@ -230,8 +230,10 @@ const view = studio.view = { x: 0, y: 0, zoom: 1, tiles: new Map(), range: "", v
 function resetView() {
   view.tiles.clear(); $("tiles").innerHTML = ""; view.range = "";
   if (!studio.fam || !studio.fam.view) return;
-  view.values = encodeURIComponent(JSON.stringify(Object.fromEntries(Object.entries(formValues()).filter(
-    ([k]) => !studio.fam.fields.some(f => f.name === k && f.kind === "cells")))));
+  const values = Object.fromEntries(Object.entries(formValues()).filter(
+    ([k]) => !studio.fam.fields.some(f => f.name === k && f.kind === "cells")));
+  values.seed = values.seed === undefined ? 0 : values.seed;   // one seed for every window
+  view.values = encodeURIComponent(JSON.stringify(values));
   requestAnimationFrame(drawView);
 }
 
