@@ -209,7 +209,7 @@ def test_report_with_sat_certificates():
                                      refute=refute)
     (cert,) = rep.squares
     assert verdict == "empty" and cert.board == "square 8x26" and cert.status == "refuted"
-    assert cert.method == "transducer+sat" and cert.evidence["strip_width"] == 26
+    assert cert.method == "sat+transducer" and cert.evidence["strip_width"] == 26
     assert cert.evidence["drat_sha256"] and "tiles no plane" in rep.conclusion
     ts = load_tiles("hard")
     verdict, rep = transducer_report(AperiodicProblem(ts, 0, 4), RunOptions(seed=1), refute=refute)
@@ -265,3 +265,23 @@ def test_random_sets_agree_with_sat(ts):
         for p in (1, 2, 3):
             for q in (1, 2):
                 assert sat(ts, f"torus {p}x{q}") == "refuted"
+
+
+def test_reports_pass_the_family_verifier():
+    from tilesolve.verify.aperiodic import aperiodic_violations
+
+    for name, max_period in (("finite_14", 10), ("hard", 3), ("aperiodic_11_4", 2)):
+        ts = load_tiles(name)
+        problem = AperiodicProblem(ts, 0, max_period)
+        _, rep = transducer_report(problem, RunOptions(seed=1), refute=lambda b, run: sat_decide(ts, b, run))
+        assert aperiodic_violations(rep, problem) == []
+    # a corrupted witness is caught
+    ts = load_tiles("hard")
+    problem = AperiodicProblem(ts, 0, 3)
+    _, rep = transducer_report(problem, RunOptions(seed=1), refute=lambda b, run: sat_decide(ts, b, run))
+    bad = rep.periods[0].tiling.copy()
+    bad[0, 0] = (bad[0, 0] + 1) % len(ts)
+    from dataclasses import replace
+
+    rep = replace(rep, periods=(replace(rep.periods[0], tiling=bad),))
+    assert aperiodic_violations(rep, problem) != []

@@ -389,12 +389,15 @@ class Level:
     quotient: Transducer
 
 
-def _level(k: int, full: Transducer, upper: np.ndarray, tile: np.ndarray, minimise: bool) -> Level:
+def _level(k: int, full: Transducer, upper: np.ndarray, tile: np.ndarray, minimise: bool,
+           deadline: Deadline) -> Level:
+    deadline.check(f"simplifying T_{k} ({full.n_transitions:,} transitions)")
     keep = simplify(full)
     src, dst, _ = _renumber(full.src[keep], full.dst[keep])
     n = int(max(src.max(initial=-1), dst.max(initial=-1))) + 1
     full = Transducer(n, src, dst, full.north[keep], full.south[keep])
     upper, tile = upper[keep], tile[keep]
+    deadline.check(f"minimising T_{k} ({full.n_transitions:,} transitions)")
     cls = minimize(full) if minimise else np.arange(n, dtype=np.int64)
     m = int(cls.max(initial=-1)) + 1
     nv = int(max(full.north.max(initial=0), full.south.max(initial=0))) + 1
@@ -404,15 +407,18 @@ def _level(k: int, full: Transducer, upper: np.ndarray, tile: np.ndarray, minimi
 
 
 def build_level(tileset: WangTileSet, previous: Level | None, *, minimise: bool = True,
-                max_transitions: int = DEFAULT_MAX_TRANSITIONS) -> Level:
+                max_transitions: int = DEFAULT_MAX_TRANSITIONS, deadline: Deadline | None = None) -> Level:
     """``T_1`` (``previous=None``) or ``T_{k+1}`` from ``T_k``: compose with ``T``, simplify, and
-    minimise (or not: ``minimise=False`` keeps every state, for cross-checks)."""
+    minimise (or not: ``minimise=False`` keeps every state, for cross-checks). ``deadline`` is
+    checked between the steps (:class:`~tilesolve.deadline.TimeLimitReached`)."""
+    deadline = deadline or Deadline(None)
     base = tile_transducer(tileset)
     if previous is None:
         return _level(1, base, np.full(base.n_transitions, -1, np.int64), np.arange(base.n_transitions,
-                                                                                    dtype=np.int64), minimise)
+                                                                                    dtype=np.int64), minimise,
+                      deadline)
     comp, i, j = compose(previous.quotient, base, max_transitions=max_transitions)
-    return _level(previous.k + 1, comp, i, j, minimise)
+    return _level(previous.k + 1, comp, i, j, minimise, deadline)
 
 
 def _unfold_one(level: Level, cycle: np.ndarray) -> np.ndarray:
@@ -494,8 +500,8 @@ def decide(tileset: WangTileSet, *, max_k: int = 30, deadline: Deadline | None =
     max_k : int
         Largest number of stacked rows tried.
     deadline : Deadline, optional
-        Checked between levels; when it has passed the verdict is ``"undecided"`` with the
-        ``k`` reached.
+        Checked between the steps of each level; when it has passed the verdict is
+        ``"undecided"`` with the last ``k`` completed.
     minimise : bool
         Merge bisimilar states at every level (default); ``False`` keeps them (slower, the
         same verdicts).
@@ -522,7 +528,7 @@ def decide(tileset: WangTileSet, *, max_k: int = 30, deadline: Deadline | None =
         try:
             deadline.check(f"building T_{len(levels) + 1}")
             level = build_level(tileset, levels[-1] if levels else None, minimise=minimise,
-                                max_transitions=max_transitions)
+                                max_transitions=max_transitions, deadline=deadline)
         except (TimeLimitReached, InvalidProblem) as e:
             return stop("undecided", str(e))
         levels.append(level)
@@ -636,7 +642,7 @@ def transducer_report(problem, run, *, refute) -> tuple[str, object]:
         sat = refute(name, run)
         if sat.status == "tiles":
             raise InternalError(f"the transducer says no {v.k}x{w} rectangle can be tiled, SAT tiled one")
-        cert = Certificate(name, sat.status, None, "transducer+sat", {**sat.evidence, **ev, "strip_width": w},
+        cert = Certificate(name, sat.status, None, "sat+transducer", {**sat.evidence, **ev, "strip_width": w},
                            round(v.seconds + sat.time_s, 6))
         if sat.status == "refuted":
             text = (f"T_{v.k} is empty (Jeandel-Rao): no strip of height {v.k} can be tiled, and the "
