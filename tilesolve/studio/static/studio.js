@@ -129,6 +129,11 @@ function drawGrid() {
     } else { ctx.globalAlpha = 1; ctx.fillStyle = "#fff"; }
     ctx.fillRect(c * px, r * px, px, px);
     if (v >= 0 && px >= 6) { ctx.strokeStyle = "#000"; ctx.globalAlpha = 1; ctx.strokeRect(c * px + .5, r * px + .5, px - 1, px - 1); }
+    const shown = v >= 0 ? v : (studio.cells && studio.cells[r] ? studio.cells[r][c] : undefined);
+    if (shown !== undefined && px >= 16 && ext[3] > 9) {   // many values: write the number
+      ctx.globalAlpha = v >= 0 ? 1 : 0.5; ctx.fillStyle = "#000"; ctx.font = `${Math.floor(px / 2.2)}px sans-serif`;
+      ctx.textAlign = "center"; ctx.textBaseline = "middle"; ctx.fillText(String(shown), (c + .5) * px, (r + .5) * px);
+    }
   }
   ctx.globalAlpha = 1;
 }
@@ -218,6 +223,7 @@ function showResult(res) {
   $("exports").hidden = false;
   studio.cells = res.cells;
   drawGrid();
+  if (res.cells && $("brush").querySelector("option[value=solution]")) $("brush").value = "solution";
 }
 
 async function cancel() {
