@@ -26,8 +26,10 @@ border, otherwise a brick colour varied by a fourth hash stream of the brick id 
 
 Passes
 ------
-``per_fragment=False`` (default): a first pass computes each cell's legs once (one fragment per
-cell) into an RGBA8UI texture, the second shades the pixels from it. ``per_fragment=True``
+``per_fragment=False`` (default): a first pass computes, one fragment per cell, each cell's legs
+(an RGBA8UI texture) and, for the cell's SW lattice point, the four edges that meet there and
+the point's colour hash (an RG32UI texture); the second pass shades each pixel from two
+fetches, its cell's legs and its brick's point. ``per_fragment=True``
 evaluates ``wall_tile`` in every fragment (twice: the cell and its diagonal neighbour), as 004
 §5.2 describes. Both give the same picture. Multisampling renders into a multisample target
 with per-sample shading and resolves it; the sample counts are those the context allows
@@ -155,16 +157,18 @@ in vec2 in_pos;
 void main() { gl_Position = vec4(in_pos, 0.0, 1.0); }
 """
 
-#: First pass: one fragment per cell (local cell = fragment + u_first): its legs, and the colour
-#: hash of its SW lattice point (the brick of that point).
+#: First pass: one fragment per cell (local cell = fragment + u_first): its legs, and for its SW
+#: lattice point (I, J) the four edges that meet there, H[I-1, J], H[I, J], V[I, J], V[I, J-1]
+#: (one byte each: they bound the brick of that point), and the point's colour hash.
 _FRAGMENT_CELLS = _HEADER + DIV_GLSL + WALL_GLSL + """
 uniform ivec2 u_first;
 layout(location = 0) out uvec4 f_legs;
-layout(location = 1) out uint f_shade;
+layout(location = 1) out uvec2 f_point;
 void main() {
     ivec2 c = ivec2(gl_FragCoord.xy) + u_first;
-    f_legs = wall_tile(c.x, c.y);
-    f_shade = raw(3, c.x, c.y);
+    uvec4 ur = wall_tile(c.x, c.y), ll = wall_tile(c.x - 1, c.y - 1);
+    f_legs = ur;
+    f_point = uvec2(ll.y | (ur.w << 8) | (ur.x << 16) | (ll.z << 24), raw(3, c.x, c.y));
 }
 """
 
@@ -175,7 +179,7 @@ uniform ivec2 u_offset;      // this pass's lower-left pixel in the picture
 uniform ivec2 u_local0;      // local cell of the picture's SW cell
 uniform float u_mortar;      // half width of the mortar, in cells
 uniform usampler2D u_cells;  // first pass: legs of local cells u_first + texel
-uniform usampler2D u_shades; // first pass: colour hash of the lattice point u_first + texel
+uniform usampler2D u_points; // first pass: edges and colour hash of the lattice point u_first + texel
 uniform ivec2 u_first;
 layout(location = 0) out vec4 f_colour;
 #ifdef DATA
@@ -215,9 +219,10 @@ void main() {
         upper = ft < (right ? pos.z : pos.x);
     }
     ivec2 corner = ivec2(right ? 1 : 0, upper ? 1 : 0);   // the brick's lattice point: c + corner
-    uvec4 u = legs(c + 2 * corner - 1);                    // the cell diagonally across it
-    // Edges at the point (I, J): H[I-1, J], H[I, J], V[I, J], V[I, J-1].
-    uint hl, hr, vt, vb;
+    // Edges at the point (I, J): H[I-1, J], H[I, J], V[I, J], V[I, J-1]; its colour hash.
+    uint hl, hr, vt, vb, shade;
+#ifdef PER_FRAGMENT
+    uvec4 u = legs(c + 2 * corner - 1);                    // the cell diagonally across the point
     if (corner.x == corner.y) {   // this cell and its neighbour are LL and UR
         uvec4 ll = corner.x == 1 ? t : u, ur = corner.x == 1 ? u : t;
         hl = ll.y; hr = ur.w; vt = ur.x; vb = ll.z;
@@ -225,17 +230,18 @@ void main() {
         uvec4 ul = corner.x == 1 ? t : u, lr = corner.x == 1 ? u : t;
         hl = ul.w; hr = lr.y; vt = ul.z; vb = lr.x;
     }
+    shade = raw(3, c.x + corner.x, c.y + corner.y);
+#else
+    uvec2 point = texelFetch(u_points, c + corner - u_first, 0).xy;
+    hl = point.x & 255u; hr = (point.x >> 8) & 255u; vt = (point.x >> 16) & 255u; vb = point.x >> 24;
+    shade = point.y;
+#endif
     vec2 q = f - vec2(corner);                            // relative to the lattice point
     vec2 lo = vec2(-1.0 + (float(hl) + 1.0) / k, -(float(vb) + 1.0) / k);
     vec2 hi = vec2((float(hr) + 1.0) / k, 1.0 - (float(vt) + 1.0) / k);
     vec2 uv = (q - lo) / (hi - lo);
     float dist = min(min(q.x - lo.x, hi.x - q.x), min(q.y - lo.y, hi.y - q.y));
     ivec2 brick = c + corner - u_local0;
-#ifdef PER_FRAGMENT
-    uint shade = raw(3, c.x + corner.x, c.y + corner.y);
-#else
-    uint shade = texelFetch(u_shades, c + corner - u_first, 0).r;
-#endif
     vec3 base = vec3(0.60, 0.27, 0.17) * (0.75 + 0.45 * float(shade >> 24) / 255.0)
               + vec3(0.06, 0.03, 0.0) * float((shade >> 16) & 255u) / 255.0;
     float edge = smoothstep(u_mortar, u_mortar + 0.06, dist);
@@ -331,7 +337,7 @@ class WallRenderer:
             values = {"u_origin": [_uvec2(self.i0), _uvec2(self.j0)], "u_nc": self.nc, "u_p": self.period,
                       "u_fixed": self.fixed, "u_dres": (self.i0 - self.j0) % p + p * -(-(1 << 16) // p),
                       "u_cell_px": self.cell_px, "u_local0": self.local0, "u_mortar": self.mortar, "u_cells": 0,
-                      "u_shades": 1}
+                      "u_points": 1}
             for name, value in values.items():
                 if name in prog:
                     prog[name].value = value
@@ -369,7 +375,7 @@ class WallRenderer:
     def _cells_target(self, w: int, h: int):
         n = (min(self.max_pass, (w - 1) // self.cell_px + 4), min(self.max_pass, (h - 1) // self.cell_px + 4))
         return self.ctx.framebuffer(color_attachments=[self.ctx.texture(n, 4, dtype="u1"),
-                                                       self.ctx.texture(n, 1, dtype="u4")])
+                                                       self.ctx.texture(n, 2, dtype="u4")])
 
     def _pass(self, kind: str, fbo, offset, cells_fbo=None) -> None:
         """Shade the picture's pixels ``offset + [0, fbo.size)`` (GL coordinates) into ``fbo``."""
