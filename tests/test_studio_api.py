@@ -157,6 +157,15 @@ def test_closest_tiling_of_a_painted_target(client):
     assert res["status"] == "optimal" and res["objective"] > 0 and res["method"] == "maxsat"
 
 
+def test_painted_boundary_colours_hold(client):
+    edge = [[-1] * 6 for _ in range(5)]
+    edge[0][1], edge[2][5] = 2, 1  # the N leg of cell (0, 0), the E leg of cell (1, 3)
+    res = solve(client, {"family": "board", "values": {"size": "4x3", "boundary": "free", "edge": edge,
+                                                       "seed": 1}})["result"]
+    cells = json.loads(res["json"])["tiles"]
+    assert cells[0][1] == 2 and cells[4 + 3][2] == 1  # legs W N E S
+
+
 def test_unsat_shows_the_reason(client):
     state = solve(client, {"family": "dappled", "values": {"size": "3x1", "cond": "H0=1,H1=1", "tiles": 2,
                                                            "fixed": [[0, 1, 1]], "seed": 1}})
@@ -243,6 +252,8 @@ def test_view_tiles_agree_where_windows_overlap(client):
                                    "max_v": 3, "mask": [[1, 1, 1, 1, 1, 1]] * 4 + [[1, 0, 0, 1, 1, 1]]},
      "method": "sat"},
     {"family": "board", "values": {"seed": 4}},
+    {"family": "board", "values": {"size": "4x3", "boundary": "free", "seed": 1, "edge": [[-1, 0, 1, 2, 0, -1]] +
+                                   [[1, -1, -1, -1, -1, 2]] * 3 + [[-1, 0, 0, 0, 0, -1]]}},
     {"family": "packing", "values": {"kind": "wang", "colors": 2, "seed": 1, "pins": [[3, -1, -1, -1]] + [[-1] * 4] * 3},
      "method": "sat"},
     {"family": "stochastic", "values": {"kind": "wang", "set": "compact", "colors": 2, "x0": -3, "y0": 2,

@@ -315,22 +315,39 @@ def _form_holes(values):
     return keep
 
 
+#: Grid steps (row, col) out of the legs W, N, E, S.
+_LEG_STEP = np.array([[0, -1], [-1, 0], [0, 1], [1, 0]])
+
+
 def _form_boundary(values, board):
     from tilesolve.model.board import random_boundary
 
     spec = values["boundary"].strip()
     if spec == "random":
-        return random_boundary(board, values["colors"], seed=values["seed"])
-    if spec == "free":
-        return None
-    legs = [v.strip() for v in spec.split(",")]
-    if len(legs) != board.n_boundary:
-        raise InvalidProblem(f"boundary colours: the board has {board.n_boundary} boundary legs, "
-                             f"{len(legs)} colours given (or write random or free)")
-    try:
-        return np.array([-1 if v in ("-", "") else int(v) for v in legs], dtype=np.int64)
-    except ValueError:
-        raise InvalidProblem("boundary colours: a comma-separated colour per boundary leg, - for free") from None
+        colours = random_boundary(board, values["colors"], seed=values["seed"])
+    elif spec == "free":
+        colours = None
+    else:
+        legs = [v.strip() for v in spec.split(",")]
+        if len(legs) != board.n_boundary:
+            raise InvalidProblem(f"boundary colours: the board has {board.n_boundary} boundary legs, "
+                                 f"{len(legs)} colours given (or write random or free)")
+        try:
+            colours = np.array([-1 if v in ("-", "") else int(v) for v in legs], dtype=np.int64)
+        except ValueError:
+            raise InvalidProblem("boundary colours: a comma-separated colour per boundary leg, - for free") from None
+    painted = values.get("edge")
+    if painted is None or all(v < 0 for row in painted for v in row):
+        return colours
+    # a boundary leg facing a painted cell of the frame (or of a hole) takes its colour
+    grid = np.array(painted, dtype=np.int64)
+    legs = board.boundary_legs
+    at = board.labels[legs[:, 0]] + _LEG_STEP[legs[:, 1]] + 1
+    inside = (at[:, 0] >= 0) & (at[:, 0] < grid.shape[0]) & (at[:, 1] >= 0) & (at[:, 1] < grid.shape[1])
+    paint = np.full(len(legs), -1, dtype=np.int64)
+    paint[inside] = grid[at[inside, 0], at[inside, 1]]
+    out = np.full(len(legs), -1, dtype=np.int64) if colours is None else np.array(colours, dtype=np.int64)
+    return np.where(paint >= 0, paint, out)
 
 
 def _form_build(values) -> tuple[BoardProblem, dict]:
@@ -357,10 +374,12 @@ def _form_command(values) -> tuple[list[str], dict[str, str]]:
         spec = f"{values['board']}:{values['size']}"
     words = ["brick", "solve", "--board", spec, "--colors", str(values["colors"])]
     boundary = values["boundary"].strip()
-    if boundary in ("random", "free"):
+    painted = values.get("edge") is not None and any(v >= 0 for row in values["edge"] for v in row)
+    if boundary in ("random", "free") and not painted:
         words += ["--boundary", boundary]
     else:
-        files["boundary.json"] = json.dumps([None if v.strip() in ("-", "") else int(v) for v in boundary.split(",")])
+        colours = _form_build(values)[0].boundary
+        files["boundary.json"] = json.dumps([None if v < 0 else int(v) for v in colours.tolist()])
         words += ["--boundary", "boundary.json"]
     for name in ("max_h", "max_v"):
         if values[name] is not None:
@@ -381,6 +400,11 @@ def _mask_extent(values) -> tuple[int, int, int, int]:
     return rows, cols, 0, 1
 
 
+def _edge_extent(values) -> tuple[int, int, int, int]:
+    rows, cols = form_size(values["size"])
+    return rows + 2, cols + 2, 0, values["colors"] - 1
+
+
 FORM = Form(
     fields=(
         Field("board", "choice", "board", "rect", "the board's shape; mask: a rectangle with painted holes",
@@ -396,6 +420,9 @@ FORM = Form(
               low=1, high=1 << 20, option="--max-v"),
         Field("mask", "cells", "holes (mask boards)", None, "click cells to make holes (0) or cells (1)",
               option="--board", extent=_mask_extent),
+        Field("edge", "cells", "boundary colours (painted)", None, "paint the frame around the board (or a "
+              "hole): every boundary leg facing a painted cell takes its colour", option="--boundary",
+              extent=_edge_extent),
     ),
     build=_form_build,
     command=_form_command,
