@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import itertools
 import multiprocessing
+import os
 import threading
 import time
 import traceback
@@ -19,6 +20,9 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from tilesolve.errors import InvalidProblem
+
+#: Set to "1" for the forkserver: :mod:`tilesolve.studio.warm` then warms it when imported.
+WARM_ENV = "TILESOLVE_STUDIO_WARM"
 
 __all__ = ["Job", "Jobs", "TooBusy", "MAX_RUNNING", "KEEP", "SPARES"]
 
@@ -99,6 +103,7 @@ class Jobs:
         self._refill()
 
     def _spawn(self) -> tuple[Any, Any]:
+        os.environ[WARM_ENV] = "1"  # the forkserver, started by the first spawn, warms itself
         mine, theirs = self._ctx.Pipe()
         process = self._ctx.Process(target=_child, args=(theirs,), daemon=True)
         process.start()

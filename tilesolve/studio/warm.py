@@ -1,12 +1,16 @@
 """Imported once by the studio's forkserver: load every family, compile its kernels and run
 one whole studio solve of each (solve, verify, file, both pictures), so that each solve
 process forked from it finds every module imported and every kernel compiled (see
-:mod:`tilesolve.studio.jobs`)."""
+:mod:`tilesolve.studio.jobs`, which sets ``WARM_ENV`` for the forkserver; anywhere else,
+e.g. a doctest run importing every module, importing this module does nothing)."""
 
 from __future__ import annotations
 
+import os
+
 from tilesolve import family
 from tilesolve.errors import TilesolveError
+from tilesolve.studio.jobs import WARM_ENV
 from tilesolve.studio.worker import compiled_kernels, picture, pose, solve_request
 
 
@@ -25,4 +29,5 @@ def _warm() -> None:
             continue
 
 
-_warm()
+if os.environ.get(WARM_ENV) == "1":
+    _warm()
