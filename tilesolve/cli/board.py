@@ -437,6 +437,8 @@ def wall(ctx, region, max_line, colors, seed, method, period, output, svg, png, 
 
     Without -o, --svg or --png the wall is printed as text: each cell's leg colours W N E S.
     """
+    import time
+
     from tilesolve import family
     from tilesolve.model.dappled import parse_size
 
@@ -462,10 +464,17 @@ def wall(ctx, region, max_line, colors, seed, method, period, output, svg, png, 
         from tilesolve.wall_render import write_wall_png
 
         def draw(path):
-            show = say if progress_wanted() else None
+            last = [0.0]
+
+            def show(line: str) -> None:  # a line every 2 s at most, on a terminal
+                now = time.monotonic()
+                if now - last[0] >= 2:
+                    last[0] = now
+                    say(line)
+
             return write_wall_png(path, (x0, y0, cols, rows), colors=colors, max_line=max_line, seed=seed,
                                   method=method, period=(pw, ph), kind=map_kind or "id", ppc=ppc, verify=check,
-                                  progress=show)
+                                  progress=show if progress_wanted() else None)
     if held:
         from tilesolve.walls import wall_problem
 
