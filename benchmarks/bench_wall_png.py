@@ -1,0 +1,111 @@
+"""Memory and speed of wall pictures written as PNG (004 §3.2; issue 10: a 20,000 x 20,000 wall
+written to PNG with peak memory <= 1 GiB).
+
+Each case runs in a fresh Python process, so that its peak resident size (``ru_maxrss``) is
+its own, and writes a real file in a temporary folder (its size is printed):
+
+``streamed``
+    :func:`tilesolve.wall_render.write_wall_png`: a band of cell rows at a time (wall_window
+    with a one-cell halo, the maps, the board verifier on the band, pypng's row writer), as
+    ``tilesolve wall --png`` runs it;
+``stream-nv``
+    the same without the board verifier (``verify=False``), to show what the verifier costs.
+``whole``
+    the baseline, same run: the whole window at once (``wall_window`` of the region with its
+    halo, ``wall_maps`` of all of it, pixels, then pypng from the full pixel array), no
+    verifier; only at sizes whose arrays fit in memory.
+
+The table shows cells, pixels, seconds, peak RSS, throughput (million pixels a second) and,
+for streamed cases, the ratio of memory and time to the whole-array write of the same size.
+
+Usage::
+
+    python benchmarks/bench_wall_png.py            # 2000^2 and 5000^2 all ways, 20000^2 streamed
+    python benchmarks/bench_wall_png.py --quick    # 1000^2 and 2000^2 both ways
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import resource
+import subprocess
+import sys
+import tempfile
+import time
+
+COLORS, MAX_LINE, SEED, KIND = 3, 2, 7, "id"
+
+
+def run_case(mode: str, side: int, ppc: int, path: str) -> dict:
+    """One case, in this process (the child): seconds and peak RSS."""
+    import numpy as np
+
+    from tilesolve.constructive.walls import wall_window
+    from tilesolve.wall_render import wall_map_pixels, write_wall_png
+
+    wall_window(0, 0, 4, 4, colors=COLORS, max_line=MAX_LINE, seed=SEED)  # numba compile, not timed
+    t = time.perf_counter()
+    if mode in ("streamed", "stream-nv"):
+        write_wall_png(path, (0, 0, side, side), colors=COLORS, max_line=MAX_LINE, seed=SEED, kind=KIND, ppc=ppc,
+                       verify=mode == "streamed")
+    else:
+        import png
+
+        from tilesolve.io.wall_png import brick_palette
+
+        legs = wall_window(-1, -1, side + 2, side + 2, colors=COLORS, max_line=MAX_LINE, seed=SEED)
+        pixels = wall_map_pixels(legs, KIND, colors=COLORS, ppc=ppc, origin=(0, 0))
+        del legs
+        writer = png.Writer(pixels.shape[1], pixels.shape[0], palette=brick_palette(), bitdepth=8, compression=6)
+        with open(path, "wb") as f:
+            writer.write_packed(f, (row.tobytes() for row in np.asarray(pixels)))
+    secs = time.perf_counter() - t
+    return {"secs": secs, "rss": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss * 1024,
+            "bytes": os.path.getsize(path)}
+
+
+def child(mode: str, side: int, ppc: int) -> dict:
+    with tempfile.TemporaryDirectory() as d:
+        out = subprocess.run([sys.executable, __file__, "--child", mode, str(side), str(ppc), os.path.join(d, "w.png")],
+                             check=True, capture_output=True, text=True)
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--child", nargs=4, metavar=("MODE", "SIDE", "PPC", "PATH"))
+    args = ap.parse_args()
+    if args.child:
+        mode, side, ppc, path = args.child
+        print(json.dumps(run_case(mode, int(side), int(ppc), path)))
+        return
+    sides = [1000, 2000] if args.quick else [2000, 5000]
+    cases = [(mode, side) for side in sides for mode in ("whole", "stream-nv", "streamed")]
+    if not args.quick:
+        cases += [("stream-nv", 20000), ("streamed", 20000)]
+    ppc = 1
+    print(f"{KIND} map, {COLORS} colours, n = {MAX_LINE}, {ppc} px per cell; each case in a fresh process, "
+          "writing a real file")
+    print(f"{'mode':<10}{'cells':>14}{'pixels':>14}{'time s':>9}{'peak RSS MiB':>14}{'Mpx/s':>8}{'file MiB':>10}"
+          f"{'RSS ratio':>11}{'time ratio':>11}")
+    whole: dict[int, dict] = {}
+    for mode, side in cases:
+        r = child(mode, side, ppc)
+        px = side * side * ppc * ppc
+        ratio = ""
+        if mode != "whole" and side in whole:
+            b = whole[side]
+            ratio = f"{r['rss'] / b['rss']:>11.2f}{r['secs'] / b['secs']:>11.2f}"
+        if mode == "whole":
+            whole[side] = r
+        print(f"{mode:<10}{side * side:>14,}{px:>14,}{r['secs']:>9.1f}{r['rss'] / 2**20:>14.0f}"
+              f"{px / r['secs'] / 1e6:>8.2f}{r['bytes'] / 2**20:>10.1f}{ratio}", flush=True)
+    print("ratios: streamed / whole at the same size (RSS, time); 'streamed' includes the board verifier, "
+          "'stream-nv' does not; 'whole' cannot hold 20000^2 (about 2 GiB of legs and pixels)")
+
+
+if __name__ == "__main__":
+    main()
