@@ -117,11 +117,15 @@ def wall_source(method: str, *, colors: int, max_line: int | None, seed: int,
     from tilesolve.constructive.npd import periodic_window
     from tilesolve.errors import MethodNotApplicable
     from tilesolve.family import raise_if_interrupted, solve
+    from tilesolve.model.board import MAX_BOARD_CELLS
     from tilesolve.walls import npd_problem
 
     if max_line is None or period is None:
         raise InvalidProblem("the npd wall needs a line limit and a period")
     pw, ph = (int(v) for v in period)
+    if pw * ph > MAX_BOARD_CELLS:
+        raise InvalidProblem(f"the npd period {pw}x{ph} has {pw * ph:,} cells, more than the {MAX_BOARD_CELLS:,} "
+                             "a board may have; choose a smaller period (the wall repeats it)")
     problem = npd_problem(ph, pw, max_line, n_colors=colors)
     sol = raise_if_interrupted(solve(problem, "npd", seed=seed))
     if not sol.status.has_tiling:
