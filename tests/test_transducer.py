@@ -239,9 +239,10 @@ def test_builtin_sets_agree_with_their_literature_verdicts():
 
 
 @st.composite
-def small_tile_sets(draw):
-    colours = draw(st.integers(1, 3))
-    tiles = draw(st.lists(st.tuples(*[st.integers(0, colours - 1)] * 4), min_size=1, max_size=6, unique=True))
+def small_tile_sets(draw, max_colours=3, max_tiles=6):
+    colours = draw(st.integers(1, max_colours))
+    tiles = draw(st.lists(st.tuples(*[st.integers(0, colours - 1)] * 4), min_size=1, max_size=max_tiles,
+                          unique=True))
     return WangTileSet.from_nesw(tiles, colours)
 
 
@@ -285,3 +286,14 @@ def test_reports_pass_the_family_verifier():
 
     rep = replace(rep, periods=(replace(rep.periods[0], tiling=bad),))
     assert aperiodic_violations(rep, problem) != []
+
+
+@settings(max_examples=40)
+@given(small_tile_sets(max_colours=4, max_tiles=10))
+def test_random_sets_minimisation_changes_nothing_but_size(ts):
+    a, b = decide(ts, max_k=6), decide(ts, max_k=6, minimise=False)
+    assert (a.verdict, a.k) == (b.verdict, b.k)
+    assert all(x[1] <= y[1] and x[2] <= y[2] for x, y in zip(a.sizes, b.sizes))
+    for v in (a, b):
+        if v.torus is not None:
+            check_torus(ts, v.torus)
