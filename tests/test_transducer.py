@@ -147,6 +147,7 @@ def test_minimize_is_a_bisimulation_and_merges():
     ts = load_tiles("aperiodic_11_4")
     level = build_level(ts, build_level(ts, None))
     full, cls = level.full, level.cls
+    assert np.array_equal(minimize(full), cls)
     assert cls.max() + 1 < full.n_states  # something was merged
     # every state has exactly its class's (label, class of target) set
     sets = {}
