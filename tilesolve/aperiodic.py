@@ -16,6 +16,9 @@ Routes
     :mod:`tilesolve.engine.aperiodic`: squares by bisection (guided search for large
     witnesses), periods as a parallel sweep (local processes or a Dask cluster), resumable
     through a cache file (``options={"cache": PATH, "proof_dir": DIR}``).
+``transducer``
+    :mod:`tilesolve.constructive.transducer` (Jeandel and Rao §2-3), its emptiness verdicts
+    certified by the SAT route.
 
 Examples
 --------
@@ -116,6 +119,22 @@ def sat(problem: AperiodicProblem, run: RunOptions) -> Solution:
                     stats=stats)
 
 
+def transducer(problem: AperiodicProblem, run: RunOptions) -> Solution:
+    """The transducer route (Jeandel and Rao §2-3, :mod:`tilesolve.constructive.transducer`):
+    ``T^k`` for ``k = 1 .. max_k`` (run option ``max_k``); a cycle that writes what it reads is a
+    torus witness, an empty ``T_k`` is certified by the SAT route's checked refutation of a
+    ``k x w`` rectangle. ``run.options["proof_dir"]`` as for :func:`sat`."""
+    from tilesolve.constructive.transducer import transducer_report
+    from tilesolve.engine.aperiodic import decide
+    from tilesolve.engine.certificates import writing_proofs
+
+    with writing_proofs(run.option("proof_dir")):
+        verdict, report = transducer_report(problem, run, refute=lambda name, r: decide(problem.tileset, name, r))
+    reason = report.conclusion if verdict == "undecided" else None
+    return Solution(Status.SAT, report, "transducer", None, run.seed, run.deadline.elapsed(), reason=reason,
+                    stats={"verdict": verdict})
+
+
 def solve(problem: AperiodicProblem, method: str = "auto", **kwargs) -> Solution:
     """:func:`tilesolve.family.solve` for aperiodicity checks (keyword arguments as there)."""
     return _solve(problem, method, **kwargs)
@@ -125,11 +144,13 @@ FAMILY = register(Family(
     name="aperiodic",
     title="aperiodicity checks of Wang tile sets: squares, tori and lattice periods, with certificates",
     problem_type=AperiodicProblem,
-    routes={"sat": sat},
+    routes={"sat": sat, "transducer": transducer},
     auto=lambda problem: "sat",
     verify=lambda problem, report: aperiodic_violations(report, problem),
     codecs=(Codec(APERIODIC_REPORT, VERSIONS, report_from_dict, report_to_dict),),
     commands=("tilesolve.cli.aperiodic:aperiodic",),
     route_help={"sat": "squares by bisection and (sheared) tori swept in parallel; witnesses verified, "
-                       "refutations with checked DRAT proofs (class notes Part II §8.2)"},
+                       "refutations with checked DRAT proofs (class notes Part II §8.2)",
+                "transducer": "Jeandel-Rao transducers T^k: a periodic cycle gives a torus witness, an empty T_k a "
+                              "rectangle refuted by SAT with a checked proof"},
 ))

@@ -32,6 +32,9 @@ def aperiodic() -> None:
               help="Find the largest n <= N with a tiled n x n square (free boundary).")
 @click.option("--max-period", type=click.IntRange(0), default=0, show_default=True, metavar="N",
               help="Check every torus p x q, 1 <= p, q <= N.")
+@click.option("--method", type=click.Choice(["auto", "sat", "transducer"]), default="auto", show_default=True,
+              help="sat: squares by bisection and every (sheared) torus by SAT; transducer: Jeandel-Rao "
+                   "transducers T^k up to k = max period (or max square), emptiness certified by SAT. auto: sat.")
 @click.option("--shears", is_flag=True, help="Also every sheared torus: the horizontal wrap shifted by s rows, 0 < s < p.")
 @click.option("--workers", type=click.IntRange(1, 256), default=None, metavar="K",
               help="Local worker processes of the period sweep [default: 2, both cores].")
@@ -48,7 +51,7 @@ def aperiodic() -> None:
 @click.option("-o", "--output", type=click.Path(dir_okay=False, allow_dash=True), metavar="REPORT.json",
               help="Write the report JSON here ('-' for stdout).")
 @click.pass_context
-def check(ctx, tiles, builtin, max_square, max_period, shears, workers, cluster, proof_dir, cache, time_limit, seed,
+def check(ctx, tiles, builtin, method, max_square, max_period, shears, workers, cluster, proof_dir, cache, time_limit, seed,
           output) -> None:
     """Check a tile set's squares and periods; write a report of certificates.
 
@@ -61,6 +64,7 @@ def check(ctx, tiles, builtin, max_square, max_period, shears, workers, cluster,
     Examples:
       tilesolve aperiodic check --builtin jeandel-rao --max-square 20 --max-period 3 --seed 1 -o jr.json
       tilesolve aperiodic check --builtin periodic-7-30 --max-period 2 --shears --workers 1 -o p.json --proof-dir proofs
+      tilesolve aperiodic check --builtin finite-jv7 --method transducer --max-square 12 -o t.json
       tilesolve verify jr.json
     """
     from tilesolve import aperiodic as facade
@@ -89,7 +93,7 @@ def check(ctx, tiles, builtin, max_square, max_period, shears, workers, cluster,
     outs = Outputs(output)
     if cache is None and output and output != "-":
         cache = output + ".cache.jsonl"
-    sol = facade.solve(problem, seed=seed, time_limit=time_limit, progress=progress_wanted(), workers=workers,
+    sol = facade.solve(problem, method=method, seed=seed, time_limit=time_limit, progress=progress_wanted(), workers=workers,
                        cluster=cluster, options={"proof_dir": proof_dir, "cache": cache})
     with outs.commit(sol):
         if output:
@@ -99,9 +103,9 @@ def check(ctx, tiles, builtin, max_square, max_period, shears, workers, cluster,
         click.echo(rep.conclusion)
         if rep.literature:
             click.echo(f"Literature: {rep.literature}")
-    say(f"{problem.describe()}: {sol.stats.get('periods_tiled', 0)} periods tiled, "
-        f"{sol.stats.get('periods_refuted', 0)} refuted, {sol.stats.get('undecided', 0)} undecided, "
+    say(f"{problem.describe()}: {sol.method} route, {sum(c.status == 'tiles' for c in rep.periods)} periods "
+        f"tiled, {sum(c.status == 'refuted' for c in rep.periods)} refuted, {len(rep.undecided)} undecided, "
         f"in {sol.time_s:.2f} s (seed {sol.seed})")
     if outs.files:
         say(f"  wrote {', '.join(outs.files)}")
-    ctx.exit(0 if rep.complete else 3)
+    ctx.exit(0 if rep.complete and sol.stats.get("verdict") != "undecided" else 3)
