@@ -181,3 +181,13 @@ def test_cli_bad_tile_sets(tmp_path, tiles, msg):
     proc = run("aperiodic", "check", "t.json", "--max-square", "3", "-o", "r.json", cwd=tmp_path)
     assert msg in one_line_error(proc)
     assert snapshot(tmp_path) == before
+
+
+def test_transducer_route_gives_a_verified_torus_witness():
+    problem = AperiodicProblem(DIAGONAL, 0, 3)
+    s = solve(problem, method="transducer", seed=1)
+    assert s.stats["verdict"] == "periodic"
+    (cert,) = s.tiling.periods
+    assert cert.status == "tiles" and cert.method == "transducer"
+    assert not aperiodic_violations(s.tiling, problem)
+    assert verify_document(json.loads(solution_text(problem, s))).ok
