@@ -165,3 +165,21 @@ def test_cli_refusals_one_line_no_file(tmp_path, monkeypatch, args, msg):
 def test_console_script_refuses_a_held_region_in_one_line(tmp_path):
     r = run("wall", "--region", "0,0,20000x20000", "--max-line", "2", "-o", "w.json", cwd=tmp_path)
     assert "about 83.4 GiB" in one_line_error(r) and not (tmp_path / "w.json").exists()
+
+
+def test_ctrl_c_during_a_streamed_picture_leaves_no_file(tmp_path):
+    import signal
+    import subprocess
+    import time
+
+    from clitools import SCRIPT
+
+    proc = subprocess.Popen([SCRIPT, "wall", "--region", "0,0,3000x3000", "--max-line", "2", "--seed", "1",
+                             "--png", "big.png"], cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True)
+    time.sleep(3)
+    proc.send_signal(signal.SIGINT)
+    out, err = proc.communicate(timeout=120)
+    assert proc.returncode == 130, err
+    assert "interrupted" in err and "Traceback" not in err
+    assert list(tmp_path.iterdir()) == []
