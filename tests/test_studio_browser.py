@@ -162,6 +162,12 @@ def test_speed_goals_are_measured(page):
     page.wait_for_timeout(1500)
     fps = page.evaluate("studio.measurePan(2000)")
     page.screenshot(path=str(ARTIFACTS / "board-view.png"), full_page=True)
+    pick(page, "stochastic")
+    page.wait_for_function("[...document.querySelectorAll('#tiles img')].some(i => i.complete && i.naturalWidth)")
+    page.mouse.move(700, 400)
+    page.mouse.wheel(0, 400)  # zoom out
+    page.wait_for_timeout(1500)
+    page.screenshot(path=str(ARTIFACTS / "stochastic-view.png"), full_page=True)
     print("\nstudio speed (headless chromium, goal: picture <= 500 ms after Solve, pan >= 30 fps)")
     for what, ms in rows:
         print(f"  {what:<16} Solve -> picture {ms:7.1f} ms (best of 3)")
