@@ -423,9 +423,10 @@ def wall(ctx, region, max_line, colors, seed, method, period, output, svg, png, 
     gives the same wall, and windows at different origins are parts of one wall that agree
     where they overlap. The answer is checked with the board verifier (line limits included).
 
-    --png draws the bricks (merged from the edge structure) as a map, computed and written
-    band by band: a region of any size (20,000 x 20,000 cells and more) takes the memory of
-    one band. -o, --svg and the printed text hold the whole wall, so they take smaller regions.
+    --png draws the bricks of the procedural and npd walls (merged from the edge structure) as a
+    map, computed and written band by band: a region of any size (20,000 x 20,000 cells and more)
+    takes the memory of one band (a dappled wall is drawn by its tiles' legs). -o, --svg and the
+    printed text hold the whole wall, so they take smaller regions.
 
     \b
     Example:
