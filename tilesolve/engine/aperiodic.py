@@ -42,12 +42,16 @@ from tilesolve.model.board import WangTileSet
 from tilesolve.model.run import RunOptions
 from tilesolve.model.solution import Status
 
-__all__ = ["decide", "square_scan", "sweep", "tileset_digest", "read_cache", "GUIDE_SIDE", "DEFAULT_SOLVER"]
+__all__ = ["decide", "square_scan", "sweep", "tileset_digest", "read_cache", "GUIDE_SIDE", "GUIDE_BUDGET_S",
+           "DEFAULT_SOLVER"]
 
 #: Side of the square whose interior guides large witnesses (its border rows are dropped).
 GUIDE_SIDE = 30
 #: Squares at most this large are solved with the full formula directly.
 DIRECT_SIDE = 40
+#: Seconds a guided search may take before the full formula decides instead (a guide whose
+#: pairs admit no large square would otherwise be refuted slowly, and that proves nothing).
+GUIDE_BUDGET_S = 30.0
 #: The SAT solver (CaDiCaL logs DRAT proofs).
 DEFAULT_SOLVER = "cadical153"
 
@@ -122,8 +126,11 @@ def square_scan(tileset: WangTileSet, max_n: int, run: RunOptions,
                 if g.status == "tiles":
                     guide = _guide(g.tiling, len(tileset))
             if guide is not None:
-                c = decide(tileset, name, run, allowed=guide)
-                if c.status == "tiles":
+                left = run.deadline.remaining()
+                budget = GUIDE_BUDGET_S if left is None else min(GUIDE_BUDGET_S, left)
+                c = decide(tileset, name, RunOptions(seed=run.seed, deadline=Deadline(budget), solver=run.solver),
+                           allowed=guide)
+                if c.status == "tiles" or str(c.evidence.get("why", "")).startswith("interrupted"):
                     return c
         return decide(tileset, name, run)
 
