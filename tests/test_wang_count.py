@@ -99,12 +99,6 @@ def test_jeandel_rao_has_no_small_torus_but_squares():
     assert all(count_grid(jr, p, q, wrap_rows=True, wrap_cols=True) == 0 for p in range(1, 5) for q in range(1, 5))
 
 
-def test_periodic_builtin_tiles_a_torus():
-    ts, info = load("periodic-9-22")
-    assert info["verdict"] == "periodic"
-    assert count_grid(ts, 1, 1, wrap_rows=True, wrap_cols=True) >= 0
-
-
 def test_refuses_absurd_rows():
     ts, _ = load("labbe-u19")
     with pytest.raises(InvalidProblem, match="too long for the transfer method"):

@@ -11,7 +11,7 @@ Rao's transducers are the same object). With free boundary colours:
 * a torus has ``trace(Tʰ)`` tilings (the last row's ``S`` word is the first row's ``N`` word).
 
 The shorter side is taken as the row (the board is transposed if needed), so the words stay
-short. Rows are built column by column with numpy, merging partial rows that agree on
+short; when that orientation has too many partial rows, the other one is tried. Rows are built column by column with numpy, merging partial rows that agree on
 ``(N word, S word, first W, last E)``; the row vector of a rectangle is pushed ``h`` times
 through ``T`` in exact Python integers; a torus keeps only the words on cycles of ``T``
 (strongly connected components, networkx) and raises the dense matrix to the ``h``-th power in
@@ -206,10 +206,17 @@ def count_grid(tileset, rows: int, cols: int, *, wrap_rows: bool = False, wrap_c
     if rows < 1 or cols < 1:
         raise InvalidProblem(f"a grid needs at least one row and column, got {rows}x{cols}")
     nesw = tileset.nesw()
-    if cols > rows:  # rows along the shorter side: transpose (new N, E, S, W = old W, S, E, N)
-        nesw = nesw[:, [3, 2, 1, 0]]
-        rows, cols, wrap_rows, wrap_cols = cols, rows, wrap_cols, wrap_rows
-    u, v, c = _rows(nesw, tileset.n_colors, cols, wrap_cols, deadline)
+    # rows along the shorter side first; the transpose (new N, E, S, W = old W, S, E, N) is the
+    # other orientation, tried when the first has too many partial rows
+    ways = [(nesw, rows, cols, wrap_rows, wrap_cols), (nesw[:, [3, 2, 1, 0]], cols, rows, wrap_cols, wrap_rows)]
+    ways.sort(key=lambda way: way[2])
+    for i, (nesw, rows, cols, wrap_rows, wrap_cols) in enumerate(ways):
+        try:
+            u, v, c = _rows(nesw, tileset.n_colors, cols, wrap_cols, deadline)
+            break
+        except InvalidProblem:
+            if i == len(ways) - 1 or rows == cols and np.array_equal(ways[0][0], ways[1][0]):
+                raise
     if wrap_rows:
         return _trace_power(u, v, c, rows, deadline)
     words, inv = np.unique(np.concatenate([u, v]), return_inverse=True)
