@@ -191,3 +191,31 @@ def test_transducer_route_gives_a_verified_torus_witness():
     assert cert.status == "tiles" and cert.method == "transducer"
     assert not aperiodic_violations(s.tiling, problem)
     assert verify_document(json.loads(solution_text(problem, s))).ok
+
+
+def test_cli_ctrl_c_writes_no_report_and_the_cache_resumes(tmp_path):
+    import signal
+    import subprocess
+    import time
+
+    from clitools import ENV, SCRIPT
+
+    args = [SCRIPT, "aperiodic", "check", "--builtin", "jeandel-rao", "--max-period", "14", "--workers", "2",
+            "-o", "r.json"]
+    proc = subprocess.Popen(args, cwd=tmp_path, env=ENV, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    cache = tmp_path / "r.json.cache.jsonl"
+    t = time.monotonic()
+    while not (cache.exists() and cache.read_text().count("\n") >= 3) and time.monotonic() - t < 240:
+        time.sleep(0.2)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=120)
+    assert proc.returncode == 130 and "Traceback" not in err, err
+    assert not (tmp_path / "r.json").exists()
+    decided = [json.loads(line) for line in cache.read_text().splitlines()]
+    assert len(decided) >= 3 and all(d["status"] == "refuted" for d in decided)
+    again = run("aperiodic", "check", "--builtin", "jeandel-rao", "--max-period", "2", "--workers", "1",
+                "-o", "r2.json", "--cache", "r.json.cache.jsonl", cwd=tmp_path)
+    assert again.returncode == 0, again.stderr
+    periods = json.loads((tmp_path / "r2.json").read_text())["periods"]
+    names = {d["board"] for d in decided}
+    assert all(p["evidence"].get("cached", False) == (p["board"] in names) for p in periods)
