@@ -99,6 +99,21 @@ def test_jeandel_rao_has_no_small_torus_but_squares():
     assert all(count_grid(jr, p, q, wrap_rows=True, wrap_cols=True) == 0 for p in range(1, 5) for q in range(1, 5))
 
 
+def test_other_orientation_when_rows_explode(monkeypatch):
+    import tilesolve.constructive.wang_count as wc
+
+    # every tile meets every tile side by side (16 partial rows of width 2), but N/S colours
+    # follow a 4-cycle (4 partial columns): refused one way, counted the other way
+    ts = WangTileSet.from_nesw([(i, 0, (i + 1) % 4, 0) for i in range(4)], 4)
+    nesw = [tuple(t) for t in ts.nesw().tolist()]
+    expected = brute_force(nesw, 4, 2, True, False)
+    assert expected > 0 and count_grid(ts, 4, 2, wrap_rows=True) == expected
+    monkeypatch.setattr(wc, "MAX_STATES", 8)
+    assert count_grid(ts, 4, 2, wrap_rows=True) == expected
+    with pytest.raises(InvalidProblem, match="too many partial rows"):
+        wc._rows(ts.nesw(), 4, 2, False)
+
+
 def test_refuses_absurd_rows():
     ts, _ = load("labbe-u19")
     with pytest.raises(InvalidProblem, match="too long for the transfer method"):
