@@ -9,7 +9,8 @@ Squares (a witness for the n x n square)
     ``aperiodic``: :func:`tilesolve.engine.aperiodic.square_scan` with ``max_n = n`` (the
     tile-selection CNF with support clauses; guided search above 40), which ends at the first
     verified witness. Both include encoding and loading the solver; the witness is checked
-    with the board verifier.
+    with the board verifier. CPU seconds are printed beside wall seconds: on a shared machine
+    they are the better measure of the work.
 Tori (every p x q, 1 <= p, q <= ``--max-period``)
     ``plain``: the one-hot encoding, no proofs, one process, capped; ``aperiodic``:
     :func:`tilesolve.engine.aperiodic.sweep` on ``--workers`` processes, every refutation's
@@ -44,11 +45,17 @@ def rss_mib() -> float:
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
 
 
-def plain(ws, board: Board, cap: float, proof: bool = False):
-    t = time.perf_counter()
+def cpu() -> float:
+    """CPU seconds of this process and its finished children (the sweep's workers)."""
+    own, kids = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
+    return own.ru_utime + own.ru_stime + kids.ru_utime + kids.ru_stime
+
+
+def plain(ws, board: Board, cap: float):
+    t, c = time.perf_counter(), cpu()
     enc = encode_wang(BoardProblem(board, ws))
-    r = solve_cnf(enc.hard, time_limit=cap, seed=1, with_proof=proof)
-    return r.status, time.perf_counter() - t
+    r = solve_cnf(enc.hard, time_limit=cap, seed=1)
+    return r.status, time.perf_counter() - t, cpu() - c
 
 
 def fmt(status, t: float, cap: float) -> str:
@@ -57,44 +64,46 @@ def fmt(status, t: float, cap: float) -> str:
 
 def squares(ws, sizes, cap: float) -> None:
     print(f"\nSquares: a Jeandel-Rao witness for n x n (plain capped at {cap:.0f} s)")
-    print(f"{'n':>5} {'cells':>7} {'plain s':>12} {'aperiodic s':>12} {'cells/s':>9} {'max RSS MiB':>12} "
-          f"{'ratio':>7} {'route':>12}")
+    print(f"{'n':>5} {'cells':>7} {'plain s':>12} {'plain cpu':>10} {'aperiodic s':>12} {'aperiodic cpu':>14} "
+          f"{'cells/s':>9} {'max RSS MiB':>12} {'ratio':>7} {'route':>12}")
     for n in sizes:
-        st, tp = plain(ws, Board.rect(n, n), cap)
-        t = time.perf_counter()
+        st, tp, cp = plain(ws, Board.rect(n, n), cap)
+        t, c = time.perf_counter(), cpu()
         certs, largest = square_scan(ws, n, RunOptions(seed=1, deadline=Deadline(None)))
-        ta = time.perf_counter() - t
+        ta, ca = time.perf_counter() - t, cpu() - c
         w = certs[-1]
         assert largest == n and w.status == "tiles"
         assert not board_violations(leg_colours(ws, w.tiling), BoardProblem(Board.rect(n, n), ws))
         ratio = f"{tp / ta:.1f}x" if st is not Status.UNKNOWN else f">{cap / ta:.1f}x"
-        print(f"{n:>5} {n * n:>7} {fmt(st, tp, cap):>12} {ta:>12.2f} {n * n / ta:>9.0f} {rss_mib():>12.0f} "
+        print(f"{n:>5} {n * n:>7} {fmt(st, tp, cap):>12} {cp:>10.2f} {ta:>12.2f} {ca:>14.2f} {n * n / ta:>9.0f} "
+              f"{rss_mib():>12.0f} "
               f"{ratio:>7} {w.method:>12}", flush=True)
 
 
 def tori(ws, max_p: int, workers: int, cap: float) -> None:
     names = [f"torus {p}x{q}" for p in range(1, max_p + 1) for q in range(1, max_p + 1)]
     print(f"\nTori p x q, 1 <= p, q <= {max_p} ({len(names)} tori)")
-    t = time.perf_counter()
+    t, c = time.perf_counter(), cpu()
     done = 0
     for p in range(1, max_p + 1):
         for q in range(1, max_p + 1):
             left = cap - (time.perf_counter() - t)
             if left <= 0:
                 break
-            st, _ = plain(ws, Board.torus(p, q), left)
+            st, _, _ = plain(ws, Board.torus(p, q), left)
             done += st is Status.UNSAT
-    tp = time.perf_counter() - t
-    t = time.perf_counter()
+    tp, cp = time.perf_counter() - t, cpu() - c
+    t, c = time.perf_counter(), cpu()
     certs, _ = sweep(ws, names, RunOptions(seed=1, workers=workers))
-    ta = time.perf_counter() - t
+    ta, ca = time.perf_counter() - t, cpu() - c
     refuted = sum(c.status == "refuted" for c in certs)
     check = sum(float(c.evidence.get("proof_check_s", 0.0)) for c in certs)
     solve = sum(c.time_s for c in certs) - check
-    print(f"{'encoding':>26} {'tori refuted':>13} {'wall s':>9} {'proofs checked':>15} {'check s / solve s':>18}")
-    print(f"{'plain, no proofs, 1 proc':>26} {done:>13} {fmt(Status.UNKNOWN if done < len(names) else Status.UNSAT, tp, cap):>9} "
-          f"{'-':>15} {'-':>18}")
-    print(f"{f'aperiodic, {workers} workers':>26} {refuted:>13} {ta:>9.2f} {refuted:>15} "
+    print(f"{'encoding':>26} {'tori refuted':>13} {'wall s':>9} {'cpu s':>8} {'proofs checked':>15} "
+          f"{'check s / solve s':>18}")
+    capped = Status.UNKNOWN if done < len(names) else Status.UNSAT
+    print(f"{'plain, no proofs, 1 proc':>26} {done:>13} {fmt(capped, tp, cap):>9} {cp:>8.1f} {'-':>15} {'-':>18}")
+    print(f"{f'aperiodic, {workers} workers':>26} {refuted:>13} {ta:>9.2f} {ca:>8.1f} {refuted:>15} "
           f"{f'{check:.1f} / {solve:.1f}':>18}")
     if done == len(names):
         print(f"ratio plain/aperiodic wall: {tp / ta:.2f}x")
