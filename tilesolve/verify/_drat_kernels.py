@@ -16,9 +16,10 @@ Data layout
 Literal ``l`` has code ``2|l| + (l < 0)``; ``code ^ 1`` is its negation. Every clause (the
 formula's, then one per proof line, deletions included) is ``lits[start[c]:start[c] + size[c]]``
 after removing repeated literals. Clause ``c`` owns two watch nodes ``2c`` and ``2c + 1``
-watching its literals in positions 0 and 1, kept in doubly linked lists per literal
-(``head``, ``nxt``, ``prv``): moving, removing and restoring a watch is O(1) and no watch
-list ever holds a stale entry. Invariant between checks: a watched literal that is false
+watching its literals in positions 0 and 1, kept in doubly linked lists (``head``, ``nxt``,
+``prv``), two per literal: list ``2 code + 1`` holds the core clauses, ``2 code`` the others
+(a clause moves when it is marked), so core-first propagation scans only core watches.
+Moving, removing and restoring a watch is O(1) and no watch list ever holds a stale entry. Invariant between checks: a watched literal that is false
 has a true partner watch (the trail is closed under unit propagation).
 """
 
@@ -148,7 +149,7 @@ def backtrack(val, reason, trail, st, p):
     st[2] = p
 
 
-def attach(lits, start, size, val, head, nxt, prv, c):
+def attach(lits, start, size, val, head, nxt, prv, core, c):
     """Watch two literals of clause ``c`` (size >= 2): true first, then unassigned, then false.
 
     Returns the number of non-false literals among the two watched (0: conflict, 1 with the
@@ -167,8 +168,8 @@ def attach(lits, start, size, val, head, nxt, prv, c):
         t = lits[b + pos]
         lits[b + pos] = lits[best]
         lits[best] = t
-    link(head, nxt, prv, 2 * c, lits[b])
-    link(head, nxt, prv, 2 * c + 1, lits[b + 1])
+    link(head, nxt, prv, 2 * c, 2 * lits[b] + core[c])
+    link(head, nxt, prv, 2 * c + 1, 2 * lits[b + 1] + core[c])
     free = 0
     if val[lits[b]] != -1:
         free += 1
@@ -177,42 +178,55 @@ def attach(lits, start, size, val, head, nxt, prv, c):
     return free
 
 
-def detach(lits, start, head, nxt, prv, c):
+def detach(lits, start, head, nxt, prv, core, c):
     b = start[c]
-    unlink(head, nxt, prv, 2 * c, lits[b])
-    unlink(head, nxt, prv, 2 * c + 1, lits[b + 1])
+    unlink(head, nxt, prv, 2 * c, 2 * lits[b] + core[c])
+    unlink(head, nxt, prv, 2 * c + 1, 2 * lits[b + 1] + core[c])
+
+
+def make_core(c, lits, start, size, taut, active, head, nxt, prv, core):
+    """Mark clause ``c`` as used; an attached clause moves to the core watch lists."""
+    if core[c] == 1:
+        return 0
+    attached = active[c] == 1 and taut[c] == 0 and size[c] >= 2
+    if attached:
+        detach(lits, start, head, nxt, prv, core, c)
+    core[c] = 1
+    if attached:
+        b = start[c]
+        link(head, nxt, prv, 2 * c, 2 * lits[b] + 1)
+        link(head, nxt, prv, 2 * c + 1, 2 * lits[b + 1] + 1)
+    return 1
 
 
 def visit(code, mode, lits, start, size, val, reason, tpos, trail, st, head, nxt, prv, core):
-    """Clauses watching ``code``'s negation, now false. ``mode``: 1 core only, 0 others, 2 all.
-
-    Returns a falsified clause, or -1.
+    """Clauses watching ``code``'s negation, now false: the core ones (``mode`` 1) or the
+    others (0). Returns a falsified clause, or -1.
     """
     f = code ^ 1
-    node = head[f]
+    node = head[2 * f + mode]
     while node >= 0:
         nn = nxt[node]
         c = node >> 1
-        if mode == 2 or core[c] == mode:
-            s = node & 1
-            b = start[c]
-            other = lits[b + 1 - s]
-            if val[other] != 1:
-                found = -1
-                for k in range(b + 2, b + size[c]):
-                    if val[lits[k]] != -1:
-                        found = k
-                        break
-                if found >= 0:
-                    x = lits[found]
-                    lits[found] = f
-                    lits[b + s] = x
-                    unlink(head, nxt, prv, node, f)
-                    link(head, nxt, prv, node, x)
-                elif val[other] == -1:
-                    return c
-                else:
-                    assign(val, reason, tpos, trail, st, other, c)
+        s = node & 1
+        b = start[c]
+        other = lits[b + 1 - s]
+        if val[other] != 1:
+            found = -1
+            for k in range(b + 2, b + size[c]):
+                if val[lits[k]] != -1:
+                    found = k
+                    break
+            if found >= 0:
+                x = lits[found]
+                lits[found] = f
+                lits[b + s] = x
+                unlink(head, nxt, prv, node, 2 * f + mode)
+                link(head, nxt, prv, node, 2 * x + mode)
+            elif val[other] == -1:
+                return c
+            else:
+                assign(val, reason, tpos, trail, st, other, c)
         node = nn
     return -1
 
@@ -226,10 +240,13 @@ def propagate(core_first, lits, start, size, val, reason, tpos, trail, st, head,
         while st[1] < st[0]:
             code = trail[st[1]]
             st[1] += 1
-            c = visit(code, 1 if core_first else 2, lits, start, size, val, reason, tpos, trail, st,
-                      head, nxt, prv, core)
+            c = visit(code, 1, lits, start, size, val, reason, tpos, trail, st, head, nxt, prv, core)
             if c >= 0:
                 return c
+            if not core_first:
+                c = visit(code, 0, lits, start, size, val, reason, tpos, trail, st, head, nxt, prv, core)
+                if c >= 0:
+                    return c
         if not core_first or st[2] >= st[0]:
             return -1
         code = trail[st[2]]
@@ -239,7 +256,7 @@ def propagate(core_first, lits, start, size, val, reason, tpos, trail, st, head,
             return c
 
 
-def justify(v0, lits, start, size, reason, core, done, stack):
+def justify(v0, lits, start, size, taut, active, head, nxt, prv, reason, core, done, stack):
     """Mark the reasons of top-level variable ``v0`` and of everything they rest on."""
     top = 0
     stack[top] = v0
@@ -254,9 +271,7 @@ def justify(v0, lits, start, size, reason, core, done, stack):
         r = reason[v]
         if r < 0:
             continue
-        if core[r] == 0:
-            core[r] = 1
-            marked += 1
+        marked += make_core(r, lits, start, size, taut, active, head, nxt, prv, core)
         b = start[r]
         for k in range(b, b + size[r]):
             u = lits[k] >> 1
@@ -266,25 +281,26 @@ def justify(v0, lits, start, size, reason, core, done, stack):
     return marked
 
 
-def analyze(confl, true_var, p, lits, start, size, reason, tpos, trail, st, core, done, seen, stack):
+def analyze(confl, true_var, p, lits, start, size, taut, active, head, nxt, prv, reason, tpos, trail, st, core, done,
+            seen, stack):
     """Mark the clauses a conflict (clause ``confl``, or a lemma literal already true on
     variable ``true_var``) rests on: the part of the trail above ``p`` by a backward walk,
     the top level by :func:`justify`.
     """
     if confl >= 0:
-        core[confl] = 1
+        make_core(confl, lits, start, size, taut, active, head, nxt, prv, core)
         b = start[confl]
         for k in range(b, b + size[confl]):
             u = lits[k] >> 1
             if tpos[u] >= p:
                 seen[u] = 1
             else:
-                justify(u, lits, start, size, reason, core, done, stack)
+                justify(u, lits, start, size, taut, active, head, nxt, prv, reason, core, done, stack)
     if true_var >= 0:
         if tpos[true_var] >= p:
             seen[true_var] = 1
         else:
-            justify(true_var, lits, start, size, reason, core, done, stack)
+            justify(true_var, lits, start, size, taut, active, head, nxt, prv, reason, core, done, stack)
     for i in range(st[0] - 1, p - 1, -1):
         v = trail[i] >> 1
         if seen[v] == 0:
@@ -293,7 +309,7 @@ def analyze(confl, true_var, p, lits, start, size, reason, tpos, trail, st, core
         r = reason[v]
         if r < 0:
             continue
-        core[r] = 1
+        make_core(r, lits, start, size, taut, active, head, nxt, prv, core)
         b = start[r]
         for k in range(b, b + size[r]):
             u = lits[k] >> 1
@@ -302,11 +318,11 @@ def analyze(confl, true_var, p, lits, start, size, reason, tpos, trail, st, core
             if tpos[u] >= p:
                 seen[u] = 1
             else:
-                justify(u, lits, start, size, reason, core, done, stack)
+                justify(u, lits, start, size, taut, active, head, nxt, prv, reason, core, done, stack)
 
 
-def refutes(c, extra, skip, lits, start, size, val, reason, tpos, trail, st, head, nxt, prv, core, done, seen,
-            stack):
+def refutes(c, extra, skip, lits, start, size, taut, active, val, reason, tpos, trail, st, head, nxt, prv, core, done,
+            seen, stack):
     """Whether assigning the negation of clause ``c`` (and of clause ``extra`` but its literal
     ``skip``, for a RAT resolvent; ``extra`` -1 for none) and propagating gives a conflict.
     The clauses used are marked; the trail is restored.
@@ -332,12 +348,13 @@ def refutes(c, extra, skip, lits, start, size, val, reason, tpos, trail, st, hea
         confl = propagate(True, lits, start, size, val, reason, tpos, trail, st, head, nxt, prv, core)
     ok = true_var >= 0 or confl >= 0
     if ok:
-        analyze(confl, true_var, p, lits, start, size, reason, tpos, trail, st, core, done, seen, stack)
+        analyze(confl, true_var, p, lits, start, size, taut, active, head, nxt, prv, reason, tpos, trail, st, core, done,
+                seen, stack)
     backtrack(val, reason, trail, st, p)
     return ok
 
 
-def truncate(p, lits, start, size, val, reason, trail, st, head, nxt, prv, done):
+def truncate(p, lits, start, size, val, reason, trail, st, head, nxt, prv, core, done):
     """Shrink the top-level trail to length ``p`` and re-establish the watch invariant: a
     clause whose false watch was excused by a partner watch that is now unassigned gets a
     non-false literal in its place."""
@@ -345,9 +362,9 @@ def truncate(p, lits, start, size, val, reason, trail, st, head, nxt, prv, done)
     for i in range(p, old):
         done[trail[i] >> 1] = 0
     backtrack(val, reason, trail, st, p)
-    for i in range(p, old):
-        code = trail[i]
-        node = head[code]
+    for i in range(2 * p, 2 * old):
+        code = trail[i >> 1]
+        node = head[2 * code + (i & 1)]
         while node >= 0:
             nn = nxt[node]
             c = node >> 1
@@ -360,8 +377,8 @@ def truncate(p, lits, start, size, val, reason, trail, st, head, nxt, prv, done)
                     if val[x] != -1:
                         lits[k] = w
                         lits[b + s] = x
-                        unlink(head, nxt, prv, node ^ 1, w)
-                        link(head, nxt, prv, node ^ 1, x)
+                        unlink(head, nxt, prv, node ^ 1, 2 * w + core[c])
+                        link(head, nxt, prv, node ^ 1, 2 * x + core[c])
                         break
             node = nn
 
@@ -384,7 +401,7 @@ def forward(n_formula, n_steps, is_del, lits, start, size, taut, chash, active, 
                 return 1
         for c in range(n_formula):
             if taut[c] == 0 and size[c] >= 2:
-                attach(lits, start, size, val, head, nxt, prv, c)
+                attach(lits, start, size, val, head, nxt, prv, core, c)
         for c in range(n_formula):
             if taut[c] == 0 and size[c] == 1:
                 x = lits[start[c]]
@@ -422,7 +439,7 @@ def forward(n_formula, n_steps, is_del, lits, start, size, taut, chash, active, 
                 continue
             active[t] = 0
             if taut[t] == 0:
-                detach(lits, start, head, nxt, prv, t)
+                detach(lits, start, head, nxt, prv, core, t)
             continue
         if size[c] == 0:
             counts[4] = j
@@ -439,7 +456,7 @@ def forward(n_formula, n_steps, is_del, lits, start, size, taut, chash, active, 
             elif val[x] == 0:
                 assign(val, reason, tpos, trail, st, x, c)
         else:
-            free = attach(lits, start, size, val, head, nxt, prv, c)
+            free = attach(lits, start, size, val, head, nxt, prv, core, c)
             if free == 0:
                 confl = c
             elif free == 1 and val[lits[start[c]]] == 0:
@@ -466,18 +483,18 @@ def backward(n_formula, is_del, pivot, lits, start, size, taut, active, val, rea
             if t >= 0:
                 active[t] = 1
                 if taut[t] == 0:
-                    attach(lits, start, size, val, head, nxt, prv, t)
+                    attach(lits, start, size, val, head, nxt, prv, core, t)
             continue
         active[c] = 0
         if taut[c] == 0 and size[c] >= 2:
-            detach(lits, start, head, nxt, prv, c)
+            detach(lits, start, head, nxt, prv, core, c)
         if tl_before[j] < st[0]:
-            truncate(tl_before[j], lits, start, size, val, reason, trail, st, head, nxt, prv, done)
+            truncate(tl_before[j], lits, start, size, val, reason, trail, st, head, nxt, prv, core, done)
         if core[c] == 0:
             continue
         out[2] += 1
-        if refutes(c, -1, 0, lits, start, size, val, reason, tpos, trail, st, head, nxt, prv, core, done, seen,
-                   stack):
+        if refutes(c, -1, 0, lits, start, size, taut, active, val, reason, tpos, trail, st, head, nxt, prv, core, done,
+                   seen, stack):
             continue
         # RAT on the lemma's first literal: every resolvent with a clause holding its negation is RUP
         pv = pivot[j]
@@ -493,9 +510,9 @@ def backward(n_formula, is_del, pivot, lits, start, size, taut, active, val, rea
                         break
                 if not has:
                     continue
-                core[d] = 1
-                if not refutes(c, d, pv ^ 1, lits, start, size, val, reason, tpos, trail, st, head, nxt, prv, core,
-                               done, seen, stack):
+                make_core(d, lits, start, size, taut, active, head, nxt, prv, core)
+                if not refutes(c, d, pv ^ 1, lits, start, size, taut, active, val, reason, tpos, trail, st, head, nxt,
+                               prv, core, done, seen, stack):
                     ok = False
                     break
         if not ok:
@@ -504,3 +521,10 @@ def backward(n_formula, is_del, pivot, lits, start, size, taut, active, val, rea
             return j
         out[3] += 1
     return j1
+
+
+def mark_all(n_formula, n_steps, is_del, lits, start, size, taut, active, head, nxt, prv, core):
+    """Mark every lemma as used (``lemmas="all"``)."""
+    for j in range(n_steps):
+        if is_del[j] == 0:
+            make_core(n_formula + j, lits, start, size, taut, active, head, nxt, prv, core)

@@ -665,7 +665,7 @@ def check_drat(
     tpos = np.zeros(n_vars + 1, np.int64)
     trail = np.zeros(n_vars + 1, np.int64)
     st = np.zeros(3, np.int64)
-    head = np.full(L, -1, np.int64)
+    head = np.full(2 * L, -1, np.int64)
     nxt = np.full(2 * n_cl, -1, np.int64)
     prv = np.full(2 * n_cl, -1, np.int64)
     cap = 1 << max(4, int(2 * n_cl).bit_length())
@@ -710,9 +710,10 @@ def check_drat(
         return result("failed", "the proof has no empty clause (unit propagation refutes the formula after "
                                 f"proof line {confl_step + 1}, but the proof never says so)")
     # backward pass from the conflict
-    k.analyze(int(counts[0]), -1, 0, lits, start, size, reason, tpos, trail, st, core, done, seen, stack)
+    k.analyze(int(counts[0]), -1, 0, lits, start, size, taut, active, head, nxt, prv, reason, tpos, trail, st, core,
+              done, seen, stack)
     if lemmas == "all":
-        core[n_f:n_cl][is_del == 0] = 1
+        k.mark_all(n_f, n_s, is_del, lits, start, size, taut, active, head, nxt, prv, core)
     st[1] = st[2] = st[0]
     out = np.zeros(4, np.int64)
     j = confl_step + 1
