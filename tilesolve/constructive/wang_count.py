@@ -34,6 +34,8 @@ __all__ = ["MAX_STATES", "transfer_applies", "count_grid", "count_problem"]
 #: Most partial rows (or row words) a count builds before it refuses.
 MAX_STATES = 4_000_000
 _EXACT_FLOAT = float(2 ** 53)
+#: Most row words on cycles a torus count raises as a dense matrix (128 MiB of float64).
+_MAX_WORDS = 4096
 
 
 def transfer_applies(problem) -> str | None:
@@ -119,8 +121,9 @@ def _trace_power(rows_u, rows_v, counts, height: int, deadline=None) -> int:
     keep = np.isin(rows_u, words) & np.isin(rows_v, words)
     a, b = np.searchsorted(words, rows_u[keep]), np.searchsorted(words, rows_v[keep])
     m = len(words)
-    if m > 20_000:
-        raise InvalidProblem(f"the torus has {m:,} row words on cycles; too many for the transfer method")
+    if m > _MAX_WORDS:
+        raise InvalidProblem(f"the torus has {m:,} row words on cycles (a dense {m:,}x{m:,} matrix); the transfer "
+                             f"method takes at most {_MAX_WORDS:,}: count a smaller torus")
     t = np.zeros((m, m))
     np.add.at(t, (a, b), counts[keep].astype(float))
     # float64 repeated squaring; exact while every entry stays below 2**53 (integers)
