@@ -160,6 +160,12 @@ CASES: dict[str, list[tuple[str, str]]] = {
         ("workers and cluster", "--builtin jeandel-rao --max-square 3 --workers 2 --cluster tcp://127.0.0.1:1"),
         ("output is a directory", "--builtin jeandel-rao --max-square 3 -o adir"),
     ],
+    "aperiodic verify": [
+        ("report missing", "missing.json"),
+        ("report binary", "garbage.bin"),
+        ("not a report", "solution.json"),
+        ("proof dir missing", "solution.json --proof-dir nodir"),
+    ],
     "tiling": [
         ("region garbage", "--kind wang --method direct --colors 2 --region abc"),
         ("region 10^30 wide", f"--kind wang --method direct --colors 2 --region 0,0,{BIG}x2 -o keep.json"),
