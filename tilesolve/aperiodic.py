@@ -38,7 +38,8 @@ from tilesolve.model.aperiodic import AperiodicProblem, AperiodicReport, Certifi
 from tilesolve.model.solution import Solution, Status
 from tilesolve.verify.aperiodic import aperiodic_violations
 
-__all__ = ["AperiodicProblem", "AperiodicReport", "Certificate", "solve", "sat", "build_report", "FAMILY"]
+__all__ = ["AperiodicProblem", "AperiodicReport", "Certificate", "solve", "sat", "transducer", "build_report",
+           "proof_lines", "FAMILY"]
 
 
 def build_report(problem: AperiodicProblem, squares, largest: int | None, periods) -> AperiodicReport:
@@ -133,6 +134,31 @@ def transducer(problem: AperiodicProblem, run: RunOptions) -> Solution:
     reason = report.conclusion if verdict == "undecided" else None
     return Solution(Status.SAT, report, "transducer", None, run.seed, run.deadline.elapsed(), reason=reason,
                     stats={"verdict": verdict})
+
+
+def proof_lines(report: AperiodicReport, proof_dir=None) -> tuple[bool, list[str]]:
+    """One line per refutation with the digests of its CNF and checked proof; with ``proof_dir``
+    each proof is re-checked from the files the solving run wrote there
+    (:func:`tilesolve.verify.drat.check_proof_files`). Returns ``(all re-checked, lines)``."""
+    from tilesolve.verify.drat import check_proof_files
+
+    ok, lines = True, []
+    for c in report.squares + report.periods:
+        if c.status != "refuted":
+            continue
+        ev = c.evidence
+        cnf, drat = ev.get("cnf_sha256"), ev.get("drat_sha256")
+        lines.append(f"{c.board}: refuted by {c.method}; CNF SHA-256 {cnf}, DRAT SHA-256 {drat}")
+        if proof_dir is not None:
+            name = ev.get("proof_name")
+            if not isinstance(name, str) or not isinstance(cnf, str):
+                ok = False
+                lines.append("  no proof files named (solve with --proof-dir DIR to write them)")
+                continue
+            good, more = check_proof_files(proof_dir, name, cnf, drat if isinstance(drat, str) else None)
+            ok &= good
+            lines += [f"  {ln}" for ln in more]
+    return ok, lines
 
 
 def solve(problem: AperiodicProblem, method: str = "auto", **kwargs) -> Solution:

@@ -109,3 +109,36 @@ def check(ctx, tiles, builtin, method, max_square, max_period, shears, workers, 
     if outs.files:
         say(f"  wrote {', '.join(outs.files)}")
     ctx.exit(0 if rep.complete and sol.stats.get("verdict") != "undecided" else 3)
+
+
+@aperiodic.command(name="verify", context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP)
+@click.argument("report", type=click.Path(dir_okay=False))
+@click.option("--proof-dir", type=click.Path(file_okay=False, exists=True), default=None, metavar="DIR",
+              help="Re-check every refutation's DRAT proof from the .cnf and .drat files 'check --proof-dir' wrote.")
+@click.pass_context
+def verify_report(ctx, report, proof_dir) -> None:
+    """Re-check a report: every witness on its board, and list (with --proof-dir, re-check) every proof.
+
+    Exit 0 when every claim holds, 1 when one is false.
+
+    \b
+    Examples:
+      tilesolve aperiodic check --builtin periodic-7-30 --max-period 2 --workers 1 -o p.json --proof-dir proofs
+      tilesolve aperiodic verify p.json --proof-dir proofs
+    """
+    from tilesolve import aperiodic as facade
+    from tilesolve.family import read_document, verify_file
+
+    fam, codec, doc = read_document(report)
+    if fam.name != "aperiodic":
+        raise InvalidProblem(f"{report} is a {codec.format} file, not an aperiodicity report")
+    first = verify_file(report)
+    for line in first.lines:
+        click.echo(line)
+    _, sol = codec.read(doc, report)
+    ok = True
+    if sol.tiling is not None:
+        ok, lines = facade.proof_lines(sol.tiling, proof_dir)
+        for line in lines:
+            click.echo(line)
+    ctx.exit(first.exit_code or (0 if ok else 1))
