@@ -1,11 +1,14 @@
 """Wang tile sets as transducers: the constructive route to "no tiling" and "periodic".
 
-Jeandel and Rao, *An aperiodic set of 11 Wang tiles* (Advances in Combinatorics, 2021), §2-3;
-class notes Part II §8.2 for Wang's procedure this route decides in part.
+Jeandel and Rao, *An aperiodic set of 11 Wang tiles* (arXiv:1506.06492; Advances in
+Combinatorics, 2021), §2-3; class notes Part II §8.2 for Wang's procedure this route decides in
+part. meyerphi/tiling implements the same search (without minimisation) in C++; its test sets
+are this module's test data.
 
 A Wang tile ``(W, N, E, S)`` is a transition from state ``W`` to state ``E`` that reads ``N``
 and writes ``S``: the tile set is a transducer ``T`` whose states are the horizontal (W/E)
-colours. A bi-infinite path of ``T`` is a bi-infinite row of tiles; its input word is the row's
+colours (Jeandel and Rao read the bottom colour and write the top one; the direction only
+decides which way rows are stacked). A bi-infinite path of ``T`` is a bi-infinite row of tiles; its input word is the row's
 top colours and its output word the bottom colours. Composing ``T`` with itself ``k`` times
 stacks rows: a transition of ``T^k`` is a column of ``k`` tiles that match vertically, reading
 the top colour of the column and writing its bottom colour. So
