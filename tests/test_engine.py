@@ -98,8 +98,8 @@ def test_sat_cpsat_and_brute_force_agree(p):
     if truth:
         assert dappled_violations(s.tiling, p) == []
         assert dappled_violations(c.tiling, p) == []
-    else:
-        assert s.status is Status.UNSAT and c.status is Status.UNSAT
+    else:  # CP-SAT logs no proof: its infeasibility is uncertified (the pipeline certifies it by SAT)
+        assert s.status is Status.UNSAT and c.status is Status.UNKNOWN and c.reason.startswith("uncertified:")
         assert "checked by tilesolve.verify.drat" in s.reason
 
 
@@ -248,7 +248,7 @@ def test_maxsat_optimum_equals_brute_force_and_cpsat(p):
     s = solve_maxsat(p)
     c = solve_cpsat(p, num_workers=1, seed=0)
     if not feasible:
-        assert s.status is Status.UNSAT and c.status is Status.UNSAT
+        assert s.status is Status.UNSAT and c.status is Status.UNKNOWN and c.reason.startswith("uncertified:")
         return
     best = min(hamming_distance(t, p.closest_to) for t in feasible)
     for sol in (s, c):

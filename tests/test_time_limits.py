@@ -19,7 +19,6 @@ import pytest
 
 from tilesolve.deadline import Deadline, TimeLimitReached
 from tilesolve.encodings.dappled import build_cpsat, encode_cnf
-from tilesolve.engine import certificates
 from tilesolve.engine.certificates import unsat_solution
 from tilesolve.engine.maxsat import solve_wcnf
 from tilesolve.engine.result import Result
@@ -124,12 +123,6 @@ def test_only_a_checked_proof_gives_unsat():
 def test_an_unchecked_proof_gives_unknown(kwargs, words):
     s = unsat_solution(PHP, _unsat(), method="sat", seed=1, t0=0.0, stats={}, **kwargs)
     assert s.status is Status.UNKNOWN and words in s.reason
-
-
-def test_a_proof_over_the_size_guard_gives_unknown(monkeypatch):
-    monkeypatch.setattr(certificates, "PROOF_CHECK_MAX_SIZE", 3)
-    s = unsat_solution(PHP, _unsat(), method="sat", seed=1, t0=0.0, stats={})
-    assert s.status is Status.UNKNOWN and "not checked" in s.reason and "over the 3 the checker takes" in s.reason
 
 
 def test_no_proof_gives_unknown():

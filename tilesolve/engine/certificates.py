@@ -138,6 +138,12 @@ def unsat_solution(formula, r: Result, *, method: str, seed, t0: float, stats: d
     if r.proof is None:
         why = f"{solver} reported unsatisfiable but logged no proof, so the answer was not checked"
         return unknown(why + (f" ({r.reason})" if r.reason else ""))
+    proof = list(r.proof) if not isinstance(r.proof, (str, bytes, bytearray)) else r.proof
+    if isinstance(proof, list) and (not proof or proof[-1].strip() != "0"):
+        # The solver's unsat claim is the empty clause; some solvers (MapleCM) leave it out of
+        # the proof. It is appended here and checked like any lemma (it must be RUP).
+        proof.append("0")
+        stats["proof_empty_clause_appended"] = True
     stats["proof_lines"] = len(r.proof)
     if not check_proof:
         return unknown(f"{solver} reported unsatisfiable; its DRAT proof of {len(r.proof)} lines was not checked "
@@ -147,7 +153,7 @@ def unsat_solution(formula, r: Result, *, method: str, seed, t0: float, stats: d
             return unknown(f"{solver} reported unsatisfiable; its DRAT proof was not checked: time limit of "
                            f"{deadline.time_limit:.3g} s reached before the check")
         proof_time_limit = deadline.remaining()
-    chk = check_drat(formula, r.proof, time_limit=proof_time_limit)
+    chk = check_drat(formula, proof, time_limit=proof_time_limit)
     stats.update(proof_status=chk.status, proof_lemmas=chk.lemmas, proof_checked_lemmas=chk.checked,
                  proof_check_s=round(chk.time_s, 6))
     if chk.status == "failed":
@@ -155,7 +161,7 @@ def unsat_solution(formula, r: Result, *, method: str, seed, t0: float, stats: d
     if chk.status != "verified":
         return unknown(f"{solver} reported unsatisfiable; its DRAT proof was not checked: {chk.reason}")
     cnf = dimacs_bytes(formula)
-    drat = proof_text(r.proof)
+    drat = proof_text(proof)
     stats["cnf_sha256"] = hashlib.sha256(cnf).hexdigest()
     stats["drat_sha256"] = hashlib.sha256(drat).hexdigest()
     stats["proof_core_clauses"] = int(chk.core.size) if chk.core is not None else None
@@ -169,8 +175,8 @@ def unsat_solution(formula, r: Result, *, method: str, seed, t0: float, stats: d
     if chk.trivial:
         reason = (f"proved unsatisfiable by {solver}: unit propagation on the input clauses refutes it "
                   f"({chk.core.size if chk.core is not None else '?'} clauses take part{_clash(formula, chk.core)}); "
-                  "checked by tilesolve.verify.drat")
+                  "DRAT proof checked by tilesolve.verify.drat")
     else:
-        reason = (f"proved unsatisfiable by {solver}; DRAT proof checked by tilesolve.verify.drat "
-                  f"({chk.checked} of {chk.lemmas} lemma(s) used and checked)")
+        reason = (f"proved unsatisfiable by {solver}; DRAT proof of {chk.lemmas} lemma(s) ({chk.checked} of them "
+                  "used) checked by tilesolve.verify.drat")
     return Solution(Status.UNSAT, None, method, solver, seed, time.perf_counter() - t0, reason=reason, stats=stats)
