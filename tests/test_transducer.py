@@ -303,3 +303,16 @@ def test_random_sets_minimisation_changes_nothing_but_size(ts):
     for v in (a, b):
         if v.torus is not None:
             check_torus(ts, v.torus)
+
+
+def test_report_without_a_rectangle_is_undecided(monkeypatch):
+    import tilesolve.constructive.transducer as tr
+
+    def too_large(*args, **kwargs):
+        raise tr.InvalidProblem("a composition would have 9 candidate transitions, more than the limit of 1")
+
+    monkeypatch.setattr(tr, "strip_width", too_large)
+    ts = load_tiles("finite_14")
+    verdict, rep = transducer_report(AperiodicProblem(ts, 0, 10), RunOptions(seed=1),
+                                     refute=lambda b, run: sat_decide(ts, b, run))
+    assert verdict == "undecided" and rep.squares == () and "could not be computed" in rep.conclusion

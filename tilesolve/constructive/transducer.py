@@ -607,7 +607,9 @@ def transducer_report(problem, run, *, refute) -> tuple[str, object]:
     * ``"empty"``: the ``k x w`` rectangle of :func:`strip_width`, refuted by ``refute`` (the
       SAT route with a checked DRAT proof); the certificate keeps the proof's evidence and
       adds the transducer's (``transducer_k``, ``strip_width``). A rectangle that SAT tiles
-      would contradict the transducer: :class:`InternalError`;
+      would contradict the transducer: :class:`InternalError`. When the full ``T^k`` is over
+      the size limit there is no rectangle to certify: the verdict is returned as
+      ``"undecided"`` and the conclusion says why;
     * ``"undecided"``: no certificate, the conclusion says up to which ``k``.
 
     Parameters
@@ -638,7 +640,12 @@ def transducer_report(problem, run, *, refute) -> tuple[str, object]:
             f"The set tiles the {k}x{p} torus (found as a cycle of T_{v.k} that writes what it reads, "
             f"Jeandel-Rao): it tiles the plane periodically, so it is not aperiodic."), literature=literature)
     if v.verdict == "empty":
-        w = strip_width(ts, v.k)
+        try:
+            w = strip_width(ts, v.k)
+        except InvalidProblem as exc:  # the full T^k is over the size limit: no rectangle to certify
+            return "undecided", AperiodicReport(conclusion=(
+                f"T_{v.k} is empty (Jeandel-Rao): no strip of height {v.k} can be tiled; the rectangle to "
+                f"certify it could not be computed ({exc})."), literature=literature)
         if w is None:
             raise InternalError(f"T_{v.k} is empty but the full T^{v.k} has a cycle")
         name = f"square {v.k}x{w}"
