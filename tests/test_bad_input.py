@@ -208,6 +208,7 @@ CASES: dict[str, list[tuple[str, str]]] = {
         ("colors one", "--kind wang --colors 1"),
         ("set unknown", "--kind wang --colors 2 --set weird"),
         ("svg is a directory", "--kind wang --colors 2 --svg adir"),
+        ("proof dir is a file", "--kind wang --colors 2 --proof-dir garbage.bin"),
     ],
     "verify": [
         ("missing", "missing.json"),
@@ -216,6 +217,7 @@ CASES: dict[str, list[tuple[str, str]]] = {
         ("wrong format name", "teapot.json"),
         ("directory", "adir"),
         ("no file", ""),
+        ("proof dir missing", "solution.json --proof-dir nodir"),
     ],
     "draw": [
         ("missing", "missing.json -o x.svg"),
