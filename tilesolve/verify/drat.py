@@ -391,10 +391,26 @@ _COMPILED: types.SimpleNamespace | None = None
 _LOCK = threading.Lock()
 
 
-def _kernels(work: int, mode: str = "auto"):
-    """The kernel namespace: the module itself (interpreted) or its numba-compiled copy."""
+#: Seconds of time limit below which a first compilation (no numba cache yet) is not started.
+_COMPILE_S = 60.0
+
+
+def _cache_ready() -> bool:
+    """Whether numba's cache holds the compiled kernels (loading then takes under a second)."""
+    name = f"{K.__name__.rsplit('.', 1)[1]}.backward-{K.backward.__code__.co_firstlineno}.py" \
+           f"{sys.version_info[0]}{sys.version_info[1]}.nbi"
+    return os.path.isfile(os.path.join(os.path.dirname(K.__file__), "__pycache__", name))
+
+
+def _kernels(work: int, mode: str = "auto", time_limit: float | None = None):
+    """The kernel namespace: the module itself (interpreted) or its numba-compiled copy.
+
+    ``auto`` interprets small proofs, and large ones too when a short ``time_limit`` leaves no
+    room to compile the kernels for the first time (the interpreted loops stop on time)."""
     global _COMPILED
-    if mode == "plain" or (mode == "auto" and _COMPILED is None and work < COMPILE_FROM):
+    first_compile = _COMPILED is None and not _cache_ready()
+    if mode == "plain" or (mode == "auto" and _COMPILED is None and (
+            work < COMPILE_FROM or (first_compile and time_limit is not None and time_limit < _COMPILE_S))):
         return K
     with _LOCK:
         if _COMPILED is None:
@@ -654,7 +670,7 @@ def check_drat(
     pivot[nonempty] = lits[start[n_f:n_cl][nonempty]]
     n_vars = int(lits.max() >> 1) if lits.size else 0
     L = 2 * n_vars + 2
-    k = _kernels(int(lits.size), kernels)
+    k = _kernels(int(lits.size), kernels, None if time_limit is None else time_limit - elapsed())
     taut = np.zeros(n_cl, np.int8)
     chash = np.zeros(n_cl, np.int64)
     k.prepare(lits, start, size, taut, chash, n_cl)
