@@ -149,10 +149,8 @@ def test_random_unsat_cnfs_agree_with_dratify(case, data):
     expect = dratify_ok(clauses, bad)
     assert check_drat(clauses, bad, lemmas="all").verified == expect
     assert check_drat(clauses, bad, engine="forward").verified == expect
-    if check_drat(clauses, bad).verified:  # core mode may skip an unused broken lemma, never a used one
-        assert check_drat(clauses, bad).checked <= len(lines)
-    else:
-        assert not expect
+    # core mode may accept a proof whose broken lemma is unused, but never rejects a valid one
+    assert expect <= check_drat(clauses, bad).verified
 
 
 def test_rat_lemmas_are_checked_not_trusted():
