@@ -11,10 +11,11 @@ Squares (:func:`square_scan`)
     ``n <= N`` is found by bisection: ``N`` first (a witness ends the scan), then halving
     between a tiled and a refuted size; the scan ends with a witness at ``n`` and a checked
     refutation at ``n + 1``, which proves that the set tiles no plane (Extension Theorem).
-    Large witnesses are searched first in a *guided* restricted formula: only the pairs of
-    neighbouring tiles that occur in the interior of a smaller tiling (:data:`GUIDE_SIDE`) are
-    allowed. That cuts the Jeandel–Rao 100 x 100 square from 45 s to a few seconds; when the
-    guided formula has no model the full formula decides (a restricted "unsat" proves nothing).
+    Squares above :data:`DIRECT_SIDE` run as a portfolio of two processes (both cores): the
+    full formula, and a *guided* restricted formula in which only the pairs of neighbouring
+    tiles that occur in the interior of a smaller tiling (:data:`GUIDE_SIDE`) are allowed. The
+    first witness wins; a restricted "unsat" proves nothing, so only the full formula refutes.
+    Solving times of both are heavy-tailed (benchmarks/bench_aperiodic.py).
 
 Periods (:func:`sweep`)
     One SAT run per :class:`~tilesolve.model.aperiodic.Lattice`, on local worker processes
@@ -37,21 +38,17 @@ import numpy as np
 
 from tilesolve.deadline import Deadline
 from tilesolve.engine.progress import status_line
-from tilesolve.model.aperiodic import Certificate, board_of
+from tilesolve.model.aperiodic import Certificate, board_of, square_board
 from tilesolve.model.board import WangTileSet
 from tilesolve.model.run import RunOptions
-from tilesolve.model.solution import Status
+from tilesolve.model.solution import Solution, Status
 
-__all__ = ["decide", "square_scan", "sweep", "tileset_digest", "read_cache", "GUIDE_SIDE", "GUIDE_BUDGET_S",
-           "DEFAULT_SOLVER"]
+__all__ = ["decide", "square_scan", "sweep", "tileset_digest", "read_cache", "GUIDE_SIDE", "DEFAULT_SOLVER"]
 
 #: Side of the square whose interior guides large witnesses (its border rows are dropped).
 GUIDE_SIDE = 30
 #: Squares at most this large are solved with the full formula directly.
 DIRECT_SIDE = 40
-#: Seconds a guided search may take before the full formula decides instead (a guide whose
-#: pairs admit no large square would otherwise be refuted slowly, and that proves nothing).
-GUIDE_BUDGET_S = 30.0
 #: The SAT solver (CaDiCaL logs DRAT proofs).
 DEFAULT_SOLVER = "cadical153"
 
@@ -105,34 +102,59 @@ def _guide(grid: np.ndarray, m: int) -> tuple[np.ndarray, np.ndarray]:
     return east, south
 
 
+def _square_task(tiles: list, n_colors: int, n: int, end: float | None, solver: str | None,
+                 proof_dir: str | None, seed0: int, *, seed: int):
+    """One run of the square portfolio: ``seed`` 0 decides the full formula, 1 searches the
+    guided one (its guide from a :data:`GUIDE_SIDE` square); returns a Solution."""
+    from tilesolve.encodings.wang_tiles import encode_tiles
+    from tilesolve.engine.certificates import writing_proofs
+    from tilesolve.engine.routes import sat_route
+
+    tileset = WangTileSet(np.asarray(tiles, dtype=np.int64), n_colors)
+    limit = None if end is None else max(end - time.time(), 1e-3)
+    run = RunOptions(seed=seed0, deadline=Deadline(limit), solver=solver)
+    allowed, method = None, "sat"
+    if seed == 1:
+        g = decide(tileset, f"square {GUIDE_SIDE}x{GUIDE_SIDE}", run)
+        if g.status != "tiles":
+            return Solution(Status.UNKNOWN, None, "sat guided", solver, seed0, 0.0, reason="no guide")
+        allowed, method = _guide(g.tiling, len(tileset)), "sat guided"
+    t0 = time.perf_counter()
+    enc = encode_tiles(square_board(n), tileset, allowed=allowed, deadline=run.deadline)
+    with writing_proofs(proof_dir):
+        return sat_route(enc, run, method=method, solver=solver or DEFAULT_SOLVER, t0=t0)
+
+
 def square_scan(tileset: WangTileSet, max_n: int, run: RunOptions,
-                show: Callable[[str], None] = lambda text: None) -> tuple[list[Certificate], int | None]:
+                show: Callable[[str], None] = lambda text: None, *,
+                proof_dir: str | os.PathLike | None = None) -> tuple[list[Certificate], int | None]:
     """The largest ``n <= max_n`` for which ``tileset`` tiles an ``n x n`` square.
 
-    Returns the certificates decided (in the order decided) and that ``n`` (``0`` when not even
-    one tile fits, which cannot happen for a non-empty set; ``None`` when undecided).
+    Squares above :data:`DIRECT_SIDE` go to a portfolio of two runs on ``run.workers`` local
+    processes (default 2): the full formula and the guided one; the first decisive answer wins
+    (a witness from either; a refutation only from the full formula, with its checked proof).
+    Returns the certificates decided (in the order decided) and that ``n`` (``None`` when
+    undecided).
     """
+    from tilesolve.engine.portfolio import run_portfolio
+
     certs: list[Certificate] = []
     known_sat, known_unsat = 0, max_n + 1
-    guide = None
+    proof_dir = None if proof_dir is None else os.fspath(proof_dir)
 
     def at(n: int) -> Certificate:
-        nonlocal guide
         name = f"square {n}x{n}"
         show(f"deciding {name}")
-        if n > DIRECT_SIDE:
-            if guide is None:
-                g = decide(tileset, f"square {GUIDE_SIDE}x{GUIDE_SIDE}", run)
-                if g.status == "tiles":
-                    guide = _guide(g.tiling, len(tileset))
-            if guide is not None:
-                left = run.deadline.remaining()
-                budget = GUIDE_BUDGET_S if left is None else min(GUIDE_BUDGET_S, left)
-                c = decide(tileset, name, RunOptions(seed=run.seed, deadline=Deadline(budget), solver=run.solver),
-                           allowed=guide)
-                if c.status == "tiles" or str(c.evidence.get("why", "")).startswith("interrupted"):
-                    return c
-        return decide(tileset, name, run)
+        if n <= DIRECT_SIDE or (run.workers or 2) < 2:
+            from tilesolve.engine.certificates import writing_proofs
+
+            with writing_proofs(proof_dir):
+                return decide(tileset, name, run)
+        end = None if run.deadline.time_limit is None else time.time() + run.deadline.remaining()
+        task = functools.partial(_square_task, tileset.tiles.tolist(), int(tileset.n_colors), n, end, run.solver,
+                                 proof_dir, run.seed)
+        sol = run_portfolio(task, [0, 1], workers=2, time_limit=run.deadline.remaining(), label=name)
+        return _certificate(name, sol, sol.method or "sat")
 
     n = max_n
     while known_unsat - known_sat > 1:
