@@ -38,7 +38,7 @@ import numpy as np
 
 from tilesolve.deadline import Deadline
 from tilesolve.engine.progress import status_line
-from tilesolve.model.aperiodic import Certificate, board_of, square_board
+from tilesolve.model.aperiodic import Certificate, board_of, parse_board_name, square_board
 from tilesolve.model.board import WangTileSet
 from tilesolve.model.run import RunOptions
 from tilesolve.model.solution import Solution, Status
@@ -203,6 +203,11 @@ def _from_cache(rec: dict) -> Certificate:
                        float(rec.get("time_s", 0.0)))
 
 
+def _cells(name: str) -> int:
+    rows, cols, _ = parse_board_name(name)
+    return rows * cols
+
+
 def _job(tiles: list, n_colors: int, names: Sequence[str], end: float | None, solver: str | None,
          proof_dir: str | None, seed0: int, *, seed: int) -> Certificate:
     """One lattice of a sweep (``seed`` is its index in ``names``), in a worker process."""
@@ -225,7 +230,8 @@ def sweep(tileset: WangTileSet, names: Sequence[str], run: RunOptions, *, cache:
     digest = tileset_digest(tileset)
     cached = read_cache(cache, digest)
     result: dict[str, Certificate] = {n: _from_cache(cached[n]) for n in names if n in cached}
-    todo = [n for n in names if n not in result]
+    # largest boards first: the long runs start early and the short ones fill the gaps at the end
+    todo = sorted((n for n in names if n not in result), key=lambda n: -_cells(n))
     end = None if run.deadline.time_limit is None else time.time() + run.deadline.remaining()
     task = functools.partial(_job, tileset.tiles.tolist(), int(tileset.n_colors), tuple(todo), end, run.solver,
                              None if proof_dir is None else os.fspath(proof_dir), run.seed)
