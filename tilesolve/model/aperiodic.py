@@ -29,11 +29,13 @@ from tilesolve.errors import InvalidProblem
 from tilesolve.model.board import Board, WangTileSet
 
 __all__ = ["Lattice", "AperiodicProblem", "Certificate", "AperiodicReport", "square_board", "leg_colours",
-           "MAX_SIDE", "STATUSES"]
+           "MAX_CLAUSES", "MAX_LATTICES", "STATUSES", "estimate_refusal"]
 
-#: Largest ``max_square`` / ``max_period`` accepted: a 2000 x 2000 square is 4 million cells
-#: (about 50 million clauses); beyond it the CLI refuses with an estimate.
-MAX_SIDE = 2000
+#: Largest CNF (clauses, estimated before building) a board may need: about 5 GB of clauses.
+MAX_CLAUSES = 50_000_000
+#: Most lattices one check may sweep.
+MAX_LATTICES = 200_000
+
 
 #: What a certificate can say about its board.
 STATUSES = ("tiles", "refuted", "undecided")
@@ -124,9 +126,10 @@ class AperiodicProblem:
             v = getattr(self, what)
             if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < 0:
                 raise InvalidProblem(f"{what.replace('_', ' ')} must be a non-negative integer, got {v!r}")
-            if v > MAX_SIDE:
-                raise InvalidProblem(estimate_refusal(what, int(v), len(self.tileset), self.shears))
             object.__setattr__(self, what, int(v))
+        refusal = estimate_refusal(self.max_square, self.max_period, len(self.tileset), bool(self.shears))
+        if refusal:
+            raise InvalidProblem(refusal)
         if self.max_square == 0 and self.max_period == 0:
             raise InvalidProblem("nothing to check: give max square or max period (or both) above 0")
         object.__setattr__(self, "shears", bool(self.shears))
@@ -148,15 +151,24 @@ class AperiodicProblem:
         return f"aperiodicity check of {what}, {self.tileset.n_colors} colours: {', '.join(parts)}"
 
 
-def estimate_refusal(what: str, n: int, m: int, shears: bool) -> str:
-    """The one-line refusal of an absurd bound, with what it would cost."""
-    if what == "max_square":
-        cells = n * n
-        est = f"the {n}x{n} square alone has {cells:,} cells, about {cells * (m * m // 2 + 2 * m):,} clauses"
-    else:
-        boards = n * n * ((n + 1) // 2 if shears else 1)
-        est = f"{boards:,} {'lattices' if shears else 'tori'} of up to {n * n:,} cells each"
-    return f"{what.replace('_', ' ')} {n} is too large ({est}); the limit is {MAX_SIDE}"
+def clauses_per_cell(m: int) -> int:
+    """Clauses a cell costs in the tile-selection CNF of ``m`` tiles (at least one, at most one,
+    and a support clause per tile and leg)."""
+    return 1 + m * (m - 1) // 2 + 4 * m
+
+
+def estimate_refusal(max_square: int, max_period: int, m: int, shears: bool) -> str | None:
+    """The one-line refusal of bounds too large to check, with what they would cost (else None)."""
+    per = clauses_per_cell(m)
+    if max_square * max_square * per > MAX_CLAUSES:
+        return (f"max square {max_square} is too large: the {max_square}x{max_square} square needs about "
+                f"{max_square * max_square * per:,} clauses ({m} tiles); at most {MAX_CLAUSES:,} are built")
+    boards = max_period * max_period * ((max_period + 1) // 2 if shears else 1)
+    if boards > MAX_LATTICES or max_period * max_period * per > MAX_CLAUSES:
+        return (f"max period {max_period} is too large: {boards:,} {'lattices' if shears else 'tori'} of up to "
+                f"{max_period * max_period:,} cells (about {max_period * max_period * per:,} clauses each); at most "
+                f"{MAX_LATTICES:,} lattices of {MAX_CLAUSES:,} clauses")
+    return None
 
 
 @dataclass(frozen=True)
