@@ -316,3 +316,19 @@ def test_report_without_a_rectangle_is_undecided(monkeypatch):
     verdict, rep = transducer_report(AperiodicProblem(ts, 0, 10), RunOptions(seed=1),
                                      refute=lambda b, run: sat_decide(ts, b, run))
     assert verdict == "undecided" and rep.squares == () and "could not be computed" in rep.conclusion
+
+
+def test_family_route_end_to_end():
+    """``tilesolve.aperiodic.solve(..., method="transducer")``: the pipeline verifies the report."""
+    from tilesolve.aperiodic import solve
+    from tilesolve.io.builtin_tilesets import load
+
+    ts, info = load("finite-jv7")
+    s = solve(AperiodicProblem(ts, 0, 10, name="finite-jv7", info=info), method="transducer", seed=1)
+    (cert,) = s.tiling.squares
+    assert (s.status.value, s.method, cert.board, cert.status) == ("sat", "transducer", "square 8x26", "refuted")
+    ts, info = load("periodic-8-28")
+    s = solve(AperiodicProblem(ts, 0, 30, name="periodic-8-28", info=info), method="transducer", seed=1)
+    (cert,) = s.tiling.periods
+    assert (cert.board, cert.status) == ("torus 28x28", "tiles")
+    check_torus(ts, cert.tiling)
