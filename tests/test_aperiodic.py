@@ -219,3 +219,15 @@ def test_cli_ctrl_c_writes_no_report_and_the_cache_resumes(tmp_path):
     periods = json.loads((tmp_path / "r2.json").read_text())["periods"]
     names = {d["board"] for d in decided}
     assert all(p["evidence"].get("cached", False) == (p["board"] in names) for p in periods)
+
+
+def test_proof_files_listed_and_rechecked(tmp_path):
+    from tilesolve.aperiodic import proof_lines
+
+    s = solve(AperiodicProblem(DIAGONAL, 0, 2), seed=1, workers=1, options={"proof_dir": tmp_path})
+    ok, lines = proof_lines(s.tiling, tmp_path)
+    assert ok and sum("refuted by sat; CNF SHA-256" in ln for ln in lines) == 4
+    drat = sorted(tmp_path.glob("*.drat"))[0]
+    drat.write_text(drat.read_text() + "1 0\n")
+    ok, lines = proof_lines(s.tiling, tmp_path)
+    assert not ok and any("differs from the recorded" in ln for ln in lines)
