@@ -213,3 +213,18 @@ def test_cpsat_infeasibility_is_certified_or_unknown():
     cp = build_cpsat_wang(p)
     r = solve_cp_model(cp.model, cp.bools, seed=1)
     assert r.status is Status.UNKNOWN and r.reason.startswith("uncertified:")
+
+
+def test_constructive_unsat_is_certified_by_the_sat_route(monkeypatch):
+    from tilesolve import board as wang
+    from tilesolve.model.solution import Solution
+
+    p = BoardProblem(Board.rect(1, 1), WangTileSet.brick(3), [0, 1, 0, 1])
+    s = wang.solve(p, method="linear", seed=1)  # the §4.2 tree solver finds the clash, SAT proves it
+    assert s.status is Status.UNSAT and s.stats["proof_status"] == "verified"
+    assert any("'linear' found it unsatisfiable" in n and "certified by the 'sat' route" in n for n in s.notes)
+    # a certification that does not come through leaves the claim unknown, never unsat
+    monkeypatch.setitem(wang.FAMILY.routes, "sat",
+                        lambda problem, run: Solution(Status.UNKNOWN, None, "sat", reason="no time"))
+    s = wang.solve(p, method="linear", seed=1)
+    assert s.status is Status.UNKNOWN and s.reason.startswith("uncertified: 'linear' found it unsatisfiable")

@@ -554,7 +554,7 @@ def run_route(fam: Family, problem: Any, method: str | Route, run: RunOptions) -
                 sol = fam.routes[name](problem, run)
         except TimeLimitReached as exc:  # a route out of time while encoding or building
             sol = Solution(Status.UNKNOWN, None, name, None, run.seed, run.deadline.elapsed(), reason=str(exc))
-    if _uncertified(sol) and "sat" in fam.routes and name != "sat":
+    if _uncertified(sol) and name != "sat":
         sol = _certify_infeasible(fam, problem, run, name, sol)
     bad = fam.verify(problem, sol.tiling) if sol.status.has_tiling else ()
     if bad and method == "auto" and fam.fallback is not None and name != fam.fallback:
@@ -582,28 +582,46 @@ def run_route(fam: Family, problem: Any, method: str | Route, run: RunOptions) -
 
 
 def _certify_infeasible(fam: Family, problem: Any, run: RunOptions, name: str, sol: Solution) -> Solution:
-    """CP-SAT's "infeasible" (no proof) re-decided by the family's ``sat`` route with a checked
-    DRAT proof, within what is left of the run's deadline; still ``unknown`` when that fails."""
+    """An infeasibility claimed without a checked proof (CP-SAT's, or a constructive route's
+    clash) re-decided by the family's ``sat`` route, whose unsat carries a checked DRAT proof,
+    within what is left of the run's deadline; ``unknown`` ("uncertified: ...") when that
+    fails, so that ``unsat`` always comes with a checked proof."""
+    from tilesolve.engine.certificates import UNCERTIFIED
     from tilesolve.engine.progress import status_line
 
+    if sol.status is Status.UNSAT:
+        claim = f"found it unsatisfiable without a checked proof ({sol.reason})"
+    else:
+        claim = "(CP-SAT) proved infeasibility without a proof"
+
+    def uncertified(why: str) -> Solution:
+        if sol.status is Status.UNKNOWN:
+            return sol.replace(reason=f"{sol.reason}; {why}")
+        return sol.replace(status=Status.UNKNOWN, reason=f"{UNCERTIFIED} {name!r} {claim}; {why}")
+
+    if "sat" not in fam.routes:
+        return uncertified(f"the {fam.name} family has no 'sat' route to certify it")
     if run.deadline.expired():
-        return sol
+        return uncertified("no time left to certify it with the 'sat' route")
     with status_line(f"{fam.name}: certifying {name!r}'s infeasibility with 'sat'", run.progress):
         try:
             cert = fam.routes["sat"](problem, run)
-        except (TimeLimitReached, MethodNotApplicable):
-            return sol
+        except (TimeLimitReached, MethodNotApplicable) as exc:
+            return uncertified(f"the 'sat' route could not certify it: {exc}")
     if cert.status is Status.UNSAT:
-        return cert.with_note(f"{name!r} (CP-SAT) proved infeasibility without a proof; certified by the 'sat' route")
+        return cert.with_note(f"{name!r} {claim}; certified by the 'sat' route")
     if cert.status.has_tiling:
-        raise InternalError(f"CP-SAT ({name!r}) said infeasible but the 'sat' route found a tiling")
-    return sol.replace(reason=f"{sol.reason}; the 'sat' route could not certify it: {cert.reason}")
+        raise InternalError(f"{name!r} said infeasible but the 'sat' route found a tiling")
+    return uncertified(f"the 'sat' route could not certify it: {cert.reason}")
 
 
 def _uncertified(sol: Solution) -> bool:
-    """An infeasibility claimed without a proof (CP-SAT's), reported ``unknown``."""
+    """An infeasibility claimed without a checked proof: CP-SAT's (reported ``unknown``) or
+    any ``unsat`` whose stats do not record a verified proof."""
     from tilesolve.engine.certificates import UNCERTIFIED
 
+    if sol.status is Status.UNSAT:
+        return sol.stats.get("proof_status") != "verified"
     return sol.status is Status.UNKNOWN and (bool(sol.stats.get("cpsat_infeasible"))
                                              or (sol.reason or "").startswith(UNCERTIFIED))
 
