@@ -37,9 +37,9 @@ from tilesolve.verify.drat import check_drat, dimacs_bytes, formula_arrays
 
 __all__ = ["unsat_solution", "writing_proofs", "proof_text", "UNCERTIFIED"]
 
-#: How an infeasibility proved by a backend without proofs (CP-SAT) begins its reason; the
-#: answer is ``unknown`` and :func:`tilesolve.family.run_route` certifies it with the ``sat``
-#: route where the family has one.
+#: How an infeasibility claimed without a checked proof (CP-SAT's, a constructive route's)
+#: begins its reason: the answer is ``unknown``, after :func:`tilesolve.family.run_route`
+#: tried to certify it with the family's ``sat`` route.
 UNCERTIFIED = "uncertified:"
 
 _PROOF_DIR: contextvars.ContextVar[str | None] = contextvars.ContextVar("tilesolve_proof_dir", default=None)
