@@ -242,11 +242,11 @@ class SatSession:
         self._s = None
         try:
             if with_proof:
-                with _QuietDel():  # a refused with_proof leaves a half-built object behind
-                    try:
-                        self._s = Solver(name=self.name, with_proof=True)
-                        self.proof_logging = True
-                    except NotImplementedError:
+                try:
+                    self._s = Solver(name=self.name, with_proof=True)
+                    self.proof_logging = True
+                except NotImplementedError:
+                    with _QuietDel():  # collect the half-built object a refused with_proof leaves behind
                         pass
             if self._s is None:
                 self._s = Solver(name=self.name)
