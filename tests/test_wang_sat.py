@@ -83,7 +83,7 @@ def test_methods_and_errors():
         wang.solve(p, method="magic")
     with pytest.raises(MethodNotApplicable):
         wang.solve(BoardProblem(Board.rect(2, 2), WangTileSet.brick(3), max_h=1), method="cpsat")
-    assert set(wang.METHODS) == {"auto", "linear", "sat", "cpsat", "theorem7", "wall", "procedural"}
+    assert set(wang.METHODS) == {"auto", "linear", "sat", "cpsat", "theorem7", "wall", "procedural", "npd"}
 
 
 def test_line_windows_and_limits():
