@@ -111,7 +111,7 @@ def encode_tiles(board: Board, tileset: WangTileSet, *, allowed: tuple[np.ndarra
     >>> ws = WangTileSet.from_nesw([[0, 0, 0, 0], [1, 1, 1, 1]], 2)
     >>> enc = encode_tiles(Board.torus(2, 2), ws)
     >>> enc.n_vars, len(enc.hard)
-    (8, 28)
+    (8, 40)
     """
     tiles = tileset.tiles
     m = int(tiles.shape[0])
