@@ -34,7 +34,7 @@ from tilesolve.encodings.wang import encode_wang
 from tilesolve.engine.aperiodic import square_scan, sweep
 from tilesolve.engine.sat import solve_cnf
 from tilesolve.io.builtin_tilesets import load
-from tilesolve.model.aperiodic import AperiodicProblem, leg_colours
+from tilesolve.model.aperiodic import leg_colours
 from tilesolve.model.board import Board, BoardProblem
 from tilesolve.model.run import RunOptions
 from tilesolve.model.solution import Status

@@ -32,7 +32,7 @@ import hashlib
 import json
 import os
 import time
-from typing import Any, Callable, Iterable, Sequence
+from typing import Callable, Sequence
 
 import numpy as np
 
