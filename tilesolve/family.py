@@ -33,8 +33,8 @@ Examples
 >>> s = solve(DappledProblem.from_strings("6x4", ["H0=2", "V1=2"]), seed=3)
 >>> s.status.value, s.seed
 ('sat', 3)
->>> sorted(f.name for f in families())[:3]
-['board', 'dappled', 'packing']
+>>> sorted(f.name for f in families())[:4]
+['aperiodic', 'board', 'dappled', 'packing']
 """
 
 from __future__ import annotations
