@@ -231,3 +231,72 @@ def test_proof_files_listed_and_rechecked(tmp_path):
     drat.write_text(drat.read_text() + "1 0\n")
     ok, lines = proof_lines(s.tiling, tmp_path)
     assert not ok and any("differs from the recorded" in ln for ln in lines)
+
+
+def test_draw_shows_the_torus_witness_else_the_largest_square(tmp_path):
+    from tilesolve.aperiodic import witness
+    from tilesolve.family import draw_solution
+
+    p = AperiodicProblem(DIAGONAL, 4, 3, shears=True)
+    s = solve(p, seed=1, workers=1)
+    assert witness(s.tiling).board == "torus 3x1 shear 1"  # a period beats the larger square
+    draw_solution(tmp_path / "t.svg", p, s)
+    draw_solution(tmp_path / "t.png", p, s)
+    assert ": torus 3x1 shear 1</text>" in (tmp_path / "t.svg").read_text()
+    assert (tmp_path / "t.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    squares = AperiodicProblem(LONELY, 3, 0)
+    s = solve(squares, seed=1, workers=1)
+    assert witness(s.tiling).board == "square 1x1" and s.tiling.largest_square == 1
+    draw_solution(tmp_path / "s.svg", squares, s, title="one column")
+    svg = (tmp_path / "s.svg").read_text()
+    assert "one column</text>" in svg and "witness: the square 1x1 tiled (sat, seed 1)" in svg
+
+
+def test_a_report_without_a_witness_has_nothing_to_draw(tmp_path):
+    from tilesolve.family import draw_solution
+
+    p = AperiodicProblem(LONELY, 0, 1)  # the 1x1 torus joins the tile's E and W legs: refuted
+    s = solve(p, seed=1, workers=1)
+    assert [c.status for c in s.tiling.periods] == ["refuted"]
+    for fmt in ("svg", "png"):
+        with pytest.raises(InvalidProblem, match="^this report has no witness tiling to draw$"):
+            draw_solution(tmp_path / f"r.{fmt}", p, s)
+        assert not (tmp_path / f"r.{fmt}").exists()
+
+
+def test_demo_and_cli_draw(tmp_path):
+    from tilesolve.aperiodic import FAMILY
+
+    proc = run("demo", "--family", "aperiodic", "--seed", "1", "--out", "d", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    (demo,) = FAMILY.demos
+    doc = json.loads((tmp_path / "d" / f"{demo.name}.json").read_text())
+    assert verify_document(doc).ok
+    assert f">{demo.caption}</text>" in (tmp_path / "d" / f"{demo.name}.svg").read_text()  # the caption is the title
+    proc = run("draw", f"d/{demo.name}.json", "-o", "r.svg", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    assert "jeandel-rao: square 12x12</text>" in (tmp_path / "r.svg").read_text()
+    run("aperiodic", "check", "--builtin", "periodic-7-30", "--max-period", "1", "--workers", "1", "-o", "p.json",
+        cwd=tmp_path)
+    proc = run("draw", "p.json", "-o", "p.png", cwd=tmp_path)
+    assert one_line_error(proc) == "tilesolve: error: this report has no witness tiling to draw"
+    assert not (tmp_path / "p.png").exists()
+
+
+def test_studio_form_poses_the_cli_check():
+    from tilesolve.aperiodic import FAMILY
+
+    form = FAMILY.form
+    values = form.values({"tileset": "periodic-7-30", "max_square": 5, "max_period": 3, "shears": True, "seed": 2})
+    problem, options = form.build(values)
+    assert (problem.name, problem.max_square, problem.max_period, problem.shears, options) == (
+        "periodic-7-30", 5, 3, True, {})
+    assert problem.info["verdict"] == "periodic"
+    assert form.command(values) == (["aperiodic", "check", "--builtin", "periodic-7-30", "--max-square", "5",
+                                     "--max-period", "3", "--shears"], {})
+    defaults = form.values({})
+    assert form.command(defaults)[0][2:] == ["--builtin", "jeandel-rao", "--max-square", "12", "--max-period", "2"]
+    with pytest.raises(InvalidProblem, match="max square"):
+        form.values({"max_square": 41})
+    with pytest.raises(InvalidProblem, match="tile set"):
+        form.values({"tileset": "nope"})

@@ -116,7 +116,7 @@ def test_sizes_are_refused_before_allocation(client):
     assert r.status_code == 400 and "1..128 cells" in r.json()["error"]
 
 
-@pytest.mark.parametrize("name", ["dappled", "board", "packing", "stochastic"])
+@pytest.mark.parametrize("name", ["dappled", "board", "packing", "stochastic", "aperiodic"])
 def test_each_family_solves_verifies_and_exports(client, name):
     state = solve(client, {"family": name, "values": {"seed": 3}})
     assert state["state"] == "done", state
@@ -270,3 +270,12 @@ def test_the_cli_command_reproduces_the_tiling(client, body, tmp_path):
     assert ours[0] == theirs[0] and np.array_equal(ours[1], theirs[1])
     verify = subprocess.run([exe, "verify", "solution.json"], cwd=tmp_path, capture_output=True, text=True)
     assert verify.returncode == 0, verify.stderr
+
+
+def test_a_report_without_a_witness_is_shown_without_a_picture(client):
+    state = solve(client, {"family": "aperiodic", "values": {"tileset": "periodic-7-30", "max_square": 0,
+                                                             "max_period": 1, "seed": 1}})
+    res = state["result"]
+    assert res["status"] == "sat" and res["picture"] is None
+    assert "no picture: this report has no witness tiling to draw" in res["notes"]
+    assert res["verdict"][0].startswith("ok: solution.json is a valid tiling")

@@ -31,7 +31,8 @@ Examples
 
 from __future__ import annotations
 
-from tilesolve.family import Codec, Family, RunOptions, register
+from tilesolve.errors import InvalidProblem
+from tilesolve.family import Codec, Demo, Family, Field, Form, RunOptions, register
 from tilesolve.family import solve as _solve
 from tilesolve.io.aperiodic_json import APERIODIC_REPORT, VERSIONS, report_from_dict, report_to_dict
 from tilesolve.model.aperiodic import AperiodicProblem, AperiodicReport, Certificate
@@ -39,7 +40,7 @@ from tilesolve.model.solution import Solution, Status
 from tilesolve.verify.aperiodic import aperiodic_violations
 
 __all__ = ["AperiodicProblem", "AperiodicReport", "Certificate", "solve", "sat", "transducer", "build_report",
-           "proof_lines", "FAMILY"]
+           "proof_lines", "witness", "FAMILY"]
 
 
 def build_report(problem: AperiodicProblem, squares, largest: int | None, periods) -> AperiodicReport:
@@ -165,6 +166,88 @@ def solve(problem: AperiodicProblem, method: str = "auto", **kwargs) -> Solution
     return _solve(problem, method, **kwargs)
 
 
+def witness(report: AperiodicReport) -> Certificate | None:
+    """The report's most telling witness: the first tiled (sheared) torus, a periodic tiling's
+    unit, else the largest tiled square (class notes Part II §8.2); ``None`` without one."""
+    tori = [c for c in report.periods if c.status == "tiles"]
+    if tori:
+        return tori[0]
+    squares = [c for c in report.squares if c.status == "tiles"]
+    return max(squares, key=lambda c: c.tiling.size) if squares else None
+
+
+def _draw(problem: AperiodicProblem, sol: Solution, path, fmt: str, *, title: str | None = None, notes=(),
+          **_ignored) -> None:
+    """The witness of :func:`witness` drawn as a board tiling of its Wang tiles (SVG with a
+    title and legend, PNG for large witnesses); a torus's seams are marked as on any board."""
+    from tilesolve.model.aperiodic import board_of, leg_colours
+    from tilesolve.model.board import BoardProblem
+
+    cert = witness(sol.tiling)
+    if cert is None:
+        raise InvalidProblem("this report has no witness tiling to draw")
+    board_problem = BoardProblem(board_of(cert.board), problem.tileset)
+    legs = leg_colours(problem.tileset, cert.tiling)
+    if fmt == "png":
+        from tilesolve.io.png import write_board_png
+
+        write_board_png(path, board_problem, legs)
+        return
+    from tilesolve.io.svg_board import write_board_svg
+
+    what = problem.name or f"{len(problem.tileset)} Wang tiles"
+    legend = [f"witness: the {cert.board} tiled ({cert.method}" +
+              (f", seed {sol.seed})" if sol.seed is not None else ")")]
+    write_board_svg(path, board_problem, legs, title=title or f"{what}: {cert.board}", notes=legend + list(notes))
+
+
+def _jeandel_rao_demo() -> AperiodicProblem:
+    from tilesolve.io.builtin_tilesets import load
+
+    tileset, info = load("jeandel-rao")
+    return AperiodicProblem(tileset, 12, 2, name="jeandel-rao", info=info)
+
+
+DEMOS = (
+    Demo("jeandel-rao", "the Jeandel-Rao set (11 tiles): a tiled 12x12 square, no torus up to 2x2 (class notes Part II §8.2)",
+         _jeandel_rao_demo, method="sat"),
+)
+
+
+def _form_build(values) -> tuple[AperiodicProblem, dict]:
+    """The studio form's check (the ``aperiodic check --builtin`` options)."""
+    from tilesolve.io.builtin_tilesets import load
+
+    tileset, info = load(values["tileset"])
+    return AperiodicProblem(tileset, values["max_square"], values["max_period"], values["shears"],
+                            values["tileset"], info), {}
+
+
+def _form_command(values) -> tuple[list[str], dict[str, str]]:
+    words = ["aperiodic", "check", "--builtin", values["tileset"], "--max-square", str(values["max_square"]),
+             "--max-period", str(values["max_period"])]
+    return words + (["--shears"] if values["shears"] else []), {}
+
+
+def _form() -> Form:
+    from tilesolve.io.builtin_tilesets import names
+
+    return Form(
+        fields=(
+            Field("tileset", "choice", "tile set", "jeandel-rao", "a built-in Wang tile set",
+                  choices=tuple(names()), option="--builtin"),
+            Field("max_square", "int", "max square", 12, "find the largest tiled n x n square, n <= this (0: none)",
+                  low=0, high=40, option="--max-square"),
+            Field("max_period", "int", "max period", 2, "check every torus p x q, p, q <= this (0: none)",
+                  low=0, high=8, option="--max-period"),
+            Field("shears", "bool", "sheared tori", False, "also every sheared torus (every lattice of periods)",
+                  option="--shears"),
+        ),
+        build=_form_build,
+        command=_form_command,
+    )
+
+
 FAMILY = register(Family(
     name="aperiodic",
     title="aperiodicity checks of Wang tile sets: squares, tori and lattice periods, with certificates",
@@ -173,7 +256,10 @@ FAMILY = register(Family(
     auto=lambda problem: "sat",
     verify=lambda problem, report: aperiodic_violations(report, problem),
     codecs=(Codec(APERIODIC_REPORT, VERSIONS, report_from_dict, report_to_dict),),
+    draw=_draw,
+    demos=DEMOS,
     commands=("tilesolve.cli.aperiodic:aperiodic",),
+    form=_form(),
     route_help={"sat": "squares by bisection and (sheared) tori swept in parallel; witnesses verified, "
                        "refutations with checked DRAT proofs (class notes Part II §8.2)",
                 "transducer": "Jeandel-Rao transducers T^k: a periodic cycle gives a torus witness, an empty T_k a "

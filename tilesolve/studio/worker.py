@@ -105,7 +105,11 @@ def solve_request(name: str, values: Any, method: str, time_limit: float | None)
     text = family.solution_text(problem, sol)
     out["json"] = text
     out["verdict"] = list(family.verify_document(json.loads(text), "solution.json").lines)
-    out["picture"] = picture(problem, sol) if sol.status.has_tiling else None
+    try:
+        out["picture"] = picture(problem, sol) if sol.status.has_tiling else None
+    except InvalidProblem as exc:  # an answer without a tiling to draw (e.g. a report with no witness)
+        out["picture"] = None
+        out["notes"].append(f"no picture: {exc}")
     cells = fam.form.cells(problem, sol) if fam.form.cells is not None and sol.status.has_tiling else None
     out["cells"] = cells.tolist() if cells is not None else None
     out["solve_s"] = round(time.perf_counter() - t0, 4)
