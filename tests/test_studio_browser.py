@@ -78,7 +78,7 @@ def solve(page, timeout=60_000):
     return page.evaluate("studio.result")
 
 
-@pytest.mark.parametrize("name", ["dappled", "board", "packing", "stochastic"])
+@pytest.mark.parametrize("name", ["dappled", "board", "packing", "stochastic", "aperiodic"])
 def test_each_family_from_the_page_verifies(page, name, tmp_path):
     pick(page, name)
     page.fill("#seed", "5")
