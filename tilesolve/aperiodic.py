@@ -209,7 +209,8 @@ def _jeandel_rao_demo() -> AperiodicProblem:
 
 
 DEMOS = (
-    Demo("jeandel-rao", "the Jeandel-Rao set (11 tiles): a tiled 12x12 square, no torus up to 2x2 (class notes Part II §8.2)",
+    Demo("jeandel-rao",
+         "the Jeandel-Rao set (11 tiles): a tiled 12x12 square, no torus up to 2x2 (class notes Part II §8.2)",
          _jeandel_rao_demo, method="sat"),
 )
 
