@@ -101,19 +101,29 @@ def canonical_solver_name(name: str) -> str:
 
 
 class _QuietDel:
-    """Silence PySAT's ``__del__`` noise from solver objects whose constructor failed."""
+    """Silence PySAT's ``__del__`` noise from solver objects whose constructor failed.
+
+    On exit the garbage collector runs when ``collect`` is true (a half-built object may sit in
+    a reference cycle). It is a full collection, costly in a large process, so a caller that
+    knows no constructor failed turns it off.
+    """
+
+    def __init__(self, collect: bool = True):
+        self.collect = collect
 
     def __enter__(self):
         import sys
 
         self._hook = sys.unraisablehook
         sys.unraisablehook = lambda info: None
+        return self
 
     def __exit__(self, *exc):
         import gc
         import sys
 
-        gc.collect()
+        if self.collect:
+            gc.collect()
         sys.unraisablehook = self._hook
 
 
@@ -242,12 +252,12 @@ class SatSession:
         self._s = None
         try:
             if with_proof:
-                try:
-                    self._s = Solver(name=self.name, with_proof=True)
-                    self.proof_logging = True
-                except NotImplementedError:
-                    with _QuietDel():  # collect the half-built object a refused with_proof leaves behind
-                        pass
+                with _QuietDel(collect=False) as quiet:  # a refused with_proof leaves a half-built object behind
+                    try:
+                        self._s = Solver(name=self.name, with_proof=True)
+                        self.proof_logging = True
+                    except NotImplementedError:
+                        quiet.collect = True
             if self._s is None:
                 self._s = Solver(name=self.name)
         except Exception as exc:  # noqa: BLE001
