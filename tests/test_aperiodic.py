@@ -145,7 +145,8 @@ def test_time_limit_leaves_boards_undecided_never_refuted():
 
 
 def test_sweep_on_a_dask_cluster():
-    distributed = pytest.importorskip("distributed")
+    import distributed
+
     with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=":0") as lc:
         certs, intr = sweep(DIAGONAL, _names(2), RunOptions(seed=1, cluster=lc.scheduler_address))
     local, _ = sweep(DIAGONAL, _names(2), RunOptions(seed=1, workers=1))

@@ -13,9 +13,7 @@ import time
 
 import numpy as np
 import pytest
-
-pytest.importorskip("starlette")
-from starlette.testclient import TestClient  # noqa: E402
+from starlette.testclient import TestClient
 
 from tilesolve import family  # noqa: E402
 from tilesolve.studio.app import MAX_BODY, create_app  # noqa: E402

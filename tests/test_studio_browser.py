@@ -16,17 +16,15 @@ import time
 from pathlib import Path
 
 import pytest
+import uvicorn
+from playwright import sync_api as playwright
 
-playwright = pytest.importorskip("playwright.sync_api")
-uvicorn = pytest.importorskip("uvicorn")
-
-from tilesolve.studio.app import create_app  # noqa: E402
+from tilesolve.studio.app import create_app
 
 CHROMIUM = "/usr/bin/chromium"
 ARTIFACTS = Path(__file__).resolve().parent / "artifacts" / "studio"
 EXE = os.path.join(os.path.dirname(sys.executable), "tilesolve")
 
-pytestmark = pytest.mark.skipif(not os.path.exists(CHROMIUM), reason="needs Debian's chromium (.ci/run installs it)")
 
 
 @pytest.fixture(scope="module")
@@ -45,6 +43,7 @@ def server():
 
 @pytest.fixture(scope="module")
 def browser():
+    assert os.path.exists(CHROMIUM), f"the browser tests need Debian's chromium at {CHROMIUM} (.ci/run installs it)"
     with playwright.sync_playwright() as p:
         b = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=["--no-sandbox"])
         yield b

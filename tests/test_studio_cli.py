@@ -7,9 +7,7 @@ import shutil
 import subprocess
 
 import pytest
-
-pytest.importorskip("uvicorn")
-from click.testing import CliRunner  # noqa: E402
+from click.testing import CliRunner
 
 from tilesolve.cli.main import main_group  # noqa: E402
 from tilesolve.cli.studio import is_loopback  # noqa: E402
