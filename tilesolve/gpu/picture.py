@@ -11,12 +11,14 @@ from __future__ import annotations
 import os
 import re
 
-from tilesolve.constructive.hashes import check_window
+import numpy as np
+
+from tilesolve.constructive.hashes import check_int, check_window
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.atomic import atomic_write
 from tilesolve.io.png import MAX_PNG_PIXELS
 
-__all__ = ["parse_size", "parse_origin", "write_png"]
+__all__ = ["parse_size", "parse_origin", "write_png", "pass_layout", "assemble_bands"]
 
 _SIZE = re.compile(r"\s*(\d+)\s*[xX]\s*(\d+)\s*")
 
@@ -50,6 +52,27 @@ def parse_origin(text: str) -> tuple[int, int]:
         raise InvalidProblem(f"an origin is X0,Y0 (integers, e.g. -8,3), got {text!r}") from None
     x0, y0, _, _ = check_window(x0, y0, 1, 1, what="origin")
     return x0, y0
+
+
+def pass_layout(width, height, max_pass: int) -> tuple[int, int, int, int]:
+    """``(width, height, pass_w, band_h)``: the passes that cover a picture, at most
+    ``max_pass`` pixels each way and about 16 million pixels each."""
+    w, h = check_int(width, "width", 1), check_int(height, "height", 1)
+    return w, h, min(max_pass, w), max(1, min(max_pass, h, (1 << 24) // min(w, max_pass)))
+
+
+def assemble_bands(width: int, height: int, pass_w: int, band_h: int, read_pass):
+    """The picture as ``(rows, width, 4)`` uint8 bands from the top, each band put together
+    from passes: ``read_pass(left, bottom, pw, bh)`` renders the ``pw x bh`` pixels whose
+    bottom-left corner is ``(left, bottom)`` (GL's y grows upwards) and returns them as a
+    ``(bh, pw, 4)`` array, bottom row first."""
+    for top in range(0, height, band_h):
+        bh = min(band_h, height - top)
+        band = np.empty((bh, width, 4), dtype=np.uint8)
+        for left in range(0, width, pass_w):
+            pw = min(pass_w, width - left)
+            band[:, left:left + pw] = read_pass(left, height - top - bh, pw, bh)[::-1]
+        yield band
 
 
 def write_png(path: str | os.PathLike, width: int, height: int, bands) -> None:

@@ -51,6 +51,7 @@ from tilesolve.constructive.hashes import check_int, check_window
 from tilesolve.constructive.stochastic import make_hash
 from tilesolve.errors import InvalidProblem
 from tilesolve.gpu.context import gpu_context, max_render_size, release
+from tilesolve.gpu.picture import assemble_bands, pass_layout
 
 __all__ = ["MAX_COLORS", "MAX_ATLAS", "Atlas", "check_atlas", "corner_packing", "synthesize_atlas", "read_example",
            "TextureMapper"]
@@ -501,24 +502,19 @@ class TextureMapper:
         million pixels); wider pictures take several passes per band.
         """
         self._need_atlas()
-        w, h = check_int(width, "width", 1), check_int(height, "height", 1)
-        band_h = max(1, min(self.max_pass, h, (1 << 24) // min(w, self.max_pass)))
-        pass_w = min(self.max_pass, w)
+        w, h, pass_w, band_h = pass_layout(width, height, self.max_pass)
         ids = self._ids_target(pass_w, band_h)
         fbos: dict = {}
+
+        def read_pass(left, bottom, pw, bh):
+            if (pw, bh) not in fbos:
+                fbos[(pw, bh)] = self.ctx.simple_framebuffer((pw, bh), components=4)
+            fbo = fbos[(pw, bh)]
+            self._pass(fbo, (left, bottom), ids)
+            return np.frombuffer(fbo.read(components=4), dtype=np.uint8).reshape(bh, pw, 4)
+
         try:
-            for top in range(0, h, band_h):
-                bh = min(band_h, h - top)
-                band = np.empty((bh, w, 4), dtype=np.uint8)
-                for left in range(0, w, pass_w):
-                    pw = min(pass_w, w - left)
-                    if (pw, bh) not in fbos:
-                        fbos[(pw, bh)] = self.ctx.simple_framebuffer((pw, bh), components=4)
-                    fbo = fbos[(pw, bh)]
-                    self._pass(fbo, (left, h - top - bh), ids)
-                    px = np.frombuffer(fbo.read(components=4), dtype=np.uint8).reshape(bh, pw, 4)
-                    band[:, left:left + pw] = px[::-1]
-                yield band
+            yield from assemble_bands(w, h, pass_w, band_h, read_pass)
         finally:
             for fbo in fbos.values():
                 release(fbo)

@@ -45,6 +45,7 @@ from tilesolve.constructive.walls import APPENDIX_B, SOURCES, dappling_period
 from tilesolve.errors import InvalidProblem
 from tilesolve.gpu.context import gpu_context, max_render_size, release
 from tilesolve.gpu.texture import DIV_GLSL
+from tilesolve.gpu.picture import assemble_bands, pass_layout
 
 __all__ = ["SAMPLE_COUNTS", "WallRenderer", "allowed_samples"]
 
@@ -380,7 +381,7 @@ class WallRenderer:
     def _pass(self, kind: str, fbo, offset, cells_fbo=None) -> None:
         """Shade the picture's pixels ``offset + [0, fbo.size)`` (GL coordinates) into ``fbo``."""
         prog, vao = self._program(kind)
-        (ox, oy), (w, h) = offset, fbo.size
+        ox, oy = offset
         first = (ox // self.cell_px + self.local0[0] - 1, oy // self.cell_px + self.local0[1] - 1)
         if cells_fbo is not None:
             self._cells(cells_fbo, first)
@@ -439,27 +440,22 @@ class WallRenderer:
     def bands(self, width: int, height: int):
         """The picture as ``(rows, width, 4)`` uint8 RGBA bands from the top (passes as in
         :meth:`tilesolve.gpu.texture.TextureMapper.bands`)."""
-        w, h = check_int(width, "width", 1), check_int(height, "height", 1)
-        band_h = max(1, min(self.max_pass, h, (1 << 24) // min(w, self.max_pass)))
-        pass_w = min(self.max_pass, w)
+        w, h, pass_w, band_h = pass_layout(width, height, self.max_pass)
         self._check_pass(pass_w, band_h)
         cells = None if self.per_fragment else self._cells_target(pass_w, band_h)
         made: dict = {}
+
+        def read_pass(left, bottom, pw, bh):
+            if (pw, bh) not in made:
+                made[(pw, bh)] = self._targets(pw, bh)
+            target, resolved = made[(pw, bh)]
+            self._pass("colour", target, (left, bottom), cells)
+            if resolved is not None:
+                self.ctx.copy_framebuffer(resolved, target)
+            return np.frombuffer((resolved or target).read(components=4), np.uint8).reshape(bh, pw, 4)
+
         try:
-            for top in range(0, h, band_h):
-                bh = min(band_h, h - top)
-                band = np.empty((bh, w, 4), dtype=np.uint8)
-                for left in range(0, w, pass_w):
-                    pw = min(pass_w, w - left)
-                    if (pw, bh) not in made:
-                        made[(pw, bh)] = self._targets(pw, bh)
-                    target, resolved = made[(pw, bh)]
-                    self._pass("colour", target, (left, h - top - bh), cells)
-                    if resolved is not None:
-                        self.ctx.copy_framebuffer(resolved, target)
-                    px = np.frombuffer((resolved or target).read(components=4), np.uint8).reshape(bh, pw, 4)
-                    band[:, left:left + pw] = px[::-1]
-                yield band
+            yield from assemble_bands(w, h, pass_w, band_h, read_pass)
         finally:
             for pair in made.values():
                 for f in pair:
