@@ -11,6 +11,8 @@ import pytest
 @pytest.mark.parametrize("args", [
     ("dappled", "crosscheck", "--size", "12x12", "--cond", "H0=2,V1=2", "--trials", "1000"),
     ("brick", "crosscheck", "--board", "rect:12x12", "--trials", "1000"),
+    ("crosscheck", "wall", "--trials", "1000", "--seed", "1"),
+    ("crosscheck", "tiling", "--trials", "1000", "--seed", "1"),
 ])
 def test_sigint_ends_a_crosscheck_with_130(tmp_path, args):
     proc = subprocess.Popen([shutil.which("tilesolve"), *args], cwd=tmp_path, stdout=subprocess.PIPE,
