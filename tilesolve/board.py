@@ -56,12 +56,13 @@ def linear(problem: BoardProblem, run: RunOptions) -> Solution:
 def sat(problem: BoardProblem, run: RunOptions) -> Solution:
     """SAT on :func:`tilesolve.encodings.wang.encode_wang` (any tile set, line limits);
     unsat answers carry a checked DRAT proof."""
-    from tilesolve.encodings.wang import encode_wang
+    from tilesolve.encodings.registry import encode
     from tilesolve.engine.routes import sat_route
     from tilesolve.engine.sat import DEFAULT_SAT_SOLVER
 
     t0 = time.perf_counter()
-    return sat_route(encode_wang(problem, deadline=run.deadline), run, solver=run.solver or DEFAULT_SAT_SOLVER, t0=t0)
+    enc = encode("wang-board-cnf", problem, deadline=run.deadline)
+    return sat_route(enc, run, solver=run.solver or DEFAULT_SAT_SOLVER, t0=t0)
 
 
 def cpsat(problem: BoardProblem, run: RunOptions) -> Solution:
@@ -241,14 +242,24 @@ def crosscheck(problem: BoardProblem, *, seed: int | None = None, time_limit: fl
 
 
 # ----------------------------------------------------------------------------- the family record
+def _listing(problem: BoardProblem) -> list:
+    """Where the cells and edges a file lists differ from the board it describes."""
+    from tilesolve.io.board_json import ListedBoardProblem
+    from tilesolve.verify.board import listing_violations
+
+    if not isinstance(problem, ListedBoardProblem):
+        return []
+    return listing_violations(problem.board, problem.listed_cells, problem.listed_edges)
+
+
 def _verify(problem: BoardProblem, tiling) -> list:
-    return board_violations(tiling, problem)
+    return _listing(problem) + board_violations(tiling, problem)
 
 
 def _encode(problem: BoardProblem):
-    from tilesolve.encodings.wang import encode_wang
+    from tilesolve.encodings.registry import encode
 
-    return encode_wang(problem)
+    return encode("wang-board-cnf", problem)
 
 
 def _read_solution(doc: dict, source: str):
@@ -266,7 +277,12 @@ def _write_solution(problem: BoardProblem, sol: Solution) -> dict:
 def _draw(problem: BoardProblem, sol: Solution, path, fmt: str, *, title: str | None = None, notes=(),
           **_ignored) -> None:
     """SVG of a board tiling: bricks merged from the edge structure, seams of tori and
-    Möbius strips marked; PNG for large boards."""
+    Möbius strips marked; PNG for large boards. A file whose listed cells and edges are not
+    the board it describes is refused."""
+    wrong = _listing(problem)
+    if wrong:
+        raise InvalidProblem(f"the cells and edges listed are not those of the {problem.board.describe()} the "
+                             f"file describes ({len(wrong)} differences, the first: {wrong[0]}); nothing drawn")
     legend = [f"{sol.status.value} by {sol.method}" + (f", seed {sol.seed}" if sol.seed is not None else "")]
     if fmt == "png":
         from tilesolve.io.png import write_board_png

@@ -12,6 +12,7 @@ from tilesolve.cli.outputs import Outputs
 from tilesolve.cli.wang_count import load_tileset, tileset_options, wang_count
 from tilesolve.errors import InvalidProblem
 from tilesolve.family import draw_seed, raise_if_interrupted
+from tilesolve.model.board import MAX_BRICK_COLORS
 
 __all__ = ["brick", "wang", "wall", "BOARD_HELP", "parse_region"]
 
@@ -66,11 +67,6 @@ def _svg_ok(svg, n_cells: int) -> None:
 
     if svg and n_cells > MAX_SVG_CELLS:
         raise InvalidProblem(f"a board of {n_cells:,} cells is too large for an SVG (limit {MAX_SVG_CELLS:,})")
-
-
-#: Most colours for brick tiles: building W_B enumerates all K^4 colourings (64 bytes each
-#: while it is built), so K = 64 already needs 1 GiB.
-MAX_BRICK_COLORS = 63
 
 
 def _brick_colors(colors: int) -> None:

@@ -14,9 +14,29 @@ Fields of both versions:
     ``"brick"`` for W_B (Def. 9) or a list of tiles, each the colours of its legs l1..l4.
 ``max_h``, ``max_v``
     brick walls: longest horizontal run of W_H tiles / vertical run of W_V tiles (or null).
+``grid``, ``mask``
+    for a board cut from a grid (rectangle, torus, cylinder, Möbius strip, Klein bottle,
+    ring, mask, or a restriction of one): the grid and the cells present, as in version 2
+    below (in version 1, ``mask`` is a list of rows of 0/1).
 
 plus the solution's ``status``, ``method``, ``solver``, ``seed``, ``time_s``, ``reason``,
-``notes`` and ``stats``.
+``notes`` and ``stats``, and the free texts ``created_by`` and ``comment``. A reader refuses
+any other field.
+
+The board is *described* by ``board_kind`` with ``grid`` and ``mask``; a file without
+``grid`` (written before version 1 had it) describes a board of a kind in
+:data:`~tilesolve.model.board.GRID_KINDS` by the grid its cells' labels span. A board of any
+other kind (a sheared torus, a board given by its joins) is described by ``cells`` and
+``edges`` alone. Where a file both describes its board and lists ``cells`` and ``edges``, the
+list must be exactly the board described: ``tilesolve verify`` reports every difference as a
+violation, and ``tilesolve draw`` refuses the file. A ``mobius`` board is thus always the
+Möbius strip of its grid, a ``rect`` board the full rectangle, a ``mobius|U`` board some
+cells of the Möbius strip, and so on.
+
+Sizes and colour counts are checked before anything is built: a grid of at most
+:data:`~tilesolve.model.board.MAX_BOARD_CELLS` cells; ``colors`` from 3 to
+:data:`~tilesolve.model.board.MAX_BRICK_COLORS` for ``"brick"`` (the limit of
+``tilesolve brick``), at most :data:`MAX_LIST_COLORS` for a list of tiles.
 
 Version 1 (plain lists; written for boards of at most :data:`COMPACT_MIN_CELLS` cells)
 --------------------------------------------------------------------------------------
@@ -25,6 +45,8 @@ Version 1 (plain lists; written for boards of at most :data:`COMPACT_MIN_CELLS` 
 ``edges``
     ``[a, ka, b, kb]``: leg ``ka`` of cell ``a`` is joined to leg ``kb`` of cell ``b``;
     ``b = -1`` means the wall, and then ``kb`` numbers that boundary leg (0, 1, ...).
+    tilesolve lists a join once, from its smaller ``(cell, leg)``, in order of ``(a, ka)``;
+    a reader takes the joins in any order and either way round.
 ``boundary``
     the colour required on each boundary leg, by boundary-leg number (``null`` = free).
 ``tiles``
@@ -37,8 +59,7 @@ row-major order, little-endian integers or bit-packed 0/1 values (``bits``); the
 rules and a five-line Python reader are in :mod:`tilesolve.io.jsonio`.
 
 ``grid``
-    for a board cut from a grid (rectangle, torus, cylinder, Möbius strip, Klein bottle,
-    ring, mask, or a restriction of one): ``{"rows": R, "cols": C, "wrap_rows": w,
+    for a board cut from a grid: ``{"rows": R, "cols": C, "wrap_rows": w,
     "wrap_cols": w}`` with ``w`` one of ``null`` (the sides meet the wall), ``"plain"``
     (column ``C-1`` meets column 0 in the same row; for ``wrap_rows``, row ``R-1`` meets
     row 0 in the same column) or ``"twist"`` (row ``r`` meets row ``R-1-r``, the Möbius
@@ -52,7 +73,8 @@ rules and a five-line Python reader are in :mod:`tilesolve.io.jsonio`.
     cell then leg (W, N, E, S).
 ``cells``, ``edges``
     instead of ``grid``/``mask``, for any other board: encoded arrays of shapes
-    ``[n, 2]`` and ``[m, 4]``, read as in version 1.
+    ``[n, 2]`` and ``[m, 4]``, read as in version 1. (A file may carry them besides
+    ``grid``; they must then be that board.)
 ``boundary``
     encoded array of shape ``[n_boundary]``: the colour required on each boundary leg, -1 = free.
 ``tiles``
@@ -62,6 +84,7 @@ rules and a five-line Python reader are in :mod:`tilesolve.io.jsonio`.
 from __future__ import annotations
 
 import os
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -71,18 +94,43 @@ from tilesolve.io.atomic import write_text_atomic
 from tilesolve.io.jsonio import (
     check_document, decode_array, dumps, encode_array, provenance_to_dict, read_json, solution_from_provenance,
 )
-from tilesolve.model.board import LEG_NAMES, Board, BoardProblem, GridSpec, WangTileSet
+from tilesolve.model.board import (
+    GRID_KINDS, LEG_NAMES, MAX_BOARD_CELLS, MAX_BRICK_COLORS, Board, BoardProblem, GridSpec, WangTileSet,
+    described_board, grid_kind,
+)
 from tilesolve.model.solution import Solution
 
-__all__ = ["BOARD_SOLUTION", "VERSIONS", "COMPACT_MIN_CELLS", "board_solution_to_dict", "board_solution_from_dict",
-           "write_board_solution", "read_board_solution", "read_boundary"]
+__all__ = ["BOARD_SOLUTION", "VERSIONS", "COMPACT_MIN_CELLS", "MAX_LIST_COLORS", "ListedBoardProblem",
+           "board_solution_to_dict", "board_solution_from_dict", "write_board_solution", "read_board_solution",
+           "read_boundary"]
 
 BOARD_SOLUTION = "tilesolve/board-solution"
 #: Versions of ``tilesolve/board-solution`` this module reads.
 VERSIONS = frozenset({1, 2})
 #: Boards with more cells than this are written as version 2.
 COMPACT_MIN_CELLS = 4096
+#: Most colours a tile set given as a list of tiles may declare: more than 16,384 tiles can
+#: use with four new colours each.
+MAX_LIST_COLORS = 1 << 16
 _WRAP_NAMES = (None, "plain", "twist")
+_KEYS = frozenset({
+    "format", "version", "board_kind", "leg_order", "colors", "tileset", "max_h", "max_v", "grid", "mask", "cells",
+    "edges", "boundary", "tiles", "status", "method", "solver", "seed", "time_s", "reason", "notes", "stats",
+    "created_by", "comment",
+})
+
+
+@dataclass(frozen=True, eq=False)
+class ListedBoardProblem(BoardProblem):
+    """A board problem read from a file that both describes its board and lists it.
+
+    ``board`` is rebuilt from the description (kind, grid, mask); ``listed_cells`` and
+    ``listed_edges`` are the ``cells`` and ``edges`` the file lists, as read, for the verifier
+    to hold against it (:func:`tilesolve.verify.board.listing_violations`).
+    """
+
+    listed_cells: np.ndarray | None = None
+    listed_edges: np.ndarray | None = None
 
 
 def board_solution_to_dict(problem: BoardProblem, solution: Solution, *, compact: bool | None = None) -> dict:
@@ -93,8 +141,8 @@ def board_solution_to_dict(problem: BoardProblem, solution: Solution, *, compact
     problem, solution
     compact : bool, optional
         Write version 2 (encoded arrays, grid boards as their grid and mask) rather than
-        version 1 (plain lists). Default: version 2 for boards of more than
-        :data:`COMPACT_MIN_CELLS` cells.
+        version 1 (plain lists, grid boards also listed cell by cell). Default: version 2 for
+        boards of more than :data:`COMPACT_MIN_CELLS` cells.
     """
     b = problem.board
     if compact is None:
@@ -112,22 +160,21 @@ def board_solution_to_dict(problem: BoardProblem, solution: Solution, *, compact
         **provenance_to_dict(solution),
         "stats": stats,
     }
-    tiles = None if solution.tiling is None else np.asarray(solution.tiling)
-    if not compact:
-        doc["cells"] = np.asarray(b.labels)
-        doc["edges"] = b.edge_array()
-        doc["boundary"] = [None if c < 0 else c for c in problem.boundary.tolist()]
-        doc["tiles"] = None if tiles is None else tiles.astype(np.int64, copy=False)
-        return doc
+    array = encode_array if compact else np.asarray
     if b.grid_spec is not None:
         spec = b.grid_spec
         doc["grid"] = {"rows": spec.rows, "cols": spec.cols, "wrap_rows": spec.wrap_rows, "wrap_cols": spec.wrap_cols}
-        doc["mask"] = None if b.n_cells == spec.rows * spec.cols else encode_array(b.mask_of())
+        doc["mask"] = None if b.n_cells == spec.rows * spec.cols else array(b.mask_of().astype(np.uint8))
+    if not compact or b.grid_spec is None:
+        doc["cells"] = array(b.labels)
+        doc["edges"] = array(b.edge_array())
+    tiles = None if solution.tiling is None else np.asarray(solution.tiling)
+    if compact:
+        doc["boundary"] = encode_array(problem.boundary)
+        doc["tiles"] = None if tiles is None else encode_array(tiles)
     else:
-        doc["cells"] = encode_array(b.labels)
-        doc["edges"] = encode_array(b.edge_array())
-    doc["boundary"] = encode_array(problem.boundary)
-    doc["tiles"] = None if tiles is None else encode_array(tiles)
+        doc["boundary"] = [None if c < 0 else c for c in problem.boundary.tolist()]
+        doc["tiles"] = None if tiles is None else tiles.astype(np.int64, copy=False)
     return doc
 
 
@@ -141,12 +188,48 @@ def _int(doc: dict, name: str, source: Any, *, optional: bool = False) -> int | 
 
 
 def _check_header(doc: Any, source: Any) -> int:
-    """The file's version, once its format and version are checked."""
-    return check_document(doc, source, {BOARD_SOLUTION: VERSIONS})["version"]
+    """The file's version, once its format, version and fields are checked."""
+    version = check_document(doc, source, {BOARD_SOLUTION: VERSIONS})["version"]
+    unknown = sorted(set(doc) - _KEYS)
+    if unknown:
+        raise InvalidProblem(f"{source}: unknown field {unknown[0]!r} in a {BOARD_SOLUTION} file")
+    return version
 
 
-def _grid_board(doc: dict, source: Any, kind: str) -> Board:
-    g = doc["grid"]
+def _array(doc: dict, name: str, source: Any, version: int, ndim: int, width: int | None = None) -> np.ndarray:
+    """Field ``name`` as an integer array (a list in version 1, a list or encoded array in 2)."""
+    value = doc[name]
+    if version < 2 and not isinstance(value, list):
+        raise InvalidProblem(f"{source}: {name!r} must be a list (encoded arrays need version 2)")
+    arr = decode_array(value, name, source, ndim=ndim)
+    if arr.size == 0 and width is not None:
+        arr = arr.reshape(0, width)
+    if width is not None and arr.shape[1:] != (width,):
+        raise InvalidProblem(f"{source}: {name!r} must hold {width} integers per entry, got shape {list(arr.shape)}")
+    return arr
+
+
+def _tileset(doc: dict, source: Any) -> WangTileSet:
+    """The tile set, its colour count checked before anything is built."""
+    colors = _int(doc, "colors", source)
+    ts = doc.get("tileset")
+    if ts == "brick":
+        if not 3 <= colors <= MAX_BRICK_COLORS:
+            raise InvalidProblem(f"{source}: 'colors' is {colors}; brick Wang tiles have 3 to {MAX_BRICK_COLORS} "
+                                 "colours here (Def. 9)")
+        return WangTileSet.brick(colors)
+    if not isinstance(ts, list):
+        raise InvalidProblem(f"{source}: 'tileset' must be \"brick\" or a list of tiles, got {type(ts).__name__}")
+    if not 1 <= colors <= MAX_LIST_COLORS:
+        raise InvalidProblem(f"{source}: 'colors' is {colors}; a list of tiles has 1 to {MAX_LIST_COLORS} colours here")
+    tiles = decode_array(ts, "tileset", source)
+    try:
+        return WangTileSet(tiles, colors)
+    except InvalidProblem as exc:
+        raise InvalidProblem(f"{source}: 'tileset': {exc}") from None
+
+
+def _grid_spec(g: Any, source: Any) -> GridSpec:
     if not isinstance(g, dict) or set(g) != {"rows", "cols", "wrap_rows", "wrap_cols"}:
         raise InvalidProblem(f"{source}: 'grid' must be {{\"rows\", \"cols\", \"wrap_rows\", \"wrap_cols\"}}")
     rows, cols = _int(g, "rows", f"{source}: 'grid'"), _int(g, "cols", f"{source}: 'grid'")
@@ -155,81 +238,118 @@ def _grid_board(doc: dict, source: Any, kind: str) -> Board:
             raise InvalidProblem(f"{source}: 'grid'.{name} must be null, \"plain\" or \"twist\", got {g[name]!r}")
     if rows < 1 or cols < 1:
         raise InvalidProblem(f"{source}: 'grid' must have positive rows and cols, got {cols}x{rows}")
+    if rows * cols > MAX_BOARD_CELLS:
+        raise InvalidProblem(f"{source}: 'grid' is {cols}x{rows}; tilesolve's boards have at most "
+                             f"{MAX_BOARD_CELLS:,} cells")
+    return GridSpec(rows, cols, g["wrap_rows"], g["wrap_cols"])
+
+
+def _mask(doc: dict, spec: GridSpec, source: Any, version: int) -> np.ndarray | None:
     if doc.get("mask") is None:
-        mask = np.ones((rows, cols), bool)
+        return None
+    m = _array(doc, "mask", source, version, ndim=2)
+    if m.shape != (spec.rows, spec.cols) or ((m != 0) & (m != 1)).any():
+        raise InvalidProblem(f"{source}: 'mask' must hold 0/1 values of shape [{spec.rows}, {spec.cols}], "
+                             f"got shape {list(m.shape)}")
+    return m.astype(bool)
+
+
+def _spanned_grid(kind: str, cells: np.ndarray, source: Any) -> tuple[GridSpec, np.ndarray]:
+    """The grid and mask of a grid kind's board in a file without ``grid``: the grid its cells'
+    labels span, the cells where they are."""
+    if cells.size == 0:
+        raise InvalidProblem(f"{source}: a {kind} board needs cells")
+    if cells.min() < 0:
+        i = int(np.flatnonzero((cells < 0).any(axis=1))[0])
+        raise InvalidProblem(f"{source}: cell {i} has the label {cells[i].tolist()}; without 'grid', a {kind} "
+                             "board's grid is the one its cells' labels span")
+    rows, cols = (int(v) + 1 for v in cells.max(axis=0))
+    if rows * cols > MAX_BOARD_CELLS:
+        raise InvalidProblem(f"{source}: the cells' labels span {cols}x{rows}; tilesolve's boards have at most "
+                             f"{MAX_BOARD_CELLS:,} cells")
+    mask = np.zeros((rows, cols), bool)
+    mask[cells[:, 0], cells[:, 1]] = True
+    return GridSpec(rows, cols, *GRID_KINDS[grid_kind(kind)]), mask
+
+
+def _board(doc: dict, source: Any, version: int, kind: str, listed) -> Board:
+    """The board the file describes (see the module docstring)."""
+    if doc.get("grid") is not None:
+        spec = _grid_spec(doc["grid"], source)
+        grid = spec, _mask(doc, spec, source, version)
+    elif listed is None:
+        raise InvalidProblem(f"{source}: a board solution needs 'grid' or 'cells' and 'edges'")
+    elif grid_kind(kind) is not None:
+        grid = _spanned_grid(kind, listed[0], source)
     else:
-        m = decode_array(doc["mask"], "mask", source)
-        if m.shape != (rows, cols) or ((m != 0) & (m != 1)).any():
-            raise InvalidProblem(f"{source}: 'mask' must hold 0/1 values of shape [{rows}, {cols}], "
-                                 f"got shape {list(m.shape)}")
-        mask = m.astype(bool)
+        grid = None
     try:
-        return Board.from_grid_spec(GridSpec(rows, cols, g["wrap_rows"], g["wrap_cols"]), mask, kind=kind)
+        return Board.from_edges(*listed, kind=kind) if grid is None else described_board(kind, *grid)
     except InvalidProblem as exc:
-        raise InvalidProblem(f"{source}: 'grid': {exc}") from None
+        raise InvalidProblem(f"{source}: {exc}") from None
+
+
+def _colour_list(value: Any, what: str, source: Any, message: str) -> np.ndarray:
+    """A JSON list of colours (``null`` = free) as an array with ``-1`` for free legs."""
+    if not isinstance(value, list) or not all(v is None or (isinstance(v, int) and not isinstance(v, bool))
+                                              for v in value):
+        raise InvalidProblem(f"{source}: {message}")
+    return decode_array([-1 if v is None else v for v in value], what, source, ndim=1)
+
+
+def _boundary(doc: dict, source: Any, version: int, n_boundary: int) -> np.ndarray:
+    bnd = doc.get("boundary")
+    if bnd is None:
+        return np.full(n_boundary, -1, np.int64)
+    if version >= 2:
+        return decode_array(bnd, "boundary", source, ndim=1)
+    return _colour_list(bnd, "boundary", source, "'boundary' must be a list of colours or null")
 
 
 def board_solution_from_dict(doc: dict, source: Any = "<document>") -> tuple[BoardProblem, Solution]:
     """Rebuild ``(problem, solution)`` from a version 1 or 2 document; the tiles are read as
     written (the verifier judges them).
 
+    The board is rebuilt from the file's description. Where the file also lists its cells
+    and edges, the problem is a :class:`ListedBoardProblem` that keeps them for the verifier.
+
     Raises
     ------
     InvalidProblem
-        One line naming ``source`` and the field, for anything malformed.
+        One line naming ``source`` and the field, for anything malformed, out of range or
+        contradictory (a board description that contradicts itself, an unknown field).
     """
     version = _check_header(doc, source)
-    order = doc.get("leg_order", list(LEG_NAMES))
-    if list(order) != list(LEG_NAMES):
-        raise InvalidProblem(f"{source}: leg_order {order!r} is not supported; tilesolve writes {list(LEG_NAMES)}")
-    colors = _int(doc, "colors", source)
-    ts = doc.get("tileset")
-    try:
-        tileset = WangTileSet.brick(colors) if ts == "brick" else WangTileSet(ts if ts is not None else [], colors)
-    except InvalidProblem as exc:
-        raise InvalidProblem(f"{source}: {exc}") from None
+    if doc.get("leg_order", list(LEG_NAMES)) != list(LEG_NAMES):
+        raise InvalidProblem(f"{source}: leg_order {doc['leg_order']!r} is not supported; tilesolve writes "
+                             f"{list(LEG_NAMES)}")
+    tileset = _tileset(doc, source)
     kind = doc.get("board_kind") or "board"
     if not isinstance(kind, str):
         raise InvalidProblem(f"{source}: 'board_kind' must be a string, got {kind!r}")
-    if version >= 2 and "grid" in doc:
-        board = _grid_board(doc, source, kind)
-    elif "cells" in doc and "edges" in doc:
-        cells, edges = doc["cells"], doc["edges"]
-        if version >= 2:
-            cells, edges = decode_array(cells, "cells", source), decode_array(edges, "edges", source)
-        try:
-            board = Board.from_edges(cells, edges, kind=kind)
-        except InvalidProblem as exc:
-            raise InvalidProblem(f"{source}: {exc}") from None
-    else:
-        need = "'grid' or 'cells' and 'edges'" if version >= 2 else "'cells' and 'edges'"
-        raise InvalidProblem(f"{source}: a board solution needs {need}")
-    bnd = doc.get("boundary")
-    if bnd is None:
-        beta = np.full(board.n_boundary, -1, np.int64)
-    elif version >= 2:
-        beta = decode_array(bnd, "boundary", source, ndim=1)
-    else:
-        if not isinstance(bnd, list) or not all(v is None or (isinstance(v, int) and not isinstance(v, bool))
-                                                for v in bnd):
-            raise InvalidProblem(f"{source}: 'boundary' must be a list of colours or null")
-        beta = [-1 if v is None else v for v in bnd]
+    listed = None
+    if "cells" in doc or "edges" in doc:
+        if not ("cells" in doc and "edges" in doc):
+            raise InvalidProblem(f"{source}: a board solution lists 'cells' and 'edges' together")
+        listed = (_array(doc, "cells", source, version, 2, 2), _array(doc, "edges", source, version, 2, 4))
+        if listed[0].shape[0] > MAX_BOARD_CELLS:
+            raise InvalidProblem(f"{source}: 'cells' lists {listed[0].shape[0]:,} cells; tilesolve's boards have at "
+                                 f"most {MAX_BOARD_CELLS:,}")
+    elif version < 2:
+        raise InvalidProblem(f"{source}: a version 1 board solution lists 'cells' and 'edges'")
+    board = _board(doc, source, version, kind, listed)
+    beta = _boundary(doc, source, version, board.n_boundary)
+    lines = dict(max_h=_int(doc, "max_h", source, optional=True), max_v=_int(doc, "max_v", source, optional=True))
     try:
-        problem = BoardProblem(board, tileset, beta,
-                               max_h=_int(doc, "max_h", source, optional=True),
-                               max_v=_int(doc, "max_v", source, optional=True))
+        if listed is not None and board.grid_spec is not None:  # described and listed: keep the list
+            problem = ListedBoardProblem(board, tileset, beta, **lines, listed_cells=listed[0], listed_edges=listed[1])
+        else:
+            problem = BoardProblem(board, tileset, beta, **lines)
     except InvalidProblem as exc:
         raise InvalidProblem(f"{source}: {exc}") from None
-    tiles = doc.get("tiles")
     tiling = None
-    if tiles is not None:
-        if version >= 2:
-            tiling = decode_array(tiles, "tiles", source)
-        else:
-            try:
-                tiling = np.asarray(tiles, dtype=np.int64)
-            except (TypeError, ValueError):
-                raise InvalidProblem(f"{source}: 'tiles' must be a list of 4 integer colours per cell") from None
+    if doc.get("tiles") is not None:
+        tiling = _array(doc, "tiles", source, version, 2)
     return problem, solution_from_provenance(doc, source, tiling, what="tiles")
 
 
@@ -251,8 +371,5 @@ def read_boundary(path: str | os.PathLike) -> np.ndarray:
     data = read_json(path)
     if isinstance(data, dict):
         data = data.get("boundary")
-    if not isinstance(data, list) or not all(v is None or (isinstance(v, int) and not isinstance(v, bool))
-                                             for v in data):
-        raise InvalidProblem(f"{path}: a boundary file holds a list of colours (null = free), "
-                             "or an object with 'boundary'")
-    return np.array([-1 if v is None else v for v in data], dtype=np.int64)
+    return _colour_list(data, "boundary", path, "a boundary file holds a list of colours (null = free), "
+                                                "or an object with 'boundary'")

@@ -41,8 +41,8 @@ import numpy as np
 from tilesolve.errors import InvalidProblem
 
 __all__ = [
-    "W", "N", "E", "S", "LEG_NAMES", "MAX_BOARD_CELLS",
-    "GridSpec", "Board", "WangTileSet", "BoardProblem",
+    "W", "N", "E", "S", "LEG_NAMES", "MAX_BOARD_CELLS", "MAX_BRICK_COLORS", "GRID_KINDS",
+    "GridSpec", "Board", "grid_kind", "kind_mask", "described_board", "WangTileSet", "BoardProblem",
     "parse_board_spec", "parse_mask_text",
     "wang_from_nesw", "wang_to_nesw", "random_boundary",
 ]
@@ -51,6 +51,17 @@ W, N, E, S = 0, 1, 2, 3
 LEG_NAMES = ("W", "N", "E", "S")
 #: Largest board any route accepts.
 MAX_BOARD_CELLS = 1 << 26
+#: Most colours for brick tiles: building W_B enumerates all K^4 colourings (64 bytes each
+#: while it is built), so K = 64 already needs 1 GiB.
+MAX_BRICK_COLORS = 63
+#: The grid boards the builders make, by kind: how each identifies its sides
+#: ``(wrap_rows, wrap_cols)`` (see :meth:`Board.grid`). A kind followed by ``|U`` is a
+#: restriction of such a board (Def. 4), e.g. ``"mobius|U"``.
+GRID_KINDS: dict[str, tuple[str | None, str | None]] = {
+    "rect": (None, None), "torus": ("plain", "plain"), "cylinder": (None, "plain"), "mobius": (None, "twist"),
+    "klein": ("plain", "twist"), "ring": (None, None), "mask": (None, None), "tree": (None, None),
+}
+_FULL_KINDS = frozenset({"rect", "torus", "cylinder", "mobius", "klein"})
 
 _DELTA = {W: (0, -1), N: (-1, 0), E: (0, 1), S: (1, 0)}
 _WRAPS = (None, "plain", "twist")
@@ -111,6 +122,15 @@ class Board:
             raise InvalidProblem(f"board joins must have shape ({n}, 4), got {nc.shape} and {nl.shape}")
         if n > MAX_BOARD_CELLS:
             raise InvalidProblem(f"board has {n:,} cells; tilesolve refuses more than {MAX_BOARD_CELLS:,}")
+        if n and lab.min() < 0:
+            i = int(np.flatnonzero((lab < 0).any(axis=1))[0])
+            raise InvalidProblem(f"cell {i} has the label {lab[i].tolist()}; labels are [row, col] with row, col >= 0")
+        if n > 1:
+            order = np.lexsort((lab[:, 1], lab[:, 0]))
+            same = np.flatnonzero((lab[order[1:]] == lab[order[:-1]]).all(axis=1))
+            if same.size:
+                i, j = sorted(int(v) for v in order[same[0]:same[0] + 2])
+                raise InvalidProblem(f"cells {i} and {j} have the same label {lab[i].tolist()}")
         if n and ((nc < -1) | (nc >= n)).any():
             raise InvalidProblem("board joins name a cell that does not exist")
         inner = nc >= 0
@@ -347,10 +367,16 @@ class Board:
         return cls._built(np.stack([rows, cols], axis=1), nc, nl, kind, GridSpec(H, Wd, wrap_rows, wrap_cols))
 
     @classmethod
+    def _shape(cls, kind: str, rows: int, cols: int) -> "Board":
+        """The ``rows x cols`` board of a shape of :data:`GRID_KINDS` (its sides and cells)."""
+        _check_dims(rows, cols)
+        wrap_rows, wrap_cols = GRID_KINDS[kind]
+        return cls.grid(kind_mask(kind, rows, cols), wrap_rows=wrap_rows, wrap_cols=wrap_cols, kind=kind)
+
+    @classmethod
     def rect(cls, rows: int, cols: int) -> "Board":
         """The ``rows x cols`` rectangle with the wall all round."""
-        _check_dims(rows, cols)
-        return cls.grid(np.ones((rows, cols), bool), kind="rect")
+        return cls._shape("rect", rows, cols)
 
     @classmethod
     def mask(cls, mask) -> "Board":
@@ -360,14 +386,12 @@ class Board:
     @classmethod
     def torus(cls, rows: int, cols: int) -> "Board":
         """Both directions wrap: no boundary (periodic tilings, Remark 3)."""
-        _check_dims(rows, cols)
-        return cls.grid(np.ones((rows, cols), bool), wrap_rows="plain", wrap_cols="plain", kind="torus")
+        return cls._shape("torus", rows, cols)
 
     @classmethod
     def cylinder(cls, rows: int, cols: int) -> "Board":
         """Columns wrap; the top and bottom rows meet the wall."""
-        _check_dims(rows, cols)
-        return cls.grid(np.ones((rows, cols), bool), wrap_cols="plain", kind="cylinder")
+        return cls._shape("cylinder", rows, cols)
 
     @classmethod
     def mobius(cls, rows: int, cols: int) -> "Board":
@@ -377,24 +401,17 @@ class Board:
         ``j = 1, j' = N, i + i' = N + 1``); the N legs of row 0 and the S legs of the last
         row are the boundary ``B``.
         """
-        _check_dims(rows, cols)
-        return cls.grid(np.ones((rows, cols), bool), wrap_cols="twist", kind="mobius")
+        return cls._shape("mobius", rows, cols)
 
     @classmethod
     def klein(cls, rows: int, cols: int) -> "Board":
         """Klein bottle: columns wrap with a twist, rows wrap plainly; no boundary."""
-        _check_dims(rows, cols)
-        return cls.grid(np.ones((rows, cols), bool), wrap_rows="plain", wrap_cols="twist", kind="klein")
+        return cls._shape("klein", rows, cols)
 
     @classmethod
     def ring(cls, rows: int, cols: int) -> "Board":
         """The border of a ``rows x cols`` rectangle: G' is one cycle (tests of §4.3)."""
-        _check_dims(rows, cols)
-        if rows < 2 or cols < 2:
-            raise InvalidProblem("a ring needs at least 2x2 cells")
-        m = np.zeros((rows, cols), bool)
-        m[0, :] = m[-1, :] = m[:, 0] = m[:, -1] = True
-        return cls.grid(m, kind="ring")
+        return cls._shape("ring", rows, cols)
 
     @classmethod
     def random_tree(cls, n_cells: int, *, seed=None, span: int | None = None) -> "Board":
@@ -501,6 +518,78 @@ def _check_dims(rows: int, cols: int) -> None:
         raise InvalidProblem(f"board {cols}x{rows} is larger than {MAX_BOARD_CELLS:,} cells")
 
 
+def grid_kind(kind: str) -> str | None:
+    """The kind of :data:`GRID_KINDS` a board's ``kind`` names, restricted (``"mobius|U"``) or
+    not, else ``None``.
+
+    >>> grid_kind("mobius|U"), grid_kind("sheared torus")
+    ('mobius', None)
+    """
+    base, *rest = str(kind).split("|")
+    return base if base in GRID_KINDS and all(r == "U" for r in rest) else None
+
+
+def kind_mask(kind: str, rows: int, cols: int) -> np.ndarray | None:
+    """The cells a board of ``kind`` (:data:`GRID_KINDS`) has on a ``rows x cols`` grid, or
+    ``None`` where the kind allows any mask (``mask``, ``tree``, kinds not in the table).
+
+    >>> kind_mask("ring", 3, 3).astype(int).tolist()
+    [[1, 1, 1], [1, 0, 1], [1, 1, 1]]
+    """
+    if kind in _FULL_KINDS:
+        return np.ones((rows, cols), bool)
+    if kind != "ring":
+        return None
+    if rows < 2 or cols < 2:
+        raise InvalidProblem("a ring needs at least 2x2 cells")
+    m = np.zeros((rows, cols), bool)
+    m[0, :] = m[-1, :] = m[:, 0] = m[:, -1] = True
+    return m
+
+
+def described_board(kind: str, spec: GridSpec, mask=None) -> "Board":
+    """The board a file describes by its ``kind``, its grid ``spec`` and a ``mask`` of the cells
+    present (``None``: every cell of the grid).
+
+    A kind of :data:`GRID_KINDS` must agree with the rest: its sides are identified as the
+    kind's are, and its cells are the kind's (any of them for a restriction ``kind|U``). Any
+    other kind just names the board of the grid and mask. The size is checked before anything
+    is allocated.
+
+    Raises
+    ------
+    InvalidProblem
+        The description contradicts itself, or the grid is larger than :data:`MAX_BOARD_CELLS`.
+
+    Examples
+    --------
+    >>> described_board("mobius", GridSpec(3, 4, None, "twist")).describe()
+    'mobius board, 12 cells in 4x3, 8 boundary legs'
+    >>> described_board("rect", GridSpec(3, 4, "plain", "plain"))
+    Traceback (most recent call last):
+    ...
+    tilesolve.errors.InvalidProblem: a rect board has wrap_rows None and wrap_cols None, not 'plain' and 'plain'
+    """
+    rows, cols, wrap_rows, wrap_cols = int(spec[0]), int(spec[1]), spec[2], spec[3]
+    _check_dims(rows, cols)
+    m = np.ones((rows, cols), bool) if mask is None else np.asarray(mask, dtype=bool)
+    base = grid_kind(kind)
+    if base is not None:
+        wraps = GRID_KINDS[base]
+        if (wrap_rows, wrap_cols) != wraps:
+            raise InvalidProblem(f"a {base} board has wrap_rows {wraps[0]!r} and wrap_cols {wraps[1]!r}, "
+                                 f"not {wrap_rows!r} and {wrap_cols!r}")
+        need = kind_mask(base, rows, cols)
+        if need is not None and m.shape == need.shape:
+            wrong = (m & ~need) if base != kind else (m != need)
+            if wrong.any():
+                r, c = (int(v) for v in np.argwhere(wrong)[0])
+                has = "has a cell" if need[r, c] else "has no cell"
+                raise InvalidProblem(f"the mask is not that of a {kind} board of {cols}x{rows}: "
+                                     f"the {base} board {has} at [{r}, {c}]")
+    return Board.from_grid_spec(GridSpec(rows, cols, wrap_rows, wrap_cols), m, kind=str(kind))
+
+
 # ---------------------------------------------------------------------- masks and specs
 def parse_mask_text(text: str, source: str = "<mask>") -> np.ndarray:
     """ASCII mask: ``#`` = cell, ``.`` = hole, one board row per line (blank lines ignored)."""
@@ -602,6 +691,9 @@ class WangTileSet:
         k = int(n_colors)
         if k < 3:
             raise InvalidProblem(f"brick Wang tiles need #C >= 3 colours (Def. 9), got {k}")
+        if k > MAX_BRICK_COLORS:
+            raise InvalidProblem(f"brick Wang tiles with {k} colours: tilesolve builds W_B for up to "
+                                 f"{MAX_BRICK_COLORS} colours")
         g = np.stack(np.meshgrid(*[np.arange(k)] * 4, indexing="ij"), axis=-1).reshape(-1, 4)
         ok = ((g[:, 0] == g[:, 2]) & (g[:, 1] != g[:, 3])) | ((g[:, 0] != g[:, 2]) & (g[:, 1] == g[:, 3]))
         return cls(g[ok], k, is_brick=True)

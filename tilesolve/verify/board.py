@@ -7,6 +7,10 @@ arrays and never imports the encodings or the constructive algorithms.
 
 A tiling of a board is an ``(n_cells, 4)`` integer array: the colour of each cell's legs
 in the order W, N, E, S (see :mod:`tilesolve.model.board`).
+
+A file that lists its board's cells and edges besides describing the board (kind, grid,
+mask) makes a second claim: that the list *is* that board. :func:`listing_violations`
+checks it, so that a tiling is never judged on a board other than the one the file names.
 """
 
 from __future__ import annotations
@@ -15,9 +19,12 @@ import numpy as np
 
 from tilesolve.verify.dappled import Violation
 
-__all__ = ["board_violations", "is_valid_board_tiling", "line_runs"]
+__all__ = ["board_violations", "is_valid_board_tiling", "line_runs", "listing_violations", "MAX_LISTED"]
 
 _LEGS = ("W", "N", "E", "S")
+#: Differences between a listed board and its description reported one by one, per kind
+#: (cells, edges); one more violation counts the rest.
+MAX_LISTED = 1000
 
 
 def _where(labels: np.ndarray, a: int) -> tuple[int, int]:
@@ -88,9 +95,7 @@ def board_violations(tiling, problem) -> list[Violation]:
             r, c = _where(labels, a)
             out.append(Violation("tile", f"tile {t[a].tolist()} has no straight line (c1 != c3 and c2 != c4)", r, c))
     else:
-        ts = np.asarray(problem.tileset.tiles, dtype=np.int64)
-        key = lambda x: ((x[:, 0] * k + x[:, 1]) * k + x[:, 2]) * k + x[:, 3]  # noqa: E731
-        ok = np.isin(key(t), key(ts))
+        ok = _rows_in(t, np.asarray(problem.tileset.tiles, dtype=np.int64), k)
         for a in np.flatnonzero(~ok):
             r, c = _where(labels, a)
             out.append(Violation("tile", f"tile {t[a].tolist()} (W, N, E, S) is not in the tile set", r, c))
@@ -125,11 +130,112 @@ def board_violations(tiling, problem) -> list[Violation]:
                               ("V", getattr(problem, "max_v", None), t[:, 1] == t[:, 3])):
         if lim is None:
             continue
-        run = line_runs(nc, nl, member, axis, int(lim) + 1)
+        # no run off a loop is longer than the board: capping at n + 1 bounds the work, and a
+        # run that reaches it goes round a loop (an endless line, longer than any limit)
+        cap = min(int(lim), n) + 1
+        run = line_runs(nc, nl, member, axis, cap)
         what = "horizontal run of W_H" if axis == "H" else "vertical run of W_V"
-        for a in np.flatnonzero(run > lim):
+        for a in np.flatnonzero(run >= cap):
             r, c = _where(labels, a)
             out.append(Violation("line", f"{what} tiles longer than {lim} ends here", r, c))
+    return out
+
+
+def _rows_in(rows: np.ndarray, table: np.ndarray, k: int) -> np.ndarray:
+    """Which rows of ``rows`` (4 colours in ``0..k-1`` each) are rows of ``table``."""
+    if k <= 55108:  # k**4 < 2**63: one int64 key per row
+        key = lambda x: ((x[:, 0] * k + x[:, 1]) * k + x[:, 2]) * k + x[:, 3]  # noqa: E731
+        return np.isin(key(rows), key(table))
+    _, inv = np.unique(np.concatenate([table, rows]), axis=0, return_inverse=True)
+    inv = inv.reshape(-1)
+    return np.isin(inv[len(table):], inv[:len(table)])
+
+
+def _join_text(labels: np.ndarray, a: int, leg: int, b: int, kb: int) -> str:
+    """``leg E of cell [r, c] meets leg W of cell [r', c']`` (``b = -1``: the wall)."""
+    other = f"the wall (boundary leg {kb})" if b < 0 else f"leg {_LEGS[kb]} of cell {list(_where(labels, b))}"
+    return f"leg {_LEGS[leg]} of cell {list(_where(labels, a))} meets {other}"
+
+
+def listing_violations(board, cells, edges) -> list[Violation]:
+    """Every way the ``cells`` and ``edges`` a file lists differ from ``board``, the board the
+    file describes (rebuilt from its kind, grid and mask).
+
+    ``cells`` must be the board's ``[row, col]`` labels in its order (a tiling gives the colours
+    of cell ``i`` in its ``i``-th row). ``edges`` must hold each join once as ``[a, ka, b, kb]``
+    (either way round) and each boundary leg once as ``[a, ka, -1, kb]`` with its number ``kb``,
+    in any order. Each difference is a violation of kind ``"board"`` at the cell it concerns;
+    past :data:`MAX_LISTED` of one kind, one more violation counts the rest.
+
+    Examples
+    --------
+    >>> from tilesolve.model.board import Board
+    >>> b = Board.rect(1, 2)
+    >>> listing_violations(b, b.labels, b.edge_array())
+    []
+    >>> cells = b.labels.copy()
+    >>> cells[0] = [5000, 5000]
+    >>> [str(v) for v in listing_violations(b, cells, b.edge_array())]
+    ['(row 0, col 0) cell 0 is listed at [5000, 5000]; the board has it at [0, 0]']
+    """
+    labels, nc, nl = board.labels, board.nbr_cell, board.nbr_leg
+    n = labels.shape[0]
+    out: list[Violation] = []
+    c = np.asarray(cells)
+    e = np.asarray(edges)
+    if c.ndim != 2 or c.shape[1] != 2 or e.ndim != 2 or e.shape[1] != 4:
+        return [Violation("board", f"the cells (shape {list(c.shape)}) and edges (shape {list(e.shape)}) are not "
+                                   "lists of [row, col] and [a, ka, b, kb]")]
+    c, e = c.astype(np.int64, copy=False), e.astype(np.int64, copy=False)
+    # cells: the same labels in the same order
+    if c.shape[0] != n:
+        out.append(Violation("board", f"the file lists {c.shape[0]} cells; the board has {n}"))
+    m = min(n, c.shape[0])
+    moved = np.flatnonzero((c[:m] != labels[:m]).any(axis=1))
+    for i in moved[:MAX_LISTED]:
+        r, col = _where(labels, i)
+        out.append(Violation("board", f"cell {i} is listed at {c[i].tolist()}; the board has it at [{r}, {col}]",
+                             r, col))
+    if moved.size > MAX_LISTED:
+        out.append(Violation("board", f"... and {moved.size - MAX_LISTED} more cells listed at other places"))
+    # edges: the same joins and numbered boundary legs, as a multiset of keys (lower slot, other end)
+    slot = np.arange(4 * n, dtype=np.int64)
+    wall = nc.ravel() < 0
+    nb = int(wall.sum())
+    span = 4 * n + nb  # slots 0..4n-1, then the wall legs 4n + kb
+    far = np.where(wall, 4 * n + nl.ravel(), nc.ravel() * 4 + nl.ravel())
+    own = wall | (far >= slot)
+    board_keys = slot[own] * span + far[own]
+    a, ka, b, kb = e.T
+    ok = (a >= 0) & (a < n) & (ka >= 0) & (ka < 4) & np.where(
+        b >= 0, (b < n) & (kb >= 0) & (kb < 4), (b == -1) & (kb >= 0) & (kb < nb))
+    sa = a * 4 + ka
+    sb = np.where(b >= 0, b * 4 + kb, 4 * n + kb)
+    keys = np.where(ok, np.minimum(sa, sb) * span + np.maximum(sa, sb), -1)
+    if ok.all() and np.array_equal(np.sort(keys), board_keys):  # board_keys ascend with slot
+        return out
+    order = np.argsort(keys, kind="stable")
+    repeat = np.zeros(keys.size, bool)
+    repeat[order[1:]] = (keys[order[1:]] == keys[order[:-1]]) & ok[order[1:]]
+    stray = ~ok | ~np.isin(keys, board_keys) | repeat
+    bad = np.flatnonzero(stray)
+    missing = board_keys[~np.isin(board_keys, keys)]
+    for j in bad[:MAX_LISTED]:
+        at = _where(labels, int(a[j])) if 0 <= a[j] < n else (None, None)
+        why = ("is listed twice" if repeat[j] else "is not an edge of the board" if ok[j]
+               else "names a cell, leg or boundary leg the board does not have")
+        out.append(Violation("board", f"edge {int(j)} {e[j].tolist()} {why}", *at))
+    if bad.size > MAX_LISTED:
+        out.append(Violation("board", f"... and {bad.size - MAX_LISTED} more listed edges the board does not have"))
+    for key in missing[:MAX_LISTED]:
+        lo, hi = divmod(int(key), span)
+        a0, leg = divmod(lo, 4)
+        b0, kb0 = (-1, hi - 4 * n) if hi >= 4 * n else divmod(hi, 4)
+        r, col = _where(labels, a0)
+        out.append(Violation("board", f"the file does not list the edge where {_join_text(labels, a0, leg, b0, kb0)}",
+                             r, col))
+    if missing.size > MAX_LISTED:
+        out.append(Violation("board", f"... and {missing.size - MAX_LISTED} more edges of the board not listed"))
     return out
 
 
