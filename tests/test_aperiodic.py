@@ -11,7 +11,7 @@ from clitools import one_line_error, run, snapshot
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from tilesolve.aperiodic import AperiodicProblem, solve
+from tilesolve.aperiodic import AperiodicProblem, AperiodicReport, solve
 from tilesolve.deadline import Deadline
 from tilesolve.encodings.wang_tiles import encode_tiles
 from tilesolve.engine.aperiodic import sweep
@@ -130,9 +130,16 @@ def test_sweep_workers_and_cache(tmp_path):
     two, intr = sweep(DIAGONAL, names, RunOptions(seed=1, workers=2), cache=cache)
     assert not intr and [c.status for c in one] == [c.status for c in two]
     assert len(cache.read_text().splitlines()) == len(names)
-    again, _ = sweep(DIAGONAL, names, RunOptions(seed=1, workers=2), cache=cache)
+    problem = AperiodicProblem(DIAGONAL, 0, 3, shears=True)
+
+    def holds(cert):
+        return not aperiodic_violations(AperiodicReport(periods=(cert,)), problem)
+
+    again, _ = sweep(DIAGONAL, names, RunOptions(seed=1, workers=2), cache=cache, check_witness=holds)
     assert all(c.evidence.get("cached") for c in again)
     assert [c.status for c in again] == [c.status for c in one]
+    assert {c.evidence["cache_check"] for c in again} == {"witness re-verified",
+                                                           "proof re-checked against the re-derived CNF"}
 
 
 def test_time_limit_leaves_boards_undecided_never_refuted():
@@ -223,15 +230,16 @@ def test_cli_ctrl_c_writes_no_report_and_the_cache_resumes(tmp_path):
 
 
 def test_proof_files_listed_and_rechecked(tmp_path):
-    from tilesolve.aperiodic import proof_lines
-
-    s = solve(AperiodicProblem(DIAGONAL, 0, 2), seed=1, workers=1, options={"proof_dir": tmp_path})
-    ok, lines = proof_lines(s.tiling, tmp_path)
-    assert ok and sum("refuted by sat; CNF SHA-256" in ln for ln in lines) == 4
+    problem = AperiodicProblem(DIAGONAL, 0, 2)
+    s = solve(problem, seed=1, workers=1, options={"proof_dir": tmp_path})
+    doc = json.loads(solution_text(problem, s))
+    rep = verify_document(doc, "r.json", tmp_path)
+    assert rep.ok and "4 refutation(s) re-checked" in rep.lines[0]
+    assert sum("verified against the re-derived CNF" in ln for ln in rep.lines) == 4
     drat = sorted(tmp_path.glob("*.drat"))[0]
     drat.write_text(drat.read_text() + "1 0\n")
-    ok, lines = proof_lines(s.tiling, tmp_path)
-    assert not ok and any("differs from the recorded" in ln for ln in lines)
+    rep = verify_document(doc, "r.json", tmp_path)
+    assert not rep.ok and any("differs from the recorded" in ln for ln in rep.lines)
 
 
 def test_draw_shows_the_torus_witness_else_the_largest_square(tmp_path):

@@ -15,7 +15,13 @@ Routes
 ``sat``
     :mod:`tilesolve.engine.aperiodic`: squares by bisection (guided search for large
     witnesses), periods as a parallel sweep (local processes or a Dask cluster), resumable
-    through a cache file (``options={"cache": PATH, "proof_dir": DIR}``).
+    through a cache file (``options={"cache": PATH, "proof_dir": DIR}``) whose lines are used
+    only once re-checked: a witness by the verifier, a refutation by its kept proof against
+    the CNF re-derived from the tile set and board.
+
+Every refutation records the named encoding of its CNF (``evidence["encoding"]``,
+``wang-tiles-cnf``), so that ``tilesolve verify`` re-derives each board's CNF from the report's
+tile set and board name (:func:`refutations`) and checks the proof against it.
 ``transducer``
     :mod:`tilesolve.constructive.transducer` (Jeandel and Rao §2-3), its emptiness verdicts
     certified by the SAT route.
@@ -31,6 +37,8 @@ Examples
 
 from __future__ import annotations
 
+import functools
+
 from tilesolve.errors import InvalidProblem
 from tilesolve.family import Codec, Demo, Family, Field, Form, RunOptions, register
 from tilesolve.family import solve as _solve
@@ -40,7 +48,7 @@ from tilesolve.model.solution import Solution, Status
 from tilesolve.verify.aperiodic import aperiodic_violations
 
 __all__ = ["AperiodicProblem", "AperiodicReport", "Certificate", "solve", "sat", "transducer", "build_report",
-           "proof_lines", "witness", "FAMILY"]
+           "refutations", "witness", "FAMILY"]
 
 
 def build_report(problem: AperiodicProblem, squares, largest: int | None, periods) -> AperiodicReport:
@@ -105,7 +113,8 @@ def sat(problem: AperiodicProblem, run: RunOptions) -> Solution:
     periods = []
     if problem.max_period:
         names = [lat.name() for lat in problem.lattices()]
-        periods, interrupted = sweep(problem.tileset, names, run, cache=run.option("cache"), proof_dir=proof_dir)
+        periods, interrupted = sweep(problem.tileset, names, run, cache=run.option("cache"), proof_dir=proof_dir,
+                                     check_witness=functools.partial(_witness_holds, problem))
         if interrupted:
             done = sum(c.status != "undecided" for c in periods)
             return Solution(Status.UNKNOWN, None, "sat", None, run.seed, run.deadline.elapsed(),
@@ -113,11 +122,19 @@ def sat(problem: AperiodicProblem, run: RunOptions) -> Solution:
     report = build_report(problem, squares, largest, periods)
     n_und = len(report.undecided)
     reason = None if report.complete else f"{n_und} board(s) undecided ({report.undecided[0].evidence.get('why')})"
+    cached = sum(bool(c.evidence.get("cached")) for c in periods)
+    rejected = sum("cache_rejected" in c.evidence for c in periods)
     stats = {"squares_decided": sum(c.status != "undecided" for c in squares),
              "periods_tiled": sum(c.status == "tiles" for c in periods),
-             "periods_refuted": sum(c.status == "refuted" for c in periods), "undecided": n_und}
+             "periods_refuted": sum(c.status == "refuted" for c in periods), "undecided": n_und,
+             "periods_from_cache": cached, "cache_lines_rejected": rejected}
+    notes = ()
+    if cached or rejected:
+        notes = (f"{cached} lattice verdict(s) taken from the cache after re-checking (witness verified, or proof "
+                 f"re-checked against the re-derived CNF); {rejected} cache line(s) not confirmed and decided "
+                 "again",)
     return Solution(Status.SAT, report, "sat", "cadical153", run.seed, run.deadline.elapsed(), reason=reason,
-                    stats=stats)
+                    notes=notes, stats=stats)
 
 
 def transducer(problem: AperiodicProblem, run: RunOptions) -> Solution:
@@ -136,29 +153,22 @@ def transducer(problem: AperiodicProblem, run: RunOptions) -> Solution:
                     stats={"verdict": verdict})
 
 
-def proof_lines(report: AperiodicReport, proof_dir=None) -> tuple[bool, list[str]]:
-    """One line per refutation with the digests of its CNF and checked proof; with ``proof_dir``
-    each proof is re-checked from the files the solving run wrote there
-    (:func:`tilesolve.verify.drat.check_proof_files`). Returns ``(all re-checked, lines)``."""
-    from tilesolve.verify.drat import check_proof_files
+def refutations(problem: AperiodicProblem, sol: Solution) -> list[tuple[str, object, dict]]:
+    """Every refuted board of a report: ``(board name, the board problem its CNF encodes,
+    evidence)`` (the family's :attr:`~tilesolve.family.Family.refutations`: ``tilesolve verify``
+    re-derives each CNF from the report's tile set and the board's name)."""
+    from tilesolve.engine.aperiodic import board_problem
 
-    ok, lines = True, []
-    for c in report.squares + report.periods:
-        if c.status != "refuted":
-            continue
-        ev = c.evidence
-        cnf, drat = ev.get("cnf_sha256"), ev.get("drat_sha256")
-        lines.append(f"{c.board}: refuted by {c.method}; CNF SHA-256 {cnf}, DRAT SHA-256 {drat}")
-        if proof_dir is not None:
-            name = ev.get("proof_name")
-            if not isinstance(name, str) or not isinstance(cnf, str):
-                ok = False
-                lines.append("  no proof files named (solve with --proof-dir DIR to write them)")
-                continue
-            good, more = check_proof_files(proof_dir, name, cnf, drat if isinstance(drat, str) else None)
-            ok &= good
-            lines += [f"  {ln}" for ln in more]
-    return ok, lines
+    report = sol.tiling
+    if not isinstance(report, AperiodicReport):
+        return []
+    return [(c.board, board_problem(problem.tileset, c.board), dict(c.evidence))
+            for c in report.squares + report.periods if c.status == "refuted"]
+
+
+def _witness_holds(problem: AperiodicProblem, cert: Certificate) -> bool:
+    """True when a (cached) witness passes the family's verifier."""
+    return not aperiodic_violations(AperiodicReport(periods=(cert,)), problem)
 
 
 def solve(problem: AperiodicProblem, method: str = "auto", **kwargs) -> Solution:
@@ -261,6 +271,7 @@ FAMILY = register(Family(
     demos=DEMOS,
     commands=("tilesolve.cli.aperiodic:aperiodic",),
     form=_form(),
+    refutations=refutations,
     route_help={"sat": "squares by bisection and (sheared) tori swept in parallel; witnesses verified, "
                        "refutations with checked DRAT proofs (class notes Part II §8.2)",
                 "transducer": "Jeandel-Rao transducers T^k: a periodic cycle gives a torus witness, an empty T_k a "

@@ -281,8 +281,10 @@ def _draw(problem: BoardProblem, sol: Solution, path, fmt: str, *, title: str | 
     the board it describes is refused."""
     wrong = _listing(problem)
     if wrong:
-        raise InvalidProblem(f"the cells and edges listed are not those of the {problem.board.describe()} the "
-                             f"file describes ({len(wrong)} differences, the first: {wrong[0]}); nothing drawn")
+        n = len(wrong)
+        raise InvalidProblem(f"the file's cells and edges are not the board it describes ({problem.board.describe()}): "
+                             f"{n} difference{'s' if n != 1 else ''}, the first: {wrong[0]}. Nothing drawn; "
+                             "tilesolve verify lists every difference")
     legend = [f"{sol.status.value} by {sol.method}" + (f", seed {sol.seed}" if sol.seed is not None else "")]
     if fmt == "png":
         from tilesolve.io.png import write_board_png

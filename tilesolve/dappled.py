@@ -274,9 +274,10 @@ def _objective(problem: DappledProblem, tiling) -> int | None:
 
 
 def _encode(problem: DappledProblem):
-    from tilesolve.encodings.dappled import encode_cnf, encode_wcnf
+    from tilesolve.encodings.dappled import encode_wcnf
+    from tilesolve.encodings.registry import encode
 
-    return encode_wcnf(problem) if problem.closest_to is not None else encode_cnf(problem)
+    return encode_wcnf(problem) if problem.closest_to is not None else encode("dappled-cnf", problem)
 
 
 def _read_problem(doc: dict, source: str):

@@ -329,6 +329,11 @@ class Family:
         One line per route, for ``--help`` and ``tilesolve backends``.
     form : Form or None
         The problem's parameters as a form (``tilesolve studio``) and as a command line.
+    refutations : callable or None
+        ``refutations(problem, solution) -> [(what, problem of the CNF, evidence), ...]``: every
+        refutation a solution claims, for ``tilesolve verify`` to re-derive its CNF (the
+        evidence's named ``encoding``, :mod:`tilesolve.encodings.registry`) and re-check its
+        proof. ``None``: an ``unsat`` solution's own claim (its problem, its ``stats``).
     """
 
     name: str
@@ -347,6 +352,7 @@ class Family:
     commands: tuple[str, ...] = ()
     route_help: Mapping[str, str] = field(default_factory=dict)
     form: Form | None = None
+    refutations: Callable[[Any, Solution], Sequence[tuple[str, Any, Mapping[str, Any]]]] | None = None
 
     @property
     def methods(self) -> tuple[str, ...]:
@@ -701,18 +707,32 @@ def writing_proofs(directory: str | os.PathLike | None):
     return writing(directory)
 
 
-def _recheck_proof(sol: Solution, source: str, proof_dir: str | os.PathLike) -> FileReport:
-    """Re-check the proof files an unsat solution names (``tilesolve verify --proof-dir``)."""
-    from tilesolve.verify.drat import check_proof_files
+def _refutations(fam: Family, problem: Any, sol: Solution) -> Sequence[tuple[str, Any, Mapping[str, Any]]]:
+    """Every refutation ``sol`` claims: ``(what, problem of its CNF, evidence)``."""
+    if fam.refutations is not None:
+        return fam.refutations(problem, sol)
+    return [("the unsat claim", problem, sol.stats)] if sol.status is Status.UNSAT else []
 
-    name, digest = sol.stats.get("proof_name"), sol.stats.get("cnf_sha256")
-    if not isinstance(name, str) or not isinstance(digest, str):
-        return FileReport(1, (f"{source}: status unsat, but the file names no proof files to re-check "
-                              "(solve with --proof-dir DIR to write them)",))
-    ok, lines = check_proof_files(proof_dir, name, digest, sol.stats.get("drat_sha256"))
-    head = (f"ok: {source}: unsat re-checked: the DRAT proof refutes the CNF whose SHA-256 the file records"
-            if ok else f"{source}: the unsat claim is not confirmed by the proof files")
-    return FileReport(0 if ok else 1, (head,) + tuple(f"  {ln}" for ln in lines))
+
+#: What re-checking an unsat claim needs, for the lines that say it was not re-checked.
+RECHECK_NEEDS = ("re-checking needs the DRAT proof: solve with --proof-dir DIR, then "
+                 "tilesolve verify FILE --proof-dir DIR")
+
+
+def _recheck(claims, proof_dir) -> tuple[list[str], list[str], int]:
+    """Re-derive and (with ``proof_dir``) re-check each claimed refutation
+    (:func:`tilesolve.engine.certificates.recheck_unsat`): ``(refused lines, detail lines,
+    refutations re-checked)``."""
+    from tilesolve.engine.certificates import recheck_unsat
+
+    refused, details, checked = [], [], 0
+    for what, problem, evidence in claims:
+        rc = recheck_unsat(problem, evidence if isinstance(evidence, Mapping) else {}, proof_dir)
+        if rc.verdict == "refused":
+            refused.append(f"{what}: {rc.lines[-1]}")
+        checked += rc.ok
+        details += [f"  {what}: {ln}" for ln in rc.lines]
+    return refused, details, checked
 
 
 def verify_document(doc: dict, source: str = "<document>", proof_dir: str | os.PathLike | None = None) -> FileReport:
@@ -721,9 +741,17 @@ def verify_document(doc: dict, source: str = "<document>", proof_dir: str | os.P
     The tiling must pass the family's independent verifier; the status must match the
     file's content (``sat``/``optimal`` need a tiling, ``unsat``/``unknown`` must hold none);
     ``optimal`` needs a problem with an objective and the recorded objective must equal the
-    tiling's value. Field types are checked by the family's codec. With ``proof_dir``, an
-    ``unsat`` answer's proof files (named in its stats) are re-checked: the CNF's SHA-256 must
-    be the recorded one and the DRAT proof must refute it.
+    tiling's value. Field types are checked by the family's codec.
+
+    Every refutation the file claims (an ``unsat`` answer, a report's refuted boards:
+    :attr:`Family.refutations`) is bound to the problem the file states: its CNF is re-derived
+    with the named encoding it records and must have the recorded SHA-256 ("the CNF is not the
+    encoding of this problem" otherwise). With ``proof_dir`` each DRAT proof, located by the
+    recorded digests, is checked against the re-derived formula. Without it an ``unsat`` claim
+    is reported as *not* re-checked (exit 1, the status's code).
+
+    The first line is the verdict (``ok: ...`` only when every check passed); detail lines follow,
+    indented.
     """
     fam, codec = _identify(doc, source)
     problem, sol = codec.read(doc, source)
@@ -734,8 +762,8 @@ def verify_document(doc: dict, source: str = "<document>", proof_dir: str | os.P
     if sol.tiling is None:
         if sol.status.has_tiling:
             false.append(f"status {sol.status.value!r} claims a tiling, but the file holds none")
-        elif proof_dir is not None and sol.status is Status.UNSAT:
-            return _recheck_proof(sol, source, proof_dir)
+        elif sol.status is Status.UNSAT:
+            return _verify_unsat(fam, problem, sol, source, proof_dir)
         else:
             why = f" ({sol.reason})" if sol.reason else ""
             return FileReport(sol.status.exit_code, (f"{source}: status {sol.status.value}{why}; "
@@ -759,9 +787,33 @@ def verify_document(doc: dict, source: str = "<document>", proof_dir: str | os.P
                 false.append(f"objective {sol.objective} recorded, but the problem has no objective")
         elif sol.objective != value:
             false.append(f"recorded objective {sol.objective}, but the tiling's value is {value}")
+    claims = _refutations(fam, problem, sol) if not false else []
+    refused, details, checked = _recheck(claims, proof_dir)
+    false += refused
     if false:
         return FileReport(1, (f"{source}: the file's claims are false",) + tuple(f"  {f}" for f in false))
-    return FileReport(0, (f"ok: {source} is a valid tiling of {what}",))
+    head = f"ok: {source} is a valid tiling of {what}"
+    if claims and proof_dir is not None:
+        head += f"; {checked} refutation(s) re-checked: each DRAT proof refutes the CNF re-derived from the problem"
+    elif claims:
+        head += (f"; the CNFs of {len(claims)} refutation(s) re-derived from the problem match their digests, "
+                 "but their proofs were NOT re-checked (give --proof-dir DIR)")
+    return FileReport(0, (head,) + tuple(details))
+
+
+def _verify_unsat(fam: Family, problem: Any, sol: Solution, source: str, proof_dir) -> FileReport:
+    """:func:`verify_document` of a file whose status is ``unsat``."""
+    why = f" ({sol.reason})" if sol.reason else ""
+    refused, details, _ = _recheck(_refutations(fam, problem, sol), proof_dir)
+    if refused:
+        head = f"{source}: status unsat NOT confirmed: its certificate does not hold"
+        return FileReport(1, (head,) + tuple(details))
+    if proof_dir is None:
+        head = (f"{source}: status unsat{why}; the file holds no tiling to verify, and the unsat claim was NOT "
+                f"re-checked: {RECHECK_NEEDS}")
+        return FileReport(sol.status.exit_code, (head,) + tuple(details))
+    head = f"ok: {source}: unsat re-checked: the DRAT proof refutes the CNF re-derived from the file's problem"
+    return FileReport(0, (head,) + tuple(details))
 
 
 def verify_file(path: str | os.PathLike, proof_dir: str | os.PathLike | None = None) -> FileReport:

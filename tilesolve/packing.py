@@ -272,11 +272,11 @@ def _verify(problem: PackingProblem, grid) -> list:
 
 
 def _encode(problem: PackingProblem):
-    from tilesolve.encodings.packing import encode_packing
+    from tilesolve.encodings.registry import encode
     from tilesolve.engine.packing import check_search_size
 
     check_search_size(problem)
-    return encode_packing(problem)
+    return encode("packing-cnf", problem, {"anchor_tile": None if problem.fixed else 0})
 
 
 def _read(doc: dict, source: str):

@@ -44,8 +44,10 @@ def aperiodic() -> None:
 @click.option("--proof-dir", type=click.Path(file_okay=False), default=None, metavar="DIR",
               help="Write the CNF and checked DRAT proof of every refutation to DIR (unsat-<digest>.cnf, .drat).")
 @click.option("--cache", type=click.Path(dir_okay=False), default=None, metavar="FILE",
-              help="Results file of decided lattices: read first (they are skipped) and appended to as lattices "
-                   "are decided [default: REPORT.cache.jsonl next to -o].")
+              help="Results file of decided lattices, appended to as lattices are decided; the DRAT proofs of its "
+                   "refutations are kept in FILE.proofs/. A later run uses a cached verdict only once re-checked (a "
+                   "witness by the verifier, a refutation's proof against the re-derived CNF); others are decided "
+                   "again [default: REPORT.cache.jsonl next to -o].")
 @opt.time_limit_opt
 @opt.seed_opt
 @click.option("-o", "--output", type=click.Path(dir_okay=False, allow_dash=True), metavar="REPORT.json",
@@ -106,6 +108,8 @@ def check(ctx, tiles, builtin, method, max_square, max_period, shears, workers, 
     say(f"{problem.describe()}: {sol.method} route, {sum(c.status == 'tiles' for c in rep.periods)} periods "
         f"tiled, {sum(c.status == 'refuted' for c in rep.periods)} refuted, {len(rep.undecided)} undecided, "
         f"in {sol.time_s:.2f} s (seed {sol.seed})")
+    for note in sol.notes:
+        say(f"  note: {note}")
     if outs.files:
         say(f"  wrote {', '.join(outs.files)}")
     ctx.exit(0 if rep.complete and sol.stats.get("verdict") != "undecided" else 3)
@@ -114,31 +118,28 @@ def check(ctx, tiles, builtin, method, max_square, max_period, shears, workers, 
 @aperiodic.command(name="verify", context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP)
 @click.argument("report", type=click.Path(dir_okay=False))
 @click.option("--proof-dir", type=click.Path(file_okay=False, exists=True), default=None, metavar="DIR",
-              help="Re-check every refutation's DRAT proof from the .cnf and .drat files 'check --proof-dir' wrote.")
+              help="Re-check every refutation's DRAT proof (the .drat files 'check --proof-dir' wrote) against the "
+                   "CNF re-derived from the report's tile set and board.")
 @click.pass_context
 def verify_report(ctx, report, proof_dir) -> None:
-    """Re-check a report: every witness on its board, and list (with --proof-dir, re-check) every proof.
+    """Re-check a report: every witness on its board, every refutation's CNF re-derived from the
+    report's tile set and board (its SHA-256 must be the recorded one), and with --proof-dir every
+    DRAT proof against that CNF.
 
-    Exit 0 when every claim holds, 1 when one is false.
+    The details come first, one line each; the last line is the one verdict, "ok: ..." only when
+    every check passed. Exit 0 when every claim holds, 1 when one is false or a proof is missing.
 
     \b
     Examples:
       tilesolve aperiodic check --builtin periodic-7-30 --max-period 2 --workers 1 -o p.json --proof-dir proofs
       tilesolve aperiodic verify p.json --proof-dir proofs
     """
-    from tilesolve import aperiodic as facade
     from tilesolve.family import read_document, verify_file
 
-    fam, codec, doc = read_document(report)
+    fam, codec, _ = read_document(report)
     if fam.name != "aperiodic":
         raise InvalidProblem(f"{report} is a {codec.format} file, not an aperiodicity report")
-    first = verify_file(report)
-    for line in first.lines:
+    result = verify_file(report, proof_dir)
+    for line in result.lines[1:] + result.lines[:1]:
         click.echo(line)
-    _, sol = codec.read(doc, report)
-    ok = True
-    if sol.tiling is not None:
-        ok, lines = facade.proof_lines(sol.tiling, proof_dir)
-        for line in lines:
-            click.echo(line)
-    ctx.exit(first.exit_code or (0 if ok else 1))
+    ctx.exit(result.exit_code)

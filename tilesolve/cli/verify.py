@@ -17,8 +17,8 @@ __all__ = ["verify"]
 @click.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP)
 @click.argument("file", type=click.Path(dir_okay=False))
 @click.option("--proof-dir", type=click.Path(file_okay=False, exists=True), metavar="DIR", default=None,
-              help="Re-check an unsat answer's proof: DIR holds the .cnf and .drat files the solving "
-              "command's --proof-dir wrote.")
+              help="Re-check every unsat answer's (every refuted board's) DRAT proof against the CNF re-derived "
+              "from the file's problem: DIR holds the .drat files the solving command's --proof-dir wrote.")
 @click.pass_context
 def verify(ctx, file: str, proof_dir: str | None) -> None:
     """Check that the solution in FILE satisfies its own problem and claims.
@@ -28,9 +28,13 @@ def verify(ctx, file: str, proof_dir: str | None) -> None:
     status must match its content (sat/optimal need a valid tiling, unsat/unknown hold
     none) and a recorded objective must equal the tiling's.
 
-    With --proof-dir, an unsat file's proof is re-checked: the CNF file's SHA-256 must be the
-    one the solution records, the proof's too, and the DRAT proof must refute the CNF
-    (tilesolve's own checker; the files suit drat-trim or any DRAT checker as well).
+    An unsat answer (or a refuted board of an aperiodicity report) is bound to the problem the
+    file states: its CNF is re-derived with the named encoding the file records (name, version,
+    options) and its SHA-256 must be the recorded one, else "the CNF is not the encoding of this
+    problem" (exit 1). A file made with another version of the encoding is refused with "re-solve
+    to re-certify". With --proof-dir, each DRAT proof (found in DIR by the recorded digests; its
+    SHA-256 must match) is checked against the re-derived CNF, never against a file alone; a .cnf
+    file beside it must be that CNF byte for byte (the files suit drat-trim or any DRAT checker).
 
     \b
     Example:
@@ -39,9 +43,10 @@ def verify(ctx, file: str, proof_dir: str | None) -> None:
       tilesolve dappled solve --size 3x3 --cond H0=1 --count 1=0 -o u.json --proof-dir proofs  # unsat
       tilesolve verify u.json --proof-dir proofs
 
-    Exit 0 when the tiling is valid and every claim holds (with --proof-dir: when the unsat
-    proof re-checks), 1 when a claim is false; a file that records unsat (1) or unknown (3)
-    and holds no tiling exits with its status's code.
+    Exit 0 when the tiling is valid and every claim holds (an unsat file: when its proof
+    re-checks with --proof-dir), 1 when a claim is false; a file that records unsat (1) or
+    unknown (3) and holds no tiling exits with its status's code. Without --proof-dir an unsat
+    claim is NOT re-checked, and the output says so (exit 1).
     """
     from tilesolve.family import verify_file
 

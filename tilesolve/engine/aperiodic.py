@@ -32,18 +32,21 @@ import hashlib
 import json
 import os
 import time
+from dataclasses import replace
 from typing import Callable, Sequence
 
 import numpy as np
 
 from tilesolve.deadline import Deadline
 from tilesolve.engine.progress import status_line
-from tilesolve.model.aperiodic import Certificate, board_of, parse_board_name, square_board
-from tilesolve.model.board import WangTileSet
+from tilesolve.errors import InvalidProblem
+from tilesolve.model.aperiodic import Certificate, board_of, parse_board_name
+from tilesolve.model.board import BoardProblem, WangTileSet
 from tilesolve.model.run import RunOptions
 from tilesolve.model.solution import Solution, Status
 
-__all__ = ["decide", "square_scan", "sweep", "tileset_digest", "read_cache", "GUIDE_SIDE", "DEFAULT_SOLVER"]
+__all__ = ["decide", "square_scan", "sweep", "tileset_digest", "read_cache", "cache_proof_dir", "board_problem",
+           "board_encoding", "GUIDE_SIDE", "DEFAULT_SOLVER"]
 
 #: Side of the square whose interior guides large witnesses (its border rows are dropped).
 GUIDE_SIDE = 30
@@ -66,12 +69,31 @@ def _certificate(name: str, sol, method: str = "sat") -> Certificate:
                            {"solver": sol.solver, "variables": st.get("variables"), "clauses": st.get("clauses")},
                            round(sol.time_s, 6))
     if sol.status is Status.UNSAT:
-        keep = ("cnf_sha256", "drat_sha256", "proof_lines", "proof_lemmas", "proof_checked_lemmas", "proof_check_s",
-                "proof_name", "clauses", "variables")
+        keep = ("encoding", "cnf_sha256", "drat_sha256", "proof_lines", "proof_lemmas", "proof_checked_lemmas",
+                "proof_check_s", "proof_name", "clauses", "variables")
         ev = {k: st[k] for k in keep if k in st}
         ev.update(solver=sol.solver, checker="tilesolve.verify.drat", reason=sol.reason)
         return Certificate(name, "refuted", None, method, ev, round(sol.time_s, 6))
     return Certificate(name, "undecided", None, method, {"why": sol.reason or "undecided"}, round(sol.time_s, 6))
+
+
+def board_problem(tileset: WangTileSet, name: str) -> BoardProblem:
+    """The board problem a certificate's board name stands for: ``tileset`` on that square or
+    (sheared) torus, boundary free (what the named encoding ``wang-tiles-cnf`` encodes)."""
+    return BoardProblem(board_of(name), tileset)
+
+
+def board_encoding(tileset: WangTileSet, name: str, *, allowed=None, deadline: Deadline | None = None):
+    """The tile-selection CNF of ``tileset`` on the board ``name``: the named encoding
+    ``wang-tiles-cnf`` (its refutations are re-derivable certificates), or with ``allowed``
+    pairs the restricted formula of a guided search (whose unsat proves nothing)."""
+    if allowed is None:
+        from tilesolve.encodings.registry import encode
+
+        return encode("wang-tiles-cnf", board_problem(tileset, name), deadline=deadline)
+    from tilesolve.encodings.wang_tiles import encode_tiles
+
+    return encode_tiles(board_of(name), tileset, allowed=allowed, deadline=deadline)
 
 
 def decide(tileset: WangTileSet, name: str, run: RunOptions, *, allowed=None) -> Certificate:
@@ -79,12 +101,11 @@ def decide(tileset: WangTileSet, name: str, run: RunOptions, *, allowed=None) ->
     ``"torus 3x4 shear 1"``) with the SAT route; ``allowed`` pairs make a guided
     (restricted) search whose unsat is reported undecided."""
     from tilesolve.deadline import TimeLimitReached
-    from tilesolve.encodings.wang_tiles import encode_tiles
     from tilesolve.engine.routes import sat_route
 
     t0 = time.perf_counter()
     try:
-        enc = encode_tiles(board_of(name), tileset, allowed=allowed, deadline=run.deadline)
+        enc = board_encoding(tileset, name, allowed=allowed, deadline=run.deadline)
     except TimeLimitReached as exc:
         return Certificate(name, "undecided", None, "sat", {"why": str(exc)}, round(time.perf_counter() - t0, 6))
     sol = sat_route(enc, run, solver=run.solver or DEFAULT_SOLVER, t0=t0)
@@ -106,7 +127,6 @@ def _square_task(tiles: list, n_colors: int, n: int, end: float | None, solver: 
                  proof_dir: str | None, seed0: int, *, seed: int):
     """One run of the square portfolio: ``seed`` 0 decides the full formula, 1 searches the
     guided one (its guide from a :data:`GUIDE_SIDE` square); returns a Solution."""
-    from tilesolve.encodings.wang_tiles import encode_tiles
     from tilesolve.engine.certificates import writing_proofs
     from tilesolve.engine.routes import sat_route
 
@@ -120,7 +140,7 @@ def _square_task(tiles: list, n_colors: int, n: int, end: float | None, solver: 
             return Solution(Status.UNKNOWN, None, "sat guided", solver, seed0, 0.0, reason="no guide")
         allowed, method = _guide(g.tiling, len(tileset)), "sat guided"
     t0 = time.perf_counter()
-    enc = encode_tiles(square_board(n), tileset, allowed=allowed, deadline=run.deadline)
+    enc = board_encoding(tileset, f"square {n}x{n}", allowed=allowed, deadline=run.deadline)
     with writing_proofs(proof_dir):
         return sat_route(enc, run, method=method, solver=solver or DEFAULT_SOLVER, t0=t0)
 
@@ -172,7 +192,8 @@ def square_scan(tileset: WangTileSet, max_n: int, run: RunOptions,
 
 # ------------------------------------------------------------------------------- sweeps
 def read_cache(path: str | os.PathLike | None, digest: str) -> dict[str, dict]:
-    """Decided certificates (as dicts) of the tile set with ``digest`` in a cache file."""
+    """Decided records (as dicts) of the tile set with ``digest`` in a cache file: claims to be
+    checked (:func:`sweep` re-verifies each before it uses it), never evidence."""
     out: dict[str, dict] = {}
     if path is None or not os.path.exists(path):
         return out
@@ -187,6 +208,11 @@ def read_cache(path: str | os.PathLike | None, digest: str) -> dict[str, dict]:
     return out
 
 
+def cache_proof_dir(cache: str | os.PathLike) -> str:
+    """Where a sweep keeps the DRAT proofs of the refutations in ``cache``: ``CACHE.proofs/``."""
+    return os.fspath(cache) + ".proofs"
+
+
 def _append_cache(path, digest: str, cert: Certificate) -> None:
     rec = {"tileset": digest, "board": cert.board, "status": cert.status, "method": cert.method,
            "tiling": None if cert.tiling is None else cert.tiling.tolist(), "evidence": dict(cert.evidence),
@@ -195,12 +221,42 @@ def _append_cache(path, digest: str, cert: Certificate) -> None:
         f.write(json.dumps(rec, separators=(",", ":"), default=str) + "\n")
 
 
-def _from_cache(rec: dict) -> Certificate:
-    tiling = None if rec.get("tiling") is None else np.asarray(rec["tiling"], dtype=np.int64)
-    ev = dict(rec.get("evidence") or {})
-    ev["cached"] = True
-    return Certificate(rec["board"], rec["status"], tiling, str(rec.get("method", "sat")), ev,
-                       float(rec.get("time_s", 0.0)))
+def _from_cache(rec: dict, how: str) -> Certificate | None:
+    """The certificate a cache record claims (``None`` when malformed), marked as cached."""
+    ev = rec.get("evidence")
+    try:
+        tiling = None if rec.get("tiling") is None else np.asarray(rec["tiling"], dtype=np.int64)
+        return Certificate(str(rec["board"]), rec["status"], tiling, str(rec.get("method", "sat")),
+                           {**ev, "cached": True, "cache_check": how}, float(rec.get("time_s", 0.0)))
+    except (InvalidProblem, TypeError, ValueError, KeyError, OverflowError):
+        return None
+
+
+def _cached_refutation(tileset: WangTileSet, rec: dict, store: str | None, proof_dir: str | None,
+                       time_limit: float | None) -> tuple[Certificate | None, str]:
+    """A cached refutation, used only when its proof (kept in ``store``) refutes the CNF
+    re-derived from the tile set and the board's name; its CNF and proof then go to
+    ``proof_dir`` like any other refutation's. Returns ``(certificate or None, why not)``."""
+    from tilesolve.engine.certificates import proof_name, recheck_unsat, write_proof_files
+
+    ev = rec.get("evidence")
+    if not isinstance(ev, dict) or rec.get("method") not in ("sat", "sat+transducer"):
+        return None, "a refutation without a SAT proof's evidence"
+    if store is None:
+        return None, "no proof kept with the cache"
+    try:
+        problem = board_problem(tileset, str(rec.get("board")))
+    except InvalidProblem as exc:
+        return None, str(exc)
+    check = recheck_unsat(problem, ev, store, time_limit=time_limit)
+    if not check.ok:
+        return None, check.lines[-1]
+    name = proof_name(ev["cnf_sha256"], ev["drat_sha256"])
+    if proof_dir is not None:
+        write_proof_files(proof_dir, name, check.cnf, check.drat)
+    cert = _from_cache({**rec, "evidence": {**ev, "proof_name": name}},
+                       "proof re-checked against the re-derived CNF")
+    return cert, "" if cert is not None else "a malformed cache line"
 
 
 def _cells(name: str) -> int:
@@ -208,42 +264,75 @@ def _cells(name: str) -> int:
     return rows * cols
 
 
-def _job(tiles: list, n_colors: int, names: Sequence[str], end: float | None, solver: str | None,
-         proof_dir: str | None, seed0: int, *, seed: int) -> Certificate:
-    """One lattice of a sweep (``seed`` is its index in ``names``), in a worker process."""
+def _job(tiles: list, n_colors: int, names: Sequence[str], cached: dict, end: float | None, solver: str | None,
+         proof_dir: str | None, store: str | None, seed0: int, *, seed: int) -> Certificate:
+    """One lattice of a sweep (``seed`` is its index in ``names``), in a worker process: its
+    cached refutation re-checked (``cached``), else decided by SAT."""
     from tilesolve.engine.certificates import writing_proofs
 
     tileset = WangTileSet(np.asarray(tiles, dtype=np.int64), n_colors)
+    name = names[seed]
+    rejected = None
+    if name in cached:
+        limit = None if end is None else max(end - time.time(), 1e-3)
+        cert, rejected = _cached_refutation(tileset, cached[name], store, proof_dir, limit)
+        if cert is not None:
+            return cert
     limit = None if end is None else max(end - time.time(), 1e-3)
     run = RunOptions(seed=seed0, deadline=Deadline(limit), solver=solver)
-    with writing_proofs(proof_dir):
-        return decide(tileset, names[seed], run)
+    with writing_proofs(proof_dir), writing_proofs(store, cnf=False):
+        cert = decide(tileset, name, run)
+    if rejected is None:
+        return cert
+    return replace(cert, evidence={**cert.evidence, "cache_rejected": f"its cached refutation was not used: {rejected}"})
 
 
 def sweep(tileset: WangTileSet, names: Sequence[str], run: RunOptions, *, cache: str | os.PathLike | None = None,
-          proof_dir: str | os.PathLike | None = None, label: str = "periods") -> tuple[list[Certificate], bool]:
+          proof_dir: str | os.PathLike | None = None, label: str = "periods",
+          check_witness: Callable[[Certificate], bool] | None = None) -> tuple[list[Certificate], bool]:
     """Decide every board in ``names``; returns ``(certificates in order, interrupted)``.
 
     ``run.workers`` local processes (default 2; 1 runs here), or ``run.cluster`` (a Dask
-    scheduler address or client). Decided boards are read from and appended to ``cache``.
+    scheduler address or client). Decided boards are appended to ``cache``, the proofs of its
+    refutations kept in :func:`cache_proof_dir`. A cache is never evidence: a cached witness is
+    used when ``check_witness`` (the family's verifier) accepts it, a cached refutation when its
+    kept proof refutes the CNF re-derived from the tile set and the board's name; any other line
+    is decided again (its certificate says so in ``evidence["cache_rejected"]``). Certificates
+    taken from the cache say so (``evidence["cached"]``, ``evidence["cache_check"]``). With
+    ``proof_dir``, every refutation reported has its CNF and proof there, cached or not.
     """
     digest = tileset_digest(tileset)
-    cached = read_cache(cache, digest)
-    result: dict[str, Certificate] = {n: _from_cache(cached[n]) for n in names if n in cached}
+    cached = {n: rec for n, rec in read_cache(cache, digest).items() if n in set(names)}
+    result: dict[str, Certificate] = {}
+    rejected: dict[str, str] = {}
+    for n, rec in cached.items():
+        if rec["status"] != "tiles":
+            continue
+        cert = _from_cache(rec, "witness re-verified")
+        if cert is not None and cert.board == n and check_witness is not None and check_witness(cert):
+            result[n] = cert
+        else:
+            rejected[n] = "its cached witness was not used: it " + (
+                "is malformed" if cert is None else "was not re-verified" if check_witness is None
+                else "fails the verifier")
+    refutations = {n: rec for n, rec in cached.items() if rec["status"] == "refuted"}
     # largest boards first: the long runs start early and the short ones fill the gaps at the end
     todo = sorted((n for n in names if n not in result), key=lambda n: -_cells(n))
     end = None if run.deadline.time_limit is None else time.time() + run.deadline.remaining()
-    task = functools.partial(_job, tileset.tiles.tolist(), int(tileset.n_colors), tuple(todo), end, run.solver,
-                             None if proof_dir is None else os.fspath(proof_dir), run.seed)
+    store = None if cache is None else cache_proof_dir(cache)
+    task = functools.partial(_job, tileset.tiles.tolist(), int(tileset.n_colors), tuple(todo), refutations, end,
+                             run.solver, None if proof_dir is None else os.fspath(proof_dir), store, run.seed)
     interrupted = False
     counts = {"tiles": 0, "refuted": 0, "undecided": 0}
     for c in result.values():
         counts[c.status] += 1
 
     def take(i: int, cert: Certificate) -> bool:
+        if todo[i] in rejected:
+            cert = replace(cert, evidence={**cert.evidence, "cache_rejected": rejected[todo[i]]})
         result[todo[i]] = cert
         counts[cert.status] += 1
-        if cert.status != "undecided" and cache is not None:
+        if cert.status != "undecided" and cache is not None and not cert.evidence.get("cached"):
             _append_cache(cache, digest, cert)
         return cert.status == "undecided" and str(cert.evidence.get("why", "")).startswith("interrupted")
 

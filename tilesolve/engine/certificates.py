@@ -28,39 +28,59 @@ import hashlib
 import os
 import time
 from collections import Counter
-from typing import Iterator
+from dataclasses import dataclass
+from typing import Any, Iterator, Mapping
 
 from tilesolve.deadline import Deadline
 from tilesolve.engine.result import Result
 from tilesolve.model.solution import Solution, Status
 from tilesolve.verify.drat import check_drat, dimacs_bytes, formula_arrays
 
-__all__ = ["unsat_solution", "writing_proofs", "proof_text", "UNCERTIFIED"]
+__all__ = ["unsat_solution", "writing_proofs", "proof_text", "proof_name", "write_proof_files", "recheck_unsat",
+           "Recheck", "NOT_THE_ENCODING", "UNCERTIFIED"]
 
 #: How an infeasibility claimed without a checked proof (CP-SAT's, a constructive route's)
 #: begins its reason: the answer is ``unknown``, after :func:`tilesolve.family.run_route`
 #: tried to certify it with the family's ``sat`` route.
 UNCERTIFIED = "uncertified:"
 
-_PROOF_DIR: contextvars.ContextVar[str | None] = contextvars.ContextVar("tilesolve_proof_dir", default=None)
+_PROOF_DIRS: contextvars.ContextVar[tuple[tuple[str, bool], ...]] = contextvars.ContextVar("tilesolve_proof_dirs",
+                                                                                           default=())
 
 
 @contextlib.contextmanager
-def writing_proofs(directory: str | os.PathLike | None) -> Iterator[None]:
+def writing_proofs(directory: str | os.PathLike | None, *, cnf: bool = True) -> Iterator[None]:
     """Within the block, every checked unsat proof is also written to ``directory``.
 
-    ``None`` writes nothing. The directory is created when the first proof is written.
-    Routes run in other processes (the portfolio's workers) do not write here; their
-    Solutions still record the digests.
+    ``None`` writes nothing. The directory is created when the first proof is written. Blocks
+    nest: inside two of them a proof goes to both directories. ``cnf=False`` writes only the
+    ``.drat`` file (a sweep's cache keeps its proofs so: the CNF is re-derived when they are
+    re-checked). Routes run in other processes (the portfolio's workers) do not write here;
+    their Solutions still record the digests.
     """
     if directory is None:
         yield
         return
-    token = _PROOF_DIR.set(os.fspath(directory))
+    token = _PROOF_DIRS.set(_PROOF_DIRS.get() + ((os.fspath(directory), cnf),))
     try:
         yield
     finally:
-        _PROOF_DIR.reset(token)
+        _PROOF_DIRS.reset(token)
+
+
+def proof_name(cnf_sha256: str, drat_sha256: str) -> str:
+    """The file name (without suffix) of a proof: ``unsat-`` + 16 hex digits of the CNF's digest
+    + ``-`` + 8 of the proof's. Verifiers locate proofs by it (never by a name a file states)."""
+    return f"unsat-{cnf_sha256[:16]}-{drat_sha256[:8]}"
+
+
+def write_proof_files(directory: str | os.PathLike, name: str, cnf: bytes | None, drat: bytes) -> None:
+    """``<name>.cnf`` (unless ``cnf`` is ``None``) and ``<name>.drat`` in ``directory``, atomically."""
+    directory = os.fspath(directory)
+    os.makedirs(directory, exist_ok=True)
+    if cnf is not None:
+        _write_atomic(os.path.join(directory, name + ".cnf"), cnf)
+    _write_atomic(os.path.join(directory, name + ".drat"), drat)
 
 
 def proof_text(proof) -> bytes:
@@ -98,7 +118,7 @@ def _clash(formula, core) -> str:
 
 def unsat_solution(formula, r: Result, *, method: str, seed, t0: float, stats: dict,
                    check_proof: bool = True, proof_time_limit: float | None = None,
-                   deadline: Deadline | None = None) -> Solution:
+                   deadline: Deadline | None = None, encoding: Mapping[str, Any] | None = None) -> Solution:
     """``UNSAT`` when the solver's DRAT proof passes the check, else ``UNKNOWN``.
 
     Parameters
@@ -115,6 +135,11 @@ def unsat_solution(formula, r: Result, *, method: str, seed, t0: float, stats: d
         Seconds for the check when no ``deadline`` is given.
     deadline : Deadline, optional
         The run's deadline: the check stops when it passes (answer ``unknown``).
+    encoding : Mapping, optional
+        ``{"name", "version", "options"}`` of the named encoding
+        (:mod:`tilesolve.encodings.registry`) that built ``formula`` from the problem; recorded
+        as ``stats["encoding"]``, so that ``tilesolve verify`` can re-derive the CNF. Without it
+        the answer's CNF cannot be re-derived and ``verify`` refuses to re-check it.
 
     Examples
     --------
@@ -129,6 +154,9 @@ def unsat_solution(formula, r: Result, *, method: str, seed, t0: float, stats: d
     ('unknown', 'cadical153 reported unsatisfiable; its DRAT proof of 3 lines was not checked (checking turned off)')
     """
     stats = dict(stats)
+    if encoding is not None:
+        stats["encoding"] = {"name": encoding["name"], "version": encoding["version"],
+                             "options": dict(encoding["options"])}
     solver = r.solver
 
     def unknown(why: str) -> Solution:
@@ -165,12 +193,9 @@ def unsat_solution(formula, r: Result, *, method: str, seed, t0: float, stats: d
     stats["cnf_sha256"] = hashlib.sha256(cnf).hexdigest()
     stats["drat_sha256"] = hashlib.sha256(drat).hexdigest()
     stats["proof_core_clauses"] = int(chk.core.size) if chk.core is not None else None
-    directory = _PROOF_DIR.get()
-    if directory is not None:
-        name = f"unsat-{stats['cnf_sha256'][:16]}-{stats['drat_sha256'][:8]}"
-        os.makedirs(directory, exist_ok=True)
-        _write_atomic(os.path.join(directory, name + ".cnf"), cnf)
-        _write_atomic(os.path.join(directory, name + ".drat"), drat)
+    name = proof_name(stats["cnf_sha256"], stats["drat_sha256"])
+    for directory, with_cnf in _PROOF_DIRS.get():
+        write_proof_files(directory, name, cnf if with_cnf else None, drat)
         stats["proof_name"] = name
     if chk.trivial:
         reason = (f"proved unsatisfiable by {solver}: unit propagation on the input clauses refutes it "
@@ -180,3 +205,122 @@ def unsat_solution(formula, r: Result, *, method: str, seed, t0: float, stats: d
         reason = (f"proved unsatisfiable by {solver}; DRAT proof of {chk.lemmas} lemma(s) ({chk.checked} of them "
                   "used) checked by tilesolve.verify.drat")
     return Solution(Status.UNSAT, None, method, solver, seed, time.perf_counter() - t0, reason=reason, stats=stats)
+
+
+# ----------------------------------------------------------------------------- re-checking
+_HEX64 = frozenset("0123456789abcdef")
+
+
+def _digest(value: Any) -> str | None:
+    """A recorded SHA-256 (64 lower-case hex digits), else ``None``."""
+    return value if isinstance(value, str) and len(value) == 64 and set(value) <= _HEX64 else None
+
+
+@dataclass(frozen=True)
+class Recheck:
+    """What re-deriving (and, with proof files, re-checking) one unsat claim found.
+
+    Attributes
+    ----------
+    verdict : {"re-checked", "bound", "refused"}
+        ``re-checked``: the CNF re-derived from the problem has the recorded digest and the
+        DRAT proof refutes it; ``bound``: the re-derived CNF has the recorded digest, but no
+        proof was re-checked (no proof directory given); ``refused``: the claim is not
+        confirmed (``lines`` say why).
+    lines : tuple of str
+        What was found, one line each.
+    cnf, drat : bytes or None
+        The re-derived CNF (DIMACS, as hashed) and the proof read, when they got that far.
+    check_s : float
+        Seconds spent re-deriving the CNF and checking the proof.
+    """
+
+    verdict: str
+    lines: tuple[str, ...]
+    cnf: bytes | None = None
+    drat: bytes | None = None
+    check_s: float = 0.0
+
+    @property
+    def ok(self) -> bool:
+        return self.verdict == "re-checked"
+
+
+#: The end of the message of a CNF that does not encode the problem.
+NOT_THE_ENCODING = "the CNF is not the encoding of this problem"
+
+
+def recheck_unsat(problem: Any, evidence: Mapping[str, Any], proof_dir: str | os.PathLike | None = None, *,
+                  time_limit: float | None = None) -> Recheck:
+    """Re-derive the CNF of ``problem`` with the named encoding ``evidence`` records and check the
+    recorded claim against it (``tilesolve verify``, ``aperiodic verify``, a sweep's cache).
+
+    The CNF is rebuilt by :func:`tilesolve.encodings.registry.encode` from the problem alone;
+    its SHA-256 must be the recorded ``cnf_sha256``. With ``proof_dir``, the proof is located by
+    the recorded digests (``unsat-<cnf>-<drat>.drat``, :func:`proof_name`), its SHA-256 must be
+    ``drat_sha256``, a ``.cnf`` file beside it must hold exactly the re-derived CNF, and the
+    proof is checked by :func:`tilesolve.verify.drat.check_drat` against the *re-derived*
+    formula, never against a file.
+
+    Examples
+    --------
+    >>> from tilesolve.engine.sat import solve_cnf
+    >>> from tilesolve.encodings.registry import encode
+    >>> from tilesolve.model.dappled import DappledProblem
+    >>> p = DappledProblem.from_strings("3x1", ["H0=1", "H1=1"], counts=["1=3"])
+    >>> enc = encode("dappled-cnf", p)
+    >>> s = unsat_solution(enc.hard, solve_cnf(enc.hard, with_proof=True), method="sat", seed=0, t0=0.0,
+    ...                    stats={}, encoding=enc.named)
+    >>> recheck_unsat(p, s.stats).verdict
+    'bound'
+    >>> recheck_unsat(DappledProblem.from_strings("3x1", ["H0=1"]), s.stats).lines[0][:43]
+    'the CNF is not the encoding of this problem'
+    """
+    from tilesolve.encodings.registry import encode, resolve
+    from tilesolve.errors import InvalidProblem
+
+    t0 = time.perf_counter()
+
+    def refused(*lines: str, cnf: bytes | None = None) -> Recheck:
+        return Recheck("refused", lines, cnf, None, time.perf_counter() - t0)
+
+    spec = evidence.get("encoding")
+    if spec is None:
+        return refused("it records no named encoding, so its CNF cannot be re-derived from the problem: "
+                       "re-solve to re-certify")
+    try:
+        entry, options = resolve(spec)
+        enc = encode(entry.name, problem, options)
+    except InvalidProblem as exc:
+        return refused(str(exc))
+    cnf = dimacs_bytes(enc.hard)
+    got = hashlib.sha256(cnf).hexdigest()
+    what = f"encoding {entry.name} v{entry.version}"
+    recorded = _digest(evidence.get("cnf_sha256"))
+    if recorded != got:
+        shown = f"{recorded[:16]}..." if recorded else repr(evidence.get("cnf_sha256"))[:40]
+        return refused(f"{NOT_THE_ENCODING}: the CNF re-derived from it ({what}, {len(enc.hard)} clauses) has "
+                       f"SHA-256 {got[:16]}..., the file records {shown}", cnf=cnf)
+    bound = f"CNF re-derived from the problem ({what}, {len(enc.hard)} clauses): SHA-256 {got[:16]}... as recorded"
+    if proof_dir is None:
+        return Recheck("bound", (bound,), cnf, None, time.perf_counter() - t0)
+    drat_digest = _digest(evidence.get("drat_sha256"))
+    if drat_digest is None:
+        return refused(bound, "no DRAT proof digest recorded (drat_sha256), so no proof can be located", cnf=cnf)
+    base = os.path.join(os.fspath(proof_dir), proof_name(got, drat_digest))
+    if not os.path.isfile(base + ".drat"):
+        return refused(bound, f"missing proof file {base}.drat", cnf=cnf)
+    with open(base + ".drat", "rb") as fh:
+        drat = fh.read()
+    if hashlib.sha256(drat).hexdigest() != drat_digest:
+        return refused(bound, f"{base}.drat: SHA-256 {hashlib.sha256(drat).hexdigest()[:16]}... differs from the "
+                              f"recorded {drat_digest[:16]}...", cnf=cnf)
+    if os.path.isfile(base + ".cnf"):
+        with open(base + ".cnf", "rb") as fh:
+            if fh.read() != cnf:
+                return refused(bound, f"{NOT_THE_ENCODING}: {base}.cnf differs from the CNF re-derived from it",
+                               cnf=cnf)
+    chk = check_drat(enc.hard, drat, time_limit=time_limit)
+    line = f"{base}.drat: {chk.status} against the re-derived CNF: {chk.reason} ({chk.time_s:.3g} s)"
+    verdict = "re-checked" if chk.verified else "refused"
+    return Recheck(verdict, (bound, line), cnf, drat, time.perf_counter() - t0)

@@ -26,6 +26,7 @@ from typing import Iterator
 import numpy as np
 
 from tilesolve.encodings.dappled import DappledEncoding, build_cpsat, encode_cnf, encode_wcnf
+from tilesolve.encodings.registry import encode
 from tilesolve.engine.cpsat import DEFAULT_CPSAT_WORKERS, solve_cp_model
 from tilesolve.engine.maxsat import DEFAULT_MAXSAT_ORACLE, RC2Options, solve_lazy, solve_wcnf
 from tilesolve.engine.routes import sat_route
@@ -104,7 +105,7 @@ def solve_sat(
     t0 = time.perf_counter()
     run = RunOptions(seed, deadline or Deadline(time_limit))
     try:
-        enc = encode_cnf(problem, deadline=run.deadline)
+        enc = encode("dappled-cnf", problem, deadline=run.deadline)
     except TimeLimitReached as exc:
         return Solution(Status.UNKNOWN, None, "sat", solver, seed, time.perf_counter() - t0, reason=str(exc))
     phases = enc.literals(problem.closest_to) if problem.closest_to is not None else None

@@ -113,7 +113,7 @@ def unknown_solution(method, solver, seed, t0, time_limit, deadline, reason, sta
 def solve_sat(problem: PackingProblem, *, seed=None, time_limit=None, workers=None, progress=False,
               solver=None) -> Solution:
     """The full encoding (the seed picks the tile pinned at the origin and preferred phases)."""
-    from tilesolve.encodings.packing import encode_packing
+    from tilesolve.encodings.registry import encode
     from tilesolve.engine.certificates import unsat_solution
 
     check_search_size(problem)
@@ -122,7 +122,7 @@ def solve_sat(problem: PackingProblem, *, seed=None, time_limit=None, workers=No
     rng = rng_from_seed(seed)
     anchor = None if problem.fixed else (int(rng.integers(problem.n_tiles)) if seed is not None else 0)
     try:
-        enc = encode_packing(problem, anchor_tile=anchor, deadline=deadline)
+        enc = encode("packing-cnf", problem, {"anchor_tile": anchor}, deadline=deadline)
     except TimeLimitReached as exc:
         return unknown_solution("sat", solver or PACKING_SAT_SOLVER, seed, t0, None, deadline, str(exc), {})
     encode_s = time.perf_counter() - t0
@@ -137,7 +137,7 @@ def solve_sat(problem: PackingProblem, *, seed=None, time_limit=None, workers=No
         if not problem.fixed:  # the anchor only breaks symmetry: an UNSAT here would be a bug
             raise InternalError("the unpinned packing encoding was reported unsatisfiable")
         return unsat_solution(enc.clauses, r, method="sat", seed=seed, t0=t0, stats=stats, check_proof=True,
-                              deadline=deadline)
+                              deadline=deadline, encoding=enc.named)
     return unknown_solution("sat", r.solver, seed, t0, time_limit, deadline, r.reason, stats)
 
 

@@ -8,7 +8,9 @@ run's deadline and turns the backend's :class:`~tilesolve.engine.result.Result` 
 - ``sat``: the decoded tiling (the pipeline then verifies it independently);
 - ``unsat``: only with a DRAT proof checked by :mod:`tilesolve.verify.drat` whatever its size
   (:mod:`tilesolve.engine.certificates`), bound to the SHA-256 of the exact CNF
-  (``stats["cnf_sha256"]``) and written to the ``--proof-dir`` when one is set; a
+  (``stats["cnf_sha256"]``) and to the named encoding that re-derives it from the problem
+  (``stats["encoding"]``, when the encoding was built by :func:`tilesolve.encodings.registry.encode`),
+  and written to the ``--proof-dir`` when one is set; a
   *restricted* formula (one that searches part of the space, e.g. the lifted packings)
   proves nothing by being unsatisfiable, so its unsat is reported ``unknown``;
 - ``unknown``: time limit or Ctrl-C, never ``unsat``.
@@ -45,7 +47,8 @@ def sat_route(
     Parameters
     ----------
     encoding
-        Has ``hard`` (the clauses), ``n_vars``, ``decode(model)`` and ``restricted``.
+        Has ``hard`` (the clauses), ``n_vars``, ``decode(model)`` and ``restricted``; ``named``
+        when :func:`tilesolve.encodings.registry.encode` built it (an unsat answer records it).
     run : tilesolve.family.RunOptions
         Seed (the solver's random seed) and deadline.
     method : str
@@ -84,7 +87,7 @@ def sat_route(
                                "full problem)", notes=notes, stats=stats)
     if r.status is Status.UNSAT:
         sol = unsat_solution(encoding.hard, r, method=method, seed=run.seed, t0=t0, stats=stats, check_proof=True,
-                             deadline=run.deadline)
+                             deadline=run.deadline, encoding=getattr(encoding, "named", None))
         return sol.replace(notes=sol.notes + notes)
     reason = r.reason
     if run.deadline.time_limit is not None and run.deadline.expired() and not (reason or "").startswith(

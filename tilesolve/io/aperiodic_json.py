@@ -112,8 +112,14 @@ def report_from_dict(doc: dict, source: Any = "<document>") -> tuple[AperiodicPr
     ts = doc.get("tileset")
     if not isinstance(ts, dict) or not isinstance(ts.get("tiles"), list) or ts.get("sides") != ["N", "E", "S", "W"]:
         raise _fail(source, "tileset", "must be {'colours': K, 'sides': ['N', 'E', 'S', 'W'], 'tiles': [...]}")
+    colours = _int(ts, "colours", source)
+    for i, t in enumerate(ts["tiles"]):
+        if not isinstance(t, list) or len(t) != 4 or not all(
+                isinstance(v, int) and not isinstance(v, bool) and 0 <= v < colours for v in t):
+            raise _fail(source, f"tileset.tiles[{i}]", f"must be [N, E, S, W]: 4 integer colours in 0..{colours - 1}, "
+                                                       f"got {str(t)[:60]}")
     try:
-        tileset = WangTileSet.from_nesw(ts["tiles"], _int(ts, "colours", source))
+        tileset = WangTileSet.from_nesw(ts["tiles"], colours)
     except InvalidProblem as exc:
         raise InvalidProblem(f"{source}: 'tileset': {exc}") from None
     if not isinstance(doc.get("shears"), bool):

@@ -3,9 +3,12 @@
 Every witness in a report is re-checked as a board tiling with
 :func:`tilesolve.verify.board.board_violations` (Def. 2: tiles of the set, joined legs of
 equal colour) on the square or (sheared) torus its name stands for; every refutation must
-carry the digests of its CNF and of its checked proof (SAT) or its route's evidence; the
-largest square claimed must have its witness, and the refuted square above it when it is
-below the bound. Numpy only; nothing here calls a solver or the code that wrote the report.
+carry the digests of its CNF and of its checked proof (SAT) or its route's evidence; every
+period certificate must name a distinct board, and a refuted or undecided one a lattice of the
+check (a witness may tile any torus: it is periodic all the same); the largest square claimed must
+have its witness, and the refuted square above it when it is below the bound. (That each
+refutation's CNF encodes its board, and its proof, are re-checked by ``tilesolve verify``,
+which re-derives the CNF: :attr:`tilesolve.family.Family.refutations`.) Numpy only; nothing here calls a solver or the code that wrote the report.
 """
 
 from __future__ import annotations
@@ -37,6 +40,18 @@ def aperiodic_violations(report, problem: AperiodicProblem) -> list[Violation]:
     if not isinstance(report, AperiodicReport):
         return [Violation("shape", f"expected an aperiodicity report, got {type(report).__name__}")]
     out: list[Violation] = []
+    lattices = {lat.name() for lat in problem.lattices()}
+    seen: set[str] = set()
+    for cert in report.periods:
+        if cert.board not in lattices and cert.status != "tiles":  # a witness of any torus is periodic
+            out.append(Violation("board", f"{cert.board}: not a lattice of this check (sides 1..{problem.max_period}"
+                                          f"{', shears 0..rows-1' if problem.shears else ', no shear'})"))
+        elif cert.board in seen:
+            out.append(Violation("board", f"{cert.board}: certified twice"))
+        seen.add(cert.board)
+    for cert in report.squares:
+        if parse_board_name(cert.board)[2] != -1:
+            out.append(Violation("board", f"{cert.board}: not a square or rectangle"))
     for cert in report.squares + report.periods:
         if cert.status == "tiles":
             out += _witness(cert, problem)
