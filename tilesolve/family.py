@@ -719,15 +719,15 @@ RECHECK_NEEDS = ("re-checking needs the DRAT proof: solve with --proof-dir DIR, 
                  "tilesolve verify FILE --proof-dir DIR")
 
 
-def _recheck(claims, proof_dir) -> tuple[list[str], list[str], int]:
+def _recheck(claims, proof_dir, workers: int) -> tuple[list[str], list[str], int]:
     """Re-derive and (with ``proof_dir``) re-check each claimed refutation
-    (:func:`tilesolve.engine.certificates.recheck_unsat`): ``(refused lines, detail lines,
-    refutations re-checked)``."""
-    from tilesolve.engine.certificates import recheck_unsat
+    (:func:`tilesolve.engine.certificates.recheck_all`, on ``workers`` processes): ``(refused
+    lines, detail lines, refutations re-checked)``."""
+    from tilesolve.engine.certificates import recheck_all
 
+    claims = [(what, problem, evidence if isinstance(evidence, Mapping) else {}) for what, problem, evidence in claims]
     refused, details, checked = [], [], 0
-    for what, problem, evidence in claims:
-        rc = recheck_unsat(problem, evidence if isinstance(evidence, Mapping) else {}, proof_dir)
+    for (what, _, _), rc in zip(claims, recheck_all(claims, proof_dir, workers=workers)):
         if rc.verdict == "refused":
             refused.append(f"{what}: {rc.lines[-1]}")
         checked += rc.ok
@@ -735,7 +735,8 @@ def _recheck(claims, proof_dir) -> tuple[list[str], list[str], int]:
     return refused, details, checked
 
 
-def verify_document(doc: dict, source: str = "<document>", proof_dir: str | os.PathLike | None = None) -> FileReport:
+def verify_document(doc: dict, source: str = "<document>", proof_dir: str | os.PathLike | None = None, *,
+                    workers: int = 1) -> FileReport:
     """Check every claim a solution document makes (``tilesolve verify``).
 
     The tiling must pass the family's independent verifier; the status must match the
@@ -748,7 +749,8 @@ def verify_document(doc: dict, source: str = "<document>", proof_dir: str | os.P
     with the named encoding it records and must have the recorded SHA-256 ("the CNF is not the
     encoding of this problem" otherwise). With ``proof_dir`` each DRAT proof, located by the
     recorded digests, is checked against the re-derived formula. Without it an ``unsat`` claim
-    is reported as *not* re-checked (exit 1, the status's code).
+    is reported as *not* re-checked (exit 1, the status's code). ``workers`` local processes
+    share the re-checking of many refutations (a report's).
 
     The first line is the verdict (``ok: ...`` only when every check passed); detail lines follow,
     indented.
@@ -763,7 +765,7 @@ def verify_document(doc: dict, source: str = "<document>", proof_dir: str | os.P
         if sol.status.has_tiling:
             false.append(f"status {sol.status.value!r} claims a tiling, but the file holds none")
         elif sol.status is Status.UNSAT:
-            return _verify_unsat(fam, problem, sol, source, proof_dir)
+            return _verify_unsat(fam, problem, sol, source, proof_dir, workers)
         else:
             why = f" ({sol.reason})" if sol.reason else ""
             return FileReport(sol.status.exit_code, (f"{source}: status {sol.status.value}{why}; "
@@ -788,7 +790,7 @@ def verify_document(doc: dict, source: str = "<document>", proof_dir: str | os.P
         elif sol.objective != value:
             false.append(f"recorded objective {sol.objective}, but the tiling's value is {value}")
     claims = _refutations(fam, problem, sol) if not false else []
-    refused, details, checked = _recheck(claims, proof_dir)
+    refused, details, checked = _recheck(claims, proof_dir, workers)
     false += refused
     if false:
         return FileReport(1, (f"{source}: the file's claims are false",) + tuple(f"  {f}" for f in false))
@@ -801,10 +803,10 @@ def verify_document(doc: dict, source: str = "<document>", proof_dir: str | os.P
     return FileReport(0, (head,) + tuple(details))
 
 
-def _verify_unsat(fam: Family, problem: Any, sol: Solution, source: str, proof_dir) -> FileReport:
+def _verify_unsat(fam: Family, problem: Any, sol: Solution, source: str, proof_dir, workers: int) -> FileReport:
     """:func:`verify_document` of a file whose status is ``unsat``."""
     why = f" ({sol.reason})" if sol.reason else ""
-    refused, details, _ = _recheck(_refutations(fam, problem, sol), proof_dir)
+    refused, details, _ = _recheck(_refutations(fam, problem, sol), proof_dir, workers)
     if refused:
         head = f"{source}: status unsat NOT confirmed: its certificate does not hold"
         return FileReport(1, (head,) + tuple(details))
@@ -816,11 +818,12 @@ def _verify_unsat(fam: Family, problem: Any, sol: Solution, source: str, proof_d
     return FileReport(0, (head,) + tuple(details))
 
 
-def verify_file(path: str | os.PathLike, proof_dir: str | os.PathLike | None = None) -> FileReport:
+def verify_file(path: str | os.PathLike, proof_dir: str | os.PathLike | None = None, *,
+                workers: int = 1) -> FileReport:
     """:func:`verify_document` on a file (one-line errors for unreadable or malformed files)."""
     from tilesolve.io.jsonio import read_json
 
-    return verify_document(read_json(path), str(path), proof_dir)
+    return verify_document(read_json(path), str(path), proof_dir, workers=workers)
 
 
 def write_solution(path: str | os.PathLike, problem: Any, solution: Solution) -> None:

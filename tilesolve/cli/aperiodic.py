@@ -120,8 +120,10 @@ def check(ctx, tiles, builtin, method, max_square, max_period, shears, workers, 
 @click.option("--proof-dir", type=click.Path(file_okay=False, exists=True), default=None, metavar="DIR",
               help="Re-check every refutation's DRAT proof (the .drat files 'check --proof-dir' wrote) against the "
                    "CNF re-derived from the report's tile set and board.")
+@click.option("--workers", type=click.IntRange(1, 256), default=2, show_default=True, metavar="K",
+              help="Local worker processes that share the re-checking of many refutations.")
 @click.pass_context
-def verify_report(ctx, report, proof_dir) -> None:
+def verify_report(ctx, report, proof_dir, workers) -> None:
     """Re-check a report: every witness on its board, every refutation's CNF re-derived from the
     report's tile set and board (its SHA-256 must be the recorded one), and with --proof-dir every
     DRAT proof against that CNF.
@@ -139,7 +141,7 @@ def verify_report(ctx, report, proof_dir) -> None:
     fam, codec, _ = read_document(report)
     if fam.name != "aperiodic":
         raise InvalidProblem(f"{report} is a {codec.format} file, not an aperiodicity report")
-    result = verify_file(report, proof_dir)
+    result = verify_file(report, proof_dir, workers=workers)
     for line in result.lines[1:] + result.lines[:1]:
         click.echo(line)
     ctx.exit(result.exit_code)

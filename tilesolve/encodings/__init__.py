@@ -203,6 +203,10 @@ class Encoding(Protocol):
         packings): then unsat proves nothing.
     soft : numpy.ndarray or None
         Weighted encodings only: one literal per unit soft clause of weight 1.
+    named : dict
+        Set by :func:`tilesolve.encodings.registry.encode` only: ``{"name", "version",
+        "options"}`` of the registered encoder that built it, which re-derives the same CNF
+        from the problem (what an unsat certificate records).
     """
 
     hard: ClauseSet

@@ -7,13 +7,17 @@ with a reason that says why (no proof logged, checking turned off, the check fai
 run's deadline passed before the check ended). The check counts against the run's time limit.
 Every family (dappled, Wang boards, packings) uses this.
 
-Each checked proof is bound to the SHA-256 of the exact CNF it refutes, written in DIMACS by
-:func:`tilesolve.verify.drat.dimacs_bytes`; the Solution's stats record ``cnf_sha256``,
-``drat_sha256`` (of the proof text, one step a line) and the checker's figures. Inside
-:func:`writing_proofs` (the CLI's ``--proof-dir``) the CNF and the proof are also written as
-``<name>.cnf`` and ``<name>.drat`` (``name``: ``unsat-``, 16 hex digits of the CNF digest, ``-``,
-8 of the proof's; stats ``proof_name``) for anyone to re-check with their own tools; ``tilesolve verify --proof-dir`` re-checks
-them.
+A certificate binds the problem, not only files (DESIGN.md, "Trust model"): problem -> named
+encoding -> CNF digest -> checked proof. Each checked proof is bound to the SHA-256 of the exact
+CNF it refutes, written in DIMACS by :func:`tilesolve.verify.drat.dimacs_bytes`, and that CNF
+to the problem by the named encoding that built it (:mod:`tilesolve.encodings.registry`); the
+Solution's stats record ``encoding`` (name, version, options), ``cnf_sha256``, ``drat_sha256``
+(of the proof text, one step a line) and the checker's figures. Inside :func:`writing_proofs`
+(the CLI's ``--proof-dir``) the CNF and the proof are also written as ``<name>.cnf`` and
+``<name>.drat`` (:func:`proof_name`: ``unsat-``, 16 hex digits of the CNF digest, ``-``, 8 of
+the proof's; stats ``proof_name``) for anyone to re-check with their own tools.
+:func:`recheck_unsat` (``tilesolve verify``, a sweep's cache) re-derives the CNF from the
+problem alone, compares its digest, and checks the proof against the re-derived formula.
 
 When unit propagation alone refutes the formula (no lemma needed), the reason says which
 constraints clash: the labels of the encoding's clause blocks (e.g. ``"H0=2 windows"``) that
@@ -37,7 +41,7 @@ from tilesolve.model.solution import Solution, Status
 from tilesolve.verify.drat import check_drat, dimacs_bytes, formula_arrays
 
 __all__ = ["unsat_solution", "writing_proofs", "proof_text", "proof_name", "write_proof_files", "recheck_unsat",
-           "Recheck", "NOT_THE_ENCODING", "UNCERTIFIED"]
+           "recheck_all", "Recheck", "NOT_THE_ENCODING", "UNCERTIFIED"]
 
 #: How an infeasibility claimed without a checked proof (CP-SAT's, a constructive route's)
 #: begins its reason: the answer is ``unknown``, after :func:`tilesolve.family.run_route`
@@ -324,3 +328,38 @@ def recheck_unsat(problem: Any, evidence: Mapping[str, Any], proof_dir: str | os
     line = f"{base}.drat: {chk.status} against the re-derived CNF: {chk.reason} ({chk.time_s:.3g} s)"
     verdict = "re-checked" if chk.verified else "refused"
     return Recheck(verdict, (bound, line), cnf, drat, time.perf_counter() - t0)
+
+
+#: Fewest claims that :func:`recheck_all` spreads over worker processes (each costs an interpreter start).
+PARALLEL_RECHECK_MIN = 16
+
+
+def _recheck_job(claims: list, proof_dir: str | None, *, seed: int) -> Recheck:
+    """Claim number ``seed`` re-checked, in a worker process."""
+    _, problem, evidence = claims[seed]
+    return recheck_unsat(problem, evidence, proof_dir)
+
+
+def recheck_all(claims, proof_dir: str | os.PathLike | None = None, *, workers: int = 1) -> list[Recheck]:
+    """:func:`recheck_unsat` of every ``(what, problem, evidence)`` claim, in order; on ``workers``
+    local processes when there are at least :data:`PARALLEL_RECHECK_MIN` claims (a report's
+    refuted boards), else here. Ctrl-C raises ``KeyboardInterrupt``."""
+    claims = list(claims)
+    if workers <= 1 or len(claims) < PARALLEL_RECHECK_MIN:
+        return [recheck_unsat(problem, evidence, proof_dir) for _, problem, evidence in claims]
+    import functools
+
+    from tilesolve.engine.aperiodic import _on_pool
+    from tilesolve.model.run import RunOptions
+
+    out: list[Recheck | None] = [None] * len(claims)
+
+    def take(i: int, rc: Recheck) -> bool:
+        out[i] = rc
+        return False
+
+    task = functools.partial(_recheck_job, claims, None if proof_dir is None else os.fspath(proof_dir))
+    if _on_pool(task, len(claims), min(workers, len(claims)), RunOptions(seed=0, deadline=Deadline(None)), take,
+                lambda text: None, lambda: ""):
+        raise KeyboardInterrupt
+    return out

@@ -15,7 +15,15 @@ from __future__ import annotations
 
 import numpy as np
 
-from tilesolve.model.aperiodic import AperiodicProblem, AperiodicReport, board_of, leg_colours, parse_board_name
+from tilesolve.model.aperiodic import (
+    MAX_CLAUSES,
+    AperiodicProblem,
+    AperiodicReport,
+    board_of,
+    clauses_per_cell,
+    leg_colours,
+    parse_board_name,
+)
 from tilesolve.model.board import BoardProblem
 from tilesolve.verify.board import board_violations
 from tilesolve.verify.dappled import Violation
@@ -52,6 +60,14 @@ def aperiodic_violations(report, problem: AperiodicProblem) -> list[Violation]:
     for cert in report.squares:
         if parse_board_name(cert.board)[2] != -1:
             out.append(Violation("board", f"{cert.board}: not a square or rectangle"))
+    per = clauses_per_cell(len(problem.tileset))
+    for cert in report.squares + report.periods:
+        rows, cols, _ = parse_board_name(cert.board)
+        if rows < 1 or cols < 1 or rows * cols * per > MAX_CLAUSES:
+            out.append(Violation("board", f"{cert.board}: no board of this size is checked (at most {MAX_CLAUSES:,} "
+                                          "clauses)"))
+    if out:
+        return out
     for cert in report.squares + report.periods:
         if cert.status == "tiles":
             out += _witness(cert, problem)
