@@ -1,4 +1,5 @@
-"""Board solution files, versions 1 and 2: round trips, old files, other readers, bad input."""
+"""Board solution files, versions 1 and 2: round trips, old files, other readers, bad input
+(the forgeries, through the console script: test_board_forgery.py)."""
 
 import base64
 import json
@@ -9,8 +10,9 @@ import pytest
 from tilesolve.errors import InvalidProblem
 from tilesolve.io import jsonio
 from tilesolve.io.board_json import (
-    COMPACT_MIN_CELLS, board_solution_to_dict, read_board_solution, write_board_solution,
+    COMPACT_MIN_CELLS, ListedBoardProblem, board_solution_to_dict, read_board_solution, write_board_solution,
 )
+from tilesolve.model.aperiodic import Lattice
 from tilesolve.model.board import Board, BoardProblem, WangTileSet
 from tilesolve.model.solution import Solution, Status
 
@@ -143,12 +145,19 @@ def _set(path, value):
 def test_malformed_version_2_is_one_line_naming_file_and_field(tmp_path, change, field, message):
     doc = _v2_doc()
     change(doc)
+    text = _read_error(tmp_path, doc)
+    assert message in text and field in text
+
+
+def _read_error(tmp_path, doc) -> str:
+    """The one-line error of reading ``doc`` from a file, which it names."""
     path = tmp_path / "bad.json"
-    path.write_text(json.dumps(doc))
+    path.write_text(jsonio.dumps(doc))
     with pytest.raises(InvalidProblem) as err:
         read_board_solution(path)
     text = str(err.value)
-    assert message in text and str(path) in text and field in text and "\n" not in text
+    assert str(path) in text and "\n" not in text
+    return text
 
 
 def test_unknown_versions_are_still_refused(tmp_path):
@@ -169,3 +178,66 @@ def test_encoded_arrays_round_trip_in_the_narrowest_dtype(values):
     lo, hi = a.min(), a.max()
     assert width == (1 / 8 if lo >= 0 and hi <= 1 else 1 if lo >= 0 and hi < 256 else
                      2 if -2**15 <= lo and hi < 2**15 else 4 if -2**31 <= lo and hi < 2**31 else 8)
+
+
+def test_version_1_records_the_grid_and_mask_besides_the_list():
+    board = Board.mobius(3, 4).restrict(np.arange(12) != 5)
+    doc = board_solution_to_dict(*_problem_and_solution(board), compact=False)
+    assert doc["grid"] == {"rows": 3, "cols": 4, "wrap_rows": None, "wrap_cols": "twist"}
+    assert doc["mask"].tolist() == [[1, 1, 1, 1], [1, 0, 1, 1], [1, 1, 1, 1]]
+    assert doc["cells"].shape == (11, 2) and doc["edges"].shape == (board.n_edges, 4)
+
+
+def test_a_listed_grid_board_keeps_its_list_for_the_verifier(tmp_path):
+    p, s = _problem_and_solution(Board.ring(4, 5))
+    path = tmp_path / "s.json"
+    write_board_solution(path, p, s, compact=False)
+    q, _ = read_board_solution(path)
+    assert isinstance(q, ListedBoardProblem) and q.board.grid_spec == p.board.grid_spec
+    assert np.array_equal(q.listed_cells, p.board.labels) and np.array_equal(q.listed_edges, p.board.edge_array())
+    write_board_solution(path, p, s, compact=True)
+    assert type(read_board_solution(path)[0]) is BoardProblem  # described only: nothing else to check
+
+
+def _v1_doc():
+    return board_solution_to_dict(*_problem_and_solution(Board.rect(2, 3)), compact=False)
+
+
+@pytest.mark.parametrize("make, change, message", [
+    (_v1_doc, _set(["extra"], 1), "unknown field 'extra'"),
+    (_v2_doc, _set(["board"], "rect"), "unknown field 'board'"),
+    (_v1_doc, _set(["colors"], 64), "'colors' is 64; brick Wang tiles have 3 to 63"),
+    (_v1_doc, _set(["colors"], 2), "'colors' is 2"),
+    (_v1_doc, lambda d: d.update(tileset=[[0, 1, 0, 1]], colors=1 << 17), "a list of tiles has 1 to 65536"),
+    (_v1_doc, _set(["tileset"], {"tiles": []}), "'tileset' must be \"brick\" or a list of tiles"),
+    (_v1_doc, _set(["grid", "cols"], 1 << 27), "'grid' is 134217728x2"),
+    (_v1_doc, _set(["max_h"], 2**31), "'max_h' is 2147483648"),
+    (_v1_doc, _set(["leg_order"], 5), "leg_order 5"),
+    (_v1_doc, _set(["cells"], {"dtype": "uint8", "shape": [6, 2], "data": ""}), "encoded arrays need version 2"),
+    (_v1_doc, lambda d: d.pop("edges"), "'cells' and 'edges' together"),
+    (_v1_doc, lambda d: (d.pop("edges"), d.pop("cells")), "lists 'cells' and 'edges'"),
+    (_v1_doc, _set(["cells"], [[0, 0, 0]] * 6), "2 integers per entry"),
+    (_v1_doc, _set(["boundary", 0], 2**70), "'boundary': must hold integers only"),
+    (_v1_doc, _set(["board_kind"], "torus"), "a torus board has wrap_rows 'plain'"),
+    (_v2_doc, _set(["board_kind"], "rect"), "not that of a rect board of 9x7"),
+])
+def test_malformed_or_absurd_fields_are_one_line(tmp_path, make, change, message):
+    doc = make()
+    change(doc)
+    assert message in _read_error(tmp_path, doc)
+
+
+def test_a_board_given_by_its_joins_alone_needs_distinct_labels(tmp_path):
+    p, s = _problem_and_solution(Lattice(3, 4, 1).board())
+    path = tmp_path / "s.json"
+    for compact in (False, True):
+        write_board_solution(path, p, s, compact=compact)
+        q, _ = read_board_solution(path)
+        assert q.board.kind == "sheared torus" and type(q) is BoardProblem  # its list is its description
+        doc = json.loads(path.read_text())
+        cells = jsonio.decode_array(doc["cells"], "cells", path)
+        cells[0] = cells[1]
+        doc["cells"] = cells.tolist() if not compact else jsonio.encode_array(cells)
+        path.write_text(json.dumps(doc))
+        with pytest.raises(InvalidProblem, match=r"cells 0 and 1 have the same label \[0, 1\]"):
+            read_board_solution(path)

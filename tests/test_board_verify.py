@@ -5,7 +5,7 @@ import pytest
 
 from tilesolve import board as wang
 from tilesolve.model.board import E, W, Board, BoardProblem, WangTileSet, random_boundary
-from tilesolve.verify.board import board_violations, is_valid_board_tiling
+from tilesolve.verify.board import MAX_LISTED, board_violations, is_valid_board_tiling, listing_violations
 
 
 @pytest.fixture(scope="module")
@@ -82,3 +82,61 @@ def test_line_limits_are_checked():
     tor = BoardProblem(Board.torus(2, 3), WangTileSet.brick(3), max_h=5)
     tt = np.tile([0, 1, 0, 2], (6, 1))
     assert any(x.kind == "line" for x in board_violations(tt, tor))
+
+
+def _listing(board):
+    return board.labels.copy(), board.edge_array().copy()
+
+
+@pytest.mark.parametrize("board", [Board.rect(3, 4), Board.mobius(4, 5), Board.klein(3, 3),
+                                   Board.ring(4, 4).restrict(np.arange(12) != 3)])
+def test_a_board_listed_as_written_or_reordered_has_no_listing_violations(board):
+    cells, edges = _listing(board)
+    assert listing_violations(board, cells, edges) == []
+    inner = edges[:, 2] >= 0
+    turned = edges.copy()
+    turned[inner] = edges[inner][:, [2, 3, 0, 1]]  # joins listed from their other end, in reverse order
+    assert listing_violations(board, cells, turned[::-1]) == []
+
+
+def test_every_listing_difference_is_a_violation_at_its_cell():
+    board = Board.rect(3, 4)  # cell 5 is [1, 1]
+    cells, edges = _listing(board)
+    moved = cells.copy()
+    moved[5] = [9, 9]
+    v = listing_violations(board, moved, edges)
+    assert [(x.kind, x.row, x.col) for x in v] == [("board", 1, 1)] and "[9, 9]" in v[0].message
+    v = listing_violations(board, cells[:-1], edges)
+    assert [str(x) for x in v] == ["the file lists 11 cells; the board has 12"]
+    j = int(np.flatnonzero((edges[:, 0] == 5) & (edges[:, 1] == E))[0])  # [5, E, 6, W]
+    for forged, expected in ((np.delete(edges, j, axis=0), "does not list the edge where leg E of cell [1, 1] meets "
+                                                           "leg W of cell [1, 2]"),
+                             (np.vstack([edges, edges[j]]), "is listed twice"),
+                             (np.where(np.arange(len(edges))[:, None] == j, [5, E, 7, W], edges), "not an edge"),
+                             (np.where(np.arange(len(edges))[:, None] == j, [5, 9, 6, W], edges), "does not have")):
+        v = listing_violations(board, cells, forged)
+        assert any(expected in x.message and (x.row, x.col) == (1, 1) for x in v), [str(x) for x in v]
+
+
+def test_a_listing_that_differs_everywhere_is_reported_within_bounds():
+    board = Board.rect(60, 60)
+    cells, edges = _listing(board)
+    v = listing_violations(board, cells[::-1], edges)
+    assert len(v) == MAX_LISTED + 1 and v[-1].message == f"... and {3600 - MAX_LISTED} more cells listed at other places"
+
+
+def test_tiles_of_sets_with_very_many_colours_are_matched_exactly():
+    k = 1 << 20  # (W, N, E, S) keys would overflow int64: rows are matched another way
+    ts = WangTileSet([[0, k - 1, 0, 5], [7, 8, 9, k - 1]], k)
+    p = BoardProblem(Board.rect(1, 1), ts)
+    assert board_violations([[0, k - 1, 0, 5]], p) == []
+    v = board_violations([[0, k - 1, 0, 6]], p)
+    assert [x.kind for x in v] == ["tile"]
+
+
+def test_a_line_limit_beyond_the_board_is_cheap_and_still_catches_endless_lines():
+    tor = BoardProblem(Board.torus(2, 3), WangTileSet.brick(3), max_h=10**12)
+    tt = np.tile([0, 1, 0, 2], (6, 1))  # every row one horizontal line round the torus
+    assert sum(x.kind == "line" for x in board_violations(tt, tor)) == 6
+    rect = BoardProblem(Board.rect(1, 4), WangTileSet.brick(3), max_h=10**12)
+    assert board_violations(np.array([[0, 1, 0, 2]] * 4), rect) == []

@@ -252,6 +252,16 @@ def _listing(problem: BoardProblem) -> list:
     return listing_violations(problem.board, problem.listed_cells, problem.listed_edges)
 
 
+def _refuse_false_listing(problem: BoardProblem, what: str) -> None:
+    """Refuse a problem whose file lists cells and edges other than its board (``what``: where)."""
+    wrong = _listing(problem)
+    if wrong:
+        n = len(wrong)
+        raise InvalidProblem(f"{what}the file's cells and edges are not the board it describes "
+                             f"({problem.board.describe()}): {n} difference{'s' if n != 1 else ''}, the first: "
+                             f"{wrong[0]}")
+
+
 def _verify(problem: BoardProblem, tiling) -> list:
     return _listing(problem) + board_violations(tiling, problem)
 
@@ -263,9 +273,14 @@ def _encode(problem: BoardProblem):
 
 
 def _read_solution(doc: dict, source: str):
+    """The file's problem and solution. Without a tiling, no verifier judges the file's list of
+    cells and edges (an unsat claim is about the board described): a false list is refused here."""
     from tilesolve.io.board_json import board_solution_from_dict
 
-    return board_solution_from_dict(doc, source)
+    problem, sol = board_solution_from_dict(doc, source)
+    if sol.tiling is None:
+        _refuse_false_listing(problem, f"{source}: ")
+    return problem, sol
 
 
 def _write_solution(problem: BoardProblem, sol: Solution) -> dict:
@@ -279,12 +294,7 @@ def _draw(problem: BoardProblem, sol: Solution, path, fmt: str, *, title: str | 
     """SVG of a board tiling: bricks merged from the edge structure, seams of tori and
     Möbius strips marked; PNG for large boards. A file whose listed cells and edges are not
     the board it describes is refused."""
-    wrong = _listing(problem)
-    if wrong:
-        n = len(wrong)
-        raise InvalidProblem(f"the file's cells and edges are not the board it describes ({problem.board.describe()}): "
-                             f"{n} difference{'s' if n != 1 else ''}, the first: {wrong[0]}. Nothing drawn; "
-                             "tilesolve verify lists every difference")
+    _refuse_false_listing(problem, "nothing drawn: ")
     legend = [f"{sol.status.value} by {sol.method}" + (f", seed {sol.seed}" if sol.seed is not None else "")]
     if fmt == "png":
         from tilesolve.io.png import write_board_png

@@ -27,7 +27,9 @@ def draw(ctx, file: str, output: str, repeat: int, grid) -> None:
       tilesolve draw t.json -o t.svg --repeat 2
       tilesolve draw t.json -o t.png
 
-    Exit 0 when the picture was written; 1 when the file holds no tiling (unsat/unknown).
+    Exit 0 when the picture was written; 1 when the file holds no tiling (unsat/unknown);
+    2 when the file is malformed, and so when a board file lists cells and edges that are not
+    the board it describes (tilesolve verify lists the differences).
     """
     from tilesolve.family import draw_solution, read_document
 

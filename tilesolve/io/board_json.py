@@ -36,7 +36,8 @@ cells of the Möbius strip, and so on.
 Sizes and colour counts are checked before anything is built: a grid of at most
 :data:`~tilesolve.model.board.MAX_BOARD_CELLS` cells; ``colors`` from 3 to
 :data:`~tilesolve.model.board.MAX_BRICK_COLORS` for ``"brick"`` (the limit of
-``tilesolve brick``), at most :data:`MAX_LIST_COLORS` for a list of tiles.
+``tilesolve brick``), at most :data:`MAX_LIST_COLORS` for a list of tiles; line limits
+up to :data:`MAX_LINE`.
 
 Version 1 (plain lists; written for boards of at most :data:`COMPACT_MIN_CELLS` cells)
 --------------------------------------------------------------------------------------
@@ -100,7 +101,7 @@ from tilesolve.model.board import (
 )
 from tilesolve.model.solution import Solution
 
-__all__ = ["BOARD_SOLUTION", "VERSIONS", "COMPACT_MIN_CELLS", "MAX_LIST_COLORS", "ListedBoardProblem",
+__all__ = ["BOARD_SOLUTION", "VERSIONS", "COMPACT_MIN_CELLS", "MAX_LIST_COLORS", "MAX_LINE", "ListedBoardProblem",
            "board_solution_to_dict", "board_solution_from_dict", "write_board_solution", "read_board_solution",
            "read_boundary"]
 
@@ -112,6 +113,8 @@ COMPACT_MIN_CELLS = 4096
 #: Most colours a tile set given as a list of tiles may declare: more than 16,384 tiles can
 #: use with four new colours each.
 MAX_LIST_COLORS = 1 << 16
+#: Longest line limit (``max_h``, ``max_v``): the bound of the CLI's ``--max-h`` and ``--max-v``.
+MAX_LINE = 2**31 - 1
 _WRAP_NAMES = (None, "plain", "twist")
 _KEYS = frozenset({
     "format", "version", "board_kind", "leg_order", "colors", "tileset", "max_h", "max_v", "grid", "mask", "cells",
@@ -339,7 +342,10 @@ def board_solution_from_dict(doc: dict, source: Any = "<document>") -> tuple[Boa
         raise InvalidProblem(f"{source}: a version 1 board solution lists 'cells' and 'edges'")
     board = _board(doc, source, version, kind, listed)
     beta = _boundary(doc, source, version, board.n_boundary)
-    lines = dict(max_h=_int(doc, "max_h", source, optional=True), max_v=_int(doc, "max_v", source, optional=True))
+    lines = {name: _int(doc, name, source, optional=True) for name in ("max_h", "max_v")}
+    for name, v in lines.items():
+        if v is not None and not 1 <= v <= MAX_LINE:
+            raise InvalidProblem(f"{source}: {name!r} is {v}; a line limit is 1 to {MAX_LINE}")
     try:
         if listed is not None and board.grid_spec is not None:  # described and listed: keep the list
             problem = ListedBoardProblem(board, tileset, beta, **lines, listed_cells=listed[0], listed_edges=listed[1])

@@ -198,21 +198,25 @@ def listing_violations(board, cells, edges) -> list[Violation]:
                              r, col))
     if moved.size > MAX_LISTED:
         out.append(Violation("board", f"... and {moved.size - MAX_LISTED} more cells listed at other places"))
-    # edges: the same joins and numbered boundary legs, as a multiset of keys (lower slot, other end)
+    # edges: the same joins and numbered boundary legs. Each is keyed by its lower leg slot
+    # (4 * cell + leg) and its other end (a slot, or 4n + the boundary-leg number).
     slot = np.arange(4 * n, dtype=np.int64)
     wall = nc.ravel() < 0
-    nb = int(wall.sum())
-    span = 4 * n + nb  # slots 0..4n-1, then the wall legs 4n + kb
+    nb = int(np.count_nonzero(wall))
+    span = 4 * n + nb
     far = np.where(wall, 4 * n + nl.ravel(), nc.ravel() * 4 + nl.ravel())
-    own = wall | (far >= slot)
-    board_keys = slot[own] * span + far[own]
+    own = np.flatnonzero(wall | (far >= slot))
+    if e.shape[0] == own.size and np.array_equal(e, np.stack(
+            [own // 4, own % 4, nc.ravel()[own], nl.ravel()[own]], axis=1)):
+        return out  # listed as tilesolve lists them: once each, from the lower slot, in slot order
+    board_keys = own * span + far[own]  # ascending
     a, ka, b, kb = e.T
     ok = (a >= 0) & (a < n) & (ka >= 0) & (ka < 4) & np.where(
         b >= 0, (b < n) & (kb >= 0) & (kb < 4), (b == -1) & (kb >= 0) & (kb < nb))
     sa = a * 4 + ka
     sb = np.where(b >= 0, b * 4 + kb, 4 * n + kb)
     keys = np.where(ok, np.minimum(sa, sb) * span + np.maximum(sa, sb), -1)
-    if ok.all() and np.array_equal(np.sort(keys), board_keys):  # board_keys ascend with slot
+    if ok.all() and np.array_equal(np.sort(keys), board_keys):  # in another order or orientation
         return out
     order = np.argsort(keys, kind="stable")
     repeat = np.zeros(keys.size, bool)
