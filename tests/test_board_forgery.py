@@ -232,3 +232,16 @@ def test_an_unsat_file_whose_list_is_not_its_board_is_refused(tmp_path):
     for args in (["verify", "f.json"], ["export", "dimacs", "f.json", "-o", "f.cnf"]):
         err = one_line_error(run(*args, cwd=tmp_path))
         assert "cells and edges are not the board it describes" in err and "cell 0 is listed at [7, 7]" in err
+
+
+@pytest.mark.parametrize("forge", [lambda t: t[:5], lambda t: [[10**12, 0, 0, 0]] + t[1:],
+                                   lambda t: [[-5, 0, 0, 0]] + t[1:]])
+def test_tiles_that_do_not_fit_the_board_are_violations_and_are_not_drawn(files, forge):
+    folder, docs = files
+    doc = copy.deepcopy(docs["rect"])
+    doc["tiles"] = forge(doc["tiles"])
+    first = _violations(_verify_forged(folder, doc))[0]
+    assert first.startswith("tiling has shape (5, 4)") or "(row 0, col 0) leg W has colour" in first, first
+    for pic in ("forged.svg", "forged.png"):
+        assert "tiles are not 4 colours in 0..2" in one_line_error(run("draw", "forged.json", "-o", pic, cwd=folder))
+        assert not (folder / pic).exists()

@@ -295,6 +295,10 @@ def _draw(problem: BoardProblem, sol: Solution, path, fmt: str, *, title: str | 
     Möbius strips marked; PNG for large boards. A file whose listed cells and edges are not
     the board it describes is refused."""
     _refuse_false_listing(problem, "nothing drawn: ")
+    t, n, k = np.asarray(sol.tiling), problem.board.n_cells, problem.n_colors
+    if t.shape != (n, 4) or t.size and (t.min() < 0 or t.max() >= k):
+        raise InvalidProblem(f"nothing drawn: the file's tiles are not 4 colours in 0..{k - 1} for each of the "
+                             f"{n} cells (tilesolve verify tells where)")
     legend = [f"{sol.status.value} by {sol.method}" + (f", seed {sol.seed}" if sol.seed is not None else "")]
     if fmt == "png":
         from tilesolve.io.png import write_board_png
