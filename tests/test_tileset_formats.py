@@ -83,7 +83,7 @@ def test_duplicates_dropped_with_a_note():
     ("2 3 5 5\n1 2 3 3\n", "tilesat", "header announces 2 tiles, the file has 1"),
     ("2 3 5\n1 2 3 3\n", "tilesat", "the TileSAT header must be 4 integers"),
     ("", "tilesat", "empty file"),
-    ("{", "json", "not valid JSON"),
+    ("{", "json", "malformed JSON"),
     ("0 1 2 3\n", "svg", "unknown tile-set format 'svg'"),
 ])
 def test_one_line_errors(text, fmt, message):

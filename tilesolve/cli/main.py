@@ -7,8 +7,9 @@ command's name). Nothing is imported before a command runs, so ``tilesolve --ver
 more than starting Python and click.
 
 Every :class:`~tilesolve.errors.TilesolveError` becomes one line ``tilesolve: error: ...`` on
-stderr and its ``exit_code``, and so does every usage error (exit 2); Ctrl-C exits 130 and
-SIGTERM 143. Outputs are checked before any work and written together at the end
+stderr and its ``exit_code``, and so does every usage error (exit 2); any other exception is a
+bug: one line ``tilesolve: error: internal error: ...`` and exit 70, never a traceback. Ctrl-C
+exits 130 and SIGTERM 143. Outputs are checked before any work and written together at the end
 (:mod:`tilesolve.cli.outputs`), so bad input or an interruption leaves no file.
 """
 
@@ -25,7 +26,7 @@ from tilesolve import __version__
 from tilesolve.cli.common import CliError, usage_error
 from tilesolve.cli.options import CONTEXT_SETTINGS, EXIT_HELP
 from tilesolve.cli.outputs import interruption, sigterm_as_interrupt
-from tilesolve.errors import TilesolveError
+from tilesolve.errors import InternalError, TilesolveError
 from tilesolve.io.atomic import remove_temporaries
 
 __all__ = ["main_group", "main", "GENERIC"]
@@ -54,6 +55,10 @@ class TilesolveGroup(click.Group):
         except (OverflowError, MemoryError) as exc:
             what = "a number is too large" if isinstance(exc, OverflowError) else "out of memory"
             raise CliError(f"{what} for this problem; try smaller sizes or numbers", 2) from None
+        except (click.ClickException, click.exceptions.Exit, click.Abort):
+            raise
+        except Exception as exc:  # noqa: BLE001 - any other exception is a bug: exit 70, one line
+            raise _internal(exc) from None
 
     def list_commands(self, ctx: click.Context) -> list[str]:
         return list(_family_commands()) + list(GENERIC)  # families first, in registry order
@@ -128,6 +133,13 @@ def main_group(ctx: click.Context, verbose: int, quiet: int) -> None:
     ctx.obj = {"verbosity": level}
 
 
+def _internal(exc: BaseException) -> CliError:
+    """An unexpected exception as the one-line internal error of exit 70 (no file is left)."""
+    remove_temporaries()
+    logging.getLogger("tilesolve").debug("internal error", exc_info=exc)
+    return CliError(str(InternalError(f"{type(exc).__name__}: {exc}")), InternalError.exit_code)
+
+
 def _interrupted() -> int:
     """Ctrl-C (exit 130) or SIGTERM (exit 143): no file of this run is left."""
     remove_temporaries()
@@ -147,8 +159,8 @@ def _quiet_stdout() -> None:
 def main(argv: list[str] | None = None) -> int:
     """Console-script entry point; returns the exit code.
 
-    Every error is one line ``tilesolve: error: ...`` (exit 2 for usage); Ctrl-C exits 130 and
-    SIGTERM 143, both leaving no file of this run.
+    Every error is one line ``tilesolve: error: ...`` (exit 2 for usage, 70 for an internal
+    error); Ctrl-C exits 130 and SIGTERM 143, both leaving no file of this run.
     """
     try:
         with sigterm_as_interrupt():
@@ -167,6 +179,10 @@ def main(argv: list[str] | None = None) -> int:
     except BrokenPipeError:
         _quiet_stdout()
         return 1
+    except Exception as exc:  # noqa: BLE001 - raised outside a command (option parsing, help)
+        err = _internal(exc)
+        err.show()
+        return err.exit_code
     return rv if isinstance(rv, int) else 0
 
 

@@ -32,6 +32,7 @@ Exit codes:
   1  unsat (proved), or the file has violations
   2  bad input or usage (one line on stderr, no file written)
   3  unknown: the time limit ran out (the unknown record is written)
+  70  internal error: a bug in tilesolve (one line on stderr; please report it)
   130  interrupted (Ctrl-C): no file written, existing files untouched
   143  terminated (SIGTERM): no file written, existing files untouched"""
 

@@ -73,7 +73,6 @@ import json
 import math
 import os
 import re
-from pathlib import Path
 from typing import Any, Callable, Iterable, Mapping
 
 import numpy as np
@@ -91,6 +90,13 @@ __all__ = [
     "provenance_to_dict",
     "solution_from_provenance",
     "read_json",
+    "read_input",
+    "read_input_text",
+    "parse_json",
+    "max_input_bytes",
+    "parse_byte_size",
+    "MAX_INPUT_ENV",
+    "DEFAULT_MAX_INPUT",
     "dumps",
     "problem_to_dict",
     "problem_from_dict",
@@ -174,32 +180,128 @@ def check_document(doc: Any, source: Any, formats: Mapping[str, Iterable[int]]) 
 def read_json(path: str | os.PathLike) -> Any:
     """Parse any JSON file (no tilesolve header required), with one-line errors.
 
+    The file is read through :func:`read_input_text` (so at most :func:`max_input_bytes`).
+
     Raises
     ------
     InvalidProblem
-        The file is missing, unreadable or not JSON.
+        The file is missing, unreadable, larger than the input limit or not JSON (``NaN`` and
+        ``Infinity`` are not JSON, and nor is a number too large for a double).
     """
-    return _parse_json(_read_text(path), path)
+    return parse_json(read_input_text(path), path)
 
 
-def _read_text(path: str | os.PathLike) -> str:
+#: The environment variable that sets the input limit (``tilesolve --max-input`` sets it too).
+MAX_INPUT_ENV = "TILESOLVE_MAX_INPUT"
+#: Most bytes read from one input file by default: 256 MiB, more than the largest file
+#: tilesolve writes within the CLI's limits (a window of 2^26 tiles as an encoded array).
+DEFAULT_MAX_INPUT = 256 << 20
+_UNITS = {"": 1, "K": 1 << 10, "M": 1 << 20, "G": 1 << 30, "T": 1 << 40}
+_SIZE_RE = re.compile(r"\s*(\d+)\s*([KMGT]?)(?:I?B)?\s*", re.IGNORECASE)
+
+
+def parse_byte_size(text: str) -> int:
+    """A size in bytes from ``"512"``, ``"64K"``, ``"300M"``, ``"2G"`` or ``"1GiB"`` (binary units).
+
+    >>> parse_byte_size("300M"), parse_byte_size("2GiB"), parse_byte_size("4096")
+    (314572800, 2147483648, 4096)
+    """
+    m = _SIZE_RE.fullmatch(str(text))
+    if not m or int(m.group(1)) == 0:
+        raise InvalidProblem(f"input limit {text!r}: expected a positive size such as 4096, 300M or 2G")
+    return int(m.group(1)) * _UNITS[m.group(2).upper()]
+
+
+def max_input_bytes() -> int:
+    """The most bytes a reader takes from one input file: ``$TILESOLVE_MAX_INPUT`` (a
+    :func:`parse_byte_size` size), else :data:`DEFAULT_MAX_INPUT`."""
+    value = os.environ.get(MAX_INPUT_ENV)
+    if value is None or not value.strip():
+        return DEFAULT_MAX_INPUT
     try:
-        return Path(path).read_text(encoding="utf-8")
+        return parse_byte_size(value)
+    except InvalidProblem as exc:
+        raise InvalidProblem(f"{MAX_INPUT_ENV}: {exc}") from None
+
+
+def read_input(path: str | os.PathLike, what: str = "") -> bytes:
+    """The bytes of an input file, read through the input limit (:func:`max_input_bytes`).
+
+    Every reader of user files comes here, so no file, pipe or device (``/dev/zero``, a
+    pipe of ``yes``) is read past the limit: at most limit + 1 bytes are ever held.
+
+    Parameters
+    ----------
+    path : path-like
+    what : str
+        How error messages name the file (``"mask "``: "cannot read mask FILE").
+
+    Raises
+    ------
+    InvalidProblem
+        The file is missing, a directory, unreadable, or larger than the limit.
+    """
+    limit = max_input_bytes()
+    try:
+        with open(path, "rb") as fh:
+            data = fh.read(limit + 1)
     except FileNotFoundError:
-        raise InvalidProblem(f"cannot read {path}: no such file") from None
+        raise InvalidProblem(f"cannot read {what}{path}: no such file") from None
     except IsADirectoryError:
-        raise InvalidProblem(f"cannot read {path}: it is a directory") from None
-    except UnicodeDecodeError:
-        raise InvalidProblem(f"cannot read {path}: not a UTF-8 text file") from None
+        raise InvalidProblem(f"cannot read {what}{path}: it is a directory") from None
     except OSError as exc:
-        raise InvalidProblem(f"cannot read {path}: {exc.strerror or exc}") from None
+        raise InvalidProblem(f"cannot read {what}{path}: {(exc.strerror or str(exc)).lower()}") from None
+    if len(data) > limit:
+        raise InvalidProblem(
+            f"{path}: the input is larger than the input limit of {_mib(limit)}; raise it with "
+            f"tilesolve --max-input SIZE or {MAX_INPUT_ENV}=SIZE (e.g. 2G)"
+        )
+    return data
 
 
-def _parse_json(text: str, source: Any) -> Any:
+def _mib(n: int) -> str:
+    return f"{n / 2**20:g} MiB" if n >= 1 << 20 else f"{n} bytes"
+
+
+def read_input_text(path: str | os.PathLike, what: str = "") -> str:
+    """:func:`read_input` decoded as UTF-8 (one-line error when it is not UTF-8 text)."""
     try:
-        return json.loads(text)
+        return read_input(path, what).decode("utf-8")
+    except UnicodeDecodeError:
+        raise InvalidProblem(f"cannot read {what}{path}: not a UTF-8 text file") from None
+
+
+class _NotJson(ValueError):
+    """A value Python's parser takes but JSON does not have (NaN, Infinity, 1e999)."""
+
+
+def _no_constant(name: str) -> float:
+    raise _NotJson(f"{name} is not a JSON number")
+
+
+def _finite_float(text: str) -> float:
+    value = float(text)
+    if not math.isfinite(value):
+        raise _NotJson(f"the number {text[:20]} is too large")
+    return value
+
+
+def parse_json(text: str, source: Any) -> Any:
+    """Parse JSON text strictly, with one-line errors naming ``source``.
+
+    >>> parse_json('{"seed": NaN}', "s.json")
+    Traceback (most recent call last):
+    ...
+    tilesolve.errors.InvalidProblem: s.json: malformed JSON: NaN is not a JSON number
+    """
+    try:
+        return json.loads(text, parse_constant=_no_constant, parse_float=_finite_float)
     except json.JSONDecodeError as exc:
         raise InvalidProblem(f"{source}: malformed JSON at line {exc.lineno}, column {exc.colno}: {exc.msg}") from None
+    except _NotJson as exc:
+        raise InvalidProblem(f"{source}: malformed JSON: {exc}") from None
+    except ValueError:  # an integer of more digits than Python converts (sys.get_int_max_str_digits)
+        raise InvalidProblem(f"{source}: malformed JSON: a number has too many digits") from None
     except RecursionError:
         raise InvalidProblem(f"{source}: malformed JSON (nested too deeply)") from None
 
@@ -344,7 +446,7 @@ def decode_array(value: Any, what: str, source: Any, *, ndim: int | None = None)
         if set(value) != {"dtype", "shape", "data"}:
             raise fail("an encoded array has exactly the fields 'dtype', 'shape' and 'data'")
         name, shape, data = value["dtype"], value["shape"], value["data"]
-        if name != "bits" and name not in ARRAY_DTYPES:
+        if not isinstance(name, str) or name != "bits" and name not in ARRAY_DTYPES:
             raise fail(f"unknown dtype {name!r}; expected bits or {', '.join(ARRAY_DTYPES)}")
         if not isinstance(shape, list) or not all(type(d) is int and d >= 0 for d in shape):
             raise fail(f"'shape' must be a list of sizes, got {shape!r}")
@@ -579,6 +681,10 @@ def provenance_to_dict(solution: Solution) -> dict:
     }
 
 
+#: The largest ``time_s`` a solution file may record (about 31 years: no run lasts longer).
+MAX_TIME_S = 1e9
+
+
 def solution_from_provenance(doc: dict, source: Any, tiling, *, what: str = "tiling",
                              default_status: str | None = None) -> Solution:
     """A :class:`Solution` from the fields :func:`provenance_to_dict` writes (checked
@@ -586,7 +692,8 @@ def solution_from_provenance(doc: dict, source: Any, tiling, *, what: str = "til
 
     ``tiling`` is the family's already-parsed grid (``None`` if the file has none); a
     status that promises a tiling without one is an error. ``default_status`` is used when
-    the file has no ``status`` field.
+    the file has no ``status`` field. ``seed`` is a non-negative integer and ``time_s`` a
+    finite number of seconds from 0 to :data:`MAX_TIME_S` (NaN never parses: :func:`parse_json`).
     """
     raw = doc.get("status", default_status)
     try:
@@ -604,16 +711,22 @@ def solution_from_provenance(doc: dict, source: Any, tiling, *, what: str = "til
             raise InvalidProblem(f"{source}: {name!r} has the wrong type ({type(v).__name__})")
         return v
 
-    notes = opt("notes", list, [])
+    notes = opt("notes", list, []) or []
     if not all(isinstance(n, str) for n in notes):
         raise InvalidProblem(f"{source}: 'notes' must be a list of strings")
+    seed, time_s = opt("seed", int), opt("time_s", (int, float), 0.0)
+    if seed is not None and not 0 <= seed < 2**63:
+        raise InvalidProblem(f"{source}: 'seed' must be an integer from 0 to 2**63 - 1, got {seed}")
+    if time_s is not None and not (math.isfinite(time_s) and 0 <= time_s <= MAX_TIME_S):
+        raise InvalidProblem(f"{source}: 'time_s' must be a number of seconds from 0 to {MAX_TIME_S:g}, "
+                             f"got {time_s!r}")
     return Solution(
         status=status,
         tiling=tiling,
         method=opt("method", str, "") or "",
         solver=opt("solver", str),
-        seed=opt("seed", int),
-        time_s=float(opt("time_s", (int, float), 0.0) or 0.0),
+        seed=seed,
+        time_s=float(time_s or 0.0),
         objective=opt("objective", int),
         reason=opt("reason", str),
         notes=tuple(notes),
@@ -693,10 +806,10 @@ def read_tiling(path: str | os.PathLike, *, allow_free: bool = False, what: str 
     numpy.ndarray
         int64 array ``[row, col]``; tile range and shape are checked by the problem.
     """
-    text = _read_text(path)
+    text = read_input_text(path)
     stripped = text.lstrip()
     if stripped.startswith(("{", "[")):
-        doc = _parse_json(text, path)
+        doc = parse_json(text, path)
         if isinstance(doc, list):
             return _opt_grid(doc, what, path, allow_free=allow_free)
         _dappled_header(doc, path, (DAPPLED_PROBLEM, DAPPLED_SOLUTION))

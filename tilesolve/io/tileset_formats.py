@@ -13,8 +13,12 @@ format       what a file holds                                                  
              bottom)`` (the order of S. Labbé's Sage package ``slabbe``)
 ===========  ======================================================================  ============
 
-Colours must be integers; ``nswe`` and ``rtlb`` colours are ``0 ..`` (the set's palette is
-``0 .. max``), TileSAT's are shifted down by one. Duplicate tiles are dropped with a note.
+Colours must be integers; ``nswe`` and ``rtlb`` colours are ``0 ..``, TileSAT's are shifted
+down by one. A set's palette is the colours its tiles use, relabelled ``0 .. k-1`` in order
+when they are not already (with a note); duplicate tiles are dropped with a note. A file is
+read through the input limit (:func:`tilesolve.io.jsonio.read_input`), and a file that
+contradicts its format (a TileSAT header announcing more tiles than follow, an ``rtlb`` list
+cut short) is refused, never re-read as another format.
 
 Examples
 --------
@@ -30,6 +34,8 @@ import re
 from pathlib import Path
 
 from tilesolve.errors import InvalidProblem
+from tilesolve.io.jsonio import parse_json, read_input_text
+from tilesolve.io.tileset_json import compact_tileset, tileset_from_data
 from tilesolve.model.board import WangTileSet
 
 __all__ = ["FORMATS", "detect_format", "parse_tileset_text", "read_tileset_file"]
@@ -40,6 +46,7 @@ FORMATS = {"json": "N E S W", "nswe": "north south west east", "tilesat": "N E S
 # positions of N, E, S, W in a line of each text format
 _TO_NESW = {"nswe": (0, 3, 1, 2), "tilesat": (0, 1, 2, 3), "rtlb": (1, 0, 3, 2)}
 _INT = re.compile(r"[+-]?\d+")
+_TUPLE = re.compile(r"\(([^()]*)\)")
 
 
 def _lines(text: str) -> list[tuple[int, str]]:
@@ -55,7 +62,20 @@ def _lines(text: str) -> list[tuple[int, str]]:
 def detect_format(path: str | os.PathLike, text: str) -> str:
     """The format of a tile-set file: by extension (``.json``, ``.tiles``), else by content
     (a ``(`` means ``rtlb``; a 4-number header followed by that many tile lines means
-    ``tilesat``; other lines of four numbers mean ``nswe``)."""
+    ``tilesat``; other lines of four numbers mean ``nswe``).
+
+    Detection never switches silently: a first line that reads as a TileSAT header announcing
+    more tiles than the file holds (every colour after it within the header's ``1 ..
+    n_colors``) is a truncated TileSAT file or an ``nswe`` file, and is refused until
+    ``--format`` says which.
+
+    >>> detect_format("t.txt", "3 4 2 2\\n1 1 2 1\\n2 4 3 1\\n3 1 3 2\\n")
+    'tilesat'
+    >>> detect_format("t.txt", "3 4 2 2\\n1 1 2 1\\n2 4 3 1\\n")
+    Traceback (most recent call last):
+    ...
+    tilesolve.errors.InvalidProblem: t.txt: the first line reads as a TileSAT header announcing 3 tiles, but 2 tile lines follow; give --format tilesat (and complete the file) or --format nswe
+    """
     suffix = Path(path).suffix.lower()
     if suffix == ".json":
         return "json"
@@ -67,16 +87,25 @@ def detect_format(path: str | os.PathLike, text: str) -> str:
     if "(" in stripped:
         return "rtlb"
     rows = _lines(text)
-    if rows:
-        head = rows[0][1].split()
-        if len(head) == 4 and all(_INT.fullmatch(x) for x in head) and int(head[0]) == len(rows) - 1:
-            return "tilesat"
+    head = rows[0][1].split() if rows else []
+    if len(head) != 4 or not all(_INT.fullmatch(x) and len(x) < 20 for x in head):
+        return "nswe"
+    n_tiles, n_colors = int(head[0]), int(head[1])
+    if n_tiles == len(rows) - 1:
+        return "tilesat"
+    rest = [x for _, line in rows[1:] for x in line.split()]
+    if n_tiles > len(rows) - 1 and all(_INT.fullmatch(x) and len(x) < 20 and 1 <= int(x) <= n_colors for x in rest):
+        raise InvalidProblem(f"{path}: the first line reads as a TileSAT header announcing {n_tiles} tiles, but "
+                             f"{len(rows) - 1} tile lines follow; give --format tilesat (and complete the file) "
+                             "or --format nswe")
     return "nswe"
 
 
 def _colour(token: str, where: str) -> int:
     if not _INT.fullmatch(token):
-        raise InvalidProblem(f"{where}: colour {token!r} is not an integer")
+        raise InvalidProblem(f"{where}: colour {token[:20]!r} is not an integer")
+    if len(token.lstrip("+-0")) > 18:
+        raise InvalidProblem(f"{where}: colour {token[:20]}... is too large (colours are below 10**18)")
     c = int(token)
     if c < 0:
         raise InvalidProblem(f"{where}: colour {c} is negative")
@@ -99,15 +128,7 @@ def parse_tileset_text(text: str, fmt: str, source: str = "<tile set>") -> tuple
         header that disagrees with the tiles, or no tiles at all.
     """
     if fmt == "json":
-        import json
-
-        from tilesolve.io.tileset_json import tileset_from_data
-
-        try:
-            data = json.loads(text)
-        except json.JSONDecodeError as exc:
-            raise InvalidProblem(f"{source}: not valid JSON (line {exc.lineno}: {exc.msg})") from None
-        return tileset_from_data(data, source)
+        return tileset_from_data(parse_json(text, source), source)
     if fmt not in _TO_NESW:
         raise InvalidProblem(f"unknown tile-set format {fmt!r}; choose one of {', '.join(FORMATS)}")
     order = FORMATS[fmt]
@@ -115,8 +136,10 @@ def parse_tileset_text(text: str, fmt: str, source: str = "<tile set>") -> tuple
         # a Python literal [(r, t, l, b), ...] or one tuple per line: one tile per parenthesis
         body = re.sub(r"#[^\n]*", "", text)
         rows = [(body.count("\n", 0, m.start()) + 1, m.group(1).replace(",", " "))
-                for m in re.finditer(r"\(([^()]*)\)", body)]
-        if not rows:
+                for m in _TUPLE.finditer(body)]
+        if rows:
+            _check_tuple_list(body, source)
+        else:
             rows = _lines(text)
     else:
         rows = _lines(text)
@@ -151,12 +174,21 @@ def parse_tileset_text(text: str, fmt: str, source: str = "<tile set>") -> tuple
                 raise InvalidProblem(f"{where}: colour {bad[0]} is outside 1..{n_colors} (the header's colour count)")
             cols = [c - 1 for c in cols]
         tiles.append([cols[i] for i in idx])
-    k = n_colors if n_colors is not None else 1 + max(max(t) for t in tiles)
-    ts = WangTileSet.from_nesw(tiles, k)
-    notes = []
-    if len(ts) < len(tiles):
-        notes.append(f"{source}: {len(tiles) - len(ts)} duplicate tile(s) dropped")
-    return ts, notes
+    return compact_tileset(tiles, source, n_colors)
+
+
+def _check_tuple_list(body: str, source: str) -> None:
+    """Between the tuples of an ``rtlb`` file only commas, brackets, blanks and an assignment
+    (``tiles = [...]``) may stand, and brackets and parentheses must close: a truncated or
+    garbled file is refused, not read as the tuples that survived."""
+    rest = re.sub(r"(?m)^\s*[A-Za-z_][\w.]*\s*=", " ", _TUPLE.sub(" ", body))
+    stray = re.search(r"[^\s,\[\]]", rest)
+    if stray:
+        line = rest.count("\n", 0, stray.start()) + 1
+        what = "an unclosed '(' (is the file truncated?)" if stray.group() == "(" else repr(rest[stray.start():][:20])
+        raise InvalidProblem(f"{source}: line {line}: {what} outside the (right, top, left, bottom) tuples")
+    if rest.count("[") != rest.count("]"):
+        raise InvalidProblem(f"{source}: the brackets of the list of tuples do not close (is the file truncated?)")
 
 
 def read_tileset_file(path: str | os.PathLike, fmt: str | None = None) -> tuple[WangTileSet, list[str]]:
@@ -165,10 +197,5 @@ def read_tileset_file(path: str | os.PathLike, fmt: str | None = None) -> tuple[
         from tilesolve.io.tileset_json import read_tileset
 
         return read_tileset(path)
-    try:
-        text = Path(path).read_text(encoding="utf-8")
-    except UnicodeDecodeError:
-        raise InvalidProblem(f"cannot read {path}: not a UTF-8 text file") from None
-    except OSError as exc:
-        raise InvalidProblem(f"cannot read {path}: {exc.strerror or exc}") from None
+    text = read_input_text(path)
     return parse_tileset_text(text, fmt or detect_format(path, text), str(path))

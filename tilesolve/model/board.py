@@ -44,7 +44,7 @@ __all__ = [
     "W", "N", "E", "S", "LEG_NAMES", "MAX_BOARD_CELLS", "MAX_BRICK_COLORS", "GRID_KINDS",
     "GridSpec", "Board", "grid_kind", "kind_mask", "described_board", "WangTileSet", "BoardProblem",
     "parse_board_spec", "parse_mask_text",
-    "wang_from_nesw", "wang_to_nesw", "random_boundary",
+    "colour_rows", "wang_from_nesw", "wang_to_nesw", "random_boundary",
 ]
 
 W, N, E, S = 0, 1, 2, 3
@@ -637,10 +637,31 @@ def parse_board_spec(spec: str) -> Board:
 
 
 # ---------------------------------------------------------------------- tile sets
+def colour_rows(tiles) -> np.ndarray:
+    """Tiles as an ``(m, 4)`` int64 array of colours, from rows of four integers (lists or an
+    integer array; a flat list of 4m integers too).
+
+    Raises
+    ------
+    InvalidProblem
+        A colour that is not an integer (a string, a float, a boolean, an integer beyond
+        int64), or rows that are not four colours each.
+    """
+    try:
+        t = np.asarray(tiles)
+    except (TypeError, ValueError, OverflowError):
+        raise InvalidProblem("tiles must be lists of 4 integer colours") from None
+    if t.size and t.dtype.kind not in "iu" or t.dtype.kind == "u" and t.size and t.max() >= 2**63:
+        raise InvalidProblem("tiles must be lists of 4 integer colours")
+    if t.size % 4:
+        raise InvalidProblem(f"each tile must have 4 colours; got shape {t.shape}")
+    return t.astype(np.int64).reshape(-1, 4)
+
+
 def wang_from_nesw(tiles) -> np.ndarray:
-    """Convert tiles given as (N, E, S, W) to tilesolve's (W, N, E, S) leg order."""
-    t = np.asarray(tiles, dtype=np.int64).reshape(-1, 4)
-    return t[:, [3, 0, 1, 2]]
+    """Convert tiles given as (N, E, S, W) to tilesolve's (W, N, E, S) leg order
+    (:func:`colour_rows` checks them)."""
+    return colour_rows(tiles)[:, [3, 0, 1, 2]]
 
 
 def wang_to_nesw(tiles) -> np.ndarray:
@@ -669,13 +690,14 @@ class WangTileSet:
         if k < 1:
             raise InvalidProblem(f"a tile set needs at least one colour, got {self.n_colors}")
         try:
-            t = np.asarray(self.tiles, dtype=np.int64)
-        except (TypeError, ValueError):
+            t = np.asarray(self.tiles)
+        except (TypeError, ValueError, OverflowError):
             raise InvalidProblem("tiles must be lists of 4 integer colours") from None
         if t.size == 0:
             raise InvalidProblem("the tile set is empty")
         if t.ndim != 2 or t.shape[1] != 4:
             raise InvalidProblem(f"each tile must have 4 colours (W, N, E, S); got shape {t.shape}")
+        t = colour_rows(t)
         bad = (t < 0) | (t >= k)
         if bad.any():
             i = int(np.argwhere(bad)[0][0])
