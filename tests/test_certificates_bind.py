@@ -218,6 +218,9 @@ def test_transducer_emptiness_certificate_is_rederived(tmp_path):
     assert [(c["board"], c["method"]) for c in doc["squares"]] == [("square 1x2", "sat+transducer")]
     proc = run("aperiodic", "verify", "t.json", "--proof-dir", "proofs", cwd=tmp_path)
     assert proc.returncode == 0 and "1 refutation(s) re-checked" in _lines_end_with_one_verdict(proc.stdout)
+    _write(tmp_path, "u.json", dict(doc, status="unsat"))  # a report relabelled as an unsat answer
+    proc = run("verify", "u.json", "--proof-dir", "proofs", cwd=tmp_path)
+    assert proc.returncode == 1 and "NOT confirmed" in proc.stdout and not proc.stdout.startswith("ok:")
     doc["squares"][0]["board"] = "square 1x1"  # relabelled: the 1x1 square is tiled
     _write(tmp_path, "f.json", doc)
     proc = run("aperiodic", "verify", "f.json", "--proof-dir", "proofs", cwd=tmp_path)
@@ -303,3 +306,22 @@ def test_sweep_api_without_a_witness_check_uses_no_cached_witness(tmp_path):
     again, _ = sweep(ws, names, RunOptions(seed=1, workers=1), cache=cache)
     assert again[0].evidence.get("cached") and not again[1].evidence.get("cached")
     assert "was not re-verified" in again[1].evidence["cache_rejected"]
+
+
+def test_many_refutations_rechecked_on_worker_processes(tmp_path):
+    from tilesolve.engine.certificates import PARALLEL_RECHECK_MIN
+
+    problem = AperiodicProblem(WangTileSet.from_nesw(DIAGONAL, 3), 0, 4, shears=True)
+    from tilesolve.aperiodic import solve
+
+    s = solve(problem, seed=1, workers=1, options={"proof_dir": tmp_path / "proofs"})
+    _write(tmp_path, "r.json", json.loads(solution_text(problem, s)))
+    refuted = s.stats["periods_refuted"]
+    assert refuted >= PARALLEL_RECHECK_MIN
+    proc = run("aperiodic", "verify", "r.json", "--proof-dir", "proofs", "--workers", "2", cwd=tmp_path)
+    assert proc.returncode == 0 and f"{refuted} refutation(s) re-checked" in _lines_end_with_one_verdict(proc.stdout)
+    drat = sorted((tmp_path / "proofs").glob("*.drat"))[-1]
+    drat.write_text("0\n")
+    proc = run("aperiodic", "verify", "r.json", "--proof-dir", "proofs", "--workers", "2", cwd=tmp_path)
+    assert proc.returncode == 1 and "differs from the recorded" in proc.stdout
+    assert not _lines_end_with_one_verdict(proc.stdout).startswith("ok:")

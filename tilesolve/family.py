@@ -806,7 +806,10 @@ def verify_document(doc: dict, source: str = "<document>", proof_dir: str | os.P
 def _verify_unsat(fam: Family, problem: Any, sol: Solution, source: str, proof_dir, workers: int) -> FileReport:
     """:func:`verify_document` of a file whose status is ``unsat``."""
     why = f" ({sol.reason})" if sol.reason else ""
-    refused, details, _ = _recheck(_refutations(fam, problem, sol), proof_dir, workers)
+    claims = _refutations(fam, problem, sol)
+    if not claims:
+        return FileReport(1, (f"{source}: status unsat NOT confirmed: the file names no refutation to re-check",))
+    refused, details, _ = _recheck(claims, proof_dir, workers)
     if refused:
         head = f"{source}: status unsat NOT confirmed: its certificate does not hold"
         return FileReport(1, (head,) + tuple(details))
