@@ -25,6 +25,9 @@ from tilesolve.model.run import RunOptions
 from tilesolve.model.solution import Solution, Status
 
 NOT_ENCODING = "the CNF is not the encoding of this problem"
+#: N, E, S, W: tile i has N = W = i, E = S = i + 1 (mod 3): it tiles the torus 3x3 and, of the
+#: 3x1 tori, only the one with shear 1.
+DIAGONAL = [[i, (i + 1) % 3, (i + 1) % 3, i] for i in range(3)]
 
 
 def _unsat_dappled(tmp_path, name="u.json", size="3x3", proofs="proofs"):
@@ -146,6 +149,38 @@ def test_export_dimacs_writes_the_formula_verify_rederives(tmp_path):
     assert exported == stored
 
 
+#: One problem per named encoding and the SHA-256 of its CNF at the version named: a change to
+#: an encoder (or to the model code it reads) that changes a CNF fails here; raise the
+#: encoding's version in ``tilesolve.encodings.registry.ENCODINGS`` and record the new digest,
+#: so that files certified with the old CNF are refused as "re-solve to re-certify".
+PINNED = {
+    "dappled-cnf": (1, "85b9eb80a3dfba99eef215ee3aa7ba82e53a42b5499bc587ff8a63524f8a7bf1"),
+    "wang-board-cnf": (1, "e9b9278995d9e734bd7b78fd37990f18f0b5c9be34a52d4af5d8932a40ee93e2"),
+    "packing-cnf": (1, "65f997450a660d5c665c6e3c1084b1b5a16c82e86c866830002fe818d2bc3e29"),
+    "wang-tiles-cnf": (1, "b2d5e77873f3807a1c4bb149c95c6d1e8375b2cedd411f8401d0ea1a37186e83"),
+}
+
+
+def test_every_named_encoding_is_deterministic_and_pinned_to_its_version():
+    from tilesolve.encodings.registry import ENCODINGS, encode
+    from tilesolve.engine.aperiodic import board_problem
+    from tilesolve.model.board import Board, BoardProblem
+    from tilesolve.model.dappled import DappledProblem
+    from tilesolve.model.packing import PackingProblem
+    from tilesolve.verify.drat import dimacs_bytes
+
+    problems = {
+        "dappled-cnf": DappledProblem.from_strings("5x4", ["H0=2", "V1=2"], cyclic=True, counts=["1=6..9"]),
+        "wang-board-cnf": BoardProblem(Board.mobius(3, 4), WangTileSet.brick(3), max_h=2),
+        "packing-cnf": PackingProblem("corner", 2, fixed=((0, 0, 3),)),
+        "wang-tiles-cnf": board_problem(WangTileSet.from_nesw(DIAGONAL, 3), "torus 3x2 shear 1"),
+    }
+    assert set(problems) == set(ENCODINGS) == set(PINNED)
+    for name, problem in problems.items():
+        digests = {hashlib.sha256(dimacs_bytes(encode(name, problem).hard)).hexdigest() for _ in range(2)}
+        assert digests == {PINNED[name][1]} and ENCODINGS[name].version == PINNED[name][0], name
+
+
 # ------------------------------------------------------------------------- every family
 def test_honest_unsat_of_every_route_verifies_and_a_relabel_is_refused(tmp_path):
     (tmp_path / "lonely.json").write_text(json.dumps({"order": "NESW", "colors": 2, "tiles": [[0, 1, 0, 0]]}))
@@ -239,9 +274,6 @@ def test_report_with_a_three_colour_tile_is_one_error_line(tmp_path):
 
 
 # ---------------------------------------------------------------------------------- caches
-#: N, E, S, W: tile i has N = W = i, E = S = i + 1 (mod 3): it tiles the torus 3x3 and, of the
-#: 3x1 tori, only the one with shear 1.
-DIAGONAL = [[i, (i + 1) % 3, (i + 1) % 3, i] for i in range(3)]
 
 
 def test_forged_cache_lines_are_decided_again_and_proofs_written_for_cached_refutations(tmp_path):
