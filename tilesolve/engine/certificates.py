@@ -340,25 +340,43 @@ def _recheck_job(claims: list, proof_dir: str | None, *, seed: int) -> Recheck:
     return recheck_unsat(problem, evidence, proof_dir)
 
 
+def _proof_size(evidence: Mapping[str, Any], proof_dir: str | os.PathLike | None) -> int:
+    """Bytes of the proof file the recorded digests locate (0 when there is none)."""
+    cnf, drat = _digest(evidence.get("cnf_sha256")), _digest(evidence.get("drat_sha256"))
+    if proof_dir is None or cnf is None or drat is None:
+        return 0
+    path = os.path.join(os.fspath(proof_dir), proof_name(cnf, drat) + ".drat")
+    return os.path.getsize(path) if os.path.isfile(path) else 0
+
+
 def recheck_all(claims, proof_dir: str | os.PathLike | None = None, *, workers: int = 1) -> list[Recheck]:
-    """:func:`recheck_unsat` of every ``(what, problem, evidence)`` claim, in order; on ``workers``
-    local processes when there are at least :data:`PARALLEL_RECHECK_MIN` claims (a report's
-    refuted boards), else here. Ctrl-C raises ``KeyboardInterrupt``."""
+    """:func:`recheck_unsat` of every ``(what, problem, evidence)`` claim (results in the claims'
+    order); on ``workers`` local processes when there are at least :data:`PARALLEL_RECHECK_MIN`
+    claims (a report's refuted boards), else here. Ctrl-C raises ``KeyboardInterrupt``.
+
+    The largest proofs are checked first: the checker's compiled kernels, loaded for them, then
+    serve the small ones too (checked first, each small proof would run interpreted), and the
+    long checks start while the short ones fill the gaps (5-6x faster on a Jeandel-Rao report).
+    """
     claims = list(claims)
+    order = sorted(range(len(claims)), key=lambda i: -_proof_size(claims[i][2], proof_dir))
+    out: list[Recheck | None] = [None] * len(claims)
     if workers <= 1 or len(claims) < PARALLEL_RECHECK_MIN:
-        return [recheck_unsat(problem, evidence, proof_dir) for _, problem, evidence in claims]
+        for i in order:
+            _, problem, evidence = claims[i]
+            out[i] = recheck_unsat(problem, evidence, proof_dir)
+        return out
     import functools
 
     from tilesolve.engine.aperiodic import _on_pool
     from tilesolve.model.run import RunOptions
 
-    out: list[Recheck | None] = [None] * len(claims)
-
     def take(i: int, rc: Recheck) -> bool:
-        out[i] = rc
+        out[order[i]] = rc
         return False
 
-    task = functools.partial(_recheck_job, claims, None if proof_dir is None else os.fspath(proof_dir))
+    task = functools.partial(_recheck_job, [claims[i] for i in order],
+                             None if proof_dir is None else os.fspath(proof_dir))
     if _on_pool(task, len(claims), min(workers, len(claims)), RunOptions(seed=0, deadline=Deadline(None)), take,
                 lambda text: None, lambda: ""):
         raise KeyboardInterrupt
