@@ -144,7 +144,7 @@ def test_malformed_board_solution_and_boundary_from_file(tmp_path, monkeypatch):
     assert json.loads(Path("b.json").read_text())["boundary"] == doc["boundary"]
     bad = dict(doc, edges=doc["edges"][:-1])
     Path("bad.json").write_text(json.dumps(bad))
-    r = CliRunner().invoke(main_group, ["verify", "bad.json"])
-    assert r.exit_code == 2 and "not joined" in r.output
+    r = CliRunner().invoke(main_group, ["verify", "bad.json"])  # the listed edges are not the rect's
+    assert r.exit_code == 1 and "does not list the edge where leg S of cell [2, 3] meets the wall" in r.output
     r = CliRunner().invoke(main_group, ["brick", "solve", "--board", "rect:600x600", "--svg", "x.svg"])
     assert r.exit_code == 2 and "too large" in r.output and not Path("x.svg").exists()
