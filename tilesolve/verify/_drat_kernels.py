@@ -15,12 +15,18 @@ Data layout
 -----------
 Literal ``l`` has code ``2|l| + (l < 0)``; ``code ^ 1`` is its negation. Every clause (the
 formula's, then one per proof line, deletions included) is ``lits[start[c]:start[c] + size[c]]``
-after removing repeated literals. Clause ``c`` owns two watch nodes ``2c`` and ``2c + 1``
-watching its literals in positions 0 and 1, kept in doubly linked lists (``head``, ``nxt``,
-``prv``), two per literal: list ``2 code + 1`` holds the core clauses, ``2 code`` the others
-(a clause moves when it is marked), so core-first propagation scans only core watches.
-Moving, removing and restoring a watch is O(1) and no watch list ever holds a stale entry. Invariant between checks: a watched literal that is false
-has a true partner watch (the trail is closed under unit propagation).
+after removing repeated literals. Clause ``c`` owns two watches, nodes ``2c`` and ``2c + 1``,
+on its literals in positions 0 and 1. Each literal code has two watch lists, list
+``2 code + 1`` for the core clauses and ``2 code`` for the others (a clause moves when it is
+marked), so core-first propagation scans only core watches. A list is a vector in a block of
+one ``pool`` array (``wl[list]`` = start, length, room; see :func:`w_push`), and an entry is
+``node << 32 | blocker``, the blocker a literal of the clause that, when true, lets a check
+pass the clause over without reading it. Invariant between checks: a watched literal that is
+false has a true partner watch (the trail is closed under unit propagation).
+
+The kernels allocate nothing (the caller hands every array in), so that numba compiles them
+without its reference counting (``_nrt=False``), which otherwise costs half the time of the
+calls between kernels.
 """
 
 from __future__ import annotations
@@ -38,19 +44,9 @@ def lit_hash(code):
     return ((code * 2654435761) ^ (code * 40503 + 97)) & MASK
 
 
-def prepare(lits, start, size, taut, chash, n_cl):
-    """Drop repeated literals, flag tautologies and hash every clause (order-free)."""
-    top = 0
-    for c in range(n_cl):
-        b = start[c]
-        if size[c] > 0:
-            m = lits[b]
-            for k in range(b, b + size[c]):
-                if lits[k] > m:
-                    m = lits[k]
-            if m > top:
-                top = m
-    mark = np.full(top + 2, -1, np.int64)
+def prepare(lits, start, size, taut, chash, mark, n_cl):
+    """Drop repeated literals, flag tautologies and hash every clause (order-free); ``mark``
+    (one entry per literal code, all -1) is left holding clause numbers."""
     for c in range(n_cl):
         b = start[c]
         n = 0
@@ -108,24 +104,61 @@ def find_clause(ht_key, ht_head, same_prev, chash, lits, start, size, active, ma
     return -1
 
 
-def link(head, nxt, prv, node, code):
-    h = head[code]
-    nxt[node] = h
-    prv[node] = -1
-    if h >= 0:
-        prv[h] = node
-    head[code] = node
+def w_push(wl, pool, lst, entry):
+    """Append ``entry`` to watch list ``lst``. A full list moves to a new block at the pool's
+    end with room for as many again (the pool is compacted first when its end is reached)."""
+    n = wl[lst, 1]
+    if n == wl[lst, 2]:
+        last = wl.shape[0] - 1
+        if wl[last, 0] + 2 * n + 6 > pool.shape[0]:
+            w_compact(wl, pool)
+        top = wl[last, 0]
+        old = wl[lst, 0]
+        pool[top] = lst
+        pool[top + 1] = 2 * n + 4
+        for i in range(n):
+            pool[top + 2 + i] = pool[old + i]
+        wl[lst, 0] = top + 2
+        wl[lst, 2] = 2 * n + 4
+        wl[last, 0] = top + 2 * n + 6
+    pool[wl[lst, 0] + n] = entry
+    wl[lst, 1] = n + 1
 
 
-def unlink(head, nxt, prv, node, code):
-    p = prv[node]
-    n = nxt[node]
-    if p >= 0:
-        nxt[p] = n
-    else:
-        head[code] = n
-    if n >= 0:
-        prv[n] = p
+def w_compact(wl, pool):
+    """Move the live blocks of the pool down over the abandoned ones, each as full as its list."""
+    last = wl.shape[0] - 1
+    end = wl[last, 0]
+    pos = 0
+    top = 0
+    while pos < end:
+        lst = pool[pos]
+        cap = pool[pos + 1]
+        if wl[lst, 0] == pos + 2:
+            n = wl[lst, 1]
+            if n > 0:
+                pool[top] = lst
+                pool[top + 1] = n
+                for k in range(n):
+                    pool[top + 2 + k] = pool[pos + 2 + k]
+                wl[lst, 0] = top + 2
+                top += n + 2
+            else:
+                wl[lst, 0] = 0
+            wl[lst, 2] = n
+        pos += cap + 2
+    wl[last, 0] = top
+
+
+def w_remove(wl, pool, lst, node):
+    """Remove the entry of watch ``node`` from list ``lst`` (the last entry takes its place)."""
+    b = wl[lst, 0]
+    n = wl[lst, 1] - 1
+    for i in range(b, b + n + 1):
+        if pool[i] >> 32 == node:
+            pool[i] = pool[b + n]
+            wl[lst, 1] = n
+            return
 
 
 def assign(val, reason, tpos, trail, st, code, c):
@@ -147,9 +180,10 @@ def backtrack(val, reason, trail, st, p):
     st[0] = p
     st[1] = p
     st[2] = p
+    st[3] = -1
 
 
-def attach(lits, start, size, val, head, nxt, prv, core, c):
+def attach(lits, start, size, val, wl, pool, core, c):
     """Watch two literals of clause ``c`` (size >= 2): true first, then unassigned, then false.
 
     Returns the number of non-false literals among the two watched (0: conflict, 1 with the
@@ -168,8 +202,8 @@ def attach(lits, start, size, val, head, nxt, prv, core, c):
         t = lits[b + pos]
         lits[b + pos] = lits[best]
         lits[best] = t
-    link(head, nxt, prv, 2 * c, 2 * lits[b] + core[c])
-    link(head, nxt, prv, 2 * c + 1, 2 * lits[b + 1] + core[c])
+    w_push(wl, pool, 2 * lits[b] + core[c], (2 * c) << 32 | lits[b + 1])
+    w_push(wl, pool, 2 * lits[b + 1] + core[c], (2 * c + 1) << 32 | lits[b])
     free = 0
     if val[lits[b]] != -1:
         free += 1
@@ -178,60 +212,85 @@ def attach(lits, start, size, val, head, nxt, prv, core, c):
     return free
 
 
-def detach(lits, start, head, nxt, prv, core, c):
+def detach(lits, start, wl, pool, core, c):
     b = start[c]
-    unlink(head, nxt, prv, 2 * c, 2 * lits[b] + core[c])
-    unlink(head, nxt, prv, 2 * c + 1, 2 * lits[b + 1] + core[c])
+    w_remove(wl, pool, 2 * lits[b] + core[c], 2 * c)
+    w_remove(wl, pool, 2 * lits[b + 1] + core[c], 2 * c + 1)
 
 
-def make_core(c, lits, start, size, taut, active, head, nxt, prv, core):
+def make_core(c, lits, start, size, taut, active, wl, pool, core):
     """Mark clause ``c`` as used; an attached clause moves to the core watch lists."""
     if core[c] == 1:
         return 0
     attached = active[c] == 1 and taut[c] == 0 and size[c] >= 2
     if attached:
-        detach(lits, start, head, nxt, prv, core, c)
+        detach(lits, start, wl, pool, core, c)
     core[c] = 1
     if attached:
         b = start[c]
-        link(head, nxt, prv, 2 * c, 2 * lits[b] + 1)
-        link(head, nxt, prv, 2 * c + 1, 2 * lits[b + 1] + 1)
+        w_push(wl, pool, 2 * lits[b] + 1, (2 * c) << 32 | lits[b + 1])
+        w_push(wl, pool, 2 * lits[b + 1] + 1, (2 * c + 1) << 32 | lits[b])
     return 1
 
 
-def visit(code, mode, lits, start, size, val, reason, tpos, trail, st, head, nxt, prv, core):
+def visit(code, mode, one, blk, lits, start, size, val, reason, tpos, trail, st, wl, pool, core):
     """Clauses watching ``code``'s negation, now false: the core ones (``mode`` 1) or the
     others (0). Returns a falsified clause, or -1.
+
+    A watch entry is ``node << 32 | blocker``: watch ``node`` of clause ``node >> 1`` (its
+    literal in position ``node & 1``) and some literal of that clause; with ``blk`` a clause
+    whose blocker is true is passed over unread (only inside a check, which is undone
+    whole: at the top level a false watch keeps a true partner watch). With ``one`` the visit
+    stops after the first clause it makes unit (drat-trim's core-first order: core clauses
+    propagate each new literal first), leaving in ``st[3]`` the position to resume from
+    (``-1``: the list's start, ``-2``: the list is done).
     """
     f = code ^ 1
-    node = head[2 * f + mode]
-    while node >= 0:
-        nn = nxt[node]
+    lst = 2 * f + mode
+    i = 0
+    if one and st[3] >= 0:
+        i = st[3]
+    while i < wl[lst, 1]:
+        e = pool[wl[lst, 0] + i]
+        if blk and val[e & 0xFFFFFFFF] == 1:
+            i += 1
+            continue
+        node = e >> 32
         c = node >> 1
         s = node & 1
         b = start[c]
         other = lits[b + 1 - s]
-        if val[other] != 1:
-            found = -1
-            for k in range(b + 2, b + size[c]):
-                if val[lits[k]] != -1:
-                    found = k
-                    break
-            if found >= 0:
-                x = lits[found]
-                lits[found] = f
-                lits[b + s] = x
-                unlink(head, nxt, prv, node, 2 * f + mode)
-                link(head, nxt, prv, node, 2 * x + mode)
-            elif val[other] == -1:
-                return c
-            else:
-                assign(val, reason, tpos, trail, st, other, c)
-        node = nn
+        if val[other] == 1:
+            pool[wl[lst, 0] + i] = node << 32 | other
+            i += 1
+            continue
+        found = -1
+        for k in range(b + 2, b + size[c]):
+            if val[lits[k]] != -1:
+                found = k
+                break
+        if found >= 0:
+            x = lits[found]
+            lits[found] = f
+            lits[b + s] = x
+            n = wl[lst, 1] - 1
+            pool[wl[lst, 0] + i] = pool[wl[lst, 0] + n]
+            wl[lst, 1] = n
+            w_push(wl, pool, 2 * x + mode, node << 32 | other)
+        elif val[other] == -1:
+            return c
+        else:
+            assign(val, reason, tpos, trail, st, other, c)
+            i += 1
+            if one:
+                st[3] = i
+                return -1
+    if one:
+        st[3] = -2
     return -1
 
 
-def propagate(core_first, lits, start, size, val, reason, tpos, trail, st, head, nxt, prv, core):
+def propagate(core_first, lits, start, size, val, reason, tpos, trail, st, wl, pool, core):
     """Unit propagation from the queue heads ``st[1]`` (core) and ``st[2]`` (others).
 
     Without ``core_first`` every clause is visited in one pass (``st[1]`` only).
@@ -240,23 +299,24 @@ def propagate(core_first, lits, start, size, val, reason, tpos, trail, st, head,
         while st[1] < st[0]:
             code = trail[st[1]]
             st[1] += 1
-            c = visit(code, 1, lits, start, size, val, reason, tpos, trail, st, head, nxt, prv, core)
+            c = visit(code, 1, False, core_first, lits, start, size, val, reason, tpos, trail, st, wl, pool, core)
             if c >= 0:
                 return c
             if not core_first:
-                c = visit(code, 0, lits, start, size, val, reason, tpos, trail, st, head, nxt, prv, core)
+                c = visit(code, 0, False, False, lits, start, size, val, reason, tpos, trail, st, wl, pool, core)
                 if c >= 0:
                     return c
         if not core_first or st[2] >= st[0]:
             return -1
-        code = trail[st[2]]
-        st[2] += 1
-        c = visit(code, 0, lits, start, size, val, reason, tpos, trail, st, head, nxt, prv, core)
+        c = visit(trail[st[2]], 0, True, True, lits, start, size, val, reason, tpos, trail, st, wl, pool, core)
+        if st[3] == -2:
+            st[2] += 1
+            st[3] = -1
         if c >= 0:
             return c
 
 
-def justify(v0, lits, start, size, taut, active, head, nxt, prv, reason, core, done, stack):
+def justify(v0, lits, start, size, taut, active, wl, pool, reason, core, done, stack):
     """Mark the reasons of top-level variable ``v0`` and of everything they rest on."""
     top = 0
     stack[top] = v0
@@ -271,7 +331,7 @@ def justify(v0, lits, start, size, taut, active, head, nxt, prv, reason, core, d
         r = reason[v]
         if r < 0:
             continue
-        marked += make_core(r, lits, start, size, taut, active, head, nxt, prv, core)
+        marked += make_core(r, lits, start, size, taut, active, wl, pool, core)
         b = start[r]
         for k in range(b, b + size[r]):
             u = lits[k] >> 1
@@ -281,26 +341,26 @@ def justify(v0, lits, start, size, taut, active, head, nxt, prv, reason, core, d
     return marked
 
 
-def analyze(confl, true_var, p, lits, start, size, taut, active, head, nxt, prv, reason, tpos, trail, st, core, done,
+def analyze(confl, true_var, p, lits, start, size, taut, active, wl, pool, reason, tpos, trail, st, core, done,
             seen, stack):
     """Mark the clauses a conflict (clause ``confl``, or a lemma literal already true on
     variable ``true_var``) rests on: the part of the trail above ``p`` by a backward walk,
     the top level by :func:`justify`.
     """
     if confl >= 0:
-        make_core(confl, lits, start, size, taut, active, head, nxt, prv, core)
+        make_core(confl, lits, start, size, taut, active, wl, pool, core)
         b = start[confl]
         for k in range(b, b + size[confl]):
             u = lits[k] >> 1
             if tpos[u] >= p:
                 seen[u] = 1
             else:
-                justify(u, lits, start, size, taut, active, head, nxt, prv, reason, core, done, stack)
+                justify(u, lits, start, size, taut, active, wl, pool, reason, core, done, stack)
     if true_var >= 0:
         if tpos[true_var] >= p:
             seen[true_var] = 1
         else:
-            justify(true_var, lits, start, size, taut, active, head, nxt, prv, reason, core, done, stack)
+            justify(true_var, lits, start, size, taut, active, wl, pool, reason, core, done, stack)
     for i in range(st[0] - 1, p - 1, -1):
         v = trail[i] >> 1
         if seen[v] == 0:
@@ -309,7 +369,7 @@ def analyze(confl, true_var, p, lits, start, size, taut, active, head, nxt, prv,
         r = reason[v]
         if r < 0:
             continue
-        make_core(r, lits, start, size, taut, active, head, nxt, prv, core)
+        make_core(r, lits, start, size, taut, active, wl, pool, core)
         b = start[r]
         for k in range(b, b + size[r]):
             u = lits[k] >> 1
@@ -318,10 +378,10 @@ def analyze(confl, true_var, p, lits, start, size, taut, active, head, nxt, prv,
             if tpos[u] >= p:
                 seen[u] = 1
             else:
-                justify(u, lits, start, size, taut, active, head, nxt, prv, reason, core, done, stack)
+                justify(u, lits, start, size, taut, active, wl, pool, reason, core, done, stack)
 
 
-def refutes(c, extra, skip, lits, start, size, taut, active, val, reason, tpos, trail, st, head, nxt, prv, core, done,
+def refutes(c, extra, skip, lits, start, size, taut, active, val, reason, tpos, trail, st, wl, pool, core, done,
             seen, stack):
     """Whether assigning the negation of clause ``c`` (and of clause ``extra`` but its literal
     ``skip``, for a RAT resolvent; ``extra`` -1 for none) and propagating gives a conflict.
@@ -345,16 +405,16 @@ def refutes(c, extra, skip, lits, start, size, taut, active, val, reason, tpos, 
             if val[x] == 0:
                 assign(val, reason, tpos, trail, st, x ^ 1, -1)
     if true_var < 0:
-        confl = propagate(True, lits, start, size, val, reason, tpos, trail, st, head, nxt, prv, core)
+        confl = propagate(True, lits, start, size, val, reason, tpos, trail, st, wl, pool, core)
     ok = true_var >= 0 or confl >= 0
     if ok:
-        analyze(confl, true_var, p, lits, start, size, taut, active, head, nxt, prv, reason, tpos, trail, st, core, done,
+        analyze(confl, true_var, p, lits, start, size, taut, active, wl, pool, reason, tpos, trail, st, core, done,
                 seen, stack)
     backtrack(val, reason, trail, st, p)
     return ok
 
 
-def truncate(p, lits, start, size, val, reason, trail, st, head, nxt, prv, core, done):
+def truncate(p, lits, start, size, val, reason, trail, st, wl, pool, core, done):
     """Shrink the top-level trail to length ``p`` and re-establish the watch invariant: a
     clause whose false watch was excused by a partner watch that is now unassigned gets a
     non-false literal in its place."""
@@ -363,10 +423,9 @@ def truncate(p, lits, start, size, val, reason, trail, st, head, nxt, prv, core,
         done[trail[i] >> 1] = 0
     backtrack(val, reason, trail, st, p)
     for i in range(2 * p, 2 * old):
-        code = trail[i >> 1]
-        node = head[2 * code + (i & 1)]
-        while node >= 0:
-            nn = nxt[node]
+        lst = 2 * trail[i >> 1] + (i & 1)
+        for j in range(wl[lst, 1]):
+            node = pool[wl[lst, 0] + j] >> 32
             c = node >> 1
             s = 1 - (node & 1)
             b = start[c]
@@ -377,14 +436,13 @@ def truncate(p, lits, start, size, val, reason, trail, st, head, nxt, prv, core,
                     if val[x] != -1:
                         lits[k] = w
                         lits[b + s] = x
-                        unlink(head, nxt, prv, node ^ 1, 2 * w + core[c])
-                        link(head, nxt, prv, node ^ 1, 2 * x + core[c])
+                        w_remove(wl, pool, 2 * w + core[c], node ^ 1)
+                        w_push(wl, pool, 2 * x + core[c], (node ^ 1) << 32 | lits[b + 1 - s])
                         break
-            node = nn
 
 
 def forward(n_formula, n_steps, is_del, lits, start, size, taut, chash, active, val, reason, tpos, trail, st,
-            head, nxt, prv, core, ht_key, ht_head, same_prev, mark, tl_before, target, counts, j0, j1):
+            wl, pool, core, ht_key, ht_head, same_prev, mark, tl_before, target, counts, j0, j1):
     """Forward pass over proof steps ``j0 .. j1 - 1`` (``j0 == -1``: load the formula first).
 
     ``counts``: [conflict clause, conflict step (-1: the formula), ignored deletions,
@@ -401,7 +459,7 @@ def forward(n_formula, n_steps, is_del, lits, start, size, taut, chash, active, 
                 return 1
         for c in range(n_formula):
             if taut[c] == 0 and size[c] >= 2:
-                attach(lits, start, size, val, head, nxt, prv, core, c)
+                attach(lits, start, size, val, wl, pool, core, c)
         for c in range(n_formula):
             if taut[c] == 0 and size[c] == 1:
                 x = lits[start[c]]
@@ -411,7 +469,7 @@ def forward(n_formula, n_steps, is_del, lits, start, size, taut, chash, active, 
                     return 1
                 if val[x] == 0:
                     assign(val, reason, tpos, trail, st, x, c)
-        confl = propagate(False, lits, start, size, val, reason, tpos, trail, st, head, nxt, prv, core)
+        confl = propagate(False, lits, start, size, val, reason, tpos, trail, st, wl, pool, core)
         if confl >= 0:
             counts[0] = confl
             counts[1] = -1
@@ -439,7 +497,7 @@ def forward(n_formula, n_steps, is_del, lits, start, size, taut, chash, active, 
                 continue
             active[t] = 0
             if taut[t] == 0:
-                detach(lits, start, head, nxt, prv, core, t)
+                detach(lits, start, wl, pool, core, t)
             continue
         if size[c] == 0:
             counts[4] = j
@@ -456,13 +514,13 @@ def forward(n_formula, n_steps, is_del, lits, start, size, taut, chash, active, 
             elif val[x] == 0:
                 assign(val, reason, tpos, trail, st, x, c)
         else:
-            free = attach(lits, start, size, val, head, nxt, prv, core, c)
+            free = attach(lits, start, size, val, wl, pool, core, c)
             if free == 0:
                 confl = c
             elif free == 1 and val[lits[start[c]]] == 0:
                 assign(val, reason, tpos, trail, st, lits[start[c]], c)
         if confl < 0:
-            confl = propagate(False, lits, start, size, val, reason, tpos, trail, st, head, nxt, prv, core)
+            confl = propagate(False, lits, start, size, val, reason, tpos, trail, st, wl, pool, core)
         if confl >= 0:
             counts[0] = confl
             counts[1] = j
@@ -470,8 +528,8 @@ def forward(n_formula, n_steps, is_del, lits, start, size, taut, chash, active, 
     return 0
 
 
-def backward(n_formula, is_del, pivot, lits, start, size, taut, active, val, reason, tpos, trail, st, head, nxt,
-             prv, core, done, seen, stack, tl_before, target, out, j0, j1):
+def backward(n_formula, is_del, pivot, lits, start, size, taut, active, val, reason, tpos, trail, st, wl, pool,
+             core, done, seen, stack, tl_before, target, out, j0, j1):
     """Backward pass over proof steps ``j0 - 1`` down to ``j1`` (``j0 > j1``).
 
     ``out``: [status, failing step, lemmas checked, RAT lemmas]. Returns the step reached.
@@ -483,17 +541,17 @@ def backward(n_formula, is_del, pivot, lits, start, size, taut, active, val, rea
             if t >= 0:
                 active[t] = 1
                 if taut[t] == 0:
-                    attach(lits, start, size, val, head, nxt, prv, core, t)
+                    attach(lits, start, size, val, wl, pool, core, t)
             continue
         active[c] = 0
         if taut[c] == 0 and size[c] >= 2:
-            detach(lits, start, head, nxt, prv, core, c)
+            detach(lits, start, wl, pool, core, c)
         if tl_before[j] < st[0]:
-            truncate(tl_before[j], lits, start, size, val, reason, trail, st, head, nxt, prv, core, done)
+            truncate(tl_before[j], lits, start, size, val, reason, trail, st, wl, pool, core, done)
         if core[c] == 0:
             continue
         out[2] += 1
-        if refutes(c, -1, 0, lits, start, size, taut, active, val, reason, tpos, trail, st, head, nxt, prv, core, done,
+        if refutes(c, -1, 0, lits, start, size, taut, active, val, reason, tpos, trail, st, wl, pool, core, done,
                    seen, stack):
             continue
         # RAT on the lemma's first literal: every resolvent with a clause holding its negation is RUP
@@ -510,9 +568,9 @@ def backward(n_formula, is_del, pivot, lits, start, size, taut, active, val, rea
                         break
                 if not has:
                     continue
-                make_core(d, lits, start, size, taut, active, head, nxt, prv, core)
-                if not refutes(c, d, pv ^ 1, lits, start, size, taut, active, val, reason, tpos, trail, st, head, nxt,
-                               prv, core, done, seen, stack):
+                make_core(d, lits, start, size, taut, active, wl, pool, core)
+                if not refutes(c, d, pv ^ 1, lits, start, size, taut, active, val, reason, tpos, trail, st, wl, pool,
+                               core, done, seen, stack):
                     ok = False
                     break
         if not ok:
@@ -523,8 +581,8 @@ def backward(n_formula, is_del, pivot, lits, start, size, taut, active, val, rea
     return j1
 
 
-def mark_all(n_formula, n_steps, is_del, lits, start, size, taut, active, head, nxt, prv, core):
+def mark_all(n_formula, n_steps, is_del, lits, start, size, taut, active, wl, pool, core):
     """Mark every lemma as used (``lemmas="all"``)."""
     for j in range(n_steps):
         if is_del[j] == 0:
-            make_core(n_formula + j, lits, start, size, taut, active, head, nxt, prv, core)
+            make_core(n_formula + j, lits, start, size, taut, active, wl, pool, core)

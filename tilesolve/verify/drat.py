@@ -225,13 +225,10 @@ def read_dimacs(data: bytes) -> tuple[np.ndarray, np.ndarray]:
     >>> lits.tolist(), sizes.tolist()
     ([1, -2, 2], [2, 1])
     """
-    text = data.decode("ascii")
-    body = "\n".join(ln for ln in text.splitlines() if not ln.lstrip().startswith(("c", "p", "%")))
-    if set(body) - set("0123456789- \t\r\n"):
+    body = _strip_lines(bytes(data), (b"c", b"p", b"%"))
+    if body.translate(None, b"0123456789- \t\r\n"):
         raise ValueError("not a DIMACS CNF file")
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        toks = np.fromstring(body, dtype=np.int64, sep=" ") if body.strip() else np.zeros(0, np.int64)
+    toks = _numbers(body)
     if toks.size and toks[-1] != 0:
         raise ValueError("the last clause does not end with 0")
     zeros = np.flatnonzero(toks == 0)
@@ -286,8 +283,8 @@ def cnf_sha256(formula) -> str:
 _DEL = 4611686018427387903  # stands for a "d" while numpy reads the numbers
 
 
-def _proof_text(proof) -> str | bytes:
-    """The proof as text (or the raw bytes of a binary proof)."""
+def _proof_data(proof) -> tuple[bytes, bool]:
+    """The proof's bytes, and whether they are binary DRAT."""
     is_path = isinstance(proof, os.PathLike) or (
         isinstance(proof, str) and "\n" not in proof and not proof.strip().endswith(" 0") and os.path.isfile(proof)
     )
@@ -296,31 +293,41 @@ def _proof_text(proof) -> str | bytes:
             proof = fh.read()
     if isinstance(proof, (bytes, bytearray)):
         data = bytes(proof)
-        if data[:1] in (b"a", b"d") and any(b > 127 or b == 0 for b in data[:64]):
-            return data
-        return data.decode("ascii")
+        return data, data[:1] in (b"a", b"d") and any(b > 127 or b == 0 for b in data[:64])
     if isinstance(proof, str):
-        return proof
-    return "\n".join(line if isinstance(line, str) else line.decode("ascii") for line in proof)
+        return proof.encode("ascii"), False
+    return "\n".join(line if isinstance(line, str) else line.decode("ascii") for line in proof).encode("ascii"), False
+
+
+def _strip_lines(data: bytes, prefixes: tuple[bytes, ...]) -> bytes:
+    """``data`` without the lines that start (after blanks) with one of ``prefixes``."""
+    if not any(p in data for p in prefixes):
+        return data
+    return b"\n".join(ln for ln in data.splitlines() if not ln.lstrip().startswith(prefixes))
+
+
+def _numbers(text: bytes) -> np.ndarray:
+    """The blank-separated integers of ``text`` (already checked to hold nothing else)."""
+    if not text.strip():
+        return np.zeros(0, np.int64)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return np.fromstring(text, dtype=np.int64, sep=" ")
 
 
 def _proof_arrays(proof) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``(literals, sizes, is_deletion)`` of every proof line, read by numpy."""
-    text = _proof_text(proof)
-    if isinstance(text, bytes):
-        steps = _parse_binary(text)
+    data, binary = _proof_data(proof)
+    if binary:
+        steps = _parse_binary(data)
         sizes = np.fromiter((len(c) for _, c in steps), np.int64, len(steps))
         lits = np.fromiter((x for _, c in steps for x in c), np.int64, int(sizes.sum()))
         return lits, sizes, np.fromiter((d for d, _ in steps), np.int8, len(steps))
-    if "c" in text:
-        text = "\n".join(ln for ln in text.splitlines() if not ln.lstrip().startswith("c"))
-    bad = set(text) - set("0123456789-d \t\r\n")
+    text = _strip_lines(data, (b"c",))
+    bad = text.translate(None, b"0123456789-d \t\r\n")
     if bad:
-        raise ValueError(f"unexpected character {sorted(bad)[0]!r}")
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        toks = np.fromstring(text.replace("d", f" {_DEL} "), dtype=np.int64, sep=" ") if text.strip() else \
-            np.zeros(0, np.int64)
+        raise ValueError(f"unexpected character {chr(bad[0])!r}")
+    toks = _numbers(text.replace(b"d", b" %d " % _DEL))
     if toks.size and toks[-1] != 0:
         raise ValueError("the last proof line does not end with 0")
     is_d = toks == _DEL
@@ -421,7 +428,7 @@ def _kernels(work: int, mode: str = "auto", time_limit: float | None = None):
             for name, func in funcs.items():
                 clone = types.FunctionType(func.__code__, ns, func.__name__, func.__defaults__, func.__closure__)
                 clone.__qualname__ = func.__qualname__
-                ns[name] = numba.njit(cache=True)(clone)
+                ns[name] = numba.njit(cache=True, _nrt=False)(clone)
             _COMPILED = types.SimpleNamespace(**{k: v for k, v in ns.items() if not k.startswith("__")})
         return _COMPILED
 
@@ -673,22 +680,29 @@ def check_drat(
     k = _kernels(int(lits.size), kernels, None if time_limit is None else time_limit - elapsed())
     taut = np.zeros(n_cl, np.int8)
     chash = np.zeros(n_cl, np.int64)
-    k.prepare(lits, start, size, taut, chash, n_cl)
+    mark = np.full(L, -1, np.int64)
+    k.prepare(lits, start, size, taut, chash, mark, n_cl)
+    mark.fill(-1)
     active = np.zeros(n_cl, np.int8)
     core = np.zeros(n_cl, np.int8)
     val = np.zeros(L, np.int8)
     reason = np.full(n_vars + 1, -1, np.int64)
     tpos = np.zeros(n_vars + 1, np.int64)
     trail = np.zeros(n_vars + 1, np.int64)
-    st = np.zeros(3, np.int64)
-    head = np.full(2 * L, -1, np.int64)
-    nxt = np.full(2 * n_cl, -1, np.int64)
-    prv = np.full(2 * n_cl, -1, np.int64)
+    st = np.array([0, 0, 0, -1], np.int64)
+    # watch lists, two per literal code (core, others), in blocks of one pool: row ``i`` of
+    # ``wl`` is list i's (start, length, room), the last row's start is the pool's end. The
+    # pool holds six entries per watch of every clause that can be active (the formula and
+    # the lemmas) and eight per list: compacting (live blocks only) then always frees more
+    # than half of it.
+    n_watches = 2 * (n_f + n_lemmas)
+    n_lists = 2 * L
+    wl = np.zeros((n_lists + 1, 3), np.int64)
+    pool = np.zeros(6 * n_watches + 8 * n_lists + 16, np.int64)
     cap = 1 << max(4, int(2 * n_cl).bit_length())
     ht_key = np.zeros(cap, np.int64)
     ht_head = np.full(cap, -1, np.int64)
     same_prev = np.full(n_cl, -1, np.int64)
-    mark = np.full(L, -1, np.int64)
     tl_before = np.zeros(n_s, np.int64)
     target = np.full(n_s, -1, np.int64)
     counts = np.array([-1, -1, 0, 0, -1], np.int64)
@@ -708,7 +722,7 @@ def check_drat(
     while not refuted and j < n_s:
         j1 = min(n_s, max(j, 0) + slices.next())
         refuted = k.forward(n_f, n_s, is_del, lits, start, size, taut, chash, active, val, reason, tpos, trail, st,
-                            head, nxt, prv, core, ht_key, ht_head, same_prev, mark, tl_before, target, counts, j, j1)
+                            wl, pool, core, ht_key, ht_head, same_prev, mark, tl_before, target, counts, j, j1)
         if counts[4] >= 0:
             line = int(counts[4]) + 1
             return result("failed", f"the empty clause (proof line {line}) is not RUP: unit propagation "
@@ -726,17 +740,18 @@ def check_drat(
         return result("failed", "the proof has no empty clause (unit propagation refutes the formula after "
                                 f"proof line {confl_step + 1}, but the proof never says so)")
     # backward pass from the conflict
-    k.analyze(int(counts[0]), -1, 0, lits, start, size, taut, active, head, nxt, prv, reason, tpos, trail, st, core,
+    k.analyze(int(counts[0]), -1, 0, lits, start, size, taut, active, wl, pool, reason, tpos, trail, st, core,
               done, seen, stack)
     if lemmas == "all":
-        k.mark_all(n_f, n_s, is_del, lits, start, size, taut, active, head, nxt, prv, core)
+        k.mark_all(n_f, n_s, is_del, lits, start, size, taut, active, wl, pool, core)
     st[1] = st[2] = st[0]
+    st[3] = -1
     out = np.zeros(4, np.int64)
     j = confl_step + 1
     while j > 0:
         j1 = max(0, j - slices.next())
-        j = k.backward(n_f, is_del, pivot, lits, start, size, taut, active, val, reason, tpos, trail, st, head,
-                       nxt, prv, core, done, seen, stack, tl_before, target, out, j, j1)
+        j = k.backward(n_f, is_del, pivot, lits, start, size, taut, active, val, reason, tpos, trail, st, wl,
+                       pool, core, done, seen, stack, tl_before, target, out, j, j1)
         slices.done()
         if out[0] != K.OK:
             step = int(out[1])
