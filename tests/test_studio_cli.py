@@ -1,14 +1,17 @@
 """``tilesolve studio``: loopback by default, a warning for any other --host, the browser
-opened unless --no-browser, and a clean stop."""
+opened unless --no-browser, a clean stop, and one error line (exit 2) for a port in use or an
+unknown host."""
 
 from __future__ import annotations
 
 import shutil
+import socket
 import subprocess
 
 import pytest
 from click.testing import CliRunner
 
+from tests.clitools import one_line_error, run
 from tilesolve.cli.main import main_group  # noqa: E402
 from tilesolve.cli.studio import is_loopback  # noqa: E402
 
@@ -34,3 +37,15 @@ def test_the_page_opens_in_a_browser_unless_told_not_to(monkeypatch):
     assert result.exit_code == 0, result.output
     assert len(opened) == 1 and opened[0].startswith("http://127.0.0.1:")
     assert "warning" not in result.output
+
+
+def test_a_port_in_use_is_one_error_line(tmp_path):
+    with socket.create_server(("127.0.0.1", 0)) as busy:
+        port = busy.getsockname()[1]
+        line = one_line_error(run("studio", "--no-browser", "--port", str(port), cwd=tmp_path))
+    assert line == f"tilesolve: error: cannot listen on 127.0.0.1 port {port}: address already in use"
+
+
+def test_an_unknown_host_is_one_error_line(tmp_path):
+    line = one_line_error(run("studio", "--no-browser", "--host", "no-such-host.invalid", cwd=tmp_path))
+    assert line.startswith("tilesolve: error: --host no-such-host.invalid: unknown host (")

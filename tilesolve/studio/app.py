@@ -16,21 +16,29 @@ message>"}``):
                                     procedural view (pan and zoom), x/y its bottom-left cell
 
 The page sends values, never paths: no endpoint reads or writes a file named by a request.
-Request bodies are limited to :data:`MAX_BODY` bytes before they are read, and every size in
-a form is checked against its field's limit before anything is allocated.
+Only requests addressed to the server's own socket are answered, and only the studio's own
+page may post (:mod:`tilesolve.studio.origin`, 403 otherwise). Request bodies are limited to
+:data:`MAX_BODY` bytes while they are read (413 beyond), every size in a form is checked
+against its field's limit before anything is allocated, and a solve whose encoding is
+estimated to need more memory than a solve may use is refused with the estimate
+(:mod:`tilesolve.studio.sizing`). Error messages are the CLI's, never a Python class name.
 """
 
 from __future__ import annotations
 
 import contextlib
+import ctypes
 import functools
 import json
 import os
+import sys
 import threading
+import traceback
 from collections import OrderedDict
 
 import anyio
 from starlette.applications import Starlette
+from starlette.middleware import Middleware
 from starlette.requests import Request
 from starlette.responses import FileResponse, JSONResponse, Response
 from starlette.routing import Mount, Route
@@ -38,8 +46,9 @@ from starlette.staticfiles import StaticFiles
 
 from tilesolve import family
 from tilesolve.errors import InvalidProblem, TilesolveError
-from tilesolve.studio import worker
+from tilesolve.studio import sizing, worker
 from tilesolve.studio.jobs import Jobs, TooBusy
+from tilesolve.studio.origin import OwnOrigin
 
 __all__ = ["create_app", "MAX_BODY", "MAX_VIEW_CELLS", "STATIC"]
 
@@ -49,6 +58,11 @@ MAX_BODY = 8 << 20
 MAX_VIEW_CELLS = 128
 #: Most view tiles kept (an LRU of PNG bytes).
 VIEW_CACHE = 512
+#: Requests read, parsed and posed at once (a painted 1024 x 1024 grid takes tens of MiB while
+#: posed); the others wait with their bodies unread.
+POSING = 2
+#: Bodies from this size on are followed by :func:`_release_memory`.
+LARGE_BODY = 1 << 20
 
 STATIC = os.path.join(os.path.dirname(__file__), "static")
 
@@ -57,8 +71,9 @@ def _error(message: str, status: int = 400) -> JSONResponse:
     return JSONResponse({"error": " ".join(str(message).split())}, status_code=status)
 
 
-async def _body(request: Request) -> dict:
-    """The JSON object of a request, at most :data:`MAX_BODY` bytes (refused before reading more)."""
+async def _body(request: Request) -> bytearray:
+    """The body of a request, at most :data:`MAX_BODY` bytes: a larger ``Content-Length`` is
+    refused before reading, and a body without one is refused as soon as it grows past."""
     length = request.headers.get("content-length")
     if length is not None and (not length.isdigit() or int(length) > MAX_BODY):
         raise InvalidProblem(f"request too large (at most {MAX_BODY:,} bytes)")
@@ -67,6 +82,12 @@ async def _body(request: Request) -> dict:
         data += chunk
         if len(data) > MAX_BODY:
             raise InvalidProblem(f"request too large (at most {MAX_BODY:,} bytes)")
+    request.state.large_body = len(data) >= LARGE_BODY
+    return data
+
+
+def _json(data: bytearray) -> dict:
+    """The JSON object of a request body."""
     try:
         doc = json.loads(data or b"{}")
     except (ValueError, UnicodeDecodeError):
@@ -76,8 +97,23 @@ async def _body(request: Request) -> dict:
     return doc
 
 
+def _release_memory() -> None:
+    """Give the memory freed after a large request back to the system (glibc's ``malloc_trim``):
+    without it the parsed grids' memory stays with the allocator's per-thread arenas, and a
+    few large requests at once raise the server's resident size for good."""
+    with contextlib.suppress(OSError, AttributeError):
+        ctypes.CDLL(None).malloc_trim(0)
+
+
+#: Messages for errors Python raises on odd requests (never the class's name).
+_PYTHON_ERRORS = {RecursionError: "the request is nested too deeply", MemoryError: "out of memory for this request",
+                  OverflowError: "a number is too large"}
+
+
 def _guard(handler):
-    """Turn library errors into HTTP 400 ``{"error": ...}`` (413 for a large body, 429 when busy)."""
+    """Turn library errors into HTTP 400 ``{"error": ...}`` (413 for a large body, 429 when busy,
+    500 ``internal error`` for a bug, whose traceback goes to the server's standard error);
+    after a large body, once the handler has dropped it, :func:`_release_memory`."""
 
     @functools.wraps(handler)
     async def wrapped(request: Request) -> Response:
@@ -89,8 +125,16 @@ def _guard(handler):
             return _error(str(exc), 413 if str(exc).startswith("request too large") else 400)
         except TilesolveError as exc:
             return _error(str(exc), 400)
-        except (RecursionError, MemoryError, OverflowError, ValueError) as exc:
-            return _error(f"bad request: {type(exc).__name__}: {exc}", 400)
+        except (RecursionError, MemoryError, OverflowError) as exc:
+            return _error(f"bad request: {_PYTHON_ERRORS[type(exc)]}", 400)
+        except ValueError as exc:
+            return _error(f"bad request: {exc}", 400)
+        except Exception:  # noqa: BLE001 - a bug: one line to the page, the traceback to the log
+            traceback.print_exc(file=sys.stderr)
+            return _error("internal error in the studio server (a bug; its log has the details)", 500)
+        finally:
+            if getattr(request.state, "large_body", False):
+                await anyio.to_thread.run_sync(_release_memory)
 
     return wrapped
 
@@ -101,9 +145,10 @@ def _family_json(fam: family.Family) -> dict:
             "view": fam.form.window is not None}
 
 
-def create_app(*, warm: bool = True) -> Starlette:
+def create_app(*, warm: bool = True, names=()) -> Starlette:
     """The studio app. ``warm`` starts the solve forkserver (and compiles the view routes) in
-    the background at start-up."""
+    the background at start-up; ``names`` are host names it answers besides the listening
+    address (:class:`~tilesolve.studio.origin.OwnOrigin`)."""
     jobs = Jobs()
     views: OrderedDict[tuple, bytes] = OrderedDict()
     views_lock = threading.Lock()
@@ -115,22 +160,33 @@ def create_app(*, warm: bool = True) -> Starlette:
     async def families(request: Request) -> Response:
         return JSONResponse({"families": [_family_json(f) for f in family.families() if f.form is not None]})
 
+    posing = anyio.Semaphore(POSING)
+
+    def _posed(data: bytearray) -> tuple[dict, dict]:
+        doc = _json(data)
+        return doc, _check(doc)
+
+    async def _read_and_pose(request: Request) -> tuple[dict, dict]:
+        """The request's JSON and :func:`_check`'s answer (:data:`POSING` requests at once)."""
+        async with posing:
+            return await anyio.to_thread.run_sync(_posed, await _body(request))
+
     def _check(doc: dict) -> dict:
         fam, vals, problem, _ = worker.pose(doc.get("family"), doc.get("values"))
-        worker.check_run(fam, doc.get("method", "auto"), doc.get("time_limit"))
+        method, _ = worker.check_run(fam, doc.get("method", "auto"), doc.get("time_limit"))
+        sizing.refuse_oversized(fam, problem, method)
         grids = {f.name: list(f.extent(vals)) for f in fam.form.fields if f.kind == "cells"}
         return {"describe": problem.describe() if hasattr(problem, "describe") else fam.name, "cells": grids,
                 "seed": vals["seed"], "command": worker.command_line(fam, vals, doc.get("method", "auto"), vals["seed"])}
 
     @_guard
     async def check(request: Request) -> Response:
-        doc = await _body(request)
-        return JSONResponse(await anyio.to_thread.run_sync(_check, doc))
+        return JSONResponse((await _read_and_pose(request))[1])
 
     @_guard
     async def solve(request: Request) -> Response:
-        doc = await _body(request)
-        checked = await anyio.to_thread.run_sync(_check, doc)  # bad input: 400 now, not in the job
+        # bad input: 400 now, not in the job
+        doc, checked = await _read_and_pose(request)
         values = dict(doc.get("values") or {}, seed=checked["seed"])
         job = jobs.start(doc["family"], values, doc.get("method", "auto"), doc.get("time_limit"))
         return JSONResponse({"id": job.id, "seed": checked["seed"]})
@@ -248,6 +304,6 @@ def create_app(*, warm: bool = True) -> Starlette:
         Route("/api/view/{family}.png", view),
         Mount("/static", StaticFiles(directory=STATIC), name="static"),
     ]
-    app = Starlette(routes=routes, lifespan=lifespan)
+    app = Starlette(routes=routes, lifespan=lifespan, middleware=[Middleware(OwnOrigin, names=names)])
     app.state.jobs = jobs
     return app

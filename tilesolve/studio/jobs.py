@@ -2,29 +2,49 @@
 
 Each solve runs :func:`tilesolve.studio.worker.solve_request` in its own process, forked
 from a *forkserver* that has imported (and compiled) the families once; a few processes are
-started ahead and wait for a request, so a solve starts at once. Cancelling a solve ends its process: whatever the solver was doing, nothing
-of it is left in the server, and other solves go on. A thread per job waits for the answer,
-so no request handler ever blocks the event loop.
+started ahead and wait for a request, so a solve starts at once. Cancelling a solve ends its
+process: whatever the solver was doing, nothing of it is left in the server, and other solves
+go on. A thread per job waits for the answer, so no request handler ever blocks the event loop.
+
+Memory: a solve may grow by :data:`SOLVE_MEMORY` bytes of resident memory above what its
+process held when it started; the thread that waits for it reads the process's resident size
+(``/proc/PID/statm``) every :data:`WATCH_S` seconds and ends a process past the cap, and the job
+then says so. (A resident-size watch, not ``RLIMIT_AS``: the solvers reserve address space
+they never touch, e.g. a malloc arena and a stack per CP-SAT thread, so a cap on address space
+would refuse solves that fit.)
+
+Lifetime: the processes die with the server, even when it is killed by SIGKILL and runs no
+cleanup. The forkserver is started by one thread that lives as long as the server process
+(:data:`_KEEPER`) and asks the kernel for a parent-death signal when it imports
+:mod:`tilesolve.studio.warm`; every worker asks for one too, bound to the forkserver. This is
+the parent-death arrangement of the CLI's portfolio workers
+(:func:`tilesolve.engine.portfolio._die_with_parent`). The kernel's signal follows the
+*thread* that started a process, hence the one long-lived starting thread.
 """
 
 from __future__ import annotations
 
+import contextlib
 import itertools
 import multiprocessing
 import os
+import sys
 import threading
 import time
 import traceback
 from collections import OrderedDict
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from typing import Any
 
 from tilesolve.errors import InvalidProblem
 
-#: Set to "1" for the forkserver: :mod:`tilesolve.studio.warm` then warms it when imported.
-WARM_ENV = "TILESOLVE_STUDIO_WARM"
+#: The process id a studio process dies with: set by the server while it starts the forkserver
+#: (:mod:`tilesolve.studio.warm` then arms the forkserver's parent-death signal and warms it),
+#: and by the forkserver, to its own id, for the workers it forks. Unset anywhere else.
+PARENT_ENV = "TILESOLVE_STUDIO_PARENT"
 
-__all__ = ["Job", "Jobs", "TooBusy", "MAX_RUNNING", "KEEP", "SPARES"]
+__all__ = ["Job", "Jobs", "TooBusy", "MAX_RUNNING", "KEEP", "SPARES", "SOLVE_MEMORY", "PARENT_ENV", "in_bytes"]
 
 #: Solves that may run at once (more are refused with a message, not queued).
 MAX_RUNNING = 4
@@ -32,6 +52,28 @@ MAX_RUNNING = 4
 KEEP = 32
 #: Worker processes started ahead of need.
 SPARES = 2
+#: Resident memory a solve may add to its process (bytes); a solve past it is ended.
+SOLVE_MEMORY = 2 << 30
+#: How often a running solve's memory is read (seconds).
+WATCH_S = 0.1
+
+#: The one thread that starts studio processes (module docstring, "Lifetime"): it lives as long
+#: as the server process, so the forkserver's parent-death signal fires only when that dies.
+_KEEPER = ThreadPoolExecutor(max_workers=1, thread_name_prefix="tilesolve-studio-processes")
+
+
+def in_bytes(n: int) -> str:
+    """``n`` bytes for messages: ``"2.0 GiB"``, ``"16 MiB"``."""
+    return f"{n / (1 << 30):,.1f} GiB" if n >= 1 << 30 else f"{n / (1 << 20):,.0f} MiB"
+
+
+def _resident(pid: int) -> int:
+    """Resident memory of process ``pid`` in bytes (0 where /proc cannot tell)."""
+    try:
+        with open(f"/proc/{pid}/statm", "rb") as f:
+            return int(f.read().split()[1]) * os.sysconf("SC_PAGE_SIZE")
+    except (OSError, ValueError, IndexError):
+        return 0
 
 
 class TooBusy(InvalidProblem):
@@ -39,11 +81,14 @@ class TooBusy(InvalidProblem):
 
 
 def _child(conn) -> None:
-    """The worker process: wait for one request, solve it and send ``("ok", answer)``,
-    ``("error", message)`` or ``("internal", traceback)``, then end."""
+    """The worker process: die with the forkserver, wait for one request, solve it and send
+    ``("ok", answer)``, ``("error", message)`` or ``("internal", message)``, then end (an
+    internal error's traceback goes to the server's standard error)."""
+    from tilesolve.engine.portfolio import _die_with_parent
     from tilesolve.errors import InvalidProblem as Bad
     from tilesolve.studio.worker import solve_request
 
+    _die_with_parent(int(os.environ[PARENT_ENV]))
     try:
         request = conn.recv()
     except (EOFError, OSError):  # the server went away before giving this process a job
@@ -52,10 +97,24 @@ def _child(conn) -> None:
         conn.send(("ok", solve_request(*request)))
     except Bad as exc:
         conn.send(("error", " ".join(str(exc).split())))
-    except Exception:  # noqa: BLE001 - reported to the page as an internal error, the server goes on
-        conn.send(("internal", traceback.format_exc(limit=8)))
+    except MemoryError:
+        conn.send(("error", "out of memory in the solver process; try a smaller problem"))
+    except Exception as exc:  # noqa: BLE001 - reported to the page as an internal error, the server goes on
+        traceback.print_exc(limit=8, file=sys.stderr)
+        conn.send(("internal", " ".join(str(exc).split()) or "no message"))
     finally:
         conn.close()
+
+
+@contextlib.contextmanager
+def _parent_env():
+    """:data:`PARENT_ENV` set to this process while a studio process starts (the forkserver, if
+    it is not running, inherits it), and unset again."""
+    os.environ[PARENT_ENV] = str(os.getpid())
+    try:
+        yield
+    finally:
+        del os.environ[PARENT_ENV]
 
 
 @dataclass
@@ -72,6 +131,7 @@ class Job:
     finished: float | None = None
     done: threading.Event = field(default_factory=threading.Event)
     process: Any = None
+    resident: int = 0  # the process's resident memory when it took the job (bytes)
 
     def public(self) -> dict:
         """What ``GET /api/jobs/ID`` answers."""
@@ -103,10 +163,14 @@ class Jobs:
         self._refill()
 
     def _spawn(self) -> tuple[Any, Any]:
-        os.environ[WARM_ENV] = "1"  # the forkserver, started by the first spawn, warms itself
+        """A started worker process and the server's end of its pipe (started by :data:`_KEEPER`)."""
+        return _KEEPER.submit(self._spawn_here).result()
+
+    def _spawn_here(self) -> tuple[Any, Any]:
         mine, theirs = self._ctx.Pipe()
         process = self._ctx.Process(target=_child, args=(theirs,), daemon=True)
-        process.start()
+        with _parent_env():  # the forkserver, started by the first spawn, warms itself
+            process.start()
         theirs.close()
         return process, mine
 
@@ -152,15 +216,24 @@ class Jobs:
                     break
                 del self._jobs[old]
         job.process, conn = self._take()
+        job.resident = _resident(job.process.pid)
         conn.send((family, values, method, time_limit))
         threading.Thread(target=self._wait, args=(job, conn), daemon=True).start()
         return job
 
     def _wait(self, job: Job, conn) -> None:
+        """Wait for the job's answer, reading its memory meanwhile (ended past the cap)."""
+        kind, payload = "gone", None
         try:
-            kind, payload = conn.recv()
+            while not conn.poll(WATCH_S):
+                if _resident(job.process.pid) - job.resident > SOLVE_MEMORY:
+                    job.process.kill()
+                    kind = "memory"
+                    break
+            else:
+                kind, payload = conn.recv()
         except (EOFError, OSError):
-            kind, payload = "gone", None
+            pass
         finally:
             conn.close()
         if kind == "gone":
@@ -173,7 +246,11 @@ class Jobs:
                 elif kind == "error":
                     job.state, job.error = "error", payload
                 elif kind == "internal":
-                    job.state, job.error = "error", "internal error: " + payload.strip().splitlines()[-1]
+                    job.state, job.error = "error", "internal error in the solver process: " + payload
+                elif kind == "memory":
+                    job.state, job.error = "error", (f"stopped: the solve needed more than {in_bytes(SOLVE_MEMORY)} of "
+                                                     f"memory, the studio's limit per solve; try a smaller problem "
+                                                     f"(the tilesolve command has no such limit)")
                 else:
                     job.state, job.error = "error", f"the solver process ended (exit code {job.process.exitcode})"
         job.done.set()

@@ -1,16 +1,18 @@
-"""Imported once by the studio's forkserver: load every family, compile its kernels and run
-one whole studio solve of each (solve, verify, file, both pictures), so that each solve
-process forked from it finds every module imported and every kernel compiled (see
-:mod:`tilesolve.studio.jobs`, which sets ``WARM_ENV`` for the forkserver; anywhere else,
-e.g. a doctest run importing every module, importing this module does nothing)."""
+"""Imported once by the studio's forkserver: die with the server, then load every family,
+compile its kernels and run one whole studio solve of each (solve, verify, file, both
+pictures), so that each solve process forked from it finds every module imported and every
+kernel compiled (see :mod:`tilesolve.studio.jobs`, which sets ``PARENT_ENV`` to the server's
+process id for the forkserver; anywhere else, e.g. a doctest run importing every module,
+importing this module does nothing)."""
 
 from __future__ import annotations
 
 import os
 
 from tilesolve import family
+from tilesolve.engine.portfolio import _die_with_parent
 from tilesolve.errors import TilesolveError
-from tilesolve.studio.jobs import WARM_ENV
+from tilesolve.studio.jobs import PARENT_ENV
 from tilesolve.studio.worker import compiled_kernels, picture, pose, solve_request
 
 
@@ -29,5 +31,7 @@ def _warm() -> None:
             continue
 
 
-if os.environ.get(WARM_ENV) == "1":
+if os.environ.get(PARENT_ENV):
+    _die_with_parent(int(os.environ[PARENT_ENV]))
+    os.environ[PARENT_ENV] = str(os.getpid())  # the workers forked from here die with this process
     _warm()
