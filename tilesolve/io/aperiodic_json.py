@@ -17,11 +17,16 @@
 
     CERT = {"board": "torus 3x4 shear 1", "status": "tiles" | "refuted" | "undecided",
             "method": "sat", "tiling": [[tile index, ...], ...] or null,
-            "evidence": {"cnf_sha256": ..., "drat_sha256": ..., ...}, "time_s": 0.1}
+            "evidence": {"encoding": {"name": "wang-tiles-cnf", "version": 1, "options": {}},
+                         "cnf_sha256": ..., "drat_sha256": ..., ...}, "time_s": 0.1}
 
 Tile indices refer to ``tileset.tiles`` in the order written (sorted as tilesolve sorts a
-set). Readers reject unknown fields and malformed values with one line naming the file and
-field; the certificates' claims are checked by the family's verifier (``tilesolve verify``).
+set). A refutation's ``evidence`` names the encoding that re-derives its CNF from the tile set
+and the board's name; a verdict taken from a sweep's cache says so (``"cached": true``,
+``"cache_check"``), one decided again because its cache line did not hold says why
+(``"cache_rejected"``). Readers reject unknown fields and malformed values (a tile that is not
+four colours of the set, ...) with one line naming the file and field; the certificates' claims
+are checked by the family's verifier and re-derived by ``tilesolve verify``.
 """
 
 from __future__ import annotations
