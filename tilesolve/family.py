@@ -58,6 +58,7 @@ __all__ = [
     "Field",
     "Form",
     "form_size",
+    "cnf_estimate",
     "Family",
     "register",
     "unregister",
@@ -657,6 +658,14 @@ def count(problem: Any, *, method: str = "auto", time_limit: float | None = None
     if fam.count is None:
         raise MethodNotApplicable(f"{fam.name} problems have no counter")
     return fam.count(problem, method=method, time_limit=time_limit, progress=progress, force=force)
+
+
+def cnf_estimate(problem: Any) -> tuple[int, int, int] | None:
+    """``(variables, clauses, literals)`` the CNF of ``problem`` is estimated to hold, before
+    encoding, or None where no model exists (:func:`tilesolve.encodings.sizing.cnf_estimate`)."""
+    from tilesolve.encodings.sizing import cnf_estimate as estimate
+
+    return estimate(problem)
 
 
 # ----------------------------------------------------------------------------- files

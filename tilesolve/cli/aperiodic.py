@@ -25,7 +25,7 @@ def aperiodic() -> None:
     """Aperiodicity checks of Wang tile sets (class notes Part II §8.2), every answer a certificate."""
 
 
-@aperiodic.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP)
+@aperiodic.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.READER_HELP)
 @click.argument("tiles", required=False, type=click.Path(dir_okay=False), metavar="[TILES.json]")
 @click.option("--builtin", default=None, metavar="NAME", help="A built-in tile set (tilesolve tiles --builtin lists them).")
 @click.option("--max-square", type=click.IntRange(0), default=0, show_default=True, metavar="N",
@@ -115,7 +115,8 @@ def check(ctx, tiles, builtin, method, max_square, max_period, shears, workers, 
     ctx.exit(0 if rep.complete and sol.stats.get("verdict") != "undecided" else 3)
 
 
-@aperiodic.command(name="verify", context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP)
+@aperiodic.command(name="verify", context_settings=opt.CONTEXT_SETTINGS,
+                   epilog=opt.READER_HELP)
 @click.argument("report", type=click.Path(dir_okay=False))
 @click.option("--proof-dir", type=click.Path(file_okay=False, exists=True), default=None, metavar="DIR",
               help="Re-check every refutation's DRAT proof (the .drat files 'check --proof-dir' wrote) against the "

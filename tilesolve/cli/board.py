@@ -164,7 +164,7 @@ def brick() -> None:
     """
 
 
-@brick.command(context_settings=opt.CONTEXT_SETTINGS, epilog=BOARD_HELP + "\n\n" + opt.EXIT_HELP)
+@brick.command(context_settings=opt.CONTEXT_SETTINGS, epilog=BOARD_HELP + "\n\n" + opt.READER_HELP)
 @board_opt
 @colors_opt
 @boundary_opt
@@ -243,7 +243,7 @@ def _brick_problem(board_spec, colors, boundary, seed):
     return BoardProblem(board, tileset, _boundary(boundary, board, colors, seed))
 
 
-@brick.command(context_settings=opt.CONTEXT_SETTINGS, epilog=BOARD_HELP + "\n\n" + opt.EXIT_HELP)
+@brick.command(context_settings=opt.CONTEXT_SETTINGS, epilog=BOARD_HELP + "\n\n" + opt.READER_HELP)
 @board_opt
 @colors_opt
 @boundary_opt
@@ -271,7 +271,7 @@ def count(ctx, board_spec, colors, boundary, seed, time_limit) -> None:
     ctx.exit(0)
 
 
-@brick.command(context_settings=opt.CONTEXT_SETTINGS, epilog=BOARD_HELP + "\n\n" + opt.EXIT_HELP)
+@brick.command(context_settings=opt.CONTEXT_SETTINGS, epilog=BOARD_HELP + "\n\n" + opt.READER_HELP)
 @board_opt
 @colors_opt
 @boundary_opt
@@ -310,7 +310,7 @@ def wang() -> None:
 wang.add_command(wang_count)
 
 
-@wang.command(name="solve", context_settings=opt.CONTEXT_SETTINGS, epilog=BOARD_HELP + "\n\n" + opt.EXIT_HELP)
+@wang.command(name="solve", context_settings=opt.CONTEXT_SETTINGS, epilog=BOARD_HELP + "\n\n" + opt.READER_HELP)
 @tileset_options
 @board_opt
 @boundary_opt

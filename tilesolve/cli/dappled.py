@@ -78,7 +78,7 @@ def _summary(problem, sol, written: list[str], extra: list[str]) -> None:
         say("  wrote " + ", ".join(written))
 
 
-@dappled.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.CONDITION_HELP + "\n\n" + opt.EXIT_HELP)
+@dappled.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.CONDITION_HELP + "\n\n" + opt.READER_HELP)
 @opt.problem_options()
 @method_opt
 @opt.seed_opt
@@ -148,7 +148,7 @@ def solve(ctx, method, seed, time_limit, initial, output, svg, png, repeat, grid
     ctx.exit(sol.status.exit_code)
 
 
-@dappled.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.CONDITION_HELP + "\n\n" + opt.EXIT_HELP)
+@dappled.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.CONDITION_HELP + "\n\n" + opt.READER_HELP)
 @opt.problem_options(closest=False)
 @count_method_opt
 @opt.time_limit_opt
@@ -182,7 +182,7 @@ def count(ctx, method, time_limit, force, **problem_kw) -> None:
     ctx.exit(Status.UNKNOWN.exit_code)
 
 
-@dappled.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.CONDITION_HELP + "\n\n" + opt.EXIT_HELP)
+@dappled.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.CONDITION_HELP + "\n\n" + opt.READER_HELP)
 @opt.problem_options()
 @opt.seed_opt
 @opt.time_limit_opt

@@ -11,7 +11,7 @@ from tilesolve.errors import InvalidProblem
 __all__ = ["draw"]
 
 
-@click.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP)
+@click.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.READER_HELP)
 @click.argument("file", type=click.Path(dir_okay=False))
 @click.option("-o", "--output", required=True, type=click.Path(dir_okay=False), metavar="OUT.svg|OUT.png",
               help="The picture; its suffix (.svg or .png) chooses the format.")

@@ -20,19 +20,23 @@ def export() -> None:
     """Export problems to other tools' formats."""
 
 
-@export.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.CONDITION_HELP + "\n\n" + opt.EXIT_HELP)
+@export.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.CONDITION_HELP + "\n\n" + opt.READER_HELP)
 @click.argument("file", required=False, type=click.Path(dir_okay=False))
 @opt.problem_options()
 @click.option(
     "-o", "--output", required=True, type=click.Path(dir_okay=False), metavar="OUT.cnf|OUT.wcnf",
     help="Output file; .wcnf (weighted MaxSAT) for closest-tiling problems, else .cnf.",
 )
-def dimacs(file: str | None, output: str, **problem_kw) -> None:
+@click.option("--max-cnf", metavar="SIZE", default="1G", show_default=True,
+              help="Refuse a problem whose CNF is estimated (before encoding) to exceed SIZE of DIMACS "
+              "text (e.g. 512M, 8G).")
+def dimacs(file: str | None, output: str, max_cnf: str, **problem_kw) -> None:
     """Write the CNF (or WCNF) encoding of a problem.
 
     FILE is a problem or solution file of any family (dappled, board, packing); without it
-    the dappled problem options describe the problem. The header comments describe the
-    problem and the variable numbering (for dappled tilings with two tiles, variable
+    the dappled problem options describe the problem. The CNF's size is estimated before
+    anything is encoded, and a problem above --max-cnf (1 GiB of text by default) is refused
+    with the estimate. The header comments describe the problem and the variable numbering (for dappled tilings with two tiles, variable
     1 + r*W + c is true when cell (row r, col c) holds tile 1).
 
     \b
@@ -55,6 +59,7 @@ def dimacs(file: str | None, output: str, **problem_kw) -> None:
     check_writable(output)
     if fam.encode is None:
         raise InvalidProblem(f"{fam.name} problems have no SAT encoding to export")
+    _check_size(problem, max_cnf)
     enc = fam.encode(problem)
     weighted = output.lower().endswith(".wcnf")
     has_soft = getattr(enc, "soft", None) is not None
@@ -67,3 +72,26 @@ def dimacs(file: str | None, output: str, **problem_kw) -> None:
     write_dimacs(enc, output)
     soft = f", {len(enc.soft)} soft" if has_soft else ""
     say(f"wrote {output}: {problem.describe()}; {enc.n_vars} variables, {len(enc.hard)} hard clauses{soft}")
+
+
+def _check_size(problem, max_cnf: str) -> None:
+    """Refuse, before encoding, a CNF estimated larger than ``max_cnf`` of DIMACS text."""
+    from tilesolve.cli.common import big, human_bytes
+    from tilesolve.family import cnf_estimate
+    from tilesolve.io.jsonio import parse_byte_size
+
+    try:
+        limit = parse_byte_size(max_cnf)
+    except InvalidProblem as exc:
+        raise InvalidProblem(f"--max-cnf: {exc}") from None
+    sized = cnf_estimate(problem)
+    if sized is None:
+        return
+    n_vars, clauses, lits = sized
+    text = lits * (len(str(n_vars)) + 2) + 2 * clauses  # a literal, its sign and a space; "0\n"
+    if text > limit:
+        raise InvalidProblem(
+            f"the CNF of {problem.describe()} would hold about {big(clauses)} clauses and {big(lits)} literals, "
+            f"about {human_bytes(text)} of DIMACS text (and as much memory while encoding), more than --max-cnf "
+            f"{human_bytes(limit)}; raise --max-cnf, or export a smaller problem"
+        )

@@ -18,6 +18,7 @@ from __future__ import annotations
 import contextlib
 import importlib
 import logging
+import os
 import sys
 
 import click
@@ -113,9 +114,12 @@ def _family_commands() -> dict[str, str]:
 )
 @click.option("-v", "--verbose", count=True, help="More output (-vv: debug log).")
 @click.option("-q", "--quiet", count=True, help="Less output: no summary on stderr.")
+@click.option("--max-input", metavar="SIZE", default=None,
+              help="Read input files up to SIZE bytes (e.g. 512M, 2G; default 256M, or $TILESOLVE_MAX_INPUT); "
+              "larger files, pipes and devices are refused.")
 @click.version_option(__version__, "--version", prog_name="tilesolve", message="%(prog)s %(version)s")
 @click.pass_context
-def main_group(ctx: click.Context, verbose: int, quiet: int) -> None:
+def main_group(ctx: click.Context, verbose: int, quiet: int, max_input: str | None) -> None:
     """tilesolve: a tiling studio backed by SAT and constraint solvers.
 
     \b
@@ -131,6 +135,13 @@ def main_group(ctx: click.Context, verbose: int, quiet: int) -> None:
         format="tilesolve: %(levelname)s: %(message)s",
     )
     ctx.obj = {"verbosity": level}
+    if max_input is not None:
+        from tilesolve.io.jsonio import MAX_INPUT_ENV, parse_byte_size
+
+        try:
+            os.environ[MAX_INPUT_ENV] = str(parse_byte_size(max_input))
+        except TilesolveError as exc:
+            raise click.BadParameter(str(exc), param_hint="'--max-input'") from None
 
 
 def _internal(exc: BaseException) -> CliError:
@@ -150,8 +161,6 @@ def _interrupted() -> int:
 
 def _quiet_stdout() -> None:
     """Standard output is a closed pipe: let the interpreter exit without flushing into it."""
-    import os
-
     with contextlib.suppress(OSError, ValueError):
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
 

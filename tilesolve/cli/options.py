@@ -36,6 +36,15 @@ Exit codes:
   130  interrupted (Ctrl-C): no file written, existing files untouched
   143  terminated (SIGTERM): no file written, existing files untouched"""
 
+#: The input limit, shown by every command that reads files (tilesolve.io.jsonio.read_input).
+INPUT_HELP = """\b
+Input files (and pipes or devices) are read up to 256 MiB; a larger input is refused
+(exit 2). Raise the limit with tilesolve --max-input SIZE or TILESOLVE_MAX_INPUT=SIZE
+(SIZE like 512M or 2G)."""
+
+#: The epilog of a command that reads files: the input limit, then the exit codes.
+READER_HELP = INPUT_HELP + "\n\n" + EXIT_HELP
+
 TILING_FILE_HELP = (
     "a solution JSON file or a text grid (one row per line, top row first, a digit per cell)"
 )

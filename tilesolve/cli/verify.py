@@ -14,7 +14,7 @@ from tilesolve.cli import options as opt
 __all__ = ["verify"]
 
 
-@click.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP)
+@click.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.READER_HELP)
 @click.argument("file", type=click.Path(dir_okay=False))
 @click.option("--proof-dir", type=click.Path(file_okay=False, exists=True), metavar="DIR", default=None,
               help="Re-check every unsat answer's (every refuted board's) DRAT proof against the CNF re-derived "

@@ -46,7 +46,7 @@ def load_tileset(tiles_path: str | None, tiles_format: str | None, builtin: str 
     return read_tileset_file(tiles_path, tiles_format)
 
 
-@click.command(name="count", context_settings=opt.CONTEXT_SETTINGS,
+@click.command(name="count", context_settings=opt.CONTEXT_SETTINGS, epilog=opt.READER_HELP,
                short_help="Count the tilings of a small board with any Wang tile set.")
 @tileset_options
 @click.option("--board", "board_spec", required=True, metavar="SPEC",

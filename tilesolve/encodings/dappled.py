@@ -57,6 +57,7 @@ __all__ = [
     "encode_cnf",
     "encode_wcnf",
     "naive_clauses",
+    "card_clauses",
     "CpSatDappled",
     "build_cpsat",
 ]
@@ -495,7 +496,7 @@ def encode_cnf(
 CARD_SECONDS_PER_CLAUSE = 3e-6
 
 
-def _card_clauses(n: int, bound: int, enctype: int) -> float:
+def card_clauses(n: int, bound: int, enctype: int) -> float:
     """Rough clause count of one cardinality constraint over ``n`` literals (measured shapes)."""
     if enctype == EncType.seqcounter:
         return 2.0 * n * max(1, bound)
@@ -508,9 +509,9 @@ def _card_fits(k, n: int, card: CardEncoding, deadline: Deadline) -> None:
     """Raise :class:`TimeLimitReached` before a cardinality encoding that cannot fit the time left."""
     est = 0.0
     if k.low > 0:
-        est += _card_clauses(n, n - k.low, card.enctype(n, n - k.low))
+        est += card_clauses(n, n - k.low, card.enctype(n, n - k.low))
     if k.high is not None and k.high < n:
-        est += _card_clauses(n, k.high, card.enctype(n, k.high))
+        est += card_clauses(n, k.high, card.enctype(n, k.high))
     need = est * CARD_SECONDS_PER_CLAUSE
     left = deadline.remaining()
     if left is not None and need > left:

@@ -14,6 +14,7 @@ import os
 import numpy as np
 
 from tilesolve.errors import InvalidProblem
+from tilesolve.io.jsonio import read_input
 from tilesolve.model.board import MAX_BOARD_CELLS, Board, parse_board_spec, parse_mask_text
 
 __all__ = ["read_mask", "read_board_spec"]
@@ -25,28 +26,29 @@ def read_mask(path: str | os.PathLike) -> np.ndarray:
     """Read a mask file as a boolean ``(rows, cols)`` array (``True`` = cell).
 
     A PNG's opaque pixels are cells (without an alpha channel: its dark pixels, grey
-    level below 128); any other file is read as UTF-8 text of ``#`` and ``.``.
+    level below 128); any other file is read as UTF-8 text of ``#`` and ``.``. The file is
+    read through the input limit (:func:`tilesolve.io.jsonio.read_input`) and a PNG's size is
+    checked against :data:`~tilesolve.model.board.MAX_BOARD_CELLS` before it is decoded.
 
     Raises
     ------
     InvalidProblem
         The file cannot be read, is neither a PNG nor such a text, or has no cell.
     """
-    try:
-        with open(path, "rb") as fh:
-            data = fh.read()
-    except OSError as exc:
-        raise InvalidProblem(f"cannot read mask {path}: {exc.strerror or exc}") from None
+    data = read_input(path, "mask ")
     if data[:8] == _PNG_MAGIC:
         from PIL import Image
 
         try:
-            img = Image.open(io.BytesIO(data))
+            img = Image.open(io.BytesIO(data))  # reads the header only: the size comes first
+            if img.width * img.height > MAX_BOARD_CELLS:
+                raise InvalidProblem(f"{path}: {img.width}x{img.height} pixels is too large a board "
+                                     f"(at most {MAX_BOARD_CELLS} cells)")
             img.load()
+        except InvalidProblem:
+            raise
         except Exception as exc:  # noqa: BLE001 - any decoder failure is a bad file
             raise InvalidProblem(f"{path}: not a readable PNG ({exc})") from None
-        if img.width * img.height > MAX_BOARD_CELLS:
-            raise InvalidProblem(f"{path}: {img.width}x{img.height} pixels is too large a board")
         if "A" in img.getbands() or img.info.get("transparency") is not None:
             m = np.asarray(img.convert("RGBA"))[:, :, 3] > 0
         else:

@@ -149,9 +149,9 @@ def parse_tileset_text(text: str, fmt: str, source: str = "<tile set>") -> tuple
             raise InvalidProblem(f"{source}: empty file; TileSAT files start with 'n_tiles n_colors width height'")
         line_no, head = rows[0]
         fields = head.split()
-        if len(fields) != 4 or not all(_INT.fullmatch(x) for x in fields):
+        if len(fields) != 4 or not all(_INT.fullmatch(x) and len(x) < 20 for x in fields):
             raise InvalidProblem(f"{source}: line {line_no}: the TileSAT header must be 4 integers "
-                                 f"'n_tiles n_colors width height', got {head!r}")
+                                 f"'n_tiles n_colors width height', got {head[:60]!r}")
         n_tiles, n_colors = int(fields[0]), int(fields[1])
         rows = rows[1:]
         if n_tiles != len(rows):

@@ -598,6 +598,9 @@ def parse_mask_text(text: str, source: str = "<mask>") -> np.ndarray:
     if not lines:
         raise InvalidProblem(f"{source}: the mask is empty")
     width = max(len(ln) for ln in lines)
+    if len(lines) * width > MAX_BOARD_CELLS:
+        raise InvalidProblem(f"{source}: a mask of {width}x{len(lines)} is too large a board "
+                             f"(at most {MAX_BOARD_CELLS} cells)")
     m = np.zeros((len(lines), width), dtype=bool)
     for r, ln in enumerate(lines):
         for c, ch in enumerate(ln):
