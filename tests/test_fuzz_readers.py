@@ -87,6 +87,7 @@ _TEXT = {
     "tiles.rtlb": "[(0, 0, 1, 0), (1, 3, 2, 0), (2, 0, 2, 1)]\n",
     "mask.txt": "##.\n###\n.##\n",
     "grid.txt": "01?1\n?..0\n1100\n",
+    "spaced.txt": "1 0 1 0\n0 1 ? 1\n1, 1, 0, 0\n",
 }
 
 
@@ -217,7 +218,7 @@ READERS = {
                       ["export", "dimacs", "FILE", "-o", "out.cnf"]),
     "mask": (["mask.txt"], ["wang", "solve", "--builtin", "jeandel-rao", "--board", "mask:FILE", "--boundary", "free",
                             "--time-limit", "10"]),
-    "text grid": (["grid.txt"], ["dappled", "solve", "--size", "4x3", "--cond", "H0=2", "--fix", "FILE",
+    "text grid": (["grid.txt", "spaced.txt"], ["dappled", "solve", "--size", "4x3", "--cond", "H0=2", "--fix", "FILE",
                                  "--time-limit", "10"]),
 }
 

@@ -856,11 +856,11 @@ def parse_text_grid(text: str, *, allow_free: bool = False, what: str = "tiling"
                 if not allow_free:
                     raise InvalidProblem(f"line {lineno}: free cell {tok!r} in a {what}, which must be complete")
                 row.append(-1)
-            elif tok.isdigit() and tok.isascii():
+            elif tok.isdigit() and tok.isascii() and len(tok) <= 18:
                 row.append(int(tok))
             else:
                 free = ", '?' or '.' for a free cell" if allow_free else ""
-                raise InvalidProblem(f"line {lineno}: cannot read cell {tok!r}: expected a tile number{free}")
+                raise InvalidProblem(f"line {lineno}: cannot read cell {tok[:20]!r}: expected a tile number{free}")
         if rows and len(row) != len(rows[0]):
             raise InvalidProblem(f"line {lineno}: row has {len(row)} cells, the first row has {len(rows[0])}")
         rows.append(row)

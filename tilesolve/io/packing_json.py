@@ -98,7 +98,7 @@ def packing_from_dict(doc: dict, source: Any = "<document>") -> tuple[PackingPro
     grid = doc.get("grid")
     if grid is not None:
         if not isinstance(grid, list) or not all(isinstance(r, list) for r in grid) or \
-                not all(type(v) is int for r in grid for v in r):
+                not all(type(v) is int and -2**63 <= v < 2**63 for r in grid for v in r):
             raise InvalidProblem(f"{source}: 'grid' must be a list of rows of integer tile indices")
         if len({len(r) for r in grid}) > 1:
             raise InvalidProblem(f"{source}: 'grid' rows have different lengths")
