@@ -11,7 +11,7 @@ from clitools import one_line_error, run, snapshot
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from tilesolve.aperiodic import AperiodicProblem, AperiodicReport, solve
+from tilesolve.aperiodic import AperiodicProblem, solve
 from tilesolve.deadline import Deadline
 from tilesolve.encodings.wang_tiles import encode_tiles
 from tilesolve.engine.aperiodic import sweep
@@ -22,7 +22,7 @@ from tilesolve.model.aperiodic import Certificate, Lattice, board_of, leg_colour
 from tilesolve.model.board import Board, BoardProblem, WangTileSet
 from tilesolve.model.run import RunOptions
 from tilesolve.model.solution import Status
-from tilesolve.verify.aperiodic import aperiodic_violations
+from tilesolve.verify.aperiodic import aperiodic_violations, witness_violations
 from tilesolve.verify.board import board_violations
 
 #: (R + C) mod 3 colours both ways: tile i has N = i, S = i + 1, W = i, E = i + 1 (mod 3), so
@@ -133,7 +133,7 @@ def test_sweep_workers_and_cache(tmp_path):
     problem = AperiodicProblem(DIAGONAL, 0, 3, shears=True)
 
     def holds(cert):
-        return not aperiodic_violations(AperiodicReport(periods=(cert,)), problem)
+        return not witness_violations(cert, problem)
 
     again, _ = sweep(DIAGONAL, names, RunOptions(seed=1, workers=2), cache=cache, check_witness=holds)
     assert all(c.evidence.get("cached") for c in again)

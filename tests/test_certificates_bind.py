@@ -20,6 +20,7 @@ from tilesolve.aperiodic import AperiodicProblem, build_report
 from tilesolve.engine.aperiodic import sweep
 from tilesolve.family import solution_text
 from tilesolve.io.builtin_tilesets import load
+from tilesolve.model.aperiodic import Certificate
 from tilesolve.model.board import WangTileSet
 from tilesolve.model.run import RunOptions
 from tilesolve.model.solution import Solution, Status
@@ -213,21 +214,25 @@ def _lines_end_with_one_verdict(stdout: str) -> str:
 
 def test_relabelled_lattice_with_another_boards_proof_is_refused(tmp_path):
     """The issue's reproduction: periodic-8-20's "torus 7x6 shear 6" (which tiles) relabelled
-    refuted with the 1x1 torus's proof."""
+    refuted with the 1x1 torus's proof, by a careful forger who also rewrites the conclusion
+    (the report keeps the witness of the 14x6 torus with shear 6, so it still covers what it says)."""
     tileset, info = load("periodic-8-20")
-    problem = AperiodicProblem(tileset, 0, 7, shears=True, name="periodic-8-20", info=info)
+    problem = AperiodicProblem(tileset, 0, 14, shears=True, name="periodic-8-20", info=info)
     from tilesolve.engine.certificates import writing_proofs
 
     with writing_proofs(tmp_path / "proofs"):
-        certs, _ = sweep(tileset, ["torus 1x1", "torus 7x6 shear 6"], RunOptions(seed=1, workers=1))
-    assert [c.status for c in certs] == ["refuted", "tiles"]
-    report = build_report(problem, (), None, certs)
-    doc = json.loads(solution_text(problem, Solution(Status.SAT, report, "sat", None, 1, 0.0)))
-    _write(tmp_path, "r.json", doc)
+        certs, _ = sweep(tileset, ["torus 1x1", "torus 7x6 shear 6", "torus 14x6 shear 6"],
+                         RunOptions(seed=1, workers=1))
+    assert [c.status for c in certs] == ["refuted", "tiles", "tiles"]
+
+    def report(periods):
+        rep = build_report(problem, (), None, periods)
+        return json.loads(solution_text(problem, Solution(Status.SAT, rep, "sat", None, 1, 0.0)))
+
+    _write(tmp_path, "r.json", report(certs))
     proc = run("aperiodic", "verify", "r.json", "--proof-dir", "proofs", cwd=tmp_path)
     assert proc.returncode == 0 and _lines_end_with_one_verdict(proc.stdout).startswith("ok: r.json"), proc.stdout
-    forged = doc["periods"][1]
-    forged.update(status="refuted", tiling=None, method="sat", evidence=dict(doc["periods"][0]["evidence"]))
+    doc = report([certs[0], Certificate(certs[1].board, "refuted", None, "sat", certs[0].evidence), certs[2]])
     _write(tmp_path, "f.json", doc)
     for args in (["verify", "f.json"], ["verify", "f.json", "--proof-dir", "proofs"],
                  ["aperiodic", "verify", "f.json", "--proof-dir", "proofs"], ["aperiodic", "verify", "f.json"]):
@@ -236,12 +241,34 @@ def test_relabelled_lattice_with_another_boards_proof_is_refused(tmp_path):
         assert "torus 7x6 shear 6" in proc.stdout and not proc.stdout.startswith("ok:")
     verdict = _lines_end_with_one_verdict(proc.stdout)
     assert verdict.startswith("f.json: the file's claims are false")
+    # the relabel alone, the conclusion left as it was, is a false conclusion too
+    doc = report(certs)
+    doc["periods"][1].update(status="refuted", tiling=None, evidence=doc["periods"][0]["evidence"])
+    _write(tmp_path, "c.json", doc)
+    proc = run("aperiodic", "verify", "c.json", "--proof-dir", "proofs", cwd=tmp_path)
+    assert proc.returncode == 1 and "the conclusion is not what the certificates prove" in proc.stdout
     # a refutation by a route that left no proof ("magic") is no refutation either
-    forged.update(method="magic", evidence={"trust": "me"})
+    doc = report([certs[0], Certificate(certs[1].board, "refuted", None, "magic", {"trust": "me"}), certs[2]])
     _write(tmp_path, "m.json", doc)
     proc = run("aperiodic", "verify", "m.json", "--proof-dir", "proofs", cwd=tmp_path)
     assert proc.returncode == 1 and "records no named encoding" in proc.stdout
     assert not _lines_end_with_one_verdict(proc.stdout).startswith("ok:")
+
+
+def test_a_report_claims_no_more_than_its_certificates(tmp_path):
+    """Without a witness, a sweep's report must hold every lattice it counts; dropping one, or
+    claiming more in words, is refused."""
+    (tmp_path / "lonely.json").write_text(json.dumps({"order": "NESW", "colors": 2, "tiles": [[0, 1, 0, 0]]}))
+    assert run("aperiodic", "check", "lonely.json", "--max-period", "2", "--workers", "1", "-o", "r.json",
+               cwd=tmp_path).returncode == 0
+    doc = json.loads((tmp_path / "r.json").read_text())
+    assert [c["status"] for c in doc["periods"]] == ["refuted"] * 4
+    _write(tmp_path, "d.json", dict(doc, periods=doc["periods"][:3]))
+    proc = run("verify", "d.json", cwd=tmp_path)
+    assert proc.returncode == 1 and "the periods are not every lattice of this check" in proc.stdout
+    _write(tmp_path, "w.json", dict(doc, conclusion="The set is aperiodic."))
+    proc = run("verify", "w.json", cwd=tmp_path)
+    assert proc.returncode == 1 and "the conclusion is not what the certificates prove" in proc.stdout
 
 
 def test_transducer_emptiness_certificate_is_rederived(tmp_path):

@@ -45,7 +45,7 @@ from tilesolve.family import solve as _solve
 from tilesolve.io.aperiodic_json import APERIODIC_REPORT, VERSIONS, report_from_dict, report_to_dict
 from tilesolve.model.aperiodic import AperiodicProblem, AperiodicReport, Certificate
 from tilesolve.model.solution import Solution, Status
-from tilesolve.verify.aperiodic import aperiodic_violations
+from tilesolve.verify.aperiodic import aperiodic_violations, witness_violations
 
 __all__ = ["AperiodicProblem", "AperiodicReport", "Certificate", "solve", "sat", "transducer", "build_report",
            "refutations", "witness", "FAMILY"]
@@ -166,9 +166,24 @@ def refutations(problem: AperiodicProblem, sol: Solution) -> list[tuple[str, obj
             for c in report.squares + report.periods if c.status == "refuted"]
 
 
+def _violations(problem: AperiodicProblem, report) -> list:
+    """The family's verifier (:func:`aperiodic_violations`), and a sweep's conclusion must be the
+    one its certificates give (:func:`build_report`): a report's words claim no more than them."""
+    out = aperiodic_violations(report, problem)
+    certs = report.squares + report.periods if isinstance(report, AperiodicReport) else ()
+    if out or any("transducer" in str(c.method) for c in certs):
+        return out
+    from tilesolve.verify.dappled import Violation
+
+    said = build_report(problem, report.squares, report.largest_square, report.periods).conclusion
+    if report.conclusion != said:
+        out.append(Violation("conclusion", f"the conclusion is not what the certificates prove: {said!r}"))
+    return out
+
+
 def _witness_holds(problem: AperiodicProblem, cert: Certificate) -> bool:
-    """True when a (cached) witness passes the family's verifier."""
-    return not aperiodic_violations(AperiodicReport(periods=(cert,)), problem)
+    """True when a (cached) witness tiles its board (the family's verifier)."""
+    return not witness_violations(cert, problem)
 
 
 def solve(problem: AperiodicProblem, method: str = "auto", **kwargs) -> Solution:
@@ -265,7 +280,7 @@ FAMILY = register(Family(
     problem_type=AperiodicProblem,
     routes={"sat": sat, "transducer": transducer},
     auto=lambda problem: "sat",
-    verify=lambda problem, report: aperiodic_violations(report, problem),
+    verify=_violations,
     codecs=(Codec(APERIODIC_REPORT, VERSIONS, report_from_dict, report_to_dict),),
     draw=_draw,
     demos=DEMOS,

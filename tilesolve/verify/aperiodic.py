@@ -5,7 +5,8 @@ Every witness in a report is re-checked as a board tiling with
 equal colour) on the square or (sheared) torus its name stands for; every refutation must
 carry the digests of its CNF and of its checked proof (SAT) or its route's evidence; every
 period certificate must name a distinct board, and a refuted or undecided one a lattice of the
-check (a witness may tile any torus: it is periodic all the same); the largest square claimed must
+check (a witness may tile any torus: it is periodic all the same); a sweep's report without a
+witness holds every lattice of the check once, in order (its conclusion counts them all); the largest square claimed must
 have its witness, and the refuted square above it when it is below the bound. (That each
 refutation's CNF encodes its board, and its proof, are re-checked by ``tilesolve verify``,
 which re-derives the CNF: :attr:`tilesolve.family.Family.refutations`.) Numpy only; nothing here calls a solver or the code that wrote the report.
@@ -28,10 +29,11 @@ from tilesolve.model.board import BoardProblem
 from tilesolve.verify.board import board_violations
 from tilesolve.verify.dappled import Violation
 
-__all__ = ["aperiodic_violations"]
+__all__ = ["aperiodic_violations", "witness_violations"]
 
 
-def _witness(cert, problem: AperiodicProblem) -> list[Violation]:
+def witness_violations(cert, problem: AperiodicProblem) -> list[Violation]:
+    """Every violation of one witness certificate (``status == "tiles"``) as a tiling of its board."""
     rows, cols, _ = parse_board_name(cert.board)
     t = np.asarray(cert.tiling)
     if t.shape != (rows, cols):
@@ -48,7 +50,8 @@ def aperiodic_violations(report, problem: AperiodicProblem) -> list[Violation]:
     if not isinstance(report, AperiodicReport):
         return [Violation("shape", f"expected an aperiodicity report, got {type(report).__name__}")]
     out: list[Violation] = []
-    lattices = {lat.name() for lat in problem.lattices()}
+    names = [lat.name() for lat in problem.lattices()]
+    lattices = set(names)
     seen: set[str] = set()
     for cert in report.periods:
         if cert.board not in lattices and cert.status != "tiles":  # a witness of any torus is periodic
@@ -57,6 +60,13 @@ def aperiodic_violations(report, problem: AperiodicProblem) -> list[Violation]:
         elif cert.board in seen:
             out.append(Violation("board", f"{cert.board}: certified twice"))
         seen.add(cert.board)
+    transducer = any("transducer" in str(c.method) for c in report.squares + report.periods)
+    if transducer and any(c.status != "tiles" for c in report.periods):
+        out.append(Violation("board", "a transducer's report holds no period but its torus witness"))
+    witness = any(c.status == "tiles" for c in report.periods)
+    if not transducer and not witness and report.periods and [c.board for c in report.periods] != names:
+        out.append(Violation("board", "the periods are not every lattice of this check, each once, in order "
+                                      f"({len(report.periods)} certificates for {len(lattices)} lattices)"))
     for cert in report.squares:
         if parse_board_name(cert.board)[2] != -1:
             out.append(Violation("board", f"{cert.board}: not a square or rectangle"))
@@ -70,7 +80,7 @@ def aperiodic_violations(report, problem: AperiodicProblem) -> list[Violation]:
         return out
     for cert in report.squares + report.periods:
         if cert.status == "tiles":
-            out += _witness(cert, problem)
+            out += witness_violations(cert, problem)
         elif cert.status == "refuted":
             ev = cert.evidence
             sat = str(cert.method).startswith("sat")
