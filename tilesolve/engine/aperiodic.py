@@ -21,8 +21,14 @@ Periods (:func:`sweep`)
     One SAT run per :class:`~tilesolve.model.aperiodic.Lattice`, on local worker processes
     (``workers``, default both cores, through :mod:`tilesolve.engine.portfolio`'s workers) or
     on a Dask cluster (``cluster``). Decided lattices are appended to a cache file as they
-    come in (JSON lines keyed by the tile set's digest), so a rerun skips them; a time limit or
+    come in (JSON lines keyed by the tile set's digest; the proofs of refutations beside it, in
+    :func:`cache_proof_dir`), so a rerun re-checks them instead of solving them: a cache is not
+    evidence, and a line whose witness or proof does not hold is decided again. A time limit or
     Ctrl-C leaves the rest undecided (never refuted).
+
+Every refutation's CNF is the named encoding ``wang-tiles-cnf`` of the tile set on the board
+its name stands for (:func:`board_problem`), recorded in the certificate, so that anyone can
+re-derive it.
 """
 
 from __future__ import annotations
