@@ -27,6 +27,7 @@ def _boards():
         "mobius": Board.mobius(4, 3), "klein": Board.klein(3, 3), "ring": ring,
         "mask": Board.random_holes(6, 6, 0.3, seed=2), "mobius|U": mob.restrict(keep),
         "tree": Board.random_tree(12, seed=1),
+        "grid": Board.grid(np.arange(20).reshape(4, 5) % 7 != 3, wrap_rows="twist", wrap_cols="plain"),
         "edges only": Board.from_edges(ring.labels, ring.edge_array(), kind="ring"),
     }
 

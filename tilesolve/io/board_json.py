@@ -29,9 +29,13 @@ The board is *described* by ``board_kind`` with ``grid`` and ``mask``; a file wi
 other kind (a sheared torus, a board given by its joins) is described by ``cells`` and
 ``edges`` alone. Where a file both describes its board and lists ``cells`` and ``edges``, the
 list must be exactly the board described: ``tilesolve verify`` reports every difference as a
-violation, and ``tilesolve draw`` refuses the file. A ``mobius`` board is thus always the
-Möbius strip of its grid, a ``rect`` board the full rectangle, a ``mobius|U`` board some
-cells of the Möbius strip, and so on.
+violation (exit 1), and ``tilesolve draw`` refuses the file (exit 2). A file that holds no
+tiling (an ``unsat`` or ``unknown`` answer, which is about the board described) is refused
+when the board family reads it (exit 2). The kind binds the grid: a ``rect``, ``torus``,
+``cylinder``, ``mobius`` or ``klein`` board is every cell of its grid, with the sides
+identified as that kind's are; a ``ring`` board the border of its grid; a ``mask`` or
+``tree`` board any cells of a grid whose sides meet the wall; a restriction such as
+``mobius|U`` any cells of the Möbius strip of its grid.
 
 Sizes and colour counts are checked before anything is built: a grid of at most
 :data:`~tilesolve.model.board.MAX_BOARD_CELLS` cells; ``colors`` from 3 to

@@ -295,14 +295,19 @@ class Board:
 
     # ------------------------------------------------------------------ builders
     @classmethod
-    def grid(cls, mask, *, wrap_rows: str | None = None, wrap_cols: str | None = None, kind: str = "mask") -> "Board":
+    def grid(cls, mask, *, wrap_rows: str | None = None, wrap_cols: str | None = None,
+             kind: str | None = None) -> "Board":
         """Grid board on the cells where ``mask`` is true.
 
         ``wrap_cols`` joins the E legs of column ``W-1`` to the W legs of column 0:
         ``"plain"`` (row ``r`` to row ``r``) or ``"twist"`` (row ``r`` to row ``H-1-r``,
         the Möbius identification of Example 5); ``wrap_rows`` likewise joins S legs of the
-        last row to N legs of row 0 (``"twist"``: column ``c`` to ``W-1-c``).
+        last row to N legs of row 0 (``"twist"``: column ``c`` to ``W-1-c``). ``kind``
+        defaults to ``"mask"`` (a rectangle with holes) where no sides are identified, else
+        ``"grid"``.
         """
+        if kind is None:
+            kind = "mask" if wrap_rows is None and wrap_cols is None else "grid"
         m = np.asarray(mask, dtype=bool)
         if m.ndim != 2 or m.size == 0:
             raise InvalidProblem("a board mask must be a non-empty 2-D array")
