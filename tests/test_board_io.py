@@ -15,6 +15,7 @@ from tilesolve.io.board_json import (
 from tilesolve.model.aperiodic import Lattice
 from tilesolve.model.board import Board, BoardProblem, WangTileSet
 from tilesolve.model.solution import Solution, Status
+from tilesolve.verify.board import listing_violations
 
 
 def _boards():
@@ -42,6 +43,8 @@ def _problem_and_solution(board, seed=0, tiling=True):
 
 
 def _same(p, s, q, t):
+    if isinstance(q, ListedBoardProblem):  # what tilesolve lists is the board it describes
+        assert listing_violations(q.board, q.listed_cells, q.listed_edges) == []
     for name in ("labels", "nbr_cell", "nbr_leg"):
         assert np.array_equal(getattr(p.board, name), getattr(q.board, name)), name
     assert p.board.kind == q.board.kind
