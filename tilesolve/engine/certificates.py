@@ -297,7 +297,8 @@ def recheck_unsat(problem: Any, evidence: Mapping[str, Any], proof_dir: str | os
         enc = encode(entry.name, problem, options)
     except InvalidProblem as exc:
         return refused(str(exc))
-    cnf = dimacs_bytes(enc.hard)
+    flat = formula_arrays(enc.hard)[:2]  # flattened once, for the digest and the check
+    cnf = dimacs_bytes(flat)
     got = hashlib.sha256(cnf).hexdigest()
     what = f"encoding {entry.name} v{entry.version}"
     recorded = _digest(evidence.get("cnf_sha256"))
@@ -324,7 +325,7 @@ def recheck_unsat(problem: Any, evidence: Mapping[str, Any], proof_dir: str | os
             if fh.read() != cnf:
                 return refused(bound, f"{NOT_THE_ENCODING}: {base}.cnf differs from the CNF re-derived from it",
                                cnf=cnf)
-    chk = check_drat(enc.hard, drat, time_limit=time_limit)
+    chk = check_drat(flat, drat, time_limit=time_limit)
     line = f"{base}.drat: {chk.status} against the re-derived CNF: {chk.reason} ({chk.time_s:.3g} s)"
     verdict = "re-checked" if chk.verified else "refused"
     return Recheck(verdict, (bound, line), cnf, drat, time.perf_counter() - t0)
