@@ -4,7 +4,7 @@ Valid files of every family (dappled, board, packing, stochastic, aperiodic repo
 in each format, masks, text grids) are mutated (fields deleted, duplicated or retyped, huge
 numbers, NaN, deep nesting, truncation, random bytes) and handed to the commands that read
 them: ``verify``, ``aperiodic verify``, ``wang count --tiles``, ``aperiodic check``, ``export
-dimacs FILE``, ``wang solve --board mask:FILE`` and ``dappled solve --fix FILE``. Whatever the
+dimacs FILE``, ``draw FILE``, ``wang solve --board mask:FILE`` and ``dappled solve --fix FILE``. Whatever the
 input, the command ends without a traceback: exit 2 with exactly one ``tilesolve: error:``
 line, or, for a document that is still valid, an answer (exit 0, 1 or 3). Never exit 70 (an
 internal error) and never "out of memory" (readers validate before they allocate).
@@ -216,6 +216,8 @@ READERS = {
     "aperiodic check": (["tileset.json"], ["aperiodic", "check", "FILE", "--max-square", "2", "-o", "out.json"]),
     "export dimacs": (["dappled.json", "dappled3.json", "board.json", "torus.json", "packing.json"],
                       ["export", "dimacs", "FILE", "-o", "out.cnf"]),
+    "draw": (["dappled.json", "torus.json", "packing.json", "corner.json", "window.json"],
+             ["draw", "FILE", "-o", "out.svg"]),
     "mask": (["mask.txt"], ["wang", "solve", "--builtin", "jeandel-rao", "--board", "mask:FILE", "--boundary", "free",
                             "--time-limit", "10"]),
     "text grid": (["grid.txt", "spaced.txt"], ["dappled", "solve", "--size", "4x3", "--cond", "H0=2", "--fix", "FILE",

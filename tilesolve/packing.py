@@ -294,13 +294,8 @@ def _write(problem: PackingProblem, sol: Solution) -> dict:
 def _draw(problem: PackingProblem, sol: Solution, path, fmt: str, *, indices: bool = False, title: str | None = None,
           notes=(), **_ignored) -> None:
     """SVG (tiles drawn with their edge or corner colours) or PNG of a packing; a grid cell
-    that holds no tile of the set is refused (there is nothing to draw there)."""
-    grid = np.asarray(sol.tiling, dtype=np.int64)
-    outside = (grid < 0) | (grid >= problem.tiles.n_tiles)
-    if outside.any():
-        r, c = (int(i) for i in np.argwhere(outside)[0])
-        raise InvalidProblem(f"the grid holds {int(grid[r, c])} at row {r}, col {c}, not a tile of the "
-                             f"{problem.describe()}; tilesolve verify lists the violations")
+    that holds no tile number is refused (there is nothing to draw there)."""
+    problem.tiles.check_numbers(sol.tiling)
     if fmt == "png":
         from tilesolve.io.png import write_packing_png
 

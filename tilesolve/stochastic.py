@@ -139,7 +139,9 @@ def _write(problem: StochasticProblem, sol: Solution) -> dict:
 def _draw(problem: StochasticProblem, sol: Solution, path, fmt: str, *, indices: bool = False,
           title: str | None = None, **_ignored) -> None:
     """SVG (each tile drawn with its edge or corner colours, the notes' palette of §2.7) or PNG
-    (the same drawing, streamed band by band: :func:`tilesolve.io.stochastic_png.write_window_png`)."""
+    (the same drawing, streamed band by band: :func:`tilesolve.io.stochastic_png.write_window_png`);
+    a grid cell that holds no tile number is refused (there is nothing to draw there)."""
+    problem.tiles.check_numbers(sol.tiling)
     if fmt == "png":
         from tilesolve.io.stochastic_png import write_window_png
 

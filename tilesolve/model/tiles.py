@@ -306,6 +306,23 @@ class TileSet:
             out = wang_colors(i, colors=self.colors, colors_v=self.colors_v)
         return tuple(int(x) for x in out) if np.ndim(i) == 0 else out
 
+    def check_numbers(self, grid) -> None:
+        """Refuse a grid cell that holds no tile number over these colours (``0 .. C_h^2 C_v^2 - 1``
+        for Wang tiles, ``0 .. C^4 - 1`` for corner tiles): such a cell has no colours to draw.
+
+        >>> TileSet("wang", 2).check_numbers([[0, 15], [16, 3]])
+        Traceback (most recent call last):
+        ...
+        tilesolve.errors.InvalidProblem: the grid holds 16 at row 1, col 0, not a tile number over C = 2 (0..15); tilesolve verify lists the violations
+        """
+        g = np.asarray(grid, dtype=np.int64)
+        n = (self.colors * self.cv) ** 2
+        outside = (g < 0) | (g >= n)
+        if outside.any():
+            r, c = (int(i) for i in np.argwhere(outside)[0])
+            raise InvalidProblem(f"the grid holds {int(g[r, c])} at row {r}, col {c}, not a tile number over "
+                                 f"C = {self.colors} (0..{n - 1}); tilesolve verify lists the violations")
+
     def table(self) -> np.ndarray:
         """``(n_tiles, 4)`` array: row ``k`` holds the colours of tile ``indices[k]``.
 
