@@ -15,8 +15,9 @@ Data layout
 -----------
 Literal ``l`` has code ``2|l| + (l < 0)``; ``code ^ 1`` is its negation. Every clause (the
 formula's, then one per proof line, deletions included) is ``lits[start[c]:start[c] + size[c]]``
-after removing repeated literals. Clause ``c`` owns two watches, nodes ``2c`` and ``2c + 1``,
-on its literals in positions 0 and 1. Each literal code has two watch lists, list
+after removing repeated literals, preceded by ``c`` and its size (``lits[start[c] - 2]``,
+``lits[start[c] - 1]``: a watch reads one stretch of memory). Clause ``c`` owns two watches,
+nodes ``2 start[c]`` and ``2 start[c] + 1``, on its literals in positions 0 and 1. Each literal code has two watch lists, list
 ``2 code + 1`` for the core clauses and ``2 code`` for the others (a clause moves when it is
 marked), so core-first propagation scans only core watches. A list is a vector in a block of
 one ``pool`` array (``wl[list]`` = start, length, room; see :func:`w_push`), and an entry is
@@ -34,6 +35,16 @@ from __future__ import annotations
 import numpy as np
 
 MASK = 0x3FFFFFFFFFFFFFFF
+
+#: Kinds of the kernels' parameters, by name ("int" for the others): numba compiles each kernel
+#: once, for these types (:func:`tilesolve.verify.drat._kernels`).
+PARAMS = {
+    **dict.fromkeys(("taut", "active", "val", "core", "done", "seen", "is_del"), "int8s"),
+    **dict.fromkeys(("lits", "start", "size", "chash", "mark", "ht_key", "ht_head", "same_prev", "reason", "tpos",
+                     "trail", "st", "stack", "tl_before", "target", "counts", "out", "pivot", "pool"), "int64s"),
+    "wl": "table",
+    **dict.fromkeys(("one", "blk", "core_first"), "flag"),
+}
 
 # status codes of the backward pass (read by tilesolve.verify.drat)
 OK, LEMMA_FAILED, NO_EMPTY, EMPTY_NOT_RUP = 0, 1, 2, 3
@@ -62,6 +73,7 @@ def prepare(lits, start, size, taut, chash, mark, n_cl):
             n += 1
             h = (h + lit_hash(x)) & MASK
         size[c] = n
+        lits[b - 1] = n
         chash[c] = (h + n) & MASK
 
 
@@ -202,8 +214,8 @@ def attach(lits, start, size, val, wl, pool, core, c):
         t = lits[b + pos]
         lits[b + pos] = lits[best]
         lits[best] = t
-    w_push(wl, pool, 2 * lits[b] + core[c], (2 * c) << 32 | lits[b + 1])
-    w_push(wl, pool, 2 * lits[b + 1] + core[c], (2 * c + 1) << 32 | lits[b])
+    w_push(wl, pool, 2 * lits[b] + core[c], (2 * b) << 32 | lits[b + 1])
+    w_push(wl, pool, 2 * lits[b + 1] + core[c], (2 * b + 1) << 32 | lits[b])
     free = 0
     if val[lits[b]] != -1:
         free += 1
@@ -214,8 +226,8 @@ def attach(lits, start, size, val, wl, pool, core, c):
 
 def detach(lits, start, wl, pool, core, c):
     b = start[c]
-    w_remove(wl, pool, 2 * lits[b] + core[c], 2 * c)
-    w_remove(wl, pool, 2 * lits[b + 1] + core[c], 2 * c + 1)
+    w_remove(wl, pool, 2 * lits[b] + core[c], 2 * b)
+    w_remove(wl, pool, 2 * lits[b + 1] + core[c], 2 * b + 1)
 
 
 def make_core(c, lits, start, size, taut, active, wl, pool, core):
@@ -228,8 +240,8 @@ def make_core(c, lits, start, size, taut, active, wl, pool, core):
     core[c] = 1
     if attached:
         b = start[c]
-        w_push(wl, pool, 2 * lits[b] + 1, (2 * c) << 32 | lits[b + 1])
-        w_push(wl, pool, 2 * lits[b + 1] + 1, (2 * c + 1) << 32 | lits[b])
+        w_push(wl, pool, 2 * lits[b] + 1, (2 * b) << 32 | lits[b + 1])
+        w_push(wl, pool, 2 * lits[b + 1] + 1, (2 * b + 1) << 32 | lits[b])
     return 1
 
 
@@ -237,8 +249,8 @@ def visit(code, mode, one, blk, lits, start, size, val, reason, tpos, trail, st,
     """Clauses watching ``code``'s negation, now false: the core ones (``mode`` 1) or the
     others (0). Returns a falsified clause, or -1.
 
-    A watch entry is ``node << 32 | blocker``: watch ``node`` of clause ``node >> 1`` (its
-    literal in position ``node & 1``) and some literal of that clause; with ``blk`` a clause
+    A watch entry is ``node << 32 | blocker``: watch ``node`` of the clause whose literals
+    start at ``node >> 1`` (its literal in position ``node & 1``) and some literal of that clause; with ``blk`` a clause
     whose blocker is true is passed over unread (only inside a check, which is undone
     whole: at the top level a false watch keeps a true partner watch). With ``one`` the visit
     stops after the first clause it makes unit (drat-trim's core-first order: core clauses
@@ -256,16 +268,15 @@ def visit(code, mode, one, blk, lits, start, size, val, reason, tpos, trail, st,
             i += 1
             continue
         node = e >> 32
-        c = node >> 1
+        b = node >> 1
         s = node & 1
-        b = start[c]
         other = lits[b + 1 - s]
         if val[other] == 1:
             pool[wl[lst, 0] + i] = node << 32 | other
             i += 1
             continue
         found = -1
-        for k in range(b + 2, b + size[c]):
+        for k in range(b + 2, b + lits[b - 1]):
             if val[lits[k]] != -1:
                 found = k
                 break
@@ -278,9 +289,9 @@ def visit(code, mode, one, blk, lits, start, size, val, reason, tpos, trail, st,
             wl[lst, 1] = n
             w_push(wl, pool, 2 * x + mode, node << 32 | other)
         elif val[other] == -1:
-            return c
+            return lits[b - 2]
         else:
-            assign(val, reason, tpos, trail, st, other, c)
+            assign(val, reason, tpos, trail, st, other, lits[b - 2])
             i += 1
             if one:
                 st[3] = i
@@ -426,12 +437,12 @@ def truncate(p, lits, start, size, val, reason, trail, st, wl, pool, core, done)
         lst = 2 * trail[i >> 1] + (i & 1)
         for j in range(wl[lst, 1]):
             node = pool[wl[lst, 0] + j] >> 32
-            c = node >> 1
+            b = node >> 1
             s = 1 - (node & 1)
-            b = start[c]
+            c = lits[b - 2]
             w = lits[b + s]
             if val[w] == -1:
-                for k in range(b + 2, b + size[c]):
+                for k in range(b + 2, b + lits[b - 1]):
                     x = lits[k]
                     if val[x] != -1:
                         lits[k] = w

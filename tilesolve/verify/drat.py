@@ -429,6 +429,15 @@ def _kernels(work: int, mode: str = "auto", time_limit: float | None = None):
                 clone = types.FunctionType(func.__code__, ns, func.__name__, func.__defaults__, func.__closure__)
                 clone.__qualname__ = func.__qualname__
                 ns[name] = numba.njit(cache=True, _nrt=False)(clone)
+            # One version of each kernel, typed by its parameters' names (callees first, as the
+            # module defines them): no version per constant argument, which would double the
+            # compile time of a first run.
+            kinds = {"int": numba.int64, "flag": numba.boolean, "int8s": numba.int8[::1], "int64s": numba.int64[::1],
+                     "table": numba.int64[:, ::1]}
+            for name, func in funcs.items():
+                code = func.__code__
+                ns[name].compile(tuple(kinds[K.PARAMS.get(a, "int")] for a in code.co_varnames[:code.co_argcount]))
+                ns[name].disable_compile()
             _COMPILED = types.SimpleNamespace(**{k: v for k, v in ns.items() if not k.startswith("__")})
         return _COMPILED
 
@@ -665,19 +674,25 @@ def check_drat(
 
     n_f, n_s = len(f_sizes), len(p_sizes)
     n_cl = n_f + n_s
-    lits = _codes(np.concatenate((f_lits, p_lits)))
+    codes = _codes(np.concatenate((f_lits, p_lits)))
     size = np.concatenate((f_sizes, p_sizes))
+    # each clause is stored as [clause number, size, literals...]; start[c]: its first literal
     start = np.zeros(n_cl + 1, np.int64)
-    np.cumsum(size, out=start[1:])
+    np.cumsum(size + 2, out=start[1:])
+    start += 2
+    lits = np.empty(codes.size + 2 * n_cl, np.int64)
+    lits[start[:n_cl] - 2] = np.arange(n_cl)
+    lits[start[:n_cl] - 1] = size
+    lits[np.arange(codes.size) + 2 * np.repeat(np.arange(1, n_cl + 1), size)] = codes
     is_del = p_del
     n_lemmas = int(n_s - is_del.sum())
     n_dels = int(is_del.sum())
     pivot = np.full(n_s, -1, np.int64)
     nonempty = p_sizes > 0
     pivot[nonempty] = lits[start[n_f:n_cl][nonempty]]
-    n_vars = int(lits.max() >> 1) if lits.size else 0
+    n_vars = int(codes.max() >> 1) if codes.size else 0
     L = 2 * n_vars + 2
-    k = _kernels(int(lits.size), kernels, None if time_limit is None else time_limit - elapsed())
+    k = _kernels(int(codes.size), kernels, None if time_limit is None else time_limit - elapsed())
     taut = np.zeros(n_cl, np.int8)
     chash = np.zeros(n_cl, np.int64)
     mark = np.full(L, -1, np.int64)
@@ -756,7 +771,8 @@ def check_drat(
         if out[0] != K.OK:
             step = int(out[1])
             number = int((is_del[: step + 1] == 0).sum())
-            shown = _shown(p_lits[start[n_f + step] - start[n_f]:][: p_sizes[step]].tolist())
+            first = int(p_sizes[:step].sum())
+            shown = _shown(p_lits[first:first + p_sizes[step]].tolist())
             return result("failed", f"lemma {number} (proof line {step + 1}: {shown} 0) is neither RUP nor RAT",
                           int(out[2]), int(out[3]))
         if out_of_time():
