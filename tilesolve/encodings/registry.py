@@ -85,7 +85,7 @@ def _dappled(problem, options, deadline):
 
     _need(problem, DappledProblem, "dappled-cnf", "dappled problems")
     card = options["card_encoding"]
-    if card not in {c.value for c in CardEncoding}:
+    if not isinstance(card, str) or card not in {c.value for c in CardEncoding}:
         raise InvalidProblem(f"encoding dappled-cnf: card_encoding must be one of "
                              f"{', '.join(c.value for c in CardEncoding)}, got {card!r}")
     return encode_cnf(problem, card_encoding=card, deadline=deadline)
