@@ -29,7 +29,8 @@ def draw(ctx, file: str, output: str, repeat: int, grid) -> None:
 
     Exit 0 when the picture was written; 1 when the file holds no tiling (unsat/unknown);
     2 when the file is malformed, and so when a board file lists cells and edges that are not
-    the board it describes (tilesolve verify lists the differences).
+    the board it describes, or holds tiles that are not 4 colours of C for each of its cells
+    (tilesolve verify tells where).
     """
     from tilesolve.family import draw_solution, read_document
 
