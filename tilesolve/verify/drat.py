@@ -52,7 +52,6 @@ from __future__ import annotations
 
 import hashlib
 import os
-import sys
 import threading
 import time
 import types
@@ -401,44 +400,86 @@ _LOCK = threading.Lock()
 #: Seconds of time limit below which a first compilation (no numba cache yet) is not started.
 _COMPILE_S = 60.0
 
+#: Literals from which a check waits for another process's first compilation of the kernels
+#: instead of running interpreted (about 10k literals a second) while it compiles (seconds).
+WAIT_FROM = 50_000
 
-def _cache_ready() -> bool:
-    """Whether numba's cache holds the compiled kernels (loading then takes under a second)."""
-    name = f"{K.__name__.rsplit('.', 1)[1]}.backward-{K.backward.__code__.co_firstlineno}.py" \
-           f"{sys.version_info[0]}{sys.version_info[1]}.nbi"
-    return os.path.isfile(os.path.join(os.path.dirname(K.__file__), "__pycache__", name))
+
+def _kernel_funcs() -> dict[str, types.FunctionType]:
+    return {k: v for k, v in vars(K).items() if isinstance(v, types.FunctionType) and v.__module__ == K.__name__}
+
+
+def _kernel_cache() -> tuple[bool, str | None]:
+    """Whether numba's cache holds every kernel of this source, and a lock file beside it.
+
+    The first run after an install compiles the kernels (several seconds); the lock makes the
+    processes of a sweep compile them once, in one process, the others loading that cache.
+    """
+    from numba.core.caching import FunctionCache
+
+    try:
+        files = [FunctionCache(f)._cache_file for f in _kernel_funcs().values()]
+        ready = all(os.path.isfile(f._index_path) and os.path.getmtime(f._index_path) >= os.path.getmtime(K.__file__)
+                    for f in files)
+        return ready, os.path.join(files[0]._cache_path, "tilesolve-drat-compile.lock")
+    except (AttributeError, OSError, IndexError):  # another numba's layout, or no cache directory
+        return False, None
+
+
+def _compile() -> types.SimpleNamespace:
+    import numba
+
+    ns = dict(vars(K))
+    funcs = _kernel_funcs()
+    for name, func in funcs.items():
+        clone = types.FunctionType(func.__code__, ns, func.__name__, func.__defaults__, func.__closure__)
+        clone.__qualname__ = func.__qualname__
+        ns[name] = numba.njit(cache=True, _nrt=False)(clone)
+    # One version of each kernel, typed by its parameters' names (callees first, as the module
+    # defines them): no version per constant argument, which would double the compile time.
+    kinds = {"int": numba.int64, "flag": numba.boolean, "int8s": numba.int8[::1], "int64s": numba.int64[::1],
+             "table": numba.int64[:, ::1]}
+    for name, func in funcs.items():
+        code = func.__code__
+        ns[name].compile(tuple(kinds[K.PARAMS.get(a, "int")] for a in code.co_varnames[:code.co_argcount]))
+        ns[name].disable_compile()
+    return types.SimpleNamespace(**{k: v for k, v in ns.items() if not k.startswith("__")})
 
 
 def _kernels(work: int, mode: str = "auto", time_limit: float | None = None):
     """The kernel namespace: the module itself (interpreted) or its numba-compiled copy.
 
-    ``auto`` interprets small proofs, and large ones too when a short ``time_limit`` leaves no
-    room to compile the kernels for the first time (the interpreted loops stop on time)."""
+    ``auto`` interprets small proofs. Without numba's cache it also interprets large ones when
+    a short ``time_limit`` leaves no room to compile (the interpreted loops stop on time), and
+    ones under :data:`WAIT_FROM` literals while another process compiles; the first process
+    to need them compiles the kernels, under a file lock, and the others wait for its cache."""
     global _COMPILED
-    first_compile = _COMPILED is None and not _cache_ready()
-    if mode == "plain" or (mode == "auto" and _COMPILED is None and (
-            work < COMPILE_FROM or (first_compile and time_limit is not None and time_limit < _COMPILE_S))):
+    if mode == "plain" or (mode == "auto" and _COMPILED is None and work < COMPILE_FROM):
         return K
     with _LOCK:
-        if _COMPILED is None:
-            import numba
+        if _COMPILED is not None:
+            return _COMPILED
+        ready, lock_path = _kernel_cache()
+        if mode == "auto" and not ready and time_limit is not None and time_limit < _COMPILE_S:
+            return K
+        try:
+            import fcntl
 
-            ns = dict(vars(K))
-            funcs = {k: v for k, v in ns.items() if isinstance(v, types.FunctionType) and v.__module__ == K.__name__}
-            for name, func in funcs.items():
-                clone = types.FunctionType(func.__code__, ns, func.__name__, func.__defaults__, func.__closure__)
-                clone.__qualname__ = func.__qualname__
-                ns[name] = numba.njit(cache=True, _nrt=False)(clone)
-            # One version of each kernel, typed by its parameters' names (callees first, as the
-            # module defines them): no version per constant argument, which would double the
-            # compile time of a first run.
-            kinds = {"int": numba.int64, "flag": numba.boolean, "int8s": numba.int8[::1], "int64s": numba.int64[::1],
-                     "table": numba.int64[:, ::1]}
-            for name, func in funcs.items():
-                code = func.__code__
-                ns[name].compile(tuple(kinds[K.PARAMS.get(a, "int")] for a in code.co_varnames[:code.co_argcount]))
-                ns[name].disable_compile()
-            _COMPILED = types.SimpleNamespace(**{k: v for k, v in ns.items() if not k.startswith("__")})
+            fh = open(lock_path, "a") if lock_path and not ready else None
+        except (ImportError, OSError):
+            fh = None
+        try:
+            if fh is not None:
+                try:
+                    fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                except BlockingIOError:  # another process is compiling them
+                    if mode == "auto" and work < WAIT_FROM:
+                        return K
+                    fcntl.flock(fh, fcntl.LOCK_EX)
+            _COMPILED = _compile()
+        finally:
+            if fh is not None:
+                fh.close()
         return _COMPILED
 
 
