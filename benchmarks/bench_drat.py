@@ -16,16 +16,32 @@ beyond). Times are the best of ``--repeat`` runs; ``new/solve`` is the ratio the
 (proof checking at most 3x the solving time on the sweep, no proof skipped). The compiled
 kernels are loaded before timing (numba's cache; the first build compiles them once).
 
+Large proofs against drat-trim (``--large``)
+    The proofs ``tilesolve aperiodic check --proof-dir`` writes for the named Jeandel-Rao tori
+    (the sweep's tile-selection encoding :func:`tilesolve.encodings.wang_tiles.encode_tiles`,
+    CaDiCaL 1.5.3; written to ``--proof-dir``, or every ``.cnf``/``.drat`` pair already there
+    with ``--large existing``), each checked from its files by tilesolve (reading included) and
+    by drat-trim (``--drat-trim PATH``, or ``drat-trim`` on ``PATH``; build it with
+    ``cc -O2 -o drat-trim drat-trim.c`` from github.com/marijnheule/drat-trim). Wall and CPU
+    seconds are the best of ``--repeat`` runs; ``ratio`` is tilesolve's CPU time over
+    drat-trim's (the goal: at most 1 on every proof tilesolve writes).
+
 Usage::
 
     python benchmarks/bench_drat.py              # tori up to 12 x 12
     python benchmarks/bench_drat.py --max 6      # quick
+    python benchmarks/bench_drat.py --large 13x13 16x16 15x16 14x16 --proof-dir /tmp/jr-proofs
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import os
+import resource
+import shutil
+import subprocess
+import tempfile
 import time
 from pathlib import Path
 
@@ -35,7 +51,7 @@ from pysat.solvers import Solver
 
 from tilesolve.encodings.wang import encode_wang
 from tilesolve.model.board import Board, BoardProblem, WangTileSet
-from tilesolve.verify.drat import check_drat, dimacs_bytes
+from tilesolve.verify.drat import check_drat, dimacs_bytes, read_dimacs
 
 TILES = Path(__file__).resolve().parents[1] / "tilesolve" / "data" / "tilesets" / "jeandel-rao.json"
 
@@ -46,7 +62,14 @@ def main() -> None:
     ap.add_argument("--min", type=int, default=2, help="smallest torus side")
     ap.add_argument("--repeat", type=int, default=1)
     ap.add_argument("--baseline-lines", type=int, default=3000)
+    ap.add_argument("--large", nargs="+", metavar="PxQ", help="tori whose proofs to check against drat-trim, "
+                    "or 'existing' for the pairs already in --proof-dir")
+    ap.add_argument("--proof-dir", help="where the large proofs are written (default: a temporary folder)")
+    ap.add_argument("--drat-trim", help="drat-trim binary (default: drat-trim on PATH)")
     args = ap.parse_args()
+    if args.large:
+        large(args)
+        return
 
     doc = json.loads(TILES.read_text())
     tiles = WangTileSet.from_nesw(doc["tiles"], doc["colors"])
@@ -92,6 +115,64 @@ def main() -> None:
                   f"{len(proof) / t_new / 1e3:>8.1f} {t_new / t_solve:>8.2f}x {mib:>6.1f} {old:>7} {ratio_old:>7} {dr:>9} {ratio_dr:>7}", flush=True)
     print(f"sweep: solving {tot['solve']:.2f} s, checking {tot['new']:.2f} s, check/solve = "
           f"{tot['new'] / tot['solve']:.2f}x (goal <= 3x, every proof checked)")
+
+
+def write_proofs(tori: list[str], directory: Path) -> None:
+    """CNF and DRAT proof of each torus, as ``aperiodic check --proof-dir`` makes them."""
+    from tilesolve.encodings.wang_tiles import encode_tiles
+    from tilesolve.io.builtin_tilesets import load
+    from tilesolve.model.aperiodic import board_of
+
+    tiles = load("jeandel-rao")[0]
+    for name in tori:
+        p, q = (int(x) for x in name.split("x"))
+        cnf = encode_tiles(board_of(f"torus {p}x{q}"), tiles).hard
+        t = time.perf_counter()
+        with Solver(name="cadical153", bootstrap_with=cnf.to_lists(), with_proof=True) as s:
+            assert s.solve() is False, name
+            proof = s.get_proof()
+        print(f"torus {name}: solved in {time.perf_counter() - t:.1f} s, {len(proof)} proof lines", flush=True)
+        (directory / f"torus-{name}.cnf").write_bytes(dimacs_bytes(cnf))
+        (directory / f"torus-{name}.drat").write_text("".join(line + "\n" for line in proof))
+
+
+def children_cpu() -> float:
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
+def large(args) -> None:
+    """tilesolve's checker against drat-trim on large proofs (see the module docstring)."""
+    binary = args.drat_trim or shutil.which("drat-trim")
+    directory = Path(args.proof_dir or tempfile.mkdtemp(prefix="jr-proofs-"))
+    directory.mkdir(parents=True, exist_ok=True)
+    if args.large != ["existing"]:
+        write_proofs(args.large, directory)
+    pairs = sorted((p for p in directory.glob("*.drat") if p.with_suffix(".cnf").is_file()),
+                   key=lambda p: p.stat().st_size)
+    check_drat([[1, 2], [1, -2], [-1, 2], [-1, -2]], ["1 0", "0"], kernels="compiled")  # load the kernels
+    print(f"drat-trim: {binary or 'not found (give --drat-trim PATH)'}")
+    print(f"{'proof':>28} {'MB':>6} {'lemmas':>8} {'checked':>8} {'ts wall':>8} {'ts cpu':>7} {'dt wall':>8} "
+          f"{'dt cpu':>7} {'ratio':>6}")
+    for drat in pairs:
+        cnf = drat.with_suffix(".cnf")
+
+        def ours():
+            return check_drat(read_dimacs(cnf.read_bytes()), drat.read_bytes())
+
+        t_ts, c_ts, r = best(ours, args.repeat)
+        assert r.verified, (drat.name, r.reason)
+        dt = dc = ratio = "-"
+        if binary:
+            t_dt = c_dt = float("inf")
+            for _ in range(args.repeat):
+                t, c = time.perf_counter(), children_cpu()
+                out = subprocess.run([binary, os.fspath(cnf), os.fspath(drat)], capture_output=True, text=True).stdout
+                t_dt, c_dt = min(t_dt, time.perf_counter() - t), min(c_dt, children_cpu() - c)
+                assert "s VERIFIED" in out, (drat.name, out[-300:])
+            dt, dc, ratio = f"{t_dt:.3f}", f"{c_dt:.3f}", f"{c_ts / c_dt:.2f}x"
+        print(f"{drat.name:>28} {drat.stat().st_size / 1e6:>6.1f} {r.lemmas:>8} {r.checked:>8} {t_ts:>8.3f} "
+              f"{c_ts:>7.3f} {dt:>8} {dc:>7} {ratio:>6}", flush=True)
 
 
 if __name__ == "__main__":
