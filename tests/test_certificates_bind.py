@@ -384,3 +384,26 @@ def test_many_refutations_rechecked_on_worker_processes(tmp_path):
     proc = run("aperiodic", "verify", "r.json", "--proof-dir", "proofs", "--workers", "2", cwd=tmp_path)
     assert proc.returncode == 1 and "differs from the recorded" in proc.stdout
     assert not _lines_end_with_one_verdict(proc.stdout).startswith("ok:")
+
+
+def test_an_unsat_found_by_a_portfolio_worker_still_gets_its_proof_files(tmp_path, monkeypatch):
+    """A worker process writes no proof files; the run asked for them decides the unsat again here."""
+    from tilesolve import family, packing
+    from tilesolve.engine import portfolio
+    from tilesolve.engine.packing import solve_sat
+    from tilesolve.model.packing import PackingProblem
+
+    def in_a_worker(route, problem, **kw):  # what a worker hands back: digests, no files written here
+        import contextvars
+
+        return contextvars.Context().run(solve_sat, problem, seed=kw["seed"])
+
+    monkeypatch.setattr(portfolio, "escalate", in_a_worker)
+    problem = PackingProblem("corner", 2, fixed=((0, 0, 0), (0, 1, 15)))
+    with family.writing_proofs(tmp_path / "proofs"):
+        s = packing.solve(problem, method="sat", seed=3)
+    assert s.status is Status.UNSAT and "decided again here" in " ".join(s.notes)
+    assert (tmp_path / "proofs" / f"{s.stats['proof_name']}.drat").exists()
+    family.write_solution(tmp_path / "u.json", problem, s)
+    proc = run("verify", "u.json", "--proof-dir", "proofs", cwd=tmp_path)
+    assert proc.returncode == 0 and proc.stdout.startswith("ok: u.json: unsat re-checked"), proc.stdout

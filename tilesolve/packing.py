@@ -150,6 +150,7 @@ def _search(name: str):
 
             sol = escalate(raw, problem, name=f"{name} packing", seed=run.seed, time_limit=run.time_limit,
                            workers=run.workers, cluster=run.cluster, progress=run.progress, solver=run.solver)
+            sol = _proof_written(sol, problem, run)
         if sol.status is Status.UNSAT and clashes:
             sol = sol.replace(reason=f"{sol.reason}; in words: " + "; ".join(clashes))
         return sol
@@ -157,6 +158,22 @@ def _search(name: str):
     route.__name__ = name
     route.__doc__ = raw.__doc__
     return route
+
+
+def _proof_written(sol: Solution, problem: PackingProblem, run: RunOptions) -> Solution:
+    """An unsat found by a portfolio worker (another process: its proof files were not written)
+    decided again here, with the winning seed, when the run asked for proof files, so that every
+    unsat it reports has its CNF and proof in the proof directory."""
+    from tilesolve.engine.certificates import proofs_wanted
+    from tilesolve.engine.packing import solve_sat
+
+    if sol.status is not Status.UNSAT or "proof_name" in sol.stats or not proofs_wanted():
+        return sol
+    again = solve_sat(problem, seed=sol.seed, time_limit=run.deadline.remaining(), solver=run.solver)
+    if again.status is Status.UNSAT:
+        return again.with_note("decided by a worker process; decided again here to write its proof files")
+    return sol.with_note(f"its proof files were not written: deciding it again here ended {again.status.value} "
+                         f"({again.reason})")
 
 
 #: Routes whose run times are heavy-tailed: a run that does not decide quickly is followed

@@ -40,7 +40,7 @@ from tilesolve.engine.result import Result
 from tilesolve.model.solution import Solution, Status
 from tilesolve.verify.drat import check_drat, dimacs_bytes, formula_arrays
 
-__all__ = ["unsat_solution", "writing_proofs", "proof_text", "proof_name", "write_proof_files", "recheck_unsat",
+__all__ = ["unsat_solution", "writing_proofs", "proofs_wanted", "proof_text", "proof_name", "write_proof_files", "recheck_unsat",
            "recheck_all", "Recheck", "NOT_THE_ENCODING", "UNCERTIFIED"]
 
 #: How an infeasibility claimed without a checked proof (CP-SAT's, a constructive route's)
@@ -70,6 +70,11 @@ def writing_proofs(directory: str | os.PathLike | None, *, cnf: bool = True) -> 
         yield
     finally:
         _PROOF_DIRS.reset(token)
+
+
+def proofs_wanted() -> bool:
+    """True inside :func:`writing_proofs` (a run asked for proof files)."""
+    return bool(_PROOF_DIRS.get())
 
 
 def proof_name(cnf_sha256: str, drat_sha256: str) -> str:
