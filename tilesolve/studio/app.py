@@ -29,6 +29,7 @@ from __future__ import annotations
 import contextlib
 import ctypes
 import functools
+import gc
 import json
 import os
 import sys
@@ -98,9 +99,12 @@ def _json(data: bytearray) -> dict:
 
 
 def _release_memory() -> None:
-    """Give the memory freed after a large request back to the system (glibc's ``malloc_trim``):
-    without it the parsed grids' memory stays with the allocator's per-thread arenas, and a
-    few large requests at once raise the server's resident size for good."""
+    """Free what a large request left behind and give it back to the system. A refused request's
+    error keeps, through its traceback's frames, the parsed body in a reference cycle, which
+    only Python's cyclic collector frees (and, for objects that large, only at its rare full
+    collections): without a collection here the server's resident size kept the memory of
+    every large request it had refused. Then glibc's ``malloc_trim`` returns the freed pages."""
+    gc.collect()
     with contextlib.suppress(OSError, AttributeError):
         ctypes.CDLL(None).malloc_trim(0)
 
