@@ -5,6 +5,7 @@ class; and through the console script, the solver processes die with a server ki
 
 from __future__ import annotations
 
+import gc
 import os
 import re
 import signal
@@ -140,6 +141,16 @@ def test_bodies_are_limited_while_they_are_read(client):
     r = client.post("/api/check", content=b"{}", headers={"origin": OWN, "content-type": "application/json",
                                                            "content-length": str(MAX_BODY + 1)})
     assert r.status_code == 413
+
+
+def test_a_refused_large_request_leaves_nothing_behind(client):
+    # its error's traceback held the parsed grid in a reference cycle, until a full collection
+    rows = [[100_000] * 1024] * 1000  # one row object 1000 times; the parsed grid has 1000 rows
+    r = post(client, "/api/check", {"family": "dappled", "values": {"size": "1024x1024", "fixed": rows}})
+    assert r.status_code == 400 and "the grid must be 1024x1024" in r.json()["error"]
+    parsed = [o for o in gc.get_objects() if isinstance(o, list) and len(o) == 1000 and isinstance(o[0], list)
+              and len(o[0]) == 1024 and o[0] is not o[1]]
+    assert parsed == []
 
 
 @pytest.mark.parametrize("body", [
