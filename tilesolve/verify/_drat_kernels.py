@@ -46,6 +46,9 @@ PARAMS = {
     **dict.fromkeys(("one", "blk", "core_first"), "flag"),
 }
 
+#: The kernels that :mod:`tilesolve.verify.drat` calls (the others are called by kernels only).
+ENTRIES = frozenset({"prepare", "forward", "analyze", "backward", "mark_all"})
+
 # status codes of the backward pass (read by tilesolve.verify.drat)
 OK, LEMMA_FAILED, NO_EMPTY, EMPTY_NOT_RUP = 0, 1, 2, 3
 
