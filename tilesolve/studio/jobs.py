@@ -88,7 +88,7 @@ def _child(conn) -> None:
     from tilesolve.errors import InvalidProblem as Bad
     from tilesolve.studio.worker import solve_request
 
-    _die_with_parent(int(os.environ[PARENT_ENV]))
+    _die_with_parent(int(os.environ.get(PARENT_ENV, os.getppid())))  # the forkserver's id, set by warm
     try:
         request = conn.recv()
     except (EOFError, OSError):  # the server went away before giving this process a job
