@@ -10,9 +10,13 @@ import ast
 import itertools
 import pathlib
 
+import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from pysat.solvers import Solver
 
+from tilesolve.verify import _drat_kernels as K
 from tilesolve.verify.drat import check_drat, parse_drat
 
 
@@ -138,3 +142,83 @@ def test_checker_imports_no_solver():
         elif isinstance(node, ast.ImportFrom):
             names.add(node.module or "")
     assert not any(n.startswith(("pysat", "ortools", "tilesolve.engine", "tilesolve.encodings")) for n in names)
+
+
+# --------------------------------------------------------------------------- kernels
+@st.composite
+def watch_ops(draw):
+    """A sequence of pushes and removals on a few watch lists (entries: ``node << 32 | 7``)."""
+    n_lists = draw(st.integers(1, 6))
+    ops, live, node = [], [], 0
+    for _ in range(draw(st.integers(0, 120))):
+        if live and draw(st.booleans()):
+            lst, nd = live.pop(draw(st.integers(0, len(live) - 1)))
+            ops.append(("remove", lst, nd))
+        else:
+            lst = draw(st.integers(0, n_lists - 1))
+            ops.append(("push", lst, node))
+            live.append((lst, node))
+            node += 1
+    return n_lists, ops
+
+
+@settings(max_examples=60, deadline=None)
+@given(watch_ops())
+def test_watch_lists_in_one_pool_keep_their_entries(case):
+    """Watch vectors moved and compacted in their pool hold what a list per literal holds."""
+    n_lists, ops = case
+    most = max(1, sum(op == "push" for op, _, _ in ops))
+    wl = np.zeros((n_lists + 1, 3), np.int64)
+    pool = np.zeros(3 * most + 8 * n_lists + 16, np.int64)  # half check_drat's room: compacted often
+    model: list[list[int]] = [[] for _ in range(n_lists)]
+    for op, lst, nd in ops:
+        if op == "push":
+            K.w_push(wl, pool, lst, nd << 32 | 7)
+            model[lst].append(nd)
+        else:
+            K.w_remove(wl, pool, lst, nd)
+            i = model[lst].index(nd)
+            model[lst][i] = model[lst][-1]
+            model[lst].pop()
+        for i in range(n_lists):
+            start, n = wl[i, 0], wl[i, 1]
+            assert n <= wl[i, 2] and start + n <= wl[n_lists, 0] <= pool.size
+            assert [int(e) >> 32 for e in pool[start:start + n]] == model[i]
+
+
+@st.composite
+def unsat_formulas(draw):
+    """A random unsatisfiable 3-CNF with a CaDiCaL proof, and maybe a tampered copy of it."""
+    n = draw(st.integers(8, 30))
+    lit = st.integers(1, n).flatmap(lambda v: st.sampled_from([v, -v]))
+    clauses = draw(st.lists(st.lists(lit, min_size=2, max_size=3), min_size=5 * n, max_size=9 * n))
+    clauses += [[v, w] for v, w in zip(range(1, n), range(2, n + 1))] + [[-1, -n], [1, n], [-2, -3]]
+    with Solver(name="cadical153", bootstrap_with=clauses, with_proof=True) as s:
+        if s.solve() is not False:
+            clauses += [[v] for v in range(1, n + 1)] + [[-v for v in range(1, n + 1)]]
+            with Solver(name="cadical153", bootstrap_with=clauses, with_proof=True) as s2:
+                assert s2.solve() is False
+                return clauses, list(s2.get_proof())
+        proof = list(s.get_proof())
+    lemmas = [i for i, line in enumerate(proof) if not line.startswith("d") and line.strip() != "0"]
+    if lemmas and draw(st.booleans()):
+        i = draw(st.sampled_from(lemmas))
+        toks = proof[i].split()
+        toks[0] = str(-int(toks[0]))
+        proof[i] = " ".join(toks)
+    return clauses, proof
+
+
+@settings(max_examples=40, deadline=None)
+@given(unsat_formulas(), st.sampled_from(["core", "all"]))
+def test_compiled_and_interpreted_kernels_give_the_same_verdicts(case, lemmas):
+    """Both paths run the same kernels: the same verdict, lemmas checked and core; and with
+    every lemma checked, the verdict of the forward reference engine."""
+    clauses, proof = case
+    a = check_drat(clauses, proof, kernels="plain", lemmas=lemmas)
+    b = check_drat(clauses, proof, kernels="compiled", lemmas=lemmas)
+    assert (a.status, a.reason, a.checked, a.rat_lemmas) == (b.status, b.reason, b.checked, b.rat_lemmas)
+    if a.verified:
+        assert a.core.tolist() == b.core.tolist()
+    if lemmas == "all":
+        assert a.verified == check_drat(clauses, proof, engine="forward").verified
