@@ -218,6 +218,8 @@ READERS = {
                       ["export", "dimacs", "FILE", "-o", "out.cnf"]),
     "draw": (["dappled.json", "torus.json", "packing.json", "corner.json", "window.json"],
              ["draw", "FILE", "-o", "out.svg"]),
+    "draw png": (["dappled.json", "torus.json", "packing.json", "corner.json", "window.json"],
+                 ["draw", "FILE", "-o", "out.png"]),
     "mask": (["mask.txt"], ["wang", "solve", "--builtin", "jeandel-rao", "--board", "mask:FILE", "--boundary", "free",
                             "--time-limit", "10"]),
     "text grid": (["grid.txt", "spaced.txt"], ["dappled", "solve", "--size", "4x3", "--cond", "H0=2", "--fix", "FILE",

@@ -103,6 +103,8 @@ def packing_from_dict(doc: dict, source: Any = "<document>") -> tuple[PackingPro
         if len({len(r) for r in grid}) > 1:
             raise InvalidProblem(f"{source}: 'grid' rows have different lengths")
         grid = np.asarray(grid, dtype=np.int64)
+        if grid.size == 0:
+            raise InvalidProblem(f"{source}: 'grid' is empty")
     sol = solution_from_provenance(doc, source, grid, what="grid",
                                    default_status="sat" if grid is not None else "unknown")
     return problem, sol
