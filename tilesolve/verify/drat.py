@@ -423,7 +423,7 @@ def _kernel_cache() -> tuple[bool, str | None]:
         ready = all(os.path.isfile(f._index_path) and os.path.getmtime(f._index_path) >= os.path.getmtime(K.__file__)
                     for f in files)
         return ready, os.path.join(files[0]._cache_path, "tilesolve-drat-compile.lock")
-    except (AttributeError, OSError, IndexError):  # another numba's layout, or no cache directory
+    except (AttributeError, OSError, IndexError, RuntimeError):  # another numba's layout, or no cache directory
         return False, None
 
 
