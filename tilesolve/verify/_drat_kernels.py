@@ -304,21 +304,20 @@ def visit(code, mode, one, blk, lits, start, size, val, reason, tpos, trail, st,
     return -1
 
 
-def propagate(core_first, blk, lits, start, size, val, reason, tpos, trail, st, wl, pool, core):
+def propagate(core_first, lits, start, size, val, reason, tpos, trail, st, wl, pool, core):
     """Unit propagation from the queue heads ``st[1]`` (core) and ``st[2]`` (others).
 
-    Without ``core_first`` every clause is visited in one pass (``st[1]`` only); ``blk``: see
-    :func:`visit`.
+    Without ``core_first`` every clause is visited in one pass (``st[1]`` only).
     """
     while True:
         while st[1] < st[0]:
             code = trail[st[1]]
             st[1] += 1
-            c = visit(code, 1, False, blk, lits, start, size, val, reason, tpos, trail, st, wl, pool, core)
+            c = visit(code, 1, False, core_first, lits, start, size, val, reason, tpos, trail, st, wl, pool, core)
             if c >= 0:
                 return c
             if not core_first:
-                c = visit(code, 0, False, blk, lits, start, size, val, reason, tpos, trail, st, wl, pool, core)
+                c = visit(code, 0, False, False, lits, start, size, val, reason, tpos, trail, st, wl, pool, core)
                 if c >= 0:
                     return c
         if not core_first or st[2] >= st[0]:
@@ -360,11 +359,9 @@ def analyze(confl, true_var, p, lits, start, size, taut, active, wl, pool, reaso
             seen, stack):
     """Mark the clauses a conflict (clause ``confl``, or a lemma literal already true on
     variable ``true_var``) rests on: the part of the trail above ``p`` by a backward walk,
-    the top level by :func:`justify`. Returns the number of clauses in the first part.
+    the top level by :func:`justify`.
     """
-    used = 0
     if confl >= 0:
-        used += 1
         make_core(confl, lits, start, size, taut, active, wl, pool, core)
         b = start[confl]
         for k in range(b, b + size[confl]):
@@ -386,7 +383,6 @@ def analyze(confl, true_var, p, lits, start, size, taut, active, wl, pool, reaso
         r = reason[v]
         if r < 0:
             continue
-        used += 1
         make_core(r, lits, start, size, taut, active, wl, pool, core)
         b = start[r]
         for k in range(b, b + size[r]):
@@ -397,7 +393,6 @@ def analyze(confl, true_var, p, lits, start, size, taut, active, wl, pool, reaso
                 seen[u] = 1
             else:
                 justify(u, lits, start, size, taut, active, wl, pool, reason, core, done, stack)
-    return used
 
 
 def refutes(c, extra, skip, lits, start, size, taut, active, val, reason, tpos, trail, st, wl, pool, core, done,
@@ -424,14 +419,11 @@ def refutes(c, extra, skip, lits, start, size, taut, active, val, reason, tpos, 
             if val[x] == 0:
                 assign(val, reason, tpos, trail, st, x ^ 1, -1)
     if true_var < 0:
-        confl = propagate(st[4] == 0, True, lits, start, size, val, reason, tpos, trail, st, wl, pool, core)
+        confl = propagate(True, lits, start, size, val, reason, tpos, trail, st, wl, pool, core)
     ok = true_var >= 0 or confl >= 0
     if ok:
-        # drat-trim's heuristic: after a conflict of at most two clauses, check the next lemma
-        # without core-first propagation (``st[4]``), which costs less when conflicts come quickly
-        used = analyze(confl, true_var, p, lits, start, size, taut, active, wl, pool, reason, tpos, trail, st, core,
-                       done, seen, stack)
-        st[4] = 1 if used <= 2 else 0
+        analyze(confl, true_var, p, lits, start, size, taut, active, wl, pool, reason, tpos, trail, st, core, done,
+                seen, stack)
     backtrack(val, reason, trail, st, p)
     return ok
 
@@ -491,7 +483,7 @@ def forward(n_formula, n_steps, is_del, lits, start, size, taut, chash, active, 
                     return 1
                 if val[x] == 0:
                     assign(val, reason, tpos, trail, st, x, c)
-        confl = propagate(False, False, lits, start, size, val, reason, tpos, trail, st, wl, pool, core)
+        confl = propagate(False, lits, start, size, val, reason, tpos, trail, st, wl, pool, core)
         if confl >= 0:
             counts[0] = confl
             counts[1] = -1
@@ -542,7 +534,7 @@ def forward(n_formula, n_steps, is_del, lits, start, size, taut, chash, active, 
             elif free == 1 and val[lits[start[c]]] == 0:
                 assign(val, reason, tpos, trail, st, lits[start[c]], c)
         if confl < 0:
-            confl = propagate(False, False, lits, start, size, val, reason, tpos, trail, st, wl, pool, core)
+            confl = propagate(False, lits, start, size, val, reason, tpos, trail, st, wl, pool, core)
         if confl >= 0:
             counts[0] = confl
             counts[1] = j

@@ -748,7 +748,7 @@ def check_drat(
     reason = np.full(n_vars + 1, -1, np.int64)
     tpos = np.zeros(n_vars + 1, np.int64)
     trail = np.zeros(n_vars + 1, np.int64)
-    st = np.array([0, 0, 0, -1, 0], np.int64)
+    st = np.array([0, 0, 0, -1], np.int64)
     # watch lists, two per literal code (core, others), in blocks of one pool: row ``i`` of
     # ``wl`` is list i's (start, length, room), the last row's start is the pool's end. The
     # pool holds six entries per watch of every clause that can be active (the formula and
