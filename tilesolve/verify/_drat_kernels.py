@@ -127,6 +127,8 @@ def w_push(wl, pool, lst, entry):
         last = wl.shape[0] - 1
         if wl[last, 0] + 2 * n + 6 > pool.shape[0]:
             w_compact(wl, pool)
+            if wl[last, 0] + 2 * n + 6 > pool.shape[0]:  # the caller's bound on the watches was broken
+                raise IndexError("the watch pool is full")
         top = wl[last, 0]
         old = wl[lst, 0]
         pool[top] = lst
