@@ -169,10 +169,14 @@ def refutations(problem: AperiodicProblem, sol: Solution) -> list[tuple[str, obj
 def _violations(problem: AperiodicProblem, report) -> list:
     """The family's verifier (:func:`aperiodic_violations`), and a sweep's conclusion must be the
     one its certificates give (:func:`build_report`): a report's words claim no more than them."""
+    from tilesolve.constructive.transducer import UNDECIDED_OPENINGS
+
     out = aperiodic_violations(report, problem)
     certs = report.squares + report.periods if isinstance(report, AperiodicReport) else ()
     if out or any("transducer" in str(c.method) for c in certs):
         return out
+    if not certs and report.conclusion.startswith(UNDECIDED_OPENINGS):
+        return out  # the transducer's undecided report: no certificate, nothing claimed
     from tilesolve.verify.dappled import Violation
 
     said = build_report(problem, report.squares, report.largest_square, report.periods).conclusion

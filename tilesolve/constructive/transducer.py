@@ -595,6 +595,11 @@ def torus_tiling(tileset: WangTileSet, torus) -> np.ndarray:
     return np.asarray(tileset.tiles, dtype=np.int64)[idx.ravel()]
 
 
+#: How the conclusions of the transducer's reports without a certificate begin (an undecided
+#: search, or an empty ``T_k`` with no rectangle to certify it): they claim nothing checkable.
+UNDECIDED_OPENINGS = ("Undecided by the transducer up to k = ", "T_")
+
+
 def transducer_report(problem, run, *, refute) -> tuple[str, object]:
     """The aperiodicity family's ``transducer`` route, given the SAT route to certify with.
 
