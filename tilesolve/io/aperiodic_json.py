@@ -25,7 +25,9 @@ set). A refutation's ``evidence`` names the encoding that re-derives its CNF fro
 and the board's name; a verdict taken from a sweep's cache says so (``"cached": true``,
 ``"cache_check"``), one decided again because its cache line did not hold says why
 (``"cache_rejected"``). Readers reject unknown fields and malformed values (a tile that is not
-four colours of the set, ...) with one line naming the file and field; the certificates' claims
+four colours of the set, a ``colours`` count other than the number of colours the tiles use, a
+tile written twice, a ``time_s`` that is not a duration, ...) with one line naming the file and
+field; the certificates' claims
 are checked by the family's verifier and re-derived by ``tilesolve verify``.
 """
 
@@ -36,9 +38,9 @@ from typing import Any
 import numpy as np
 
 from tilesolve.errors import InvalidProblem
-from tilesolve.io.jsonio import check_document, provenance_to_dict, solution_from_provenance
+from tilesolve.io.jsonio import check_document, check_time_s, provenance_to_dict, solution_from_provenance
+from tilesolve.io.tileset_json import compact_tileset
 from tilesolve.model.aperiodic import STATUSES, AperiodicProblem, AperiodicReport, Certificate
-from tilesolve.model.board import WangTileSet
 from tilesolve.model.solution import Solution
 
 __all__ = ["APERIODIC_REPORT", "VERSIONS", "report_to_dict", "report_from_dict", "certificate_to_dict"]
@@ -100,11 +102,9 @@ def _certificate(d: Any, where: str, source: Any) -> Certificate:
     ev = d.get("evidence", {})
     if not isinstance(ev, dict):
         raise _fail(source, where + ".evidence", "must be an object")
-    t = d.get("time_s", 0.0)
-    if isinstance(t, bool) or not isinstance(t, (int, float)):
-        raise _fail(source, where + ".time_s", "must be a number")
+    t = check_time_s(d.get("time_s", 0.0), source, where + ".time_s")
     try:
-        return Certificate(d["board"], d["status"], tiling, str(d.get("method", "sat")), ev, float(t))
+        return Certificate(d["board"], d["status"], tiling, str(d.get("method", "sat")), ev, t)
     except InvalidProblem as exc:
         raise InvalidProblem(f"{source}: {where}: {exc}") from None
 
@@ -123,10 +123,10 @@ def report_from_dict(doc: dict, source: Any = "<document>") -> tuple[AperiodicPr
                 isinstance(v, int) and not isinstance(v, bool) and 0 <= v < colours for v in t):
             raise _fail(source, f"tileset.tiles[{i}]", f"must be [N, E, S, W]: 4 integer colours in 0..{colours - 1}, "
                                                        f"got {str(t)[:60]}")
-    try:
-        tileset = WangTileSet.from_nesw(ts["tiles"], colours)
-    except InvalidProblem as exc:
-        raise InvalidProblem(f"{source}: 'tileset': {exc}") from None
+    tileset, notes = compact_tileset(ts["tiles"], f"{source}: 'tileset'", colours)
+    if tileset.n_colors != colours or notes:  # the set as written must be the set its indices refer to
+        why = notes[0] if notes else f"{source}: 'tileset': 'colours' is {colours}, but its tiles use {tileset.n_colors}"
+        raise InvalidProblem(f"{why} (a report writes its tile set with colours 0..K-1 all used, each tile once)")
     if not isinstance(doc.get("shears"), bool):
         raise _fail(source, "shears", "must be true or false")
     name = doc.get("name")

@@ -88,6 +88,7 @@ __all__ = [
     "DAPPLED_SOLUTION",
     "load_document",
     "provenance_to_dict",
+    "check_time_s",
     "solution_from_provenance",
     "read_json",
     "read_input",
@@ -685,6 +686,24 @@ def provenance_to_dict(solution: Solution) -> dict:
 MAX_TIME_S = 1e9
 
 
+def check_time_s(value: Any, source: Any, field: str = "time_s") -> float:
+    """``value`` as a recorded duration: a finite number of seconds from 0 to :data:`MAX_TIME_S`
+    (not a boolean), else a one-line error naming ``source`` and ``field``.
+
+    >>> check_time_s(3, "f.json")
+    3.0
+    >>> check_time_s(-5, "f.json", "periods[0].time_s")
+    Traceback (most recent call last):
+    ...
+    tilesolve.errors.InvalidProblem: f.json: 'periods[0].time_s' must be a number of seconds from 0 to 1e+09, got -5
+    """
+    if isinstance(value, bool) or not isinstance(value, (int, float)) \
+            or not (math.isfinite(value) and 0 <= value <= MAX_TIME_S):
+        raise InvalidProblem(f"{source}: {field!r} must be a number of seconds from 0 to {MAX_TIME_S:g}, "
+                             f"got {value!r}")
+    return float(value)
+
+
 def solution_from_provenance(doc: dict, source: Any, tiling, *, what: str = "tiling",
                              default_status: str | None = None) -> Solution:
     """A :class:`Solution` from the fields :func:`provenance_to_dict` writes (checked
@@ -717,9 +736,8 @@ def solution_from_provenance(doc: dict, source: Any, tiling, *, what: str = "til
     seed, time_s = opt("seed", int), opt("time_s", (int, float), 0.0)
     if seed is not None and not 0 <= seed < 2**63:
         raise InvalidProblem(f"{source}: 'seed' must be an integer from 0 to 2**63 - 1, got {seed}")
-    if time_s is not None and not (math.isfinite(time_s) and 0 <= time_s <= MAX_TIME_S):
-        raise InvalidProblem(f"{source}: 'time_s' must be a number of seconds from 0 to {MAX_TIME_S:g}, "
-                             f"got {time_s!r}")
+    if time_s is not None:
+        check_time_s(time_s, source)
     return Solution(
         status=status,
         tiling=tiling,
