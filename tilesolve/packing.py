@@ -310,8 +310,13 @@ def _write(problem: PackingProblem, sol: Solution) -> dict:
 
 def _draw(problem: PackingProblem, sol: Solution, path, fmt: str, *, indices: bool = False, title: str | None = None,
           notes=(), **_ignored) -> None:
-    """SVG (tiles drawn with their edge or corner colours) or PNG of a packing; a grid cell
-    that holds no tile number is refused (there is nothing to draw there)."""
+    """SVG (tiles drawn with their edge or corner colours) or PNG of a packing; a grid that is
+    not the problem's torus (a C-colour packing is ``C_h**2 x C_v**2``), or a grid cell that
+    holds no tile number, is refused (``tilesolve verify`` reports either as a violation)."""
+    shape = np.shape(sol.tiling)
+    if shape != problem.shape:
+        raise InvalidProblem(f"nothing drawn: the grid is {'x'.join(map(str, shape))}, but the file's problem is the "
+                             f"{problem.describe()} (tilesolve verify FILE lists the violations)")
     problem.tiles.check_numbers(sol.tiling)
     if fmt == "png":
         from tilesolve.io.png import write_packing_png
