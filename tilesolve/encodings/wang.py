@@ -98,17 +98,31 @@ def line_windows(nbr_cell: np.ndarray, nbr_leg: np.ndarray, axis: str, length: i
     """Cell indices of every straight run of ``length`` cells, one row per window.
 
     A run steps out of the E leg into the W leg of the next cell (``"H"``) or out of the S
-    leg into the N leg (``"V"``); windows that leave the board are dropped.
+    leg into the N leg (``"V"``); windows that leave the board are dropped. A run that comes
+    back to its first cell goes round a cycle (a torus's row) for ever: once every run still on
+    the board has done so, its windows stop there, each holding its whole cycle (a longer window
+    would only repeat those cells, and forbid the same lines). So the work is bounded by the
+    board, not by ``length``: windows shorter than the board's longest run (or cycle) are the
+    same whatever ``length`` is, and a ``length`` beyond every straight run gives none.
+
+    >>> from tilesolve.model.board import Board
+    >>> t = Board.torus(1, 3)
+    >>> line_windows(t.nbr_cell, t.nbr_leg, "H", 10**9).tolist()
+    [[0, 1, 2, 0], [1, 2, 0, 1], [2, 0, 1, 2]]
     """
     out_leg, in_leg = (2, 0) if axis == "H" else (3, 1)
     n = nbr_cell.shape[0]
     nxt = np.where((nbr_cell[:, out_leg] >= 0) & (nbr_leg[:, out_leg] == in_leg), nbr_cell[:, out_leg], -1)
     cols = [np.arange(n, dtype=np.int64)]
     ok = np.ones(n, dtype=bool)
+    cycled = np.zeros(n, dtype=bool)  # runs that came back to their first cell
     for _ in range(length - 1):
+        if not (ok & ~cycled).any():
+            break
         prev = cols[-1]
         step = np.where(ok, nxt[np.where(ok, prev, 0)], -1)
         ok &= step >= 0
+        cycled |= ok & (step == cols[0])
         cols.append(np.where(ok, step, 0))
     return np.stack(cols, axis=1)[ok]
 
