@@ -86,7 +86,7 @@ def test_export_sizes_the_cnf_before_encoding(tmp_path):
 def test_a_bug_is_one_internal_error_line_exit_70(tmp_path):
     """An unexpected exception (here forced into verify) is exit 70 with one line, no traceback."""
     code = ("import sys, tilesolve.family as f\n"
-            "def broken(*args): raise ZeroDivisionError('forced')\n"
+            "def broken(*args, **kwargs): raise ZeroDivisionError('forced')\n"
             "f.verify_file = broken\n"
             "from tilesolve.cli.main import main\n"
             "sys.exit(main(['verify', 'x.json']))\n")

@@ -59,6 +59,8 @@ __all__ = [
     "Form",
     "form_size",
     "cnf_estimate",
+    "cnf_size_refusal",
+    "DEFAULT_MAX_CNF",
     "Family",
     "register",
     "unregister",
@@ -668,6 +670,28 @@ def cnf_estimate(problem: Any) -> tuple[int, int, int] | None:
     return estimate(problem)
 
 
+#: Most bytes of DIMACS text a CNF may be estimated at before it is built (``--max-cnf``'s default).
+DEFAULT_MAX_CNF = 1 << 30
+
+
+def cnf_size_refusal(problem: Any, limit: int) -> str | None:
+    """Why the CNF of ``problem`` is not built: its :func:`cnf_estimate` as DIMACS text exceeds
+    ``limit`` bytes (``export dimacs`` and ``verify``'s ``--max-cnf``); ``None`` when it fits or
+    when no estimate exists."""
+    from tilesolve.io.units import big, human_bytes
+
+    sized = cnf_estimate(problem)
+    if sized is None:
+        return None
+    n_vars, clauses, lits = sized
+    text = lits * (len(str(n_vars)) + 2) + 2 * clauses  # a literal, its sign and a space; "0\n"
+    if text <= limit:
+        return None
+    return (f"the CNF of {problem.describe()} would hold about {big(clauses)} clauses and {big(lits)} literals, "
+            f"about {human_bytes(text)} of DIMACS text (and as much memory while encoding), more than --max-cnf "
+            f"{human_bytes(limit)}")
+
+
 # ----------------------------------------------------------------------------- files
 def read_document(path: str | os.PathLike) -> tuple[Family, Codec, dict]:
     """Read a tilesolve JSON file and find its family and codec (version checked)."""
@@ -728,14 +752,27 @@ RECHECK_NEEDS = ("re-checking needs the DRAT proof: solve with --proof-dir DIR, 
                  "tilesolve verify FILE --proof-dir DIR")
 
 
-def _recheck(claims, proof_dir, workers: int) -> tuple[list[str], list[str], int]:
+#: How a refutation whose CNF is too large to re-derive (:func:`cnf_size_refusal`) is reported.
+TOO_LARGE = "cannot be re-derived here"
+
+
+def _recheck(claims, proof_dir, workers: int, max_cnf: int) -> tuple[list[str], list[str], int]:
     """Re-derive and (with ``proof_dir``) re-check each claimed refutation
     (:func:`tilesolve.engine.certificates.recheck_all`, on ``workers`` processes): ``(refused
-    lines, detail lines, refutations re-checked)``."""
+    lines, detail lines, refutations re-checked)``. A claim whose CNF is estimated above
+    ``max_cnf`` bytes of DIMACS text (:func:`cnf_size_refusal`) is not re-derived, and so not
+    confirmed."""
     from tilesolve.engine.certificates import recheck_all
 
     claims = [(what, problem, evidence if isinstance(evidence, Mapping) else {}) for what, problem, evidence in claims]
     refused, details, checked = [], [], 0
+    sized = [(what, cnf_size_refusal(problem, max_cnf)) for what, problem, _ in claims]
+    for what, why in sized:
+        if why is not None:
+            line = f"{what}: the certificate {TOO_LARGE}: {why}; raise --max-cnf to re-derive it"
+            refused.append(line)
+            details.append(f"  {line}")
+    claims = [c for c, (_, why) in zip(claims, sized) if why is None]
     for (what, _, _), rc in zip(claims, recheck_all(claims, proof_dir, workers=workers)):
         if rc.verdict == "refused":
             refused.append(f"{what}: {rc.lines[-1]}")
@@ -745,7 +782,7 @@ def _recheck(claims, proof_dir, workers: int) -> tuple[list[str], list[str], int
 
 
 def verify_document(doc: dict, source: str = "<document>", proof_dir: str | os.PathLike | None = None, *,
-                    workers: int = 1) -> FileReport:
+                    workers: int = 1, max_cnf: int = DEFAULT_MAX_CNF) -> FileReport:
     """Check every claim a solution document makes (``tilesolve verify``).
 
     The tiling must pass the family's independent verifier; the status must match the
@@ -759,7 +796,9 @@ def verify_document(doc: dict, source: str = "<document>", proof_dir: str | os.P
     encoding of this problem" otherwise). With ``proof_dir`` each DRAT proof, located by the
     recorded digests, is checked against the re-derived formula. Without it an ``unsat`` claim
     is reported as *not* re-checked (exit 1, the status's code). ``workers`` local processes
-    share the re-checking of many refutations (a report's).
+    share the re-checking of many refutations (a report's). A CNF estimated above ``max_cnf``
+    bytes of DIMACS text is not built: its claim is not confirmed (exit 1), and the line says
+    so with the estimate.
 
     The first line is the verdict (``ok: ...`` only when every check passed); detail lines follow,
     indented.
@@ -774,7 +813,7 @@ def verify_document(doc: dict, source: str = "<document>", proof_dir: str | os.P
         if sol.status.has_tiling:
             false.append(f"status {sol.status.value!r} claims a tiling, but the file holds none")
         elif sol.status is Status.UNSAT:
-            return _verify_unsat(fam, problem, sol, source, proof_dir, workers)
+            return _verify_unsat(fam, problem, sol, source, proof_dir, workers, max_cnf)
         else:
             why = f" ({sol.reason})" if sol.reason else ""
             return FileReport(sol.status.exit_code, (f"{source}: status {sol.status.value}{why}; "
@@ -799,10 +838,11 @@ def verify_document(doc: dict, source: str = "<document>", proof_dir: str | os.P
         elif sol.objective != value:
             false.append(f"recorded objective {sol.objective}, but the tiling's value is {value}")
     claims = _refutations(fam, problem, sol) if not false else []
-    refused, details, checked = _recheck(claims, proof_dir, workers)
+    refused, details, checked = _recheck(claims, proof_dir, workers, max_cnf)
     false += refused
     if false:
-        return FileReport(1, (f"{source}: the file's claims are false",) + tuple(f"  {f}" for f in false))
+        verdict = "NOT confirmed" if all(TOO_LARGE in f for f in false) else "false"
+        return FileReport(1, (f"{source}: the file's claims are {verdict}",) + tuple(f"  {f}" for f in false))
     head = f"ok: {source} is a valid tiling of {what}"
     if claims and proof_dir is not None:
         head += f"; {checked} refutation(s) re-checked: each DRAT proof refutes the CNF re-derived from the problem"
@@ -812,15 +852,17 @@ def verify_document(doc: dict, source: str = "<document>", proof_dir: str | os.P
     return FileReport(0, (head,) + tuple(details))
 
 
-def _verify_unsat(fam: Family, problem: Any, sol: Solution, source: str, proof_dir, workers: int) -> FileReport:
+def _verify_unsat(fam: Family, problem: Any, sol: Solution, source: str, proof_dir, workers: int,
+                  max_cnf: int) -> FileReport:
     """:func:`verify_document` of a file whose status is ``unsat``."""
     why = f" ({sol.reason})" if sol.reason else ""
     claims = _refutations(fam, problem, sol)
     if not claims:
         return FileReport(1, (f"{source}: status unsat NOT confirmed: the file names no refutation to re-check",))
-    refused, details, _ = _recheck(claims, proof_dir, workers)
+    refused, details, _ = _recheck(claims, proof_dir, workers, max_cnf)
     if refused:
-        head = f"{source}: status unsat NOT confirmed: its certificate does not hold"
+        size_only = all(TOO_LARGE in line for line in refused)
+        head = f"{source}: status unsat NOT confirmed: its certificate {TOO_LARGE if size_only else 'does not hold'}"
         return FileReport(1, (head,) + tuple(details))
     if proof_dir is None:
         head = (f"{source}: status unsat{why}; the file holds no tiling to verify, and the unsat claim was NOT "
@@ -831,11 +873,11 @@ def _verify_unsat(fam: Family, problem: Any, sol: Solution, source: str, proof_d
 
 
 def verify_file(path: str | os.PathLike, proof_dir: str | os.PathLike | None = None, *,
-                workers: int = 1) -> FileReport:
+                workers: int = 1, max_cnf: int = DEFAULT_MAX_CNF) -> FileReport:
     """:func:`verify_document` on a file (one-line errors for unreadable or malformed files)."""
     from tilesolve.io.jsonio import read_json
 
-    return verify_document(read_json(path), str(path), proof_dir, workers=workers)
+    return verify_document(read_json(path), str(path), proof_dir, workers=workers, max_cnf=max_cnf)
 
 
 def write_solution(path: str | os.PathLike, problem: Any, solution: Solution) -> None:

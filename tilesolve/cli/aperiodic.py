@@ -123,8 +123,10 @@ def check(ctx, tiles, builtin, method, max_square, max_period, shears, workers, 
                    "CNF re-derived from the report's tile set and board.")
 @click.option("--workers", type=click.IntRange(1, 256), default=2, show_default=True, metavar="K",
               help="Local worker processes that share the re-checking of many refutations.")
+@opt.max_cnf_option("Re-derive no CNF estimated (before encoding) above SIZE of DIMACS text (e.g. 512M, 8G): "
+                     "such a refutation is reported as not confirmed.")
 @click.pass_context
-def verify_report(ctx, report, proof_dir, workers) -> None:
+def verify_report(ctx, report, proof_dir, workers, max_cnf) -> None:
     """Re-check a report: every witness on its board, every refutation's CNF re-derived from the
     report's tile set and board (its SHA-256 must be the recorded one), and with --proof-dir every
     DRAT proof against that CNF.
@@ -142,7 +144,7 @@ def verify_report(ctx, report, proof_dir, workers) -> None:
     fam, codec, _ = read_document(report)
     if fam.name != "aperiodic":
         raise InvalidProblem(f"{report} is a {codec.format} file, not an aperiodicity report")
-    result = verify_file(report, proof_dir, workers=workers)
+    result = verify_file(report, proof_dir, workers=workers, max_cnf=max_cnf)
     for line in result.lines[1:] + result.lines[:1]:
         click.echo(line)
     ctx.exit(result.exit_code)

@@ -9,6 +9,7 @@ from typing import Iterable
 import click
 
 from tilesolve.errors import InvalidProblem
+from tilesolve.io.units import big, human_bytes
 
 __all__ = ["CliError", "usage_error", "build_problem", "check_writable", "say", "verbosity", "progress_wanted",
            "split_conditions", "check_colors", "human_bytes", "big",
@@ -131,19 +132,6 @@ def check_writable(path: str | None) -> None:
     from tilesolve.cli.outputs import Outputs
 
     Outputs(path)
-
-
-def human_bytes(n: int) -> str:
-    """``1.5 GiB``-style size for messages."""
-    for unit, size in (("TiB", 2**40), ("GiB", 2**30), ("MiB", 2**20), ("KiB", 2**10)):
-        if n >= size:
-            return f"{big(n / size, '.1f')} {unit}"
-    return f"{n} bytes"
-
-
-def big(n: float, fmt: str = ",") -> str:
-    """A count for messages: ``1,998,000`` (``fmt``), or ``2.0e+24`` once it is absurd."""
-    return format(n, fmt) if n < 1e13 else f"{n:.1e}"
 
 
 def check_colors(kind: str, colors: int, colors_v: int | None = None) -> None:

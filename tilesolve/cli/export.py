@@ -27,10 +27,9 @@ def export() -> None:
     "-o", "--output", required=True, type=click.Path(dir_okay=False), metavar="OUT.cnf|OUT.wcnf",
     help="Output file; .wcnf (weighted MaxSAT) for closest-tiling problems, else .cnf.",
 )
-@click.option("--max-cnf", metavar="SIZE", default="1G", show_default=True,
-              help="Refuse a problem whose CNF is estimated (before encoding) to exceed SIZE of DIMACS "
-              "text (e.g. 512M, 8G).")
-def dimacs(file: str | None, output: str, max_cnf: str, **problem_kw) -> None:
+@opt.max_cnf_option("Refuse a problem whose CNF is estimated (before encoding) to exceed SIZE of DIMACS "
+                     "text (e.g. 512M, 8G).")
+def dimacs(file: str | None, output: str, max_cnf: int, **problem_kw) -> None:
     """Write the CNF (or WCNF) encoding of a problem.
 
     FILE is a problem or solution file of any family (dappled, board, packing); without it
@@ -74,24 +73,10 @@ def dimacs(file: str | None, output: str, max_cnf: str, **problem_kw) -> None:
     say(f"wrote {output}: {problem.describe()}; {enc.n_vars} variables, {len(enc.hard)} hard clauses{soft}")
 
 
-def _check_size(problem, max_cnf: str) -> None:
-    """Refuse, before encoding, a CNF estimated larger than ``max_cnf`` of DIMACS text."""
-    from tilesolve.cli.common import big, human_bytes
-    from tilesolve.family import cnf_estimate
-    from tilesolve.io.jsonio import parse_byte_size
+def _check_size(problem, max_cnf: int) -> None:
+    """Refuse, before encoding, a CNF estimated larger than ``max_cnf`` bytes of DIMACS text."""
+    from tilesolve.family import cnf_size_refusal
 
-    try:
-        limit = parse_byte_size(max_cnf)
-    except InvalidProblem as exc:
-        raise InvalidProblem(f"--max-cnf: {exc}") from None
-    sized = cnf_estimate(problem)
-    if sized is None:
-        return
-    n_vars, clauses, lits = sized
-    text = lits * (len(str(n_vars)) + 2) + 2 * clauses  # a literal, its sign and a space; "0\n"
-    if text > limit:
-        raise InvalidProblem(
-            f"the CNF of {problem.describe()} would hold about {big(clauses)} clauses and {big(lits)} literals, "
-            f"about {human_bytes(text)} of DIMACS text (and as much memory while encoding), more than --max-cnf "
-            f"{human_bytes(limit)}; raise --max-cnf, or export a smaller problem"
-        )
+    why = cnf_size_refusal(problem, max_cnf)
+    if why is not None:
+        raise InvalidProblem(f"{why}; raise --max-cnf, or export a smaller problem")

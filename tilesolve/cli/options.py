@@ -188,6 +188,23 @@ picture_options = compose(svg_opt, png_opt, repeat_opt, grid_opt)
 
 
 # ----------------------------------------------------------------------------- proofs
+def _byte_size(ctx: click.Context, param: click.Parameter, value: str) -> int:
+    """The option's size in bytes (``512M``, ``8G``); a one-line error names the option."""
+    from tilesolve.errors import InvalidProblem
+    from tilesolve.io.jsonio import parse_byte_size
+
+    try:
+        return parse_byte_size(value)
+    except InvalidProblem as exc:
+        raise InvalidProblem(f"--{param.name.replace('_', '-')}: {exc}") from None
+
+
+def max_cnf_option(help: str) -> Callable:
+    """``--max-cnf SIZE`` (default 1 GiB of DIMACS text), given to the command in bytes."""
+    return click.option("--max-cnf", metavar="SIZE", default="1G", show_default=True, callback=_byte_size,
+                        help=help)
+
+
 def _proof_dir(ctx: click.Context, param: click.Parameter, value: str | None) -> str | None:
     """Write the checked proofs of this command's unsat answers to ``value`` (see --proof-dir)."""
     if value is not None:

@@ -19,8 +19,10 @@ __all__ = ["verify"]
 @click.option("--proof-dir", type=click.Path(file_okay=False, exists=True), metavar="DIR", default=None,
               help="Re-check every unsat answer's (every refuted board's) DRAT proof against the CNF re-derived "
               "from the file's problem: DIR holds the .drat files the solving command's --proof-dir wrote.")
+@opt.max_cnf_option("Re-derive no CNF estimated (before encoding) above SIZE of DIMACS text (e.g. 512M, 8G): "
+                     "such an unsat claim is reported as not confirmed.")
 @click.pass_context
-def verify(ctx, file: str, proof_dir: str | None) -> None:
+def verify(ctx, file: str, proof_dir: str | None, max_cnf: int) -> None:
     """Check that the solution in FILE satisfies its own problem and claims.
 
     Re-checks exactly what the file holds (its problem fields and its tiling) with the
@@ -46,11 +48,12 @@ def verify(ctx, file: str, proof_dir: str | None) -> None:
     Exit 0 when the tiling is valid and every claim holds (an unsat file: when its proof
     re-checks with --proof-dir), 1 when a claim is false; a file that records unsat (1) or
     unknown (3) and holds no tiling exits with its status's code. Without --proof-dir an unsat
-    claim is NOT re-checked, and the output says so (exit 1).
+    claim is NOT re-checked, and the output says so (exit 1). A CNF estimated above --max-cnf is
+    not re-derived: its claim is NOT confirmed, and the line gives the estimate (exit 1).
     """
     from tilesolve.family import verify_file
 
-    report = verify_file(file, proof_dir)
+    report = verify_file(file, proof_dir, max_cnf=max_cnf)
     for line in report.lines:
         click.echo(line)
     ctx.exit(report.exit_code)
