@@ -124,7 +124,7 @@ def test_a_proof_is_checked_against_the_rederived_formula_not_the_file(tmp_path)
      "proof made with encoding dappled-cnf v0; this version encodes v1: re-solve to re-certify"),
     ({"name": "dappled-cnf-2030", "version": 1, "options": {}},
      "proof made with encoding dappled-cnf-2030 v1; this tilesolve has no encoding of that name"),
-    ({"name": "wang-board-cnf", "version": 1, "options": {}}, "encodes board problems, not a DappledProblem"),
+    ({"name": "wang-board-cnf", "version": 2, "options": {}}, "encodes board problems, not a DappledProblem"),
     ({"name": "dappled-cnf", "version": 1, "options": {"card_encoding": "totalizer", "x": 1}}, "has no option 'x'"),
     (None, "records no named encoding"),
 ])
@@ -156,7 +156,7 @@ def test_export_dimacs_writes_the_formula_verify_rederives(tmp_path):
 #: so that files certified with the old CNF are refused as "re-solve to re-certify".
 PINNED = {
     "dappled-cnf": (1, "85b9eb80a3dfba99eef215ee3aa7ba82e53a42b5499bc587ff8a63524f8a7bf1"),
-    "wang-board-cnf": (1, "e9b9278995d9e734bd7b78fd37990f18f0b5c9be34a52d4af5d8932a40ee93e2"),
+    "wang-board-cnf": (2, "e9b9278995d9e734bd7b78fd37990f18f0b5c9be34a52d4af5d8932a40ee93e2"),
     "packing-cnf": (1, "65f997450a660d5c665c6e3c1084b1b5a16c82e86c866830002fe818d2bc3e29"),
     "wang-tiles-cnf": (1, "b2d5e77873f3807a1c4bb149c95c6d1e8375b2cedd411f8401d0ea1a37186e83"),
 }

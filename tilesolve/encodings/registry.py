@@ -19,7 +19,7 @@ re-solve to re-certify", never accepted against a different formula.
 name                      version  problem                               options
 ========================  =======  ====================================  ===========================
 ``dappled-cnf``           1        :class:`~tilesolve.model.dappled.DappledProblem`  ``card_encoding``
-``wang-board-cnf``        1        :class:`~tilesolve.model.board.BoardProblem`      none
+``wang-board-cnf``        2        :class:`~tilesolve.model.board.BoardProblem`      none
 ``packing-cnf``           1        :class:`~tilesolve.model.packing.PackingProblem`  ``anchor_tile``, ``amo_tiles``
 ``wang-tiles-cnf``        1        :class:`~tilesolve.model.board.BoardProblem`, free boundary,
                                    no line limits (a board of an aperiodicity check)   none
@@ -133,7 +133,9 @@ def _tiles(problem, options, deadline):
 ENCODINGS: dict[str, NamedEncoding] = {e.name: e for e in (
     NamedEncoding("dappled-cnf", 1, "dappled problems (tilesolve.encodings.dappled.encode_cnf)",
                   {"card_encoding": "auto"}, _dappled),
-    NamedEncoding("wang-board-cnf", 1, "board problems (tilesolve.encodings.wang.encode_wang)", {}, _board),
+    # v2: a line limit longer than a wrapping board's cycle gives a window of the cycle plus one
+    # cell (v1 repeated the cycle up to the limit): the same constraint, another CNF text.
+    NamedEncoding("wang-board-cnf", 2, "board problems (tilesolve.encodings.wang.encode_wang)", {}, _board),
     NamedEncoding("packing-cnf", 1, "packing problems (tilesolve.encodings.packing.encode_packing)",
                   {"anchor_tile": None, "amo_tiles": True}, _packing),
     NamedEncoding("wang-tiles-cnf", 1, "Wang tile sets on free boards (tilesolve.encodings.wang_tiles.encode_tiles)",
