@@ -6,7 +6,7 @@ edge) is read with :mod:`ast`, and each edge between tilesolve's layers must poi
 =============  =====================================================================
 layer          may import (besides itself and third-party packages)
 =============  =====================================================================
-base           ``tilesolve``, ``errors``, ``deadline``, ``_random``, ``_lazy``: nothing
+base           ``tilesolve``, ``errors``, ``deadline``, ``_random``, ``_lazy``, ``inputs``: nothing
 model          base
 verify         base, model, and numpy only among third-party packages
 encodings      base, model
@@ -27,7 +27,8 @@ import pytest
 
 PACKAGE = Path(__file__).resolve().parents[1] / "tilesolve"
 
-BASE = {"tilesolve", "tilesolve.errors", "tilesolve.deadline", "tilesolve._random", "tilesolve._lazy"}
+BASE = {"tilesolve", "tilesolve.errors", "tilesolve.deadline", "tilesolve._random", "tilesolve._lazy",
+        "tilesolve.inputs"}
 FACADES = {"tilesolve.family", "tilesolve.dappled", "tilesolve.board", "tilesolve.wang", "tilesolve.packing",
            "tilesolve.walls", "tilesolve.packing_search", "tilesolve.stochastic", "tilesolve.aperiodic",
            "tilesolve.wall_render", "tilesolve.crosscheck_windows",

@@ -10,7 +10,7 @@ import sys
 
 from clitools import ENV, SCRIPT, one_line_error, run
 
-from tilesolve.io.jsonio import DEFAULT_MAX_INPUT
+from tilesolve.inputs import DEFAULT_MAX_INPUT
 
 
 def test_endless_inputs_stop_at_the_input_limit(tmp_path):
@@ -94,3 +94,26 @@ def test_a_bug_is_one_internal_error_line_exit_70(tmp_path):
     line = one_line_error(proc, 70)
     assert line == "tilesolve: error: internal error: ZeroDivisionError: forced; please report this"
     assert "70" in run("verify", "--help", cwd=tmp_path).stdout
+
+
+def test_proof_files_and_sweep_caches_are_read_through_the_limit(tmp_path):
+    """A DRAT proof past the input limit is not read (the unsat claim is not confirmed, exit 1);
+    a sweep cache past it is one error line (exit 2), as any other input."""
+    assert run("-q", "dappled", "solve", "--size", "3x3", "--cond", "H0=1", "--count", "1=0", "-o", "u.json",
+               "--proof-dir", "proofs", cwd=tmp_path).returncode == 1
+    assert run("verify", "u.json", "--proof-dir", "proofs", cwd=tmp_path).returncode == 0
+    (proof,) = (tmp_path / "proofs").glob("*.drat")
+    with open(proof, "ab") as fh:
+        fh.write(b"c padding\n" * 200_000)  # 2 MB: over a 1 MiB limit
+    big = run("--max-input", "1M", "verify", "u.json", "--proof-dir", "proofs", cwd=tmp_path)
+    assert big.returncode == 1 and "Traceback" not in big.stderr
+    assert "NOT confirmed" in big.stdout and "larger than the input limit of 1 MiB" in big.stdout
+    (tmp_path / "c.jsonl").write_text("[" * 100_000 + "\n")  # a forged line nested past the parser
+    assert run("aperiodic", "check", "--builtin", "finite-jv7", "--max-period", "2", "--workers", "1", "--cache",
+               "c.jsonl", "-o", "r.json", cwd=tmp_path).returncode == 0
+    (tmp_path / "r.json").unlink()
+    (tmp_path / "c.jsonl").write_text("x" * (2 << 20))
+    cached = run("--max-input", "1M", "aperiodic", "check", "--builtin", "finite-jv7", "--max-period", "2",
+                 "--workers", "1", "--cache", "c.jsonl", "-o", "r.json", cwd=tmp_path)
+    assert "larger than the input limit of 1 MiB" in one_line_error(cached)
+    assert not (tmp_path / "r.json").exists()

@@ -136,7 +136,7 @@ def main_group(ctx: click.Context, verbose: int, quiet: int, max_input: str | No
     )
     ctx.obj = {"verbosity": level}
     if max_input is not None:
-        from tilesolve.io.jsonio import MAX_INPUT_ENV, parse_byte_size
+        from tilesolve.inputs import MAX_INPUT_ENV, parse_byte_size
 
         try:
             os.environ[MAX_INPUT_ENV] = str(parse_byte_size(max_input))

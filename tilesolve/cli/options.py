@@ -36,7 +36,7 @@ Exit codes:
   130  interrupted (Ctrl-C): no file written, existing files untouched
   143  terminated (SIGTERM): no file written, existing files untouched"""
 
-#: The input limit, shown by every command that reads files (tilesolve.io.jsonio.read_input).
+#: The input limit, shown by every command that reads files (tilesolve.inputs.read_input).
 INPUT_HELP = """\b
 Input files (and pipes or devices) are read up to 256 MiB; a larger input is refused
 (exit 2). Raise the limit with tilesolve --max-input SIZE or TILESOLVE_MAX_INPUT=SIZE
@@ -191,7 +191,7 @@ picture_options = compose(svg_opt, png_opt, repeat_opt, grid_opt)
 def _byte_size(ctx: click.Context, param: click.Parameter, value: str) -> int:
     """The option's size in bytes (``512M``, ``8G``); a one-line error names the option."""
     from tilesolve.errors import InvalidProblem
-    from tilesolve.io.jsonio import parse_byte_size
+    from tilesolve.inputs import parse_byte_size
 
     try:
         return parse_byte_size(value)

@@ -203,14 +203,17 @@ def read_cache(path: str | os.PathLike | None, digest: str) -> dict[str, dict]:
     out: dict[str, dict] = {}
     if path is None or not os.path.exists(path):
         return out
-    with open(path, encoding="utf-8") as f:
-        for line in f:
-            try:
-                rec = json.loads(line)
-            except json.JSONDecodeError:  # a line cut by a kill: ignored, decided again
-                continue
-            if isinstance(rec, dict) and rec.get("tileset") == digest and rec.get("status") in ("tiles", "refuted"):
-                out[str(rec.get("board"))] = rec
+    from tilesolve.inputs import read_input
+
+    # Through the input limit; a line that is not JSON (cut by a kill, or forged) is ignored and
+    # its board decided again.
+    for line in read_input(path, "cache ").decode("utf-8", errors="replace").splitlines():
+        try:
+            rec = json.loads(line)
+        except (ValueError, RecursionError):
+            continue
+        if isinstance(rec, dict) and rec.get("tileset") == digest and rec.get("status") in ("tiles", "refuted"):
+            out[str(rec.get("board"))] = rec
     return out
 
 

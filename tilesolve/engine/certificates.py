@@ -287,6 +287,7 @@ def recheck_unsat(problem: Any, evidence: Mapping[str, Any], proof_dir: str | os
     """
     from tilesolve.encodings.registry import encode, resolve
     from tilesolve.errors import InvalidProblem
+    from tilesolve.inputs import read_input
 
     t0 = time.perf_counter()
 
@@ -320,14 +321,16 @@ def recheck_unsat(problem: Any, evidence: Mapping[str, Any], proof_dir: str | os
     base = os.path.join(os.fspath(proof_dir), proof_name(got, drat_digest))
     if not os.path.isfile(base + ".drat"):
         return refused(bound, f"missing proof file {base}.drat", cnf=cnf)
-    with open(base + ".drat", "rb") as fh:
-        drat = fh.read()
+    try:  # through the input limit, as every file a user hands in (tilesolve --max-input)
+        drat = read_input(base + ".drat", "proof ")
+    except InvalidProblem as exc:
+        return refused(bound, str(exc), cnf=cnf)
     if hashlib.sha256(drat).hexdigest() != drat_digest:
         return refused(bound, f"{base}.drat: SHA-256 {hashlib.sha256(drat).hexdigest()[:16]}... differs from the "
                               f"recorded {drat_digest[:16]}...", cnf=cnf)
     if os.path.isfile(base + ".cnf"):
         with open(base + ".cnf", "rb") as fh:
-            if fh.read() != cnf:
+            if fh.read(len(cnf) + 1) != cnf:  # never more than the re-derived CNF's size
                 return refused(bound, f"{NOT_THE_ENCODING}: {base}.cnf differs from the CNF re-derived from it",
                                cnf=cnf)
     chk = check_drat(flat, drat, time_limit=time_limit)

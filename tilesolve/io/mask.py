@@ -14,7 +14,7 @@ import os
 import numpy as np
 
 from tilesolve.errors import InvalidProblem
-from tilesolve.io.jsonio import read_input
+from tilesolve.inputs import read_input
 from tilesolve.model.board import MAX_BOARD_CELLS, Board, parse_board_spec, parse_mask_text
 
 __all__ = ["read_mask", "read_board_spec"]
@@ -27,7 +27,7 @@ def read_mask(path: str | os.PathLike) -> np.ndarray:
 
     A PNG's opaque pixels are cells (without an alpha channel: its dark pixels, grey
     level below 128); any other file is read as UTF-8 text of ``#`` and ``.``. The file is
-    read through the input limit (:func:`tilesolve.io.jsonio.read_input`) and a PNG's size is
+    read through the input limit (:func:`tilesolve.inputs.read_input`) and a PNG's size is
     checked against :data:`~tilesolve.model.board.MAX_BOARD_CELLS` before it is decoded.
 
     Raises

@@ -16,7 +16,7 @@ format       what a file holds                                                  
 Colours must be integers; ``nswe`` and ``rtlb`` colours are ``0 ..``, TileSAT's are shifted
 down by one. A set's palette is the colours its tiles use, relabelled ``0 .. k-1`` in order
 when they are not already (with a note); duplicate tiles are dropped with a note. A file is
-read through the input limit (:func:`tilesolve.io.jsonio.read_input`), and a file that
+read through the input limit (:func:`tilesolve.inputs.read_input`), and a file that
 contradicts its format (a TileSAT header announcing more tiles than follow, an ``rtlb`` list
 cut short) is refused, never re-read as another format.
 
@@ -34,7 +34,8 @@ import re
 from pathlib import Path
 
 from tilesolve.errors import InvalidProblem
-from tilesolve.io.jsonio import parse_json, read_input_text
+from tilesolve.inputs import read_input_text
+from tilesolve.io.jsonio import parse_json
 from tilesolve.io.tileset_json import compact_tileset, tileset_from_data
 from tilesolve.model.board import WangTileSet
 
