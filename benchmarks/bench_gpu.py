@@ -13,7 +13,7 @@ frame back (the GPU has then finished every frame). Baselines in the same run, s
 
 * ``cpu numpy``: the CPU implementations of the same pictures: the wall's cells by
   :func:`~tilesolve.constructive.walls.wall_window` (compiled) and its pixels (brick id
-  colours, 004 §3.2) by :func:`tilesolve.wall_render.wall_map_pixels` in its numpy form, and
+  colours, 004 §3.2) by :func:`tilesolve.families.wall_render.wall_map_pixels` in its numpy form, and
   ``cpu compiled`` its numba form; the texture's tiles by
   :func:`~tilesolve.constructive.stochastic.direct_corner` and its pixels by one numpy gather
   from the atlas.
@@ -48,7 +48,7 @@ from tilesolve.constructive.walls import wall_window
 from tilesolve.gpu.context import gpu_info
 from tilesolve.gpu.texture import Atlas, TextureMapper
 from tilesolve.gpu.wall import WallRenderer, allowed_samples
-from tilesolve.wall_render import wall_map_pixels
+from tilesolve.families.wall_render import wall_map_pixels
 
 W, H = 1920, 1080
 CELL, MAX_LINE, SEED = 32, 4, 1

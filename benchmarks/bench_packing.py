@@ -36,7 +36,7 @@ def main() -> None:
     ap.add_argument("--seeds", type=int, default=3, help="seeds per small search")
     args = ap.parse_args()
 
-    from tilesolve import packing as facade
+    from tilesolve.families import packing as facade
     from tilesolve.model.packing import PackingProblem
     from tilesolve.verify.packing import is_packing
 

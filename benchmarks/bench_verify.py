@@ -6,7 +6,7 @@ in row blocks) and by the previous checker, copied below as the baseline (run le
 built one column at a time in int64). Boards: a linear-algorithm tiling (brick paper §4)
 of a board with holes, checked by :func:`tilesolve.verify.board_violations` and by the
 previous join check (2-D fancy indexing), also copied below. Then the dappled API
-(:func:`tilesolve.dappled.solve`, which verifies its answer) against its kernel
+(:func:`tilesolve.families.dappled.solve`, which verifies its answer) against its kernel
 (:func:`tilesolve.constructive.dappled.make_dappled`).
 
 Times are the best of ``--repeat`` runs (one core); peak memory is tracemalloc's peak of
@@ -123,7 +123,7 @@ def main() -> None:
         peak_mib(lambda: old_board_join_mismatches(sol.tiling, b)), peak_mib(lambda: board_violations(sol.tiling, bp)),
         f"old = joins only; linear solve {t_solve:.3f} s")
     try:
-        from tilesolve import dappled as api
+        from tilesolve.families import dappled as api
     except ImportError as exc:  # the facade is being rewired
         print(f"API row skipped: {exc}")
         return

@@ -5,7 +5,7 @@ procedural wall (PD, 004 §4.3), the repeatable wall on Kaji's cyclic dappling (
 the finite wall on Kaji's dappling (the ``wall`` route, dappled paper §4), at n = 4 and n = 10,
 and measures 004's claim that Kaji's algorithm clamps lines at n: the count of lines of
 length n against n - 1 (``n/(n-1)``; a row of fair independent choices gives about 1/2).
-Every wall's longest line is checked against n (:func:`tilesolve.walls.line_statistics`).
+Every wall's longest line is checked against n (:func:`tilesolve.families.walls.line_statistics`).
 
 Part 2 times the generators on the same walls (one period / window of W x H cells, solved and
 verified through the family pipeline for NPD and the wall route; PD is a bare window), as
@@ -23,7 +23,7 @@ from __future__ import annotations
 import argparse
 
 from tilesolve.constructive.wall_stats import clamp_numbers
-from tilesolve.walls import LINE_METHODS, line_statistics
+from tilesolve.families.walls import LINE_METHODS, line_statistics
 from _measure import best, peak_mib  # noqa: E402 - benchmarks/ is on sys.path
 
 

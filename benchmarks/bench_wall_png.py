@@ -5,7 +5,7 @@ Each case runs in a fresh Python process, so that its peak resident size (``ru_m
 its own, and writes a real file in a temporary folder (its size is printed):
 
 ``streamed``
-    :func:`tilesolve.wall_render.write_wall_png`: a band of cell rows at a time (wall_window
+    :func:`tilesolve.families.wall_render.write_wall_png`: a band of cell rows at a time (wall_window
     with a one-cell halo, the maps, the board verifier on the band, pypng's row writer), as
     ``tilesolve wall --png`` runs it;
 ``stream-nv``
@@ -44,7 +44,7 @@ def run_case(mode: str, side: int, ppc: int, path: str) -> dict:
     import numpy as np
 
     from tilesolve.constructive.walls import wall_window
-    from tilesolve.wall_render import wall_map_pixels, write_wall_png
+    from tilesolve.families.wall_render import wall_map_pixels, write_wall_png
 
     wall_window(0, 0, 4, 4, colors=COLORS, max_line=MAX_LINE, seed=SEED)  # numba compile, not timed
     t, cpu = time.perf_counter(), time.process_time()

@@ -15,7 +15,7 @@ import argparse
 
 from _measure import best, peak_mib
 
-from tilesolve import board as facade
+from tilesolve.families import board as facade
 from tilesolve.io.builtin_tilesets import load
 from tilesolve.io.mask import read_board_spec
 from tilesolve.model.board import BoardProblem

@@ -26,7 +26,7 @@ def main() -> None:
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--no-cpsat", action="store_true")
     args = ap.parse_args()
-    from tilesolve import board as wang
+    from tilesolve.families import board as wang
     from tilesolve.model.board import Board, BoardProblem, WangTileSet, random_boundary
     from tilesolve.verify.board import board_violations
 

@@ -18,7 +18,7 @@ import sys
 import time
 from pathlib import Path
 
-from tilesolve import packing
+from tilesolve.families import packing
 from tilesolve.io.svg_packing import write_packing_svg
 from tilesolve.model.packing import PackingProblem
 from tilesolve.verify.packing import packing_violations

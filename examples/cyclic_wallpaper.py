@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from tilesolve import dappled
+from tilesolve.families import dappled
 from tilesolve.io.png import write_png
 from tilesolve.io.svg import write_svg
 from tilesolve.model import DappledProblem

@@ -12,7 +12,7 @@ The same as ``tilesolve dappled solve --size 24x16 --cond H0=2 --cond V1=3 --see
 import sys
 from pathlib import Path
 
-from tilesolve import dappled
+from tilesolve.families import dappled
 from tilesolve.io.jsonio import write_solution
 from tilesolve.io.svg import write_svg
 from tilesolve.model import DappledProblem

@@ -11,7 +11,7 @@ from clitools import one_line_error, run, snapshot
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from tilesolve.aperiodic import AperiodicProblem, solve
+from tilesolve.families.aperiodic import AperiodicProblem, solve
 from tilesolve.deadline import Deadline
 from tilesolve.encodings.wang_tiles import encode_tiles
 from tilesolve.engine.aperiodic import sweep
@@ -243,7 +243,7 @@ def test_proof_files_listed_and_rechecked(tmp_path):
 
 
 def test_draw_shows_the_torus_witness_else_the_largest_square(tmp_path):
-    from tilesolve.aperiodic import witness
+    from tilesolve.families.aperiodic import witness
     from tilesolve.family import draw_solution
 
     p = AperiodicProblem(DIAGONAL, 4, 3, shears=True)
@@ -274,7 +274,7 @@ def test_a_report_without_a_witness_has_nothing_to_draw(tmp_path):
 
 
 def test_demo_and_cli_draw(tmp_path):
-    from tilesolve.aperiodic import FAMILY
+    from tilesolve.families.aperiodic import FAMILY
 
     proc = run("demo", "--family", "aperiodic", "--seed", "1", "--out", "d", cwd=tmp_path)
     assert proc.returncode == 0, proc.stderr
@@ -293,7 +293,7 @@ def test_demo_and_cli_draw(tmp_path):
 
 
 def test_studio_form_poses_the_cli_check():
-    from tilesolve.aperiodic import FAMILY
+    from tilesolve.families.aperiodic import FAMILY
 
     form = FAMILY.form
     values = form.values({"tileset": "periodic-7-30", "max_square": 5, "max_period": 3, "shears": True, "seed": 2})

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from tilesolve import board as wang
+from tilesolve.families import board as wang
 from tilesolve.model.board import E, W, Board, BoardProblem, WangTileSet, random_boundary
 from tilesolve.verify.board import MAX_LISTED, board_violations, is_valid_board_tiling, listing_violations
 

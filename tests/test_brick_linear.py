@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from tilesolve import board as wang
+from tilesolve.families import board as wang
 from tilesolve.constructive.brick import cycle_corners, solve_linear
 from tilesolve.constructive import _brick_kernels as K
 from tilesolve.errors import MethodNotApplicable

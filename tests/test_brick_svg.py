@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from tilesolve.walls import brick_wall
+from tilesolve.families.walls import brick_wall
 from tilesolve.io.svg_board import board_drawing, brick_ids
 from tilesolve.model.board import Board, BoardProblem, WangTileSet
 
@@ -26,7 +26,7 @@ def test_wall_svg_and_seam_arrows():
     svg = board_drawing(p, s.tiling, title="wall").tostring()
     assert svg.startswith("<svg") and "<rect" in svg and "<line" in svg
     m = BoardProblem(Board.mobius(4, 6), WangTileSet.brick(3))
-    from tilesolve import board as wang
+    from tilesolve.families import board as wang
 
     sol = wang.solve(m, seed=0)
     svg = board_drawing(m, sol.tiling).tostring()

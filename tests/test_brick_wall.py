@@ -4,9 +4,9 @@ import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from tilesolve import board as wang
+from tilesolve.families import board as wang
 from tilesolve.constructive.brick import wall_from_dappled
-from tilesolve.walls import brick_wall
+from tilesolve.families.walls import brick_wall
 from tilesolve.errors import InvalidProblem
 from tilesolve.model.board import Board, BoardProblem, WangTileSet, random_boundary
 from tilesolve.verify.board import board_violations, line_runs

@@ -16,7 +16,7 @@ import shutil
 import pytest
 from clitools import one_line_error, run
 
-from tilesolve.aperiodic import AperiodicProblem, build_report
+from tilesolve.families.aperiodic import AperiodicProblem, build_report
 from tilesolve.engine.aperiodic import sweep
 from tilesolve.family import solution_text
 from tilesolve.io.builtin_tilesets import load
@@ -371,7 +371,7 @@ def test_many_refutations_rechecked_on_worker_processes(tmp_path):
     from tilesolve.engine.certificates import PARALLEL_RECHECK_MIN
 
     problem = AperiodicProblem(WangTileSet.from_nesw(DIAGONAL, 3), 0, 4, shears=True)
-    from tilesolve.aperiodic import solve
+    from tilesolve.families.aperiodic import solve
 
     s = solve(problem, seed=1, workers=1, options={"proof_dir": tmp_path / "proofs"})
     _write(tmp_path, "r.json", json.loads(solution_text(problem, s)))

@@ -300,7 +300,7 @@ def test_demo(tmp_path):
 
 # ----------------------------------------------------------------------------- in-process (click runner)
 def test_interrupt_exits_130_without_files(tmp_path, monkeypatch):
-    from tilesolve import dappled
+    from tilesolve.families import dappled
     from tilesolve.cli.main import main_group
 
     def interrupted(*args, **kwargs):
@@ -316,7 +316,7 @@ def test_interrupt_exits_130_without_files(tmp_path, monkeypatch):
 
 def test_interrupted_solution_exits_130_and_keeps_old_files(tmp_path, monkeypatch):
     """The engine returns Ctrl-C inside a solver as an unknown solution; the CLI writes nothing."""
-    from tilesolve import dappled
+    from tilesolve.families import dappled
     from tilesolve.cli.main import main_group
 
     monkeypatch.setattr(dappled, "solve", lambda *a, **k: Solution(Status.UNKNOWN, None, method="sat",
@@ -331,7 +331,7 @@ def test_interrupted_solution_exits_130_and_keeps_old_files(tmp_path, monkeypatc
 
 
 def test_unknown_status_exit_3(tmp_path, monkeypatch):
-    from tilesolve import dappled
+    from tilesolve.families import dappled
     from tilesolve.cli.main import main_group
 
     monkeypatch.setattr(dappled, "solve", lambda *a, **k: Solution(Status.UNKNOWN, None, method="sat",
@@ -346,7 +346,7 @@ def test_unknown_status_exit_3(tmp_path, monkeypatch):
 
 
 def test_library_error_during_solve_is_one_line(tmp_path, monkeypatch):
-    from tilesolve import dappled
+    from tilesolve.families import dappled
     from tilesolve.cli.main import main_group
     from tilesolve.errors import MethodNotApplicable
 

@@ -5,7 +5,7 @@ import sys
 
 CODE = """
 import numpy as np
-from tilesolve import dappled
+from tilesolve.families import dappled
 from tilesolve.model.dappled import DappledProblem
 p = DappledProblem.from_strings("2x2", ["H0=2", "V0=1"], n_tiles=3, fixed=np.array([[0, 2], [0, 0]]))
 for seed in range(20):

@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
 
-import tilesolve.dappled as facade
-from tilesolve.dappled import count, crosscheck, solve
+import tilesolve.families.dappled as facade
+from tilesolve.families.dappled import count, crosscheck, solve
 from tilesolve.errors import MethodNotApplicable
 from tilesolve.model import Condition, DappledProblem, Solution, Status, parse_condition
 from tilesolve.verify import is_dappled

@@ -42,7 +42,7 @@ def test_draw_refuses_what_it_cannot_draw(tmp_path):
 
 
 def test_a_solution_draws_itself_in_a_notebook():
-    from tilesolve import board, dappled
+    from tilesolve.families import board, dappled
     from tilesolve.model import DappledProblem
     from tilesolve.model.board import Board, BoardProblem, WangTileSet
 

@@ -223,10 +223,3 @@ def test_registry_refuses_clashes(plugin):
                                       verify=lambda p, t: []))
     with pytest.raises(InvalidProblem, match="no tilesolve family"):
         family.solve(np.zeros(3))
-
-
-def test_the_old_board_facade_name_still_imports():
-    import tilesolve.board
-    import tilesolve.wang
-
-    assert tilesolve.wang.solve is tilesolve.board.solve and tilesolve.wang.FAMILY is tilesolve.board.FAMILY

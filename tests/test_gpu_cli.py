@@ -64,7 +64,7 @@ def test_without_gl_one_line_naming_the_packages_and_the_cpu_routes_still_work(t
 def test_version_and_cpu_modules_do_not_import_moderngl():
     code = ("import contextlib, io, sys\nfrom tilesolve.cli.main import main\n"
             "with contextlib.redirect_stdout(io.StringIO()):\n    assert main(['--version']) == 0\n"
-            "import tilesolve.stochastic, tilesolve.walls, tilesolve.packing\n"
+            "import tilesolve.families.stochastic, tilesolve.families.walls, tilesolve.families.packing\n"
             "print('moderngl' in sys.modules, 'glcontext' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300, check=True)
     assert out.stdout.split() == ["False", "False"]

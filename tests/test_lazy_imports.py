@@ -22,7 +22,7 @@ def test_version_imports_no_numpy():
     assert not {"numpy", "numba", "pysat", "ortools"} & loaded
 
 
-@pytest.mark.parametrize("module", ["tilesolve.packing", "tilesolve.board", "tilesolve.stochastic", "tilesolve.family", "tilesolve.model",
+@pytest.mark.parametrize("module", ["tilesolve.families.packing", "tilesolve.families.board", "tilesolve.families.stochastic", "tilesolve.family", "tilesolve.model",
                                     "tilesolve.verify", "tilesolve.constructive.packing"])
 def test_facades_do_not_load_the_dappled_kernels(module):
     loaded = modules_after(f"import {module}")

@@ -13,7 +13,7 @@ from tilesolve.family import solve
 from tilesolve.model.board import Board, BoardProblem, WangTileSet
 from tilesolve.model.solution import Status
 from tilesolve.verify.board import board_violations
-from tilesolve.walls import npd_problem, wall_problem
+from tilesolve.families.walls import npd_problem, wall_problem
 
 
 def period_legs(sol, rows: int, cols: int) -> np.ndarray:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from tilesolve import packing as facade
+from tilesolve.families import packing as facade
 from tilesolve.constructive.packing_count import (
     PUBLISHED_COUNTS,
     count_packings,

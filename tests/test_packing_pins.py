@@ -8,7 +8,7 @@ import subprocess
 import numpy as np
 import pytest
 
-from tilesolve import packing
+from tilesolve.families import packing
 from tilesolve.model.packing import PackingProblem
 from tilesolve.verify.grid import grid_violations
 

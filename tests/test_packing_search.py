@@ -3,11 +3,11 @@
 import numpy as np
 import pytest
 
-from tilesolve import packing as facade
+from tilesolve.families import packing as facade
 from tilesolve.constructive.packing import corner_packing_odd
 from tilesolve.constructive.packing_known import known_packing
 from tilesolve.encodings.packing import encode_packing, features_of_packing, full_domains, packing_features
-from tilesolve import packing_search as search
+from tilesolve.families import packing_search as search
 from tilesolve.engine import portfolio
 from tilesolve.errors import MethodNotApplicable
 from tilesolve.model.packing import PackingProblem

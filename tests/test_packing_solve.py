@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from tilesolve import packing as facade
+from tilesolve.families import packing as facade
 from tilesolve.encodings.packing import encode_packing
 from tilesolve.errors import InvalidProblem, MethodNotApplicable
 from tilesolve.model.packing import PackingProblem

@@ -488,7 +488,7 @@ def test_readme_packing_example_runs_as_a_script_without_main_guard(tmp_path):
     # so a worker starts beside the first run if a core is idle (the worker used to re-run
     # the script and die). The next test starts workers whatever the load.
     r = _run_script(tmp_path, """\
-        from tilesolve import packing
+        from tilesolve.families import packing
         from tilesolve.model.packing import PackingProblem
 
         s = packing.solve(PackingProblem("corner", 8), method="lift", seed=1)   # 64x64 de Bruijn torus
@@ -501,9 +501,9 @@ def test_readme_packing_example_runs_as_a_script_without_main_guard(tmp_path):
 def test_forced_portfolio_runs_as_a_script_without_main_guard(tmp_path):
     r = _run_script(tmp_path, """\
         import functools
-        from tilesolve import packing
+        from tilesolve.families import packing
         from tilesolve.engine import portfolio
-        from tilesolve.packing_search import solve_lift
+        from tilesolve.families.packing_search import solve_lift
         from tilesolve.model.packing import PackingProblem
 
         portfolio.QUICK_S = 0.0  # workers start beside the first run at once

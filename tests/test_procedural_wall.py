@@ -19,7 +19,7 @@ from tilesolve.errors import InvalidProblem, MethodNotApplicable
 from tilesolve.family import solve
 from tilesolve.model.board import Board, BoardProblem, WangTileSet
 from tilesolve.verify.board import board_violations
-from tilesolve.walls import wall_problem
+from tilesolve.families.walls import wall_problem
 
 
 def plane(tiling, x0, y0, rows, cols) -> dict:

@@ -201,7 +201,7 @@ def test_cli_proof_dir_and_verify(tmp_path):
 
 
 def test_cpsat_infeasibility_is_certified_or_unknown():
-    from tilesolve import board as wang
+    from tilesolve.families import board as wang
 
     p = BoardProblem(Board.rect(1, 1), WangTileSet.brick(3), [0, 1, 0, 1])
     s = wang.solve(p, method="cpsat", seed=1)
@@ -216,7 +216,7 @@ def test_cpsat_infeasibility_is_certified_or_unknown():
 
 
 def test_constructive_unsat_is_certified_by_the_sat_route(monkeypatch):
-    from tilesolve import board as wang
+    from tilesolve.families import board as wang
     from tilesolve.model.solution import Solution
 
     p = BoardProblem(Board.rect(1, 1), WangTileSet.brick(3), [0, 1, 0, 1])

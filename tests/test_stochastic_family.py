@@ -17,7 +17,7 @@ from tilesolve.family import solution_text
 from tilesolve.io.jsonio import read_json
 from tilesolve.model.solution import Status
 from tilesolve.model.stochastic import StochasticProblem
-from tilesolve.stochastic import FAMILY, stochastic_violations
+from tilesolve.families.stochastic import FAMILY, stochastic_violations
 
 SCRIPT = shutil.which("tilesolve")
 

@@ -319,8 +319,8 @@ def test_report_without_a_rectangle_is_undecided(monkeypatch):
 
 
 def test_family_route_end_to_end():
-    """``tilesolve.aperiodic.solve(..., method="transducer")``: the pipeline verifies the report."""
-    from tilesolve.aperiodic import solve
+    """``tilesolve.families.aperiodic.solve(..., method="transducer")``: the pipeline verifies the report."""
+    from tilesolve.families.aperiodic import solve
     from tilesolve.io.builtin_tilesets import load
 
     ts, info = load("finite-jv7")

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from click.testing import CliRunner
 
-from tilesolve import crosscheck_windows as cw
+from tilesolve.families import crosscheck_windows as cw
 from tilesolve.cli.main import main_group
 from tilesolve.constructive.walls import wall_window
 from tilesolve.model.board import WangTileSet
@@ -54,7 +54,7 @@ def test_the_cnf_check_catches_a_line_too_long_and_a_broken_tile():
 
 def test_the_cnf_check_catches_a_tile_outside_the_set():
     problem = StochasticProblem("wang", 2, (0, 0, 3, 3), "compact")
-    from tilesolve.stochastic import solve
+    from tilesolve.families.stochastic import solve
 
     grid = solve(problem, method="scanline", seed=1).tiling
     legs, tiles = cw._wang_images(problem, grid)

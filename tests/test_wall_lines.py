@@ -14,7 +14,7 @@ from clitools import one_line_error, run
 from tilesolve.constructive.wall_stats import clamp_numbers, histogram, runs, wall_lines
 from tilesolve.constructive.walls import wall_window
 from tilesolve.errors import InvalidProblem
-from tilesolve.walls import line_statistics
+from tilesolve.families.walls import line_statistics
 
 
 def brute_runs(row: list[bool], cyclic: bool) -> list[tuple[int, int]]:

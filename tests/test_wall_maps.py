@@ -11,7 +11,7 @@ from tilesolve.constructive.walls import wall_window
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.svg_board import brick_ids
 from tilesolve.model.board import Board, BoardProblem, WangTileSet
-from tilesolve.wall_render import wall_map_pixels
+from tilesolve.families.wall_render import wall_map_pixels
 
 WINDOWS = [  # (x0, y0, w, h, colors, max_line, seed)
     (0, 0, 9, 7, 3, 2, 1),

@@ -10,10 +10,10 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from tilesolve import wall_render
+from tilesolve.families import wall_render
 from tilesolve.constructive.walls import wall_window
 from tilesolve.errors import InternalError, InvalidProblem
-from tilesolve.wall_render import wall_map_pixels, write_wall_png
+from tilesolve.families.wall_render import wall_map_pixels, write_wall_png
 
 from clitools import one_line_error, run, snapshot
 
@@ -76,7 +76,7 @@ def test_lines_crossing_band_borders_are_checked_whole(tmp_path, monkeypatch):
     from tilesolve.constructive.walls import line_lengths
     from tilesolve.model.board import Board, BoardProblem, WangTileSet
     from tilesolve.verify.board import board_violations
-    from tilesolve.walls import brick_wall
+    from tilesolve.families.walls import brick_wall
 
     problem, sol = brick_wall(44, 44, 2, max_v=8, seed=3)
     wall = sol.tiling.reshape(44, 44, 4)

@@ -49,7 +49,7 @@ def test_transfer_matches_brute_force(kt, rows, cols, wrap_rows, wrap_cols):
 
 @pytest.mark.parametrize("spec", ["rect:3x2", "torus:2x3", "cylinder:3x2", "rect:1x4"])
 def test_board_count_transfer_equals_enumeration(spec):
-    from tilesolve import board as facade
+    from tilesolve.families import board as facade
     from tilesolve.io.mask import read_board_spec
 
     ts = WangTileSet.from_nesw([[0, 1, 1, 0], [1, 0, 0, 1], [0, 0, 1, 1], [1, 1, 0, 0], [0, 0, 0, 0]], 2)
@@ -62,7 +62,7 @@ def test_board_count_transfer_equals_enumeration(spec):
 
 
 def test_auto_falls_back_to_enumeration():
-    from tilesolve import board as facade
+    from tilesolve.families import board as facade
 
     ts = WangTileSet.from_nesw([[0, 0, 0, 0], [1, 1, 1, 1], [0, 1, 0, 1]], 2)
     mobius = BoardProblem(Board.mobius(2, 3), ts)

@@ -5,7 +5,7 @@ import itertools
 import numpy as np
 import pytest
 
-from tilesolve import board as wang
+from tilesolve.families import board as wang
 from tilesolve.encodings.wang import encode_wang, line_windows
 from tilesolve.errors import InvalidProblem, MethodNotApplicable
 from tilesolve.model.board import Board, BoardProblem, WangTileSet, random_boundary

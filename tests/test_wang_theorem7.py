@@ -4,7 +4,7 @@ import itertools
 
 import pytest
 
-from tilesolve import board as wang
+from tilesolve.families import board as wang
 from tilesolve.constructive.wang import default_core
 from tilesolve.errors import MethodNotApplicable
 from tilesolve.model.board import Board, BoardProblem, WangTileSet, random_boundary

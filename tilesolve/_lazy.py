@@ -1,6 +1,6 @@
 """Lazy package namespaces (PEP 562): a package ``__init__`` lists what it exports and where
 each name lives, and nothing is imported until a name is used. ``import tilesolve.model.run``
-then costs no numpy, and ``import tilesolve.packing`` does not load the dappled kernels.
+then costs no numpy, and ``import tilesolve.families.packing`` does not load the dappled kernels.
 """
 
 from __future__ import annotations

@@ -7,7 +7,7 @@ facade module (``tilesolve/<family>.py``), and registers it once, under the entr
 ``tilesolve.families`` in ``pyproject.toml``::
 
     [project.entry-points."tilesolve.families"]
-    dappled = "tilesolve.dappled:FAMILY"
+    dappled = "tilesolve.families.dappled:FAMILY"
 
 (or, at run time, with :func:`register`). Everything generic reads the registry: the solve
 pipeline below, ``tilesolve verify`` (:func:`verify_file`), ``draw``, ``demo``,

@@ -69,7 +69,7 @@ def check(ctx, tiles, builtin, method, max_square, max_period, shears, workers, 
       tilesolve aperiodic check --builtin finite-jv7 --method transducer --max-square 12 -o t.json
       tilesolve verify jr.json
     """
-    from tilesolve import aperiodic as facade
+    from tilesolve.families import aperiodic as facade
     from tilesolve.family import write_solution
 
     if (tiles is None) == (builtin is None):

@@ -1,6 +1,6 @@
 """The board family's commands: ``tilesolve brick solve | wall | count | crosscheck``,
-``tilesolve wang solve`` and ``tilesolve wall``, thin layers over :mod:`tilesolve.board` and
-:mod:`tilesolve.walls`."""
+``tilesolve wang solve`` and ``tilesolve wall``, thin layers over :mod:`tilesolve.families.board` and
+:mod:`tilesolve.families.walls`."""
 
 from __future__ import annotations
 
@@ -25,7 +25,7 @@ BOARD_HELP = (
 
 
 def _method_choices():
-    from tilesolve.board import METHODS
+    from tilesolve.families.board import METHODS
 
     return METHODS
 
@@ -109,7 +109,7 @@ def board_text(problem, tiling) -> str:
 
 
 def _run(ctx, problem, method, seed, time_limit, outs, output, svg) -> None:
-    from tilesolve import board as facade
+    from tilesolve.families import board as facade
 
     _svg_ok(svg, problem.board.n_cells)
     sol = facade.solve(problem, method=method, seed=seed, time_limit=time_limit)
@@ -220,7 +220,7 @@ def brick_wall_cmd(ctx, size, max_line, max_v, colors, seed, output, svg) -> Non
 
     Without -o or --svg the wall is printed as text: each cell's leg colours W N E S.
     """
-    from tilesolve.walls import brick_wall
+    from tilesolve.families.walls import brick_wall
     from tilesolve.model.dappled import parse_size
 
     outs = Outputs(output, svg)
@@ -258,7 +258,7 @@ def count(ctx, board_spec, colors, boundary, seed, time_limit) -> None:
     Example:
       tilesolve brick count --board rect:2x1 --boundary free      # prints 432
     """
-    from tilesolve import board as facade
+    from tilesolve.families import board as facade
 
     problem = _brick_problem(board_spec, colors, boundary, 0 if seed is None else seed)
     res = facade.count(problem, time_limit=time_limit)
@@ -287,7 +287,7 @@ def crosscheck(ctx, board_spec, colors, boundary, seed, time_limit, trials) -> N
     Example:
       tilesolve brick crosscheck --board mask:shape.txt --trials 5
     """
-    from tilesolve import board as facade
+    from tilesolve.families import board as facade
 
     base = draw_seed() if seed is None else seed
     ok = True
@@ -458,7 +458,7 @@ def wall(ctx, region, max_line, colors, seed, method, period, output, svg, png, 
     route = {"procedural": "procedural", "npd": "npd", "dappled": "wall"}[method]
     draw = None
     if method != "dappled":
-        from tilesolve.wall_render import write_wall_png
+        from tilesolve.families.wall_render import write_wall_png
 
         def draw(path):
             last = [0.0]
@@ -473,7 +473,7 @@ def wall(ctx, region, max_line, colors, seed, method, period, output, svg, png, 
                                   method=method, period=(pw, ph), kind=map_kind or "id", ppc=ppc, verify=check,
                                   progress=show if progress_wanted() else None)
     if held:
-        from tilesolve.walls import wall_problem
+        from tilesolve.families.walls import wall_problem
 
         problem = wall_problem(rows, cols, max_line, n_colors=colors)
         options = {"origin": (x0, y0)} | ({"period": (pw, ph)} if method == "npd" else {})

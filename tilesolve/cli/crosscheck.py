@@ -1,5 +1,5 @@
 """``tilesolve crosscheck wall | tiling``: the random-access generators against the SAT route,
-on random windows (a thin layer over :mod:`tilesolve.crosscheck_windows`)."""
+on random windows (a thin layer over :mod:`tilesolve.families.crosscheck_windows`)."""
 
 from __future__ import annotations
 
@@ -67,7 +67,7 @@ def wall(ctx, trials, seed, max_line, colors, max_size, time_limit) -> None:
     """
     import numpy as np
 
-    from tilesolve.crosscheck_windows import crosscheck_wall_window, random_wall_window
+    from tilesolve.families.crosscheck_windows import crosscheck_wall_window, random_wall_window
 
     base = draw_seed() if seed is None else seed
 
@@ -109,7 +109,7 @@ def tiling(ctx, trials, seed, kind, method, colors, max_size, time_limit) -> Non
     """
     import numpy as np
 
-    from tilesolve.crosscheck_windows import crosscheck_tiling_window, random_tiling_window
+    from tilesolve.families.crosscheck_windows import crosscheck_tiling_window, random_tiling_window
 
     base = draw_seed() if seed is None else seed
 

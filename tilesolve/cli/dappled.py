@@ -1,4 +1,4 @@
-"""``tilesolve dappled solve | count | crosscheck``: thin layers over :mod:`tilesolve.dappled`."""
+"""``tilesolve dappled solve | count | crosscheck``: thin layers over :mod:`tilesolve.families.dappled`."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ from tilesolve.cli import options as opt
 from tilesolve.cli.common import build_problem, progress_wanted, say
 from tilesolve.cli.outputs import Outputs
 from tilesolve.errors import InvalidProblem
-from tilesolve.dappled import COUNT_METHODS, METHODS
+from tilesolve.families.dappled import COUNT_METHODS, METHODS
 from tilesolve.family import draw_seed, raise_if_interrupted
 
 method_opt = click.option(
@@ -101,7 +101,7 @@ def solve(ctx, method, seed, time_limit, initial, output, svg, png, repeat, grid
     the tiling itself is printed to stdout as a text grid (a digit per cell, top row first).
     The files are written together at the end, or none of them.
     """
-    from tilesolve import dappled as facade
+    from tilesolve.families import dappled as facade
     from tilesolve.io.jsonio import format_text_grid, read_tiling, write_solution
 
     outs = Outputs(output, svg, png)
@@ -165,7 +165,7 @@ def count(ctx, method, time_limit, force, **problem_kw) -> None:
 
     Exit 0 whenever the count is exact (0 included), 3 when the time limit ran out.
     """
-    from tilesolve import dappled as facade
+    from tilesolve.families import dappled as facade
     from tilesolve.model.solution import Status
 
     problem = build_problem(**problem_kw)
@@ -202,7 +202,7 @@ def crosscheck(ctx, seed, time_limit, trials, **problem_kw) -> None:
 
     Exit 0 when every check passes, 1 on any disagreement.
     """
-    from tilesolve import dappled as facade
+    from tilesolve.families import dappled as facade
 
     problem = build_problem(**problem_kw)
     base = draw_seed() if seed is None else seed

@@ -23,7 +23,7 @@ _KINDS = click.Choice(["corner", "wang"])
 
 
 def _methods() -> list[str]:
-    from tilesolve.packing import METHODS
+    from tilesolve.families.packing import METHODS
 
     return list(METHODS)
 
@@ -107,7 +107,7 @@ def pack(ctx, kind, colors, colors_v, method, fix, seed, time_limit, workers, cl
     """
     if ctx.invoked_subcommand is not None:
         return
-    from tilesolve import packing as facade
+    from tilesolve.families import packing as facade
     from tilesolve.model.packing import PackingProblem
 
     if kind is None or colors is None:
@@ -179,7 +179,7 @@ def count_cmd(ctx, kind, colors, up_to_symmetry, time_limit) -> None:
       tilesolve pack count --kind wang --colors 2                     # 203520
       tilesolve pack count --kind corner --colors 2 --up-to-symmetry  # 1
     """
-    from tilesolve import packing as facade
+    from tilesolve.families import packing as facade
     from tilesolve.model.packing import PackingProblem
 
     res = facade.count(PackingProblem(kind, colors), up_to_symmetry=up_to_symmetry, time_limit=time_limit)

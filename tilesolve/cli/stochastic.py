@@ -78,7 +78,7 @@ def tiling(ctx, kind, method, variant, colors, region, hash_, algorithm, seed, o
       tilesolve tiling --kind wang --method direct --set sums --colors 3 --region 1000000,0,8x4 --seed 2
       tilesolve verify t.json
     """
-    from tilesolve import stochastic as facade
+    from tilesolve.families import stochastic as facade
     from tilesolve.family import draw_solution, write_solution
     from tilesolve.model.stochastic import StochasticProblem
 

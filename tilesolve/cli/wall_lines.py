@@ -115,7 +115,7 @@ def wall_lines(ctx, methods, limits, size, samples, seed, colors, output, svg, p
     """
     from tilesolve.io.atomic import write_text_atomic
     from tilesolve.model.dappled import parse_size
-    from tilesolve.walls import LINE_METHODS, line_statistics
+    from tilesolve.families.walls import LINE_METHODS, line_statistics
 
     outs = Outputs(output, svg, png)
     rows_, cols = parse_size(size)

@@ -70,7 +70,7 @@ def wang_count(ctx, tiles_path, tiles_format, builtin, board_spec, method, time_
       tilesolve wang count --tiles tiles.json --board cylinder:5x3       # prints 3486784401
       tilesolve wang count --builtin jeandel-rao --board mobius:3x2      # prints 16 (by enumeration)
     """
-    from tilesolve import board as facade
+    from tilesolve.families import board as facade
     from tilesolve.io.mask import read_board_spec
     from tilesolve.model.board import BoardProblem
 

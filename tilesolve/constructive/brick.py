@@ -22,7 +22,7 @@ Every step touches each cell a bounded number of times, so the whole is linear i
 number of cells. On boards the paper does not cover (a cycle with an odd number of
 corners, or none, as round a Möbius strip or a narrow torus; cells joined to themselves),
 and the cycle solver fails, the algorithm raises :class:`~tilesolve.errors.MethodNotApplicable` saying why, and
-:func:`tilesolve.board.solve` routes the problem to the SAT solver.
+:func:`tilesolve.families.board.solve` routes the problem to the SAT solver.
 
 Examples
 --------

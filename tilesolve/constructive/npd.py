@@ -8,7 +8,7 @@ steps:
 1. a *cyclic* dappling ``D`` (Kaji et al.; the dappled paper §3.2, Algorithm 2) with classes
    0 (W_H, a horizontal line crosses the cell) and 1 (W_V) and the cyclic conditions
    ``H_0^p`` (no more than ``p`` horizontal tiles in a row, across the seam too) and
-   ``V_1^q``; the caller (:func:`tilesolve.walls.npd_route`) solves it with the dappled family;
+   ``V_1^q``; the caller (:func:`tilesolve.families.walls.npd_route`) solves it with the dappled family;
 2. the Wang tiling on top (App. A, Algorithm 1, :func:`npd_legs`): the vertical edge colours of
    each row, then "the same way" the horizontal edge colours of each column.
 

@@ -20,7 +20,7 @@ top), the brick around the vertex at the top-left corner of cell ``(a, b)`` is t
 (cell units, ``y`` down). A pixel's brick, and with it its distance to the brick's edges and
 its Cartesian UV coordinates inside the brick (Fig. 10, left), therefore needs the cells one
 step around its own: maps of a window need a *halo* of one cell on every side, and strips of
-a large wall can be computed one at a time (:func:`tilesolve.wall_render.write_wall_png`).
+a large wall can be computed one at a time (:func:`tilesolve.families.wall_render.write_wall_png`).
 
 Brick ids are the absolute lattice coordinates ``(X, Y)`` of the brick's vertex (``Y`` grows
 north, as the wall's ``j``): the same brick has the same id, and so the same colour, in every

@@ -16,7 +16,7 @@ Examples
 --------
 >>> from tilesolve.model.board import Board, BoardProblem, WangTileSet
 >>> p = BoardProblem(Board.rect(6, 6), WangTileSet.brick(3), [0] * 24)
->>> from tilesolve import board  # the board family passes its SAT route as the core solver
+>>> from tilesolve.families import board  # the board family passes its SAT route as the core solver
 >>> board.solve(p, method='theorem7', seed=1).status.value
 'sat'
 """

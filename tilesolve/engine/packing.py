@@ -7,7 +7,7 @@
     The same encoding in OR-tools CP-SAT, native exactly-one constraints.
 
 The searches that combine constructions with SAT (``hybrid``, ``lift``, ``recursive``) live
-one layer up, in :mod:`tilesolve.packing_search`; they use :func:`run_packing_sat` and
+one layer up, in :mod:`tilesolve.families.packing_search`; they use :func:`run_packing_sat` and
 :func:`check_search_size` from here.
 """
 

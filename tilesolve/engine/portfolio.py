@@ -146,7 +146,7 @@ def run_portfolio(
     task : callable
         ``task(seed=seed) -> Solution``: one independent randomised search that honours its
         own time limit. The seed is passed by keyword, so a :func:`functools.partial` of a
-        raw route works as it is, e.g. ``partial(tilesolve.packing_search.solve_lift,
+        raw route works as it is, e.g. ``partial(tilesolve.families.packing_search.solve_lift,
         problem, time_limit=60)``. Must pickle (module docstring).
     seeds : iterable of int
         One run per seed, started in this order (a seed starts when a worker is free).
@@ -244,7 +244,7 @@ def escalate(route: Callable[..., Solution], problem: Any, *, name: str, seed: i
     ----------
     route : callable
         The raw route, ``route(problem, *, seed, time_limit, solver) -> Solution``: a search
-        such as :func:`tilesolve.packing_search.solve_lift` or
+        such as :func:`tilesolve.families.packing_search.solve_lift` or
         :func:`tilesolve.engine.packing.solve_sat`, never a facade's ``solve``. Workers run
         it, so it must pickle (a module-level function).
     problem : object
@@ -284,7 +284,7 @@ def escalate(route: Callable[..., Solution], problem: Any, *, name: str, seed: i
 
     Examples
     --------
-    >>> from tilesolve.packing_search import solve_lift
+    >>> from tilesolve.families.packing_search import solve_lift
     >>> from tilesolve.model.packing import PackingProblem
     >>> s = escalate(solve_lift, PackingProblem("corner", 4), name="lift packing", seed=1)
     >>> s.status.value, s.seed, s.tiling.shape  # decided alone in well under QUICK_S

@@ -3,7 +3,7 @@
 The atlas
 ---------
 The ``C**4`` tiles of the complete corner set over ``C`` colours are laid out as a *corner
-tile packing* (§5.5.3, :func:`tilesolve.packing.solve`): a ``C**2 x C**2`` toroidal
+tile packing* (§5.5.3, :func:`tilesolve.families.packing.solve`): a ``C**2 x C**2`` toroidal
 arrangement in which touching corners have the same colour. Texture filtering reads texels
 of the neighbouring tiles of the atlas; because the packing is a valid tiling and the texels
 near a tile's border depend on its corner colours only, those texels are the ones any valid
@@ -178,7 +178,7 @@ void main() {
 def corner_packing(colors: int, *, seed: int = 0) -> np.ndarray:
     """A verified corner tile packing of ``C**2 x C**2`` tiles (§5.5.3), row 0 at the top."""
     from tilesolve.model.packing import PackingProblem
-    from tilesolve.packing import solve
+    from tilesolve.families.packing import solve
 
     c = _check_colors(colors)
     return np.asarray(solve(PackingProblem("corner", c), seed=seed, workers=1).tiling, dtype=np.int64)

@@ -1,7 +1,7 @@
 """PNG files of brick-wall maps, streamed band by band (004 §3.2, Fig. 9, 10, 19).
 
 The pixels come from :mod:`tilesolve.constructive.wall_maps` (via
-:func:`tilesolve.wall_render.write_wall_png`, which computes one band of cell rows at a time);
+:func:`tilesolve.families.wall_render.write_wall_png`, which computes one band of cell rows at a time);
 this module only knows how a map becomes PNG bytes:
 
 ``id``

@@ -118,7 +118,7 @@ def wall_source(method: str, *, colors: int, max_line: int | None, seed: int,
     from tilesolve.errors import MethodNotApplicable
     from tilesolve.family import raise_if_interrupted, solve
     from tilesolve.model.board import MAX_BOARD_CELLS
-    from tilesolve.walls import npd_problem
+    from tilesolve.families.walls import npd_problem
 
     if max_line is None or period is None:
         raise InvalidProblem("the npd wall needs a line limit and a period")

@@ -148,7 +148,7 @@ def _wang_images(problem: StochasticProblem, grid) -> tuple[np.ndarray, WangTile
 def crosscheck_tiling_window(problem: StochasticProblem, *, method: str = "auto", seed: int = 0,
                              time_limit: float | None = None) -> CrosscheckReport:
     """Cross-check one window of a stochastic tiling (module docstring)."""
-    from tilesolve.stochastic import solve, stochastic_violations
+    from tilesolve.families.stochastic import solve, stochastic_violations
     from tilesolve.verify.board import board_violations
 
     sol = solve(problem, method=method, seed=seed)

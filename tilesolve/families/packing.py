@@ -27,7 +27,7 @@ Methods
     Wang only: random Eulerian N/S edge columns, then SAT for the E/W edges and the tiles.
 ``lift``
     A packing over ``m`` colours repeated over the torus plus a ``k``-ary layer found by SAT
-    (``C = m*k``), :mod:`tilesolve.packing_search`; measured times in README ("Performance").
+    (``C = m*k``), :mod:`tilesolve.families.packing_search`; measured times in README ("Performance").
 ``recursive``
     A packing over ``C - 1`` colours pinned in the bottom-left corner, completed by SAT
     (Figs. 5.11-5.12).
@@ -125,9 +125,9 @@ def known(problem: PackingProblem, run: RunOptions) -> Solution:
 
 def _search(name: str):
     """The facade route of the search ``solve_<name>`` (:mod:`tilesolve.engine.packing` for
-    ``sat``/``cpsat``, :mod:`tilesolve.packing_search` for the searches over constructions);
+    ``sat``/``cpsat``, :mod:`tilesolve.families.packing_search` for the searches over constructions);
     heavy-tailed searches escalate to a seed portfolio (:func:`tilesolve.engine.portfolio.escalate`)."""
-    from tilesolve import packing_search
+    from tilesolve.families import packing_search
     from tilesolve.engine import packing as engine
 
     raw = getattr(engine if name in ("sat", "cpsat") else packing_search, f"solve_{name}")

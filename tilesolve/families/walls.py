@@ -5,7 +5,7 @@ in which no horizontal line runs through more than ``max_h`` cells and no vertic
 more than ``max_v``. The dappled paper (§4) builds one from an L-dappled tiling with
 ``T = {0, 1}`` (0 = W_H, a horizontal line crosses the cell; 1 = W_V) and
 ``L = {H_0^max_h, V_1^max_v}``: :func:`tilesolve.constructive.brick.wall_from_dappled` turns
-the classes into leg colours. Walls are board problems (:mod:`tilesolve.board`): this module
+the classes into leg colours. Walls are board problems (:mod:`tilesolve.families.board`): this module
 provides two routes of the board family:
 
 ``wall``
@@ -82,7 +82,7 @@ def wall_route(problem: BoardProblem, run: RunOptions) -> Solution:
     applies, SAT otherwise, e.g. for limit 1), so it is verified there too; its seed is the
     run's seed.
     """
-    from tilesolve import dappled
+    from tilesolve.families import dappled
     from tilesolve.constructive.brick import wall_from_dappled
     from tilesolve.model.dappled import DappledProblem, parse_condition
 
@@ -224,7 +224,7 @@ def npd_route(problem: BoardProblem, run: RunOptions) -> Solution:
         wall repeats with that period (the cyclic dappling is unsatisfiable: choose another
         period or method ``wall``).
     """
-    from tilesolve import dappled
+    from tilesolve.families import dappled
     from tilesolve.constructive.npd import cyclic_limits, npd_legs, periodic_window
     from tilesolve.model.dappled import DappledProblem, parse_condition
 
@@ -265,7 +265,7 @@ def npd_route(problem: BoardProblem, run: RunOptions) -> Solution:
 def brick_wall(rows: int, cols: int, max_line: int, *, max_v: int | None = None, n_colors: int = 3,
                seed: int | None = None) -> tuple[BoardProblem, Solution]:
     """A verified brick wall: ``(problem, solution)`` (see the module docstring)."""
-    from tilesolve.board import solve
+    from tilesolve.family import solve
 
     problem = wall_problem(rows, cols, max_line, max_v=max_v, n_colors=n_colors)
     return problem, solve(problem, method="wall", seed=seed)

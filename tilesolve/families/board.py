@@ -2,7 +2,7 @@
 
 Every question about Wang tilings of boards (Derouet-Jourdan, Kaji, Mizoguchi, *A linear
 algorithm for brick Wang tiling*, 2016) goes through :func:`solve`, :func:`count` or
-:func:`crosscheck`, as for dappled tilings (:mod:`tilesolve.dappled`):
+:func:`crosscheck`, as for dappled tilings (:mod:`tilesolve.families.dappled`):
 
 ``solve``
     the generic pipeline (:func:`tilesolve.family.solve`) over :data:`SOLVERS`: every
@@ -90,25 +90,25 @@ def theorem7(problem: BoardProblem, run: RunOptions) -> Solution:
 
 def wall(problem: BoardProblem, run: RunOptions) -> Solution:
     """A brick wall without long lines from a dappled tiling (dappled paper §4;
-    :mod:`tilesolve.walls`): brick tiles on a rectangle, free boundary, line limits."""
-    from tilesolve.walls import wall_route
+    :mod:`tilesolve.families.walls`): brick tiles on a rectangle, free boundary, line limits."""
+    from tilesolve.families.walls import wall_route
 
     return wall_route(problem, run)
 
 
 def procedural(problem: BoardProblem, run: RunOptions) -> Solution:
-    """A window of the infinite procedural brick wall (004 §3-4, App. B; :mod:`tilesolve.walls`):
+    """A window of the infinite procedural brick wall (004 §3-4, App. B; :mod:`tilesolve.families.walls`):
     brick tiles on a rectangle, free boundary, ``max_h == max_v``; family option ``origin``."""
-    from tilesolve.walls import procedural_route
+    from tilesolve.families.walls import procedural_route
 
     return procedural_route(problem, run)
 
 
 def npd(problem: BoardProblem, run: RunOptions) -> Solution:
-    """The repeatable non-procedural wall NPD (004 App. A; :mod:`tilesolve.walls`): brick
+    """The repeatable non-procedural wall NPD (004 App. A; :mod:`tilesolve.families.walls`): brick
     tiles on a torus (one period) or a rectangle (a window of the repeating wall), both line
     limits; family options ``period`` and ``origin``."""
-    from tilesolve.walls import npd_route
+    from tilesolve.families.walls import npd_route
 
     return npd_route(problem, run)
 
@@ -128,7 +128,7 @@ METHODS: tuple[str, ...] = ("auto",) + tuple(SOLVERS)
 def auto_method(problem: BoardProblem) -> str:
     """``wall`` for brick walls with line limits on a free rectangle, else ``linear`` (falls
     back to ``sat`` where it does not apply)."""
-    from tilesolve.walls import is_free_wall
+    from tilesolve.families.walls import is_free_wall
 
     return "wall" if is_free_wall(problem) else "linear"
 
@@ -311,7 +311,7 @@ def _draw(problem: BoardProblem, sol: Solution, path, fmt: str, *, title: str | 
 
 
 def _brick_wall_demo() -> BoardProblem:
-    from tilesolve.walls import wall_problem
+    from tilesolve.families.walls import wall_problem
 
     return wall_problem(20, 32, 3)
 
@@ -421,7 +421,7 @@ def _form_command(values) -> tuple[list[str], dict[str, str]]:
 
 def _form_window(values, x0: int, y0: int, rows: int, cols: int):
     """One window of the infinite procedural brick wall (004 §4) with the form's line limit."""
-    from tilesolve.walls import wall_problem
+    from tilesolve.families.walls import wall_problem
 
     line = values["max_h"] or values["max_v"] or 3
     return wall_problem(rows, cols, line, n_colors=values["colors"]), "procedural", {"origin": (x0, y0)}
