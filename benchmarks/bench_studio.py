@@ -10,7 +10,7 @@ tiling or a 100x100 brick board shown <= 0.5 s after Solve) two ways:
 
 The last row is one 32x32-cell window of the infinite procedural wall (``GET /api/view``),
 against the same window solved and drawn in-process. The browser's own times (click to
-picture, pan frame rate) are printed by ``tests/test_studio_browser.py -k speed``.
+picture, pan frame rate) are printed by ``tests/studio/test_browser.py -k speed``.
 
 Usage::
 
@@ -89,7 +89,7 @@ def main() -> None:
     for what, base, wall, fmt in rows:
         print(f"{what:<18} {fmt:>7} {base * 1e3:14.1f} {wall * 1e3:10.1f} {wall / base:6.2f}")
     print("goal: a 64x64 dappled tiling or a 100x100 brick board <= 500 ms after Solve (browser: "
-          "python -m pytest -s tests/test_studio_browser.py -k speed)")
+          "python -m pytest -s tests/studio/test_browser.py -k speed)")
     client.close()
     srv.should_exit = True
 

@@ -170,3 +170,13 @@ def test_the_facades_import_no_circle():
                 graph.add_edge(module, target)
     cycles = list(nx.simple_cycles(graph))
     assert not cycles, "import circles among the facades: " + "; ".join(" -> ".join(c) for c in cycles)
+
+
+def test_the_tests_mirror_the_package():
+    """A module's tests are found from its path: ``tests/io/test_board_json.py`` tests
+    ``tilesolve/io/board_json.py``; every test folder is named after a package of tilesolve, and
+    the tests at the top of ``tests/`` are those that cross every layer (README, examples, layers)."""
+    tests = PACKAGE.parent / "tests"
+    folders = {p.name for p in tests.iterdir() if p.is_dir() and any(p.glob("test_*.py"))}
+    packages = {p.name for p in PACKAGE.iterdir() if (p / "__init__.py").is_file()}
+    assert folders and folders <= packages, f"test folders with no package of that name: {sorted(folders - packages)}"

@@ -26,7 +26,7 @@ from tilesolve.model.board import Board, BoardProblem, WangTileSet
 from tilesolve.model.run import RunOptions
 from tilesolve.verify.board import board_violations
 
-DATA = Path(__file__).parent / "data" / "transducer"
+DATA = Path(__file__).resolve().parents[1] / "data" / "transducer"
 
 
 def load_tiles(name: str) -> WangTileSet:

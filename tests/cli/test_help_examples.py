@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 SCRIPT = shutil.which("tilesolve")
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 COMMANDS = [("dappled", "solve"), ("dappled", "count"), ("dappled", "crosscheck"), ("brick", "solve"),
             ("brick", "wall"), ("brick", "count"), ("brick", "crosscheck"), ("wang", "solve"), ("wall",), ("pack",),
             ("pack", "count"), ("tiles",), ("verify",), ("draw",), ("export", "dimacs"), ("demo",), ("backends",),

@@ -325,7 +325,7 @@ def test_png_default_scale_and_limits():
 
 
 # ----------------------------------------------------------------------------- docs
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
 def test_readme_json_example_is_a_valid_solution():

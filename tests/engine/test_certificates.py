@@ -388,7 +388,8 @@ def test_many_refutations_rechecked_on_worker_processes(tmp_path):
 
 def test_an_unsat_found_by_a_portfolio_worker_still_gets_its_proof_files(tmp_path, monkeypatch):
     """A worker process writes no proof files; the run asked for them decides the unsat again here."""
-    from tilesolve import family, packing
+    from tilesolve import family
+    from tilesolve.families import packing
     from tilesolve.engine import portfolio
     from tilesolve.engine.packing import solve_sat
     from tilesolve.model.packing import PackingProblem

@@ -1,5 +1,5 @@
 """Board solution files, versions 1 and 2: round trips, old files, other readers, bad input
-(the forgeries, through the console script: test_board_forgery.py)."""
+(the forgeries, through the console script: tests/verify/test_board_forgery.py)."""
 
 import base64
 import json

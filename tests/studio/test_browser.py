@@ -22,7 +22,7 @@ from playwright import sync_api as playwright
 from tilesolve.studio.app import create_app
 
 CHROMIUM = "/usr/bin/chromium"
-ARTIFACTS = Path(__file__).resolve().parent / "artifacts" / "studio"
+ARTIFACTS = Path(__file__).resolve().parents[1] / "artifacts" / "studio"
 EXE = os.path.join(os.path.dirname(sys.executable), "tilesolve")
 
 
