@@ -8,6 +8,8 @@ from typing import Any, Callable
 
 import numpy as np
 
+from tilesolve.model.window import Window
+
 __all__ = ["Status", "Solution", "CountResult", "CrosscheckReport"]
 
 
@@ -60,6 +62,10 @@ class Solution:
         Things the user should know (e.g. "constructive route fell back to sat").
     stats : dict
         Free-form numbers: variables, clauses, proof size, lower bound...
+    window : Window or None
+        Where the tiling lies in the plane, for a tiling that is a window of an infinite one
+        (a procedural or repeatable wall, a stochastic tiling): its grid's row 0 and column 0
+        are the cell ``window.cell(0, 0)``. ``None`` for a tiling that is not cut from the plane.
     renderer : callable, optional
         ``renderer(solution, fmt) -> str | bytes``: the picture of this solution as ``"svg"``
         or ``"png"``; set by :func:`tilesolve.family.solve` from the family's drawing, so a
@@ -76,6 +82,7 @@ class Solution:
     reason: str | None = None
     notes: tuple[str, ...] = ()
     stats: dict[str, Any] = field(default_factory=dict)
+    window: Window | None = None
     renderer: Callable[["Solution", str], Any] | None = field(default=None, repr=False, compare=False)
 
     def _repr_svg_(self) -> str | None:

@@ -25,6 +25,8 @@ import re
 from dataclasses import dataclass
 from typing import Any, Mapping
 
+import numpy as np
+
 from tilesolve.errors import InvalidProblem
 
 __all__ = ["Window", "parse_region", "MAX_COORDINATE"]
@@ -58,8 +60,9 @@ class Window:
     def __post_init__(self) -> None:
         for name in ("x0", "y0", "width", "height"):
             v = getattr(self, name)
-            if isinstance(v, bool) or not isinstance(v, int):
+            if isinstance(v, bool) or not isinstance(v, (int, np.integer)):
                 raise InvalidProblem(f"window {name} must be an integer, got {v!r}")
+            object.__setattr__(self, name, int(v))
         if self.width < 1 or self.height < 1:
             raise InvalidProblem(f"window size must be positive, got {self.width}x{self.height} (WxH)")
         for v in (self.x0, self.y0, self.x0 + self.width, self.y0 + self.height):
@@ -67,6 +70,31 @@ class Window:
                 raise InvalidProblem(f"window coordinates must stay within +-2^62, got {self}")
         if not isinstance(self.y_up, bool):
             raise InvalidProblem(f"window y_up must be true or false, got {self.y_up!r}")
+
+    @classmethod
+    def of(cls, value: Any) -> "Window":
+        """``value`` as a window: a :class:`Window` as it is, or ``(x0, y0, width, height)``
+        with y growing upwards.
+
+        >>> Window.of((3, -2, 4, 5))
+        Window(x0=3, y0=-2, width=4, height=5, y_up=True)
+        >>> Window.of((3, -2, 4))
+        Traceback (most recent call last):
+        ...
+        tilesolve.errors.InvalidProblem: a window is (x0, y0, width, height), got (3, -2, 4)
+        """
+        if isinstance(value, cls):
+            return value
+        try:
+            x0, y0, width, height = value
+        except (TypeError, ValueError):
+            raise InvalidProblem(f"a window is (x0, y0, width, height), got {value!r}") from None
+        return cls(x0, y0, width, height)
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        """``(rows, cols)`` of the window's grid: ``(height, width)``."""
+        return self.height, self.width
 
     def cell(self, row: int, col: int) -> tuple[int, int]:
         """The plane coordinates ``(x, y)`` of the grid cell in ``row`` (from the top), ``col``."""
