@@ -103,7 +103,7 @@ def main(argv=None) -> int:
         sec, g = _timed(lambda: algorithm1(f, p, q), 3 if n <= 1024 else 2)
         peak = _peak(lambda: algorithm1(f, p, q))
         if n <= 1024:
-            assert is_dappled(g, DappledProblem.from_strings(f"{n}x{n}", ["H0=2", "V1=2"]))
+            assert is_dappled(DappledProblem.from_strings(f"{n}x{n}", ["H0=2", "V1=2"]), g)
         numba_rate[n] = n * n / sec
         rows.append(("numba", f"{n}x{n}", sec, n * n / sec, peak))
     py_rate = {}

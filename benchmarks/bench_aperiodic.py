@@ -73,7 +73,7 @@ def squares(ws, sizes, cap: float) -> None:
         ta, ca = time.perf_counter() - t, cpu() - c
         w = certs[-1]
         assert largest == n and w.status == "tiles"
-        assert not board_violations(leg_colours(ws, w.tiling), BoardProblem(Board.rect(n, n), ws))
+        assert not board_violations(BoardProblem(Board.rect(n, n), ws), leg_colours(ws, w.tiling))
         ratio = f"{tp / ta:.1f}x" if st is not Status.UNKNOWN else f">{cap / ta:.1f}x"
         print(f"{n:>5} {n * n:>7} {fmt(st, tp, cap):>12} {cp:>10.2f} {ta:>12.2f} {ca:>14.2f} {n * n / ta:>9.0f} "
               f"{rss_mib():>12.0f} "

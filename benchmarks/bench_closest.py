@@ -68,7 +68,7 @@ def worker(size: int, seed: int, method: str, time_limit: float, conds: list[str
         status, opt, lb, used = r.status, r.cost, r.stats.get("lower_bound"), r.solver
         tiling = enc.decode(r.model) if r.model is not None else None
     elapsed = time.perf_counter() - t0
-    ok = tiling is not None and is_dappled(tiling, p) and hamming_distance(tiling, target) == opt
+    ok = tiling is not None and is_dappled(p, tiling) and hamming_distance(tiling, target) == opt
     return {
         "size": size, "seed": seed, "method": method, "solver": used, "status": Status(status).value,
         "optimum": opt if status is Status.OPTIMAL else None, "found": opt, "lower_bound": lb,

@@ -41,7 +41,7 @@ def worker(route: str, size: int, conds: list[str], solver: str) -> dict:
         sol = solve_sat(p, solver=solver)
         total = time.perf_counter() - t0
         t1 = time.perf_counter()
-        ok = bool(sol.tiling is not None and is_dappled(sol.tiling, p))
+        ok = bool(sol.tiling is not None and is_dappled(p, sol.tiling))
         verify_s = time.perf_counter() - t1
         return {
             "route": route, "status": sol.status.value, "encode_s": sol.stats["encode_s"],
@@ -67,7 +67,7 @@ def worker(route: str, size: int, conds: list[str], solver: str) -> dict:
         tiling = (m > 0).astype(np.int8).reshape(p.rows, p.cols)
     return {
         "route": route, "status": "sat" if answer else "unsat", "encode_s": t1 - t0, "solve_s": t2 - t1,
-        "total_s": t2 - t0, "verify_s": None, "verified": bool(tiling is not None and is_dappled(tiling, p)),
+        "total_s": t2 - t0, "verify_s": None, "verified": bool(tiling is not None and is_dappled(p, tiling)),
         "vars": p.size, "clauses": len(clauses), "peak_mb": _peak_mb(),
     }
 

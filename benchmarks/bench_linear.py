@@ -108,7 +108,7 @@ def main() -> None:
         solve_linear(p, seed=0)
         mib = tracemalloc.get_traced_memory()[1] / 2**20
         tracemalloc.stop()
-        t_ver, v = best(lambda: board_violations(sol.tiling, p) if sol.status.value == "sat" else [], 1)
+        t_ver, v = best(lambda: board_violations(p, sol.tiling) if sol.status.value == "sat" else [], 1)
         times[s * s] = (t_solve, t_build + t_solve)
         n = p.board.n_cells
         print(f"{s:>5}x{s:<4} {n:>9} {t_old:>9.3f} {t_build:>8.3f} {t_old / t_build:>6.1f}x {t_solve:>8.3f} "

@@ -51,7 +51,7 @@ def main() -> None:
         except Exception as exc:  # noqa: BLE001 - a benchmark reports, it does not stop
             row(kind, c, method, seed, time.perf_counter() - t0, "error", "-", f"{type(exc).__name__}: {exc}"[:80])
             return
-        ok = is_packing(s.tiling, kind, c) if s.tiling is not None else "-"
+        ok = is_packing(PackingProblem(kind, c), s.tiling) if s.tiling is not None else "-"
         note = s.reason or next((n for n in s.notes if n.startswith("portfolio")), "")
         row(kind, c, method, seed, time.perf_counter() - t0, s.status.value, ok, note[:90])
 

@@ -104,11 +104,11 @@ def main() -> None:
         p = DappledProblem.from_strings(f"{s}x{s}", ["H0=2", "V1=2"])
         t_kernel, tiling = best(lambda: make_dappled(p, seed=1), args.repeat)
         kernels[s] = (p, t_kernel)
-        t_new, v = best(lambda: dappled_violations(tiling, p), args.repeat)
+        t_new, v = best(lambda: dappled_violations(p, tiling), args.repeat)
         t_old, n_old = best(lambda: old_dappled_bad_cells(tiling, p), 1)
         assert v == [] and n_old == 0
         row("dappled H0^2,V1^2", f"{s}x{s}", s * s, t_old, t_new,
-            peak_mib(lambda: old_dappled_bad_cells(tiling, p)), peak_mib(lambda: dappled_violations(tiling, p)),
+            peak_mib(lambda: old_dappled_bad_cells(tiling, p)), peak_mib(lambda: dappled_violations(p, tiling)),
             f"kernel {t_kernel:.3f} s")
     bs = 316 if args.quick else 1000
     warm = Board.rect(4, 4)
@@ -116,11 +116,11 @@ def main() -> None:
     b = Board.with_holes(bs, bs, bs * bs // 400, 12, seed=1)
     bp = BoardProblem(b, WangTileSet.brick(3), random_boundary(b, 3, seed=1))
     t_solve, sol = best(lambda: solve_linear(bp, seed=1), 1)
-    t_new, v = best(lambda: board_violations(sol.tiling, bp), args.repeat)
+    t_new, v = best(lambda: board_violations(bp, sol.tiling), args.repeat)
     t_old, n_old = best(lambda: old_board_join_mismatches(sol.tiling, b), args.repeat)
     assert v == [] and n_old == 0
     row("board joins+all", f"{bs}x{bs}", b.n_cells, t_old, t_new,
-        peak_mib(lambda: old_board_join_mismatches(sol.tiling, b)), peak_mib(lambda: board_violations(sol.tiling, bp)),
+        peak_mib(lambda: old_board_join_mismatches(sol.tiling, b)), peak_mib(lambda: board_violations(bp, sol.tiling)),
         f"old = joins only; linear solve {t_solve:.3f} s")
     try:
         from tilesolve.families import dappled as api

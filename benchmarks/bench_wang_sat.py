@@ -45,7 +45,7 @@ def main() -> None:
             t = time.perf_counter()
             s = wang.solve(p, method=m, seed=0, time_limit=120)
             dt = time.perf_counter() - t
-            ok = not s.status.has_tiling or not board_violations(s.tiling, p)
+            ok = not s.status.has_tiling or not board_violations(p, s.tiling)
             print(f"{name:>18} {b.n_cells:>7} {m:>6} {s.stats.get('variables', '-'):>9} "
                   f"{s.stats.get('clauses', '-'):>9} {dt:>7.2f} {s.status.value + ('' if ok else '!'):>7}")
 

@@ -29,7 +29,7 @@ if __name__ == "__main__":  # a search portfolio's worker processes re-import th
     for c in range(2, 9):
         t0 = time.perf_counter()
         s = packing.solve(PackingProblem("corner", c), seed=1)
-        assert s.tiling is not None and not packing_violations(s.tiling, "corner", c)
+        assert s.tiling is not None and not packing_violations(PackingProblem("corner", c), s.tiling)
         path = out / f"corner-{c}.svg"
         write_packing_svg(path, s.tiling, "corner", c, title=f"corner packing, C={c} ({s.method})")
         print(f"C={c}: {s.tiling.shape[0]}x{s.tiling.shape[1]} by {s.method} in {time.perf_counter() - t0:.2f} s"

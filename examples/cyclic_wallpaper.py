@@ -26,12 +26,12 @@ out.mkdir(parents=True, exist_ok=True)
 
 problem = DappledProblem.from_strings("12x12", ["H0=2", "V1=2"], cyclic=True)
 solution = dappled.solve(problem, seed=2)
-assert not dappled_violations(solution.tiling, problem)
+assert not dappled_violations(problem, solution.tiling)
 
 # The 3 x 3 repetition, as a plain (non-cyclic) problem, is dappled too.
 big = np.tile(solution.tiling, (3, 3))
 plain = DappledProblem.from_strings("36x36", ["H0=2", "V1=2"])
-assert not dappled_violations(big, plain)
+assert not dappled_violations(plain, big)
 
 write_svg(out / "wallpaper.svg", solution.tiling, problem=problem, repeat=3,
           notes=[f"{solution.status.value} by {solution.method}, seed 2"])

@@ -26,7 +26,7 @@ out.mkdir(parents=True, exist_ok=True)
 problem = DappledProblem.from_strings("24x16", ["H0=2", "V1=3"])
 solution = dappled.solve(problem, seed=7)
 
-violations = dappled_violations(solution.tiling, problem)  # independent checker
+violations = dappled_violations(problem, solution.tiling)  # independent checker
 assert not violations, violations
 
 write_solution(out / "quickstart.json", problem, solution)

@@ -46,7 +46,7 @@ def test_pack_writes_a_valid_file(tmp_path, kind, c, method):
     doc = json.loads((tmp_path / "p.json").read_text())
     assert doc["format"] == "tilesolve/packing" and doc["kind"] == kind and doc["colors"] == c
     grid = np.array(doc["grid"])
-    assert grid.shape == (c * c, c * c) and is_packing(grid, kind, c)
+    assert grid.shape == (c * c, c * c) and is_packing(PackingProblem(kind, c), grid)
     assert (tmp_path / "p.svg").read_text().startswith("<svg")
     proc = run("verify", "p.json", cwd=tmp_path)
     assert proc.returncode == 0 and proc.stdout.startswith("ok:")
@@ -130,7 +130,7 @@ def test_demo_entry_writes_verified_pictures(tmp_path):
     assert p.returncode == 0, p.stderr
     for name in ("packing-wang3", "packing-corner4"):
         problem, sol = read_packing(tmp_path / "pics" / f"{name}.json")
-        assert is_packing(sol.tiling, problem.kind, problem.colors)
+        assert is_packing(problem, sol.tiling)
         assert (tmp_path / "pics" / f"{name}.svg").exists()
 
 
@@ -145,7 +145,7 @@ def test_lift_and_recursive_from_the_command_line(tmp_path):
     assert p.returncode == 0, p.stderr
     assert "embeds a packing over 2 colours" in p.stderr
     grid = np.array(read_packing(tmp_path / "w3.json")[1].tiling)
-    assert is_packing(grid, "wang", 3)
+    assert is_packing(PackingProblem("wang", 3), grid)
 
 
 def test_unreachable_cluster_is_a_one_line_error(tmp_path):

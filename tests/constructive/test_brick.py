@@ -25,7 +25,7 @@ def _check_against_sat(board, k, seed, free_fraction=0.0):
     sat = wang.solve(p, method="sat")
     assert lin.status == sat.status, (lin.reason, sat.reason)
     if lin.status.has_tiling:
-        assert board_violations(lin.tiling, p) == []
+        assert board_violations(p, lin.tiling) == []
     return lin
 
 

@@ -130,7 +130,7 @@ def test_algorithm1_matches_paper_box_and_verifies(data, shape, order, per_cell)
     g = algorithm1(f, P, Q, order=order)
     assert g.dtype == np.int8 and g.shape == shape
     assert np.array_equal(g, paper_algorithm1(f, P, Q, order == "col"))
-    assert dappled_violations(g, prob) == []
+    assert dappled_violations(prob, g) == []
     # Prop. 2.1: a dappled input comes back unchanged.
     assert np.array_equal(algorithm1(g, P, Q, order=order), g)
 
@@ -142,7 +142,7 @@ def test_make_dappled_algorithm1_random_initial(shape, p, q, seed):
     prob = problem_of(shape, p, q)
     assert dappled_route(prob) == "algorithm1"
     g = make_dappled(prob, seed=seed)
-    assert is_dappled(g, prob)
+    assert is_dappled(prob, g)
     assert np.array_equal(g, make_dappled(prob, seed=seed))  # same seed, same tiling
 
 
@@ -153,7 +153,7 @@ def test_algorithm1_keeps_dappled_inputs_found_by_filtering():
     kept = 0
     for _ in range(400):
         f = rng.integers(0, 2, prob.shape)
-        if is_dappled(f, prob):
+        if is_dappled(prob, f):
             kept += 1
             assert np.array_equal(algorithm1(f, P, Q), f)
             assert np.array_equal(algorithm1(f, P, Q, order="col"), f)
@@ -165,7 +165,7 @@ def test_algorithm1_large_and_uniform_vector_limits():
     f = rng.integers(0, 2, (300, 257))
     g = algorithm1(f, [2, 0], [0, 2])  # {H_0^2, V_1^2}, limits as per-tile vectors
     prob = DappledProblem.from_strings("257x300", ["H0=2", "V1=2"])
-    assert is_dappled(g, prob)
+    assert is_dappled(prob, g)
     assert np.array_equal(g, algorithm1(f, full((2, 0), f.shape), full((0, 2), f.shape)))
     assert (g != f).mean() < 0.3  # local surgery: the output stays close to the input
 
@@ -193,7 +193,7 @@ def test_example_3_1_non_uniform():
     prob = DappledProblem(rows, cols, conditions=conds)
     f = np.random.default_rng(3).integers(0, 2, (rows, cols))
     g = algorithm1(f, P, Q)
-    assert dappled_violations(g, prob) == []
+    assert dappled_violations(prob, g) == []
     assert np.array_equal(g, make_dappled(prob, f))
     assert np.array_equal(algorithm1(g, P, Q), g)
     # the per-cell limits bite: runs of 0 in the first columns are short
@@ -210,7 +210,7 @@ def test_trivial_plain_any_limits_ge_1(shape, n, data, seed):
     prob = problem_of(shape, p, q, n_tiles=n)
     assert dappled_route(prob) == "trivial"
     g = make_dappled(prob, seed=seed)
-    assert g.max() < n and is_dappled(g, prob)
+    assert g.max() < n and is_dappled(prob, g)
     assert np.array_equal(make_dappled(prob, g, seed=seed + 1), g)  # dappled input kept
 
 
@@ -227,7 +227,7 @@ def test_trivial_cyclic(shape, n, data, seed):
         assert min(shape) == 2 and n < 5
         return
     assert route == "trivial"
-    assert dappled_violations(make_dappled(prob, seed=seed), prob) == []
+    assert dappled_violations(prob, make_dappled(prob, seed=seed)) == []
 
 
 def test_trivial_cyclic_limit_one_needs_five_tiles():
@@ -238,7 +238,7 @@ def test_trivial_cyclic_limit_one_needs_five_tiles():
     for shape in ("7x5", "6x6", "3x3", "9x4"):
         prob = DappledProblem.from_strings(shape, conds, n_tiles=5, cyclic=True)
         for seed in range(20):
-            assert is_dappled(make_dappled(prob, seed=seed), prob)
+            assert is_dappled(prob, make_dappled(prob, seed=seed))
 
 
 def test_trivial_per_cell_limits_plain():
@@ -246,7 +246,7 @@ def test_trivial_per_cell_limits_plain():
     lim = rng.integers(0, 3, (9, 11)).astype(np.int32)
     prob = DappledProblem(9, 11, n_tiles=3, conditions=(Condition("H", (0,), lim), Condition("V", (2,), lim)))
     g = make_dappled(prob, seed=1)
-    assert is_dappled(g, prob)
+    assert is_dappled(prob, g)
     assert trivial(g, 3, *prob.single_tile_limits(), seed=2).tolist() == g.tolist()
 
 
@@ -264,7 +264,7 @@ def test_algorithm2_matches_paper_box_and_verifies_cyclically(data, shape, order
     pn = [min(x, shape[1] - 1) if x else 0 for x in p]
     qn = [min(x, shape[0] - 1) if x else 0 for x in q]
     assert np.array_equal(g, paper_algorithm2(f, pn, qn, order == "col"))
-    assert dappled_violations(g, prob) == []
+    assert dappled_violations(prob, g) == []
 
 
 def test_algorithm2_many_random_inputs():
@@ -276,7 +276,7 @@ def test_algorithm2_many_random_inputs():
         q = [int(rng.choice([0, 3, 4, 7])) for _ in range(2)]
         prob = problem_of(shape, p, q, cyclic=True)
         g = make_dappled(prob, seed=int(rng.integers(2**31)), order=str(rng.choice(["row", "col"])))
-        failures += bool(dappled_violations(g, prob))
+        failures += bool(dappled_violations(prob, g))
     assert failures == 0
 
 
@@ -306,7 +306,7 @@ def test_remark34_p_q_2_many_random_inputs(shape):
     for i in range(1000):
         f = rng.integers(0, 2, shape)
         g = remark34(f, 2, 2, order="col" if i % 2 else "row")
-        failures += bool(dappled_violations(g, prob))
+        failures += bool(dappled_violations(prob, g))
     assert failures == 0
 
 
@@ -322,7 +322,7 @@ def test_remark34_route_verifies(shape, p, q, a, seed, order):
     else:
         assert route == "remark3.4"
     g = make_dappled(prob, seed=seed, order=order)
-    assert dappled_violations(g, prob) == []
+    assert dappled_violations(prob, g) == []
 
 
 def test_remark34_frame_is_a_draughtboard():
@@ -340,9 +340,9 @@ def test_remark34_recheck_fixes_the_papers_procedure():
     broken = fixed = 0
     for _ in range(300):
         f = rng.integers(0, 2, (8, 8))
-        if dappled_violations(remark34(f, 2, 2, recheck=False), prob):
+        if dappled_violations(prob, remark34(f, 2, 2, recheck=False)):
             broken += 1
-            fixed += is_dappled(remark34(f, 2, 2), prob)
+            fixed += is_dappled(prob, remark34(f, 2, 2))
     assert broken > 0 and fixed == broken
 
 
@@ -356,16 +356,16 @@ def test_draughtboard_is_dappled_for_any_L(shape, n, seed, data):
     lims = st.sampled_from([2, 3])
     p = data.draw(st.lists(lims, min_size=n, max_size=n))
     q = data.draw(st.lists(lims, min_size=n, max_size=n))
-    assert is_dappled(g, problem_of(shape, p, q, n_tiles=n))
+    assert is_dappled(problem_of(shape, p, q, n_tiles=n), g)
     # cyclic: H conditions need an even number of columns, V ones an even number of rows
     cyc_p = p if shape[1] % 2 == 0 else [0] * n
     cyc_q = q if shape[0] % 2 == 0 else [0] * n
-    assert is_dappled(g, problem_of(shape, cyc_p, cyc_q, cyclic=True, n_tiles=n))
+    assert is_dappled(problem_of(shape, cyc_p, cyc_q, cyclic=True, n_tiles=n), g)
 
 
 def test_draughtboard_odd_side_can_break_cyclic_seam():
     prob = DappledProblem.from_strings("5x4", ["H0=2", "H1=2"], cyclic=True)
-    assert any(not is_dappled(draughtboard(4, 5, seed=s), prob) for s in range(50))
+    assert any(not is_dappled(prob, draughtboard(4, 5, seed=s)) for s in range(50))
 
 
 # --------------------------------------------------------------------------- errors

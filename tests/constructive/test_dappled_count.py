@@ -67,7 +67,7 @@ def brute_count(problem: DappledProblem, check_sample: int = 24, seed: int = 0) 
     if len(good):
         sample = np.concatenate([sample, rng.choice(good, size=min(8, len(good)), replace=False)])
     for i in sample:
-        assert is_dappled(tilings[i], problem) == bool(ok[i]), (tilings[i], problem.describe())
+        assert is_dappled(problem, tilings[i]) == bool(ok[i]), (tilings[i], problem.describe())
     return int(ok.sum())
 
 

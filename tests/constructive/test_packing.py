@@ -21,6 +21,7 @@ from tilesolve.constructive.packing import (
 )
 from tilesolve.constructive.packing_known import FIG_5_11_CORNER_4, FIG_5_12_WANG_4, known_packing
 from tilesolve.errors import InvalidProblem, MethodNotApplicable
+from tilesolve.model.packing import PackingProblem
 from tilesolve.verify.packing import is_packing, packing_violations
 
 #: Fig. 5.10: the Eulerian Wang packing over 3 colours (row 0 at the top).
@@ -39,13 +40,13 @@ FIG_5_10 = np.array([
 
 # ----------------------------------------------------------------------------- verifier
 def test_published_packings_verify():
-    assert packing_violations(FIG_5_10, "wang", 3) == []
-    assert packing_violations(FIG_5_11_CORNER_4, "corner", 4) == []
-    assert packing_violations(FIG_5_12_WANG_4, "wang", 4) == []
+    assert packing_violations(PackingProblem("wang", 3), FIG_5_10) == []
+    assert packing_violations(PackingProblem("corner", 4), FIG_5_11_CORNER_4) == []
+    assert packing_violations(PackingProblem("wang", 4), FIG_5_12_WANG_4) == []
     # the figures are printed north-up: upside down they are not packings
-    assert not is_packing(FIG_5_11_CORNER_4[::-1], "corner", 4)
+    assert not is_packing(PackingProblem("corner", 4), FIG_5_11_CORNER_4[::-1])
     # a Wang packing read as corner tiles is not a corner packing
-    assert not is_packing(FIG_5_12_WANG_4, "corner", 4)
+    assert not is_packing(PackingProblem("corner", 4), FIG_5_12_WANG_4)
 
 
 @pytest.mark.parametrize("grid,kind,c", [(FIG_5_10, "wang", 3), (FIG_5_11_CORNER_4, "corner", 4),
@@ -53,7 +54,7 @@ def test_published_packings_verify():
 def test_verifier_catches_swapped_tiles(grid, kind, c):
     g = grid.copy()
     g[0, 0], g[3, 5] = g[3, 5], g[0, 0]
-    v = packing_violations(g, kind, c)
+    v = packing_violations(PackingProblem(kind, c), g)
     assert v and all(x.kind == "match" for x in v)
     # the positions name the swapped cells or their west/north neighbours
     cells = {(x.row, x.col) for x in v}
@@ -63,26 +64,26 @@ def test_verifier_catches_swapped_tiles(grid, kind, c):
 def test_verifier_catches_duplicates_missing_range_shape_and_pins():
     g = FIG_5_10.copy()
     g[4, 4] = g[0, 0]
-    kinds = {x.kind for x in packing_violations(g, "wang", 3)}
+    kinds = {x.kind for x in packing_violations(PackingProblem("wang", 3), g)}
     assert {"duplicate", "missing"} <= kinds
-    dup = [x for x in packing_violations(g, "wang", 3) if x.kind == "duplicate"]
+    dup = [x for x in packing_violations(PackingProblem("wang", 3), g) if x.kind == "duplicate"]
     assert (dup[0].row, dup[0].col) == (4, 4)
     g = FIG_5_10.copy()
     g[2, 2] = 81
-    assert [x.kind for x in packing_violations(g, "wang", 3)] == ["tile"]
-    assert packing_violations(FIG_5_10[:8], "wang", 3)[0].kind == "shape"
-    assert packing_violations(FIG_5_10, "wang", 2)[0].kind == "shape"
-    assert packing_violations(FIG_5_10.astype(float), "wang", 3)[0].kind == "tile"
-    v = packing_violations(FIG_5_10, "wang", 3, fixed=[(8, 0, 0), (0, 0, 5)])
+    assert [x.kind for x in packing_violations(PackingProblem("wang", 3), g)] == ["tile"]
+    assert packing_violations(PackingProblem("wang", 3), FIG_5_10[:8])[0].kind == "shape"
+    assert packing_violations(PackingProblem("wang", 2), FIG_5_10)[0].kind == "shape"
+    assert packing_violations(PackingProblem("wang", 3), FIG_5_10.astype(float))[0].kind == "tile"
+    v = packing_violations(PackingProblem("wang", 3, fixed=[(8, 0, 0), (0, 0, 5)]), FIG_5_10)
     assert [(x.kind, x.row, x.col) for x in v] == [("fixed", 0, 0)]
 
 
 def test_verifier_checks_the_torus_seams():
     # rolling a packing keeps it a packing; cutting and re-gluing a row does not
-    assert is_packing(np.roll(FIG_5_11_CORNER_4, (5, 11), axis=(0, 1)), "corner", 4)
+    assert is_packing(PackingProblem("corner", 4), np.roll(FIG_5_11_CORNER_4, (5, 11), axis=(0, 1)))
     g = FIG_5_11_CORNER_4.copy()
     g[0] = np.roll(g[0], 1)
-    v = packing_violations(g, "corner", 4)
+    v = packing_violations(PackingProblem("corner", 4), g)
     assert v and {x.row for x in v} <= {0, 15}
 
 
@@ -118,7 +119,7 @@ def test_outer_product_reproduces_figure_5_10():
 @pytest.mark.parametrize("c", [2, 3, 4, 5, 6])
 def test_wang_closed_form_position(c):
     g = wang_packing(c)
-    assert is_packing(g, "wang", c)
+    assert is_packing(PackingProblem("wang", c), g)
     t = np.arange(c**4)
     r, col = wang_position(t, c)
     assert np.array_equal(g[r, col], t)
@@ -130,7 +131,7 @@ def test_seeded_outer_products_are_packings(ch, cv, seed):
     cv = max(cv, 2)
     g = wang_packing(ch, colors_v=cv, seed=seed)
     assert g.shape == (ch * ch, cv * cv)
-    assert is_packing(g, "wang", ch, colors_v=cv)
+    assert is_packing(PackingProblem("wang", ch, colors_v=cv), g)
 
 
 def test_wang_position_with_separate_colours():
@@ -141,7 +142,7 @@ def test_wang_position_with_separate_colours():
 
 def test_outer_product_of_non_packings_is_caught():
     g = outer_product(np.array([0, 0, 1, 0]), wei_sequence(2), 2)
-    assert not is_packing(g, "wang", 2)
+    assert not is_packing(PackingProblem("wang", 2), g)
 
 
 # ----------------------------------------------------------------------------- corner
@@ -150,7 +151,7 @@ def test_triangular_shift_torus_is_a_corner_packing(c):
     """a[i][j] = s[(j + i(i-1)/2) mod C^2] over a de Bruijn sequence B(C,2) is a corner packing."""
     for seed in (None, 0, 1):
         g = corner_packing_odd(c, seed=seed)
-        assert packing_violations(g, "corner", c) == []
+        assert packing_violations(PackingProblem("corner", c), g) == []
 
 
 @pytest.mark.parametrize("c", [2, 3, 4, 5, 6, 7])
@@ -177,7 +178,7 @@ def test_triangular_shift_proof(c):
         # step 3
         closes = tri(n) % n == tri(0) % n
         assert closes == (c % 2 == 1)
-        assert is_packing(corner_packing_from_colors(a, c), "corner", c) == (c % 2 == 1)
+        assert is_packing(PackingProblem("corner", c), corner_packing_from_colors(a, c)) == (c % 2 == 1)
 
 
 def test_even_corner_construction_refused():
@@ -197,7 +198,7 @@ def test_absurd_constructions_refused():
                                          ("wang", FIG_5_10, 3)])
 def test_symmetries_map_packings_to_packings(kind, grid, c):
     for seed in range(12):
-        assert is_packing(random_symmetry(grid, kind, c, seed), kind, c)
+        assert is_packing(PackingProblem(kind, c), random_symmetry(grid, kind, c, seed))
 
 
 def test_known_packings():

@@ -54,7 +54,7 @@ def test_every_enumerated_packing_verifies_and_is_distinct():
         seen = set()
         for g in enumerate_packings(kind, 2):
             assert g[0, 0] == 0
-            assert is_packing(g, kind, 2)
+            assert is_packing(PackingProblem(kind, 2), g)
             seen.add(g.tobytes())
         assert len(seen) == {"corner": 2, "wang": 12_720}[kind]
 
@@ -68,10 +68,10 @@ def test_corner_count_agrees_with_sat_enumeration():
 
 def test_orbit_representatives_are_packings():
     reps = packing_orbits(enumerate_packings("corner", 2), "corner", 2)
-    assert len(reps) == 1 and is_packing(reps[0], "corner", 2)
+    assert len(reps) == 1 and is_packing(PackingProblem("corner", 2), reps[0])
     # every symmetry image of the representative is again a packing
     for _, turns, mirrored, m in symmetry_maps("corner", 2):
-        assert is_packing(apply_symmetry(reps[0], turns, mirrored, m, (1, 2)), "corner", 2)
+        assert is_packing(PackingProblem("corner", 2), apply_symmetry(reps[0], turns, mirrored, m, (1, 2)))
 
 
 def test_time_limit_gives_unknown():

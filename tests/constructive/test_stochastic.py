@@ -58,7 +58,7 @@ def test_every_window_is_a_tiling_of_its_set(case, colors, x0, y0, w, h, seed, h
     ts = tile_set(case[0], case[1], colors, case[2])
     g = window(case, (x0, y0, w, h), colors, seed, hash)
     assert g.shape == (h, w)
-    assert grid_violations(g, ts.table(), kind=case[0], labels=ts.indices, limit=5) == []
+    assert grid_violations(ts.table(), g, kind=case[0], labels=ts.indices, limit=5) == []
 
 
 @settings(max_examples=80)

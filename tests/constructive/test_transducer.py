@@ -42,7 +42,7 @@ def load_tiles(name: str) -> WangTileSet:
 
 def check_torus(ts: WangTileSet, torus: np.ndarray) -> None:
     k, p = torus.shape
-    assert board_violations(torus_tiling(ts, torus), BoardProblem(Board.torus(k, p), ts)) == []
+    assert board_violations(BoardProblem(Board.torus(k, p), ts), torus_tiling(ts, torus)) == []
 
 
 def sat(ts: WangTileSet, board: str) -> str:
@@ -281,7 +281,7 @@ def test_reports_pass_the_family_verifier():
         ts = load_tiles(name)
         problem = AperiodicProblem(ts, 0, max_period)
         _, rep = transducer_report(problem, RunOptions(seed=1), refute=lambda b, run: sat_decide(ts, b, run))
-        assert aperiodic_violations(rep, problem) == []
+        assert aperiodic_violations(problem, rep) == []
     # a corrupted witness is caught
     ts = load_tiles("hard")
     problem = AperiodicProblem(ts, 0, 3)
@@ -291,7 +291,7 @@ def test_reports_pass_the_family_verifier():
     from dataclasses import replace
 
     rep = replace(rep, periods=(replace(rep.periods[0], tiling=bad),))
-    assert aperiodic_violations(rep, problem) != []
+    assert aperiodic_violations(problem, rep) != []
 
 
 @settings(max_examples=40)

@@ -153,7 +153,7 @@ def test_every_window_is_a_brick_tiling_with_lines_of_at_most_n(n, nc, x0, y0, w
     legs = wall_window(x0, y0, w, h, colors=nc, max_line=n, seed=seed)
     assert legs.shape == (h, w, 4)
     problem, t = window_problem(legs, nc, n)
-    assert board_violations(t, problem) == []
+    assert board_violations(problem, t) == []
     if n is not None:
         hor, ver = line_lengths(legs)
         assert max(hor.max(initial=0), ver.max(initial=0)) <= n
@@ -165,7 +165,7 @@ def test_line_limit_is_reached_and_kept_on_a_large_window(n):
     hor, ver = line_lengths(legs)
     assert max(hor.max(), ver.max()) == n  # the limit holds and is used
     problem, t = window_problem(legs, 3, n)
-    assert board_violations(t, problem) == []
+    assert board_violations(problem, t) == []
 
 
 def test_without_dappling_lines_grow_longer():
@@ -190,7 +190,7 @@ def test_windows_built_in_strips_match_single_cells():
     x0, y0, w, h = -2, -35001, 3, 70001
     legs = wall_window(x0, y0, w, h, colors=3, max_line=2, seed=4)
     problem, t = window_problem(legs[:40], 3, 2)
-    assert board_violations(t, problem) == []
+    assert board_violations(problem, t) == []
     strip = (1 << 16) // w
     for r in sorted({0, h - 1} | {k * strip + d for k in range(1, h // strip + 1) for d in (-1, 0)} - {h}):
         for c in range(w):
@@ -209,7 +209,7 @@ def test_windows_satisfy_the_sat_encoding_and_sat_solves_them_too(n):
         assert sat.solve(assumptions=pin(enc, t))  # the procedural window is a model
         assert sat.solve()  # and the SAT route tiles the same window and boundary
         other = enc.decode(sat.get_model())
-    assert board_violations(other, problem) == []
+    assert board_violations(problem, other) == []
 
 
 def test_same_seed_same_wall():

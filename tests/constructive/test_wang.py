@@ -18,7 +18,7 @@ def test_brick_boards_with_a_2x2_core(kind):
         p = BoardProblem(b, WangTileSet.brick(3), random_boundary(b, 3, seed=seed))
         s = wang.solve(p, method="theorem7", seed=seed)
         # a 2x2 block is a cycle with four corners: solvable for every boundary (Remark 11)
-        assert s.status.value == "sat" and board_violations(s.tiling, p) == []
+        assert s.status.value == "sat" and board_violations(p, s.tiling) == []
         assert s.stats["core_cells"] == 4
 
 
@@ -31,7 +31,7 @@ def test_generic_three_boundary_tileset():
         s = wang.solve(p, method="theorem7", seed=seed)
         sat = wang.solve(p, method="sat")
         if s.status.value == "sat":
-            assert board_violations(s.tiling, p) == [] and sat.status.value == "sat"
+            assert board_violations(p, s.tiling) == [] and sat.status.value == "sat"
         else:
             assert s.status.value == "unknown" and "Theorem 7" in s.reason  # never a false unsat
 

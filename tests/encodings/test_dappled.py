@@ -71,7 +71,7 @@ def test_clauses_accept_exactly_the_dappled_tilings(p, data):
     t = tiling_of(cells, p)
     enc = encode_cnf(p)
     falsified = enc.hard.falsified(enc.target_values(t))
-    assert (not falsified) == is_dappled(t, p)
+    assert (not falsified) == is_dappled(p, t)
     np.testing.assert_array_equal(enc.decode(enc.literals(t)), t)
 
 
@@ -84,10 +84,10 @@ def test_assumptions_check_a_tiling_against_the_encoding(p, data):
     enc = encode_cnf(p)
     clauses = enc.hard.to_lists()
     if any(len(c) == 0 for c in clauses):
-        assert not is_dappled(t, p)
+        assert not is_dappled(p, t)
         return
     with Solver(name="cadical153", bootstrap_with=clauses) as s:
-        assert s.solve(assumptions=enc.literals(t)) == is_dappled(t, p)
+        assert s.solve(assumptions=enc.literals(t)) == is_dappled(p, t)
 
 
 @settings(max_examples=80)

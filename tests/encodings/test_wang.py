@@ -25,7 +25,7 @@ def brute_count(problem):
     for cols in itertools.product(range(k), repeat=free.size):
         c = fixed.copy()
         c[free] = cols
-        n += not board_violations(c[eid], problem)
+        n += not board_violations(problem, c[eid])
     return n
 
 
@@ -45,7 +45,7 @@ def test_count_single_cell_and_generic_tiles():
     p = BoardProblem(Board.rect(3, 4), ts)
     assert wang.count(p).value == 2 ** 3 * 2 ** 4
     tilings = list(wang.enumerate_tilings(p, limit=5))
-    assert len(tilings) == 5 and all(not board_violations(t, p) for t in tilings)
+    assert len(tilings) == 5 and all(not board_violations(p, t) for t in tilings)
 
 
 @pytest.mark.parametrize("kind", ["rect", "torus", "cylinder", "mobius", "klein"])
@@ -98,7 +98,7 @@ def test_line_windows_and_limits():
         s = wang.solve(p, method="auto", seed=0)
         assert s.status.value in ("sat", "unsat")
         if s.status.value == "sat":
-            assert not board_violations(s.tiling, p)
+            assert not board_violations(p, s.tiling)
 
 
 def test_encoding_accepts_exactly_valid_tilings():
@@ -116,4 +116,4 @@ def test_encoding_accepts_exactly_valid_tilings():
         c2[e] = (c2[e] + 1) % 3
         t = c2[eid]
         cnf = solve_cnf(enc.clauses, assumptions=enc.literals(t)).status.value
-        assert (cnf == "sat") == (not board_violations(t, p))
+        assert (cnf == "sat") == (not board_violations(p, t))

@@ -35,7 +35,7 @@ LONELY = WangTileSet.from_nesw([[0, 1, 0, 0]], 2)
 def _brute_tiles(board: Board, ws: WangTileSet) -> bool:
     n = board.n_cells
     for choice in itertools.product(range(len(ws)), repeat=n):
-        if not board_violations(ws.tiles[list(choice)], BoardProblem(board, ws)):
+        if not board_violations(BoardProblem(board, ws), ws.tiles[list(choice)]):
             return True
     return False
 
@@ -52,7 +52,7 @@ def test_tile_cnf_agrees_with_brute_force(tiles, shape):
     assert (r.status is Status.SAT) == _brute_tiles(board, ws)
     if r.status is Status.SAT:
         grid = enc.decode(r.model)
-        assert not board_violations(leg_colours(ws, grid), BoardProblem(board, ws))
+        assert not board_violations(BoardProblem(board, ws), leg_colours(ws, grid))
 
 
 def test_sheared_torus_unfolds_to_a_periodic_patch():
@@ -64,7 +64,7 @@ def test_sheared_torus_unfolds_to_a_periodic_patch():
     t = enc.decode(r.model)
     R, C = np.meshgrid(np.arange(7), np.arange(8), indexing="ij")
     patch = t[(R + (C // lat.cols) * lat.shear) % lat.rows, C % lat.cols]
-    assert not board_violations(leg_colours(DIAGONAL, patch), BoardProblem(Board.rect(7, 8), DIAGONAL))
+    assert not board_violations(BoardProblem(Board.rect(7, 8), DIAGONAL), leg_colours(DIAGONAL, patch))
     assert solve_cnf(encode_tiles(Lattice(3, 1, 0).board(), DIAGONAL).hard).status is Status.UNSAT
 
 
@@ -88,7 +88,7 @@ def test_periodic_set_gives_a_verified_torus_witness():
     assert by["torus 3x3"].status == "tiles"
     assert by["torus 1x1"].evidence["cnf_sha256"] and by["torus 1x1"].evidence["drat_sha256"]
     assert rep.largest_square == 4 and "not aperiodic" in rep.conclusion
-    assert rep.complete and not aperiodic_violations(rep, AperiodicProblem(DIAGONAL, 4, 3, True))
+    assert rep.complete and not aperiodic_violations(AperiodicProblem(DIAGONAL, 4, 3, True), rep)
 
 
 def test_finite_set_stops_with_a_checked_refutation():
@@ -133,7 +133,7 @@ def test_sweep_workers_and_cache(tmp_path):
     problem = AperiodicProblem(DIAGONAL, 0, 3, shears=True)
 
     def holds(cert):
-        return not witness_violations(cert, problem)
+        return not witness_violations(problem, cert)
 
     again, _ = sweep(DIAGONAL, names, RunOptions(seed=1, workers=2), cache=cache, check_witness=holds)
     assert all(c.evidence.get("cached") for c in again)
@@ -197,7 +197,7 @@ def test_transducer_route_gives_a_verified_torus_witness():
     assert s.stats["verdict"] == "periodic"
     (cert,) = s.tiling.periods
     assert cert.status == "tiles" and cert.method == "transducer"
-    assert not aperiodic_violations(s.tiling, problem)
+    assert not aperiodic_violations(problem, s.tiling)
     assert verify_document(json.loads(solution_text(problem, s))).ok
 
 

@@ -16,7 +16,7 @@ from tilesolve.verify import is_dappled
 
 def brute_force_solvable(problem):
     for cells in itertools.product(range(problem.n_tiles), repeat=problem.size):
-        if is_dappled(np.array(cells).reshape(problem.shape), problem):
+        if is_dappled(problem, np.array(cells).reshape(problem.shape)):
             return True
     return False
 
@@ -54,7 +54,7 @@ def test_auto_agrees_with_brute_force_and_every_route(problem, seed):
         assert sol.status in (Status.SAT, Status.UNSAT)
         assert sol.status.has_tiling == truth, (method, sol)
         if truth:
-            assert is_dappled(sol.tiling, problem)
+            assert is_dappled(problem, sol.tiling)
 
 
 @settings(max_examples=25, deadline=None)

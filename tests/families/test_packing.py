@@ -18,7 +18,7 @@ from tilesolve.verify.packing import is_packing, packing_violations
 def test_sat_packings_verify(kind, c):
     s = facade.solve(PackingProblem(kind, c), method="sat", seed=2)
     assert s.status is Status.SAT and s.method == "sat"
-    assert packing_violations(s.tiling, kind, c) == []
+    assert packing_violations(PackingProblem(kind, c), s.tiling) == []
     if c == 2 or kind == "wang":  # same seed, same packing
         assert np.array_equal(s.tiling, facade.solve(PackingProblem(kind, c), method="sat", seed=2).tiling)
 
@@ -26,11 +26,11 @@ def test_sat_packings_verify(kind, c):
 @pytest.mark.parametrize("kind", ["wang", "corner"])
 def test_cpsat_packings_verify(kind):
     s = facade.solve(PackingProblem(kind, 2), method="cpsat", seed=1, time_limit=60)
-    assert s.status is Status.SAT and is_packing(s.tiling, kind, 2)
+    assert s.status is Status.SAT and is_packing(PackingProblem(kind, 2), s.tiling)
     s = facade.solve(PackingProblem("wang", 3), method="cpsat", seed=1, time_limit=60, workers=2)
     assert s.status in (Status.SAT, Status.UNKNOWN)
     if s.status is Status.SAT:
-        assert is_packing(s.tiling, "wang", 3)
+        assert is_packing(PackingProblem("wang", 3), s.tiling)
 
 
 def test_solver_packings_are_not_separable():
@@ -82,7 +82,7 @@ def test_auto_routes():
         assert facade.auto_method(PackingProblem(kind, c)) == method
     for kind, c in [("wang", 4), ("corner", 4), ("corner", 6), ("corner", 7), ("wang", 8)]:
         s = facade.solve(PackingProblem(kind, c), seed=3)
-        assert s.status is Status.SAT and is_packing(s.tiling, kind, c)
+        assert s.status is Status.SAT and is_packing(PackingProblem(kind, c), s.tiling)
 
 
 def test_bad_input():
@@ -123,7 +123,7 @@ def test_encoding_accepts_exactly_the_packings():
 def test_hybrid_wang_packings(c):
     """Random Eulerian N/S columns + SAT: valid, reproducible, and not an outer product."""
     s = facade.solve(PackingProblem("wang", c), method="hybrid", seed=1, time_limit=120, workers=1)
-    assert s.status is Status.SAT and packing_violations(s.tiling, "wang", c) == []
+    assert s.status is Status.SAT and packing_violations(PackingProblem("wang", c), s.tiling) == []
     assert np.array_equal(s.tiling, facade.solve(PackingProblem("wang", c), method="hybrid", seed=1, workers=1).tiling)
     west = s.tiling % c
     north = s.tiling // c**3
@@ -144,6 +144,6 @@ def test_separate_horizontal_and_vertical_colours():
     for method in ("sat", "outer", "euler", "hybrid"):
         s = facade.solve(p, method=method, seed=1, time_limit=60)
         assert s.status is Status.SAT and s.tiling.shape == (4, 9)
-        assert is_packing(s.tiling, "wang", 2, colors_v=3)
+        assert is_packing(PackingProblem("wang", 2, colors_v=3), s.tiling)
     with pytest.raises(MethodNotApplicable):
         facade.solve(p, method="known")

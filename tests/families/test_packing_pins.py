@@ -22,7 +22,7 @@ def test_side_by_side_clashes_agree_with_the_grid_verifier(kind, colors):
             continue
         for (dr, dc), grid in (((0, 1), [[t, u]]), ((1, 0), [[t], [u]])):
             p = PackingProblem(kind, colors, fixed=((0, 0, t), (dr, dc, u)))
-            assert bool(p.pin_clashes()) == bool(grid_violations(grid, table, kind=kind)), (t, u, dr, dc)
+            assert bool(p.pin_clashes()) == bool(grid_violations(table, grid, kind=kind)), (t, u, dr, dc)
 
 
 def test_pins_from_a_packing_never_clash():

@@ -46,7 +46,7 @@ def test_restricted_domains_shrink_the_encoding():
 @pytest.mark.parametrize("kind, c", [("corner", 4), ("wang", 4), ("corner", 6), ("wang", 6)])
 def test_lift_builds_verified_packings(kind, c):
     s = facade.solve(PackingProblem(kind, c), method="lift", seed=1, workers=1)
-    assert s.status is Status.SAT and packing_violations(s.tiling, kind, c) == []
+    assert s.status is Status.SAT and packing_violations(PackingProblem(kind, c), s.tiling) == []
     assert any("base packing" in n for n in s.notes)
     again = facade.solve(PackingProblem(kind, c), method="lift", seed=1, workers=1)
     assert np.array_equal(s.tiling, again.tiling)  # the same seed gives the same packing
@@ -56,18 +56,17 @@ def test_lift_without_seed_keeps_the_base_layer():
     """Unseeded (no random symmetry), colours mod m repeat the base packing's with period m**2."""
     p = PackingProblem("corner", 4)
     s = search.solve_lift(p)
-    assert s.status is Status.SAT and is_packing(s.tiling, "corner", 4)
+    assert s.status is Status.SAT and is_packing(PackingProblem("corner", 4), s.tiling)
     low = features_of_packing(p, s.tiling).reshape(16, 16) % 2
     assert np.array_equal(low, np.tile(low[:4, :4], (4, 4)))
-    assert is_packing(TileSet("corner", 2).index(*np.stack(TileSet("corner", 4).colors_of(s.tiling[:4, :4])) % 2),
-                      "corner", 2)
+    assert is_packing(PackingProblem("corner", 2), TileSet("corner", 2).index(*np.stack(TileSet("corner", 4).colors_of(s.tiling[:4, :4])) % 2))
 
 
 def test_corner_eight_colours_by_lift():
     """The headline search: 4,096 corner tiles on a 64x64 torus (2D de Bruijn torus over 8 symbols)."""
     s = facade.solve(PackingProblem("corner", 8), method="lift", seed=4, workers=1)
     assert s.status is Status.SAT and s.tiling.shape == (64, 64)
-    assert packing_violations(s.tiling, "corner", 8) == []
+    assert packing_violations(PackingProblem("corner", 8), s.tiling) == []
 
 
 def test_lift_honours_pins_it_can_hold_and_never_says_unsat():
@@ -94,7 +93,7 @@ def test_published_packings_are_recursive(kind):
     for c, (r0, size) in ((3, (7, 9)), (2, (12, 4))):
         block = g[r0:r0 + size, :size]
         sub = TileSet(kind, c).index(*big.colors_of(block))
-        assert is_packing(sub, kind, c)
+        assert is_packing(PackingProblem(kind, c), sub)
         pins = search.embedding_pins(sub, kind, c, 4)
         assert all(g[r, col] == t for r, col, t in pins)
 
@@ -102,9 +101,9 @@ def test_published_packings_are_recursive(kind):
 @pytest.mark.parametrize("kind", ["corner", "wang"])
 def test_recursive_three_colours(kind):
     s = facade.solve(PackingProblem(kind, 3), method="recursive", seed=2, time_limit=120)
-    assert s.status is Status.SAT and is_packing(s.tiling, kind, 3)
+    assert s.status is Status.SAT and is_packing(PackingProblem(kind, 3), s.tiling)
     block = s.tiling[5:9, :4]
-    assert is_packing(TileSet(kind, 2).index(*TileSet(kind, 3).colors_of(block)), kind, 2)
+    assert is_packing(PackingProblem(kind, 2), TileSet(kind, 2).index(*TileSet(kind, 3).colors_of(block)))
 
 
 def test_recursive_and_embedding_refusals():
@@ -121,7 +120,7 @@ def test_slow_first_run_escalates_to_a_portfolio(monkeypatch):
     named, and rerunning it alone (workers=1) gives the same packing."""
     monkeypatch.setattr(portfolio, "QUICK_S", 0.0)
     s = facade.solve(PackingProblem("wang", 3), method="sat", seed=10, workers=2)
-    assert s.status is Status.SAT and is_packing(s.tiling, "wang", 3)
+    assert s.status is Status.SAT and is_packing(PackingProblem("wang", 3), s.tiling)
     assert any(n.startswith("portfolio: seed") for n in s.notes)
     rerun = facade.solve(PackingProblem("wang", 3), method="sat", seed=s.seed, workers=1)
     assert np.array_equal(rerun.tiling, s.tiling)
@@ -132,7 +131,7 @@ def test_portfolio_on_a_dask_cluster():
 
     with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=None) as lc:
         s = facade.solve(PackingProblem("corner", 4), method="lift", seed=1, cluster=lc.scheduler_address)
-    assert s.status is Status.SAT and is_packing(s.tiling, "corner", 4)
+    assert s.status is Status.SAT and is_packing(PackingProblem("corner", 4), s.tiling)
     assert any("portfolio" in n for n in s.notes)
 
 

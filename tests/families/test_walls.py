@@ -18,7 +18,7 @@ from tilesolve.verify.board import board_violations, line_runs
 def test_walls_from_dappling_verify(rows, cols, p, q, k, seed):
     prob, sol = brick_wall(rows, cols, p, max_v=q, n_colors=k, seed=seed)
     assert sol.status.value == "sat"
-    assert board_violations(sol.tiling, prob) == []
+    assert board_violations(prob, sol.tiling) == []
     t = sol.tiling
     h = t[:, 0] == t[:, 2]
     assert line_runs(prob.board.nbr_cell, prob.board.nbr_leg, h, "H", p + 2).max(initial=0) <= p
@@ -44,7 +44,7 @@ def test_long_line_is_caught_in_a_wall():
     t[row[1:], 0] = 0
     t[row, 1] = 1
     t[row, 3] = 2
-    kinds = {v.kind for v in board_violations(t, prob)}
+    kinds = {v.kind for v in board_violations(prob, t)}
     assert "line" in kinds
 
 
@@ -55,7 +55,7 @@ def test_direct_sat_with_limits_and_fixed_boundary(board):
         s = wang.solve(p, seed=seed)
         assert s.method == "sat" and s.status.value in ("sat", "unsat")
         if s.status.has_tiling:
-            assert board_violations(s.tiling, p) == []
+            assert board_violations(p, s.tiling) == []
 
 
 def test_line_limit_can_make_a_board_unsolvable():
@@ -67,4 +67,4 @@ def test_line_limit_can_make_a_board_unsolvable():
     s = wang.solve(lim, method="sat")
     assert s.status.value in ("sat", "unsat")
     if s.status.value == "sat":
-        assert board_violations(s.tiling, lim) == []
+        assert board_violations(lim, s.tiling) == []

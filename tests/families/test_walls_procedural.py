@@ -39,7 +39,7 @@ def test_random_windows_verify_with_max_line(n):
         s = solve(p, "procedural", seed=int(rng.integers(0, 2**31)), options={"origin": (x0, y0)})
         assert s.status.value == "sat" and s.method == "procedural"
         assert s.tiling.shape == (rows * cols, 4)
-        assert board_violations(s.tiling, p) == []
+        assert board_violations(p, s.tiling) == []
         assert s.tiling.min() >= 0 and s.tiling.max() < colors
 
 

@@ -30,7 +30,7 @@ def _problem(**kw) -> DappledProblem:
 def test_fixture_is_dappled():
     from tilesolve.verify.dappled import is_dappled
 
-    assert is_dappled(TILING, _problem())
+    assert is_dappled(_problem(), TILING)
 
 
 # ----------------------------------------------------------------------------- atomic
@@ -337,7 +337,7 @@ def test_readme_json_example_is_a_valid_solution():
         readme = f.read()
     block = re.search(r"```json\n(.*?)```", readme, re.S).group(1)
     problem, sol = jsonio.solution_from_dict(json.loads(block), "README.md")
-    assert sol.status == Status.SAT and not dappled_violations(sol.tiling, problem)
+    assert sol.status == Status.SAT and not dappled_violations(problem, sol.tiling)
 
 
 def test_readme_commands_match_ci():

@@ -56,7 +56,7 @@ def test_tileset_converter_keeps_the_edges(colors, colors_v, variant):
     # a 1x2 tiling that matches in TileSet terms matches in board terms too
     table = ts.table()
     a, b = next((i, j) for i in range(len(table)) for j in range(len(table)) if table[i, 1] == table[j, 3])
-    assert grid_violations([[a, b]], table) == []
+    assert grid_violations(table, [[a, b]]) == []
     with pytest.raises(InvalidProblem, match="corner tiles are not Wang tiles"):
         WangTileSet.from_tileset(TileSet("corner", 2))
 

@@ -19,7 +19,7 @@ def solved():
 
 def test_valid_tiling_passes(solved):
     p, t = solved
-    assert board_violations(t, p) == [] and is_valid_board_tiling(t, p)
+    assert board_violations(p, t) == [] and is_valid_board_tiling(p, t)
 
 
 @pytest.mark.parametrize("cell", range(0, 42, 5))
@@ -28,7 +28,7 @@ def test_single_leg_corruption_is_caught(solved, cell, leg):
     p, t = solved
     bad = t.copy()
     bad[cell, leg] = (bad[cell, leg] + 1) % 3
-    v = board_violations(bad, p)
+    v = board_violations(p, bad)
     assert v, "corruption not caught"
     near = {tuple(p.board.labels[cell])}
     if p.board.nbr_cell[cell, leg] >= 0:  # a broken join is reported at one of its two cells
@@ -49,7 +49,7 @@ def test_consistent_edge_recolouring_breaks_a_tile(solved):
         bad = t.copy()
         bad[a, E] = (bad[a, E] + d) % 3
         bad[nb, nl] = bad[a, E]
-        v = board_violations(bad, p)
+        v = board_violations(p, bad)
         assert not any(x.kind == "edge" for x in v)
         found |= any(x.kind in ("tile", "cross") for x in v)
     assert found
@@ -58,11 +58,11 @@ def test_consistent_edge_recolouring_breaks_a_tile(solved):
 def test_shape_colour_and_generic_tiles():
     b = Board.rect(1, 2)
     p = BoardProblem(b, WangTileSet.brick(3))
-    assert board_violations(np.zeros((3, 4), int), p)[0].kind == "shape"
-    assert board_violations(np.full((2, 4), 7), p)[0].kind == "colour"
+    assert board_violations(p, np.zeros((3, 4), int))[0].kind == "shape"
+    assert board_violations(p, np.full((2, 4), 7))[0].kind == "colour"
     q = BoardProblem(b, WangTileSet([[0, 1, 0, 1], [0, 0, 0, 0]], 2))
-    assert board_violations([[0, 1, 0, 1], [0, 1, 0, 1]], q) == []
-    v = board_violations([[0, 1, 0, 1], [0, 1, 1, 1]], q)
+    assert board_violations(q, [[0, 1, 0, 1], [0, 1, 0, 1]]) == []
+    v = board_violations(q, [[0, 1, 0, 1], [0, 1, 1, 1]])
     assert [x.kind for x in v] == ["tile"] and (v[0].row, v[0].col) == (0, 1)
 
 
@@ -71,17 +71,17 @@ def test_line_limits_are_checked():
     p = BoardProblem(b, WangTileSet.brick(3), max_h=2)
     # four horizontal tiles in a row: colours W=E=0 everywhere, N != S
     t = np.array([[0, 1, 0, 2]] * 4)
-    v = board_violations(t, p)
+    v = board_violations(p, t)
     assert [x.kind for x in v] == ["line", "line"] and [x.col for x in v] == [2, 3]
     t2 = t.copy()
     t2[2] = [0, 1, 1, 1]
     t2[3, W] = 1
     t2[3] = [1, 1, 1, 2]
-    assert not any(x.kind == "line" for x in board_violations(t2, p))
+    assert not any(x.kind == "line" for x in board_violations(p, t2))
     # on a torus a full row is a run with no end
     tor = BoardProblem(Board.torus(2, 3), WangTileSet.brick(3), max_h=5)
     tt = np.tile([0, 1, 0, 2], (6, 1))
-    assert any(x.kind == "line" for x in board_violations(tt, tor))
+    assert any(x.kind == "line" for x in board_violations(tor, tt))
 
 
 def _listing(board):
@@ -129,14 +129,14 @@ def test_tiles_of_sets_with_very_many_colours_are_matched_exactly():
     k = 1 << 20  # (W, N, E, S) keys would overflow int64: rows are matched another way
     ts = WangTileSet([[0, k - 1, 0, 5], [7, 8, 9, k - 1]], k)
     p = BoardProblem(Board.rect(1, 1), ts)
-    assert board_violations([[0, k - 1, 0, 5]], p) == []
-    v = board_violations([[0, k - 1, 0, 6]], p)
+    assert board_violations(p, [[0, k - 1, 0, 5]]) == []
+    v = board_violations(p, [[0, k - 1, 0, 6]])
     assert [x.kind for x in v] == ["tile"]
 
 
 def test_a_line_limit_beyond_the_board_is_cheap_and_still_catches_endless_lines():
     tor = BoardProblem(Board.torus(2, 3), WangTileSet.brick(3), max_h=10**12)
     tt = np.tile([0, 1, 0, 2], (6, 1))  # every row one horizontal line round the torus
-    assert sum(x.kind == "line" for x in board_violations(tt, tor)) == 6
+    assert sum(x.kind == "line" for x in board_violations(tor, tt)) == 6
     rect = BoardProblem(Board.rect(1, 4), WangTileSet.brick(3), max_h=10**12)
-    assert board_violations(np.array([[0, 1, 0, 2]] * 4), rect) == []
+    assert board_violations(rect, np.array([[0, 1, 0, 2]] * 4)) == []

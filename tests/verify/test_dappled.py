@@ -55,7 +55,7 @@ def test_matches_literal_definition(rows, cols, conds, cyclic, data):
         data.draw(st.lists(st.lists(st.integers(0, 2), min_size=cols, max_size=cols), min_size=rows, max_size=rows))
     )
     problem = DappledProblem(rows, cols, n_tiles=3, conditions=conds, cyclic=cyclic)
-    got = {(v.row, v.col) for v in dappled_violations(tiling, problem) if v.kind == "condition"}
+    got = {(v.row, v.col) for v in dappled_violations(problem, tiling) if v.kind == "condition"}
     want = set()
     for cond in conds:
         want |= brute_violates(tiling, cond, cyclic)
@@ -65,20 +65,20 @@ def test_matches_literal_definition(rows, cols, conds, cyclic, data):
 def test_per_cell_limits_follow_the_cell_where_the_run_ends():
     limits = np.array([[0, 0, 2, 0]])  # only cell (0, 2) carries a limit
     p = DappledProblem(1, 4, conditions=[Condition("H", (0,), limits)])
-    assert [(v.row, v.col) for v in dappled_violations([[0, 0, 0, 0]], p)] == [(0, 2)]
-    assert is_dappled([[0, 0, 1, 0]], p)
+    assert [(v.row, v.col) for v in dappled_violations(p, [[0, 0, 0, 0]])] == [(0, 2)]
+    assert is_dappled(p, [[0, 0, 1, 0]])
 
 
 def test_cyclic_full_line_violates_any_finite_limit():
     p = DappledProblem(1, 3, conditions=[parse_condition("H0=7")], cyclic=True)
-    assert len(dappled_violations([[0, 0, 0]], p)) == 3
-    assert is_dappled([[0, 0, 0]], DappledProblem(1, 3, conditions=[parse_condition("H0=7")]))
+    assert len(dappled_violations(p, [[0, 0, 0]])) == 3
+    assert is_dappled(DappledProblem(1, 3, conditions=[parse_condition("H0=7")]), [[0, 0, 0]])
 
 
 def test_draughtboard_example_1_5_is_dappled_for_strict_conditions():
     tiling = np.indices((6, 8)).sum(axis=0) % 2
     conds = [parse_condition(s) for s in ("H0=1", "H1=1", "V0=1", "V1=1")]
-    assert is_dappled(tiling, DappledProblem(6, 8, conditions=conds, cyclic=True))
+    assert is_dappled(DappledProblem(6, 8, conditions=conds, cyclic=True), tiling)
 
 
 @settings(max_examples=100, deadline=None)
@@ -89,11 +89,11 @@ def test_catches_every_single_cell_corruption(seed, cyclic):
     rows, cols = rng.integers(2, 8, size=2) * 2
     tiling = np.indices((rows, cols)).sum(axis=0) % 2  # draughtboard: dappled for H0=1, V1=1
     p = DappledProblem(rows, cols, conditions=[parse_condition("H0=1"), parse_condition("V1=1")], cyclic=cyclic)
-    assert is_dappled(tiling, p)
+    assert is_dappled(p, tiling)
     r, c = int(rng.integers(rows)), int(rng.integers(cols))
     bad = tiling.copy()
     bad[r, c] = 1 - bad[r, c]
-    found = {(v.row, v.col) for v in dappled_violations(bad, p)}
+    found = {(v.row, v.col) for v in dappled_violations(p, bad)}
     assert found, "a flipped draughtboard cell always creates a run of two"
     neighbours = {(r, (c + 1) % cols), (r, c), ((r + 1) % rows, c)}
     assert found <= neighbours | {(r, c)}
@@ -103,11 +103,11 @@ def test_fixed_cells_counts_shape_and_range():
     fixed = np.full((2, 2), -1)
     fixed[0, 1] = 1
     p = DappledProblem(2, 2, fixed=fixed, counts=[TileCount(1, 3, 3)])
-    kinds = [v.kind for v in dappled_violations([[0, 0], [1, 1]], p)]
+    kinds = [v.kind for v in dappled_violations(p, [[0, 0], [1, 1]])]
     assert kinds == ["fixed", "count"]
-    assert is_dappled([[1, 1], [1, 0]], p)
-    assert [v.kind for v in dappled_violations([[0, 0]], p)] == ["shape"]
-    assert [v.kind for v in dappled_violations([[0, 5], [1, 1]], p)] == ["tile"]
+    assert is_dappled(p, [[1, 1], [1, 0]])
+    assert [v.kind for v in dappled_violations(p, [[0, 0]])] == ["shape"]
+    assert [v.kind for v in dappled_violations(p, [[0, 5], [1, 1]])] == ["tile"]
 
 
 def test_hamming_distance():

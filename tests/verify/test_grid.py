@@ -58,15 +58,15 @@ def test_valid_tilings_pass_and_single_cell_corruptions_are_caught(rows, cols, c
     make = wang_tiling if kind == "wang" else corner_tiling
     g = make(rows, cols, c, rng, toroidal)
     table = complete_table(c)
-    assert grid_violations(g, table, kind=kind, toroidal=toroidal) == []
-    assert is_grid_tiling(g, table, kind=kind, toroidal=toroidal)
+    assert grid_violations(table, g, kind=kind, toroidal=toroidal) == []
+    assert is_grid_tiling(table, g, kind=kind, toroidal=toroidal)
     r, q = data.draw(st.integers(0, rows - 1)), data.draw(st.integers(0, cols - 1))
     new = data.draw(st.integers(0, c**4 - 1).filter(lambda t: t != g[r, q]))
     bad = g.copy()
     bad[r, q] = new
-    v = grid_violations(bad, table, kind=kind, toroidal=toroidal)
+    v = grid_violations(table, bad, kind=kind, toroidal=toroidal)
     n_bad = naive_mismatches(bad, table, kind, toroidal)
-    assert count_mismatches(bad, table, kind=kind, toroidal=toroidal) == len(v) == n_bad
+    assert count_mismatches(table, bad, kind=kind, toroidal=toroidal) == len(v) == n_bad
     if n_bad:
         assert v, "corruption not caught"
         near = {((r + dr) % rows, (q + dq) % cols) for dr in (-1, 0) for dq in (-1, 0)}
@@ -77,32 +77,32 @@ def test_valid_tilings_pass_and_single_cell_corruptions_are_caught(rows, cols, c
 
 def test_out_of_range_and_shape_problems():
     table = complete_table(2)
-    v = grid_violations([[0, 16], [-1, 0]], table)
+    v = grid_violations(table, [[0, 16], [-1, 0]])
     assert [(x.kind, x.row, x.col) for x in v] == [("tile", 0, 1), ("tile", 1, 0)]
-    assert grid_violations([0, 1], table)[0].kind == "shape"
-    assert grid_violations([[0]], table[:, :3])[0].kind == "shape"
-    assert grid_violations([[0.5]], table)[0].kind == "tile"
-    assert not is_grid_tiling([[99]], table)
+    assert grid_violations(table, [0, 1])[0].kind == "shape"
+    assert grid_violations(table[:, :3], [[0]])[0].kind == "shape"
+    assert grid_violations(table, [[0.5]])[0].kind == "tile"
+    assert not is_grid_tiling(table, [[99]])
 
 
 def test_labels_name_tiles_of_a_sparse_set():
     # The compact Wang set over 2 colours of the notes' Fig. 3.2, named by its eq. 2.1 indices.
     labels = np.array([0, 3, 5, 6, 9, 10, 12, 15])
     table = complete_table(2)[labels]
-    assert grid_violations([[0, 0], [0, 0]], table, labels=labels) == []
-    v = grid_violations([[0, 1]], table, labels=labels)
+    assert grid_violations(table, [[0, 0], [0, 0]], labels=labels) == []
+    v = grid_violations(table, [[0, 1]], labels=labels)
     assert [(x.kind, x.col) for x in v] == [("tile", 1)]
 
 
 def test_corner_mismatch_message_names_the_corners():
     table = complete_table(2)
     # cell 0: all corners 0; cell 1 east of it with NW = 1 (eq. 2.5: index 1)
-    v = grid_violations([[0, 1]], table, kind="corner")
+    v = grid_violations(table, [[0, 1]], kind="corner")
     assert [str(x) for x in v] == ["(row 0, col 0) NE colour 0 meets NW colour 1 of the cell to the east"]
 
 
 def test_limit_caps_the_list():
     table = complete_table(2)
     g = np.arange(16).reshape(4, 4)
-    assert len(grid_violations(g, table, limit=3)) == 3
-    assert len(grid_violations(g, table)) == count_mismatches(g, table) > 3
+    assert len(grid_violations(table, g, limit=3)) == 3
+    assert len(grid_violations(table, g)) == count_mismatches(table, g) > 3

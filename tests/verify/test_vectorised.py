@@ -72,7 +72,7 @@ def test_condition_violations_match_the_literal_runs(case, block):
     saved = vd.BLOCK_CELLS
     vd.BLOCK_CELLS = block
     try:
-        got = dappled_violations(tiling.astype(np.int8), problem)
+        got = dappled_violations(problem, tiling.astype(np.int8))
     finally:
         vd.BLOCK_CELLS = saved
     want = []
@@ -118,5 +118,5 @@ def test_joins_and_boundary_match_the_literal_check(board):
     problem = BoardProblem(board, WangTileSet.brick(3), rng.integers(-1, 3, board.n_boundary))
     for _ in range(20):
         tiling = rng.integers(0, 3, (board.n_cells, 4))
-        got = [(v.kind, v.row, v.col) for v in board_violations(tiling, problem) if v.kind in ("edge", "boundary")]
+        got = [(v.kind, v.row, v.col) for v in board_violations(problem, tiling) if v.kind in ("edge", "boundary")]
         assert got == literal_board_violations(tiling, problem)

@@ -246,7 +246,7 @@ def algorithm2(tiling, p, q, *, order: str = "row") -> np.ndarray:
     >>> from tilesolve.model import DappledProblem
     >>> from tilesolve.verify import is_dappled
     >>> g = algorithm2(np.ones((6, 8), int), p=[3, 3], q=[3, 3])
-    >>> is_dappled(g, DappledProblem.from_strings("8x6", ["H0=3", "H1=3", "V0=3", "V1=3"], cyclic=True))
+    >>> is_dappled(DappledProblem.from_strings("8x6", ["H0=3", "H1=3", "V0=3", "V1=3"], cyclic=True), g)
     True
     """
     g = _as_tiling(tiling, 2)
@@ -364,7 +364,7 @@ def remark34(tiling, p, q, *, order: str = "row", recheck: bool = True) -> np.nd
     >>> from tilesolve.model import DappledProblem
     >>> from tilesolve.verify import is_dappled
     >>> g = remark34(np.zeros((8, 8), int), 2, 2)
-    >>> is_dappled(g, DappledProblem.from_strings("8x8", ["H0=2", "V1=2"], cyclic=True))
+    >>> is_dappled(DappledProblem.from_strings("8x8", ["H0=2", "V1=2"], cyclic=True), g)
     True
     """
     g = _as_tiling(tiling, 2)
@@ -647,7 +647,7 @@ def make_dappled(problem: DappledProblem, initial=None, *, seed=None, order: str
     >>> from tilesolve.model import DappledProblem
     >>> from tilesolve.verify import is_dappled
     >>> prob = DappledProblem.from_strings("64x48", ["H0=2", "V1=2"])
-    >>> is_dappled(make_dappled(prob, seed=7), prob)
+    >>> is_dappled(prob, make_dappled(prob, seed=7))
     True
     """
     route = dappled_route(problem)

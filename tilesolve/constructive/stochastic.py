@@ -248,7 +248,7 @@ def stochastic_window(kind: str, method: str, region, *, colors: int, seed, vari
     >>> from tilesolve.verify.grid import is_grid_tiling
     >>> ts = tile_set("corner", "scanline", 3, "compact")
     >>> g = stochastic_window("corner", "scanline", (0, 0, 6, 4), colors=3, seed=2, variant="compact")
-    >>> is_grid_tiling(g, ts.table(), kind="corner", labels=ts.indices)
+    >>> is_grid_tiling(ts.table(), g, kind="corner", labels=ts.indices)
     True
     """
     if kind not in ("wang", "corner"):

@@ -171,7 +171,7 @@ def _violations(problem: AperiodicProblem, report) -> list:
     one its certificates give (:func:`build_report`): a report's words claim no more than them."""
     from tilesolve.constructive.transducer import UNDECIDED_OPENINGS
 
-    out = aperiodic_violations(report, problem)
+    out = aperiodic_violations(problem, report)
     certs = report.squares + report.periods if isinstance(report, AperiodicReport) else ()
     if out or any("transducer" in str(c.method) for c in certs):
         return out
@@ -187,7 +187,7 @@ def _violations(problem: AperiodicProblem, report) -> list:
 
 def _witness_holds(problem: AperiodicProblem, cert: Certificate) -> bool:
     """True when a (cached) witness tiles its board (the family's verifier)."""
-    return not witness_violations(cert, problem)
+    return not witness_violations(problem, cert)
 
 
 def solve(problem: AperiodicProblem, method: str = "auto", **kwargs) -> Solution:

@@ -227,7 +227,7 @@ def crosscheck(problem: BoardProblem, *, seed: int | None = None, time_limit: fl
             rep.lines.append(f"skip {name}: {exc}")
             continue
         if sol.status.has_tiling:
-            bad = board_violations(sol.tiling, problem)
+            bad = board_violations(problem, sol.tiling)
             rep.add(not bad, f"{name}: sat, tiling verifies ({len(bad)} violations)")
             if name == "linear" and not bad:
                 enc = encode_wang(problem)
@@ -263,7 +263,7 @@ def _refuse_false_listing(problem: BoardProblem, what: str) -> None:
 
 
 def _verify(problem: BoardProblem, tiling) -> list:
-    return _listing(problem) + board_violations(tiling, problem)
+    return _listing(problem) + board_violations(problem, tiling)
 
 
 def _encode(problem: BoardProblem):

@@ -117,13 +117,13 @@ def crosscheck_wall_window(window: tuple[int, int, int, int], *, colors: int = 3
     legs = wall_window(x0, y0, w, h, colors=colors, max_line=max_line, seed=seed)
     problem = window_problem(legs, WangTileSet.brick(colors), max_line=max_line)
     rep = CrosscheckReport()
-    bad = board_violations(legs.reshape(-1, 4), problem)
+    bad = board_violations(problem, legs.reshape(-1, 4))
     rep.add(not bad, f"procedural window verifies ({len(bad)} violations)" + (f": {bad[0]}" if bad else ""))
     n_clauses, falsified = cnf_falsified(problem, legs)
     rep.add(falsified == 0, f"procedural window satisfies the board CNF ({n_clauses:,} clauses, "
                             f"{falsified} falsified)")
     rep.verdicts["procedural"] = Status.SAT
-    _sat_check(rep, problem, seed, time_limit, lambda t: board_violations(t, problem))
+    _sat_check(rep, problem, seed, time_limit, lambda t: board_violations(problem, t))
     rep.add_agreement()
     return rep
 
@@ -164,7 +164,7 @@ def crosscheck_tiling_window(problem: StochasticProblem, *, method: str = "auto"
     rep.add(falsified == 0, f"{sol.method} window satisfies the grid-tiling CNF of its Wang images "
                             f"({n_clauses:,} clauses, {falsified} falsified)")
     rep.verdicts[sol.method] = Status.SAT
-    _sat_check(rep, board_problem, seed, time_limit, lambda t: board_violations(t, board_problem))
+    _sat_check(rep, board_problem, seed, time_limit, lambda t: board_violations(board_problem, t))
     rep.add_agreement()
     return rep
 

@@ -238,7 +238,7 @@ def crosscheck(problem: DappledProblem, *, seed: int | None = None, time_limit: 
     except MethodNotApplicable as exc:
         report.lines.append(f"skip constructive route: {exc}")
     else:
-        bad = dappled_violations(cons.tiling, problem)
+        bad = dappled_violations(problem, cons.tiling)
         report.add(not bad, f"constructive tiling verifies ({len(bad)} violations)")
         if not bad:
             report.add(tiling_satisfies_encoding(problem, cons.tiling), "constructive tiling satisfies the CNF encoding")
@@ -246,7 +246,7 @@ def crosscheck(problem: DappledProblem, *, seed: int | None = None, time_limit: 
     for name in ("sat", "cpsat") + (("maxsat",) if problem.closest_to is not None else ()):
         sol = raise_if_interrupted(SOLVERS[name](problem, RunOptions(seed, Deadline(time_limit))))
         if sol.status.has_tiling:
-            bad = dappled_violations(sol.tiling, problem)
+            bad = dappled_violations(problem, sol.tiling)
             report.add(not bad, f"{name}: {sol.status.value}, tiling verifies ({len(bad)} violations)")
         else:
             report.lines.append(f"     {name}: {sol.status.value}" + (f" ({sol.reason})" if sol.reason else ""))
@@ -265,10 +265,6 @@ def crosscheck(problem: DappledProblem, *, seed: int | None = None, time_limit: 
 
 
 # ----------------------------------------------------------------------------- the family record
-def _verify(problem: DappledProblem, tiling) -> list:
-    return dappled_violations(tiling, problem)
-
-
 def _objective(problem: DappledProblem, tiling) -> int | None:
     return None if problem.closest_to is None else hamming_distance(tiling, problem.closest_to)
 
@@ -421,7 +417,7 @@ FAMILY = register(Family(
     problem_type=DappledProblem,
     routes=SOLVERS,
     auto=auto_method,
-    verify=_verify,
+    verify=dappled_violations,
     fallback="sat",
     objective=_objective,
     count=count,

@@ -284,10 +284,6 @@ def count(problem: PackingProblem, *, method: str = "auto", time_limit: float | 
 
 
 # ----------------------------------------------------------------------------- the family record
-def _verify(problem: PackingProblem, grid) -> list:
-    return packing_violations(grid, problem.kind, problem.colors, colors_v=problem.colors_v, fixed=problem.fixed)
-
-
 def _encode(problem: PackingProblem):
     from tilesolve.encodings.registry import encode
     from tilesolve.engine.packing import check_search_size
@@ -383,7 +379,7 @@ FAMILY = register(Family(
     problem_type=PackingProblem,
     routes=SOLVERS,
     auto=auto_method,
-    verify=_verify,
+    verify=packing_violations,
     count=count,
     encode=_encode,
     codecs=(Codec(PACKING, VERSIONS, _read, _write),),

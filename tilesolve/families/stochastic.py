@@ -97,7 +97,7 @@ def stochastic_violations(problem: StochasticProblem, grid) -> list[Violation]:
         return [Violation("shape", f"the grid is {g.shape}, the window has {rows} rows of {cols} tiles")]
     ts = problem.tiles
     labels = None if problem.variant == "complete" else ts.indices
-    return grid_violations(g, ts.table(), kind=problem.kind, labels=labels)
+    return grid_violations(ts.table(), g, kind=problem.kind, labels=labels)
 
 
 def solve(problem: StochasticProblem, *, method: str | Any = "auto", seed: int | None = None,

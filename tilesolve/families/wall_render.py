@@ -234,7 +234,7 @@ class _BandChecker:
         from tilesolve.verify.board import board_violations
 
         part = legs if self.above is None or self.keep == 0 else np.concatenate([self.above, legs])
-        bad = board_violations(part.reshape(-1, 4), self._problem(part.shape[0], w))
+        bad = board_violations(self._problem(part.shape[0], w), part.reshape(-1, 4))
         if bad:
             raise InternalError(f"the procedural wall of seed {seed} fails the board verifier in the band of rows "
                                 f"y {yb}..{yb + hh - 1}, x {x0}..{x0 + w - 1}: {bad[0]}")

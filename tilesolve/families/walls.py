@@ -24,16 +24,16 @@ Examples
 --------
 >>> from tilesolve.verify.board import board_violations
 >>> p, s = brick_wall(6, 9, 2, seed=1)
->>> board_violations(s.tiling, p), s.method
+>>> board_violations(p, s.tiling), s.method
 ([], 'wall')
 >>> from tilesolve.family import solve
 >>> q = wall_problem(4, 6, 3)
 >>> s = solve(q, "procedural", seed=5, options={"origin": (-100, 40)})
->>> board_violations(s.tiling, q), s.method
+>>> board_violations(q, s.tiling), s.method
 ([], 'procedural')
 >>> t = npd_problem(8, 12, 4)
 >>> s = solve(t, "npd", seed=2)
->>> t.board.kind, board_violations(s.tiling, t), s.method
+>>> t.board.kind, board_violations(t, s.tiling), s.method
 ('torus', [], 'npd')
 """
 

@@ -32,7 +32,7 @@ from tilesolve.verify.dappled import Violation
 __all__ = ["aperiodic_violations", "witness_violations"]
 
 
-def witness_violations(cert, problem: AperiodicProblem) -> list[Violation]:
+def witness_violations(problem: AperiodicProblem, cert) -> list[Violation]:
     """Every violation of one witness certificate (``status == "tiles"``) as a tiling of its board."""
     rows, cols, _ = parse_board_name(cert.board)
     t = np.asarray(cert.tiling)
@@ -41,11 +41,11 @@ def witness_violations(cert, problem: AperiodicProblem) -> list[Violation]:
     if t.size and (not np.issubdtype(t.dtype, np.integer) or t.min() < 0 or t.max() >= len(problem.tileset)):
         return [Violation("tile", f"{cert.board}: tile indices outside 0..{len(problem.tileset) - 1}")]
     board = board_of(cert.board)
-    bad = board_violations(leg_colours(problem.tileset, t), BoardProblem(board, problem.tileset))
+    bad = board_violations(BoardProblem(board, problem.tileset), leg_colours(problem.tileset, t))
     return [Violation(v.kind, f"{cert.board}: {v.message}", v.row, v.col) for v in bad]
 
 
-def aperiodic_violations(report, problem: AperiodicProblem) -> list[Violation]:
+def aperiodic_violations(problem: AperiodicProblem, report) -> list[Violation]:
     """Every false claim in ``report`` (an :class:`AperiodicReport`) about ``problem``."""
     if not isinstance(report, AperiodicReport):
         return [Violation("shape", f"expected an aperiodicity report, got {type(report).__name__}")]
@@ -80,7 +80,7 @@ def aperiodic_violations(report, problem: AperiodicProblem) -> list[Violation]:
         return out
     for cert in report.squares + report.periods:
         if cert.status == "tiles":
-            out += witness_violations(cert, problem)
+            out += witness_violations(problem, cert)
         elif cert.status == "refuted":
             ev = cert.evidence
             sat = str(cert.method).startswith("sat")

@@ -51,7 +51,7 @@ def line_runs(nbr_cell: np.ndarray, nbr_leg: np.ndarray, member: np.ndarray, axi
     return run
 
 
-def board_violations(tiling, problem) -> list[Violation]:
+def board_violations(problem, tiling) -> list[Violation]:
     """Every way ``tiling`` fails the board problem, with positions (``row``/``col`` = label).
 
     Checks (Def. 2): each cell's leg colours form a tile of ``W`` (for brick tiles, Def. 9
@@ -64,7 +64,7 @@ def board_violations(tiling, problem) -> list[Violation]:
     --------
     >>> from tilesolve.model.board import Board, BoardProblem, WangTileSet
     >>> p = BoardProblem(Board.rect(1, 1), WangTileSet.brick(3), [0, 1, 0, 1])
-    >>> [v.kind for v in board_violations([[0, 1, 0, 1]], p)]
+    >>> [v.kind for v in board_violations(p, [[0, 1, 0, 1]])]
     ['cross']
     """
     board = problem.board
@@ -243,6 +243,6 @@ def listing_violations(board, cells, edges) -> list[Violation]:
     return out
 
 
-def is_valid_board_tiling(tiling, problem) -> bool:
+def is_valid_board_tiling(problem, tiling) -> bool:
     """True when ``tiling`` is a valid tiling of ``problem`` (no violations)."""
-    return not board_violations(tiling, problem)
+    return not board_violations(problem, tiling)

@@ -186,7 +186,7 @@ def _tiles(cond: Condition) -> str:
     return str(cond.tiles[0]) if len(cond.tiles) == 1 else "{" + ",".join(map(str, cond.tiles)) + "}"
 
 
-def dappled_violations(tiling, problem: DappledProblem) -> list[Violation]:
+def dappled_violations(problem: DappledProblem, tiling) -> list[Violation]:
     """Every way ``tiling`` fails ``problem``, with positions; empty when it is a solution.
 
     Checks the shape and tile range, every condition of ``L`` (plain or cyclic, uniform or
@@ -196,7 +196,7 @@ def dappled_violations(tiling, problem: DappledProblem) -> list[Violation]:
     --------
     >>> from tilesolve.model import DappledProblem
     >>> p = DappledProblem.from_strings("3x1", ["H0=2"])
-    >>> [str(v) for v in dappled_violations([[0, 0, 0]], p)]
+    >>> [str(v) for v in dappled_violations(p, [[0, 0, 0]])]
     ['(row 0, col 2) violates H0^2: horizontal run of more than 2 tile 0 ends here']
     """
     t = np.asarray(tiling)
@@ -225,9 +225,9 @@ def dappled_violations(tiling, problem: DappledProblem) -> list[Violation]:
     return out
 
 
-def is_dappled(tiling, problem: DappledProblem) -> bool:
+def is_dappled(problem: DappledProblem, tiling) -> bool:
     """True when ``tiling`` satisfies every requirement of ``problem``."""
-    return not dappled_violations(tiling, problem)
+    return not dappled_violations(problem, tiling)
 
 
 def hamming_distance(a, b) -> int:

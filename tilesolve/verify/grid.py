@@ -80,7 +80,7 @@ def _mismatch_masks(k: np.ndarray, t: np.ndarray, kind: str, toroidal: bool):
             yield own[..., a] != other[..., b], own[..., a], other[..., b], (na, nb), direction
 
 
-def grid_violations(grid, tiles, *, kind: str = "wang", toroidal: bool = False, labels=None,
+def grid_violations(tiles, grid, *, kind: str = "wang", toroidal: bool = False, labels=None,
                     limit: int | None = None) -> list[Violation]:
     """Every way ``grid`` fails to be a tiling, with positions; empty when it is one.
 
@@ -109,9 +109,9 @@ def grid_violations(grid, tiles, *, kind: str = "wang", toroidal: bool = False, 
     Examples
     --------
     >>> tiles = [[0, 0, 0, 0], [0, 1, 0, 1]]         # N, E, S, W
-    >>> grid_violations([[0, 0], [0, 1]], tiles)      # tile 1 (W = 1) east of tile 0 (E = 0)
+    >>> grid_violations(tiles, [[0, 0], [0, 1]])      # tile 1 (W = 1) east of tile 0 (E = 0)
     [Violation(kind='match', message='E colour 0 meets W colour 1 of the cell to the east', row=1, col=0)]
-    >>> grid_violations([[1, 1]], tiles, toroidal=True)
+    >>> grid_violations(tiles, [[1, 1]], toroidal=True)
     []
     """
     k, t, problems = _prepare(grid, tiles, kind, labels)
@@ -127,7 +127,7 @@ def grid_violations(grid, tiles, *, kind: str = "wang", toroidal: bool = False, 
     return out[:limit]
 
 
-def count_mismatches(grid, tiles, *, kind: str = "wang", toroidal: bool = False, labels=None) -> int:
+def count_mismatches(tiles, grid, *, kind: str = "wang", toroidal: bool = False, labels=None) -> int:
     """Number of violations :func:`grid_violations` would list, without building them (-1 on a shape error)."""
     k, t, problems = _prepare(grid, tiles, kind, labels)
     if k is None:
@@ -137,6 +137,6 @@ def count_mismatches(grid, tiles, *, kind: str = "wang", toroidal: bool = False,
     return int(sum(int(bad.sum()) for bad, *_ in _mismatch_masks(k, t, kind, toroidal)))
 
 
-def is_grid_tiling(grid, tiles, *, kind: str = "wang", toroidal: bool = False, labels=None) -> bool:
+def is_grid_tiling(tiles, grid, *, kind: str = "wang", toroidal: bool = False, labels=None) -> bool:
     """True when ``grid`` is a valid tiling (see :func:`grid_violations`)."""
-    return count_mismatches(grid, tiles, kind=kind, toroidal=toroidal, labels=labels) == 0
+    return count_mismatches(tiles, grid, kind=kind, toroidal=toroidal, labels=labels) == 0

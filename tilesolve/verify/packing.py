@@ -29,20 +29,18 @@ def _decode(grid: np.ndarray, radices: tuple[int, int, int, int]) -> list[np.nda
     return digits[::-1]
 
 
-def packing_violations(grid, kind: str, colors: int, *, colors_v: int | None = None, fixed=()) -> list[Violation]:
-    """Every way ``grid`` fails to be a tile packing, with positions; empty when it is one.
+def packing_violations(problem, grid) -> list[Violation]:
+    """Every way ``grid`` fails to be a tile packing of ``problem``, with positions; empty when it is one.
 
     Parameters
     ----------
+    problem : PackingProblem
+        Read for its fields only (no method of the model is called): ``kind`` ("wang" or
+        "corner"), ``colors`` (``C``, ``C_h`` with ``colors_v``), ``colors_v`` (Wang tiles with
+        a different number of colours on the E/W edges, or None) and ``fixed`` (pinned
+        ``(row, col, tile)`` that must be where they are pinned).
     grid : array-like of int
         ``grid[row][col]`` tile indices, row 0 at the top (row r-1 north of row r).
-    kind : {"wang", "corner"}
-    colors : int
-        ``C`` (``C_h`` with ``colors_v``).
-    colors_v : int, optional
-        Wang tiles with a different number of colours on the E/W edges.
-    fixed : iterable of (row, col, tile)
-        Pinned tiles that must be where they are pinned.
 
     Returns
     -------
@@ -53,12 +51,14 @@ def packing_violations(grid, kind: str, colors: int, *, colors_v: int | None = N
 
     Examples
     --------
-    >>> sorted({v.kind for v in packing_violations(np.zeros((4, 4), int), "wang", 2)})
+    >>> from tilesolve.model.packing import PackingProblem
+    >>> sorted({v.kind for v in packing_violations(PackingProblem("wang", 2), np.zeros((4, 4), int))})
     ['duplicate', 'missing']
     >>> fig_5_9 = [[0, 1, 3, 2]]   # not a 2D packing: wrong shape
-    >>> str(packing_violations(fig_5_9, "corner", 2)[0])
+    >>> str(packing_violations(PackingProblem("corner", 2), fig_5_9)[0])
     'packing has shape (1, 4), expected 4x4 for C=2'
     """
+    kind, colors, colors_v, fixed = problem.kind, problem.colors, problem.colors_v, problem.fixed
     if kind not in ("wang", "corner"):
         return [Violation("shape", f"unknown tile kind {kind!r}")]
     ch = int(colors)
@@ -92,7 +92,7 @@ def packing_violations(grid, kind: str, colors: int, *, colors_v: int | None = N
     # digits: N, E, S, W for Wang tiles, NE, SE, SW, NW for corner tiles).
     radices = (ch, cv, ch, cv) if kind == "wang" else (ch,) * 4
     colours = np.stack(_decode(np.arange(n, dtype=np.int64), radices), axis=1)
-    out += grid_violations(g, colours, kind=kind, toroidal=True)
+    out += grid_violations(colours, g, kind=kind, toroidal=True)
     for r, c, t in fixed:
         r, c, t = int(r), int(c), int(t)
         if not (0 <= r < rows and 0 <= c < cols):
@@ -103,6 +103,6 @@ def packing_violations(grid, kind: str, colors: int, *, colors_v: int | None = N
     return out
 
 
-def is_packing(grid, kind: str, colors: int, *, colors_v: int | None = None, fixed=()) -> bool:
-    """True when ``grid`` is a valid tile packing (see :func:`packing_violations`)."""
-    return not packing_violations(grid, kind, colors, colors_v=colors_v, fixed=fixed)
+def is_packing(problem, grid) -> bool:
+    """True when ``grid`` is a valid tile packing of ``problem`` (see :func:`packing_violations`)."""
+    return not packing_violations(problem, grid)
