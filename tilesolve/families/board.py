@@ -475,7 +475,7 @@ FAMILY = register(Family(
     codecs=(Codec(BOARD_SOLUTION, VERSIONS, _read_solution, _write_solution),),
     draw=_draw,
     demos=DEMOS,
-    commands=("tilesolve.cli.board:brick", "tilesolve.cli.board:wang", "tilesolve.cli.board:wall"),
+    commands=("tilesolve.cli.brick:brick", "tilesolve.cli.wang:wang", "tilesolve.cli.wall:wall"),
     form=FORM,
     route_help={
         "linear": "the linear algorithm of §4 (numba)",

@@ -1,0 +1,163 @@
+"""``tilesolve wall``: a window of an infinite brick wall without long lines, a thin layer over
+:mod:`tilesolve.families.walls` and :mod:`tilesolve.families.wall_render`."""
+
+from __future__ import annotations
+
+import click
+
+from tilesolve.cli import options as opt
+from tilesolve.cli.board_common import check_brick_colors, colors_opt, finish, svg_opt
+from tilesolve.cli.common import big, human_bytes, progress_wanted, say
+from tilesolve.cli.outputs import Outputs
+from tilesolve.errors import InvalidProblem
+from tilesolve.family import draw_seed, raise_if_interrupted
+
+__all__ = ["wall", "parse_region"]
+
+
+def parse_region(text: str) -> tuple[int, int, int, int]:
+    """``--region X0,Y0,WxH``: ``(x0, y0, rows, cols)``; ``(x0, y0)`` is the bottom-left cell.
+
+    >>> parse_region("-40,12,64x40")
+    (-40, 12, 40, 64)
+    """
+    import re
+
+    m = re.match(r"^\s*([+-]?\d+)\s*,\s*([+-]?\d+)\s*,\s*(\d+)\s*[xX×]\s*(\d+)\s*$", str(text))
+    if not m:
+        raise InvalidProblem(f"cannot read region {text!r}: expected X0,Y0,WxH, e.g. -40,12,64x40 "
+                             "(bottom-left cell x -40, y 12; 64 columns, 40 rows)")
+    x0, y0, w, h = (int(g) for g in m.groups())
+    if w < 1 or h < 1:
+        raise InvalidProblem(f"region size must be positive, got {w}x{h} (WxH)")
+    return x0, y0, h, w
+
+
+#: Memory a wall held whole takes per cell (-o, --svg, printed text): measured peak RSS of
+#: ``tilesolve wall --region 0,0,2000x2000 -o w.json``, 1.0 GiB for 4 M cells.
+HELD_BYTES_PER_CELL = 224
+
+
+def _check_held(rows: int, cols: int, svg) -> None:
+    """Refuse a region that -o, --svg or the printed text would have to hold whole."""
+    from tilesolve.io.svg import MAX_SVG_CELLS
+    from tilesolve.model.board import MAX_BOARD_CELLS
+
+    cells = rows * cols
+    limit, what = (MAX_SVG_CELLS, "an SVG holds") if svg else (MAX_BOARD_CELLS, "-o and the printed text hold")
+    if cells > limit:
+        raise InvalidProblem(
+            f"region {cols}x{rows} has {big(cells)} cells: {what} the whole wall (about "
+            f"{human_bytes(cells * HELD_BYTES_PER_CELL)}), tilesolve holds at most {big(limit)} cells that way; "
+            "draw it with --png alone, which streams the picture band by band")
+
+
+@click.command(name="wall", context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP,
+               short_help="A window of an infinite brick wall without long lines.")
+@click.option("--region", required=True, metavar="X0,Y0,WxH",
+              help="The window: bottom-left cell (X0, Y0) of the infinite wall (y grows upwards), "
+                   "W columns by H rows.")
+@click.option("--max-line", type=opt.positive_int, required=True, metavar="N",
+              help="No line (horizontal or vertical) through more than N bricks.")
+@colors_opt
+@opt.seed_opt
+@click.option("--method", type=click.Choice(("procedural", "npd", "dappled")), default="procedural",
+              show_default=True,
+              help="procedural: the window of the infinite procedural wall (004 §4); npd: the repeatable wall "
+                   "of 004 App. A (one period repeated, see --period); dappled: a finite wall from a dappled "
+                   "tiling (dappled paper §4; the origin is not used).")
+@click.option("--period", metavar="WxH", default=None,
+              help="npd: the repeating period, W columns by H rows (at least 3x3)  [default: the region's size]")
+@opt.output_opt
+@svg_opt
+@opt.png_opt
+@click.option("--map", "map_kind", type=click.Choice(("id", "distance", "uv")), default=None,
+              help="What --png shows: id, a colour per brick (default); distance, the distance to the brick's "
+                   "edges (grey); uv, the brick's Cartesian UV coordinates (red u, green v) (004 §3.2).")
+@click.option("--ppc", type=click.IntRange(1, 256), default=None, metavar="N",
+              help="--png pixels per cell  [default: about 1024 px on the longer side, 1 to 32]")
+@click.option("--verify/--no-verify", "check", default=True, show_default=True,
+              help="Check every --png band with the board verifier (line limits included); the check takes "
+                   "most of the time of a large picture.")
+@click.pass_context
+def wall(ctx, region, max_line, colors, seed, method, period, output, svg, png, map_kind, ppc, check) -> None:
+    """A brick wall in which no line runs through more than N bricks, cut from an infinite wall.
+
+    The procedural wall (Derouet-Jourdan, Salvati, Jonchier, 004 §3-4, App. B) gives every
+    cell of the plane its tile from the cell's coordinates and the seed alone: the same seed
+    gives the same wall, and windows at different origins are parts of one wall that agree
+    where they overlap. The answer is checked with the board verifier (line limits included).
+
+    --png draws the bricks of the procedural and npd walls (merged from the edge structure) as a
+    map, computed and written band by band: a region of any size (20,000 x 20,000 cells and more)
+    takes the memory of one band (a dappled wall is drawn by its tiles' legs). -o, --svg and the
+    printed text hold the whole wall, so they take smaller regions.
+
+    \b
+    Example:
+      tilesolve wall --region -40,12,64x40 --max-line 4 --seed 7 -o wall.json --png wall.png
+      tilesolve wall --region 0,0,30x20 --max-line 3 --colors 4 --seed 7 --svg wall.svg
+      tilesolve wall --region 0,0,400x300 --max-line 2 --seed 7 --png d.png --map distance --ppc 4
+      tilesolve wall --region 5,5,60x40 --max-line 3 --method npd --period 12x9 --seed 7 --png n.png
+      tilesolve wall --region 0,0,30x20 --max-line 2 --method dappled --seed 1 -o d.json
+
+    Without -o, --svg or --png the wall is printed as text: each cell's leg colours W N E S.
+    """
+    import time
+
+    from tilesolve import family
+    from tilesolve.model.dappled import parse_size
+
+    outs = Outputs(output, svg, png)
+    x0, y0, rows, cols = parse_region(region)
+    held = bool(output or svg or not outs) or method == "dappled"  # a dappled wall is built whole
+    if held:
+        _check_held(rows, cols, svg)
+    check_brick_colors(colors)
+    if (map_kind or ppc) and not png:
+        raise InvalidProblem("--map and --ppc choose what --png draws; add --png FILE")
+    if period and method != "npd":
+        raise InvalidProblem("--period is the repeating period of --method npd")
+    if method == "dappled" and (map_kind or ppc):
+        raise InvalidProblem("--map and --ppc need the wall around the region (--method procedural or npd); "
+                             "a dappled wall is finite")
+    pw, ph = (cols, rows) if period is None else parse_size(period)[::-1]
+    if seed is None:
+        seed = draw_seed()
+    route = {"procedural": "procedural", "npd": "npd", "dappled": "wall"}[method]
+    draw = None
+    if method != "dappled":
+        from tilesolve.families.wall_render import write_wall_png
+
+        def draw(path):
+            last = [0.0]
+
+            def show(line: str) -> None:  # a line every 2 s at most, on a terminal
+                now = time.monotonic()
+                if now - last[0] >= 2:
+                    last[0] = now
+                    say(line)
+
+            return write_wall_png(path, (x0, y0, cols, rows), colors=colors, max_line=max_line, seed=seed,
+                                  method=method, period=(pw, ph), kind=map_kind or "id", ppc=ppc, verify=check,
+                                  progress=show if progress_wanted() else None)
+    if held:
+        from tilesolve.families.walls import wall_problem
+
+        problem = wall_problem(rows, cols, max_line, n_colors=colors)
+        options = {"origin": (x0, y0)} | ({"period": (pw, ph)} if method == "npd" else {})
+        sol = raise_if_interrupted(family.solve(problem, route, seed=seed, options=options))
+        finish(ctx, problem, sol, outs, output, svg, png, draw_png=draw)
+        return
+    with outs.commit():
+        rep = draw(png)
+    say(f"sat: {method} brick wall, window x {x0}..{x0 + cols - 1}, y {y0}..{y0 + rows - 1} (y grows upwards), "
+        f"lines <= {max_line}, {colors} colours")
+    say(f"  method {method}, seed {seed}" + (f", period {pw}x{ph}" if method == "npd" else "")
+        + f", {rep.time_s:.3f} s")
+    bands = f"{rep.bands} band{'s' if rep.bands > 1 else ''}"
+    checked = f"{big(rep.verified_cells)} cells checked with the board verifier" if check else "not verified"
+    say(f"  {map_kind or 'id'} map {rep.size_px[0]}x{rep.size_px[1]} px, drawn in {bands}; {checked}")
+    if png != "-":
+        say(f"  wrote {png}")
+    ctx.exit(0)
