@@ -14,6 +14,7 @@ import pytest
 from tilesolve import family
 from tilesolve.errors import InvalidProblem, MethodNotApplicable
 from tilesolve.family import solution_text
+from tilesolve.family.files import identify
 from tilesolve.io.jsonio import read_json
 from tilesolve.model.solution import Status
 from tilesolve.model.stochastic import StochasticProblem
@@ -82,7 +83,7 @@ def test_routes_that_do_not_apply_name_one_that_does():
 
 
 @pytest.mark.parametrize("args,match", [
-    (("wang", 2, (0, 0, 0, 4)), "positive width"),
+    (("wang", 2, (0, 0, 0, 4)), "size must be positive"),
     (("hex", 2, (0, 0, 2, 2)), "unknown tile kind"),
     (("corner", 2, (0, 0, 2, 2), "sums"), "only for Wang"),
     (("wang", 2, (0, 0, 2, 2), "complete", "md5"), "unknown hash"),
@@ -114,11 +115,13 @@ def test_file_round_trip_and_large_grids_encoded():
     p = StochasticProblem("corner", 2, (-300, 40, 300, 300))
     s = family.solve(p, seed=4)
     doc = json.loads(solution_text(p, s))
-    assert doc["format"] == "tilesolve/stochastic-tiling" and doc["version"] == 1
+    assert doc["format"] == "tilesolve/stochastic-tiling" and doc["version"] == 2
+    assert doc["window"] == {"x0": -300, "y0": 40, "width": 300, "height": 300, "y_up": True}
     assert set(doc["grid"]) == {"dtype", "shape", "data"}  # 90,000 tiles: an encoded array
-    fam, codec = family._identify(doc, "t.json")
+    fam, codec = identify(doc, "t.json")
     p2, s2 = codec.read(doc, "t.json")
     assert fam is FAMILY and p2 == p and np.array_equal(s2.tiling, s.tiling) and s2.seed == 4
+    assert s.window == s2.window == p.window
     small = StochasticProblem("wang", 2, (0, 0, 3, 2), "compact")
     doc = json.loads(solution_text(small, family.solve(small, seed=1)))
     assert isinstance(doc["grid"], list) and doc["tile_set"]["numbers"] == [0, 3, 5, 6, 9, 10, 12, 15]

@@ -116,9 +116,9 @@ def tiling(ctx, trials, seed, kind, method, colors, max_size, time_limit) -> Non
     def run_trial(i):
         problem, route = random_tiling_window(np.random.default_rng((base, i)), max_side=max_size or 6, kind=kind,
                                               method=method, colors=colors)
-        x0, y0, w, h = problem.window
+        win = problem.window
         label = (f"seed {base + i}, {route} {problem.variant} {problem.kind} C={problem.colors}, "
-                 f"window {w}x{h} at ({x0}, {y0})")
+                 f"window {win.width}x{win.height} at ({win.x0}, {win.y0})")
         return label, crosscheck_tiling_window(problem, method=route, seed=base + i, time_limit=time_limit)
 
     _sweep(ctx, trials, base, run_trial)

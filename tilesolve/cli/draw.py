@@ -27,6 +27,9 @@ def draw(ctx, file: str, output: str, repeat: int, grid) -> None:
       tilesolve draw t.json -o t.svg --repeat 2
       tilesolve draw t.json -o t.png
 
+    A file that holds a window of the plane (a wall, a stochastic tiling) is drawn with its
+    window's coordinates, read from the file's window.
+
     Exit 0 when the picture was written; 1 when the file holds no tiling (unsat/unknown);
     2 when the file is malformed, and so when a board file lists cells and edges that are not
     the board it describes, or holds tiles that are not 4 colours of C for each of its cells
@@ -51,3 +54,6 @@ def draw(ctx, file: str, output: str, repeat: int, grid) -> None:
         options["grid"] = grid
     draw_solution(output, problem, sol, fmt=fmt, **options)
     say(f"wrote {output}: {fam.name} solution of {problem.describe()}")
+    if sol.window is not None:
+        x, y = sol.window.cell(0, 0)
+        say(f"  window {sol.window.describe()}: the picture's top-left cell is x {x}, y {y}")

@@ -8,31 +8,15 @@
 
 from __future__ import annotations
 
-import re
-
 import click
 
 from tilesolve.cli import options as opt
 from tilesolve.cli.common import progress_wanted, say
 from tilesolve.cli.outputs import Outputs
 from tilesolve.errors import InvalidProblem
+from tilesolve.model.window import parse_region
 
-__all__ = ["tiling", "parse_region"]
-
-_REGION = re.compile(r"\s*([+-]?\d+)\s*,\s*([+-]?\d+)\s*,\s*(\d+)\s*[xX]\s*(\d+)\s*")
-
-
-def parse_region(text: str) -> tuple[int, int, int, int]:
-    """``"X0,Y0,WxH"`` -> ``(x0, y0, w, h)``.
-
-    >>> parse_region("-8,3,16x4")
-    (-8, 3, 16, 4)
-    """
-    m = _REGION.fullmatch(text)
-    if m is None:
-        raise InvalidProblem(f"--region takes X0,Y0,WxH (e.g. -8,0,32x16), got {text!r}")
-    x0, y0, w, h = (int(g) for g in m.groups())
-    return x0, y0, w, h
+__all__ = ["tiling"]
 
 
 @click.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP,

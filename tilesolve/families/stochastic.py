@@ -60,10 +60,11 @@ def _route(method: str):
         from tilesolve.constructive.stochastic import stochastic_window
 
         t0 = time.perf_counter()
-        grid = stochastic_window(problem.kind, method, problem.window, colors=problem.colors, seed=run.seed,
-                                 variant=problem.variant, algorithm=problem.algorithm, hash=problem.hash)
+        w = problem.window
+        grid = stochastic_window(problem.kind, method, (w.x0, w.y0, w.width, w.height), colors=problem.colors,
+                                 seed=run.seed, variant=problem.variant, algorithm=problem.algorithm, hash=problem.hash)
         return Solution(Status.SAT, grid, method=method, seed=run.seed, time_s=time.perf_counter() - t0,
-                        stats={"tiles": problem.n_cells, "set_tiles": problem.tiles.n_tiles})
+                        stats={"tiles": problem.n_cells, "set_tiles": problem.tiles.n_tiles}, window=w)
 
     route.__name__ = method
     return route
@@ -94,7 +95,8 @@ def stochastic_violations(problem: StochasticProblem, grid) -> list[Violation]:
     g = np.asarray(grid)
     if g.shape != problem.shape:
         rows, cols = problem.shape
-        return [Violation("shape", f"the grid is {g.shape}, the window has {rows} rows of {cols} tiles")]
+        return [Violation("shape", f"the grid has shape {list(g.shape)}, the window {problem.window.describe()} "
+                                   f"has {rows} rows of {cols} tiles")]
     ts = problem.tiles
     labels = None if problem.variant == "complete" else ts.indices
     return grid_violations(ts.table(), g, kind=problem.kind, labels=labels)
@@ -138,9 +140,15 @@ def _write(problem: StochasticProblem, sol: Solution) -> dict:
 
 def _draw(problem: StochasticProblem, sol: Solution, path, fmt: str, *, indices: bool = False,
           title: str | None = None, **_ignored) -> None:
-    """SVG (each tile drawn with its edge or corner colours, the notes' palette of §2.7) or PNG
-    (the same drawing, streamed band by band: :func:`tilesolve.io.stochastic_png.write_window_png`);
-    a grid cell that holds no tile number is refused (there is nothing to draw there)."""
+    """SVG (each tile drawn with its edge or corner colours, the notes' palette of §2.7, under a
+    caption that names the window's coordinates) or PNG (the same drawing, streamed band by band:
+    :func:`tilesolve.io.stochastic_png.write_window_png`). A grid that is not the window's shape,
+    or a cell that holds no tile number, is refused (there is nothing right to draw there)."""
+    grid = np.asarray(sol.tiling)
+    if grid.shape != problem.shape:
+        rows, cols = problem.shape
+        raise InvalidProblem(f"nothing drawn: the grid has shape {list(grid.shape)}, the window "
+                             f"{problem.window.describe()} has {rows} rows of {cols} tiles")
     problem.tiles.check_numbers(sol.tiling)
     if fmt == "png":
         from tilesolve.io.stochastic_png import write_window_png

@@ -47,6 +47,7 @@ from tilesolve.errors import InvalidProblem, MethodNotApplicable
 from tilesolve.model.board import Board, BoardProblem, WangTileSet
 from tilesolve.model.run import RunOptions
 from tilesolve.model.solution import Solution, Status
+from tilesolve.model.window import Window
 
 __all__ = ["wall_problem", "npd_problem", "is_free_wall", "wall_route", "procedural_route", "npd_route",
            "brick_wall", "LINE_METHODS", "line_statistics"]
@@ -135,7 +136,8 @@ def procedural_route(problem: BoardProblem, run: RunOptions) -> Solution:
     -------
     Solution
         ``sat`` with the ``(rows * cols, 4)`` int8 leg colours (W, N, E, S) of the board's
-        cells, row-major; a note names the window.
+        cells, row-major; its ``window`` is the window of the plane
+        (:class:`~tilesolve.model.window.Window`, y growing upwards), and a note names it too.
 
     Raises
     ------
@@ -153,11 +155,11 @@ def procedural_route(problem: BoardProblem, run: RunOptions) -> Solution:
     x0, y0 = _origin(run.option("origin", (0, 0)))
     t0 = time.perf_counter()
     rows, cols = (int(v) + 1 for v in problem.board.labels.max(axis=0))
+    window = Window(x0, y0, cols, rows)
     legs = wall_window(x0, y0, cols, rows, colors=problem.n_colors, max_line=problem.max_h, seed=run.seed)
-    note = (f"window x {x0}..{x0 + cols - 1}, y {y0}..{y0 + rows - 1} (y grows upwards) "
-            f"of the infinite wall of seed {run.seed}")
+    note = f"window {window.describe()} of the infinite wall of seed {run.seed}"
     return Solution(Status.SAT, legs.reshape(rows * cols, 4), "procedural", None, run.seed,
-                    time.perf_counter() - t0, notes=(note,))
+                    time.perf_counter() - t0, notes=(note,), window=window)
 
 
 def _period(value, default: tuple[int, int]) -> tuple[int, int]:
@@ -209,8 +211,10 @@ def npd_route(problem: BoardProblem, run: RunOptions) -> Solution:
     -------
     Solution
         ``sat``: ``(n_cells, 4)`` leg colours (W, N, E, S) in the board's cell order, method
-        ``"npd"``, ``solver`` the dappling's solver, notes naming the period and the dappling's
-        route. On a torus an ``unsat`` dappling gives ``unsat`` (a brick wall of the torus with
+        ``"npd"``, ``solver`` the dappling's solver, ``window`` the window of the plane the
+        period repeats over (:class:`~tilesolve.model.window.Window`, y growing upwards), notes
+        naming the period and the dappling's route. On a torus an ``unsat`` dappling gives
+        ``unsat`` (a brick wall of the torus with
         these limits exists exactly when the cyclic dappling does; the dappled route's proof
         is checked there), a time limit ``unknown``.
 
@@ -237,7 +241,7 @@ def npd_route(problem: BoardProblem, run: RunOptions) -> Solution:
     pw, ph = _period(run.option("period"), (cols, rows))
     if kind == "torus" and (pw, ph) != (cols, rows):
         raise InvalidProblem(f"on a torus the period is the board ({cols}x{rows}), got period {pw}x{ph}")
-    x0, y0 = _origin(run.option("origin", (0, 0)))
+    window = Window(*_origin(run.option("origin", (0, 0))), cols, rows)
     p, q = cyclic_limits(ph, pw, problem.max_h, problem.max_v)
     t0 = time.perf_counter()
     dp = DappledProblem(ph, pw, 2, (parse_condition(f"H0={p}"), parse_condition(f"V1={q}")), cyclic=True)
@@ -256,10 +260,11 @@ def npd_route(problem: BoardProblem, run: RunOptions) -> Solution:
         return Solution(ds.status, None, "npd", ds.solver, run.seed, time.perf_counter() - t0, reason=ds.reason,
                         notes=notes)
     period = npd_legs(ds.tiling, problem.n_colors, seed=run.seed)
-    legs = periodic_window(period, x0, y0, cols, rows)
+    legs = periodic_window(period, window.x0, window.y0, cols, rows)
     lab = problem.board.labels
     tiling = legs[lab[:, 0], lab[:, 1]].astype(np.int8)
-    return Solution(Status.SAT, tiling, "npd", ds.solver, run.seed, time.perf_counter() - t0, notes=notes)
+    return Solution(Status.SAT, tiling, "npd", ds.solver, run.seed, time.perf_counter() - t0, notes=notes,
+                    window=window)
 
 
 def brick_wall(rows: int, cols: int, max_line: int, *, max_v: int | None = None, n_colors: int = 3,

@@ -1,13 +1,13 @@
-"""The ``tilesolve/stochastic-tiling`` file (version 1): a window of a stochastic tiling.
+"""The ``tilesolve/stochastic-tiling`` file (version 2; version 1 is read): a window of a stochastic tiling.
 
 ::
 
     {
-      "format": "tilesolve/stochastic-tiling", "version": 1,
+      "format": "tilesolve/stochastic-tiling", "version": 2,
       "kind": "wang",                    # or "corner"
       "colors": 3,                       # C
       "set": "compact",                  # complete, compact or sums (class notes §2.7, §3.2, §3.3.2.2)
-      "window": {"x0": -4, "y0": 10, "width": 8, "height": 5},   # y points north (§2.7)
+      "window": {"x0": -4, "y0": 10, "width": 8, "height": 5, "y_up": true},
       "hash": "long",                    # long or table (§3.4)
       "algorithm": "edges",              # direct Wang route on the complete set: edges or two
       "tile_set": {                      # the set, so another tool can check the grid alone
@@ -20,6 +20,12 @@
       "method": "scanline", "seed": 1, "time_s": 0.01, "solver": null,
       "reason": null, "notes": [], "stats": {}
     }
+
+``window`` is :meth:`tilesolve.model.window.Window.to_dict`: the bottom-left tile ``(x0, y0)``
+(tiles are named by their SW corner, §2.7), ``width`` columns by ``height`` rows, and the
+direction of the y axis. ``y_up`` is true: y points north, so ``grid`` row ``r`` holds the tiles
+of ``y = y0 + height - 1 - r`` (a window whose y grows downwards is refused). Version 1 wrote
+the window without ``y_up`` and meant the same thing: y pointing north.
 
 Grids of more than :data:`~tilesolve.io.jsonio.COMPACT_MIN_CELLS` cells, and tile sets of
 more than that many tiles, are written as encoded arrays
@@ -46,16 +52,19 @@ from tilesolve.io.jsonio import (
 )
 from tilesolve.model.solution import Solution
 from tilesolve.model.stochastic import StochasticProblem
+from tilesolve.model.window import Window
 
-__all__ = ["STOCHASTIC_TILING", "VERSIONS", "stochastic_to_dict", "stochastic_from_dict"]
+__all__ = ["STOCHASTIC_TILING", "VERSIONS", "VERSION", "stochastic_to_dict", "stochastic_from_dict"]
 
 STOCHASTIC_TILING = "tilesolve/stochastic-tiling"
-#: Versions of the format this module reads and writes.
-VERSIONS = frozenset({1})
+#: Versions of the format this module reads; it writes :data:`VERSION`.
+VERSIONS = frozenset({1, 2})
+#: The version written: 2 records the window's y direction (``window.y_up``).
+VERSION = 2
 
 _KEYS = {"format", "version", "kind", "colors", "set", "window", "hash", "algorithm", "tile_set", "status", "grid",
          "method", "solver", "seed", "time_s", "reason", "notes", "stats", "created_by", "comment"}
-_WINDOW_KEYS = ("x0", "y0", "width", "height")
+_V1_WINDOW_KEYS = {"x0", "y0", "width", "height"}
 _SET_KEYS = {"sides", "numbers", "colours"}
 
 
@@ -66,16 +75,15 @@ def _array(a: np.ndarray):
 def stochastic_to_dict(problem: StochasticProblem, solution: Solution) -> dict:
     """The JSON document of a window (arrays stay numpy arrays or encoded arrays for
     :func:`tilesolve.io.jsonio.dumps`)."""
-    x0, y0, w, h = problem.window
     ts = problem.tiles
     table = ts.table()
     return {
         "format": STOCHASTIC_TILING,
-        "version": 1,
+        "version": VERSION,
         "kind": problem.kind,
         "colors": problem.colors,
         "set": problem.variant,
-        "window": {"x0": x0, "y0": y0, "width": w, "height": h},
+        "window": problem.window.to_dict(),
         "hash": problem.hash,
         "algorithm": problem.algorithm,
         "tile_set": {
@@ -111,24 +119,29 @@ def stochastic_from_dict(doc: dict, source: Any = "<document>") -> tuple[Stochas
 
     Examples
     --------
-    >>> doc = {"format": "tilesolve/stochastic-tiling", "version": 1, "kind": "wang", "colors": 2,
-    ...        "set": "complete", "window": {"x0": 0, "y0": 0, "width": 2, "height": 1},
+    >>> doc = {"format": "tilesolve/stochastic-tiling", "version": 2, "kind": "wang", "colors": 2,
+    ...        "set": "complete", "window": {"x0": 0, "y0": 0, "width": 2, "height": 1, "y_up": True},
     ...        "grid": [[0, 0]]}
     >>> p, s = stochastic_from_dict(doc)
     >>> p.window, s.status.value, s.tiling.tolist()
-    ((0, 0, 2, 1), 'sat', [[0, 0]])
+    (Window(x0=0, y0=0, width=2, height=1, y_up=True), 'sat', [[0, 0]])
+    >>> s.window == p.window
+    True
+
+    A version 1 window has no ``y_up``; its y points north:
+
+    >>> v1 = dict(doc, version=1, window={"x0": 0, "y0": 0, "width": 2, "height": 1})
+    >>> stochastic_from_dict(v1)[0].window == p.window
+    True
     """
-    check_document(doc, source, {STOCHASTIC_TILING: VERSIONS})
+    version = check_document(doc, source, {STOCHASTIC_TILING: VERSIONS})["version"]
     extra = sorted(set(doc) - _KEYS)
     if extra:
         raise InvalidProblem(f"{source}: unknown field{'s' if len(extra) > 1 else ''} {', '.join(map(repr, extra))}")
     kind = _str(_field(doc, "kind", source), "kind", source)
     colors = _int(_field(doc, "colors", source), "colors", source)
     variant = _str(doc.get("set", "complete"), "set", source)
-    win = _field(doc, "window", source)
-    if not isinstance(win, dict) or set(win) != set(_WINDOW_KEYS):
-        raise InvalidProblem(f"{source}: 'window' must be an object with exactly the fields x0, y0, width, height")
-    window = tuple(_int(win[k], f"window.{k}", source) for k in _WINDOW_KEYS)
+    window = _window(_field(doc, "window", source), version, source)
     hash_ = _str(doc.get("hash", "long"), "hash", source)
     algorithm = _str(doc.get("algorithm", "edges"), "algorithm", source)
     try:
@@ -144,7 +157,21 @@ def stochastic_from_dict(doc: dict, source: Any = "<document>") -> tuple[Stochas
             raise InvalidProblem(f"{source}: 'grid' is empty")
     sol = solution_from_provenance(doc, source, grid, what="grid",
                                    default_status="sat" if grid is not None else "unknown")
-    return problem, sol
+    return problem, sol.replace(window=problem.window)
+
+
+def _window(win: Any, version: int, source: Any) -> Window:
+    """The ``window`` field: :meth:`Window.to_dict`'s five fields (version 2) or, in version 1,
+    ``x0, y0, width, height`` with y pointing north."""
+    fields = _V1_WINDOW_KEYS if version == 1 else _V1_WINDOW_KEYS | {"y_up"}
+    if not isinstance(win, dict) or set(win) != fields:
+        raise InvalidProblem(f"{source}: 'window' must be an object with exactly the fields "
+                             f"{', '.join(sorted(fields, key=('x0', 'y0', 'width', 'height', 'y_up').index))} "
+                             f"in version {version}")
+    try:
+        return Window.from_dict(win)
+    except InvalidProblem as exc:
+        raise InvalidProblem(f"{source}: 'window': {exc}") from None
 
 
 def _check_tile_set(value: Any, problem: StochasticProblem, source: Any) -> None:

@@ -4,11 +4,12 @@ A stochastic tiling covers the infinite plane with tiles of a Wang or corner til
 tile chosen at random among those that fit (scanline algorithms, §3.2) or computed from
 hashes of the lattice around it (direct algorithms, §3.3). A problem asks for one *window*
 of such a tiling: the ``width x height`` block of cells whose SW (lower-left) cell is the
-tile named ``(x0, y0)`` (tiles are named by their SW corner, §2.7, §3.3.1). ``x`` is the
-column coordinate, growing east; ``y`` is the row coordinate, growing *north* as in the
-notes. A solution is the grid ``grid[row, col]`` with row 0 at the top: ``grid[r, c]`` is the
-tile at ``(x0 + c, y0 + height - 1 - r)``. Coordinates may be negative; lattice points
-beyond the 63-bit range the hashes address are refused.
+tile named ``(x0, y0)`` (tiles are named by their SW corner, §2.7, §3.3.1), a
+:class:`~tilesolve.model.window.Window`. ``x`` is the column coordinate, growing east; ``y`` is
+the row coordinate, growing *north* as in the notes (``y_up``). A solution is the grid
+``grid[row, col]`` with row 0 at the top: ``grid[r, c]`` is the tile at
+``window.cell(r, c) == (x0 + c, y0 + height - 1 - r)``. Coordinates may be negative; lattice
+points beyond the 63-bit range the hashes address are refused.
 
 Tiles are numbered by eq. 2.1 (Wang, ``c_N c_E c_S c_W``) or eq. 2.5 (corner,
 ``c_NE c_SE c_SW c_NW``) in every tile set variant (:class:`tilesolve.model.tiles.TileSet`).
@@ -18,8 +19,10 @@ Examples
 >>> p = StochasticProblem("corner", 3, window=(-4, 10, 8, 5))
 >>> p.shape, p.tiles.n_tiles
 ((5, 8), 81)
+>>> p.window
+Window(x0=-4, y0=10, width=8, height=5, y_up=True)
 >>> p.describe()
-'stochastic corner tiling, window [-4, 4) x [10, 15), complete corner tile set over 3 colours (81 tiles)'
+'stochastic corner tiling, window x -4..3, y 10..14 (y grows upwards), complete corner tile set over 3 colours (81 tiles)'
 """
 
 from __future__ import annotations
@@ -31,6 +34,7 @@ import numpy as np
 
 from tilesolve.errors import InvalidProblem
 from tilesolve.model.tiles import KINDS, VARIANTS, TileSet
+from tilesolve.model.window import Window
 
 __all__ = ["StochasticProblem", "HASHES", "WANG_DIRECT", "MAX_WINDOW_TILES", "MAX_SET_TILES", "LATTICE"]
 
@@ -71,9 +75,9 @@ class StochasticProblem:
     kind : {"wang", "corner"}
     colors : int
         ``C``, the number of edge (Wang) or corner (corner) colours.
-    window : (x0, y0, width, height)
+    window : Window or (x0, y0, width, height)
         The cells ``[x0, x0 + width) x [y0, y0 + height)``, ``y`` pointing north (see the
-        module docstring).
+        module docstring); kept as a :class:`Window`.
     variant : {"complete", "compact", "sums"}
         The tile set (:class:`TileSet`): complete (§2.7), compact (the scanline sets of
         §3.2.1-3.2.2) or sums (the direct compact Wang set of §3.3.2.2).
@@ -88,12 +92,13 @@ class StochasticProblem:
     InvalidProblem
         Unknown kind, variant, hash or algorithm; fewer than 1 colour (2 for compact sets);
         a tile set or window too large to build and check (the message says what it would
-        need); a window that leaves the hashes' 63-bit lattice.
+        need); a window that leaves the hashes' 63-bit lattice, or whose y grows downwards (the
+        generators give row 0 the north-most tiles).
     """
 
     kind: str
     colors: int
-    window: tuple[int, int, int, int]
+    window: Window
     variant: str = "complete"
     hash: str = "long"
     algorithm: str = "edges"
@@ -118,13 +123,11 @@ class StochasticProblem:
         if self.algorithm not in WANG_DIRECT:
             raise InvalidProblem(f"unknown direct Wang algorithm {self.algorithm!r}; "
                                  f"choose one of {', '.join(WANG_DIRECT)}")
-        try:
-            x0, y0, w, h = self.window
-        except (TypeError, ValueError):
-            raise InvalidProblem(f"a window is (x0, y0, width, height), got {self.window!r}") from None
-        x0, y0, w, h = _int(x0, "x0"), _int(y0, "y0"), _int(w, "width"), _int(h, "height")
-        if w < 1 or h < 1:
-            raise InvalidProblem(f"a window needs a positive width and height, got {w}x{h}")
+        window = Window.of(self.window)
+        if not window.y_up:
+            raise InvalidProblem("a stochastic tiling's window has y growing upwards (row 0 is its north-most "
+                                 "row, as the notes draw it); got a window whose y grows downwards")
+        x0, y0, w, h = window.x0, window.y0, window.width, window.height
         lo, hi = LATTICE
         if not (lo <= x0 and x0 + w <= hi and lo <= y0 and y0 + h <= hi):
             raise InvalidProblem(f"window [{x0}, {x0 + w}) x [{y0}, {y0 + h}) leaves the lattice the hashes "
@@ -133,7 +136,7 @@ class StochasticProblem:
             raise InvalidProblem(f"a {w}x{h} window has {w * h:,} tiles and needs about "
                                  f"{_gib(_BYTES_PER_TILE * w * h)} to build and check; tilesolve builds at most "
                                  f"{MAX_WINDOW_TILES:,} tiles at once: ask for smaller windows")
-        object.__setattr__(self, "window", (x0, y0, w, h))
+        object.__setattr__(self, "window", window)
 
     @functools.cached_property
     def tiles(self) -> TileSet:
@@ -143,13 +146,11 @@ class StochasticProblem:
     @property
     def shape(self) -> tuple[int, int]:
         """``(rows, cols)`` of the window's grid: ``(height, width)``."""
-        return self.window[3], self.window[2]
+        return self.window.shape
 
     @property
     def n_cells(self) -> int:
-        return self.window[2] * self.window[3]
+        return self.window.width * self.window.height
 
     def describe(self) -> str:
-        x0, y0, w, h = self.window
-        return (f"stochastic {self.kind} tiling, window [{x0}, {x0 + w}) x [{y0}, {y0 + h}), "
-                f"{self.tiles.describe()}")
+        return f"stochastic {self.kind} tiling, window {self.window.describe()}, {self.tiles.describe()}"

@@ -21,11 +21,10 @@ True
 
 from __future__ import annotations
 
+import numbers
 import re
 from dataclasses import dataclass
 from typing import Any, Mapping
-
-import numpy as np
 
 from tilesolve.errors import InvalidProblem
 
@@ -60,14 +59,15 @@ class Window:
     def __post_init__(self) -> None:
         for name in ("x0", "y0", "width", "height"):
             v = getattr(self, name)
-            if isinstance(v, bool) or not isinstance(v, (int, np.integer)):
+            if isinstance(v, bool) or not isinstance(v, numbers.Integral):
                 raise InvalidProblem(f"window {name} must be an integer, got {v!r}")
             object.__setattr__(self, name, int(v))
         if self.width < 1 or self.height < 1:
             raise InvalidProblem(f"window size must be positive, got {self.width}x{self.height} (WxH)")
         for v in (self.x0, self.y0, self.x0 + self.width, self.y0 + self.height):
             if abs(v) > MAX_COORDINATE:
-                raise InvalidProblem(f"window coordinates must stay within +-2^62, got {self}")
+                raise InvalidProblem(f"window {self.describe()} leaves the lattice tilesolve addresses "
+                                     "(coordinates within +-2**62)")
         if not isinstance(self.y_up, bool):
             raise InvalidProblem(f"window y_up must be true or false, got {self.y_up!r}")
 

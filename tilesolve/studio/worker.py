@@ -100,6 +100,7 @@ def solve_request(name: str, values: Any, method: str, time_limit: float | None)
         "notes": list(sol.notes),
         "objective": sol.objective,
         "stats": {str(k): str(v) for k, v in sol.stats.items()},
+        "window": None if sol.window is None else sol.window.to_dict(),
         "command": command_line(fam, vals, method, sol.seed),
     }
     text = family.solution_text(problem, sol)

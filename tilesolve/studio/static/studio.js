@@ -214,6 +214,7 @@ function showResult(res) {
   for (const n of res.notes) lines.push("note: " + n);
   for (const [k, v] of Object.entries(res.stats)) lines.push(`${k}: ${v}`);
   $("verdict").textContent = lines.join("\n");
+  $("window-caption").textContent = res.window ? windowCaption(res.window) : "";
   $("export-json").href = `/api/jobs/${studio.lastJob}/solution.json`;
   for (const f of ["svg", "png"]) {
     $("export-" + f).href = `/api/jobs/${studio.lastJob}/picture.${f}`;
@@ -224,6 +225,13 @@ function showResult(res) {
   studio.cells = res.cells;
   drawGrid();
   if (res.cells && $("brush").querySelector("option[value=solution]")) $("brush").value = "solution";
+}
+
+// The coordinates of a solution's window of the plane, from its data (model/window.py).
+function windowCaption(w) {
+  const top = w.y_up ? w.y0 + w.height - 1 : w.y0, bottom = w.y_up ? w.y0 : w.y0 + w.height - 1;
+  return `window of the plane: x ${w.x0}..${w.x0 + w.width - 1} left to right, ` +
+         `y ${top}..${bottom} top to bottom (y grows ${w.y_up ? "upwards" : "downwards"})`;
 }
 
 async function cancel() {
