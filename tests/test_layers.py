@@ -29,10 +29,10 @@ PACKAGE = Path(__file__).resolve().parents[1] / "tilesolve"
 
 BASE = {"tilesolve", "tilesolve.errors", "tilesolve.deadline", "tilesolve._random", "tilesolve._lazy",
         "tilesolve.inputs"}
-#: The facades: the family contract (``tilesolve.family``), every module of ``tilesolve.families``
+#: The facades: the family contract (the package ``tilesolve.family``), every module of ``tilesolve.families``
 #: (found from the package, so a new family needs no edit here) and the GPU path.
 FACADES = {"tilesolve.family", "tilesolve.families", "tilesolve.gpu"}
-FACADE_PACKAGES = ("tilesolve.families.", "tilesolve.gpu.")
+FACADE_PACKAGES = ("tilesolve.family.", "tilesolve.families.", "tilesolve.gpu.")
 
 #: layer -> the layers it may import
 ALLOWED = {

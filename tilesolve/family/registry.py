@@ -1,0 +1,143 @@
+"""The registry of families: the only list of them. Facades :func:`register` their family;
+the entry points under :data:`ENTRY_POINT_GROUP` make sure every facade is imported."""
+
+from __future__ import annotations
+
+from typing import Any, Iterable
+
+from tilesolve.errors import InternalError, InvalidProblem
+from tilesolve.family.contract import Codec, Demo, Family
+
+__all__ = [
+    "ENTRY_POINT_GROUP",
+    "register",
+    "unregister",
+    "families",
+    "get",
+    "family_of",
+    "codec_of",
+    "iter_demos",
+    "backend_report",
+]
+
+
+#: Entry-point group under which packages declare their families.
+ENTRY_POINT_GROUP = "tilesolve.families"
+
+
+_REGISTRY: dict[str, Family] = {}
+_LOADED = False
+
+
+def register(family: Family) -> Family:
+    """Add ``family`` to the registry (a name registered twice is an error).
+
+    Facade modules call it when imported; the entry points make sure they are imported.
+    """
+    old = _REGISTRY.get(family.name)
+    if old is not None and old is not family:
+        raise InvalidProblem(f"a family named {family.name!r} is registered already")
+    taken = {c.format for f in _REGISTRY.values() if f is not old for c in f.codecs}
+    clash = taken & {c.format for c in family.codecs}
+    if clash:
+        raise InvalidProblem(f"file format {sorted(clash)[0]!r} belongs to another family")
+    _REGISTRY[family.name] = family
+    return family
+
+
+def unregister(name: str) -> None:
+    """Remove a family (tests register throw-away families and remove them)."""
+    _REGISTRY.pop(name, None)
+
+
+def _load_builtin() -> None:
+    """Load the families declared under :data:`ENTRY_POINT_GROUP` (once)."""
+    global _LOADED
+    if _LOADED:
+        return
+    _LOADED = True
+    from importlib.metadata import entry_points
+
+    for ep in sorted(entry_points(group=ENTRY_POINT_GROUP), key=lambda e: e.name):
+        if ep.name not in _REGISTRY:
+            _load_entry(ep)
+
+
+def _load_entry(ep) -> None:
+    """Import one entry point's family (its facade registers it) and record it."""
+    fam = ep.load()
+    if not isinstance(fam, Family):
+        raise InternalError(f"entry point {ep.value} is not a tilesolve Family")
+    _REGISTRY.setdefault(fam.name, fam)
+
+
+def families() -> list[Family]:
+    """Every registered family, in registration order."""
+    _load_builtin()
+    return list(_REGISTRY.values())
+
+
+def get(name: str) -> Family:
+    """The family called ``name`` (only its own entry point is loaded, if it is not registered yet)."""
+    if name in _REGISTRY:
+        return _REGISTRY[name]
+    if not _LOADED:
+        from importlib.metadata import entry_points
+
+        for ep in entry_points(group=ENTRY_POINT_GROUP, name=name):
+            _load_entry(ep)
+        if name in _REGISTRY:
+            return _REGISTRY[name]
+    _load_builtin()
+    try:
+        return _REGISTRY[name]
+    except KeyError:
+        raise InvalidProblem(f"unknown family {name!r}; known: {', '.join(_REGISTRY)}") from None
+
+
+def family_of(problem: Any) -> Family:
+    """The family whose problem type ``problem`` is."""
+    for fam in list(_REGISTRY.values()):  # usually registered already, by importing its facade
+        if isinstance(problem, fam.problem_type):
+            return fam
+    for fam in families():
+        if isinstance(problem, fam.problem_type):
+            return fam
+    raise InvalidProblem(f"no tilesolve family solves a {type(problem).__name__}")
+
+
+def codec_of(fmt: str) -> tuple[Family, Codec]:
+    """The family and codec of a file format name."""
+    for fam in families():
+        for c in fam.codecs:
+            if c.format == fmt:
+                return fam, c
+    known = sorted(c.format for f in families() for c in f.codecs)
+    raise InvalidProblem(f"unknown format {fmt!r}; this tilesolve reads {', '.join(known)}")
+
+
+def iter_demos() -> Iterable[tuple[Family, Demo]]:
+    """Every family's demos, family by family."""
+    for fam in families():
+        for d in fam.demos:
+            yield fam, d
+
+
+def backend_report() -> tuple[list[tuple[str, ...]], list[tuple[str, ...]], bool]:
+    """What ``tilesolve backends`` prints: ``(backend rows, route rows, a required backend is
+    missing)``; backend rows are (name, kind, installed, version or reason, used by), route
+    rows (family, route, what it does)."""
+    from tilesolve.engine.backends import OTHER_BACKENDS, dist_version, probe, sat_backends
+
+    rows = []
+    pysat = f"python-sat {dist_version('python-sat')}"
+    sat = sat_backends()
+    for name, ok, used_by in sat:
+        rows.append((name, "SAT", "yes" if ok else "no", pysat if ok else "not in this python-sat build", used_by))
+    missing = not any(ok for _, ok, _ in sat)
+    for b in OTHER_BACKENDS:
+        ok, info = probe(b)
+        missing |= not ok and not b.optional
+        rows.append((b.name, b.kind, "yes" if ok else ("no (optional)" if b.optional else "NO"), info, b.used_by))
+    routes = [(fam.name, route, fam.route_help.get(route, "")) for fam in families() for route in fam.routes]
+    return rows, routes, missing
