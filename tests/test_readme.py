@@ -50,3 +50,35 @@ def test_python_example(folder, code):
     (folder / "example.py").write_text(code)
     proc = subprocess.run([sys.executable, "example.py"], cwd=folder, capture_output=True, text=True, timeout=900)
     assert proc.returncode == 0, (code, proc.stderr[-3000:])
+
+
+def test_the_test_command_is_what_ci_runs():
+    """The README's test command is scripts/test.sh (installing, then pytest on every core), and
+    .ci/run runs it."""
+    commands = [line.split("#")[0].strip() for kind, body in BLOCKS if kind == "bash" for line in body.splitlines()
+                if line.startswith("scripts/test.sh")]
+    assert commands[0] == "scripts/test.sh"
+    script = (ROOT / "scripts" / "test.sh").read_text(encoding="utf-8")
+    assert 'pip install -q ".[test]"' in script and "python -m pytest -q -n auto" in script
+    assert (ROOT / "scripts" / "test.sh").stat().st_mode & 0o111
+    ci = (ROOT / ".ci" / "run").read_text(encoding="utf-8")
+    assert any(line.split()[-1:] == ["scripts/test.sh"] for line in ci.splitlines() if not line.startswith("#"))
+
+
+def test_the_test_command_names_missing_packages_without_root(tmp_path):
+    """Without root, sudo or apt-get, scripts/test.sh stops in one line naming what is missing
+    (here chromium), before it makes a virtual environment."""
+    bin_ = tmp_path / "bin"
+    bin_.mkdir()
+    for tool in ("dirname", "grep", "ls", "sort", "tr"):
+        (bin_ / tool).symlink_to(shutil.which(tool))
+    (bin_ / "python3.11").symlink_to(sys.executable)
+    (bin_ / "ldconfig").symlink_to(shutil.which("ldconfig") or "/sbin/ldconfig")
+    (bin_ / "id").write_text("#!/bin/sh\necho 1000\n")
+    (bin_ / "id").chmod(0o755)
+    proc = subprocess.run(["/bin/bash", str(ROOT / "scripts" / "test.sh")], capture_output=True, text=True,
+                          env={"PATH": str(bin_), "VENV": str(tmp_path / "venv")}, timeout=60)
+    assert proc.returncode == 1 and proc.stdout == "", proc
+    [line] = proc.stderr.splitlines()
+    assert line.startswith("scripts/test.sh: missing system packages: ") and "chromium" in line
+    assert not (tmp_path / "venv").exists()
