@@ -72,7 +72,7 @@ def main() -> None:
         return
 
     doc = json.loads(TILES.read_text())
-    tiles = WangTileSet.from_nesw(doc["tiles"], doc["colors"])
+    tiles = WangTileSet(doc["tiles"], doc["colors"])
     # load every compiled kernel once (numba loads each from its cache on first call)
     warm = encode_wang(BoardProblem(Board.torus(3, 3), tiles)).hard
     with Solver(name="cadical153", bootstrap_with=warm.to_lists(), with_proof=True) as s:

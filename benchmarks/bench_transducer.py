@@ -49,7 +49,7 @@ def load_tiles(path: Path) -> WangTileSet:
             n, s, w, e = map(int, line.split())
             rows.append((n, e, s, w))
     a = np.array(rows)
-    return WangTileSet.from_nesw(a, int(a.max()) + 1)
+    return WangTileSet(a, int(a.max()) + 1)
 
 
 def test_sets(args) -> None:
@@ -122,7 +122,7 @@ def main() -> None:
     ap.add_argument("--memory-below", type=float, default=5.0,
                     help="measure the peak memory (a second run) of searches that took at most this many seconds")
     args = ap.parse_args()
-    decide(WangTileSet.from_nesw([[0, 0, 0, 0]], 1), max_k=2)  # load networkx before timing
+    decide(WangTileSet([[0, 0, 0, 0]], 1), max_k=2)  # load networkx before timing
     test_sets(args)
     jeandel_rao(args)
 

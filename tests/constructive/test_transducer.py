@@ -37,7 +37,7 @@ def load_tiles(name: str) -> WangTileSet:
             n, s, w, e = map(int, line.split())
             rows.append((n, e, s, w))
     a = np.array(rows)
-    return WangTileSet.from_nesw(a, int(a.max()) + 1)
+    return WangTileSet(a, int(a.max()) + 1)
 
 
 def check_torus(ts: WangTileSet, torus: np.ndarray) -> None:
@@ -167,7 +167,7 @@ def test_compose_is_stacking():
     assert np.array_equal(t.south[i], t.north[j])
     assert np.array_equal(c.north, t.north[i]) and np.array_equal(c.south, t.south[j])
     pairs = {(int(a), int(b)) for a, b in zip(i, j)}
-    want = {(a, b) for a in range(len(ts)) for b in range(len(ts)) if ts.tiles[a][3] == ts.tiles[b][1]}
+    want = {(a, b) for a in range(len(ts)) for b in range(len(ts)) if ts.legs[a][3] == ts.legs[b][1]}
     # merged transitions keep one column each: every kept pair stacks, every stack is represented
     assert pairs <= want
     assert len({(int(c.src[e]), int(c.dst[e]), int(c.north[e]), int(c.south[e])) for e in range(c.n_transitions)}) \
@@ -175,7 +175,7 @@ def test_compose_is_stacking():
 
 
 def test_simplify_keeps_cycles_only():
-    ts = WangTileSet.from_nesw([[0, 0, 0, 0], [0, 1, 0, 0], [0, 1, 0, 1]], 2)  # 0 -> 1 leaves for good
+    ts = WangTileSet([[0, 0, 0, 0], [0, 1, 0, 0], [0, 1, 0, 1]], 2)  # 0 -> 1 leaves for good
     t = tile_transducer(ts)
     kept = simplify(t)
     assert sorted(ts.tiles[kept].tolist()) == sorted(ts.tiles[[e for e in range(3) if t.src[e] == t.dst[e]]].tolist())
@@ -183,7 +183,7 @@ def test_simplify_keeps_cycles_only():
 
 def test_periodic_cycle_and_unfold_by_hand():
     # 2 rows: A (N0 S1) on top of B (N1 S0); horizontally A-A and B-B (colour 0), a 2 x 1 torus
-    ts = WangTileSet.from_nesw([[0, 0, 1, 0], [1, 0, 0, 0]], 2)
+    ts = WangTileSet([[0, 0, 1, 0], [1, 0, 0, 0]], 2)
     l1 = build_level(ts, None)
     assert periodic_cycle(l1.quotient) is None
     l2 = build_level(ts, l1)
@@ -249,7 +249,7 @@ def small_tile_sets(draw, max_colours=3, max_tiles=6):
     colours = draw(st.integers(1, max_colours))
     tiles = draw(st.lists(st.tuples(*[st.integers(0, colours - 1)] * 4), min_size=1, max_size=max_tiles,
                           unique=True))
-    return WangTileSet.from_nesw(tiles, colours)
+    return WangTileSet(tiles, colours)
 
 
 @settings(max_examples=12)

@@ -41,8 +41,8 @@ tilesets = st.integers(1, 3).flatmap(lambda k: st.lists(
 @given(tilesets, st.integers(1, 3), st.integers(1, 2), st.booleans(), st.booleans())
 def test_transfer_matches_brute_force(kt, rows, cols, wrap_rows, wrap_cols):
     k, tiles = kt
-    ts = WangTileSet.from_nesw(tiles, k)
-    nesw = [tuple(t) for t in ts.nesw().tolist()]
+    ts = WangTileSet(tiles, k)
+    nesw = [tuple(t) for t in ts.tiles.tolist()]
     assert count_grid(ts, rows, cols, wrap_rows=wrap_rows, wrap_cols=wrap_cols) == \
         brute_force(nesw, rows, cols, wrap_rows, wrap_cols)
 
@@ -52,7 +52,7 @@ def test_board_count_transfer_equals_enumeration(spec):
     from tilesolve.families import board as facade
     from tilesolve.io.mask import read_board_spec
 
-    ts = WangTileSet.from_nesw([[0, 1, 1, 0], [1, 0, 0, 1], [0, 0, 1, 1], [1, 1, 0, 0], [0, 0, 0, 0]], 2)
+    ts = WangTileSet([[0, 1, 1, 0], [1, 0, 0, 1], [0, 0, 1, 1], [1, 1, 0, 0], [0, 0, 0, 0]], 2)
     problem = BoardProblem(read_board_spec(spec), ts)
     fast = facade.count(problem, method="transfer")
     slow = facade.count(problem, method="enumerate")
@@ -64,7 +64,7 @@ def test_board_count_transfer_equals_enumeration(spec):
 def test_auto_falls_back_to_enumeration():
     from tilesolve.families import board as facade
 
-    ts = WangTileSet.from_nesw([[0, 0, 0, 0], [1, 1, 1, 1], [0, 1, 0, 1]], 2)
+    ts = WangTileSet([[0, 0, 0, 0], [1, 1, 1, 1], [0, 1, 0, 1]], 2)
     mobius = BoardProblem(Board.mobius(2, 3), ts)
     assert "twisted" in transfer_applies(mobius)
     res = facade.count(mobius)
@@ -87,7 +87,7 @@ def brute_force_board(problem) -> int:
 
 def test_big_counts_are_exact():
     # all 16 tiles over 2 colours: every edge colour free, 2^(edges) tilings
-    ts = WangTileSet.from_nesw(list(itertools.product(range(2), repeat=4)), 2)
+    ts = WangTileSet(list(itertools.product(range(2), repeat=4)), 2)
     assert count_grid(ts, 6, 6) == 2 ** (6 * 7 * 2)
     assert count_grid(ts, 6, 6, wrap_rows=True, wrap_cols=True) == 2 ** (6 * 6 * 2)  # above 2^53: modular path
     assert count_grid(ts, 3, 7, wrap_rows=True) == 2 ** (3 * 7 + 3 * 8)
@@ -104,14 +104,14 @@ def test_other_orientation_when_rows_explode(monkeypatch):
 
     # every tile meets every tile side by side (16 partial rows of width 2), but N/S colours
     # follow a 4-cycle (4 partial columns): refused one way, counted the other way
-    ts = WangTileSet.from_nesw([(i, 0, (i + 1) % 4, 0) for i in range(4)], 4)
-    nesw = [tuple(t) for t in ts.nesw().tolist()]
+    ts = WangTileSet([(i, 0, (i + 1) % 4, 0) for i in range(4)], 4)
+    nesw = [tuple(t) for t in ts.tiles.tolist()]
     expected = brute_force(nesw, 4, 2, True, False)
     assert expected > 0 and count_grid(ts, 4, 2, wrap_rows=True) == expected
     monkeypatch.setattr(wc, "MAX_STATES", 8)
     assert count_grid(ts, 4, 2, wrap_rows=True) == expected
     with pytest.raises(InvalidProblem, match="too many partial rows"):
-        wc._rows(ts.nesw(), 4, 2, False)
+        wc._rows(ts.tiles, 4, 2, False)
 
 
 def test_refuses_absurd_rows():
@@ -129,7 +129,7 @@ def test_cli_wang_count_and_builtin_sets(tmp_path):
     jr, _ = load("jeandel-rao")
     assert int(proc.stdout.split()[-1]) == count_grid(jr, 2, 3)
     # an n s w e file of the same set gives the same count through --tiles
-    (tmp_path / "jr.tiles").write_text("".join(f"{n} {s} {w} {e}\n" for n, e, s, w in jr.nesw().tolist()))
+    (tmp_path / "jr.tiles").write_text("".join(f"{n} {s} {w} {e}\n" for n, e, s, w in jr.tiles.tolist()))
     again = run("wang", "count", "--tiles", "jr.tiles", "--board", "rect:3x2", cwd=tmp_path)
     assert again.returncode == 0 and again.stdout == proc.stdout
     listing = run("tiles", "--builtin", cwd=tmp_path)

@@ -174,7 +174,7 @@ def test_every_named_encoding_is_deterministic_and_pinned_to_its_version():
         "dappled-cnf": DappledProblem.from_strings("5x4", ["H0=2", "V1=2"], cyclic=True, counts=["1=6..9"]),
         "wang-board-cnf": BoardProblem(Board.mobius(3, 4), WangTileSet.brick(3), max_h=2),
         "packing-cnf": PackingProblem("corner", 2, fixed=((0, 0, 3),)),
-        "wang-tiles-cnf": board_problem(WangTileSet.from_nesw(DIAGONAL, 3), "torus 3x2 shear 1"),
+        "wang-tiles-cnf": board_problem(WangTileSet(DIAGONAL, 3), "torus 3x2 shear 1"),
     }
     assert set(problems) == set(ENCODINGS) == set(PINNED)
     for name, problem in problems.items():
@@ -358,7 +358,7 @@ def test_a_cache_without_its_proofs_is_not_evidence(tmp_path):
 
 
 def test_sweep_api_without_a_witness_check_uses_no_cached_witness(tmp_path):
-    ws = WangTileSet.from_nesw(DIAGONAL, 3)
+    ws = WangTileSet(DIAGONAL, 3)
     names = ["torus 1x1", "torus 3x1 shear 1"]
     cache = tmp_path / "c.jsonl"
     sweep(ws, names, RunOptions(seed=1, workers=1), cache=cache)
@@ -370,7 +370,7 @@ def test_sweep_api_without_a_witness_check_uses_no_cached_witness(tmp_path):
 def test_many_refutations_rechecked_on_worker_processes(tmp_path):
     from tilesolve.engine.certificates import PARALLEL_RECHECK_MIN
 
-    problem = AperiodicProblem(WangTileSet.from_nesw(DIAGONAL, 3), 0, 4, shears=True)
+    problem = AperiodicProblem(WangTileSet(DIAGONAL, 3), 0, 4, shears=True)
     from tilesolve.families.aperiodic import solve
 
     s = solve(problem, seed=1, workers=1, options={"proof_dir": tmp_path / "proofs"})

@@ -34,7 +34,7 @@ def counter_tiles(a: int, b: int) -> WangTileSet:
     """Wang tiles counting mod ``a`` along rows and mod ``b`` along columns: a p x q torus
     exists exactly when ``a | p`` and ``b | q`` (in one orientation or the other)."""
     tiles = [((j + 1) % b, (i + 1) % a, j, i) for i in range(a) for j in range(b)]  # N, E, S, W
-    return WangTileSet.from_nesw(tiles, max(a, b))
+    return WangTileSet(tiles, max(a, b))
 
 
 def _instances():

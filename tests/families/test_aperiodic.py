@@ -27,15 +27,15 @@ from tilesolve.verify.board import board_violations
 
 #: (R + C) mod 3 colours both ways: tile i has N = i, S = i + 1, W = i, E = i + 1 (mod 3), so
 #: crossing east shifts the row counter: it tiles the torus 3x1 only with shear 1.
-DIAGONAL = WangTileSet.from_nesw([[i, (i + 1) % 3, (i + 1) % 3, i] for i in range(3)], 3)
+DIAGONAL = WangTileSet([[i, (i + 1) % 3, (i + 1) % 3, i] for i in range(3)], 3)
 #: One tile whose E and W differ: it tiles a single column only (no 1x2 rectangle).
-LONELY = WangTileSet.from_nesw([[0, 1, 0, 0]], 2)
+LONELY = WangTileSet([[0, 1, 0, 0]], 2)
 
 
 def _brute_tiles(board: Board, ws: WangTileSet) -> bool:
     n = board.n_cells
     for choice in itertools.product(range(len(ws)), repeat=n):
-        if not board_violations(BoardProblem(board, ws), ws.tiles[list(choice)]):
+        if not board_violations(BoardProblem(board, ws), ws.legs[list(choice)]):
             return True
     return False
 
@@ -143,7 +143,7 @@ def test_sweep_workers_and_cache(tmp_path):
 
 
 def test_time_limit_leaves_boards_undecided_never_refuted():
-    jr = WangTileSet.from_nesw([(t, r, b, l) for r, t, l, b in [
+    jr = WangTileSet([(t, r, b, l) for r, t, l, b in [
         (2, 4, 2, 1), (2, 2, 2, 0), (1, 1, 3, 1), (1, 2, 3, 2), (3, 1, 3, 3), (0, 1, 3, 1), (0, 0, 0, 1),
         (3, 1, 0, 2), (0, 2, 1, 2), (1, 2, 1, 4), (3, 3, 1, 2)]], 5)
     certs, _ = sweep(jr, ["torus 20x20", "torus 21x21"], RunOptions(seed=1, workers=1, deadline=Deadline(0.05)))

@@ -1,8 +1,10 @@
-"""Board solution files, versions 1 and 2: round trips, old files, other readers, bad input
+"""Board solution files, versions 1, 2 and 3: round trips, old files, other readers, bad input
 (the forgeries, through the console script: tests/verify/test_board_forgery.py)."""
 
 import base64
 import json
+import shutil
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -16,6 +18,14 @@ from tilesolve.model.aperiodic import Lattice
 from tilesolve.model.board import Board, BoardProblem, WangTileSet
 from tilesolve.model.solution import Solution, Status
 from tilesolve.verify.board import listing_violations
+
+from clitools import run
+
+#: Files written by tilesolve before version 3 (versions 1 and 2, legs W, N, E, S), with the
+#: DRAT proofs of the unsat ones and the tile set they were solved for.
+OLD = Path(__file__).parents[1] / "data" / "board_solution"
+#: Where a leg of the board model (W, N, E, S) stands in N, E, S, W, written out by hand.
+NESW_INDEX = {0: 3, 1: 0, 2: 1, 3: 2}
 
 
 def _boards():
@@ -63,7 +73,7 @@ def test_round_trip_gives_the_same_problem_and_tiling(tmp_path, name, compact):
         path = tmp_path / "s.json"
         write_board_solution(path, p, s, compact=compact)
         doc = json.loads(path.read_text())
-        assert doc["version"] == (2 if compact else 1)
+        assert doc["version"] == 3 and doc["leg_order"] == ["N", "E", "S", "W"]
         if compact:
             assert ("grid" in doc) == (board.grid_spec is not None) and ("edges" in doc) == (board.grid_spec is None)
         _same(p, s, *read_board_solution(path))
@@ -73,13 +83,13 @@ def test_large_boards_are_written_compactly_and_small_ones_as_lists():
     small = Board.rect(64, 64)
     big = Board.with_holes(70, 70, 8, 5, seed=1)
     assert small.n_cells <= COMPACT_MIN_CELLS < big.n_cells
-    assert board_solution_to_dict(*_problem_and_solution(small))["version"] == 1
+    assert isinstance(board_solution_to_dict(*_problem_and_solution(small))["boundary"], list)
     doc = board_solution_to_dict(*_problem_and_solution(big))
-    assert doc["version"] == 2 and doc["mask"]["dtype"] == "bits" and doc["tiles"]["dtype"] == "uint8"
+    assert doc["version"] == 3 and doc["mask"]["dtype"] == "bits" and doc["tiles"]["dtype"] == "uint8"
     assert board_solution_to_dict(*_problem_and_solution(Board.rect(80, 80)))["mask"] is None
 
 
-def test_version_2_reads_with_base64_and_numpy_alone(tmp_path):
+def test_version_3_reads_with_base64_and_numpy_alone(tmp_path):
     """What the module docstring tells another tool, done by hand."""
     board = Board.mobius(4, 6).restrict(np.arange(24) != 7)
     p, s = _problem_and_solution(board, 3)
@@ -91,7 +101,7 @@ def test_version_2_reads_with_base64_and_numpy_alone(tmp_path):
     mask = np.unpackbits(np.frombuffer(base64.b64decode(doc["mask"]["data"]), np.uint8), count=24).reshape(4, 6)
     assert mask.sum() == 23 and mask[1, 1] == 0
     tiles = np.frombuffer(base64.b64decode(doc["tiles"]["data"]), "<u1").reshape(doc["tiles"]["shape"])
-    assert np.array_equal(tiles, s.tiling)
+    assert np.array_equal(tiles, s.tiling[:, [1, 2, 3, 0]])  # N, E, S, W of the legs W, N, E, S
     beta = np.frombuffer(base64.b64decode(doc["boundary"]["data"]), "<i1")
     assert np.array_equal(beta, p.boundary)
 
@@ -114,9 +124,64 @@ def test_reads_a_version_1_file_written_by_hand(tmp_path):
     b = Board.rect(1, 2)
     assert np.array_equal(q.board.nbr_cell, b.nbr_cell) and np.array_equal(q.board.nbr_leg, b.nbr_leg)
     assert q.boundary.tolist() == [1, -1, -1, 0, -1, -1] and t.tiling.tolist() == doc["tiles"]
+    # the same file in version 3: tiles and leg numbers in N, E, S, W; boundary legs numbered alike
+    v3 = _as_version_3(doc)
+    assert v3["tiles"] == [[0, 2, 1, 1], [0, 2, 2, 2]] and v3["edges"][2] == [0, 1, 1, 3]
+    path.write_text(json.dumps(v3))
+    q3, t3 = read_board_solution(path)
+    assert np.array_equal(q3.board.nbr_cell, b.nbr_cell) and np.array_equal(q3.board.nbr_leg, b.nbr_leg)
+    assert q3.boundary.tolist() == q.boundary.tolist() and t3.tiling.tolist() == doc["tiles"]
+
+
+def _as_version_3(doc: dict) -> dict:
+    """A version 1 document (plain lists, legs W, N, E, S) in version 3's leg order, by hand."""
+    out = dict(doc, version=3, leg_order=["N", "E", "S", "W"])
+    out["tiles"] = [[w_n_e_s[i] for i in (1, 2, 3, 0)] for w_n_e_s in doc["tiles"]]
+    out["edges"] = [[a, NESW_INDEX[ka], b, kb if b < 0 else NESW_INDEX[kb]] for a, ka, b, kb in doc["edges"]]
+    if isinstance(doc["tileset"], list):
+        out["tileset"] = [[w_n_e_s[i] for i in (1, 2, 3, 0)] for w_n_e_s in doc["tileset"]]
+    return out
+
+
+def _as_version_1(doc: dict) -> dict:
+    """A version 3 document with plain lists back in version 1's leg order, by hand."""
+    back = {v: k for k, v in NESW_INDEX.items()}
+    out = json.loads(jsonio.dumps(doc))
+    out.update(version=1, leg_order=["W", "N", "E", "S"])
+    out["tiles"] = [[n_e_s_w[i] for i in (3, 0, 1, 2)] for n_e_s_w in out["tiles"]]
+    out["edges"] = [[a, back[ka], b, kb if b < 0 else back[kb]] for a, ka, b, kb in out["edges"]]
+    return out
+
+
+def test_versions_1_and_3_of_one_solution_read_the_same(tmp_path):
+    for board in (Board.mobius(3, 4).restrict(np.arange(12) != 5), Lattice(3, 4, 1).board()):
+        p, s = _problem_and_solution(board, 1)
+        v3 = board_solution_to_dict(p, s, compact=False)
+        (tmp_path / "v3.json").write_text(jsonio.dumps(v3))
+        (tmp_path / "v1.json").write_text(json.dumps(_as_version_1(v3)))
+        _same(p, s, *read_board_solution(tmp_path / "v3.json"))
+        _same(p, s, *read_board_solution(tmp_path / "v1.json"))
+
+
+def test_a_window_of_the_plane_is_data_in_version_3_only(tmp_path):
+    from dataclasses import replace
+
+    from tilesolve.model.window import Window
+
+    p, s = _problem_and_solution(Board.rect(3, 4))
+    s = replace(s, window=Window(-2, 5, 4, 3))
+    write_board_solution(tmp_path / "w.json", p, s)
+    doc = json.loads((tmp_path / "w.json").read_text())
+    assert doc["window"] == {"x0": -2, "y0": 5, "width": 4, "height": 3, "y_up": True}
+    assert read_board_solution(tmp_path / "w.json")[1].window == Window(-2, 5, 4, 3)
+    assert "window" not in board_solution_to_dict(*_problem_and_solution(Board.rect(3, 4)))
+    doc["window"]["width"] = 0
+    assert "'window': window size must be positive" in _read_error(tmp_path, doc)
+    assert "'window' needs version 3" in _read_error(tmp_path, dict(_as_version_1(doc), window=doc["window"]))
 
 
 def _v2_doc():
+    """A compact document (encoded arrays); version 3 has version 2's encodings."""
     return board_solution_to_dict(*_problem_and_solution(Board.with_holes(7, 9, 2, 2, seed=3)), compact=True)
 
 
@@ -166,10 +231,10 @@ def _read_error(tmp_path, doc) -> str:
 
 def test_unknown_versions_are_still_refused(tmp_path):
     doc = _v2_doc()
-    doc["version"] = 3
-    path = tmp_path / "v3.json"
+    doc["version"] = 4
+    path = tmp_path / "v4.json"
     path.write_text(json.dumps(doc))
-    with pytest.raises(InvalidProblem, match="version 3 is not supported"):
+    with pytest.raises(InvalidProblem, match="version 4 is not supported"):
         read_board_solution(path)
 
 
@@ -184,7 +249,7 @@ def test_encoded_arrays_round_trip_in_the_narrowest_dtype(values):
                      2 if -2**15 <= lo and hi < 2**15 else 4 if -2**31 <= lo and hi < 2**31 else 8)
 
 
-def test_version_1_records_the_grid_and_mask_besides_the_list():
+def test_lists_record_the_grid_and_mask_besides_the_list():
     board = Board.mobius(3, 4).restrict(np.arange(12) != 5)
     doc = board_solution_to_dict(*_problem_and_solution(board), compact=False)
     assert doc["grid"] == {"rows": 3, "cols": 4, "wrap_rows": None, "wrap_cols": "twist"}
@@ -204,7 +269,7 @@ def test_a_listed_grid_board_keeps_its_list_for_the_verifier(tmp_path):
 
 
 def _v1_doc():
-    return board_solution_to_dict(*_problem_and_solution(Board.rect(2, 3)), compact=False)
+    return _as_version_1(board_solution_to_dict(*_problem_and_solution(Board.rect(2, 3)), compact=False))
 
 
 @pytest.mark.parametrize("make, change, message", [
@@ -217,6 +282,8 @@ def _v1_doc():
     (_v1_doc, _set(["grid", "cols"], 1 << 27), "'grid' is 134217728x2"),
     (_v1_doc, _set(["max_h"], 2**31), "'max_h' is 2147483648"),
     (_v1_doc, _set(["leg_order"], 5), "leg_order 5"),
+    (_v1_doc, _set(["leg_order"], ["N", "E", "S", "W"]), "is not that of version 1, ['W', 'N', 'E', 'S']"),
+    (_v2_doc, _set(["leg_order"], ["W", "N", "E", "S"]), "is not that of version 3, ['N', 'E', 'S', 'W']"),
     (_v1_doc, _set(["cells"], {"dtype": "uint8", "shape": [6, 2], "data": ""}), "encoded arrays need version 2"),
     (_v1_doc, lambda d: d.pop("edges"), "'cells' and 'edges' together"),
     (_v1_doc, lambda d: (d.pop("edges"), d.pop("cells")), "lists 'cells' and 'edges'"),
@@ -245,3 +312,24 @@ def test_a_board_given_by_its_joins_alone_needs_distinct_labels(tmp_path):
         path.write_text(json.dumps(doc))
         with pytest.raises(InvalidProblem, match=r"cells 0 and 1 have the same label \[0, 1\]"):
             read_board_solution(path)
+
+
+@pytest.mark.parametrize("name", sorted(p.name for p in OLD.glob("v[12]-*.json")))
+def test_files_of_versions_1_and_2_still_read_and_verify(tmp_path, name):
+    """Files tilesolve wrote before version 3 (legs W, N, E, S): the unsat ones' proofs are
+    re-checked against the CNF re-derived from the file, so its tile set reads in the order
+    written."""
+    shutil.copytree(OLD, tmp_path / "old")
+    proc = run("verify", name, "--proof-dir", "proofs", cwd=tmp_path / "old")
+    assert proc.returncode == 0, proc.stderr
+    out = proc.stdout + proc.stderr
+    assert out.startswith(f"ok: {name}") and ("unsat re-checked" in out) == ("unsat" in name)
+    q, t = read_board_solution(OLD / name)
+    doc = json.loads((OLD / name).read_text())
+    assert doc["version"] == int(name[1]) and doc["leg_order"] == ["W", "N", "E", "S"]
+    if isinstance(doc["tileset"], list):  # written as legs W, N, E, S; read as tiles N, E, S, W
+        assert q.tileset.legs.tolist() == doc["tileset"] and q.tileset.tiles.tolist() == [
+            [n, e, s, w] for w, n, e, s in doc["tileset"]]
+    # written again, as version 3, it reads to the same problem and tiling
+    write_board_solution(tmp_path / "v3.json", q, t)
+    _same(q, t, *read_board_solution(tmp_path / "v3.json"))

@@ -50,7 +50,7 @@ def isomorphic(a, b) -> bool:
 
 def test_isomorphism_test_can_fail():
     jr, _ = load("jeandel-rao")
-    tiles = [tuple(t) for t in jr.nesw().tolist()]
+    tiles = [tuple(t) for t in jr.tiles.tolist()]
     rotated = [(w, n, e, s) for n, e, s, w in tiles]  # N moved to E: not a relabelling
     relabelled = [(4 - n, (e + 1) % 4 if e < 4 else e, 4 - s, (w + 1) % 4 if w < 4 else w) for n, e, s, w in tiles]
     assert isomorphic(tiles, relabelled[::-1])
@@ -82,7 +82,7 @@ def test_names_and_info():
 ])
 def test_sizes_from_the_literature(name, n_tiles, h_colors, v_colors):
     ts, _ = load(name)
-    t = ts.nesw()
+    t = ts.tiles
     assert len(ts) == n_tiles
     assert np.unique(t[:, [0, 2]]).size == h_colors and np.unique(t[:, [1, 3]]).size == v_colors
 
@@ -96,7 +96,7 @@ def test_second_sources_agree():
     checked = 0
     for name in names():
         ts, info = load(name)
-        ours = [tuple(map(str, t)) for t in ts.nesw().tolist()]
+        ours = [tuple(map(str, t)) for t in ts.tiles.tolist()]
         for src in info["sources"][1:]:
             assert isomorphic(ours, _nesw(src["tiles"], src["order"], src.get("turned", 0))), (name, src["path"])
             checked += 1

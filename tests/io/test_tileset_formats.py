@@ -19,7 +19,7 @@ def _same(a, b) -> bool:
 def _jr_lines(order: str, shift: int = 0) -> str:
     jr, _ = load("jeandel-rao")
     pos = {"nswe": (0, 2, 3, 1), "tilesat": (0, 1, 2, 3), "rtlb": (1, 0, 3, 2)}[order]
-    return "\n".join(" ".join(str(t[i] + shift) for i in pos) for t in jr.nesw().tolist()) + "\n"
+    return "\n".join(" ".join(str(t[i] + shift) for i in pos) for t in jr.tiles.tolist()) + "\n"
 
 
 def test_nswe_file_is_the_builtin(tmp_path):
@@ -60,10 +60,10 @@ def test_json_through_the_same_reader(tmp_path):
 
 
 def test_orders_differ():
-    a = parse_tileset_text("0 1 2 3\n", "nswe")[0].nesw().tolist()
-    b = parse_tileset_text("0 1 2 3\n", "rtlb")[0].nesw().tolist()
+    a = parse_tileset_text("0 1 2 3\n", "nswe")[0].tiles.tolist()
+    b = parse_tileset_text("0 1 2 3\n", "rtlb")[0].tiles.tolist()
     c = parse_tileset_text("1 4 1 1\n1 2 3 4\n", "tilesat")[0]
-    assert a == [[0, 3, 1, 2]] and b == [[1, 0, 3, 2]] and c.nesw().tolist() == [[0, 1, 2, 3]]
+    assert a == [[0, 3, 1, 2]] and b == [[1, 0, 3, 2]] and c.tiles.tolist() == [[0, 1, 2, 3]]
 
 
 def test_duplicates_dropped_with_a_note():

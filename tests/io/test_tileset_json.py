@@ -17,7 +17,7 @@ def test_tileset_round_trip_in_nesw_order(tmp_path):
     write_tileset(tmp_path / "b.json", ts, name="brick")
     doc = json.loads((tmp_path / "b.json").read_text())
     assert doc["format"] == "tilesolve/wang-tileset" and doc["order"] == ["N", "E", "S", "W"]
-    assert doc["tiles"] == ts.nesw().tolist()
+    assert doc["tiles"] == ts.tiles.tolist()
     back, notes = read_tileset(tmp_path / "b.json")
     assert notes == [] and np.array_equal(back.tiles, ts.tiles)
 
@@ -25,14 +25,14 @@ def test_tileset_round_trip_in_nesw_order(tmp_path):
 def test_legacy_files_are_still_read(tmp_path):
     (tmp_path / "old.json").write_text(json.dumps({"colors": 2, "tiles": [[0, 1, 0, 1], [1, 0, 1, 0]]}))
     ts, _ = read_tileset(tmp_path / "old.json")  # no order: the board legs W, N, E, S
-    assert ts.tiles.tolist() == [[0, 1, 0, 1], [1, 0, 1, 0]]
+    assert ts.legs.tolist() == [[0, 1, 0, 1], [1, 0, 1, 0]] and ts.tiles.tolist() == [[1, 0, 1, 0], [0, 1, 0, 1]]
     (tmp_path / "nesw.json").write_text(json.dumps({"order": "NESW", "tiles": [[1, 2, 3, 0]]}))
     ts, _ = read_tileset(tmp_path / "nesw.json")
-    assert ts.tiles.tolist() == [[0, 1, 2, 3]] and ts.nesw().tolist() == [[1, 2, 3, 0]]
+    assert ts.legs.tolist() == [[0, 1, 2, 3]] and ts.tiles.tolist() == [[1, 2, 3, 0]]
 
 
 def test_duplicates_are_dropped_with_a_note_and_bad_files_refused(tmp_path):
-    doc = tileset_to_dict(WangTileSet.from_nesw([[0, 0, 0, 0]], 1))
+    doc = tileset_to_dict(WangTileSet([[0, 0, 0, 0]], 1))
     doc["tiles"] = doc["tiles"] * 3
     (tmp_path / "dup.json").write_text(json.dumps(doc))
     ts, notes = read_tileset(tmp_path / "dup.json")
@@ -52,7 +52,7 @@ def test_tileset_converter_keeps_the_edges(colors, colors_v, variant):
     ts = TileSet("wang", colors, colors_v, variant=variant)
     w = WangTileSet.from_tileset(ts)
     assert len(w) == ts.n_tiles
-    assert sorted(map(tuple, w.nesw().tolist())) == sorted(map(tuple, ts.table().tolist()))
+    assert sorted(map(tuple, w.tiles.tolist())) == sorted(map(tuple, ts.table().tolist()))
     # a 1x2 tiling that matches in TileSet terms matches in board terms too
     table = ts.table()
     a, b = next((i, j) for i in range(len(table)) for j in range(len(table)) if table[i, 1] == table[j, 3])

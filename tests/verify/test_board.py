@@ -60,7 +60,7 @@ def test_shape_colour_and_generic_tiles():
     p = BoardProblem(b, WangTileSet.brick(3))
     assert board_violations(p, np.zeros((3, 4), int))[0].kind == "shape"
     assert board_violations(p, np.full((2, 4), 7))[0].kind == "colour"
-    q = BoardProblem(b, WangTileSet([[0, 1, 0, 1], [0, 0, 0, 0]], 2))
+    q = BoardProblem(b, WangTileSet([[1, 0, 1, 0], [0, 0, 0, 0]], 2))  # N, E, S, W
     assert board_violations(q, [[0, 1, 0, 1], [0, 1, 0, 1]]) == []
     v = board_violations(q, [[0, 1, 0, 1], [0, 1, 1, 1]])
     assert [x.kind for x in v] == ["tile"] and (v[0].row, v[0].col) == (0, 1)
@@ -127,7 +127,7 @@ def test_a_listing_that_differs_everywhere_is_reported_within_bounds():
 
 def test_tiles_of_sets_with_very_many_colours_are_matched_exactly():
     k = 1 << 20  # (W, N, E, S) keys would overflow int64: rows are matched another way
-    ts = WangTileSet([[0, k - 1, 0, 5], [7, 8, 9, k - 1]], k)
+    ts = WangTileSet([[k - 1, 0, 5, 0], [8, 9, k - 1, 7]], k)  # N, E, S, W
     p = BoardProblem(Board.rect(1, 1), ts)
     assert board_violations(p, [[0, k - 1, 0, 5]]) == []
     v = board_violations(p, [[0, k - 1, 0, 6]])

@@ -1,7 +1,7 @@
 """Forged board-solution files, through the console script (issue 17, parts 3 and 4).
 
-A board file describes its board (kind, grid, mask) and, in version 1, lists its cells and
-edges too. ``tilesolve verify`` rebuilds the board from the description; every difference
+A board file describes its board (kind, grid, mask) and, for a board of at most 4096 cells,
+lists its cells and edges too. ``tilesolve verify`` rebuilds the board from the description; every difference
 between the list and that board is a violation with its position (exit 1), and
 ``tilesolve draw`` refuses the file (exit 2, one line, no picture). Absurd sizes and colour
 counts are refused before anything is built: one line, exit 2, within a 1 GiB address space.
@@ -14,6 +14,7 @@ import json
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 
 from clitools import ENV, SCRIPT, one_line_error, run
@@ -21,8 +22,8 @@ from clitools import ENV, SCRIPT, one_line_error, run
 
 @pytest.fixture(scope="module")
 def files(tmp_path_factory):
-    """Solutions written by tilesolve: a 60x40 rectangle and a mask board (version 1), a Möbius
-    strip with a hole (version 1) and a 70x70 rectangle (version 2)."""
+    """Solutions written by tilesolve (version 3): a 60x40 rectangle, a mask board and a torus
+    with their lists, and a 70x70 rectangle described only."""
     d = tmp_path_factory.mktemp("boards")
     (d / "m.txt").write_text("######\n##..##\n#.####\n")
     for name, spec in (("rect", "rect:60x40"), ("mask", "mask:m.txt"), ("torus", "torus:6x4"),
@@ -45,10 +46,10 @@ def _violations(proc) -> list[str]:
 
 def test_files_as_written_verify_and_carry_their_grid(files):
     folder, docs = files
-    assert docs["rect"]["version"] == 1 and docs["rect"]["grid"] == {"rows": 40, "cols": 60, "wrap_rows": None,
+    assert docs["rect"]["version"] == 3 and docs["rect"]["grid"] == {"rows": 40, "cols": 60, "wrap_rows": None,
                                                                     "wrap_cols": None}
     assert docs["mask"]["mask"] == [[1] * 6, [1, 1, 0, 0, 1, 1], [1, 0, 1, 1, 1, 1]]
-    assert docs["big"]["version"] == 2 and "cells" not in docs["big"]
+    assert docs["big"]["version"] == 3 and "cells" not in docs["big"]
     for name in docs:
         proc = run("verify", f"{name}.json", cwd=folder)
         assert proc.returncode == 0 and proc.stdout.startswith("ok:"), proc.stdout + proc.stderr
@@ -95,9 +96,9 @@ def test_a_missing_or_extra_cell_is_a_violation(files):
     # listed twice
     (lambda e: e + [e[3]], "is listed twice"),
     # a join to another cell
-    (lambda e: [[0, 2, 7, 0]] + e[1:], "edge 0 [0, 2, 7, 0] is not an edge of the board"),
+    (lambda e: [[0, 2, 7, 0]] + e[1:], "edge 0 (cell 0 leg S, cell 7 leg N) is not an edge of the board"),
     # boundary legs renumbered
-    (lambda e: [[0, 0, -1, 1]] + e[1:], "edge 0 [0, 0, -1, 1] is not an edge of the board"),
+    (lambda e: [[0, 3, -1, 1]] + e[1:], "edge 0 (cell 0 leg W, the wall's boundary leg 1) is not an edge of the board"),
     # cells and legs that do not exist
     (lambda e: [[0, 7, -1, 0]] + e[1:], "names a cell, leg or boundary leg the board does not have"),
     (lambda e: [[0, 0, 5000, 1]] + e[1:], "names a cell, leg or boundary leg the board does not have"),
@@ -131,7 +132,12 @@ def test_a_compact_file_that_lists_its_board_is_held_to_it(files):
     b = Board.rect(70, 70)
     cells = b.labels.copy()
     cells[4899] = [0, 0]
-    doc["cells"], doc["edges"] = encode_array(cells), encode_array(b.edge_array())
+    edges = b.edge_array()  # legs W, N, E, S; the file numbers them N, E, S, W (0 = N, ..., 3 = W)
+    nesw = np.array([3, 0, 1, 2])
+    edges[:, 1] = nesw[edges[:, 1]]
+    joined = edges[:, 2] >= 0  # a wall edge's last number is its boundary leg's
+    edges[joined, 3] = nesw[edges[joined, 3]]
+    doc["cells"], doc["edges"] = encode_array(cells), encode_array(edges)
     lines = _violations(_verify_forged(folder, doc))
     assert lines == ["(row 69, col 69) cell 4899 is listed at [0, 0]; the board has it at [69, 69]"]
 
@@ -251,6 +257,6 @@ def test_tiles_that_do_not_fit_the_board_are_violations_and_are_not_drawn(files,
     doc = copy.deepcopy(docs["rect"])
     doc["tiles"] = forge(doc["tiles"])
     first = _violations(_verify_forged(folder, doc))[0]
-    assert first.startswith("tiling has shape (5, 4)") or "(row 0, col 0) leg W has colour" in first, first
+    assert first.startswith("tiling has shape (5, 4)") or "(row 0, col 0) leg N has colour" in first, first
     assert "tiles are not 4 colours in 0..2" in one_line_error(run("draw", "forged.json", "-o", "f.png", cwd=folder))
     assert not (folder / "f.png").exists()

@@ -124,5 +124,5 @@ def _builtin(name: str, output: str | None) -> None:
     say(f"{name}: {info['title']}; {len(ts)} tiles, {ts.n_colors} colours; {_verdict(info)} ({info['reference']})"
         + (f"; wrote {output}" if output and output != "-" else ""))
     if output != "-":
-        for t in ts.nesw().tolist():
+        for t in ts.tiles.tolist():
             click.echo(" ".join(map(str, t)))

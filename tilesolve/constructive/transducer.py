@@ -53,15 +53,15 @@ size limit stopped the search). Aperiodic sets stay undecided for every ``k``.
 Examples
 --------
 >>> from tilesolve.model.board import WangTileSet
->>> ts = WangTileSet.from_nesw([[0, 0, 0, 0]], 1)  # one tile, all sides colour 0
+>>> ts = WangTileSet([[0, 0, 0, 0]], 1)  # one tile, all sides colour 0
 >>> v = decide(ts, max_k=3)
 >>> v.verdict, v.k, v.torus.tolist()
 ('periodic', 1, [[0]])
->>> stack = WangTileSet.from_nesw([[0, 0, 1, 0]], 2)  # N=0, S=1: rows never stack
+>>> stack = WangTileSet([[0, 0, 1, 0]], 2)  # N=0, S=1: rows never stack
 >>> v = decide(stack, max_k=3)
 >>> v.verdict, v.k, strip_width(stack, v.k)
 ('empty', 2, 1)
->>> stairs = WangTileSet.from_nesw([[0, 0, 1, 0], [1, 0, 0, 0]], 2)  # S=1 under N=1 and back
+>>> stairs = WangTileSet([[0, 0, 1, 0], [1, 0, 0, 0]], 2)  # S=1 under N=1 and back
 >>> v = decide(stairs, max_k=3)
 >>> v.verdict, v.torus.tolist()
 ('periodic', [[0], [1]])
@@ -138,11 +138,11 @@ def tile_transducer(tileset: WangTileSet) -> Transducer:
 
     Examples
     --------
-    >>> t = tile_transducer(WangTileSet.from_nesw([[0, 1, 0, 1], [0, 0, 0, 0]], 2))
+    >>> t = tile_transducer(WangTileSet([[0, 1, 0, 1], [0, 0, 0, 0]], 2))  # N, E, S, W
     >>> t.n_states, t.src.tolist(), t.dst.tolist(), t.north.tolist(), t.south.tolist()
-    (2, [0, 1], [0, 1], [0, 0], [0, 0])
+    (2, [1, 0], [1, 0], [0, 0], [0, 0])
     """
-    t = _i64(tileset.tiles)  # W, N, E, S
+    t = _i64(tileset.legs)  # W, N, E, S
     return Transducer(int(tileset.n_colors), _i64(t[:, 0]), _i64(t[:, 2]), _i64(t[:, 1]), _i64(t[:, 3]))
 
 
@@ -205,7 +205,7 @@ def compose(top: Transducer, bottom: Transducer, *,
 
     Examples
     --------
-    >>> t = tile_transducer(WangTileSet.from_nesw([[0, 0, 0, 0]], 1))
+    >>> t = tile_transducer(WangTileSet([[0, 0, 0, 0]], 1))
     >>> c, i, j = compose(t, t)
     >>> c.n_states, c.n_transitions, i.tolist(), j.tolist()
     (1, 1, [0], [0])
@@ -254,7 +254,7 @@ def simplify(t: Transducer) -> np.ndarray:
 
     Examples
     --------
-    >>> ts = WangTileSet.from_nesw([[0, 0, 0, 0], [0, 1, 0, 0]], 2)  # the second goes from 0 to 1
+    >>> ts = WangTileSet([[0, 0, 0, 0], [0, 1, 0, 0]], 2)  # the second goes from 0 to 1
     >>> simplify(tile_transducer(ts)).tolist()
     [0]
     """
@@ -296,7 +296,7 @@ def minimize(t: Transducer) -> np.ndarray:
 
     Examples
     --------
-    >>> t = tile_transducer(WangTileSet.from_nesw([[0, 0, 0, 0], [0, 1, 0, 1]], 2))
+    >>> t = tile_transducer(WangTileSet([[0, 0, 0, 0], [0, 1, 0, 1]], 2))
     >>> minimize(t).tolist()  # colours 0 and 1 both loop reading and writing 0
     [0, 0]
     """
@@ -558,7 +558,7 @@ def strip_width(tileset: WangTileSet, k: int, *, max_transitions: int = DEFAULT_
 
     Examples
     --------
-    >>> strip_width(WangTileSet.from_nesw([[0, 1, 0, 0]], 2), 1)  # E=1 never meets W=0
+    >>> strip_width(WangTileSet([[0, 1, 0, 0]], 2), 1)  # E=1 never meets W=0
     2
     """
     import networkx as nx
@@ -592,7 +592,7 @@ def torus_tiling(tileset: WangTileSet, torus) -> np.ndarray:
     """Leg colours ``(k * p, 4)`` (W, N, E, S, cells in row-major order) of the ``(k, p)`` tile
     indices ``torus``: the tiling of ``Board.torus(k, p)`` for the board verifier."""
     idx = np.asarray(torus, dtype=np.int64)
-    return np.asarray(tileset.tiles, dtype=np.int64)[idx.ravel()]
+    return np.asarray(tileset.legs, dtype=np.int64)[idx.ravel()]
 
 
 #: How the conclusions of the transducer's reports without a certificate begin (an undecided

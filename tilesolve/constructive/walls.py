@@ -61,7 +61,7 @@ import numpy as np
 from tilesolve.constructive._lattice_kernels import d1, d2, wall_kernel
 from tilesolve.constructive.hashes import LATTICE_BOUND, FnvXorshift, check_int, check_window
 from tilesolve.errors import InvalidProblem
-from tilesolve.model.board import WangTileSet
+from tilesolve.model.board import WangTileSet, wang_to_nesw
 
 __all__ = [
     "APPENDIX_B",
@@ -169,7 +169,7 @@ def brick_tile_set(colors: int = 3) -> WangTileSet:
     horizontal = (htop != hbot) & (v1 == v0)  # eq. 2
     keep = vertical | horizontal
     tiles = np.stack([v0[keep], htop[keep], v1[keep], hbot[keep]], axis=1)
-    return WangTileSet(tiles, nc, is_brick=True)
+    return WangTileSet(wang_to_nesw(tiles), nc, is_brick=True)
 
 
 # ------------------------------------------------------------------------------------ scalar form

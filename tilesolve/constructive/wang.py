@@ -117,7 +117,7 @@ def theorem7_solve(problem: BoardProblem, core=None, *, core_solver: Callable[..
                 reached[o2] = True
                 parent_leg[o2] = p2[o2]
                 order = np.concatenate([order, o2])
-    tiles = ts.tiles
+    tiles = ts.legs
     for a in order[::-1]:
         a = int(a)
         pl = int(parent_leg[a])

@@ -201,14 +201,14 @@ def count_grid(tileset, rows: int, cols: int, *, wrap_rows: bool = False, wrap_c
     Examples
     --------
     >>> from tilesolve.model.board import WangTileSet
-    >>> two = WangTileSet.from_nesw([[0, 0, 0, 0], [1, 1, 1, 1]], 2)  # each tile only meets itself
+    >>> two = WangTileSet([[0, 0, 0, 0], [1, 1, 1, 1]], 2)  # each tile only meets itself
     >>> count_grid(two, 3, 4), count_grid(two, 3, 4, wrap_rows=True, wrap_cols=True)
     (2, 2)
     """
     rows, cols = int(rows), int(cols)
     if rows < 1 or cols < 1:
         raise InvalidProblem(f"a grid needs at least one row and column, got {rows}x{cols}")
-    nesw = tileset.nesw()
+    nesw = tileset.tiles
     # rows along the shorter side first; the transpose (new N, E, S, W = old W, S, E, N) is the
     # other orientation, tried when the first has too many partial rows
     ways = [(nesw, rows, cols, wrap_rows, wrap_cols), (nesw[:, [3, 2, 1, 0]], cols, rows, wrap_cols, wrap_rows)]

@@ -184,7 +184,7 @@ def encode_wang(problem: BoardProblem, *, deadline: Deadline | None = None) -> W
                 win = line_windows(board.nbr_cell, board.nbr_leg, axis, lim + 1)
                 cs.add_array(-aux[win], f"no {axis} line longer than {lim}")
     else:
-        tiles = problem.tileset.tiles
+        tiles = problem.tileset.legs
         m = tiles.shape[0]
         y = top + 1 + np.arange(n, dtype=np.int64)[:, None] * m + np.arange(m)[None, :]
         top += n * m
@@ -267,7 +267,7 @@ def build_cpsat_wang(problem: BoardProblem, *, deadline: Deadline | None = None)
         col = int(problem.boundary[board.nbr_leg[a, leg]])
         if col >= 0:
             m.add(ints[eid[a, leg]] == col)
-    table = [tuple(int(v) for v in t) for t in problem.tileset.tiles]
+    table = [tuple(int(v) for v in t) for t in problem.tileset.legs]
     for a in range(board.n_cells):
         check(a, board.n_cells, "cells")
         m.add_allowed_assignments([ints[int(e)] for e in eid[a]], table)

@@ -108,12 +108,12 @@ def encode_tiles(board: Board, tileset: WangTileSet, *, allowed: tuple[np.ndarra
 
     Examples
     --------
-    >>> ws = WangTileSet.from_nesw([[0, 0, 0, 0], [1, 1, 1, 1]], 2)
+    >>> ws = WangTileSet([[0, 0, 0, 0], [1, 1, 1, 1]], 2)
     >>> enc = encode_tiles(Board.torus(2, 2), ws)
     >>> enc.n_vars, len(enc.hard)
     (8, 40)
     """
-    tiles = tileset.tiles
+    tiles = tileset.legs
     m = int(tiles.shape[0])
     n = board.n_cells
     nc, nl = board.nbr_cell, board.nbr_leg

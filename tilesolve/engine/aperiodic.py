@@ -63,8 +63,9 @@ DEFAULT_SOLVER = "cadical153"
 
 
 def tileset_digest(tileset: WangTileSet) -> str:
-    """SHA-256 of the (sorted) tiles and colour count: the cache key of a tile set."""
-    data = json.dumps({"colours": int(tileset.n_colors), "tiles": tileset.tiles.tolist()}, separators=(",", ":"))
+    """SHA-256 of the tiles (as leg colours W, N, E, S, in the set's order, which the CNF
+    follows) and colour count: the cache key of a tile set."""
+    data = json.dumps({"colours": int(tileset.n_colors), "tiles": tileset.legs.tolist()}, separators=(",", ":"))
     return hashlib.sha256(data.encode()).hexdigest()
 
 

@@ -75,7 +75,7 @@ def cnf_falsified(problem: BoardProblem, legs) -> tuple[int, int]:
         vals[enc.v_var] = t[:, 1] == t[:, 3]
     else:
         k = enc.n_colors
-        tiles = problem.tileset.tiles.astype(np.int64)
+        tiles = problem.tileset.legs.astype(np.int64)
         codes = ((tiles[:, 0] * k + tiles[:, 1]) * k + tiles[:, 2]) * k + tiles[:, 3]
         order = np.argsort(codes)
         mine = ((t[:, 0] * k + t[:, 1]) * k + t[:, 2]) * k + t[:, 3]
@@ -141,7 +141,7 @@ def _wang_images(problem: StochasticProblem, grid) -> tuple[np.ndarray, WangTile
         wang, images, indices = TileSet("wang", c * c), corner_to_wang(g, colors=c), ts.wang_images()
     nesw = np.stack(wang.colors_of(images.ravel()), axis=1)
     legs = wang_from_nesw(nesw).reshape(g.shape + (4,))
-    tiles = WangTileSet.from_nesw(np.stack(wang.colors_of(indices), axis=1), max(wang.colors, wang.cv))
+    tiles = WangTileSet(np.stack(wang.colors_of(indices), axis=1), max(wang.colors, wang.cv))
     return legs, tiles
 
 

@@ -1,17 +1,19 @@
-"""The ``tilesolve/aperiodic-report`` file (version 1): an aperiodicity check and its certificates.
+"""The ``tilesolve/aperiodic-report`` file (version 2): an aperiodicity check and its certificates.
 
 ::
 
     {
-      "format": "tilesolve/aperiodic-report", "version": 1,
+      "format": "tilesolve/aperiodic-report", "version": 2,
       "name": "jeandel-rao",               # or null
       "tileset": {"colours": 5, "sides": ["N", "E", "S", "W"], "tiles": [[4, 2, 1, 2], ...]},
       "max_square": 40, "max_period": 6, "shears": false,
       "largest_square": 40,                # null when squares were not asked or not decided
       "conclusion": "...",                 # what the certificates prove, in words
+      "verdict": "periodic",               # the same in one word (model.aperiodic.VERDICTS)
       "literature": "...",                 # a built-in set's literature note, or null
       "squares": [CERT, ...], "periods": [CERT, ...],
-      "status": "sat", "method": "sat", "solver": null, "seed": 1, "time_s": 3.2,
+      "status": "sat",                     # "sat", or "unknown" when the verdict is "undecided"
+      "method": "sat", "solver": null, "seed": 1, "time_s": 3.2,
       "reason": null, "notes": [], "stats": {}
     }
 
@@ -24,11 +26,14 @@ Tile indices refer to ``tileset.tiles`` in the order written (sorted as tilesolv
 set). A refutation's ``evidence`` names the encoding that re-derives its CNF from the tile set
 and the board's name; a verdict taken from a sweep's cache says so (``"cached": true``,
 ``"cache_check"``), one decided again because its cache line did not hold says why
-(``"cache_rejected"``). Readers reject unknown fields and malformed values (a tile that is not
-four colours of the set, a ``colours`` count other than the number of colours the tiles use, a
-tile written twice, a ``time_s`` that is not a duration, ...) with one line naming the file and
-field; the certificates' claims
-are checked by the family's verifier and re-derived by ``tilesolve verify``.
+(``"cache_rejected"``). The verdict and the status are what the certificates give
+(:attr:`~tilesolve.model.aperiodic.AperiodicReport.verdict`, ``.status``): a file whose
+``verdict`` or ``status`` says otherwise is refused. Version 1 (no ``verdict``; ``status``
+``"sat"`` whatever the verdict) is read with both taken from its certificates. Readers reject
+unknown fields and malformed values (a tile that is not four colours of the set, a ``colours``
+count other than the number of colours the tiles use, a tile written twice, a ``time_s`` that
+is not a duration, ...) with one line naming the file and field; the certificates' claims are
+checked by the family's verifier and re-derived by ``tilesolve verify``.
 """
 
 from __future__ import annotations
@@ -46,11 +51,11 @@ from tilesolve.model.solution import Solution
 __all__ = ["APERIODIC_REPORT", "VERSIONS", "report_to_dict", "report_from_dict", "certificate_to_dict"]
 
 APERIODIC_REPORT = "tilesolve/aperiodic-report"
-VERSIONS = frozenset({1})
+VERSIONS = frozenset({1, 2})
 
 _KEYS = {"format", "version", "name", "tileset", "max_square", "max_period", "shears", "largest_square",
-         "conclusion", "literature", "squares", "periods", "status", "method", "solver", "seed", "time_s", "reason",
-         "notes", "stats", "created_by", "comment"}
+         "conclusion", "verdict", "literature", "squares", "periods", "status", "method", "solver", "seed", "time_s",
+         "reason", "notes", "stats", "created_by", "comment"}
 _CERT_KEYS = {"board", "status", "method", "tiling", "evidence", "time_s"}
 
 
@@ -61,12 +66,13 @@ def certificate_to_dict(c: Certificate) -> dict:
 
 
 def report_to_dict(problem: AperiodicProblem, solution: Solution) -> dict:
-    rep = solution.tiling if isinstance(solution.tiling, AperiodicReport) else AperiodicReport()
-    doc = {"format": APERIODIC_REPORT, "version": 1, "name": problem.name,
+    rep = solution.report if isinstance(solution.report, AperiodicReport) else AperiodicReport()
+    doc = {"format": APERIODIC_REPORT, "version": 2, "name": problem.name,
            "tileset": {"colours": int(problem.tileset.n_colors), "sides": ["N", "E", "S", "W"],
-                       "tiles": problem.tileset.nesw().tolist()},
+                       "tiles": problem.tileset.tiles.tolist()},
            "max_square": problem.max_square, "max_period": problem.max_period, "shears": problem.shears,
-           "largest_square": rep.largest_square, "conclusion": rep.conclusion, "literature": rep.literature,
+           "largest_square": rep.largest_square, "conclusion": rep.conclusion, "verdict": rep.verdict,
+           "literature": rep.literature,
            "squares": [certificate_to_dict(c) for c in rep.squares],
            "periods": [certificate_to_dict(c) for c in rep.periods]}
     doc.update(provenance_to_dict(solution))
@@ -148,4 +154,9 @@ def report_from_dict(doc: dict, source: Any = "<document>") -> tuple[AperiodicPr
     report = AperiodicReport(certs["squares"], certs["periods"], _int(doc, "largest_square", source, optional=True),
                              doc.get("conclusion") or "", doc.get("literature"))
     sol = solution_from_provenance(doc, source, report, what="report")
-    return problem, sol if sol.status.has_tiling else sol.replace(tiling=None)
+    if doc["version"] >= 2:
+        for key, said, given in (("verdict", report.verdict, doc.get("verdict")),
+                                 ("status", report.status.value, sol.status.value)):
+            if given != said:
+                raise _fail(source, key, f"is {given!r}, but the report's certificates give {said!r}")
+    return problem, sol.replace(status=report.status, tiling=None, report=report)

@@ -1,27 +1,41 @@
-"""JSON files of Wang tilings of boards: ``"format": "tilesolve/board-solution"``, versions 1 and 2.
+"""JSON files of Wang tilings of boards: ``"format": "tilesolve/board-solution"``, versions 1, 2 and 3.
 
 The board travels as plain data so any tool can re-check a tiling without tilesolve.
-Fields of both versions:
+tilesolve writes version 3; it reads all three (:func:`read_board_solution`), and ``tilesolve
+verify`` checks files of every version.
+
+Fields of every version:
 
 ``board_kind``
     how the board was built (``"rect"``, ``"mobius"``, ``"mask"``, ``"mobius|U"``, ...).
 ``leg_order``
-    ``["W", "N", "E", "S"]``: legs l1..l4 go round the cell, so l1/l3 and l2/l4 are
-    opposite (Def. 9 of the brick paper assumes this).
+    the order of each tile's four colours and the numbers of a cell's legs in ``edges``:
+    ``["N", "E", "S", "W"]`` in version 3 (tilesolve's public edge order, as in tile-set files
+    and reports); ``["W", "N", "E", "S"]`` in versions 1 and 2 (the brick paper's legs
+    l1..l4). Either way the legs go round the cell, so legs 0/2 and 1/3 are opposite.
 ``colors``
     ``#C``; colours are ``0 .. colors-1``.
 ``tileset``
-    ``"brick"`` for W_B (Def. 9) or a list of tiles, each the colours of its legs l1..l4.
+    ``"brick"`` for W_B (Def. 9) or a list of tiles, each its colours in ``leg_order``. Tile
+    ``i`` is the ``i``-th of the list.
 ``max_h``, ``max_v``
     brick walls: longest horizontal run of W_H tiles / vertical run of W_V tiles (or null).
 ``grid``, ``mask``
     for a board cut from a grid (rectangle, torus, cylinder, Möbius strip, Klein bottle,
     ring, mask, or a restriction of one): the grid and the cells present, as in version 2
     below (in version 1, ``mask`` is a list of rows of 0/1).
+``window`` (version 3, optional)
+    where the tiling lies in the plane, for a tiling cut from an infinite one (a procedural
+    or repeatable wall): ``{"x0", "y0", "width", "height", "y_up"}``
+    (:class:`~tilesolve.model.window.Window`); grid row 0, column 0 is its cell
+    ``(x0, y0 + height - 1)`` when ``y_up``.
 
 plus the solution's ``status``, ``method``, ``solver``, ``seed``, ``time_s``, ``reason``,
 ``notes`` and ``stats``, and the free texts ``created_by`` and ``comment``. A reader refuses
 any other field.
+
+Boundary legs are numbered ``0, 1, ...`` in order of cell, then of the cell's legs W, N, E,
+S (the board model's numbering, which ``--boundary`` files use too), in every version.
 
 The board is *described* by ``board_kind`` with ``grid`` and ``mask``; a file without
 ``grid`` (written before version 1 had it) describes a board of a kind in
@@ -84,10 +98,23 @@ rules and a five-line Python reader are in :mod:`tilesolve.io.jsonio`.
     encoded array of shape ``[n_boundary]``: the colour required on each boundary leg, -1 = free.
 ``tiles``
     encoded array of shape ``[n, 4]`` (the colours of each cell's legs W, N, E, S), or null.
+
+Version 3 (written by tilesolve now)
+------------------------------------
+Version 2's fields, with every tile in the order N, E, S, W: ``tileset``, each cell's
+``tiles`` and the leg numbers of ``edges`` (0 = N, 1 = E, 2 = S, 3 = W), and an optional
+``window``. An array may be a plain list (as in version 1; ``boundary`` then holds ``null``
+for a free leg) or an encoded array; tilesolve writes plain lists, with ``cells`` and
+``edges`` listed, for boards of at most :data:`COMPACT_MIN_CELLS` cells, and encoded arrays
+(grid boards as their grid and mask alone) for larger ones.
+
+The board model keeps the brick paper's legs W, N, E, S (:mod:`tilesolve.model.board`); a
+file's leg order is converted to it and back at one place, :func:`_leg_seam`.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import os
 from dataclasses import dataclass
 from typing import Any
@@ -101,18 +128,23 @@ from tilesolve.io.jsonio import (
 )
 from tilesolve.model.board import (
     GRID_KINDS, LEG_NAMES, MAX_BOARD_CELLS, MAX_BRICK_COLORS, Board, BoardProblem, GridSpec, WangTileSet,
-    described_board, grid_kind,
+    described_board, grid_kind, wang_from_nesw, wang_to_nesw,
 )
 from tilesolve.model.solution import Solution
+from tilesolve.model.window import Window
 
-__all__ = ["BOARD_SOLUTION", "VERSIONS", "COMPACT_MIN_CELLS", "MAX_LIST_COLORS", "MAX_LINE", "ListedBoardProblem",
+__all__ = ["BOARD_SOLUTION", "VERSIONS", "VERSION", "LEG_ORDERS", "COMPACT_MIN_CELLS", "MAX_LIST_COLORS", "MAX_LINE", "ListedBoardProblem",
            "board_solution_to_dict", "board_solution_from_dict", "write_board_solution", "read_board_solution",
            "read_boundary"]
 
 BOARD_SOLUTION = "tilesolve/board-solution"
 #: Versions of ``tilesolve/board-solution`` this module reads.
-VERSIONS = frozenset({1, 2})
-#: Boards with more cells than this are written as version 2.
+VERSIONS = frozenset({1, 2, 3})
+#: The version this module writes.
+VERSION = 3
+#: The leg order of each version's tiles and edges.
+LEG_ORDERS = {1: LEG_NAMES, 2: LEG_NAMES, 3: ("N", "E", "S", "W")}
+#: Boards with more cells than this are written with encoded arrays.
 COMPACT_MIN_CELLS = 4096
 #: Most colours a tile set given as a list of tiles may declare: more than 16,384 tiles can
 #: use with four new colours each.
@@ -122,9 +154,12 @@ MAX_LINE = 2**31 - 1
 _WRAP_NAMES = (None, "plain", "twist")
 _KEYS = frozenset({
     "format", "version", "board_kind", "leg_order", "colors", "tileset", "max_h", "max_v", "grid", "mask", "cells",
-    "edges", "boundary", "tiles", "status", "method", "solver", "seed", "time_s", "reason", "notes", "stats",
-    "created_by", "comment",
+    "edges", "boundary", "tiles", "window", "status", "method", "solver", "seed", "time_s", "reason", "notes",
+    "stats", "created_by", "comment",
 })
+#: Where each leg of the board model (W, N, E, S) stands in the order N, E, S, W, and back.
+_NESW_OF_LEG = np.array([3, 0, 1, 2])
+_LEG_OF_NESW = np.array([1, 2, 3, 0])
 
 
 @dataclass(frozen=True, eq=False)
@@ -140,16 +175,40 @@ class ListedBoardProblem(BoardProblem):
     listed_edges: np.ndarray | None = None
 
 
+def _leg_seam(version: int, *, tiles=None, edges=None, to_file: bool) -> tuple:
+    """The one seam between a file's leg order (:data:`LEG_ORDERS`) and the board model's
+    legs W, N, E, S: each cell's ``tiles`` (colours per leg) and the leg numbers of ``edges``
+    (``[a, ka, b, kb]``; ``kb`` numbers a boundary leg where ``b = -1`` and is left alone),
+    into the file (``to_file``) or out of it. Leg numbers outside 0..3 are left as read, for
+    the board's checks to name.
+
+    >>> _leg_seam(3, tiles=[[0, 1, 2, 3]], edges=[[0, 2, 1, 0], [0, 0, -1, 0]], to_file=True)
+    ([[1, 2, 3, 0]], [[0, 1, 1, 3], [0, 3, -1, 0]])
+    """
+    if LEG_ORDERS[version] == LEG_NAMES:
+        return tiles, edges
+    if tiles is not None:
+        tiles = (wang_to_nesw(tiles) if to_file else wang_from_nesw(tiles)).tolist()
+    if edges is not None:
+        perm = _NESW_OF_LEG if to_file else _LEG_OF_NESW
+        e = np.asarray(edges, dtype=np.int64).reshape(-1, 4).copy()
+        for legs, on in ((e[:, 1], np.ones(len(e), bool)), (e[:, 3], e[:, 2] >= 0)):
+            move = on & (legs >= 0) & (legs < 4)
+            legs[move] = perm[legs[move]]
+        edges = e.tolist()
+    return tiles, edges
+
+
 def board_solution_to_dict(problem: BoardProblem, solution: Solution, *, compact: bool | None = None) -> dict:
-    """The JSON document of a board solution.
+    """The JSON document (version 3) of a board solution.
 
     Parameters
     ----------
     problem, solution
     compact : bool, optional
-        Write version 2 (encoded arrays, grid boards as their grid and mask) rather than
-        version 1 (plain lists, grid boards also listed cell by cell). Default: version 2 for
-        boards of more than :data:`COMPACT_MIN_CELLS` cells.
+        Write encoded arrays (grid boards as their grid and mask alone) rather than plain
+        lists (grid boards also listed cell by cell). Default: encoded arrays for boards of
+        more than :data:`COMPACT_MIN_CELLS` cells.
     """
     b = problem.board
     if compact is None:
@@ -157,9 +216,9 @@ def board_solution_to_dict(problem: BoardProblem, solution: Solution, *, compact
     stats = {k: v for k, v in solution.stats.items() if not isinstance(v, np.ndarray)}
     doc = {
         "format": BOARD_SOLUTION,
-        "version": 2 if compact else 1,
+        "version": VERSION,
         "board_kind": b.kind,
-        "leg_order": list(LEG_NAMES),
+        "leg_order": list(LEG_ORDERS[VERSION]),
         "colors": problem.n_colors,
         "tileset": "brick" if problem.tileset.is_brick else np.asarray(problem.tileset.tiles),
         "max_h": problem.max_h,
@@ -167,21 +226,24 @@ def board_solution_to_dict(problem: BoardProblem, solution: Solution, *, compact
         **provenance_to_dict(solution),
         "stats": stats,
     }
+    if solution.window is not None:
+        doc["window"] = solution.window.to_dict()
     array = encode_array if compact else np.asarray
     if b.grid_spec is not None:
         spec = b.grid_spec
         doc["grid"] = {"rows": spec.rows, "cols": spec.cols, "wrap_rows": spec.wrap_rows, "wrap_cols": spec.wrap_cols}
         doc["mask"] = None if b.n_cells == spec.rows * spec.cols else array(b.mask_of().astype(np.uint8))
-    if not compact or b.grid_spec is None:
+    tiles, edges = _leg_seam(VERSION, to_file=True, tiles=solution.tiling,
+                             edges=b.edge_array() if not compact or b.grid_spec is None else None)
+    if edges is not None:
         doc["cells"] = array(b.labels)
-        doc["edges"] = array(b.edge_array())
-    tiles = None if solution.tiling is None else np.asarray(solution.tiling)
+        doc["edges"] = array(np.asarray(edges, dtype=np.int64).reshape(-1, 4))
     if compact:
         doc["boundary"] = encode_array(problem.boundary)
-        doc["tiles"] = None if tiles is None else encode_array(tiles)
+        doc["tiles"] = None if tiles is None else encode_array(np.asarray(tiles, dtype=np.int64))
     else:
         doc["boundary"] = [None if c < 0 else c for c in problem.boundary.tolist()]
-        doc["tiles"] = None if tiles is None else tiles.astype(np.int64, copy=False)
+        doc["tiles"] = tiles
     return doc
 
 
@@ -216,8 +278,8 @@ def _array(doc: dict, name: str, source: Any, version: int, ndim: int, width: in
     return arr
 
 
-def _tileset(doc: dict, source: Any) -> WangTileSet:
-    """The tile set, its colour count checked before anything is built."""
+def _tileset(doc: dict, source: Any, version: int) -> WangTileSet:
+    """The tile set (in the file's order), its colour count checked before anything is built."""
     colors = _int(doc, "colors", source)
     ts = doc.get("tileset")
     if ts == "brick":
@@ -230,6 +292,8 @@ def _tileset(doc: dict, source: Any) -> WangTileSet:
     if not 1 <= colors <= MAX_LIST_COLORS:
         raise InvalidProblem(f"{source}: 'colors' is {colors}; a list of tiles has 1 to {MAX_LIST_COLORS} colours here")
     tiles = decode_array(ts, "tileset", source)
+    if LEG_ORDERS[version] == LEG_NAMES and tiles.size and tiles.shape[-1:] == (4,):
+        tiles = wang_to_nesw(tiles)  # versions 1 and 2 list the legs W, N, E, S
     try:
         return WangTileSet(tiles, colors)
     except InvalidProblem as exc:
@@ -308,14 +372,15 @@ def _boundary(doc: dict, source: Any, version: int, n_boundary: int) -> np.ndarr
     bnd = doc.get("boundary")
     if bnd is None:
         return np.full(n_boundary, -1, np.int64)
-    if version >= 2:
+    if version >= 2 and not (version >= 3 and isinstance(bnd, list)):
         return decode_array(bnd, "boundary", source, ndim=1)
     return _colour_list(bnd, "boundary", source, "'boundary' must be a list of colours or null")
 
 
 def board_solution_from_dict(doc: dict, source: Any = "<document>") -> tuple[BoardProblem, Solution]:
-    """Rebuild ``(problem, solution)`` from a version 1 or 2 document; the tiles are read as
-    written (the verifier judges them).
+    """Rebuild ``(problem, solution)`` from a version 1, 2 or 3 document, in the board model's
+    legs W, N, E, S (:func:`_leg_seam`); the tiles are read as written (the verifier judges
+    them).
 
     The board is rebuilt from the file's description. Where the file also lists its cells
     and edges, the problem is a :class:`ListedBoardProblem` that keeps them for the verifier.
@@ -327,10 +392,10 @@ def board_solution_from_dict(doc: dict, source: Any = "<document>") -> tuple[Boa
         contradictory (a board description that contradicts itself, an unknown field).
     """
     version = _check_header(doc, source)
-    if doc.get("leg_order", list(LEG_NAMES)) != list(LEG_NAMES):
-        raise InvalidProblem(f"{source}: leg_order {doc['leg_order']!r} is not supported; tilesolve writes "
-                             f"{list(LEG_NAMES)}")
-    tileset = _tileset(doc, source)
+    order = list(LEG_ORDERS[version])
+    if doc.get("leg_order", order) != order:
+        raise InvalidProblem(f"{source}: leg_order {doc['leg_order']!r} is not that of version {version}, {order}")
+    tileset = _tileset(doc, source, version)
     kind = doc.get("board_kind") or "board"
     if not isinstance(kind, str):
         raise InvalidProblem(f"{source}: 'board_kind' must be a string, got {kind!r}")
@@ -338,7 +403,9 @@ def board_solution_from_dict(doc: dict, source: Any = "<document>") -> tuple[Boa
     if "cells" in doc or "edges" in doc:
         if not ("cells" in doc and "edges" in doc):
             raise InvalidProblem(f"{source}: a board solution lists 'cells' and 'edges' together")
-        listed = (_array(doc, "cells", source, version, 2, 2), _array(doc, "edges", source, version, 2, 4))
+        edges = _array(doc, "edges", source, version, 2, 4)
+        listed = (_array(doc, "cells", source, version, 2, 2),
+                  np.asarray(_leg_seam(version, edges=edges, to_file=False)[1], dtype=np.int64).reshape(-1, 4))
         if listed[0].shape[0] > MAX_BOARD_CELLS:
             raise InvalidProblem(f"{source}: 'cells' lists {listed[0].shape[0]:,} cells; tilesolve's boards have at "
                                  f"most {MAX_BOARD_CELLS:,}")
@@ -360,7 +427,17 @@ def board_solution_from_dict(doc: dict, source: Any = "<document>") -> tuple[Boa
     tiling = None
     if doc.get("tiles") is not None:
         tiling = _array(doc, "tiles", source, version, 2)
-    return problem, solution_from_provenance(doc, source, tiling, what="tiles")
+        if tiling.ndim == 2 and tiling.shape[1] == 4:  # another shape is left for the verifier to name
+            tiling = np.asarray(_leg_seam(version, tiles=tiling, to_file=False)[0], dtype=np.int64).reshape(-1, 4)
+    solution = solution_from_provenance(doc, source, tiling, what="tiles")
+    if doc.get("window") is not None:
+        if version < 3:
+            raise InvalidProblem(f"{source}: 'window' needs version 3")
+        try:
+            solution = dataclasses.replace(solution, window=Window.from_dict(doc["window"]))
+        except InvalidProblem as exc:
+            raise InvalidProblem(f"{source}: 'window': {exc}") from None
+    return problem, solution
 
 
 def write_board_solution(path: str | os.PathLike, problem: BoardProblem, solution: Solution, *,
@@ -371,7 +448,7 @@ def write_board_solution(path: str | os.PathLike, problem: BoardProblem, solutio
 
 
 def read_board_solution(path: str | os.PathLike) -> tuple[BoardProblem, Solution]:
-    """Read a ``tilesolve/board-solution`` file (version 1 or 2) as ``(problem, solution)``."""
+    """Read a ``tilesolve/board-solution`` file (version 1, 2 or 3) as ``(problem, solution)``."""
     return board_solution_from_dict(read_json(path), path)
 
 

@@ -23,7 +23,7 @@ cut short) is refused, never re-read as another format.
 Examples
 --------
 >>> ts, notes = parse_tileset_text("# two tiles\\n0 1 0 1\\n1 0 1 0\\n", "nswe")
->>> ts.nesw().tolist(), notes
+>>> ts.tiles.tolist(), notes
 ([[0, 1, 1, 0], [1, 0, 0, 1]], [])
 """
 

@@ -45,7 +45,7 @@ _KEYS = {"format", "version", "order", "colors", "tiles", "name", "comment", "cr
 def tileset_to_dict(tileset: WangTileSet, *, name: str | None = None, about: dict | None = None) -> dict:
     """The JSON document of a tile set (tiles in N, E, S, W order)."""
     doc: dict[str, Any] = {"format": WANG_TILESET, "version": 1, "order": ["N", "E", "S", "W"],
-                           "colors": tileset.n_colors, "tiles": tileset.nesw().tolist()}
+                           "colors": tileset.n_colors, "tiles": tileset.tiles.tolist()}
     if name:
         doc["name"] = name
     if about:
@@ -76,8 +76,8 @@ def compact_tileset(tiles_nesw: Any, source: str, colors: int | None = None) -> 
     Examples
     --------
     >>> ts, notes = compact_tileset([[0, 5, 0, 99999992], [5, 0, 5, 0]], "t.tiles")
-    >>> ts.n_colors, ts.nesw().tolist()
-    (3, [[1, 0, 1, 0], [0, 1, 0, 2]])
+    >>> ts.n_colors, ts.tiles.tolist()
+    (3, [[0, 1, 0, 2], [1, 0, 1, 0]])
     >>> notes
     ['t.tiles: colours relabelled 0..2 in order (5 -> 1, 99999992 -> 2)']
 
@@ -106,7 +106,7 @@ def compact_tileset(tiles_nesw: Any, source: str, colors: int | None = None) -> 
         shown = ", ".join(moved[:4]) + (f", ... ({len(moved)} colours)" if len(moved) > 4 else "")
         notes.append(f"{source}: colours relabelled 0..{len(used) - 1} in order ({shown})")
         t = inverse.reshape(t.shape)
-    ts = WangTileSet.from_nesw(t, len(used))
+    ts = WangTileSet(t, len(used))
     if len(ts) < len(t):
         notes.append(f"{source}: {len(t) - len(ts)} duplicate tile(s) dropped")
     return ts, notes

@@ -21,15 +21,16 @@ last row meet the N legs of the first row in the same column, and the E leg of c
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, Mapping, NamedTuple
+from typing import Any, ClassVar, Mapping, NamedTuple
 
 import numpy as np
 
 from tilesolve.errors import InvalidProblem
 from tilesolve.model.board import Board, WangTileSet
+from tilesolve.model.solution import Status
 
 __all__ = ["Lattice", "AperiodicProblem", "Certificate", "AperiodicReport", "square_board", "leg_colours",
-           "MAX_CLAUSES", "MAX_LATTICES", "STATUSES", "estimate_refusal"]
+           "MAX_CLAUSES", "MAX_LATTICES", "STATUSES", "VERDICTS", "estimate_refusal"]
 
 #: Largest CNF (clauses, estimated before building) a board may need: about 5 GB of clauses.
 MAX_CLAUSES = 50_000_000
@@ -39,6 +40,17 @@ MAX_LATTICES = 200_000
 
 #: What a certificate can say about its board.
 STATUSES = ("tiles", "refuted", "undecided")
+
+#: A report's verdict (:attr:`AperiodicReport.verdict`): what its certificates establish, in one
+#: word. The literature's words where a finite check can reach them (``periodic``, ``finite``);
+#: a check never says ``aperiodic``.
+VERDICTS = {
+    "periodic": "a torus is tiled: the set tiles the plane periodically, so it is not aperiodic",
+    "finite": "a square cannot be tiled: the set tiles no plane (Extension Theorem)",
+    "open": "every board asked was decided, and none is a tiled torus or an untileable square: "
+            "the check neither shows nor excludes aperiodicity",
+    "undecided": "a board asked was left undecided (a time limit), and no decided one settles the question",
+}
 
 
 class Lattice(NamedTuple):
@@ -77,7 +89,7 @@ def leg_colours(tileset: WangTileSet, tiling) -> np.ndarray:
     """``(rows * cols, 4)`` leg colours (W, N, E, S) of a grid of tile indices, row-major:
     the form :func:`tilesolve.verify.board.board_violations` checks."""
     t = np.asarray(tiling, dtype=np.int64)
-    return tileset.tiles[t.ravel()]
+    return tileset.legs[t.ravel()]
 
 
 @dataclass(frozen=True, eq=False)
@@ -87,7 +99,7 @@ class AperiodicProblem:
     Parameters
     ----------
     tileset : WangTileSet
-        The tiles (deduplicated and sorted; tile indices in certificates refer to
+        The tiles (in the order the user gave them; tile indices in certificates refer to
         ``tileset.tiles``).
     max_square : int
         Find the largest ``n <= max_square`` with a tiled ``n x n`` square (0: no squares).
@@ -104,7 +116,7 @@ class AperiodicProblem:
 
     Examples
     --------
-    >>> ws = WangTileSet.from_nesw([[0, 0, 0, 0]], 1)
+    >>> ws = WangTileSet([[0, 0, 0, 0]], 1)
     >>> p = AperiodicProblem(ws, 3, 2, shears=True)
     >>> [l.name() for l in p.lattices()]
     ['torus 1x1', 'torus 1x2', 'torus 2x1', 'torus 2x1 shear 1', 'torus 2x2', 'torus 2x2 shear 1']
@@ -253,6 +265,9 @@ class AperiodicReport:
         What the literature says about a built-in set (quoted, not checked here).
     """
 
+    #: What the answer is, in the words :func:`tilesolve.family.verify_document` and the studio use.
+    title: ClassVar[str] = "aperiodicity report"
+
     squares: tuple[Certificate, ...] = ()
     periods: tuple[Certificate, ...] = ()
     largest_square: int | None = None
@@ -267,3 +282,24 @@ class AperiodicReport:
     def complete(self) -> bool:
         """True when every requested check was decided."""
         return not self.undecided
+
+    @property
+    def verdict(self) -> str:
+        """What the certificates establish, one of :data:`VERDICTS`: ``periodic`` (a tiled torus),
+        ``finite`` (a refuted square), else ``undecided`` when a board is undecided or none was
+        decided, else ``open``.
+
+        >>> AperiodicReport().verdict, AperiodicReport(periods=(Certificate("torus 1x1", "refuted"),)).verdict
+        ('undecided', 'open')
+        """
+        if any(c.status == "tiles" for c in self.periods):
+            return "periodic"
+        if any(c.status == "refuted" for c in self.squares):
+            return "finite"
+        return "undecided" if self.undecided or not (self.squares or self.periods) else "open"
+
+    @property
+    def status(self) -> Status:
+        """The status of the Solution that carries this report: ``sat`` when the verdict is
+        decided, ``unknown`` when it is ``undecided`` (the CLI's exit codes 0 and 3)."""
+        return Status.UNKNOWN if self.verdict == "undecided" else Status.SAT

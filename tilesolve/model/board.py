@@ -8,14 +8,22 @@ problems (Def. 2), the three-boundary condition (Def. 6) and the brick Wang tile
 Conventions
 -----------
 Cells carry ``[row, col]`` labels (row 0 at the top) and are numbered ``0 .. n-1`` in
-row-major order of their labels. Every cell has four *legs*, in the order
+row-major order of their labels.
+
+A Wang tile is public in one edge order everywhere, **N, E, S, W** (class notes §2.7): the
+rows of :class:`WangTileSet`, tile-set files, board-solution files (version 3), reports and
+the CLI's text. Inside the board model every cell has four *legs*, numbered as the brick
+paper numbers them,
 
     l1 = W (0), l2 = N (1), l3 = E (2), l4 = S (3)
 
-going round the cell, so l1/l3 and l2/l4 are opposite, as Def. 9 assumes.
-A Wang tile is the tuple of the colours of its legs in this order, ``(W, N, E, S)``;
-:func:`wang_from_nesw` and :func:`wang_to_nesw` convert from/to the N, E, S, W order of
-other tools. Colours are ``0 .. n_colors-1`` (the paper's ``C = {1..m}`` shifted by one).
+going round the cell, so l1/l3 and l2/l4 are opposite, as Def. 9 assumes. The kernels, the
+encodings and the verifier read the legs; a board tiling (``Solution.tiling`` of the board
+family) is the ``(n, 4)`` array of each cell's leg colours in this order, as the columns of
+:attr:`Board.nbr_cell` are. The two orders meet at one seam: :func:`wang_from_nesw` and
+:func:`wang_to_nesw` (:attr:`WangTileSet.legs` is its tiles through it; the board files'
+reader and writer and the CLI's text convert with them). Colours are ``0 .. n_colors-1``
+(the paper's ``C = {1..m}`` shifted by one).
 
 A board is stored as two ``(n, 4)`` int64 arrays: ``nbr_cell[a, k]`` is the cell joined to
 leg ``k`` of cell ``a`` and ``nbr_leg[a, k]`` the leg of that cell it meets, or
@@ -33,7 +41,7 @@ in-memory text only.
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import NamedTuple
 
 import numpy as np
@@ -667,31 +675,51 @@ def colour_rows(tiles) -> np.ndarray:
 
 
 def wang_from_nesw(tiles) -> np.ndarray:
-    """Convert tiles given as (N, E, S, W) to tilesolve's (W, N, E, S) leg order
-    (:func:`colour_rows` checks them)."""
+    """Tiles given as (N, E, S, W) as the colours of the board legs l1..l4 = (W, N, E, S)
+    (:func:`colour_rows` checks them): the one seam into the board model's order."""
     return colour_rows(tiles)[:, [3, 0, 1, 2]]
 
 
-def wang_to_nesw(tiles) -> np.ndarray:
-    """Convert (W, N, E, S) tiles to (N, E, S, W)."""
-    t = np.asarray(tiles, dtype=np.int64).reshape(-1, 4)
+def wang_to_nesw(legs) -> np.ndarray:
+    """Leg colours (W, N, E, S) as tiles in the public order (N, E, S, W): the one seam out of
+    the board model's order."""
+    t = np.asarray(legs, dtype=np.int64).reshape(-1, 4)
     return t[:, [1, 2, 3, 0]]
 
 
 @dataclass(frozen=True, eq=False)
 class WangTileSet:
-    """A set of Wang tiles ``W ⊂ C^4`` (Def. 2), each a tuple of leg colours (W, N, E, S).
+    """A set of Wang tiles ``W ⊂ C^4`` (Def. 2), each given by the colours of its edges in
+    the public order N, E, S, W.
+
+    The tiles keep the order they are given in, so a tile's index means the same tile to the
+    user and in every output (a tile given twice is kept where it first comes). :attr:`legs`
+    holds the same tiles as the colours of the board legs l1..l4 = W, N, E, S (Def. 9), the
+    order the kernels, encodings and verifiers read.
+
+    Parameters
+    ----------
+    tiles : array-like
+        ``(m, 4)`` colours ``[N, E, S, W]`` per tile, in ``0 .. n_colors-1``.
+    n_colors : int
+        ``#C``.
+    is_brick : bool
+        The set is W_B (set by :meth:`brick`).
 
     Examples
     --------
     >>> wb = WangTileSet.brick(3)
     >>> len(wb), wb.is_brick, wb.three_boundary()
     (36, True, True)
+    >>> ts = WangTileSet([[2, 0, 0, 1], [0, 1, 1, 0], [2, 0, 0, 1]], 3)  # N, E, S, W; a repeat
+    >>> ts.tiles.tolist(), ts.legs.tolist()
+    ([[2, 0, 0, 1], [0, 1, 1, 0]], [[1, 2, 0, 0], [0, 0, 1, 1]])
     """
 
     tiles: np.ndarray
     n_colors: int
     is_brick: bool = False
+    legs: np.ndarray = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         k = int(self.n_colors)
@@ -704,20 +732,25 @@ class WangTileSet:
         if t.size == 0:
             raise InvalidProblem("the tile set is empty")
         if t.ndim != 2 or t.shape[1] != 4:
-            raise InvalidProblem(f"each tile must have 4 colours (W, N, E, S); got shape {t.shape}")
+            raise InvalidProblem(f"each tile must have 4 colours (N, E, S, W); got shape {t.shape}")
         t = colour_rows(t)
         bad = (t < 0) | (t >= k)
         if bad.any():
             i = int(np.argwhere(bad)[0][0])
-            raise InvalidProblem(f"tile {t[i].tolist()} uses a colour outside C = 0..{k - 1}")
-        t = np.unique(t, axis=0)
-        t.setflags(write=False)
-        object.__setattr__(self, "tiles", t)
+            raise InvalidProblem(f"tile {t[i].tolist()} (N, E, S, W) uses a colour outside C = 0..{k - 1}")
+        first = np.unique(t, axis=0, return_index=True)[1]
+        if first.size < t.shape[0]:
+            t = t[np.sort(first)]
+        legs = wang_from_nesw(t)
+        for name, arr in (("tiles", t), ("legs", legs)):
+            arr.setflags(write=False)
+            object.__setattr__(self, name, arr)
         object.__setattr__(self, "n_colors", k)
 
     @classmethod
     def brick(cls, n_colors: int = 3) -> "WangTileSet":
-        """The brick Wang tiles W_B (Def. 9): ``(c1 = c3 and c2 != c4) or (c1 != c3 and c2 = c4)``."""
+        """The brick Wang tiles W_B (Def. 9): ``(c1 = c3 and c2 != c4) or (c1 != c3 and c2 = c4)``
+        on the legs l1..l4 = W, N, E, S, in lexicographic order of the legs."""
         k = int(n_colors)
         if k < 3:
             raise InvalidProblem(f"brick Wang tiles need #C >= 3 colours (Def. 9), got {k}")
@@ -726,13 +759,7 @@ class WangTileSet:
                                  f"{MAX_BRICK_COLORS} colours")
         g = np.stack(np.meshgrid(*[np.arange(k)] * 4, indexing="ij"), axis=-1).reshape(-1, 4)
         ok = ((g[:, 0] == g[:, 2]) & (g[:, 1] != g[:, 3])) | ((g[:, 0] != g[:, 2]) & (g[:, 1] == g[:, 3]))
-        return cls(g[ok], k, is_brick=True)
-
-    @classmethod
-    def from_nesw(cls, tiles, n_colors: int) -> "WangTileSet":
-        """A tile set from tiles given in tilesolve's public edge order N, E, S, W (class notes
-        §2.7; tile-set files, :class:`~tilesolve.model.tiles.TileSet`)."""
-        return cls(wang_from_nesw(tiles), n_colors)
+        return cls(wang_to_nesw(g[ok]), k, is_brick=True)
 
     @classmethod
     def from_tileset(cls, tileset) -> "WangTileSet":
@@ -741,23 +768,19 @@ class WangTileSet:
         if tileset.kind != "wang":
             raise InvalidProblem("corner tiles are not Wang tiles; convert their Wang images "
                                  "(TileSet.as_wang()) instead")
-        return cls.from_nesw(tileset.table(), max(tileset.colors, tileset.cv))
-
-    def nesw(self) -> np.ndarray:
-        """The tiles in the public edge order N, E, S, W (the board model keeps the brick
-        paper's legs l1..l4 = W, N, E, S internally; this is the one seam)."""
-        return wang_to_nesw(self.tiles)
+        return cls(tileset.table(), max(tileset.colors, tileset.cv))
 
     def __len__(self) -> int:
         return int(self.tiles.shape[0])
 
     def contains(self, colours) -> np.ndarray:
-        """Boolean per row of ``colours`` ((m, 4) array): is it a tile of the set?"""
+        """Boolean per row of leg colours ``colours`` ((m, 4) array, W, N, E, S): is it a tile
+        of the set?"""
         c = np.asarray(colours, dtype=np.int64).reshape(-1, 4)
         k = self.n_colors
         inrange = ((c >= 0) & (c < k)).all(axis=1)
         key = lambda a: ((a[:, 0] * k + a[:, 1]) * k + a[:, 2]) * k + a[:, 3]  # noqa: E731
-        return inrange & np.isin(key(np.where(c >= 0, c, 0)), key(self.tiles))
+        return inrange & np.isin(key(np.where(c >= 0, c, 0)), key(self.legs))
 
     def three_boundary(self) -> bool:
         """Def. 6: every projection forgetting one place is onto ``C^3``."""

@@ -95,7 +95,7 @@ def board_violations(problem, tiling) -> list[Violation]:
             r, c = _where(labels, a)
             out.append(Violation("tile", f"tile {t[a].tolist()} has no straight line (c1 != c3 and c2 != c4)", r, c))
     else:
-        ok = _rows_in(t, np.asarray(problem.tileset.tiles, dtype=np.int64), k)
+        ok = _rows_in(t, np.asarray(problem.tileset.legs, dtype=np.int64), k)
         for a in np.flatnonzero(~ok):
             r, c = _where(labels, a)
             out.append(Violation("tile", f"tile {t[a].tolist()} (W, N, E, S) is not in the tile set", r, c))
@@ -149,6 +149,14 @@ def _rows_in(rows: np.ndarray, table: np.ndarray, k: int) -> np.ndarray:
     _, inv = np.unique(np.concatenate([table, rows]), axis=0, return_inverse=True)
     inv = inv.reshape(-1)
     return np.isin(inv[len(table):], inv[:len(table)])
+
+
+def _listed_edge_text(edge: np.ndarray) -> str:
+    """A listed edge ``[a, ka, b, kb]`` in words, its legs by name (a file's leg numbers follow
+    its own leg order; the names do not): ``cell 0 leg E, cell 1 leg W``."""
+    a, ka, b, kb = (int(v) for v in edge)
+    leg = lambda k: _LEGS[k] if 0 <= k < 4 else str(k)  # noqa: E731
+    return f"cell {a} leg {leg(ka)}, " + (f"the wall's boundary leg {kb}" if b == -1 else f"cell {b} leg {leg(kb)}")
 
 
 def _join_text(labels: np.ndarray, a: int, leg: int, b: int, kb: int) -> str:
@@ -228,7 +236,7 @@ def listing_violations(board, cells, edges) -> list[Violation]:
         at = _where(labels, int(a[j])) if 0 <= a[j] < n else (None, None)
         why = ("is listed twice" if repeat[j] else "is not an edge of the board" if ok[j]
                else "names a cell, leg or boundary leg the board does not have")
-        out.append(Violation("board", f"edge {int(j)} {e[j].tolist()} {why}", *at))
+        out.append(Violation("board", f"edge {int(j)} ({_listed_edge_text(e[j])}) {why}", *at))
     if bad.size > MAX_LISTED:
         out.append(Violation("board", f"... and {bad.size - MAX_LISTED} more listed edges the board does not have"))
     for key in missing[:MAX_LISTED]:
