@@ -57,7 +57,7 @@ def main() -> None:
     from tilesolve.constructive.brick import solve_linear
     from tilesolve.constructive.dappled import make_dappled
     from tilesolve.io.board_json import read_board_solution, write_board_solution
-    from tilesolve.io.jsonio import read_solution, write_solution
+    from tilesolve.io.dappled_json import read_solution, write_solution
     from tilesolve.model.board import Board, BoardProblem, WangTileSet, random_boundary
     from tilesolve.model.dappled import DappledProblem
     from tilesolve.model.solution import Solution, Status

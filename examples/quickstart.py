@@ -13,7 +13,7 @@ import sys
 from pathlib import Path
 
 from tilesolve.families import dappled
-from tilesolve.io.jsonio import write_solution
+from tilesolve.io.dappled_json import write_solution
 from tilesolve.io.svg import write_svg
 from tilesolve.model import DappledProblem
 from tilesolve.verify import dappled_violations

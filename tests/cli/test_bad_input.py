@@ -20,7 +20,7 @@ import numpy as np
 import pytest
 from clitools import one_line_error, run, snapshot
 
-from tilesolve.io.jsonio import write_solution
+from tilesolve.io.dappled_json import write_solution
 from tilesolve.model.dappled import DappledProblem
 from tilesolve.model.solution import Solution, Status
 

@@ -17,7 +17,7 @@ import pytest
 from click.testing import CliRunner
 from clitools import SCRIPT
 
-from tilesolve.io import jsonio
+from tilesolve.io import dappled_json
 from tilesolve.model.dappled import DappledProblem
 from tilesolve.model.solution import Solution, Status
 
@@ -44,7 +44,7 @@ TILING = np.array([[0, 0, 1, 0], [1, 0, 0, 1], [0, 1, 1, 0]])
 
 def _write_solution(path: Path, tiling=TILING) -> None:
     p = DappledProblem.from_strings("4x3", ["H0=2", "V1=2"])
-    jsonio.write_solution(path, p, Solution(Status.SAT, np.asarray(tiling), method="constructive", seed=1))
+    dappled_json.write_solution(path, p, Solution(Status.SAT, np.asarray(tiling), method="constructive", seed=1))
 
 
 # ----------------------------------------------------------------------------- basics
@@ -108,7 +108,7 @@ def test_verify_bad_files(tmp_path):
     (tmp_path / "other.json").write_text('{"format": "tilesolve/teapot", "version": 1}')
     assert "unknown format" in one_line_error(run("verify", "other.json", cwd=tmp_path))
     one_line_error(run("verify", "missing.json", cwd=tmp_path))
-    jsonio.write_problem(tmp_path / "problem.json", DappledProblem.from_strings("4x3", ["H0=2"]))
+    dappled_json.write_problem(tmp_path / "problem.json", DappledProblem.from_strings("4x3", ["H0=2"]))
     assert "no solution" in one_line_error(run("verify", "problem.json", cwd=tmp_path))
 
 
@@ -219,7 +219,7 @@ def test_solve_fix_count_and_text_output(tmp_path):
     proc = run("dappled", "solve", "--size", "6x3", "--cond", "H0=2,V1=2", "--fix", "fix.txt",
                "--count", "1=8..10", "--seed", "2", cwd=tmp_path)
     assert proc.returncode == 0, proc.stderr
-    grid = jsonio.parse_text_grid(proc.stdout)
+    grid = dappled_json.parse_text_grid(proc.stdout)
     assert grid.shape == (3, 6) and grid[0, 0] == 1 and grid[2, 5] == 0 and 8 <= grid.sum() <= 10
 
 
@@ -247,7 +247,7 @@ def test_solve_json_to_stdout_and_quiet(tmp_path):
 
 
 def test_solve_problem_file(tmp_path):
-    jsonio.write_problem(tmp_path / "p.json", DappledProblem.from_strings("7x5", ["H0=2", "V1=2"], n_tiles=3))
+    dappled_json.write_problem(tmp_path / "p.json", DappledProblem.from_strings("7x5", ["H0=2", "V1=2"], n_tiles=3))
     proc = run("dappled", "solve", "--problem", "p.json", "-o", "t.json", cwd=tmp_path)
     assert proc.returncode == 0, proc.stderr
     assert json.loads((tmp_path / "t.json").read_text())["n_tiles"] == 3

@@ -88,7 +88,7 @@ def build_problem(
     then the conditions and counts, then the files.
     """
     from tilesolve.cli.options import MAX_INT
-    from tilesolve.io.jsonio import read_problem, read_tiling
+    from tilesolve.io.dappled_json import read_problem, read_tiling
     from tilesolve.model.dappled import DappledProblem, parse_condition, parse_count, parse_size
 
     conditions, counts = list(conditions), list(counts)

@@ -102,7 +102,7 @@ def solve(ctx, method, seed, time_limit, initial, output, svg, png, repeat, grid
     The files are written together at the end, or none of them.
     """
     from tilesolve.families import dappled as facade
-    from tilesolve.io.jsonio import format_text_grid, read_tiling, write_solution
+    from tilesolve.io.dappled_json import format_text_grid, read_tiling, write_solution
 
     outs = Outputs(output, svg, png)
     problem = build_problem(**problem_kw)

@@ -36,7 +36,7 @@ import numpy as np
 from tilesolve.errors import InvalidProblem, MethodNotApplicable
 from tilesolve.family import Codec, Demo, Family, Field, Form, RunOptions, form_size, raise_if_interrupted, register
 from tilesolve.family import solve as _solve
-from tilesolve.io.jsonio import DAPPLED_FORMATS, DAPPLED_PROBLEM, DAPPLED_SOLUTION
+from tilesolve.io.dappled_json import DAPPLED_FORMATS, DAPPLED_PROBLEM, DAPPLED_SOLUTION
 from tilesolve.model.dappled import DappledProblem
 from tilesolve.model.solution import CountResult, CrosscheckReport, Solution, Status
 from tilesolve.verify.dappled import dappled_violations, hamming_distance
@@ -277,19 +277,19 @@ def _encode(problem: DappledProblem):
 
 
 def _read_problem(doc: dict, source: str):
-    from tilesolve.io.jsonio import problem_from_dict
+    from tilesolve.io.dappled_json import problem_from_dict
 
     return problem_from_dict(doc, source), None
 
 
 def _read_solution(doc: dict, source: str):
-    from tilesolve.io.jsonio import solution_from_dict
+    from tilesolve.io.dappled_json import solution_from_dict
 
     return solution_from_dict(doc, source)
 
 
 def _write_solution(problem: DappledProblem, sol: Solution) -> dict:
-    from tilesolve.io.jsonio import solution_to_dict
+    from tilesolve.io.dappled_json import solution_to_dict
 
     return solution_to_dict(problem, sol, arrays=True)
 
