@@ -40,8 +40,8 @@ def test_board_commands_print_the_tiling_without_outputs(tmp_path, args):
     tiles = json.loads((tmp_path / "t.json").read_text())["tiles"]
     rows = [line.split() for line in printed.stdout.splitlines()]
     assert len(rows) == 3 and all(len(r) == 5 for r in rows)
-    assert [[int(d) for d in cell] for row in rows for cell in row] == tiles  # W N E S per cell, row-major
-    assert "W N E S" in printed.stderr
+    assert [[int(d) for d in cell] for row in rows for cell in row] == tiles  # N E S W per cell, row-major
+    assert "N E S W" in printed.stderr
 
 
 @pytest.mark.parametrize("command", [["brick", "solve"], ["brick", "wall"], ["wang", "solve"]])

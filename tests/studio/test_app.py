@@ -162,7 +162,7 @@ def test_painted_boundary_colours_hold(client):
     res = solve(client, {"family": "board", "values": {"size": "4x3", "boundary": "free", "edge": edge,
                                                        "seed": 1}})["result"]
     cells = json.loads(res["json"])["tiles"]
-    assert cells[0][1] == 2 and cells[4 + 3][2] == 1  # legs W N E S
+    assert cells[0][0] == 2 and cells[4 + 3][1] == 1  # N, E, S, W
 
 
 def test_unsat_shows_the_reason(client):

@@ -17,8 +17,8 @@ __all__ = ["BOARD_HELP", "board_opt", "boundary_opt", "method_opt", "svg_opt", "
 BOARD_HELP = (
     "\b\nBoards (SPEC): rect:WxH, torus:WxH, cylinder:WxH, mobius:WxH (Example 5: columns "
     "wrap with a twist), klein:WxH, ring:WxH, or mask:FILE (text: '#' = cell, '.' = hole; or "
-    "a PNG whose opaque pixels are cells).\n\b\nLegs l1..l4 = W, N, E, S; boundary legs are "
-    "numbered by cell (row-major) then leg."
+    "a PNG whose opaque pixels are cells).\n\b\nTiles and printed cells: colours N, E, S, W. Boundary "
+    "legs are numbered by cell (row-major), then by leg W, N, E, S (the brick paper's l1..l4)."
 )
 
 
@@ -82,17 +82,19 @@ def check_brick_colors(colors: int) -> None:
 def board_text(problem, tiling) -> str:
     """The tiling as text, one line per board row (labels, row 0 first).
 
-    Each cell shows its leg colours W N E S: four digits (``0121``) up to 10 colours, else
-    comma-separated; ``.`` fills a hole.
+    Each cell shows its colours N E S W, as tiles are written everywhere: four digits
+    (``1020``) up to 10 colours, else comma-separated; ``.`` fills a hole.
 
     >>> from tilesolve.model.board import Board, BoardProblem, WangTileSet
     >>> p = BoardProblem(Board.rect(1, 2), WangTileSet.brick(3), None)
-    >>> print(board_text(p, [[0, 1, 0, 2], [0, 1, 2, 1]]), end="")
-    0102 0121
+    >>> print(board_text(p, [[0, 1, 0, 2], [0, 1, 2, 1]]), end="")  # legs W, N, E, S
+    1020 1210
     """
     import numpy as np
 
-    t = np.asarray(tiling, dtype=np.int64).reshape(-1, 4)
+    from tilesolve.model.board import wang_to_nesw
+
+    t = wang_to_nesw(tiling)
     lab = problem.board.labels
     if problem.n_colors <= 10:
         cells = np.char.add(np.char.add(t[:, 0].astype(str), t[:, 1].astype(str)),
@@ -146,7 +148,7 @@ def finish(ctx, problem, sol, outs, output, svg, png=None, draw_png=None) -> Non
     for note in sol.notes:
         say(f"  note: {note}")
     if not outs and sol.status.has_tiling:
-        say("  printed: each cell's leg colours W N E S ('.' = hole); -o FILE writes the JSON, --svg FILE draws it")
+        say("  printed: each cell's colours N E S W ('.' = hole); -o FILE writes the JSON, --svg FILE draws it")
     written = [w for w in written if w != "-"]
     if written:
         say("  wrote " + ", ".join(written))

@@ -31,8 +31,8 @@ __all__ = ["brick"]
 def brick() -> None:
     """Brick Wang tiles on boards (Derouet-Jourdan, Kaji, Mizoguchi 2016).
 
-    A brick Wang tile (Def. 9) has colours (c1, c2, c3, c4) on its legs W, N, E, S with
-    c1 = c3 xor c2 = c4: one straight mortar line crosses it, never two (no crosses).
+    A brick Wang tile (Def. 9) has W = E or N = S, never both (the paper's c1 = c3 xor
+    c2 = c4 on its legs l1..l4 = W, N, E, S): one straight mortar line crosses it, never two.
     """
 
 
@@ -57,7 +57,7 @@ def solve(ctx, board_spec, colors, boundary, seed, method, time_limit, max_h, ma
       tilesolve brick solve --board mobius:30x12 --boundary free --method sat -o m.json
       tilesolve brick solve --board mask:shape.png --colors 4 -o s.json
 
-    Without -o or --svg the tiling is printed as text: each cell's leg colours W N E S.
+    Without -o or --svg the tiling is printed as text: each cell's colours N E S W.
     """
     from tilesolve.io.mask import read_board_spec
     from tilesolve.model.board import BoardProblem, WangTileSet
@@ -90,7 +90,7 @@ def brick_wall_cmd(ctx, size, max_line, max_v, colors, seed, output, svg) -> Non
     Example:
       tilesolve brick wall --size 40x25 --max-line 3 --seed 2 -o wall.json --svg wall.svg
 
-    Without -o or --svg the wall is printed as text: each cell's leg colours W N E S.
+    Without -o or --svg the wall is printed as text: each cell's colours N E S W.
     """
     from tilesolve.families.walls import brick_wall
     from tilesolve.model.dappled import parse_size

@@ -101,7 +101,7 @@ def wall(ctx, region, max_line, colors, seed, method, period, output, svg, png, 
       tilesolve wall --region 5,5,60x40 --max-line 3 --method npd --period 12x9 --seed 7 --png n.png
       tilesolve wall --region 0,0,30x20 --max-line 2 --method dappled --seed 1 -o d.json
 
-    Without -o, --svg or --png the wall is printed as text: each cell's leg colours W N E S.
+    Without -o, --svg or --png the wall is printed as text: each cell's colours N E S W.
     """
     import time
 

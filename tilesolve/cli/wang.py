@@ -51,7 +51,7 @@ def wang_solve(ctx, tiles_path, tiles_format, builtin, board_spec, boundary, see
       tilesolve wang solve --tiles tiles.json --board torus:8x8 --boundary free -o t.json --svg t.svg
       tilesolve wang solve --builtin jeandel-rao --board rect:12x12 --boundary free --svg jr.svg
 
-    Without -o or --svg the tiling is printed as text: each cell's leg colours W N E S.
+    Without -o or --svg the tiling is printed as text: each cell's colours N E S W.
     """
     from tilesolve.io.mask import read_board_spec
     from tilesolve.model.board import BoardProblem

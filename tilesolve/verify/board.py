@@ -6,7 +6,8 @@ paper (brick walls without long lines), with numpy only. It reads the board's pl
 arrays and never imports the encodings or the constructive algorithms.
 
 A tiling of a board is an ``(n_cells, 4)`` integer array: the colour of each cell's legs
-in the order W, N, E, S (see :mod:`tilesolve.model.board`).
+in the board model's order W, N, E, S (see :mod:`tilesolve.model.board`); messages name
+each colour by its side, ``N=1 E=0 S=2 W=0``, so they read the same in any order.
 
 A file that lists its board's cells and edges besides describing the board (kind, grid,
 mask) makes a second claim: that the list *is* that board. :func:`listing_violations`
@@ -90,15 +91,15 @@ def board_violations(problem, tiling) -> list[Violation]:
         v = t[:, 1] == t[:, 3]
         for a in np.flatnonzero(h & v):
             r, c = _where(labels, a)
-            out.append(Violation("cross", f"tile {t[a].tolist()} is a cross (c1 = c3 and c2 = c4), not a brick tile", r, c))
+            out.append(Violation("cross", f"tile {_nesw(t[a])} is a cross (W = E and N = S), not a brick tile", r, c))
         for a in np.flatnonzero(~h & ~v):
             r, c = _where(labels, a)
-            out.append(Violation("tile", f"tile {t[a].tolist()} has no straight line (c1 != c3 and c2 != c4)", r, c))
+            out.append(Violation("tile", f"tile {_nesw(t[a])} has no straight line (W != E and N != S)", r, c))
     else:
         ok = _rows_in(t, np.asarray(problem.tileset.legs, dtype=np.int64), k)
         for a in np.flatnonzero(~ok):
             r, c = _where(labels, a)
-            out.append(Violation("tile", f"tile {t[a].tolist()} (W, N, E, S) is not in the tile set", r, c))
+            out.append(Violation("tile", f"tile {_nesw(t[a])} is not in the tile set", r, c))
     # joined legs agree: leg slot a*4+k meets slot b*4+kb (flat arrays, one gather)
     slot = np.arange(4 * n, dtype=np.int64)
     ncf = nc.ravel()
@@ -149,6 +150,12 @@ def _rows_in(rows: np.ndarray, table: np.ndarray, k: int) -> np.ndarray:
     _, inv = np.unique(np.concatenate([table, rows]), axis=0, return_inverse=True)
     inv = inv.reshape(-1)
     return np.isin(inv[len(table):], inv[:len(table)])
+
+
+def _nesw(legs: np.ndarray) -> str:
+    """A cell's leg colours (W, N, E, S) as the tile a user reads, ``N=1 E=0 S=2 W=0``."""
+    w, n, e, s = (int(v) for v in legs)
+    return f"N={n} E={e} S={s} W={w}"
 
 
 def _listed_edge_text(edge: np.ndarray) -> str:
