@@ -127,7 +127,7 @@ def finish(ctx, problem, sol, outs, output, svg, png=None, draw_png=None) -> Non
         if svg and sol.status.has_tiling:
             from tilesolve.io.svg_board import write_board_svg
 
-            write_board_svg(svg, problem, sol.tiling, title=problem.board.describe(),
+            write_board_svg(svg, problem, sol.tiling, title=problem.board.describe(), window=sol.window,
                             notes=[f"{sol.status.value} by {sol.method}, seed {sol.seed}"])
             written.append(svg)
         if png and sol.status.has_tiling:

@@ -55,5 +55,4 @@ def draw(ctx, file: str, output: str, repeat: int, grid) -> None:
     draw_solution(output, problem, sol, fmt=fmt, **options)
     say(f"wrote {output}: {fam.name} solution of {problem.describe()}")
     if sol.window is not None:
-        x, y = sol.window.cell(0, 0)
-        say(f"  window {sol.window.describe()}: the picture's top-left cell is x {x}, y {y}")
+        say(f"  {sol.window.caption()}")

@@ -11,26 +11,9 @@ from tilesolve.cli.common import big, human_bytes, progress_wanted, say
 from tilesolve.cli.outputs import Outputs
 from tilesolve.errors import InvalidProblem
 from tilesolve.family import draw_seed, raise_if_interrupted
+from tilesolve.model.window import parse_region
 
-__all__ = ["wall", "parse_region"]
-
-
-def parse_region(text: str) -> tuple[int, int, int, int]:
-    """``--region X0,Y0,WxH``: ``(x0, y0, rows, cols)``; ``(x0, y0)`` is the bottom-left cell.
-
-    >>> parse_region("-40,12,64x40")
-    (-40, 12, 40, 64)
-    """
-    import re
-
-    m = re.match(r"^\s*([+-]?\d+)\s*,\s*([+-]?\d+)\s*,\s*(\d+)\s*[xX×]\s*(\d+)\s*$", str(text))
-    if not m:
-        raise InvalidProblem(f"cannot read region {text!r}: expected X0,Y0,WxH, e.g. -40,12,64x40 "
-                             "(bottom-left cell x -40, y 12; 64 columns, 40 rows)")
-    x0, y0, w, h = (int(g) for g in m.groups())
-    if w < 1 or h < 1:
-        raise InvalidProblem(f"region size must be positive, got {w}x{h} (WxH)")
-    return x0, y0, h, w
+__all__ = ["wall"]
 
 
 #: Memory a wall held whole takes per cell (-o, --svg, printed text): measured peak RSS of
@@ -109,7 +92,8 @@ def wall(ctx, region, max_line, colors, seed, method, period, output, svg, png, 
     from tilesolve.model.dappled import parse_size
 
     outs = Outputs(output, svg, png)
-    x0, y0, rows, cols = parse_region(region)
+    window = parse_region(region)
+    x0, y0, (rows, cols) = window.x0, window.y0, window.shape
     held = bool(output or svg or not outs) or method == "dappled"  # a dappled wall is built whole
     if held:
         _check_held(rows, cols, svg)
@@ -151,8 +135,7 @@ def wall(ctx, region, max_line, colors, seed, method, period, output, svg, png, 
         return
     with outs.commit():
         rep = draw(png)
-    say(f"sat: {method} brick wall, window x {x0}..{x0 + cols - 1}, y {y0}..{y0 + rows - 1} (y grows upwards), "
-        f"lines <= {max_line}, {colors} colours")
+    say(f"sat: {method} brick wall, window {window.describe()}, lines <= {max_line}, {colors} colours")
     say(f"  method {method}, seed {seed}" + (f", period {pw}x{ph}" if method == "npd" else "")
         + f", {rep.time_s:.3f} s")
     bands = f"{rep.bands} band{'s' if rep.bands > 1 else ''}"

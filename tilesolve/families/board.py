@@ -307,7 +307,8 @@ def _draw(problem: BoardProblem, sol: Solution, path, fmt: str, *, title: str | 
         return
     from tilesolve.io.svg_board import write_board_svg
 
-    write_board_svg(path, problem, sol.tiling, title=title or problem.board.describe(), notes=legend + list(notes))
+    write_board_svg(path, problem, sol.tiling, title=title or problem.board.describe(), window=sol.window,
+                    notes=legend + list(notes))
 
 
 def _brick_wall_demo() -> BoardProblem:

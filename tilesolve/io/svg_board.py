@@ -11,6 +11,8 @@
   leave the rectangle (torus, cylinder, Möbius strip, Klein bottle) are marked with
   arrows on the identified sides: same direction for a plain identification, opposite
   directions for a twisted one (Example 5).
+* A tiling cut from the plane (a window of a procedural or repeatable wall) carries its
+  window's coordinates in the legend (:meth:`tilesolve.model.window.Window.caption`).
 """
 
 from __future__ import annotations
@@ -21,6 +23,7 @@ import numpy as np
 
 from tilesolve.io.svg import MAX_SVG_CELLS, tile_colour
 from tilesolve.model.board import BoardProblem
+from tilesolve.model.window import Window
 
 __all__ = ["board_drawing", "write_board_svg", "brick_ids"]
 
@@ -54,8 +57,9 @@ def brick_ids(problem: BoardProblem, tiling) -> np.ndarray:
     return ids.reshape(n, 4)
 
 
-def board_drawing(problem: BoardProblem, tiling, *, title: str | None = None, notes=()):
-    """An :class:`svgwrite.Drawing` of ``tiling`` on ``problem.board``."""
+def board_drawing(problem: BoardProblem, tiling, *, title: str | None = None, notes=(), window: Window | None = None):
+    """An :class:`svgwrite.Drawing` of ``tiling`` on ``problem.board``; ``window``, where the
+    tiling lies in the plane, adds its coordinates to the legend."""
     import svgwrite
 
     b = problem.board
@@ -68,7 +72,7 @@ def board_drawing(problem: BoardProblem, tiling, *, title: str | None = None, no
     cols = int(b.labels[:, 1].max()) + 1
     cell = max(2.0, min(40.0, _PX / max(rows, cols)))
     m = 24.0
-    legend = ([title] if title else []) + list(notes)
+    legend = ([title] if title else []) + ([window.caption()] if window is not None else []) + list(notes)
     W, H = cols * cell + 2 * m, rows * cell + 2 * m + 16 * len(legend)
     d = svgwrite.Drawing(size=(f"{W:.0f}px", f"{H:.0f}px"), viewBox=f"0 0 {W:.1f} {H:.1f}")
     pat = d.pattern(id="holes", size=(6, 6), patternUnits="userSpaceOnUse")

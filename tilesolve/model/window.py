@@ -107,6 +107,15 @@ class Window:
         return (f"x {self.x0}..{self.x0 + self.width - 1}, y {self.y0}..{self.y0 + self.height - 1} "
                 f"(y grows {way})")
 
+    def caption(self) -> str:
+        """The line a picture of the window carries: where it is and which cell is its top-left.
+
+        >>> Window(-40, 12, 64, 40).caption()
+        'window x -40..23, y 12..51 (y grows upwards); top-left cell x -40, y 51'
+        """
+        x, y = self.cell(0, 0)
+        return f"window {self.describe()}; top-left cell x {x}, y {y}"
+
     def to_dict(self) -> dict[str, Any]:
         """The JSON form: ``{"x0", "y0", "width", "height", "y_up"}``."""
         return {"x0": self.x0, "y0": self.y0, "width": self.width, "height": self.height, "y_up": self.y_up}
