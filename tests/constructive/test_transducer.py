@@ -325,10 +325,10 @@ def test_family_route_end_to_end():
 
     ts, info = load("finite-jv7")
     s = solve(AperiodicProblem(ts, 0, 10, name="finite-jv7", info=info), method="transducer", seed=1)
-    (cert,) = s.tiling.squares
+    (cert,) = s.report.squares
     assert (s.status.value, s.method, cert.board, cert.status) == ("sat", "transducer", "square 8x26", "refuted")
     ts, info = load("periodic-8-28")
     s = solve(AperiodicProblem(ts, 0, 30, name="periodic-8-28", info=info), method="transducer", seed=1)
-    (cert,) = s.tiling.periods
+    (cert,) = s.report.periods
     assert (cert.board, cert.status) == ("torus 28x28", "tiles")
     check_torus(ts, cert.tiling)

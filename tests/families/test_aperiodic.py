@@ -82,7 +82,8 @@ def test_lattices_and_names():
 
 def test_periodic_set_gives_a_verified_torus_witness():
     s = solve(AperiodicProblem(DIAGONAL, 4, 3, shears=True), seed=1, workers=1)
-    rep = s.tiling
+    rep = s.report
+    assert s.verdict == "periodic" and s.tiling is None
     by = {c.board: c for c in rep.periods}
     assert by["torus 3x1"].status == "refuted" and by["torus 3x1 shear 1"].status == "tiles"
     assert by["torus 3x3"].status == "tiles"
@@ -93,7 +94,8 @@ def test_periodic_set_gives_a_verified_torus_witness():
 
 def test_finite_set_stops_with_a_checked_refutation():
     s = solve(AperiodicProblem(LONELY, 5, 0), seed=1)
-    rep = s.tiling
+    rep = s.report
+    assert s.verdict == "finite" and s.status.value == "sat"
     assert rep.largest_square == 1
     refuted = [c for c in rep.squares if c.status == "refuted"]
     assert {c.board for c in refuted} >= {"square 2x2"}
@@ -194,10 +196,10 @@ def test_cli_bad_tile_sets(tmp_path, tiles, msg):
 def test_transducer_route_gives_a_verified_torus_witness():
     problem = AperiodicProblem(DIAGONAL, 0, 3)
     s = solve(problem, method="transducer", seed=1)
-    assert s.stats["verdict"] == "periodic"
-    (cert,) = s.tiling.periods
+    assert s.stats["transducer_verdict"] == "periodic" and s.verdict == "periodic"
+    (cert,) = s.report.periods
     assert cert.status == "tiles" and cert.method == "transducer"
-    assert not aperiodic_violations(problem, s.tiling)
+    assert not aperiodic_violations(problem, s.report)
     assert verify_document(json.loads(solution_text(problem, s))).ok
 
 
@@ -248,14 +250,14 @@ def test_draw_shows_the_torus_witness_else_the_largest_square(tmp_path):
 
     p = AperiodicProblem(DIAGONAL, 4, 3, shears=True)
     s = solve(p, seed=1, workers=1)
-    assert witness(s.tiling).board == "torus 3x1 shear 1"  # a period beats the larger square
+    assert witness(s.report).board == "torus 3x1 shear 1"  # a period beats the larger square
     draw_solution(tmp_path / "t.svg", p, s)
     draw_solution(tmp_path / "t.png", p, s)
     assert ": torus 3x1 shear 1</text>" in (tmp_path / "t.svg").read_text()
     assert (tmp_path / "t.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     squares = AperiodicProblem(LONELY, 3, 0)
     s = solve(squares, seed=1, workers=1)
-    assert witness(s.tiling).board == "square 1x1" and s.tiling.largest_square == 1
+    assert witness(s.report).board == "square 1x1" and s.report.largest_square == 1
     draw_solution(tmp_path / "s.svg", squares, s, title="one column")
     svg = (tmp_path / "s.svg").read_text()
     assert "one column</text>" in svg and "witness: the square 1x1 tiled (sat, seed 1)" in svg
@@ -266,7 +268,7 @@ def test_a_report_without_a_witness_has_nothing_to_draw(tmp_path):
 
     p = AperiodicProblem(LONELY, 0, 1)  # the 1x1 torus joins the tile's E and W legs: refuted
     s = solve(p, seed=1, workers=1)
-    assert [c.status for c in s.tiling.periods] == ["refuted"]
+    assert [c.status for c in s.report.periods] == ["refuted"]
     for fmt in ("svg", "png"):
         with pytest.raises(InvalidProblem, match="^this report has no witness tiling to draw$"):
             draw_solution(tmp_path / f"r.{fmt}", p, s)

@@ -121,7 +121,9 @@ def test_each_family_solves_verifies_and_exports(client, name):
     assert state["state"] == "done", state
     res = state["result"]
     assert res["status"] == "sat" and res["seed"] == 3
-    assert res["verdict"][0].startswith("ok: solution.json is a valid tiling")
+    what = "aperiodicity report" if name == "aperiodic" else "tiling"
+    assert res["verdict"][0].startswith(f"ok: solution.json is a valid {what}")
+    assert (res["report"] is not None) == (name == "aperiodic")
     assert family.verify_document(json.loads(res["json"])).ok
     assert res["picture"]["format"] in ("svg", "png")
     job = state["id"]
@@ -277,4 +279,11 @@ def test_a_report_without_a_witness_is_shown_without_a_picture(client):
     res = state["result"]
     assert res["status"] == "sat" and res["picture"] is None
     assert "no picture: this report has no witness tiling to draw" in res["notes"]
-    assert res["verdict"][0].startswith("ok: solution.json is a valid tiling")
+    # the report in its own words: a verdict and a conclusion, not "a valid tiling"
+    assert res["report"]["title"] == "aperiodicity report" and res["report"]["verdict"] == "open"
+    assert res["report"]["conclusion"].startswith("No periodic tiling with these periods")
+    assert res["verdict"][0].startswith("ok: solution.json is a valid aperiodicity report (")
+    assert res["verdict"][0].endswith("verdict open; the CNFs of 1 refutation(s) re-derived from the problem match "
+                                      "their digests, but their proofs were NOT re-checked (give --proof-dir DIR)")
+    doc = json.loads(res["json"])
+    assert (doc["version"], doc["verdict"], doc["status"]) == (2, "open", "sat")

@@ -59,8 +59,10 @@ def check(ctx, tiles, builtin, method, max_square, max_period, shears, workers, 
 
     A tiled square or torus is a witness (verified before it is written); a refuted one has a
     DRAT proof checked by tilesolve's checker; boards left by a time limit are "undecided".
-    The report says what was checked and never calls a set aperiodic from search alone.
-    Exit 0 when every board was decided, 3 when some are undecided.
+    The report says what was checked and never calls a set aperiodic from search alone; its
+    verdict is periodic (a tiled torus), finite (a refuted square: the set tiles no plane), open
+    (every board decided, neither found) or undecided. Exit 0 with a decided verdict, 3 when it
+    is undecided (a board left undecided that the verdict needed).
 
     \b
     Examples:
@@ -100,19 +102,20 @@ def check(ctx, tiles, builtin, method, max_square, max_period, shears, workers, 
     with outs.commit(sol):
         if output:
             write_solution(output, problem, sol)
-    rep = sol.tiling
+    rep = sol.report
     if not output or output != "-":
         click.echo(rep.conclusion)
         if rep.literature:
             click.echo(f"Literature: {rep.literature}")
-    say(f"{problem.describe()}: {sol.method} route, {sum(c.status == 'tiles' for c in rep.periods)} periods "
+    say(f"{problem.describe()}: verdict {rep.verdict}; {sol.method} route, "
+        f"{sum(c.status == 'tiles' for c in rep.periods)} periods "
         f"tiled, {sum(c.status == 'refuted' for c in rep.periods)} refuted, {len(rep.undecided)} undecided, "
         f"in {sol.time_s:.2f} s (seed {sol.seed})")
     for note in sol.notes:
         say(f"  note: {note}")
     if outs.files:
         say(f"  wrote {', '.join(outs.files)}")
-    ctx.exit(0 if rep.complete and sol.stats.get("verdict") != "undecided" else 3)
+    ctx.exit(sol.status.exit_code)
 
 
 @aperiodic.command(name="verify", context_settings=opt.CONTEXT_SETTINGS,

@@ -52,8 +52,8 @@ def demo(ctx, out_dir: str, seed: int, time_limit: float, only: tuple[str, ...])
         sol = raise_if_interrupted(solve(problem, d.method, seed=seed, time_limit=time_limit, workers=1,
                                          progress=progress_wanted()))
         write_solution(out / f"{d.name}.json", problem, sol)
-        click.echo(f"{d.name:16s} {d.caption}: {sol.status.value} by {sol.method} in {sol.time_s:.2f} s")
-        if sol.status.has_tiling:
+        click.echo(f"{d.name:16s} {d.caption}: {sol.verdict} by {sol.method} in {sol.time_s:.2f} s")
+        if sol.answer is not None:
             svg = out / f"{d.name}.svg"
             draw_solution(svg, problem, sol, title=d.caption, **d.draw_options)
             click.echo(f"{'':16s} -> {svg}")

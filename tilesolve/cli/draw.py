@@ -43,7 +43,7 @@ def draw(ctx, file: str, output: str, repeat: int, grid) -> None:
     check_writable(output)
     fam, codec, doc = read_document(file)
     problem, sol = codec.read(doc, file)
-    if sol is None or not sol.status.has_tiling:
+    if sol is None or sol.answer is None:
         what = "no solution" if sol is None else f"status {sol.status.value}, no tiling"
         click.echo(f"tilesolve: {file} holds {what}: nothing to draw", err=True)
         ctx.exit(1)

@@ -4,7 +4,8 @@ Wang's procedure separates the tile sets that are not aperiodic: an ``n x n`` sq
 cannot be tiled proves the set tiles no plane (Extension Theorem, Grünbaum and Shephard
 §3.8), a tiled torus is a periodic tiling. :class:`~tilesolve.model.aperiodic.AperiodicProblem`
 asks for the largest tiled square up to a bound and for every (sheared) torus up to a bound;
-the answer is an :class:`~tilesolve.model.aperiodic.AperiodicReport` of certificates: witness
+the answer is an :class:`~tilesolve.model.aperiodic.AperiodicReport` of certificates (in
+``Solution.report``, with its verdict: ``Solution.verdict``; there is no tiling): witness
 tilings (verified by :func:`tilesolve.verify.aperiodic.aperiodic_violations`, which re-checks
 each one as a board tiling), refutations with checked DRAT proofs, and undecided boards with
 why. A report never calls a set aperiodic from search alone; for a built-in set it quotes the
@@ -31,8 +32,10 @@ Examples
 >>> from tilesolve.model.board import WangTileSet
 >>> ws = WangTileSet.from_nesw([[0, 1, 1, 1], [1, 1, 0, 1]], 2)   # N, E, S, W: a 2-row period
 >>> s = solve(AperiodicProblem(ws, 3, 2), seed=1, workers=1)
->>> s.tiling.largest_square, [c.status for c in s.tiling.periods]
+>>> s.report.largest_square, [c.status for c in s.report.periods]
 (3, ['refuted', 'refuted', 'tiles', 'tiles'])
+>>> s.verdict, s.status.value, s.tiling is None
+('periodic', 'sat', True)
 """
 
 from __future__ import annotations
@@ -133,8 +136,8 @@ def sat(problem: AperiodicProblem, run: RunOptions) -> Solution:
         notes = (f"{cached} lattice verdict(s) taken from the cache after re-checking (witness verified, or proof "
                  f"re-checked against the re-derived CNF); {rejected} cache line(s) not confirmed and decided "
                  "again",)
-    return Solution(Status.SAT, report, "sat", "cadical153", run.seed, run.deadline.elapsed(), reason=reason,
-                    notes=notes, stats=stats)
+    return Solution(report.status, None, "sat", "cadical153", run.seed, run.deadline.elapsed(), reason=reason,
+                    notes=notes, stats=stats, report=report)
 
 
 def transducer(problem: AperiodicProblem, run: RunOptions) -> Solution:
@@ -148,9 +151,9 @@ def transducer(problem: AperiodicProblem, run: RunOptions) -> Solution:
 
     with writing_proofs(run.option("proof_dir")):
         verdict, report = transducer_report(problem, run, refute=lambda name, r: decide(problem.tileset, name, r))
-    reason = report.conclusion if verdict == "undecided" else None
-    return Solution(Status.SAT, report, "transducer", None, run.seed, run.deadline.elapsed(), reason=reason,
-                    stats={"verdict": verdict})
+    reason = report.conclusion if report.verdict == "undecided" else None
+    return Solution(report.status, None, "transducer", None, run.seed, run.deadline.elapsed(), reason=reason,
+                    stats={"transducer_verdict": verdict}, report=report)
 
 
 def refutations(problem: AperiodicProblem, sol: Solution) -> list[tuple[str, object, dict]]:
@@ -159,7 +162,7 @@ def refutations(problem: AperiodicProblem, sol: Solution) -> list[tuple[str, obj
     re-derives each CNF from the report's tile set and the board's name)."""
     from tilesolve.engine.aperiodic import board_problem
 
-    report = sol.tiling
+    report = sol.report
     if not isinstance(report, AperiodicReport):
         return []
     return [(c.board, board_problem(problem.tileset, c.board), dict(c.evidence))
@@ -212,7 +215,7 @@ def _draw(problem: AperiodicProblem, sol: Solution, path, fmt: str, *, title: st
     from tilesolve.model.aperiodic import board_of, leg_colours
     from tilesolve.model.board import BoardProblem
 
-    cert = witness(sol.tiling)
+    cert = witness(sol.report)
     if cert is None:
         raise InvalidProblem("this report has no witness tiling to draw")
     board_problem = BoardProblem(board_of(cert.board), problem.tileset)

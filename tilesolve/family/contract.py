@@ -74,8 +74,9 @@ class Family:
     auto : callable
         ``auto(problem) -> route name``.
     verify : callable
-        ``verify(problem, tiling) -> list of violations`` (empty when valid): the family's
-        independent checker (``tilesolve.verify``).
+        ``verify(problem, answer) -> list of violations`` (empty when valid): the family's
+        independent checker (``tilesolve.verify``), given ``Solution.answer``: the tiling, or
+        the report of a family whose answers are reports (``Solution.report``).
     fallback : str or None
         Route used when ``auto``'s choice raises MethodNotApplicable or returns a tiling that
         fails verification (a constructive algorithm without a proof).

@@ -57,7 +57,7 @@ def solve(
     MethodNotApplicable
         An explicitly requested route cannot take the problem (the message names one that can).
     InternalError
-        A route returned a tiling that fails verification and no fallback exists (a bug).
+        A route returned a tiling (or report) that fails verification and no fallback exists (a bug).
     """
     fam = family_of(problem)
     if time_limit is not None and not (time_limit > 0 and time_limit < float("inf")):
@@ -96,16 +96,17 @@ def run_route(fam: Family, problem: Any, method: str | Route, run: RunOptions) -
             sol = Solution(Status.UNKNOWN, None, name, None, run.seed, run.deadline.elapsed(), reason=str(exc))
     if _uncertified(sol) and name != "sat":
         sol = _certify_infeasible(fam, problem, run, name, sol)
-    bad = fam.verify(problem, sol.tiling) if sol.status.has_tiling else ()
+    bad = fam.verify(problem, sol.answer) if sol.answer is not None else ()
     if bad and method == "auto" and fam.fallback is not None and name != fam.fallback:
         notes.append(f"{name!r} output failed verification ({len(bad)} violations, first: {bad[0]}); "
                      f"fell back to {fam.fallback!r}")
         name = fam.fallback
         with status_line(f"{fam.name}: solving with {name!r}", run.progress):
             sol = fam.routes[name](problem, run)
-        bad = fam.verify(problem, sol.tiling) if sol.status.has_tiling else ()
+        bad = fam.verify(problem, sol.answer) if sol.answer is not None else ()
     if bad:
-        raise InternalError(f"method {sol.method or name!r} returned a tiling that fails verification "
+        what = "a report" if sol.report is not None else "a tiling"
+        raise InternalError(f"method {sol.method or name!r} returned {what} that fails verification "
                             f"({len(bad)} violations, first: {bad[0]})")
     if sol.status.has_tiling and fam.objective is not None:
         value = fam.objective(problem, sol.tiling)

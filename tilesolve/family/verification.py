@@ -128,6 +128,11 @@ def verify_document(doc: dict, source: str = "<document>", proof_dir: str | os.P
     bytes of DIMACS text is not built: its claim is not confirmed (exit 1), and the line says
     so with the estimate.
 
+    A report (``Solution.report``, e.g. an aperiodicity check's) is checked by the family's
+    verifier and its refutations as above; the first line names it with its own words: ``ok:
+    FILE is a valid aperiodicity report of ...: verdict periodic (...)``. A valid report is exit
+    0 whatever its verdict (``undecided`` included): what is checked is that its claims hold.
+
     The first line is the verdict (``ok: ...`` only when every check passed); detail lines follow,
     indented.
     """
@@ -136,6 +141,8 @@ def verify_document(doc: dict, source: str = "<document>", proof_dir: str | os.P
     if sol is None:
         raise InvalidProblem(f"{source}: a {codec.format} file holds no solution to verify; solve it first")
     what = problem.describe() if hasattr(problem, "describe") else fam.name
+    if sol.report is not None:
+        return _verify_report(fam, problem, sol, source, what, proof_dir, workers, max_cnf)
     false: list[str] = []
     if sol.tiling is None:
         if sol.status.has_tiling:
@@ -151,12 +158,7 @@ def verify_document(doc: dict, source: str = "<document>", proof_dir: str | os.P
             false.append(f"status {sol.status.value!r} claims no tiling was found, but the file holds one")
         violations = list(fam.verify(problem, sol.tiling))
         if violations:
-            n = len(violations)
-            lines = [f"{source}: {n} violation{'s' if n != 1 else ''} of {what}"]
-            lines += [f"  {v}" for v in violations[:MAX_SHOWN]]
-            if n > MAX_SHOWN:
-                lines.append(f"  ... and {n - MAX_SHOWN} more")
-            return FileReport(1, tuple(lines + [f"  {f}" for f in false]))
+            return _violations_report(source, what, violations, false)
         value = fam.objective(problem, sol.tiling) if fam.objective is not None else None
         if value is None:
             if sol.status is Status.OPTIMAL:
@@ -165,19 +167,49 @@ def verify_document(doc: dict, source: str = "<document>", proof_dir: str | os.P
                 false.append(f"objective {sol.objective} recorded, but the problem has no objective")
         elif sol.objective != value:
             false.append(f"recorded objective {sol.objective}, but the tiling's value is {value}")
+    return _claims_checked(fam, problem, sol, source, proof_dir, workers, max_cnf, false,
+                           f"ok: {source} is a valid tiling of {what}")
+
+
+def _violations_report(source: str, what: str, violations: Sequence, false: Sequence[str]) -> FileReport:
+    """Exit 1: the verifier's violations of ``what`` (the first :data:`MAX_SHOWN`), then other false claims."""
+    n = len(violations)
+    lines = [f"{source}: {n} violation{'s' if n != 1 else ''} of {what}"]
+    lines += [f"  {v}" for v in violations[:MAX_SHOWN]]
+    if n > MAX_SHOWN:
+        lines.append(f"  ... and {n - MAX_SHOWN} more")
+    return FileReport(1, tuple(lines + [f"  {f}" for f in false]))
+
+
+def _verify_report(fam: Family, problem: Any, sol: Solution, source: str, what: str, proof_dir, workers: int,
+                   max_cnf: int) -> FileReport:
+    """:func:`verify_document` of a file whose answer is a report (``Solution.report``) about ``what``."""
+    report = sol.report
+    violations = list(fam.verify(problem, report))
+    if violations:
+        return _violations_report(source, f"{report.title} of {what}", violations, ())
+    return _claims_checked(fam, problem, sol, source, proof_dir, workers, max_cnf, [],
+                           f"ok: {source} is a valid {report.title} ({what}): verdict {report.verdict}",
+                           (f"  conclusion: {report.conclusion}",))
+
+
+def _claims_checked(fam: Family, problem: Any, sol: Solution, source: str, proof_dir, workers: int, max_cnf: int,
+                    false: list[str], head: str, said: tuple[str, ...] = ()) -> FileReport:
+    """The end of :func:`verify_document` once the answer itself holds: its refutations re-derived
+    (and re-checked with ``proof_dir``); exit 1 with ``false`` and the refused ones, else ``head``
+    with what was re-checked, then the lines ``said`` and the details."""
     claims = _refutations(fam, problem, sol) if not false else []
     refused, details, checked = _recheck(claims, proof_dir, workers, max_cnf)
     false += refused
     if false:
         verdict = "NOT confirmed" if all(TOO_LARGE in f for f in false) else "false"
         return FileReport(1, (f"{source}: the file's claims are {verdict}",) + tuple(f"  {f}" for f in false))
-    head = f"ok: {source} is a valid tiling of {what}"
     if claims and proof_dir is not None:
         head += f"; {checked} refutation(s) re-checked: each DRAT proof refutes the CNF re-derived from the problem"
     elif claims:
         head += (f"; the CNFs of {len(claims)} refutation(s) re-derived from the problem match their digests, "
                  "but their proofs were NOT re-checked (give --proof-dir DIR)")
-    return FileReport(0, (head,) + tuple(details))
+    return FileReport(0, (head,) + said + tuple(details))
 
 
 def _verify_unsat(fam: Family, problem: Any, sol: Solution, source: str, proof_dir, workers: int,

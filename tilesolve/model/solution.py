@@ -37,7 +37,7 @@ class Status(str, enum.Enum):
 
 @dataclass(frozen=True)
 class Solution:
-    """A tiling (or the proof that none exists) plus its provenance.
+    """A tiling (or the proof that none exists), or a report, plus its provenance.
 
     Attributes
     ----------
@@ -47,6 +47,13 @@ class Solution:
         (row 0 at the top) of tiles (dappled) or tile indices (packings, eq. 2.1 / 2.5), or
         the ``(n_cells, 4)`` leg colours of a board tiling (legs l1..l4 = W, N, E, S). The
         family's verifier (``Family.verify``) says what it must satisfy.
+    report : object or None
+        An answer that is not a tiling, with its own words: a report of certificates (the
+        aperiodicity family's :class:`~tilesolve.model.aperiodic.AperiodicReport`). It has a
+        ``title`` (what it is: ``"aperiodicity report"``), a ``verdict`` (one word for what its
+        certificates establish, e.g. ``"periodic"``, ``"undecided"``) and a ``conclusion`` (the
+        same in a sentence). ``tiling`` is ``None`` beside it; ``status`` is ``sat`` when the
+        verdict is decided, ``unknown`` when it is ``"undecided"`` (exit codes 0 and 3).
     method : str
         The route that produced it: ``"constructive"``, ``"sat"``, ``"maxsat"``, ``"cpsat"``...
     solver : str or None
@@ -83,6 +90,7 @@ class Solution:
     notes: tuple[str, ...] = ()
     stats: dict[str, Any] = field(default_factory=dict)
     window: Window | None = None
+    report: Any = None
     renderer: Callable[["Solution", str], Any] | None = field(default=None, repr=False, compare=False)
 
     def _repr_svg_(self) -> str | None:
@@ -93,8 +101,21 @@ class Solution:
         """PNG for notebooks (large grids, where SVG is refused)."""
         return self._picture("png")
 
+    @property
+    def answer(self) -> Any:
+        """What the family's verifier checks: the report, else the tiling when the status has one
+        (``None`` when there is neither)."""
+        if self.report is not None:
+            return self.report
+        return self.tiling if self.status.has_tiling else None
+
+    @property
+    def verdict(self) -> str:
+        """The answer in one word: a report's verdict, else the status (``"sat"``, ``"unsat"``...)."""
+        return self.report.verdict if self.report is not None else self.status.value
+
     def _picture(self, fmt: str):
-        if self.renderer is None or not self.status.has_tiling:
+        if self.renderer is None or self.answer is None:
             return None
         try:
             return self.renderer(self, fmt)

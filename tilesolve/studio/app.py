@@ -227,7 +227,7 @@ def create_app(*, warm: bool = True, names=()) -> Starlette:
         fmt = what.rsplit(".", 1)[1]
         fam, codec = family.codec_of(json.loads(text)["format"])
         problem, sol = codec.read(json.loads(text), "solution.json")
-        if not sol.status.has_tiling:
+        if sol.answer is None:
             raise InvalidProblem(f"status {sol.status.value}: no tiling to draw")
         data = family.render(problem, sol, fmt)
         return data, "image/svg+xml" if fmt == "svg" else "image/png"

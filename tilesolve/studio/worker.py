@@ -93,6 +93,8 @@ def solve_request(name: str, values: Any, method: str, time_limit: float | None)
         "family": fam.name,
         "describe": problem.describe() if hasattr(problem, "describe") else fam.name,
         "status": sol.status.value,
+        "report": None if sol.report is None else {"title": sol.report.title, "verdict": sol.report.verdict,
+                                                   "conclusion": sol.report.conclusion},
         "method": sol.method,
         "seed": sol.seed,
         "time_s": round(sol.time_s, 4),
@@ -107,7 +109,7 @@ def solve_request(name: str, values: Any, method: str, time_limit: float | None)
     out["json"] = text
     out["verdict"] = list(family.verify_document(json.loads(text), "solution.json").lines)
     try:
-        out["picture"] = picture(problem, sol) if sol.status.has_tiling else None
+        out["picture"] = picture(problem, sol) if sol.answer is not None else None
     except InvalidProblem as exc:  # an answer without a tiling to draw (e.g. a report with no witness)
         out["picture"] = None
         out["notes"].append(f"no picture: {exc}")

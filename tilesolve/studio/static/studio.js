@@ -207,10 +207,15 @@ function showResult(res) {
     img.src = "data:image/png;base64," + res.picture.data; pic.appendChild(img);
   } else shown();
   const obj = res.objective === null ? "" : `, distance ${res.objective}`;
-  $("status").textContent = `${res.status} by ${res.method}, seed ${res.seed}, ${res.time_s.toFixed(3)} s${obj}`;
+  const run = `${res.method}, seed ${res.seed}, ${res.time_s.toFixed(3)} s`;
+  // A report (an aperiodicity check) is shown in its own words: its verdict, not a solver status.
+  $("status").textContent = res.report ? `${res.report.title}: ${res.report.verdict} (by ${run})`
+                                       : `${res.status} by ${run}${obj}`;
   $("status").dataset.status = res.status;
-  const lines = [res.describe, ...res.verdict.map(l => "verify: " + l)];
-  if (res.reason) lines.push((res.status === "unsat" ? "why: " : "stopped: ") + res.reason);
+  const lines = [res.describe, ...(res.report ? ["conclusion: " + res.report.conclusion] : []),
+                 ...res.verdict.map(l => "verify: " + l)];
+  if (res.reason && !res.report) lines.push((res.status === "unsat" ? "why: " : "stopped: ") + res.reason);
+  else if (res.reason) lines.push("undecided: " + res.reason);
   for (const n of res.notes) lines.push("note: " + n);
   for (const [k, v] of Object.entries(res.stats)) lines.push(`${k}: ${v}`);
   $("verdict").textContent = lines.join("\n");

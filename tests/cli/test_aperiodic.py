@@ -1,0 +1,73 @@
+"""``tilesolve aperiodic check`` and ``verify`` of its reports, through the console script: a
+report is an answer of its own (``Solution.report``), with its own verdict and words, not a
+tiling with status ``sat``."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+from clitools import one_line_error, run
+
+#: Three Wang tiles [N, E, S, W] = [i, i+1, i+1, i] (mod 3): they tile diagonals, so every 3x3
+#: torus is tiled (a periodic tiling).
+DIAGONAL = {"format": "tilesolve/wang-tileset", "version": 1, "order": ["N", "E", "S", "W"], "colors": 3,
+            "tiles": [[i, (i + 1) % 3, (i + 1) % 3, i] for i in range(3)]}
+
+CASES = {
+    "periodic": (["diagonal.json", "--max-square", "4", "--max-period", "3"], 0, "sat"),
+    "finite": (["--builtin", "finite-jv7", "--max-square", "20"], 0, "sat"),
+    "undecided": (["--builtin", "jeandel-rao", "--method", "transducer", "--max-period", "1"], 3, "unknown"),
+}
+
+
+def check(tmp_path, verdict: str):
+    """Run ``aperiodic check`` for the case whose report has ``verdict``; the report's JSON."""
+    args, code, status = CASES[verdict]
+    (tmp_path / "diagonal.json").write_text(json.dumps(DIAGONAL))
+    p = run("aperiodic", "check", *args, "--workers", "1", "--seed", "1", "-o", "r.json", cwd=tmp_path)
+    assert p.returncode == code, p.stderr
+    assert f"verdict {verdict};" in p.stderr, p.stderr
+    doc = json.loads((tmp_path / "r.json").read_text())
+    assert (doc["version"], doc["verdict"], doc["status"]) == (2, verdict, status)
+    return doc
+
+
+@pytest.mark.parametrize("verdict", sorted(CASES))
+def test_verify_names_a_report_and_its_verdict_not_a_tiling(tmp_path, verdict):
+    check(tmp_path, verdict)
+    p = run("verify", "r.json", cwd=tmp_path)
+    assert p.returncode == 0, p.stdout + p.stderr  # every claim holds, whatever the verdict
+    head = p.stdout.splitlines()[0]
+    assert head.startswith("ok: r.json is a valid aperiodicity report (aperiodicity check of ")
+    assert f"): verdict {verdict}" in head and "tiling" not in head, head
+    assert p.stdout.splitlines()[1].startswith("  conclusion: ")
+    p = run("aperiodic", "verify", "r.json", cwd=tmp_path)  # the details first, the verdict last
+    assert p.returncode == 0 and p.stdout.splitlines()[-1] == head, p.stdout
+
+
+@pytest.mark.parametrize("verdict", ["periodic", "undecided"])
+def test_a_version_1_report_still_reads_and_verifies(tmp_path, verdict):
+    doc = check(tmp_path, verdict)
+    del doc["verdict"]
+    doc.update(version=1, status="sat")  # version 1 wrote "sat" whatever the certificates gave
+    (tmp_path / "v1.json").write_text(json.dumps(doc))
+    p = run("verify", "v1.json", cwd=tmp_path)
+    assert p.returncode == 0, p.stdout + p.stderr
+    assert p.stdout.startswith("ok: v1.json is a valid aperiodicity report (")
+    assert f"verdict {verdict}" in p.stdout.splitlines()[0]
+
+
+def test_a_report_whose_words_are_not_its_certificates_is_refused(tmp_path):
+    doc = check(tmp_path, "periodic")
+    for key, value, said in (("verdict", "open", "periodic"), ("status", "unknown", "sat")):
+        (tmp_path / "bad.json").write_text(json.dumps(dict(doc, **{key: value})))
+        line = one_line_error(run("verify", "bad.json", cwd=tmp_path))
+        assert f"'{key}' is '{value}', but the report's certificates give '{said}'" in line, line
+
+
+def test_a_report_draws_its_witness(tmp_path):
+    check(tmp_path, "periodic")
+    p = run("draw", "r.json", "-o", "w.svg", cwd=tmp_path)
+    assert p.returncode == 0, p.stderr
+    assert (tmp_path / "w.svg").read_text().startswith("<svg")
