@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from click.testing import CliRunner
+from clitools import one_line_error, run
 
 from tilesolve.cli.main import main_group
 from tilesolve.errors import InvalidProblem, MethodNotApplicable
@@ -149,3 +150,66 @@ def test_bad_input_one_line_exit_2_no_file(tmp_path, args, msg):
     lines = r.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("tilesolve: error:") and msg in lines[0], r.stderr
     assert not (tmp_path / "x.json").exists()
+
+
+def test_the_window_is_data_on_the_solution():
+    from tilesolve.families.walls import npd_problem
+    from tilesolve.model.window import Window
+
+    def shape(problem):
+        return problem.board.grid_spec.rows, problem.board.grid_spec.cols
+
+    p = wall_problem(12, 15, 4)
+    rows, cols = shape(p)
+    s = solve(p, "procedural", seed=21, options={"origin": (-7, 3)})
+    assert s.window == Window(-7, 3, cols, rows)
+    cells, t = plane(s.tiling, -7, 3, rows, cols), s.tiling.reshape(rows, cols, 4)
+    assert all(cells[s.window.cell(r, c)] == tuple(int(v) for v in t[r, c]) for r in range(rows) for c in range(cols))
+    p = wall_problem(6, 8, 3)
+    n = solve(p, "npd", seed=2, options={"origin": (5, -9), "period": (4, 6)})
+    assert n.window == Window(5, -9, shape(p)[1], shape(p)[0])
+    assert solve(npd_problem(6, 6, 3), "npd", seed=2).window == Window(0, 0, 6, 6)
+    assert solve(wall_problem(6, 8, 3), "wall", seed=2).window is None  # a finite wall is no window of the plane
+
+
+WALL_DATA = Path(__file__).resolve().parent.parent / "data" / "board_solution"
+
+
+def test_wall_file_window_verify_and_draw_read_the_data(tmp_path):
+    r = run("wall", "--region", "-40,12,9x6", "--max-line", "3", "--seed", "7", "-o", "w.json", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    doc = json.loads((tmp_path / "w.json").read_text())
+    assert doc["version"] == 3 and doc["window"] == {"x0": -40, "y0": 12, "width": 9, "height": 6, "y_up": True}
+    doc["notes"] = []  # the coordinates come from the window, not from the note
+    doc["window"].update(x0=1000, y0=-5)  # another window of the plane: still a valid wall tiling
+    (tmp_path / "m.json").write_text(json.dumps(doc))
+    assert run("verify", "m.json", cwd=tmp_path).returncode == 0
+    for pic in ("m.svg", "m.png"):
+        d = run("draw", "m.json", "-o", pic, cwd=tmp_path)
+        assert d.returncode == 0, d.stderr
+        assert "window x 1000..1008, y -5..0 (y grows upwards); top-left cell x 1000, y 0" in d.stderr
+    assert "window x 1000..1008, y -5..0 (y grows upwards); top-left cell x 1000, y 0" in \
+        (tmp_path / "m.svg").read_text()
+
+
+@pytest.mark.parametrize("edit", [lambda w: w.update(width=8), lambda w: w.update(height=9),
+                                  lambda w: w.update(y_up=0)])
+def test_a_forged_wall_window_is_refused(tmp_path, edit):
+    assert run("wall", "--region", "0,0,9x6", "--max-line", "3", "--seed", "7", "-o", "w.json",
+               cwd=tmp_path).returncode == 0
+    doc = json.loads((tmp_path / "w.json").read_text())
+    edit(doc["window"])
+    (tmp_path / "f.json").write_text(json.dumps(doc))
+    for args in (["verify", "f.json"], ["draw", "f.json", "-o", "f.svg"]):
+        assert one_line_error(run(*args, cwd=tmp_path)).startswith("tilesolve: error: f.json: 'window'")
+    assert not (tmp_path / "f.svg").exists()
+
+
+def test_an_old_wall_file_reads_verifies_and_draws_its_window_unknown(tmp_path):
+    """Written by ``tilesolve wall --region -4,3,6x4 --max-line 3 --seed 5`` as board-solution v1,
+    its window only in a note: it still verifies and draws, with no window read from the note."""
+    shutil.copy(WALL_DATA / "v1-wall-procedural.json", tmp_path / "old.json")
+    v = run("verify", "old.json", cwd=tmp_path)
+    assert v.returncode == 0 and v.stdout.startswith("ok: "), v.stdout + v.stderr
+    d = run("draw", "old.json", "-o", "old.svg", cwd=tmp_path)
+    assert d.returncode == 0 and "top-left cell" not in d.stderr + (tmp_path / "old.svg").read_text()

@@ -180,6 +180,16 @@ def test_a_window_of_the_plane_is_data_in_version_3_only(tmp_path):
     assert "'window' needs version 3" in _read_error(tmp_path, dict(_as_version_1(doc), window=doc["window"]))
 
 
+def test_a_window_that_is_not_the_boards_grid_is_refused(tmp_path):
+    p, s = _problem_and_solution(Board.rect(4, 3))
+    doc = json.loads(jsonio.dumps(board_solution_to_dict(p, s)))
+    rows, cols = p.board.grid_spec.rows, p.board.grid_spec.cols
+    for width, height in ((cols, rows + 1), (cols - 1, rows), (rows, cols)):  # the last one transposed
+        window = {"x0": 0, "y0": 0, "width": width, "height": height, "y_up": True}
+        message = f"'window' is {width}x{height} cells (WxH), but the board has the grid {cols}x{rows}"
+        assert message in _read_error(tmp_path, dict(doc, window=window))
+
+
 def _v2_doc():
     """A compact document (encoded arrays); version 3 has version 2's encodings."""
     return board_solution_to_dict(*_problem_and_solution(Board.with_holes(7, 9, 2, 2, seed=3)), compact=True)

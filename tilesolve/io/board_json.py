@@ -28,7 +28,9 @@ Fields of every version:
     where the tiling lies in the plane, for a tiling cut from an infinite one (a procedural
     or repeatable wall): ``{"x0", "y0", "width", "height", "y_up"}``
     (:class:`~tilesolve.model.window.Window`); grid row 0, column 0 is its cell
-    ``(x0, y0 + height - 1)`` when ``y_up``.
+    ``(x0, y0 + height - 1)`` when ``y_up``. The window is the board's grid: a file whose window
+    is not ``cols x rows`` of its ``grid`` is refused. Files of versions 1 and 2 record no
+    window (a wall's window was only named in a note, which is not read): theirs is unknown.
 
 plus the solution's ``status``, ``method``, ``solver``, ``seed``, ``time_s``, ``reason``,
 ``notes`` and ``stats``, and the free texts ``created_by`` and ``comment``. A reader refuses
@@ -434,9 +436,15 @@ def board_solution_from_dict(doc: dict, source: Any = "<document>") -> tuple[Boa
         if version < 3:
             raise InvalidProblem(f"{source}: 'window' needs version 3")
         try:
-            solution = dataclasses.replace(solution, window=Window.from_dict(doc["window"]))
+            window = Window.from_dict(doc["window"])
         except InvalidProblem as exc:
             raise InvalidProblem(f"{source}: 'window': {exc}") from None
+        spec = board.grid_spec
+        if spec is None or (spec.rows, spec.cols) != window.shape:
+            grid = "no grid" if spec is None else f"the grid {spec.cols}x{spec.rows}"
+            raise InvalidProblem(f"{source}: 'window' is {window.width}x{window.height} cells (WxH), but the board "
+                                 f"has {grid}: a window of the plane is the board's grid")
+        solution = dataclasses.replace(solution, window=window)
     return problem, solution
 
 
