@@ -273,6 +273,15 @@ def test_the_cli_command_reproduces_the_tiling(client, body, tmp_path):
     assert verify.returncode == 0, verify.stderr
 
 
+def test_a_window_of_the_plane_is_shown_from_its_data(client):
+    res = solve(client, {"family": "stochastic", "values": {"x0": -3, "y0": 2, "size": "5x4", "seed": 1}})["result"]
+    assert res["window"] == {"x0": -3, "y0": 2, "width": 5, "height": 4, "y_up": True}
+    assert json.loads(res["json"])["window"] == res["window"]
+    assert "window x -3..1, y 2..5 (y grows upwards)" in res["picture"]["data"]  # the SVG's caption
+    assert solve(client, {"family": "board", "values": {"seed": 4}})["result"]["window"] is None
+    assert "function windowCaption" in client.get("/static/studio.js").text
+
+
 def test_a_report_without_a_witness_is_shown_without_a_picture(client):
     state = solve(client, {"family": "aperiodic", "values": {"tileset": "periodic-7-30", "max_square": 0,
                                                              "max_period": 1, "seed": 1}})

@@ -104,6 +104,19 @@ def test_each_family_from_the_page_verifies(page, name, tmp_path):
     page.screenshot(path=str(ARTIFACTS / f"{name}.png"), full_page=True)
 
 
+def test_a_window_of_the_plane_is_captioned_from_its_data(page):
+    pick(page, "stochastic")
+    for field, value in (("x0", -3), ("y0", 2), ("size", "5x4")):
+        fill(page, field, value)
+    page.fill("#seed", "1")
+    assert solve(page)["window"] == {"x0": -3, "y0": 2, "width": 5, "height": 4, "y_up": True}
+    assert page.text_content("#window-caption") == \
+        "window of the plane: x -3..1 left to right, y 5..2 top to bottom (y grows upwards)"
+    pick(page, "dappled")
+    solve(page)
+    assert page.text_content("#window-caption") == ""
+
+
 def test_fixing_a_cell_changes_the_solution(page):
     pick(page, "dappled")
     fill(page, "size", "8x6")

@@ -55,6 +55,7 @@ def test_files_as_written_verify_and_carry_their_grid(files):
         assert proc.returncode == 0 and proc.stdout.startswith("ok:"), proc.stdout + proc.stderr
 
 
+@pytest.mark.fast_cases(1)
 @pytest.mark.parametrize("board", ["rect", "mask"])
 @pytest.mark.parametrize("forge, listed", [
     (lambda cells: [-1, -1], "[-1, -1]"),
@@ -90,6 +91,7 @@ def test_a_missing_or_extra_cell_is_a_violation(files):
     assert "the file lists 16 cells; the board has 15" in lines
 
 
+@pytest.mark.fast_cases(1)
 @pytest.mark.parametrize("forge, expected", [
     # the first edge (leg W of cell [0, 0] on the wall, boundary leg 0) dropped
     (lambda e: e[1:], "the file does not list the edge where leg W of cell [0, 0] meets the wall (boundary leg 0)"),
@@ -142,6 +144,7 @@ def test_a_compact_file_that_lists_its_board_is_held_to_it(files):
     assert lines == ["(row 69, col 69) cell 4899 is listed at [0, 0]; the board has it at [69, 69]"]
 
 
+@pytest.mark.fast_cases(1)
 @pytest.mark.parametrize("change, message", [
     (lambda d: d["grid"].update(wrap_cols="plain"), "a rect board has wrap_rows None and wrap_cols None"),
     (lambda d: d.update(board_kind="torus"), "a torus board has wrap_rows 'plain'"),
@@ -161,6 +164,7 @@ def test_a_rect_kind_with_holes_is_refused(files):
     assert "not that of a rect board of 6x3" in one_line_error(_verify_forged(folder, doc))
 
 
+@pytest.mark.fast_cases(1)
 @pytest.mark.parametrize("name", ["rect", "big"])
 def test_unknown_fields_are_refused(files, name):
     folder, docs = files
@@ -180,6 +184,7 @@ def _limited(args, cwd):
                           preexec_fn=limit, stdin=subprocess.DEVNULL)
 
 
+@pytest.mark.fast_cases(1)
 @pytest.mark.skipif(sys.platform != "linux", reason="address-space limits are set with Linux rlimits")
 @pytest.mark.parametrize("name, change, message", [
     ("rect", lambda d: d.update(colors=10**9), "'colors' is 1000000000"),
@@ -202,6 +207,7 @@ def test_absurd_sizes_and_colours_are_one_line_before_anything_is_built(files, n
     assert message in one_line_error(_limited(["verify", "absurd.json"], folder))
 
 
+@pytest.mark.fast_cases(1)
 @pytest.mark.skipif(sys.platform != "linux", reason="address-space limits are set with Linux rlimits")
 @pytest.mark.parametrize("name", ["rect", "big"])
 def test_absurd_colours_are_refused_by_every_reader_of_board_files(files, name):
@@ -250,6 +256,7 @@ def test_an_unsat_file_whose_list_is_not_its_board_is_refused(tmp_path):
         assert "cells and edges are not the board it describes" in err and "cell 0 is listed at [7, 7]" in err
 
 
+@pytest.mark.fast_cases(1)
 @pytest.mark.parametrize("forge", [lambda t: t[:5], lambda t: [[10**12, 0, 0, 0]] + t[1:],
                                    lambda t: [[-5, 0, 0, 0]] + t[1:]])
 def test_tiles_that_do_not_fit_the_board_are_violations_and_are_not_drawn(files, forge):

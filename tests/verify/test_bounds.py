@@ -28,6 +28,7 @@ def _forge(tmp_path, name: str, doc: dict) -> str:
     return name
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("time_s", [-5, 1e300, "-Infinity"])
 def test_report_certificate_time_is_checked_like_every_time_s(tmp_path, time_s):
     doc = _report(tmp_path)
@@ -38,6 +39,7 @@ def test_report_certificate_time_is_checked_like_every_time_s(tmp_path, time_s):
     assert "t.json" in line and ("periods[0].time_s" in line or "Infinity" in line), line
 
 
+@pytest.mark.slow
 def test_report_colour_count_must_be_the_one_its_tiles_use(tmp_path):
     doc = _report(tmp_path)
     assert run("verify", "p.json", cwd=tmp_path).returncode == 0
@@ -50,6 +52,7 @@ def test_report_colour_count_must_be_the_one_its_tiles_use(tmp_path):
     assert "duplicate tile" in line, line
 
 
+@pytest.mark.slow
 def test_an_unsat_claim_is_sized_before_its_cnf_is_rederived(tmp_path):
     """A CNF too large to re-derive leaves the claim unconfirmed: exit 1, the README's code for
     "verify found ... a claim it cannot confirm" (the file is well-formed; it is its claim that
@@ -70,6 +73,7 @@ def test_an_unsat_claim_is_sized_before_its_cnf_is_rederived(tmp_path):
     assert "--max-cnf" in one_line_error(run("verify", "u.json", "--max-cnf", "lots", cwd=tmp_path))
 
 
+@pytest.mark.slow
 def test_a_report_refutation_is_sized_before_its_cnf_is_rederived(tmp_path):
     _report(tmp_path)
     proc = run("aperiodic", "verify", "p.json", "--proof-dir", "proofs", "--max-cnf", "64", cwd=tmp_path)
@@ -92,6 +96,7 @@ def test_draw_refuses_a_packing_grid_that_is_not_its_torus(tmp_path, colors):
     assert proc.returncode == 1 and "packing has shape (4, 4)" in proc.stdout, proc.stdout
 
 
+@pytest.mark.slow
 def test_a_huge_line_limit_encodes_as_the_board_allows(tmp_path):
     """A line limit beyond the board encodes in board-sized work: on a 5x4 torus, limits of
     2^31 - 1 give exactly the clauses of limits 5 and 4 (a line round the torus is forbidden

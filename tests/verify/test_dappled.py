@@ -42,6 +42,7 @@ conditions = st.builds(
 )
 
 
+@pytest.mark.slow
 @settings(max_examples=300, deadline=None)
 @given(
     rows=st.integers(1, 6),

@@ -68,6 +68,7 @@ def test_rejects_an_invented_lemma(php6):
     assert check_drat(f, ["1 0"] + list(proof), engine="forward").reason.startswith("lemma 1 ")
 
 
+@pytest.mark.slow
 def test_rejects_a_lemma_with_a_flipped_literal(php6):
     f, proof = php6
     lemmas = [i for i, line in enumerate(proof) if not line.startswith("d") and len(line.split()) > 2]
@@ -162,6 +163,7 @@ def watch_ops(draw):
     return n_lists, ops
 
 
+@pytest.mark.slow
 @settings(max_examples=60, deadline=None)
 @given(watch_ops())
 def test_watch_lists_in_one_pool_keep_their_entries(case):
@@ -210,6 +212,7 @@ def unsat_formulas(draw):
     return clauses, proof
 
 
+@pytest.mark.slow
 @settings(max_examples=40, deadline=None)
 @given(unsat_formulas(), st.sampled_from(["core", "all"]))
 def test_compiled_and_interpreted_kernels_give_the_same_verdicts(case, lemmas):

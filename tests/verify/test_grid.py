@@ -8,6 +8,7 @@ import numpy as np
 from hypothesis import given, settings, strategies as st
 
 from tilesolve.verify.grid import count_mismatches, grid_violations, is_grid_tiling
+import pytest
 
 
 def complete_table(c: int) -> np.ndarray:
@@ -50,6 +51,7 @@ def naive_mismatches(g, table, kind, toroidal) -> int:
     return bad
 
 
+@pytest.mark.slow
 @settings(max_examples=200)
 @given(rows=st.integers(1, 7), cols=st.integers(1, 7), c=st.integers(2, 4), kind=st.sampled_from(["wang", "corner"]),
        toroidal=st.booleans(), seed=st.integers(0, 2**32 - 1), data=st.data())
