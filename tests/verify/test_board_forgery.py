@@ -225,6 +225,7 @@ def test_a_boundary_file_with_an_absurd_colour_is_one_line(tmp_path):
     assert "'boundary'" in err
 
 
+@pytest.mark.slow
 def test_a_file_written_before_grid_was_recorded_is_judged_by_the_grid_its_cells_span(files):
     folder, docs = files
     doc = copy.deepcopy(docs["mask"])
@@ -239,6 +240,7 @@ def test_a_file_written_before_grid_was_recorded_is_judged_by_the_grid_its_cells
     assert "not that of a rect board of 5001x5001" in one_line_error(_verify_forged(folder, rect))
 
 
+@pytest.mark.slow
 def test_an_unsat_file_whose_list_is_not_its_board_is_refused(tmp_path):
     """Without a tiling no verifier judges the list, so the reader refuses it: the unsat claim
     is about the board described, never about the one listed."""

@@ -83,6 +83,7 @@ def test_a_report_refutation_is_sized_before_its_cnf_is_rederived(tmp_path):
     assert run("aperiodic", "verify", "p.json", "--proof-dir", "proofs", cwd=tmp_path).returncode == 0
 
 
+@pytest.mark.fast_cases(1)
 @pytest.mark.parametrize("colors", [3, 10**6])
 def test_draw_refuses_a_packing_grid_that_is_not_its_torus(tmp_path, colors):
     assert run("pack", "--kind", "wang", "--colors", "2", "--seed", "1", "-o", "w.json", cwd=tmp_path).returncode == 0

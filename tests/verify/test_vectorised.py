@@ -63,6 +63,7 @@ def cases(draw):
     return tiling, conds, draw(st.booleans())
 
 
+@pytest.mark.slow
 @settings(max_examples=300, deadline=None)
 @given(case=cases(), block=st.sampled_from([1, 3, 8, 1 << 20]))
 def test_condition_violations_match_the_literal_runs(case, block):
@@ -82,6 +83,7 @@ def test_condition_violations_match_the_literal_runs(case, block):
     assert all(m in v.message for v, (_, _, m) in zip(got, want))
 
 
+@pytest.mark.slow
 @settings(max_examples=200, deadline=None)
 @given(case=cases())
 def test_run_lengths_match_the_literal_runs(case):
