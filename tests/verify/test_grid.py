@@ -5,10 +5,10 @@ from __future__ import annotations
 import itertools
 
 import numpy as np
+import pytest
 from hypothesis import given, settings, strategies as st
 
 from tilesolve.verify.grid import count_mismatches, grid_violations, is_grid_tiling
-import pytest
 
 
 def complete_table(c: int) -> np.ndarray:
