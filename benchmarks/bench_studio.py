@@ -63,7 +63,7 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=5)
     args = ap.parse_args()
     srv, url = serve()
-    worker.compiled_kernels()
+    worker.warm_families()
     client = httpx.Client(base_url=url, timeout=120)
     time.sleep(1.0)
     rows = []

@@ -43,7 +43,16 @@ from tilesolve.errors import InternalError, MethodNotApplicable
 from tilesolve.model.board import LEG_NAMES, BoardProblem
 from tilesolve.model.solution import Solution, Status
 
-__all__ = ["solve_linear", "find_cycle", "cycle_corners", "wall_from_dappled"]
+__all__ = ["solve_linear", "find_cycle", "cycle_corners", "wall_from_dappled", "compile_kernels"]
+
+
+def compile_kernels() -> None:
+    """Load the numba-compiled kernels of the linear algorithm now (a long-lived process, such
+    as the studio's server, then runs every board compiled, not only those above the one-shot
+    threshold of :mod:`tilesolve.constructive._jit`)."""
+    from tilesolve.constructive._brick_kernels import KERNELS
+
+    KERNELS.compiled()
 
 
 def cycle_corners(nbr_cell: np.ndarray, ins: np.ndarray, outs: np.ndarray) -> int:

@@ -42,6 +42,7 @@ __all__ = [
     "draughtboard",
     "make_dappled",
     "dappled_route",
+    "compile_kernels",
     "ROUTES",
 ]
 
@@ -49,6 +50,13 @@ __all__ = [
 ROUTES = ("trivial", "algorithm1", "algorithm2", "remark3.4")
 
 _ORDERS = ("row", "col")
+
+
+def compile_kernels() -> None:
+    """Load the numba-compiled kernels now (a long-lived process, such as the studio's server,
+    then runs every construction compiled, not only those above the one-shot threshold of
+    :mod:`tilesolve.constructive._jit`)."""
+    _k.KERNELS.compiled()
 
 
 # --------------------------------------------------------------------------- helpers

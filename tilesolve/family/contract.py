@@ -91,8 +91,13 @@ class Family:
     codecs : tuple of Codec
         File formats; the first solution format is the one solutions are written in.
     draw : callable or None
-        ``draw(problem, solution, path, fmt, **options)`` writes an ``"svg"`` or ``"png"``
-        picture of a solution.
+        ``draw(problem, solution, path, fmt, **options)`` writes a picture of a solution in
+        ``fmt``, one of :attr:`pictures`.
+    pictures : tuple of str
+        The formats ``draw`` writes: ``("svg", "png")``, or one of them. Other formats are
+        refused (``tilesolve draw``, :func:`~tilesolve.family.draw_solution`), and the studio
+        shows and exports a solution in a format its family draws (an SVG-only family's
+        large tilings as SVG too).
     demos : tuple of Demo
     commands : tuple of str
         ``"module:attribute"`` of the family's click commands (loaded only when used).
@@ -105,6 +110,9 @@ class Family:
         refutation a solution claims, for ``tilesolve verify`` to re-derive its CNF (the
         evidence's named ``encoding``, :mod:`tilesolve.encodings.registry`) and re-check its
         proof. ``None``: an ``unsat`` solution's own claim (its problem, its ``stats``).
+    warm : callable or None
+        ``warm()`` makes the family's later solves fast in a long-lived process (the studio's
+        server and its forkserver call it once at start): e.g. loads compiled kernels.
     """
 
     name: str
@@ -124,6 +132,8 @@ class Family:
     route_help: Mapping[str, str] = field(default_factory=dict)
     form: Form | None = None
     refutations: Callable[[Any, Solution], Sequence[tuple[str, Any, Mapping[str, Any]]]] | None = None
+    pictures: tuple[str, ...] = ("svg", "png")
+    warm: Callable[[], None] | None = None
 
     @property
     def methods(self) -> tuple[str, ...]:

@@ -21,6 +21,8 @@ def draw_solution(path: str | os.PathLike, problem: Any, solution: Solution, *, 
     fmt = fmt or os.path.splitext(str(path))[1].lstrip(".").lower()
     if fmt not in ("svg", "png"):
         raise InvalidProblem(f"{path}: pictures are .svg or .png files")
+    if fmt not in fam.pictures:
+        raise InvalidProblem(f"{fam.name} solutions are drawn as {' or '.join(fam.pictures)} only, not {fmt}")
     if solution.answer is None:
         raise InvalidProblem(f"status {solution.status.value}: no tiling to draw")
     fam.draw(problem, solution, path, fmt, **options)

@@ -3,6 +3,7 @@ the entry points under :data:`ENTRY_POINT_GROUP` make sure every facade is impor
 
 from __future__ import annotations
 
+import threading
 from typing import Any, Iterable
 
 from tilesolve.errors import InternalError, InvalidProblem
@@ -27,6 +28,11 @@ ENTRY_POINT_GROUP = "tilesolve.families"
 
 _REGISTRY: dict[str, Family] = {}
 _LOADED = False
+#: Held while the entry points load: another thread asking for the families waits for them all
+#: (a server's warm-up thread and its first request); the loading thread itself, re-entered by
+#: a facade that reads the registry while it is imported, goes on with those loaded so far.
+_LOADING = threading.RLock()
+_loading_now = False
 
 
 def register(family: Family) -> Family:
@@ -51,16 +57,23 @@ def unregister(name: str) -> None:
 
 
 def _load_builtin() -> None:
-    """Load the families declared under :data:`ENTRY_POINT_GROUP` (once)."""
-    global _LOADED
+    """Load the families declared under :data:`ENTRY_POINT_GROUP` (once; other threads wait)."""
+    global _LOADED, _loading_now
     if _LOADED:
         return
-    _LOADED = True
-    from importlib.metadata import entry_points
+    with _LOADING:
+        if _LOADED or _loading_now:
+            return
+        _loading_now = True
+        try:
+            from importlib.metadata import entry_points
 
-    for ep in sorted(entry_points(group=ENTRY_POINT_GROUP), key=lambda e: e.name):
-        if ep.name not in _REGISTRY:
-            _load_entry(ep)
+            for ep in sorted(entry_points(group=ENTRY_POINT_GROUP), key=lambda e: e.name):
+                if ep.name not in _REGISTRY:
+                    _load_entry(ep)
+        finally:
+            _loading_now = False
+            _LOADED = True
 
 
 def _load_entry(ep) -> None:

@@ -35,7 +35,6 @@ import os
 import sys
 import threading
 import traceback
-from collections import OrderedDict
 
 import anyio
 from starlette.applications import Starlette
@@ -50,6 +49,7 @@ from tilesolve.errors import InvalidProblem, TilesolveError
 from tilesolve.studio import sizing, worker
 from tilesolve.studio.jobs import Jobs, TooBusy
 from tilesolve.studio.origin import OwnOrigin
+from tilesolve.studio.views import Views
 
 __all__ = ["create_app", "MAX_BODY", "MAX_VIEW_CELLS", "STATIC"]
 
@@ -57,8 +57,6 @@ __all__ = ["create_app", "MAX_BODY", "MAX_VIEW_CELLS", "STATIC"]
 MAX_BODY = 8 << 20
 #: Largest window side of a procedural view tile (cells).
 MAX_VIEW_CELLS = 128
-#: Most view tiles kept (an LRU of PNG bytes).
-VIEW_CACHE = 512
 #: Requests read, parsed and posed at once (a painted 1024 x 1024 grid takes tens of MiB while
 #: posed); the others wait with their bodies unread.
 POSING = 2
@@ -149,155 +147,125 @@ def _family_json(fam: family.Family) -> dict:
             "view": fam.form.window is not None}
 
 
-def create_app(*, warm: bool = True, names=()) -> Starlette:
-    """The studio app. ``warm`` starts the solve forkserver (and compiles the view routes) in
-    the background at start-up; ``names`` are host names it answers besides the listening
-    address (:class:`~tilesolve.studio.origin.OwnOrigin`)."""
-    jobs = Jobs()
-    views: OrderedDict[tuple, bytes] = OrderedDict()
-    views_lock = threading.Lock()
+# ----------------------------------------------------------------------------- handlers
+# Each handler finds the server's state in ``request.app.state`` (:func:`create_app`): ``jobs``,
+# ``views`` and ``posing``.
+async def index(request: Request) -> Response:
+    return FileResponse(os.path.join(STATIC, "index.html"))
 
-    async def index(request: Request) -> Response:
-        return FileResponse(os.path.join(STATIC, "index.html"))
 
-    @_guard
-    async def families(request: Request) -> Response:
-        return JSONResponse({"families": [_family_json(f) for f in family.families() if f.form is not None]})
+@_guard
+async def families(request: Request) -> Response:
+    return JSONResponse({"families": [_family_json(f) for f in family.families() if f.form is not None]})
 
-    posing = anyio.Semaphore(POSING)
 
-    def _posed(data: bytearray) -> tuple[dict, dict]:
-        doc = _json(data)
-        return doc, _check(doc)
+def _check(doc: dict) -> dict:
+    """What ``POST /api/check`` answers for a request's JSON (bad input raises)."""
+    fam, vals, problem, _ = worker.pose(doc.get("family"), doc.get("values"))
+    method, _ = worker.check_run(fam, doc.get("method", "auto"), doc.get("time_limit"))
+    sizing.refuse_oversized(fam, problem, method)
+    grids = {f.name: list(f.extent(vals)) for f in fam.form.fields if f.kind == "cells"}
+    return {"describe": problem.describe() if hasattr(problem, "describe") else fam.name, "cells": grids,
+            "seed": vals["seed"], "command": worker.command_line(fam, vals, doc.get("method", "auto"), vals["seed"])}
 
-    async def _read_and_pose(request: Request) -> tuple[dict, dict]:
-        """The request's JSON and :func:`_check`'s answer (:data:`POSING` requests at once)."""
-        async with posing:
-            return await anyio.to_thread.run_sync(_posed, await _body(request))
 
-    def _check(doc: dict) -> dict:
-        fam, vals, problem, _ = worker.pose(doc.get("family"), doc.get("values"))
-        method, _ = worker.check_run(fam, doc.get("method", "auto"), doc.get("time_limit"))
-        sizing.refuse_oversized(fam, problem, method)
-        grids = {f.name: list(f.extent(vals)) for f in fam.form.fields if f.kind == "cells"}
-        return {"describe": problem.describe() if hasattr(problem, "describe") else fam.name, "cells": grids,
-                "seed": vals["seed"], "command": worker.command_line(fam, vals, doc.get("method", "auto"), vals["seed"])}
+def _posed(data: bytearray) -> tuple[dict, dict]:
+    doc = _json(data)
+    return doc, _check(doc)
 
-    @_guard
-    async def check(request: Request) -> Response:
-        return JSONResponse((await _read_and_pose(request))[1])
 
-    @_guard
-    async def solve(request: Request) -> Response:
-        # bad input: 400 now, not in the job
-        doc, checked = await _read_and_pose(request)
-        values = dict(doc.get("values") or {}, seed=checked["seed"])
-        job = jobs.start(doc["family"], values, doc.get("method", "auto"), doc.get("time_limit"))
-        return JSONResponse({"id": job.id, "seed": checked["seed"]})
+async def _read_and_pose(request: Request) -> tuple[dict, dict]:
+    """The request's JSON and :func:`_check`'s answer (:data:`POSING` requests at once)."""
+    async with request.app.state.posing:
+        return await anyio.to_thread.run_sync(_posed, await _body(request))
 
-    def _job(request: Request):
-        try:
-            return jobs.get(request.path_params["id"])
-        except KeyError:
-            raise InvalidProblem(f"no job {request.path_params['id']!r} (finished jobs are kept a while)") from None
 
-    @_guard
-    async def job_state(request: Request) -> Response:
-        job = _job(request)
-        try:
-            wait = min(max(float(request.query_params.get("wait", 0)), 0.0), 10.0)
-        except ValueError:
-            raise InvalidProblem("wait must be a number of seconds") from None
-        if wait and not job.done.is_set():
-            await anyio.to_thread.run_sync(job.done.wait, wait)
-        return JSONResponse(job.public())
+@_guard
+async def check(request: Request) -> Response:
+    return JSONResponse((await _read_and_pose(request))[1])
 
-    @_guard
-    async def cancel(request: Request) -> Response:
-        job = _job(request)
-        await anyio.to_thread.run_sync(jobs.cancel, job.id)
-        return JSONResponse(job.public())
 
-    def _export(job, what: str) -> tuple[bytes | str, str]:
-        if job.result is None:
-            raise InvalidProblem(f"job {job.id} has no solution ({job.state})")
-        text = job.result["json"]
-        if what == "solution.json":
-            return text, "application/json"
-        fmt = what.rsplit(".", 1)[1]
-        fam, codec = family.codec_of(json.loads(text)["format"])
-        problem, sol = codec.read(json.loads(text), "solution.json")
-        if sol.answer is None:
-            raise InvalidProblem(f"status {sol.status.value}: no tiling to draw")
-        data = family.render(problem, sol, fmt)
-        return data, "image/svg+xml" if fmt == "svg" else "image/png"
+@_guard
+async def solve(request: Request) -> Response:
+    # bad input: 400 now, not in the job
+    doc, checked = await _read_and_pose(request)
+    values = dict(doc.get("values") or {}, seed=checked["seed"])
+    job = request.app.state.jobs.start(doc["family"], values, doc.get("method", "auto"), doc.get("time_limit"))
+    return JSONResponse({"id": job.id, "seed": checked["seed"]})
 
-    @_guard
-    async def export(request: Request) -> Response:
-        job = _job(request)
-        what = request.path_params["what"]
-        if what not in ("solution.json", "picture.svg", "picture.png"):
-            raise InvalidProblem(f"no export {what!r}; exports are solution.json, picture.svg, picture.png")
-        data, media = await anyio.to_thread.run_sync(_export, job, what)
-        name = f"{job.family}-{job.result['seed']}.{what.rsplit('.', 1)[1]}"
-        return Response(data, media_type=media, headers={"Content-Disposition": f'attachment; filename="{name}"'})
 
-    def _view(name: str, raw: str, x: int, y: int, n: int) -> bytes:
-        given = json.loads(raw)
-        if isinstance(given, dict):
-            given.setdefault("seed", 0)  # every window of one view from one seed
-        fam, vals, _, _ = worker.pose(name, given)
-        if fam.form.window is None:
-            raise InvalidProblem(f"{fam.name} problems have no infinite view")
-        key = (fam.name, json.dumps(vals, sort_keys=True), x, y, n)
-        with views_lock:
-            if key in views:
-                views.move_to_end(key)
-                return views[key]
-        problem, method, options = fam.form.window(vals, x, y, n, n)
-        sol = family.solve(problem, method, seed=vals["seed"], options=options)
-        if not sol.status.has_tiling:
-            raise InvalidProblem(f"window ({x}, {y}): {sol.status.value}: {sol.reason or 'no tiling'}")
-        data = family.render(problem, sol, "png")
-        with views_lock:
-            views[key] = data
-            while len(views) > VIEW_CACHE:
-                views.popitem(last=False)
-        return data
+def _job(request: Request):
+    try:
+        return request.app.state.jobs.get(request.path_params["id"])
+    except KeyError:
+        raise InvalidProblem(f"no job {request.path_params['id']!r} (finished jobs are kept a while)") from None
 
-    @_guard
-    async def view(request: Request) -> Response:
-        q = request.query_params
-        try:
-            x, y, n = int(q.get("x", 0)), int(q.get("y", 0)), int(q.get("n", 32))
-        except ValueError:
-            raise InvalidProblem("x, y and n must be whole numbers") from None
-        if not 1 <= n <= MAX_VIEW_CELLS:
-            raise InvalidProblem(f"a view window is 1..{MAX_VIEW_CELLS} cells wide, got {n}")
-        raw = q.get("values", "{}")
-        if len(raw) > 100_000:
-            raise InvalidProblem("values too long")
-        data = await anyio.to_thread.run_sync(_view, request.path_params["family"], raw, x, y, n)
-        return Response(data, media_type="image/png", headers={"Cache-Control": "max-age=3600"})
 
-    def _warm_views() -> None:
-        worker.compiled_kernels()
-        for fam in family.families():
-            if fam.form is not None and fam.form.window is not None:
-                try:
-                    _view(fam.name, json.dumps({"seed": 0}), 0, 0, 8)
-                except TilesolveError:
-                    continue
+@_guard
+async def job_state(request: Request) -> Response:
+    job = _job(request)
+    try:
+        wait = min(max(float(request.query_params.get("wait", 0)), 0.0), 10.0)
+    except ValueError:
+        raise InvalidProblem("wait must be a number of seconds") from None
+    if wait and not job.done.is_set():
+        await anyio.to_thread.run_sync(job.done.wait, wait)
+    return JSONResponse(job.public())
 
-    @contextlib.asynccontextmanager
-    async def lifespan(app):
-        if warm:
-            threading.Thread(target=jobs.warm, daemon=True).start()
-            threading.Thread(target=_warm_views, daemon=True).start()
-        yield
-        jobs.close()
 
-    routes = [
+@_guard
+async def cancel(request: Request) -> Response:
+    job = _job(request)
+    await anyio.to_thread.run_sync(request.app.state.jobs.cancel, job.id)
+    return JSONResponse(job.public())
+
+
+def _export(job, what: str) -> tuple[bytes | str, str]:
+    if job.result is None:
+        raise InvalidProblem(f"job {job.id} has no solution ({job.state})")
+    text = job.result["json"]
+    if what == "solution.json":
+        return text, "application/json"
+    fmt = what.rsplit(".", 1)[1]
+    fam, codec = family.codec_of(json.loads(text)["format"])
+    problem, sol = codec.read(json.loads(text), "solution.json")
+    if sol.answer is None:
+        raise InvalidProblem(f"status {sol.status.value}: no tiling to draw")
+    data = family.render(problem, sol, fmt)
+    return data, "image/svg+xml" if fmt == "svg" else "image/png"
+
+
+@_guard
+async def export(request: Request) -> Response:
+    job = _job(request)
+    what = request.path_params["what"]
+    if what not in ("solution.json", "picture.svg", "picture.png"):
+        raise InvalidProblem(f"no export {what!r}; exports are solution.json, picture.svg, picture.png")
+    data, media = await anyio.to_thread.run_sync(_export, job, what)
+    name = f"{job.family}-{job.result['seed']}.{what.rsplit('.', 1)[1]}"
+    return Response(data, media_type=media, headers={"Content-Disposition": f'attachment; filename="{name}"'})
+
+
+@_guard
+async def view(request: Request) -> Response:
+    q = request.query_params
+    try:
+        x, y, n = int(q.get("x", 0)), int(q.get("y", 0)), int(q.get("n", 32))
+    except ValueError:
+        raise InvalidProblem("x, y and n must be whole numbers") from None
+    if not 1 <= n <= MAX_VIEW_CELLS:
+        raise InvalidProblem(f"a view window is 1..{MAX_VIEW_CELLS} cells wide, got {n}")
+    raw = q.get("values", "{}")
+    if len(raw) > 100_000:
+        raise InvalidProblem("values too long")
+    data = await anyio.to_thread.run_sync(request.app.state.views.png, request.path_params["family"], raw, x, y, n)
+    return Response(data, media_type="image/png", headers={"Cache-Control": "max-age=3600"})
+
+
+# ----------------------------------------------------------------------------- the app
+def _routes() -> list:
+    """The endpoints of the module docstring."""
+    return [
         Route("/", index),
         Route("/api/families", families),
         Route("/api/check", check, methods=["POST"]),
@@ -308,6 +276,29 @@ def create_app(*, warm: bool = True, names=()) -> Starlette:
         Route("/api/view/{family}.png", view),
         Mount("/static", StaticFiles(directory=STATIC), name="static"),
     ]
-    app = Starlette(routes=routes, lifespan=lifespan, middleware=[Middleware(OwnOrigin, names=names)])
-    app.state.jobs = jobs
+
+
+def _lifespan(warm: bool):
+    """Start-up and shut-down: with ``warm``, start the solve forkserver and warm the views in
+    the background; at the end, stop every job."""
+
+    @contextlib.asynccontextmanager
+    async def lifespan(app: Starlette):
+        if warm:
+            threading.Thread(target=app.state.jobs.warm, daemon=True).start()
+            threading.Thread(target=app.state.views.warm, daemon=True).start()
+        yield
+        app.state.jobs.close()
+
+    return lifespan
+
+
+def create_app(*, warm: bool = True, names=()) -> Starlette:
+    """The studio app. ``warm`` starts the solve forkserver (and compiles the view routes) in
+    the background at start-up; ``names`` are host names it answers besides the listening
+    address (:class:`~tilesolve.studio.origin.OwnOrigin`)."""
+    app = Starlette(routes=_routes(), lifespan=_lifespan(warm), middleware=[Middleware(OwnOrigin, names=names)])
+    app.state.jobs = Jobs()
+    app.state.views = Views()
+    app.state.posing = anyio.Semaphore(POSING)
     return app

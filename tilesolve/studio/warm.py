@@ -1,9 +1,9 @@
-"""Imported once by the studio's forkserver: die with the server, then load every family,
-compile its kernels and run one whole studio solve of each (solve, verify, file, both
-pictures), so that each solve process forked from it finds every module imported and every
-kernel compiled (see :mod:`tilesolve.studio.jobs`, which sets ``PARENT_ENV`` to the server's
-process id for the forkserver; anywhere else, e.g. a doctest run importing every module,
-importing this module does nothing)."""
+"""Imported once by the studio's forkserver: die with the server, then load every family, run
+its warm hook (:attr:`tilesolve.family.Family.warm`, e.g. compiled kernels) and one whole
+studio solve of each (solve, verify, file, both pictures), so that each solve process forked
+from it finds every module imported and every kernel compiled (see :mod:`tilesolve.studio.jobs`,
+which sets ``PARENT_ENV`` to the server's process id for the forkserver; anywhere else, e.g. a
+doctest run importing every module, importing this module does nothing)."""
 
 from __future__ import annotations
 
@@ -13,11 +13,11 @@ from tilesolve import family
 from tilesolve.engine.portfolio import _die_with_parent
 from tilesolve.errors import TilesolveError
 from tilesolve.studio.jobs import PARENT_ENV
-from tilesolve.studio.worker import compiled_kernels, picture, pose, solve_request
+from tilesolve.studio.worker import picture, pose, solve_request, warm_families
 
 
 def _warm() -> None:
-    compiled_kernels()
+    warm_families()
     for fam in family.families():
         if fam.form is None:
             continue

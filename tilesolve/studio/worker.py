@@ -17,7 +17,7 @@ from typing import Any, Mapping
 from tilesolve import family
 from tilesolve.errors import InvalidProblem
 
-__all__ = ["pose", "solve_request", "picture", "command_line", "compiled_kernels", "SVG_MAX_CELLS", "MAX_TIME_LIMIT"]
+__all__ = ["pose", "solve_request", "picture", "command_line", "warm_families", "SVG_MAX_CELLS", "MAX_TIME_LIMIT"]
 
 #: Solutions with at most this many tiling entries are drawn as SVG; larger ones as PNG.
 SVG_MAX_CELLS = 2500
@@ -26,14 +26,12 @@ SVG_MAX_CELLS = 2500
 MAX_TIME_LIMIT = 3600.0
 
 
-def compiled_kernels() -> None:
-    """Load the numba-compiled constructive kernels now: a server lives long, so every solve
-    should take the compiled path, not only those above the one-shot threshold of
-    :mod:`tilesolve.constructive._jit`."""
-    from tilesolve.constructive import _brick_kernels, _dappled_kernels
-
-    for module in (_brick_kernels, _dappled_kernels):
-        module.KERNELS.compiled()
+def warm_families() -> None:
+    """Run every family's :attr:`~tilesolve.family.Family.warm` hook: a server lives long, so
+    every solve should take the fast path (e.g. compiled kernels) from the first."""
+    for fam in family.families():
+        if fam.warm is not None:
+            fam.warm()
 
 
 def pose(name: str, values: Any) -> tuple[family.Family, dict, Any, Mapping]:
@@ -73,9 +71,12 @@ def command_line(fam: family.Family, values: Mapping, method: str, seed: int) ->
 
 
 def picture(problem: Any, sol, fmt: str | None = None) -> dict:
-    """The family's drawing of ``sol``: SVG for small tilings, PNG for large (``fmt`` forces one)."""
+    """The family's drawing of ``sol``: SVG for small tilings, PNG for large, or the one format
+    its family draws (:attr:`~tilesolve.family.Family.pictures`); ``fmt`` forces one."""
     if fmt is None:
         fmt = "svg" if getattr(sol.tiling, "size", 0) <= SVG_MAX_CELLS else "png"
+        drawn = family.family_of(problem).pictures
+        fmt = fmt if fmt in drawn else drawn[0]
     data = family.render(problem, sol, fmt)
     if fmt == "svg":
         return {"format": "svg", "data": data}
