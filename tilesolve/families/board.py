@@ -462,12 +462,6 @@ FORM = Form(
     window=_form_window,
 )
 
-FAMILY = register(Family(
-    name="board",
-    title="Wang tilings of boards: brick Wang tiles, the linear algorithm, any tile set by SAT "
-          "(Derouet-Jourdan, Kaji, Mizoguchi 2016)",
-    problem_type=BoardProblem,
-
 def _warm() -> None:
     """Compile the linear algorithm's kernels now (the studio's long-lived server)."""
     from tilesolve.constructive.brick import compile_kernels
@@ -475,6 +469,11 @@ def _warm() -> None:
     compile_kernels()
 
 
+FAMILY = register(Family(
+    name="board",
+    title="Wang tilings of boards: brick Wang tiles, the linear algorithm, any tile set by SAT "
+          "(Derouet-Jourdan, Kaji, Mizoguchi 2016)",
+    problem_type=BoardProblem,
     routes=SOLVERS,
     auto=auto_method,
     verify=_verify,
@@ -486,12 +485,12 @@ def _warm() -> None:
     demos=DEMOS,
     commands=("tilesolve.cli.brick:brick", "tilesolve.cli.wang:wang", "tilesolve.cli.wall:wall"),
     form=FORM,
+    warm=_warm,
     route_help={
         "linear": "the linear algorithm of §4 (numba)",
         "sat": "CNF + PySAT, any tile set, line limits; unsat with a checked DRAT proof",
         "cpsat": "OR-tools CP-SAT table constraints",
         "theorem7": "Theorem 7: leaves first, the core by SAT",
-    warm=_warm,
         "wall": "brick walls without long lines from a dappled tiling (dappled §4)",
         "procedural": "a window of the infinite procedural brick wall (004 §4; one line limit; option origin)",
         "npd": "a repeatable wall on a torus or a window of one (004 App. A; options period, origin)",
