@@ -29,6 +29,7 @@ def brute_count(problem):
     return n
 
 
+@pytest.mark.fast_cases(1)
 @pytest.mark.parametrize("board", [Board.rect(1, 2), Board.rect(2, 2), Board.torus(1, 2), Board.mobius(2, 2), Board.cylinder(2, 2)])
 def test_count_matches_brute_force(board):
     b = random_boundary(board, 3, seed=1)

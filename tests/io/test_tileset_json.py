@@ -61,6 +61,7 @@ def test_tileset_converter_keeps_the_edges(colors, colors_v, variant):
         WangTileSet.from_tileset(TileSet("corner", 2))
 
 
+@pytest.mark.slow
 def test_cli_writes_a_tileset_file_that_wang_solve_reads(tmp_path):
     import shutil
     import subprocess

@@ -167,6 +167,7 @@ def test_console_script_refuses_a_held_region_in_one_line(tmp_path):
     assert "about 83.4 GiB" in one_line_error(r) and not (tmp_path / "w.json").exists()
 
 
+@pytest.mark.slow
 def test_ctrl_c_during_a_streamed_picture_leaves_no_file(tmp_path):
     import signal
     import subprocess
