@@ -29,6 +29,7 @@ def _check_against_sat(board, k, seed, free_fraction=0.0):
     return lin
 
 
+@pytest.mark.slow
 @settings(max_examples=60)
 @given(st.integers(1, 7), st.integers(1, 7), st.floats(0, 0.5), st.integers(0, 10**6), st.sampled_from([3, 4]),
        st.floats(0, 0.3))
@@ -36,6 +37,7 @@ def test_random_masks_agree_with_sat(rows, cols, holes, seed, k, free):
     _check_against_sat(Board.random_holes(rows, cols, holes, seed=seed), k, seed, free)
 
 
+@pytest.mark.slow
 @settings(max_examples=60)
 @given(st.integers(1, 25), st.integers(0, 10**6), st.sampled_from([3, 4, 5]), st.floats(0, 0.3))
 def test_random_trees_agree_with_sat(n, seed, k, free):
@@ -104,6 +106,7 @@ def test_auto_routes_uncovered_boards_to_sat():
         solve_linear(BoardProblem(Board.rect(2, 2), WangTileSet([[0, 0, 0, 0]], 1)))
 
 
+@pytest.mark.slow
 def test_crosscheck_all_routes():
     b = Board.random_holes(9, 9, 0.25, seed=7)
     p = BoardProblem(b, WangTileSet.brick(3), random_boundary(b, 3, seed=7))
