@@ -112,6 +112,7 @@ def binary_tilings(draw, shape):
 
 
 # --------------------------------------------------------------------------- Algorithm 1
+@pytest.mark.slow
 @settings(max_examples=150)
 @given(data=st.data(), shape=shapes, order=st.sampled_from(["row", "col"]), per_cell=st.booleans())
 def test_algorithm1_matches_paper_box_and_verifies(data, shape, order, per_cell):
@@ -251,6 +252,7 @@ def test_trivial_per_cell_limits_plain():
 
 
 # --------------------------------------------------------------------------- Algorithm 2
+@pytest.mark.slow
 @settings(max_examples=120)
 @given(data=st.data(), shape=st.tuples(st.integers(4, 14), st.integers(4, 14)), order=st.sampled_from(["row", "col"]),
        p=st.tuples(st.sampled_from([0, 3, 4, 5, 9]), st.sampled_from([0, 3, 4, 5, 9])),
@@ -267,6 +269,7 @@ def test_algorithm2_matches_paper_box_and_verifies_cyclically(data, shape, order
     assert dappled_violations(prob, g) == []
 
 
+@pytest.mark.slow
 def test_algorithm2_many_random_inputs():
     rng = np.random.default_rng(5)
     failures = 0
@@ -310,6 +313,7 @@ def test_remark34_p_q_2_many_random_inputs(shape):
     assert failures == 0
 
 
+@pytest.mark.slow
 @settings(max_examples=150)
 @given(shape=st.tuples(st.integers(3, 16), st.integers(3, 16)), p=st.sampled_from([2, 3, 4, None]),
        q=st.sampled_from([2, 3, 4, None]), a=st.integers(0, 1), seed=st.integers(0, 2**32 - 1),
