@@ -300,6 +300,7 @@ def _remark_problem(shape, p, q, a=0):
     return DappledProblem(shape[0], shape[1], conditions=tuple(conds), cyclic=True)
 
 
+@pytest.mark.fast_cases(1)
 @pytest.mark.parametrize("shape", [(8, 8), (12, 10), (10, 12), (9, 7), (3, 3), (5, 4), (16, 33)])
 def test_remark34_p_q_2_many_random_inputs(shape):
     prob = _remark_problem(shape, 2, 2)
