@@ -117,12 +117,14 @@ def problems(draw, cyclic: bool = False, per_cell: bool = True, both_axes: bool 
 _settings = settings(max_examples=120, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 
 
+@pytest.mark.slow
 @_settings
 @given(problems())
 def test_matches_brute_force(problem):
     assert count_dappled(problem) == brute_count(problem)
 
 
+@pytest.mark.slow
 @_settings
 @given(problems())
 def test_both_orientations_match_brute_force(problem):
@@ -137,6 +139,7 @@ def test_cyclic_one_axis_matches_brute_force(problem):
     assert count_dappled(problem) == brute_count(problem)
 
 
+@pytest.mark.slow
 @settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(problems(cyclic=True, both_axes=True))
 def test_torus_matches_brute_force(problem):
@@ -432,6 +435,7 @@ def reference_count(problem: DappledProblem) -> int:
     return sum(states.values())
 
 
+@pytest.mark.slow
 @settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(
     st.integers(5, 8),
