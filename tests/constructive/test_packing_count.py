@@ -21,6 +21,7 @@ from tilesolve.model.packing import PackingProblem
 from tilesolve.verify.packing import is_packing
 
 
+@pytest.mark.slow
 def test_published_totals():
     assert facade.count(PackingProblem("corner", 2)).value == PUBLISHED_COUNTS[("corner", 2)][0] == 32
     assert facade.count(PackingProblem("wang", 2)).value == PUBLISHED_COUNTS[("wang", 2)][0] == 203_520
@@ -28,6 +29,7 @@ def test_published_totals():
     assert facade.count(PackingProblem("corner", 2), up_to_symmetry=True).value == 1
 
 
+@pytest.mark.slow
 def test_wang_up_to_symmetry_agrees_with_burnside():
     """Orbits by canonical forms (911) equal the Burnside average of fixed points over the group
     of translations x rotations/reflections x colour permutations (16 * 8 * 2 = 256 elements)."""
@@ -49,6 +51,7 @@ def test_wang_up_to_symmetry_agrees_with_burnside():
     assert fixed % group == 0 and fixed // group == 911
 
 
+@pytest.mark.slow
 def test_every_enumerated_packing_verifies_and_is_distinct():
     for kind in ("corner", "wang"):
         seen = set()
