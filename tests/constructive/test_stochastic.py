@@ -51,6 +51,7 @@ def chi2_z(counts) -> float:
     return ((x / k) ** (1 / 3) - (1 - 2 / (9 * k))) / math.sqrt(2 / (9 * k))
 
 
+@pytest.mark.slow
 @settings(max_examples=150)
 @given(case=st.sampled_from(CASES), colors=st.integers(2, 6), x0=COORD, y0=COORD, w=st.integers(1, 25),
        h=st.integers(1, 25), seed=st.integers(0, 2**32), hash=st.sampled_from(["long", "table"]))
