@@ -123,6 +123,7 @@ def test_jeandel_rao_undecided_agrees_with_sat():
     assert sat(ts, "square 3x12") == "tiles"
 
 
+@pytest.mark.slow
 def test_periodic_9_73_needs_k_73():
     """The transducer finds the 73-row torus of periodic_9_73 (SAT tiles the same torus)."""
     ts = load_tiles("periodic_9_73")
@@ -222,6 +223,7 @@ def test_report_with_sat_certificates():
     assert verdict == "undecided" and rep.squares == rep.periods == () and "k = 2" in rep.conclusion
 
 
+@pytest.mark.slow
 def test_builtin_sets_agree_with_their_literature_verdicts_and_sat():
     """Up to k = 2: aperiodic sets undecided; periodic and finite sets never contradict their
     verdict (a torus only for a periodic set, emptiness only for a finite one). SAT agrees: an
@@ -274,6 +276,7 @@ def test_random_sets_agree_with_sat(ts):
                 assert sat(ts, f"torus {p}x{q}") == "refuted"
 
 
+@pytest.mark.slow
 def test_reports_pass_the_family_verifier():
     from tilesolve.verify.aperiodic import aperiodic_violations
 
@@ -318,6 +321,7 @@ def test_report_without_a_rectangle_is_undecided(monkeypatch):
     assert verdict == "undecided" and rep.squares == () and "could not be computed" in rep.conclusion
 
 
+@pytest.mark.slow
 def test_family_route_end_to_end():
     """``tilesolve.families.aperiodic.solve(..., method="transducer")``: the pipeline verifies the report."""
     from tilesolve.families.aperiodic import solve
