@@ -78,6 +78,7 @@ DECIDED = [
 ]
 
 
+@pytest.mark.fast_cases(1)
 @pytest.mark.parametrize("name, verdict, k, detail", DECIDED)
 def test_meyerphi_sets_decided(name, verdict, k, detail):
     ts = load_tiles(name)
