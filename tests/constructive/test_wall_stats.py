@@ -128,6 +128,7 @@ def test_line_statistics_bad_input(kwargs, words):
         line_statistics(method, n, **kwargs)
 
 
+@pytest.mark.slow
 def test_command_writes_table_and_pictures(tmp_path):
     proc = run("wall-lines", "--method", "procedural", "--method", "npd", "--max-line", "3", "--size", "24x16",
                "--samples", "1", "--seed", "2", "-o", "t.csv", "--svg", "h.svg", "--png", "h.png", cwd=tmp_path)
@@ -147,6 +148,7 @@ def test_command_writes_table_and_pictures(tmp_path):
         int(rows[2][f"length_{k}"]) for k in (1, 2, 3)]  # same seed, same table
 
 
+@pytest.mark.slow
 def test_command_refuses_in_one_line(tmp_path):
     (tmp_path / "keep.json").write_text("{}\n")
     one_line_error(run("wall-lines", "--size", "2x2", "--method", "npd", "-o", "keep.json", cwd=tmp_path))
