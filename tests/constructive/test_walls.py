@@ -75,6 +75,7 @@ def _raws_for(nc: int) -> list[tuple[int, int, int, int]]:
     return [(a, b, c, d) for a, b, c, d in zip(vals, vals[1:] + vals[:1], vals[2:] + vals[:2], vals[3:] + vals[:3])]
 
 
+@pytest.mark.slow
 def test_appendix_b_fills_every_boundary_of_a_2x2_block_and_sat_agrees():
     """nc = 3, every one of the 3**8 boundaries: SAT finds a tiling, and every App. B filling
     (with every choice the different-colour helpers can make) is one the CNF accepts."""
@@ -100,6 +101,7 @@ def test_appendix_b_fills_every_boundary_of_a_2x2_block_and_sat_agrees():
                     assert sat.solve(assumptions=pin(enc, legs)), (outer, inner)
 
 
+@pytest.mark.slow
 def test_appendix_b_fills_every_boundary_with_four_colours():
     nc = 4
 
@@ -114,6 +116,7 @@ def test_appendix_b_fills_every_boundary_with_four_colours():
                         and brick(vb1, hr1, vb2, hr0)), (outer, (vt1, hl1, vb1, hr1))
 
 
+@pytest.mark.slow
 def test_appendix_b_bit_order_is_the_only_consistent_one():
     """The 16 case names read b1 b2 b3 b4 = (HL2 = HL0, HR0 = HR2, VT0 = VT2, VB0 = VB2)."""
     nc = 3
