@@ -123,6 +123,7 @@ def test_refuses_absurd_rows():
 
 
 # ------------------------------------------------------------------ the commands
+@pytest.mark.slow
 def test_cli_wang_count_and_builtin_sets(tmp_path):
     proc = run("wang", "count", "--builtin", "jeandel-rao", "--board", "rect:3x2", cwd=tmp_path)
     assert proc.returncode == 0 and "by transfer" in proc.stderr
