@@ -57,6 +57,15 @@ def test_auto_agrees_with_brute_force_and_every_route(problem, seed):
             assert is_dappled(problem, sol.tiling)
 
 
+@pytest.mark.parametrize("cyclic", [False, True])
+def test_crosscheck_agrees_on_a_small_grid(cyclic):
+    """The fast tier's crosscheck: one small grid, plain and cyclic (random grids: below, slow)."""
+    problem = DappledProblem(4, 5, conditions=[Condition("H", (0,), 2), Condition("V", (1,), 3)], cyclic=cyclic)
+    report = crosscheck(problem, seed=1)
+    assert report.ok, "\n".join(report.lines)
+
+
+@pytest.mark.slow
 @settings(max_examples=25, deadline=None)
 @given(
     rows=st.integers(2, 12),
