@@ -154,6 +154,18 @@ def test_an_allowed_import_passes(module, source):
     assert violations(source, module) == []
 
 
+def test_every_registered_family_is_a_facade():
+    """The registry is the list of families: each entry point's module sits in the facade layer
+    (``tilesolve/families/``), so the layer table needs no edit for a new family."""
+    from importlib.metadata import entry_points
+
+    from tilesolve.family import ENTRY_POINT_GROUP, families
+
+    modules = {ep.module for ep in entry_points(group=ENTRY_POINT_GROUP)}
+    assert {fam.name for fam in families()} >= {ep.name for ep in entry_points(group=ENTRY_POINT_GROUP)}
+    assert modules and all(m.startswith("tilesolve.families.") and layer_of(m) == "facades" for m in modules), modules
+
+
 def test_the_facades_import_no_circle():
     """No facade imports itself back through another (DESIGN.md: "layers import only downwards";
     inside the facade layer the imports form a tree, so ``board`` and ``walls`` do not import

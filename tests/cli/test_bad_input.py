@@ -4,22 +4,27 @@ absurd and hostile values.
 Each run must end with exit 2 (DESIGN.md, "Errors"), exactly one ``tilesolve: error: ...``
 line on stderr and no traceback, and leave the folder exactly as it was: no new file, no
 temporary, and the pre-existing ``keep.json`` (named as an output in many cases) byte-identical.
-The commands come from ``tilesolve --help``; a test checks that none is missing here.
+The commands come from ``tilesolve --help``; a test checks that none is missing here. Every
+command of a registered family is also swept from its own options (found through the registry),
+so a new family's commands are covered without an edit here.
 
 Every case fails on input checks, before any search, so the sweep stays cheap.
 """
 
 from __future__ import annotations
 
+import importlib
 import os
 import re
 import shlex
 import stat
 
+import click
 import numpy as np
 import pytest
 from clitools import one_line_error, run, snapshot
 
+from tilesolve import family
 from tilesolve.io.dappled_json import write_solution
 from tilesolve.model.dappled import DappledProblem
 from tilesolve.model.solution import Solution, Status
@@ -312,17 +317,64 @@ def test_refused_in_one_line_leaving_everything_as_it_was(folder, command, args)
     assert snapshot(folder) == before
 
 
+def _leaves(name: str, command: click.Command) -> list[tuple[str, click.Command]]:
+    if isinstance(command, click.Group):
+        return [leaf for sub, c in command.commands.items() for leaf in _leaves(f"{name} {sub}", c)]
+    return [(name, command)]
+
+
+def _family_commands() -> dict[str, click.Command]:
+    """Every command of every registered family (``Family.commands``), groups opened:
+    ``{"brick solve": <command>, ...}``."""
+    out = {}
+    for fam in family.families():
+        for target in fam.commands:
+            module, attr = target.split(":")
+            out.update(_leaves(attr, getattr(importlib.import_module(module), attr)))
+    return out
+
+
+def _malformed_options(command: click.Command) -> list[tuple[str, str]]:
+    """The cases every family command gets from its own options, with no edit here: an unknown
+    option, and a malformed value for its first number option and its first choice option."""
+    options = [p for p in command.params if isinstance(p, click.Option) and not p.is_flag]
+    number = next((p for p in options if isinstance(p.type, (click.types.IntParamType, click.types.FloatParamType))),
+                  None)
+    choice = next((p for p in options if isinstance(p.type, click.Choice)), None)
+    cases = [("unknown option", "--frobnicate 1")]
+    if number is not None:
+        cases.append((f"{number.opts[-1]} not a number", f"{number.opts[-1]} abc"))
+    if choice is not None:
+        cases.append((f"{choice.opts[-1]} not a choice", f"{choice.opts[-1]} not-a-choice"))
+    return cases
+
+
+FAMILY_COMMANDS = _family_commands()
+
+
+@pytest.mark.fast_cases(4)
+@pytest.mark.parametrize("command,args", [pytest.param(c, a, id=f"{c}: {n}") for c, cmd in FAMILY_COMMANDS.items()
+                                          for n, a in _malformed_options(cmd)])
+def test_every_family_command_refuses_malformed_options(folder, command, args):
+    before = snapshot(folder)
+    one_line_error(run(*command.split(), *shlex.split(args), cwd=folder))
+    assert snapshot(folder) == before
+
+
 def _commands(args: tuple[str, ...], folder) -> list[str]:
-    """The command names listed under 'Commands:' in ``tilesolve ARGS --help``."""
+    """The command names ``tilesolve ARGS --help`` lists (its sections of commands)."""
     out = run(*args, "--help", cwd=folder).stdout
-    block = out.split("Commands:", 1)[1] if "Commands:" in out else ""
-    return re.findall(r"^  (\S+)", block.split("\n\n", 1)[0], flags=re.M)
+    blocks = re.findall(r"^(?:Commands|Family commands|Tools):\n(.*?)(?:\n\n|\Z)", out, flags=re.M | re.S)
+    return [name for block in blocks for name in re.findall(r"^  (\S+)", block, flags=re.M)]
 
 
 def test_every_command_is_swept(tmp_path):
-    swept = {c.split()[0] for c in CASES if c}
-    for name in _commands((), tmp_path):
-        assert name in swept, f"add bad-input cases for `tilesolve {name}`"
-        subs = _commands((name,), tmp_path)
-        for sub in subs:
-            assert f"{name} {sub}" in CASES, f"add bad-input cases for `tilesolve {name} {sub}`"
+    """The tools have their cases above; a family's commands are swept from their own options
+    (a new family edits nothing here), and any cases above come on top."""
+    swept = {c for c in CASES if c} | set(FAMILY_COMMANDS)
+    names = _commands((), tmp_path)
+    assert {"dappled", "verify"} <= set(names)
+    for name in names:
+        assert any(c.split()[0] == name for c in swept), f"add bad-input cases for `tilesolve {name}`"
+        for sub in _commands((name,), tmp_path):
+            assert f"{name} {sub}" in swept, f"add bad-input cases for `tilesolve {name} {sub}`"

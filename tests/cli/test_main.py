@@ -22,8 +22,6 @@ from tilesolve.model.dappled import DappledProblem
 from tilesolve.model.solution import Solution, Status
 
 
-
-
 def run(*args: str, cwd: Path, timeout: float = 120) -> subprocess.CompletedProcess:
     env = dict(os.environ, COLUMNS="100")
     return subprocess.run([SCRIPT, *args], cwd=cwd, capture_output=True, text=True, timeout=timeout, env=env)
@@ -55,6 +53,24 @@ def test_version_and_help(tmp_path):
     assert proc.returncode == 0
     for word in ("dappled", "verify", "export", "demo", "backends", "Exit codes"):
         assert word in proc.stdout
+
+
+def _section(text: str, title: str) -> list[str]:
+    """The command names of one section of a help text."""
+    block = text.split(f"\n{title}:\n", 1)[1].split("\n\n", 1)[0]
+    return [line.split()[0] for line in block.splitlines() if line.startswith("  ") and line[2] != " "]
+
+
+def test_help_lists_the_family_commands_then_the_tools(tmp_path):
+    """The registry says which commands are a family's; they come first, in its order."""
+    from tilesolve import family
+    from tilesolve.cli.main import GENERIC
+
+    out = run("--help", cwd=tmp_path).stdout
+    assert out.index("Family commands:") < out.index("Tools:")
+    assert _section(out, "Family commands") == [t.split(":")[1] for f in family.families() for t in f.commands]
+    assert _section(out, "Tools") == list(GENERIC)
+    assert {"dappled", "brick", "pack", "tiling", "aperiodic"} <= set(_section(out, "Family commands"))
 
 
 @pytest.mark.parametrize(

@@ -3,7 +3,8 @@
 Commands load lazily: the generic commands (:data:`GENERIC`: verify, draw, demo, export,
 backends) serve every family through the registry (:mod:`tilesolve.family`); each family names
 its own command groups (``Family.commands``, ``"module:attribute"``, the attribute being the
-command's name). Nothing is imported before a command runs, so ``tilesolve --version`` costs no
+command's name). ``tilesolve --help`` lists the family commands first (the registry's), then
+these tools. A command that serves no one family (a tool) goes in :data:`GENERIC`. Nothing is imported before a command runs, so ``tilesolve --version`` costs no
 more than starting Python and click.
 
 Every :class:`~tilesolve.errors.TilesolveError` becomes one line ``tilesolve: error: ...`` on
@@ -63,6 +64,17 @@ class TilesolveGroup(click.Group):
 
     def list_commands(self, ctx: click.Context) -> list[str]:
         return list(_family_commands()) + list(GENERIC)  # families first, in registry order
+
+    def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
+        """Two sections: the families' commands (from the registry, in its order), then the tools."""
+        sections = (("Family commands", list(_family_commands())), ("Tools", list(GENERIC)))
+        width = max(len(name) for _, names in sections for name in names)
+        for title, names in sections:
+            commands = [(name, self.get_command(ctx, name)) for name in names]
+            rows = [(name, cmd.get_short_help_str(formatter.width - 6 - width))
+                    for name, cmd in commands if cmd is not None and not cmd.hidden]
+            with formatter.section(title):
+                formatter.write_dl(rows)
 
     def get_command(self, ctx: click.Context, name: str):
         target = GENERIC.get(name) or _family_command(name)
