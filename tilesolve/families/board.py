@@ -420,12 +420,13 @@ def _form_command(values) -> tuple[list[str], dict[str, str]]:
     return words, files
 
 
-def _form_window(values, x0: int, y0: int, rows: int, cols: int):
+def _form_window(values, window):
     """One window of the infinite procedural brick wall (004 §4) with the form's line limit."""
     from tilesolve.families.walls import wall_problem
 
     line = values["max_h"] or values["max_v"] or 3
-    return wall_problem(rows, cols, line, n_colors=values["colors"]), "procedural", {"origin": (x0, y0)}
+    problem = wall_problem(window.height, window.width, line, n_colors=values["colors"])
+    return problem, "procedural", {"origin": (window.x0, window.y0)}
 
 
 def _mask_extent(values) -> tuple[int, int, int, int]:

@@ -45,6 +45,7 @@ from tilesolve.family import solve as _solve
 from tilesolve.io.stochastic_json import STOCHASTIC_TILING, VERSIONS
 from tilesolve.model.solution import Solution, Status
 from tilesolve.model.stochastic import StochasticProblem
+from tilesolve.model.window import Window
 from tilesolve.verify.dappled import Violation
 from tilesolve.verify.grid import grid_violations
 
@@ -190,9 +191,9 @@ def _form_command(values) -> tuple[list[str], dict[str, str]]:
             "--algorithm", values["algorithm"]], {}
 
 
-def _form_window(values, x0: int, y0: int, rows: int, cols: int):
+def _form_window(values, window: Window):
     """Any window of the plane (the ``direct`` route gives every window the same tiles)."""
-    return _form_problem(values, (x0, y0, cols, rows)), "auto", {}
+    return _form_problem(values, window), "auto", {}
 
 
 FORM = Form(

@@ -73,8 +73,9 @@ class Form:
         ``tilesolve``) that poses the same problem, without seed, method and output options,
         and the files it reads (``{name: text}``, e.g. painted cells as a text grid).
     window : callable, optional
-        Families with an infinite plane: ``window(values, x0, y0, rows, cols) -> (problem,
-        method, options)``, the problem of one window (the studio's pan-and-zoom view).
+        Families with an infinite plane: ``window(values, w) -> (problem, method, options)``,
+        the problem of the window ``w`` (a :class:`~tilesolve.model.window.Window`, y growing
+        upwards) of the plane, for the studio's pan-and-zoom view.
     cells : callable, optional
         ``cells(problem, solution) -> 2-D int array``: the solution per cell, in the values
         of the form's ``cells`` fields (clicking a cell of the picture fixes it to this value).

@@ -9,6 +9,7 @@ from collections import OrderedDict
 
 from tilesolve import family
 from tilesolve.errors import InvalidProblem, TilesolveError
+from tilesolve.model.window import Window
 from tilesolve.studio import worker
 
 __all__ = ["Views", "VIEW_CACHE"]
@@ -38,7 +39,7 @@ class Views:
             if key in self._cache:
                 self._cache.move_to_end(key)
                 return self._cache[key]
-        problem, method, options = fam.form.window(vals, x, y, n, n)
+        problem, method, options = fam.form.window(vals, Window(x, y, n, n))
         sol = family.solve(problem, method, seed=vals["seed"], options=options)
         if not sol.status.has_tiling:
             raise InvalidProblem(f"window ({x}, {y}): {sol.status.value}: {sol.reason or 'no tiling'}")
