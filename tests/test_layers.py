@@ -166,6 +166,14 @@ def test_every_registered_family_is_a_facade():
     assert modules and all(m.startswith("tilesolve.families.") and layer_of(m) == "facades" for m in modules), modules
 
 
+def test_the_readme_picture_names_every_package():
+    """The README's picture of the layers shows every package of tilesolve."""
+    readme = (PACKAGE.parent / "README.md").read_text(encoding="utf-8")
+    picture = readme.split("## Package layout", 1)[1].split("Around them", 1)[0]
+    packages = {p.name for p in PACKAGE.iterdir() if (p / "__init__.py").is_file()} - {"data"}
+    assert packages and not [p for p in sorted(packages) if f"{p}/" not in picture]
+
+
 def test_the_facades_import_no_circle():
     """No facade imports itself back through another (DESIGN.md: "layers import only downwards";
     inside the facade layer the imports form a tree, so ``board`` and ``walls`` do not import
