@@ -90,7 +90,7 @@ def tori(ws, max_p: int, workers: int, cap: float) -> None:
             left = cap - (time.perf_counter() - t)
             if left <= 0:
                 break
-            st, _, _ = plain(ws, Board.torus(p, q), left)
+            st, _, _ = plain(ws, Board.torus(q, p), left)
             done += st is Status.UNSAT
     tp, cp = time.perf_counter() - t, cpu() - c
     t, c = time.perf_counter(), cpu()

@@ -86,7 +86,7 @@ def main() -> None:
     tot = {"solve": 0.0, "new": 0.0}
     for p in range(args.min, args.max + 1):
         for q in range(p, args.max + 1):
-            enc = encode_wang(BoardProblem(Board.torus(p, q), tiles))
+            enc = encode_wang(BoardProblem(Board.torus(q, p), tiles))
             clauses = enc.hard.to_lists()
 
             def solve():

@@ -20,7 +20,7 @@ def invoke(*args, cwd=None):
 
 
 def recheck_without_tilesolve(doc: dict) -> bool:
-    """Check a board solution from its plain fields only (leg order W, N, E, S)."""
+    """Check a board solution from its plain fields only (tiles and edge legs in its leg order)."""
     tiles = doc["tiles"]
     ok = True
     for a, ka, b, kb in doc["edges"]:
@@ -43,7 +43,7 @@ def test_brick_solve_writes_checkable_json(tmp_path, monkeypatch, spec):
     assert r.exit_code == 0, r.output
     doc = json.loads(Path("out.json").read_text())
     assert doc["format"] == "tilesolve/board-solution" and doc["colors"] == 3 and doc["tileset"] == "brick"
-    assert doc["leg_order"] == ["W", "N", "E", "S"]
+    assert doc["version"] == 3 and doc["leg_order"] == ["N", "E", "S", "W"]
     assert len(doc["tiles"]) == len(doc["cells"])
     assert recheck_without_tilesolve(doc)
     assert Path("out.svg").read_text().startswith("<svg") or "<svg" in Path("out.svg").read_text()[:300]

@@ -50,7 +50,7 @@ def test_a_solution_draws_itself_in_a_notebook():
     assert "<svg" in s._repr_svg_() and s._repr_png_().startswith(b"\x89PNG")
     big = dappled.solve(DappledProblem.from_strings("600x600", ["H0=2", "V1=2"]), seed=1)
     assert big._repr_svg_() is None and big._repr_png_().startswith(b"\x89PNG")  # SVG refused, PNG drawn
-    b = board.solve(BoardProblem(Board.torus(4, 6), WangTileSet.brick(3)), seed=2)
+    b = board.solve(BoardProblem(Board.torus(6, 4), WangTileSet.brick(3)), seed=2)
     assert "<svg" in b._repr_svg_()
     import numpy as np
 

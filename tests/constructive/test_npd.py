@@ -18,7 +18,7 @@ from tilesolve.families.walls import npd_problem, wall_problem
 
 def period_legs(sol, rows: int, cols: int) -> np.ndarray:
     """``(rows, cols, 4)`` legs of a torus solution (cells in label order)."""
-    lab = Board.torus(rows, cols).labels
+    lab = Board.torus(cols, rows).labels
     out = np.empty((rows, cols, 4), np.int64)
     out[lab[:, 0], lab[:, 1]] = sol.tiling
     return out
@@ -90,7 +90,7 @@ def test_algorithm_1_on_random_dapplings():
         nc = int(rng.integers(3, 6))
         t = npd_legs(d, nc, seed=done)
         assert np.array_equal(t[..., 0] == t[..., 2], d == 0)  # W_H exactly where the dappling says so
-        p = BoardProblem(Board.torus(rows, cols), WangTileSet.brick(nc))
+        p = BoardProblem(Board.torus(cols, rows), WangTileSet.brick(nc))
         assert board_violations(p, t.reshape(-1, 4)) == []
         done += 1
 

@@ -42,7 +42,7 @@ def load_tiles(name: str) -> WangTileSet:
 
 def check_torus(ts: WangTileSet, torus: np.ndarray) -> None:
     k, p = torus.shape
-    assert board_violations(BoardProblem(Board.torus(k, p), ts), torus_tiling(ts, torus)) == []
+    assert board_violations(BoardProblem(Board.torus(p, k), ts), torus_tiling(ts, torus)) == []
 
 
 def sat(ts: WangTileSet, board: str) -> str:

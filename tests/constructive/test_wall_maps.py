@@ -46,7 +46,7 @@ def test_bricks_are_the_regions_the_svg_merges(win):
     ppc = 24
     legs, m = maps_of(*win, ppc)
     inner = legs[1:-1, 1:-1]
-    problem = BoardProblem(Board.rect(h, w), WangTileSet.brick(colors), None)
+    problem = BoardProblem(Board.rect(w, h), WangTileSet.brick(colors), None)
     svg_ids = brick_ids(problem, inner.reshape(-1, 4)).reshape(h, w, 4)  # TL, TR, BL, BR
     ys, xs = np.mgrid[0:h * ppc, 0:w * ppc]
     r, c = ys // ppc, xs // ppc

@@ -32,7 +32,7 @@ COORD = st.one_of(st.integers(-40, 40), st.integers(2**61, 2**61 + 50), st.integ
 def window_problem(legs: np.ndarray, n_colors: int, max_line):
     """The board problem of a window: its own boundary, the wall's line limits."""
     h, w, _ = legs.shape
-    board = Board.rect(h, w)
+    board = Board.rect(w, h)
     t = legs.reshape(-1, 4).astype(np.int64)
     bl = board.boundary_legs
     return BoardProblem(board, WangTileSet.brick(n_colors), t[bl[:, 0], bl[:, 1]], max_h=max_line, max_v=max_line), t

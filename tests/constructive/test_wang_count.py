@@ -65,7 +65,7 @@ def test_auto_falls_back_to_enumeration():
     from tilesolve.families import board as facade
 
     ts = WangTileSet([[0, 0, 0, 0], [1, 1, 1, 1], [0, 1, 0, 1]], 2)
-    mobius = BoardProblem(Board.mobius(2, 3), ts)
+    mobius = BoardProblem(Board.mobius(3, 2), ts)
     assert "twisted" in transfer_applies(mobius)
     res = facade.count(mobius)
     assert res.method != "transfer" and res.value == brute_force_board(mobius)

@@ -172,7 +172,7 @@ def test_every_named_encoding_is_deterministic_and_pinned_to_its_version():
 
     problems = {
         "dappled-cnf": DappledProblem.from_strings("5x4", ["H0=2", "V1=2"], cyclic=True, counts=["1=6..9"]),
-        "wang-board-cnf": BoardProblem(Board.mobius(3, 4), WangTileSet.brick(3), max_h=2),
+        "wang-board-cnf": BoardProblem(Board.mobius(4, 3), WangTileSet.brick(3), max_h=2),
         "packing-cnf": PackingProblem("corner", 2, fixed=((0, 0, 3),)),
         "wang-tiles-cnf": board_problem(WangTileSet(DIAGONAL, 3), "torus 3x2 shear 1"),
     }

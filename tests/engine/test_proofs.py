@@ -45,8 +45,8 @@ def _instances():
     yield "dappled 5x5 cyclic", encode_cnf(DappledProblem.from_strings("5x5", ["H0=1", "V0=1", "H1=1", "V1=1"],
                                                                       cyclic=True)).hard
     yield "Wang 1x1 cross", encode_wang(BoardProblem(Board.rect(1, 1), WangTileSet.brick(3), [0, 1, 0, 1])).hard
-    yield "Wang torus 4x5", encode_wang(BoardProblem(Board.torus(4, 5), counter_tiles(3, 2))).hard
-    yield "Wang torus 7x4", encode_wang(BoardProblem(Board.torus(7, 4), counter_tiles(3, 3))).hard
+    yield "Wang torus 4x5", encode_wang(BoardProblem(Board.torus(5, 4), counter_tiles(3, 2))).hard
+    yield "Wang torus 7x4", encode_wang(BoardProblem(Board.torus(4, 7), counter_tiles(3, 3))).hard
     yield "packing pins", encode_packing(PackingProblem("corner", 2, fixed=((0, 0, 0), (0, 1, 15)))).clauses
 
 

@@ -46,7 +46,7 @@ def _brute_tiles(board: Board, ws: WangTileSet) -> bool:
 def test_tile_cnf_agrees_with_brute_force(tiles, shape):
     ws = WangTileSet(np.array(tiles), 2)
     rows, cols, shear = shape
-    board = Board.rect(rows, cols) if shear < 0 else Lattice(rows, cols, shear).board()
+    board = Board.rect(cols, rows) if shear < 0 else Lattice(rows, cols, shear).board()
     enc = encode_tiles(board, ws)
     r = solve_cnf(enc.hard)
     assert (r.status is Status.SAT) == _brute_tiles(board, ws)
@@ -64,7 +64,7 @@ def test_sheared_torus_unfolds_to_a_periodic_patch():
     t = enc.decode(r.model)
     R, C = np.meshgrid(np.arange(7), np.arange(8), indexing="ij")
     patch = t[(R + (C // lat.cols) * lat.shear) % lat.rows, C % lat.cols]
-    assert not board_violations(BoardProblem(Board.rect(7, 8), DIAGONAL), leg_colours(DIAGONAL, patch))
+    assert not board_violations(BoardProblem(Board.rect(8, 7), DIAGONAL), leg_colours(DIAGONAL, patch))
     assert solve_cnf(encode_tiles(Lattice(3, 1, 0).board(), DIAGONAL).hard).status is Status.UNSAT
 
 

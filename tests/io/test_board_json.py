@@ -29,13 +29,13 @@ NESW_INDEX = {0: 3, 1: 0, 2: 1, 3: 2}
 
 
 def _boards():
-    mob = Board.mobius(5, 7)
+    mob = Board.mobius(7, 5)
     keep = np.ones(mob.n_cells, bool)
     keep[[8, 9, 16, 34]] = False  # the last row loses a cell: the grid keeps its 5 rows
-    ring = Board.ring(4, 5)
+    ring = Board.ring(5, 4)
     return {
-        "rect": Board.rect(3, 4), "torus": Board.torus(3, 4), "cylinder": Board.cylinder(2, 5),
-        "mobius": Board.mobius(4, 3), "klein": Board.klein(3, 3), "ring": ring,
+        "rect": Board.rect(4, 3), "torus": Board.torus(4, 3), "cylinder": Board.cylinder(5, 2),
+        "mobius": Board.mobius(3, 4), "klein": Board.klein(3, 3), "ring": ring,
         "mask": Board.random_holes(6, 6, 0.3, seed=2), "mobius|U": mob.restrict(keep),
         "tree": Board.random_tree(12, seed=1),
         "grid": Board.grid(np.arange(20).reshape(4, 5) % 7 != 3, wrap_rows="twist", wrap_cols="plain"),
@@ -91,7 +91,7 @@ def test_large_boards_are_written_compactly_and_small_ones_as_lists():
 
 def test_version_3_reads_with_base64_and_numpy_alone(tmp_path):
     """What the module docstring tells another tool, done by hand."""
-    board = Board.mobius(4, 6).restrict(np.arange(24) != 7)
+    board = Board.mobius(6, 4).restrict(np.arange(24) != 7)
     p, s = _problem_and_solution(board, 3)
     path = tmp_path / "s.json"
     write_board_solution(path, p, s, compact=True)
@@ -121,7 +121,7 @@ def test_reads_a_version_1_file_written_by_hand(tmp_path):
     path = tmp_path / "v1.json"
     path.write_text(json.dumps(doc))
     q, t = read_board_solution(path)
-    b = Board.rect(1, 2)
+    b = Board.rect(2, 1)
     assert np.array_equal(q.board.nbr_cell, b.nbr_cell) and np.array_equal(q.board.nbr_leg, b.nbr_leg)
     assert q.boundary.tolist() == [1, -1, -1, 0, -1, -1] and t.tiling.tolist() == doc["tiles"]
     # the same file in version 3: tiles and leg numbers in N, E, S, W; boundary legs numbered alike
@@ -154,7 +154,7 @@ def _as_version_1(doc: dict) -> dict:
 
 
 def test_versions_1_and_3_of_one_solution_read_the_same(tmp_path):
-    for board in (Board.mobius(3, 4).restrict(np.arange(12) != 5), Lattice(3, 4, 1).board()):
+    for board in (Board.mobius(4, 3).restrict(np.arange(12) != 5), Lattice(3, 4, 1).board()):
         p, s = _problem_and_solution(board, 1)
         v3 = board_solution_to_dict(p, s, compact=False)
         (tmp_path / "v3.json").write_text(jsonio.dumps(v3))
@@ -168,13 +168,13 @@ def test_a_window_of_the_plane_is_data_in_version_3_only(tmp_path):
 
     from tilesolve.model.window import Window
 
-    p, s = _problem_and_solution(Board.rect(3, 4))
+    p, s = _problem_and_solution(Board.rect(4, 3))
     s = replace(s, window=Window(-2, 5, 4, 3))
     write_board_solution(tmp_path / "w.json", p, s)
     doc = json.loads((tmp_path / "w.json").read_text())
     assert doc["window"] == {"x0": -2, "y0": 5, "width": 4, "height": 3, "y_up": True}
     assert read_board_solution(tmp_path / "w.json")[1].window == Window(-2, 5, 4, 3)
-    assert "window" not in board_solution_to_dict(*_problem_and_solution(Board.rect(3, 4)))
+    assert "window" not in board_solution_to_dict(*_problem_and_solution(Board.rect(4, 3)))
     doc["window"]["width"] = 0
     assert "'window': window size must be positive" in _read_error(tmp_path, doc)
     assert "'window' needs version 3" in _read_error(tmp_path, dict(_as_version_1(doc), window=doc["window"]))
@@ -192,7 +192,7 @@ def test_a_window_that_is_not_the_boards_grid_is_refused(tmp_path):
 
 def _v2_doc():
     """A compact document (encoded arrays); version 3 has version 2's encodings."""
-    return board_solution_to_dict(*_problem_and_solution(Board.with_holes(7, 9, 2, 2, seed=3)), compact=True)
+    return board_solution_to_dict(*_problem_and_solution(Board.with_holes(9, 7, 2, 2, seed=3)), compact=True)
 
 
 def _set(path, value):
@@ -260,7 +260,7 @@ def test_encoded_arrays_round_trip_in_the_narrowest_dtype(values):
 
 
 def test_lists_record_the_grid_and_mask_besides_the_list():
-    board = Board.mobius(3, 4).restrict(np.arange(12) != 5)
+    board = Board.mobius(4, 3).restrict(np.arange(12) != 5)
     doc = board_solution_to_dict(*_problem_and_solution(board), compact=False)
     assert doc["grid"] == {"rows": 3, "cols": 4, "wrap_rows": None, "wrap_cols": "twist"}
     assert doc["mask"].tolist() == [[1, 1, 1, 1], [1, 0, 1, 1], [1, 1, 1, 1]]
@@ -268,7 +268,7 @@ def test_lists_record_the_grid_and_mask_besides_the_list():
 
 
 def test_a_listed_grid_board_keeps_its_list_for_the_verifier(tmp_path):
-    p, s = _problem_and_solution(Board.ring(4, 5))
+    p, s = _problem_and_solution(Board.ring(5, 4))
     path = tmp_path / "s.json"
     write_board_solution(path, p, s, compact=False)
     q, _ = read_board_solution(path)
@@ -279,7 +279,7 @@ def test_a_listed_grid_board_keeps_its_list_for_the_verifier(tmp_path):
 
 
 def _v1_doc():
-    return _as_version_1(board_solution_to_dict(*_problem_and_solution(Board.rect(2, 3)), compact=False))
+    return _as_version_1(board_solution_to_dict(*_problem_and_solution(Board.rect(3, 2)), compact=False))
 
 
 @pytest.mark.parametrize("make, change, message", [

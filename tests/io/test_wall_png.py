@@ -82,7 +82,7 @@ def test_lines_crossing_band_borders_are_checked_whole(tmp_path, monkeypatch):
     wall = sol.tiling.reshape(44, 44, 4)
     hor, ver = line_lengths(wall[:40, :40])
     assert hor.max() <= 2 and ver.max() > 2
-    band = BoardProblem(Board.rect(2, 40), WangTileSet.brick(3), None, max_h=2, max_v=2)
+    band = BoardProblem(Board.rect(40, 2), WangTileSet.brick(3), None, max_h=2, max_v=2)
     assert all(not board_violations(band, wall[r:r + 2, :40].reshape(-1, 4)) for r in range(0, 40, 2))
     monkeypatch.setattr(wall_render, "BAND_CELLS", 2 * 40)
     monkeypatch.setattr(wall_render, "wall_source",

@@ -13,7 +13,7 @@ from tilesolve.io.mask import read_board_spec, read_mask
 
 
 def test_rect_joins_and_counts():
-    b = Board.rect(3, 4)
+    b = Board.rect(4, 3)
     assert b.n_cells == 12 and b.n_boundary == 2 * (3 + 4)
     idx = b.index_of()
     a = idx[(1, 1)]
@@ -29,7 +29,7 @@ def test_rect_joins_and_counts():
 
 @pytest.mark.parametrize("kind,boundary", [("torus", 0), ("klein", 0), ("cylinder", 2 * 5), ("mobius", 2 * 5)])
 def test_surfaces(kind, boundary):
-    b = getattr(Board, kind)(4, 5)
+    b = getattr(Board, kind)(5, 4)  # 5 columns, 4 rows
     assert b.n_cells == 20 and b.n_boundary == boundary
     assert (b.degree_in_cells() == 4 - (b.nbr_cell < 0).sum(axis=1)).all()
 
@@ -61,7 +61,7 @@ def test_restriction_def4_and_networkx():
 
 
 def test_from_edges_round_trip_and_bad_edges():
-    b = Board.klein(3, 4)
+    b = Board.klein(4, 3)
     b2 = Board.from_edges(b.labels.tolist(), b.edge_list())
     assert np.array_equal(b.nbr_cell, b2.nbr_cell) and np.array_equal(b.nbr_leg, b2.nbr_leg)
     with pytest.raises(InvalidProblem, match="not joined"):
@@ -74,7 +74,7 @@ def test_tree_and_ring_builders():
     t = Board.random_tree(30, seed=4)
     g = nx.Graph(t.cell_graph())
     assert nx.is_tree(g) and t.n_cells == 30
-    ring = Board.ring(4, 6)
+    ring = Board.ring(6, 4)
     assert len(nx.cycle_basis(nx.Graph(ring.cell_graph()))) == 1
 
 
@@ -180,7 +180,7 @@ def test_grid_builder_matches_the_definition_and_restrictions_keep_their_grid(wr
 
 
 def test_grid_spec_given_by_hand_is_checked():
-    b = Board.mobius(3, 4)
+    b = Board.mobius(4, 3)
     assert Board(b.labels, b.nbr_cell, b.nbr_leg, grid_spec=GridSpec(3, 4, None, "twist")).grid_spec == b.grid_spec
     with pytest.raises(InvalidProblem, match="not those of the grid"):
         Board(b.labels, b.nbr_cell, b.nbr_leg, grid_spec=GridSpec(3, 4, None, "plain"))

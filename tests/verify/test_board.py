@@ -10,7 +10,7 @@ from tilesolve.verify.board import MAX_LISTED, board_violations, is_valid_board_
 
 @pytest.fixture(scope="module")
 def solved():
-    b = Board.rect(6, 7)
+    b = Board.rect(7, 6)
     p = BoardProblem(b, WangTileSet.brick(3), random_boundary(b, 3, seed=5))
     s = wang.solve(p, method="sat", seed=1)
     assert s.status.value == "sat"
@@ -56,7 +56,7 @@ def test_consistent_edge_recolouring_breaks_a_tile(solved):
 
 
 def test_shape_colour_and_generic_tiles():
-    b = Board.rect(1, 2)
+    b = Board.rect(2, 1)
     p = BoardProblem(b, WangTileSet.brick(3))
     assert board_violations(p, np.zeros((3, 4), int))[0].kind == "shape"
     assert board_violations(p, np.full((2, 4), 7))[0].kind == "colour"
@@ -67,7 +67,7 @@ def test_shape_colour_and_generic_tiles():
 
 
 def test_line_limits_are_checked():
-    b = Board.rect(1, 4)
+    b = Board.rect(4, 1)
     p = BoardProblem(b, WangTileSet.brick(3), max_h=2)
     # four horizontal tiles in a row: colours W=E=0 everywhere, N != S
     t = np.array([[0, 1, 0, 2]] * 4)
@@ -79,7 +79,7 @@ def test_line_limits_are_checked():
     t2[3] = [1, 1, 1, 2]
     assert not any(x.kind == "line" for x in board_violations(p, t2))
     # on a torus a full row is a run with no end
-    tor = BoardProblem(Board.torus(2, 3), WangTileSet.brick(3), max_h=5)
+    tor = BoardProblem(Board.torus(3, 2), WangTileSet.brick(3), max_h=5)
     tt = np.tile([0, 1, 0, 2], (6, 1))
     assert any(x.kind == "line" for x in board_violations(tor, tt))
 
@@ -88,7 +88,7 @@ def _listing(board):
     return board.labels.copy(), board.edge_array().copy()
 
 
-@pytest.mark.parametrize("board", [Board.rect(3, 4), Board.mobius(4, 5), Board.klein(3, 3),
+@pytest.mark.parametrize("board", [Board.rect(4, 3), Board.mobius(5, 4), Board.klein(3, 3),
                                    Board.ring(4, 4).restrict(np.arange(12) != 3)])
 def test_a_board_listed_as_written_or_reordered_has_no_listing_violations(board):
     cells, edges = _listing(board)
@@ -100,7 +100,7 @@ def test_a_board_listed_as_written_or_reordered_has_no_listing_violations(board)
 
 
 def test_every_listing_difference_is_a_violation_at_its_cell():
-    board = Board.rect(3, 4)  # cell 5 is [1, 1]
+    board = Board.rect(4, 3)  # cell 5 is [1, 1]
     cells, edges = _listing(board)
     moved = cells.copy()
     moved[5] = [9, 9]
@@ -135,8 +135,8 @@ def test_tiles_of_sets_with_very_many_colours_are_matched_exactly():
 
 
 def test_a_line_limit_beyond_the_board_is_cheap_and_still_catches_endless_lines():
-    tor = BoardProblem(Board.torus(2, 3), WangTileSet.brick(3), max_h=10**12)
+    tor = BoardProblem(Board.torus(3, 2), WangTileSet.brick(3), max_h=10**12)
     tt = np.tile([0, 1, 0, 2], (6, 1))  # every row one horizontal line round the torus
     assert sum(x.kind == "line" for x in board_violations(tor, tt)) == 6
-    rect = BoardProblem(Board.rect(1, 4), WangTileSet.brick(3), max_h=10**12)
+    rect = BoardProblem(Board.rect(4, 1), WangTileSet.brick(3), max_h=10**12)
     assert board_violations(rect, np.array([[0, 1, 0, 2]] * 4)) == []

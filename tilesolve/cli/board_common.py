@@ -30,8 +30,10 @@ def _method_choices():
 
 board_opt = click.option("--board", "board_spec", required=True, metavar="SPEC", help="The board (see below).")
 boundary_opt = click.option(
-    "--boundary", default="random", show_default=True, metavar="random|free|FILE",
-    help="Boundary colours: random, free, or a JSON file with a list (one colour or null per boundary leg).",
+    "--boundary", default="free", show_default=True, metavar="free|random|FILE",
+    help="Boundary colours: free (any colours; the default for every tile set, as in the Python API), random "
+         "(seeded by --seed: the brick paper's given boundary, which brick tiles always meet on planar boards), "
+         "or a JSON file with a list (one colour or null per boundary leg).",
 )
 method_opt = click.option("--method", type=click.Choice(_method_choices()), default="auto", show_default=True,
                           help="auto: the linear algorithm (§4) where it applies, SAT otherwise.")
@@ -86,7 +88,7 @@ def board_text(problem, tiling) -> str:
     (``1020``) up to 10 colours, else comma-separated; ``.`` fills a hole.
 
     >>> from tilesolve.model.board import Board, BoardProblem, WangTileSet
-    >>> p = BoardProblem(Board.rect(1, 2), WangTileSet.brick(3), None)
+    >>> p = BoardProblem(Board.rect(2, 1), WangTileSet.brick(3), None)
     >>> print(board_text(p, [[0, 1, 0, 2], [0, 1, 2, 1]]), end="")  # legs W, N, E, S
     1020 1210
     """

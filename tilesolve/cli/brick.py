@@ -150,7 +150,7 @@ def count(ctx, board_spec, colors, boundary, seed, time_limit) -> None:
 @opt.seed_opt
 @opt.time_limit_opt
 @click.option("--trials", type=click.IntRange(1, 1000), default=1, show_default=True,
-              help="N trials with seeds SEED, SEED+1, ... (a new random boundary each time).")
+              help="N trials with seeds SEED, SEED+1, ... (with --boundary random, a new random boundary each time).")
 @click.pass_context
 def crosscheck(ctx, board_spec, colors, boundary, seed, time_limit, trials) -> None:
     """Run the linear algorithm, SAT and CP-SAT on one board and check that they agree.

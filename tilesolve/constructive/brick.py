@@ -27,7 +27,7 @@ and the cycle solver fails, the algorithm raises :class:`~tilesolve.errors.Metho
 Examples
 --------
 >>> from tilesolve.model.board import Board, BoardProblem, WangTileSet
->>> p = BoardProblem(Board.rect(5, 7), WangTileSet.brick(3), [2] * 24)
+>>> p = BoardProblem(Board.rect(7, 5), WangTileSet.brick(3), [2] * 24)
 >>> solve_linear(p, seed=0).status.value
 'sat'
 """

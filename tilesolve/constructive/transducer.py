@@ -476,7 +476,7 @@ class TransducerVerdict:
         (0 when not even ``T_1`` was).
     torus : numpy.ndarray or None
         ``"periodic"`` only: ``(k, p)`` tile indices of a tiling of the ``k x p`` torus (row 0
-        at the top), to be checked on ``Board.torus(k, p)``.
+        at the top), to be checked on ``Board.torus(p, k)``.
     reason : str
         Why the search stopped, in words.
     sizes : list of tuple
@@ -590,7 +590,7 @@ def strip_width(tileset: WangTileSet, k: int, *, max_transitions: int = DEFAULT_
 
 def torus_tiling(tileset: WangTileSet, torus) -> np.ndarray:
     """Leg colours ``(k * p, 4)`` (W, N, E, S, cells in row-major order) of the ``(k, p)`` tile
-    indices ``torus``: the tiling of ``Board.torus(k, p)`` for the board verifier."""
+    indices ``torus``: the tiling of ``Board.torus(p, k)`` for the board verifier."""
     idx = np.asarray(torus, dtype=np.int64)
     return np.asarray(tileset.legs, dtype=np.int64)[idx.ravel()]
 

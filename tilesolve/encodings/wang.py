@@ -106,7 +106,7 @@ def line_windows(nbr_cell: np.ndarray, nbr_leg: np.ndarray, axis: str, length: i
     same whatever ``length`` is, and a ``length`` beyond every straight run gives none.
 
     >>> from tilesolve.model.board import Board
-    >>> t = Board.torus(1, 3)
+    >>> t = Board.torus(3, 1)
     >>> line_windows(t.nbr_cell, t.nbr_leg, "H", 10**9).tolist()
     [[0, 1, 2, 0], [1, 2, 0, 1], [2, 0, 1, 2]]
     """

@@ -321,7 +321,7 @@ def _mobius_demo() -> BoardProblem:
     """A Möbius strip (Example 5) with a hole, brick tiles, a random boundary."""
     from tilesolve.model.board import Board, WangTileSet, random_boundary
 
-    m = Board.mobius(14, 40)
+    m = Board.mobius(40, 14)
     keep = np.ones(m.n_cells, bool)
     lab = m.labels
     keep[(lab[:, 0] >= 5) & (lab[:, 0] <= 8) & (lab[:, 1] >= 17) & (lab[:, 1] <= 22)] = False
@@ -446,7 +446,7 @@ FORM = Form(
         Field("size", "size", "size (WxH)", "24x16", "W columns by H rows", high=1 << 20, option="--board"),
         Field("colors", "int", "colours #C", 3, "edge colours of the brick tiles (Def. 9)", low=3, high=8,
               option="--colors"),
-        Field("boundary", "text", "boundary colours", "random", "random, free, or a colour per boundary leg "
+        Field("boundary", "text", "boundary colours", "free", "free, random, or a colour per boundary leg "
               "(comma-separated, - = free; legs numbered by cell, then W N E S)", option="--boundary"),
         Field("max_h", "int", "longest horizontal line", None, "no horizontal line through more cells (SAT route)",
               low=1, high=1 << 20, option="--max-h"),

@@ -51,7 +51,7 @@ def window_problem(legs, tileset: WangTileSet, *, max_line: int | None = None) -
     window's own outer colours (``legs``: ``(rows, cols, 4)`` W, N, E, S)."""
     t = np.asarray(legs, dtype=np.int64)
     rows, cols = t.shape[:2]
-    board = Board.rect(rows, cols)
+    board = Board.rect(cols, rows)
     flat = t.reshape(-1, 4)
     bl = board.boundary_legs
     return BoardProblem(board, tileset, flat[bl[:, 0], bl[:, 1]], max_h=max_line, max_v=max_line)

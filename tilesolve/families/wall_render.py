@@ -226,7 +226,7 @@ class _BandChecker:
 
         key = (rows, cols)
         if key not in self._problems:  # bands share one shape (the last one may differ)
-            self._problems = {key: BoardProblem(Board.rect(rows, cols), WangTileSet.brick(self.colors), None,
+            self._problems = {key: BoardProblem(Board.rect(cols, rows), WangTileSet.brick(self.colors), None,
                                                 max_h=self.n, max_v=self.n)}
         return self._problems[key]
 

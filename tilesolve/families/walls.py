@@ -56,7 +56,7 @@ __all__ = ["wall_problem", "npd_problem", "is_free_wall", "wall_route", "procedu
 def wall_problem(rows: int, cols: int, max_line: int, *, max_v: int | None = None, n_colors: int = 3) -> BoardProblem:
     """The board problem of a ``rows x cols`` brick wall with lines of at most ``max_line``
     cells across and ``max_v`` (default ``max_line``) down."""
-    return BoardProblem(Board.rect(rows, cols), WangTileSet.brick(n_colors), None, max_h=int(max_line),
+    return BoardProblem(Board.rect(cols, rows), WangTileSet.brick(n_colors), None, max_h=int(max_line),
                         max_v=int(max_line if max_v is None else max_v))
 
 
@@ -65,7 +65,7 @@ def npd_problem(rows: int, cols: int, max_line: int, *, max_v: int | None = None
     """The board problem of one period of a repeatable wall: brick tiles on the
     ``rows x cols`` torus (:meth:`Board.torus`), lines of at most ``max_line`` cells across
     and ``max_v`` (default ``max_line``) down, across the seams too (004 App. A)."""
-    return BoardProblem(Board.torus(rows, cols), WangTileSet.brick(n_colors), None, max_h=int(max_line),
+    return BoardProblem(Board.torus(cols, rows), WangTileSet.brick(n_colors), None, max_h=int(max_line),
                         max_v=int(max_line if max_v is None else max_v))
 
 
@@ -193,9 +193,9 @@ def npd_route(problem: BoardProblem, run: RunOptions) -> Solution:
         Brick tiles (``problem.n_colors >= 3``), both line limits ``max_h``/``max_v`` (they may
         differ), no fixed boundary leg, on either
 
-        * a torus ``Board.torus(rows, cols)`` (:func:`npd_problem`): the period itself; the
+        * a torus ``Board.torus(cols, rows)`` (:func:`npd_problem`): the period itself; the
           limits hold across the seams; or
-        * a rectangle ``Board.rect(rows, cols)`` (:func:`wall_problem`): a window of the plane
+        * a rectangle ``Board.rect(cols, rows)`` (:func:`wall_problem`): a window of the plane
           tiled by repeating one period.
     run : RunOptions
         ``run.seed``; ``run.time_limit`` bounds the dappling; family options:

@@ -70,7 +70,7 @@ class Lattice(NamedTuple):
         """The board (every leg joined: no boundary). Cell ``r * cols + c`` is ``(r, c)``."""
         p, q, s = int(self.rows), int(self.cols), int(self.shear)
         if s == 0:
-            return Board.torus(p, q)
+            return Board.torus(q, p)
         r, c = np.divmod(np.arange(p * q, dtype=np.int64), q)
         east = np.where(c < q - 1, r * q + c + 1, ((r + s) % p) * q)
         south = ((r + 1) % p) * q + c
@@ -82,7 +82,7 @@ class Lattice(NamedTuple):
 
 def square_board(rows: int, cols: int | None = None) -> Board:
     """The free rectangle of ``rows`` x ``cols`` cells (cell ``r * cols + c`` is ``(r, c)``)."""
-    return Board.rect(int(rows), int(rows if cols is None else cols))
+    return Board.rect(int(rows if cols is None else cols), int(rows))
 
 
 def leg_colours(tileset: WangTileSet, tiling) -> np.ndarray:

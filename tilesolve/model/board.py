@@ -108,7 +108,7 @@ class Board:
 
     Examples
     --------
-    >>> b = Board.rect(2, 3)
+    >>> b = Board.rect(3, 2)
     >>> b.n_cells, b.n_boundary, b.n_edges
     (6, 10, 17)
     >>> int(b.nbr_cell[0, E]), int(b.nbr_leg[0, E])
@@ -339,7 +339,7 @@ class Board:
 
         Examples
         --------
-        >>> m = Board.mobius(3, 4)
+        >>> m = Board.mobius(4, 3)
         >>> m.grid_spec
         GridSpec(rows=3, cols=4, wrap_rows=None, wrap_cols='twist')
         >>> hole = m.restrict(m.labels[:, 1] != 2)  # drop column 2
@@ -380,16 +380,23 @@ class Board:
         return cls._built(np.stack([rows, cols], axis=1), nc, nl, kind, GridSpec(H, Wd, wrap_rows, wrap_cols))
 
     @classmethod
-    def _shape(cls, kind: str, rows: int, cols: int) -> "Board":
-        """The ``rows x cols`` board of a shape of :data:`GRID_KINDS` (its sides and cells)."""
-        _check_dims(rows, cols)
+    def _shape(cls, kind: str, width: int, height: int) -> "Board":
+        """The ``width x height`` board of a shape of :data:`GRID_KINDS` (its sides and cells)."""
+        _check_dims(height, width)
         wrap_rows, wrap_cols = GRID_KINDS[kind]
-        return cls.grid(kind_mask(kind, rows, cols), wrap_rows=wrap_rows, wrap_cols=wrap_cols, kind=kind)
+        return cls.grid(kind_mask(kind, height, width), wrap_rows=wrap_rows, wrap_cols=wrap_cols, kind=kind)
 
     @classmethod
-    def rect(cls, rows: int, cols: int) -> "Board":
-        """The ``rows x cols`` rectangle with the wall all round."""
-        return cls._shape("rect", rows, cols)
+    def rect(cls, width: int, height: int) -> "Board":
+        """The rectangle of ``width`` columns and ``height`` rows with the wall all round.
+
+        Every board builder takes its size width first, as the CLI's ``rect:WxH`` does
+        (:func:`parse_board_spec`).
+
+        >>> Board.rect(4, 2).describe()
+        'rect board, 8 cells in 4x2, 12 boundary legs'
+        """
+        return cls._shape("rect", width, height)
 
     @classmethod
     def mask(cls, mask) -> "Board":
@@ -397,34 +404,35 @@ class Board:
         return cls.grid(mask, kind="mask")
 
     @classmethod
-    def torus(cls, rows: int, cols: int) -> "Board":
+    def torus(cls, width: int, height: int) -> "Board":
         """Both directions wrap: no boundary (periodic tilings, Remark 3)."""
-        return cls._shape("torus", rows, cols)
+        return cls._shape("torus", width, height)
 
     @classmethod
-    def cylinder(cls, rows: int, cols: int) -> "Board":
+    def cylinder(cls, width: int, height: int) -> "Board":
         """Columns wrap; the top and bottom rows meet the wall."""
-        return cls._shape("cylinder", rows, cols)
+        return cls._shape("cylinder", width, height)
 
     @classmethod
-    def mobius(cls, rows: int, cols: int) -> "Board":
-        """The Möbius strip of Example 5: columns wrap with a twist, rows meet the wall.
+    def mobius(cls, width: int, height: int) -> "Board":
+        """The Möbius strip of Example 5, ``width`` columns around and ``height`` rows across:
+        columns wrap with a twist, rows meet the wall.
 
-        The E leg of cell ``(r, cols-1)`` meets the W leg of ``(rows-1-r, 0)`` (the paper's
+        The E leg of cell ``(r, width-1)`` meets the W leg of ``(height-1-r, 0)`` (the paper's
         ``j = 1, j' = N, i + i' = N + 1``); the N legs of row 0 and the S legs of the last
         row are the boundary ``B``.
         """
-        return cls._shape("mobius", rows, cols)
+        return cls._shape("mobius", width, height)
 
     @classmethod
-    def klein(cls, rows: int, cols: int) -> "Board":
+    def klein(cls, width: int, height: int) -> "Board":
         """Klein bottle: columns wrap with a twist, rows wrap plainly; no boundary."""
-        return cls._shape("klein", rows, cols)
+        return cls._shape("klein", width, height)
 
     @classmethod
-    def ring(cls, rows: int, cols: int) -> "Board":
-        """The border of a ``rows x cols`` rectangle: G' is one cycle (tests of §4.3)."""
-        return cls._shape("ring", rows, cols)
+    def ring(cls, width: int, height: int) -> "Board":
+        """The border of a ``width x height`` rectangle: G' is one cycle (tests of §4.3)."""
+        return cls._shape("ring", width, height)
 
     @classmethod
     def random_tree(cls, n_cells: int, *, seed=None, span: int | None = None) -> "Board":
@@ -457,28 +465,28 @@ class Board:
         return cls.grid(m, kind="tree")
 
     @classmethod
-    def random_holes(cls, rows: int, cols: int, density: float = 0.1, *, seed=None) -> "Board":
-        """Rectangle with each cell removed with probability ``density``."""
+    def random_holes(cls, width: int, height: int, density: float = 0.1, *, seed=None) -> "Board":
+        """``width x height`` rectangle with each cell removed with probability ``density``."""
         from tilesolve._random import rng_from_seed
 
-        _check_dims(rows, cols)
+        _check_dims(height, width)
         rng = rng_from_seed(seed)
-        m = rng.random((rows, cols)) >= density
+        m = rng.random((height, width)) >= density
         if not m.any():
             m[0, 0] = True
         return cls.grid(m, kind="mask")
 
     @classmethod
-    def with_holes(cls, rows: int, cols: int, n_holes: int, max_size: int = 8, *, seed=None) -> "Board":
-        """Rectangle with ``n_holes`` random rectangular holes of side 1..``max_size``."""
+    def with_holes(cls, width: int, height: int, n_holes: int, max_size: int = 8, *, seed=None) -> "Board":
+        """``width x height`` rectangle with ``n_holes`` random rectangular holes of side 1..``max_size``."""
         from tilesolve._random import rng_from_seed
 
-        _check_dims(rows, cols)
+        _check_dims(height, width)
         rng = rng_from_seed(seed)
-        m = np.ones((rows, cols), bool)
+        m = np.ones((height, width), bool)
         for _ in range(int(n_holes)):
             h, w = rng.integers(1, max_size + 1, size=2)
-            r, c = int(rng.integers(0, rows)), int(rng.integers(0, cols))
+            r, c = int(rng.integers(0, height)), int(rng.integers(0, width))
             m[r : r + h, c : c + w] = False
         if not m.any():
             m[0, 0] = True
@@ -649,7 +657,7 @@ def parse_board_spec(spec: str) -> Board:
             "klein:WxH, ring:WxH or mask:FILE"
         )
     kind, w, h = m.group(1), int(m.group(2)), int(m.group(3))
-    return getattr(Board, kind)(h, w)
+    return getattr(Board, kind)(w, h)
 
 
 # ---------------------------------------------------------------------- tile sets
@@ -797,7 +805,14 @@ class WangTileSet:
 
 
 def random_boundary(board: Board, n_colors: int, *, seed=None) -> np.ndarray:
-    """A random colour for every boundary leg."""
+    """A random colour for every boundary leg (``--boundary random``), drawn from ``seed``.
+
+    The brick paper's question (Def. 2) is a tiling under *given* boundary colours β, which
+    the brick tiles W_B meet for every β on planar grid boards (§4, Lemma 10): a random β
+    shows the linear algorithm at work. It is asked for, never a default
+    (:class:`BoardProblem`): a general tile set under random boundary colours almost never
+    tiles a board (``periodic-7-30`` tiles no 3x3 rectangle under one).
+    """
     from tilesolve._random import rng_from_seed
 
     return rng_from_seed(seed).integers(0, n_colors, size=board.n_boundary).astype(np.int64)
@@ -814,7 +829,13 @@ class BoardProblem:
         Its ``n_colors`` is ``#C``.
     boundary : array-like, optional
         Colour required on each boundary leg (by boundary-leg number), ``-1`` = free.
-        ``None`` leaves every boundary leg free.
+        ``None``, the default, leaves every boundary leg free: the question "does the tile
+        set tile this board at all", which makes sense for every tile set and needs no seed.
+        The CLI's ``--boundary`` defaults to ``free`` too. The brick paper's question, a
+        tiling under given boundary colours (Def. 2; W_B meets any on planar boards, §4,
+        Lemma 10), is asked by passing them: :func:`random_boundary` is
+        ``--boundary random``. A random default would make nearly every general tile set
+        unsat.
     max_h, max_v : int, optional
         Brick walls only (dappled paper §4): no run of more than ``max_h`` consecutive
         W_H tiles (``c1 = c3``) along a row, or ``max_v`` W_V tiles (``c2 = c4``) down a

@@ -185,7 +185,7 @@ def listing_violations(board, cells, edges) -> list[Violation]:
     Examples
     --------
     >>> from tilesolve.model.board import Board
-    >>> b = Board.rect(1, 2)
+    >>> b = Board.rect(2, 1)
     >>> listing_violations(b, b.labels, b.edge_array())
     []
     >>> cells = b.labels.copy()
