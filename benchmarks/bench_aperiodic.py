@@ -54,7 +54,7 @@ def cpu() -> float:
 def plain(ws, board: Board, cap: float):
     t, c = time.perf_counter(), cpu()
     enc = encode_wang(BoardProblem(board, ws))
-    r = solve_cnf(enc.hard, time_limit=cap, seed=1)
+    r = solve_cnf(enc.hard, deadline=Deadline(cap), seed=1)
     return r.status, time.perf_counter() - t, cpu() - c
 
 

@@ -37,6 +37,7 @@ DEFAULT_METHODS = ["rc2", "lazy", "auto", "cpsat"]
 def worker(size: int, seed: int, method: str, time_limit: float, conds: list[str]) -> dict:
     import numpy as np
 
+    from tilesolve.deadline import Deadline
     from tilesolve.encodings import encode_wcnf
     from tilesolve.engine.dappled import solve_cpsat, solve_maxsat
     from tilesolve.engine.maxsat import RC2Options, solve_lazy, solve_wcnf
@@ -49,22 +50,22 @@ def worker(size: int, seed: int, method: str, time_limit: float, conds: list[str
     t0 = time.perf_counter()
     lb = None
     if method == "auto":
-        sol = solve_maxsat(p, time_limit=time_limit)
+        sol = solve_maxsat(p, deadline=Deadline(time_limit))
         status, tiling, opt, lb = sol.status, sol.tiling, sol.objective, sol.stats.get("lower_bound")
         used = sol.solver
     elif method == "cpsat":
-        sol = solve_cpsat(p, time_limit=time_limit)
+        sol = solve_cpsat(p, deadline=Deadline(time_limit))
         status, tiling, opt, lb = sol.status, sol.tiling, sol.objective, sol.stats.get("lower_bound")
         used = "cp-sat x2"
     else:
         enc = encode_wcnf(p)
         if method == "lazy":
-            r = solve_lazy(enc.hard, enc.soft, enc.target_values(target), time_limit=time_limit)
+            r = solve_lazy(enc.hard, enc.soft, enc.target_values(target), deadline=Deadline(time_limit))
         else:
             oracle = method.split(":", 1)[1] if ":" in method else "g3"
             opts = RC2Options(adapt="+aem" in method, exhaust="+aem" in method, minz="+aem" in method,
                               stratified=method.startswith("rc2-strat"))
-            r = solve_wcnf(enc.hard, enc.soft, solver=oracle, time_limit=time_limit, options=opts)
+            r = solve_wcnf(enc.hard, enc.soft, solver=oracle, deadline=Deadline(time_limit), options=opts)
         status, opt, lb, used = r.status, r.cost, r.stats.get("lower_bound"), r.solver
         tiling = enc.decode(r.model) if r.model is not None else None
     elapsed = time.perf_counter() - t0

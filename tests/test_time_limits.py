@@ -90,14 +90,13 @@ def test_maxsat_loading_stops_at_the_deadline():
 
 
 @pytest.mark.parametrize("route", ["sat", "cpsat", "maxsat"])
-def test_routes_turn_an_expired_encoding_into_unknown(route, monkeypatch):
+def test_routes_turn_an_expired_encoding_into_unknown(route):
     import tilesolve.engine.dappled as eng
 
-    monkeypatch.setattr(eng, "Deadline", lambda time_limit: AfterChecks(0, time_limit))
     p = _big_problem()
     if route == "maxsat":
         p = DappledProblem.from_strings("300x300", ["H0=3", "V1=3"], cyclic=True, closest_to=np.zeros((300, 300), int))
-    s = getattr(eng, f"solve_{route}")(p, time_limit=3)
+    s = getattr(eng, f"solve_{route}")(p, deadline=AfterChecks(0, 3))
     assert s.status is Status.UNKNOWN and s.tiling is None
     assert s.reason.startswith("time limit of 3 s reached while")
 

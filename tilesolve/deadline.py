@@ -1,7 +1,12 @@
 """A wall-clock deadline shared by the steps of one run (base layer: every layer may use it).
 
 Routes of every family (constructive, encoding, solver, proof check) count against one
-:class:`Deadline`, so a time limit covers the whole run, not only the solver call.
+:class:`Deadline`, so a time limit covers the whole run, not only the solver call. It is made
+once per run, from the seconds the user gave, at the public entry point
+(:func:`tilesolve.family.solve`, :func:`tilesolve.family.count`, a crosscheck), and passed
+down; a part of the run with a budget of its own (a portfolio wave, one attempt of a
+restarting search) takes :meth:`Deadline.within`, never a new one. A deadline handed to a
+worker process (pickled) keeps counting from the run's start there.
 """
 
 from __future__ import annotations
@@ -10,7 +15,7 @@ import time
 
 from tilesolve.errors import InvalidProblem, TilesolveError
 
-__all__ = ["Deadline", "TimeLimitReached"]
+__all__ = ["Deadline", "TimeLimitReached", "NO_LIMIT"]
 
 
 class TimeLimitReached(TilesolveError):
@@ -33,6 +38,23 @@ class Deadline:
         self._clock = time.perf_counter
         self.start = self._clock()
         self.time_limit = time_limit
+
+    def within(self, seconds: float | None) -> "Deadline":
+        """A deadline for a part of this run with a budget of its own: it passes ``seconds`` from
+        now, or when this one does if that is sooner (``None``: when this one does).
+
+        >>> run = Deadline(10.0)
+        >>> run.within(3.0).time_limit, run.within(None).time_limit <= 10.0, Deadline(None).within(None).time_limit
+        (3.0, True, None)
+        """
+        left = self.remaining()
+        return Deadline(left if seconds is None else seconds if left is None else min(seconds, left))
+
+    def __reduce__(self):
+        """Pickled for a worker process: the time limit and the time spent so far travel (the
+        time in transit counted by the wall clock), so the deadline passes there when it does
+        here."""
+        return _unpickled, (self.time_limit, self.elapsed(), time.time())
 
     def elapsed(self) -> float:
         return self._clock() - self.start
@@ -61,3 +83,16 @@ class Deadline:
         """
         if self.expired():
             raise TimeLimitReached(f"time limit of {self.time_limit:.3g} s reached while {doing}")
+
+
+#: The deadline of a call made outside any run (a test, a direct call of an engine function):
+#: it never passes. Engine functions take it as their default instead of making a deadline of
+#: their own; time is never measured with it (its start is the import).
+NO_LIMIT = Deadline(None)
+
+
+def _unpickled(time_limit: float | None, elapsed: float, sent: float) -> Deadline:
+    """A pickled :class:`Deadline` in the process that reads it (:meth:`Deadline.__reduce__`)."""
+    d = Deadline(time_limit)
+    d.start -= elapsed + max(0.0, time.time() - sent)
+    return d

@@ -16,6 +16,7 @@ from tilesolve.constructive.packing_count import (
 from tilesolve.constructive.packing import apply_symmetry
 from tilesolve.encodings.packing import encode_packing
 from tilesolve.engine.sat import count_models
+from tilesolve.deadline import Deadline
 from tilesolve.errors import InvalidProblem
 from tilesolve.model.packing import PackingProblem
 from tilesolve.verify.packing import is_packing
@@ -78,7 +79,7 @@ def test_orbit_representatives_are_packings():
 
 
 def test_time_limit_gives_unknown():
-    res = count_packings("wang", 2, time_limit=1e-9)
+    res = count_packings("wang", 2, deadline=Deadline(1e-9))
     assert not res.exact and res.value is None and "time limit" in res.note
 
 

@@ -16,6 +16,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from tilesolve.deadline import Deadline
 from tilesolve.engine.dappled import (
     count_by_enumeration,
     enumerate_tilings,
@@ -227,7 +228,7 @@ def test_enumeration_limit_and_time_limit():
     p = DappledProblem.from_strings("4x4", ["H0=2", "V1=2"])
     e = enumerate_tilings(p, limit=5)
     assert len(list(e)) == 5 and not e.complete
-    c = count_by_enumeration(DappledProblem.from_strings("8x8", ["H0=2", "V1=2"]), time_limit=0.2)
+    c = count_by_enumeration(DappledProblem.from_strings("8x8", ["H0=2", "V1=2"]), deadline=Deadline(0.2))
     assert not c.exact and c.value is None and c.stats["found"] >= 0 and "time limit" in c.note
 
 
@@ -337,7 +338,7 @@ def test_lazy_falls_back_to_rc2_on_dense_instances():
 
 def test_sat_time_limit_gives_unknown_never_unsat():
     for solver in ("cadical153", "glucose4"):
-        r = solve_cnf(php(11), solver=solver, time_limit=0.05)
+        r = solve_cnf(php(11), solver=solver, deadline=Deadline(0.05))
         assert r.status in (Status.UNKNOWN, Status.UNSAT)  # a very fast machine might finish
         if r.status is Status.UNKNOWN:
             assert "time limit" in r.reason
@@ -345,7 +346,7 @@ def test_sat_time_limit_gives_unknown_never_unsat():
 
 def test_family_time_limit_gives_unknown():
     p = DappledProblem.from_strings("300x300", ["H0=2", "V1=2"], cyclic=True)
-    s = solve_sat(p, time_limit=0.0)
+    s = solve_sat(p, deadline=Deadline(0.0))
     assert s.status is Status.UNKNOWN and "time limit" in s.reason and s.tiling is None
 
 
@@ -353,7 +354,7 @@ def test_maxsat_time_limits_give_unknown():
     rng = np.random.default_rng(1)
     p = DappledProblem.from_strings("96x96", ["H0=2", "V1=2"], closest_to=rng.integers(0, 2, (96, 96)))
     for method in ("rc2", "lazy"):
-        s = solve_maxsat(p, method=method, time_limit=0.01)
+        s = solve_maxsat(p, method=method, deadline=Deadline(0.01))
         assert s.status in (Status.UNKNOWN, Status.OPTIMAL)
         if s.status is Status.UNKNOWN:
             assert s.tiling is None and "time limit" in s.reason
@@ -362,7 +363,7 @@ def test_maxsat_time_limits_give_unknown():
 def test_cpsat_time_limit_never_claims_optimality_wrongly():
     rng = np.random.default_rng(2)
     p = DappledProblem.from_strings("40x40", ["H0=2", "V1=2"], closest_to=rng.integers(0, 2, (40, 40)))
-    s = solve_cpsat(p, time_limit=0.01)
+    s = solve_cpsat(p, deadline=Deadline(0.01))
     assert s.status in (Status.SAT, Status.UNKNOWN, Status.OPTIMAL)
     if s.status.has_tiling:
         assert is_dappled(p, s.tiling)

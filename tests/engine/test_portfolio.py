@@ -32,6 +32,7 @@ from tilesolve.engine import progress
 from tilesolve.engine.portfolio import escalate, run_portfolio
 from tilesolve.engine.result import run_interruptible
 from tilesolve.errors import BackendUnavailable, InvalidProblem
+from tilesolve.model.run import RunOptions
 from tilesolve.model.solution import Solution, Status
 
 LONG_S = 60.0  # a run the portfolio must stop, not wait for
@@ -138,13 +139,13 @@ def test_a_run_that_reports_interrupted_ends_the_portfolio():
 
 
 def test_one_worker_time_limit_starts_no_more_seeds():
-    s = run_portfolio(task(s0="sleep:0.3", s1="sat"), [0, 1], workers=1, time_limit=0.1)
+    s = run_portfolio(task(s0="sleep:0.3", s1="sat"), [0, 1], workers=1, deadline=Deadline(0.1))
     assert s.status is Status.UNKNOWN
     assert s.reason == "no run decided: 1 run ended unknown (time limit: 1); 1 seed not started (time limit)"
 
 
 @pytest.mark.parametrize("kwargs", [dict(seeds=[]), dict(seeds=[-1]), dict(seeds=[1.5]), dict(workers=0),
-                                    dict(workers=True), dict(time_limit=-1.0)])
+                                    dict(workers=True)])
 def test_bad_arguments(kwargs):
     args = dict(seeds=[0, 1], workers=2) | kwargs
     with pytest.raises(InvalidProblem):
@@ -189,7 +190,7 @@ def test_all_unknown_is_unknown_never_unsat():
 def test_time_limit_stops_running_runs():
     t0 = time.perf_counter()
     s = run_portfolio(task(s0=f"sleep:{LONG_S}", s1=f"sleep:{LONG_S}", s2="sat"), range(3), workers=2,
-                      time_limit=0.2)
+                      deadline=Deadline(0.2))
     assert time.perf_counter() - t0 < BOUND_S  # did not wait for the sleepers
     assert s.status is Status.UNKNOWN
     assert s.reason == "no run decided: 2 runs stopped (time limit); 1 seed not started (time limit)"
@@ -308,7 +309,7 @@ def test_dask_open_client_is_used_and_left_open(dask_address):
 
 def test_dask_time_limit(dask_address):
     t0 = time.perf_counter()
-    s = run_portfolio(task(s0="sleep:2", s1="sleep:2"), range(2), cluster=dask_address, time_limit=0.1)
+    s = run_portfolio(task(s0="sleep:2", s1="sleep:2"), range(2), cluster=dask_address, deadline=Deadline(0.1))
     assert time.perf_counter() - t0 < BOUND_S
     assert s.status is Status.UNKNOWN and s.reason == "no run decided: 2 runs stopped (time limit)"
 
@@ -342,28 +343,30 @@ def test_missing_dask_names_the_extra(monkeypatch):
 # --------------------------------------------------------------------- escalate (a route)
 
 
-def planned_route(plan: dict, *, seed, time_limit, solver):
-    """A fake route over the "problem" ``plan`` (seed -> action, default ``"wait"``).
+def planned_route(plan: dict, run: RunOptions):
+    """A fake route over the "problem" ``plan`` (the run's seed -> action, default ``"wait"``).
 
     ``"sat"``; ``"sleep:S"`` (then ``sat``: decides late and cannot be stopped early);
     ``"raise"``; ``"wait"``: a "solver" that runs until it is interrupted (the time limit, or
     the escalation's stop request) and then answers ``unknown``.
     """
+    seed, solver = run.seed, run.solver
     action, _, arg = plan.get(seed, "wait").partition(":")
-    stats = {"pid": os.getpid(), "time_limit": time_limit}
+    stats = {"pid": os.getpid(), "time_limit": run.deadline.time_limit}
     if action == "raise":
         raise InvalidProblem(f"bad input for seed {seed}")
     if action == "wait":
         solving = threading.Event()
-        _, stop = run_interruptible(solving.wait, solving.set, Deadline(time_limit))
+        _, stop = run_interruptible(solving.wait, solving.set, run.deadline)
         return Solution(Status.UNKNOWN, None, "fake", solver, seed, 0.0, reason=stop, stats=stats)
     if action == "sleep":
         time.sleep(float(arg))
     return Solution(Status.SAT, _tiling(seed), "fake", solver, seed, 0.0, stats=stats)
 
 
-def _escalate(plan: dict, **kwargs) -> Solution:
-    return escalate(planned_route, plan, name="fake search", **({"seed": 1, "solver": "s"} | kwargs))
+def _escalate(plan: dict, *, time_limit: float | None = None, **kwargs) -> Solution:
+    run = RunOptions(**({"seed": 1, "solver": "s", "deadline": Deadline(time_limit)} | kwargs))
+    return escalate(planned_route, plan, run, name="fake search")
 
 
 @pytest.fixture
@@ -375,7 +378,7 @@ def at_once(monkeypatch):
 
 def test_escalate_first_run_that_decides_quickly_is_the_plain_call():
     s = _escalate({1: "sat"})
-    plain = planned_route({1: "sat"}, seed=1, time_limit=None, solver="s")
+    plain = planned_route({1: "sat"}, RunOptions(seed=1, solver="s"))
     _same(s, plain)
     assert s.stats == plain.stats and s.stats["pid"] == os.getpid()
 
@@ -465,9 +468,9 @@ def test_escalate_reraises_a_worker_error_and_stops_the_first_run(at_once):
     assert time.perf_counter() - t0 < BOUND_S
 
 
-def test_escalate_draws_a_seed_and_checks_workers():
-    s = escalate(planned_route, {}, name="fake search", time_limit=0.0)  # seed drawn, first run undecided
-    assert s.status is Status.UNKNOWN and isinstance(s.seed, int)
+def test_escalate_checks_workers():
+    s = _escalate({}, time_limit=0.0)  # the first run undecided at once
+    assert s.status is Status.UNKNOWN and s.seed == 1
     with pytest.raises(InvalidProblem, match="workers"):
         _escalate({1: "sat"}, workers=0)
 
@@ -505,11 +508,13 @@ def test_forced_portfolio_runs_as_a_script_without_main_guard(tmp_path):
         from tilesolve.engine import portfolio
         from tilesolve.families.packing_search import solve_lift
         from tilesolve.model.packing import PackingProblem
+        from tilesolve.model.run import RunOptions
 
         portfolio.QUICK_S = 0.0  # workers start beside the first run at once
         s = packing.solve(PackingProblem("corner", 6), method="lift", seed=1, workers=2)
         print(s.status.value, s.stats["portfolio_workers"])
-        s = portfolio.run_portfolio(functools.partial(solve_lift, PackingProblem("corner", 4)), [1, 2], workers=2)
+        task = functools.partial(portfolio.seeded_run, solve_lift, PackingProblem("corner", 4), RunOptions(seed=0))
+        s = portfolio.run_portfolio(task, [1, 2], workers=2)
         print(s.status.value, s.stats["portfolio_workers"], s.notes[-1])
         """)
     assert r.returncode == 0, r.stderr

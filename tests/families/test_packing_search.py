@@ -11,6 +11,8 @@ from tilesolve.families import packing_search as search
 from tilesolve.engine import portfolio
 from tilesolve.errors import MethodNotApplicable
 from tilesolve.model.packing import PackingProblem
+from tilesolve.model.run import RunOptions
+from tilesolve.deadline import Deadline
 from tilesolve.model.solution import Status
 from tilesolve.model.tiles import TileSet
 from tilesolve.verify.packing import is_packing, packing_violations
@@ -55,7 +57,7 @@ def test_lift_builds_verified_packings(kind, c):
 def test_lift_without_seed_keeps_the_base_layer():
     """Unseeded (no random symmetry), colours mod m repeat the base packing's with period m**2."""
     p = PackingProblem("corner", 4)
-    s = search.solve_lift(p)
+    s = search.solve_lift(p, RunOptions(seed=None))  # no seed: no random symmetry
     assert s.status is Status.SAT and is_packing(PackingProblem("corner", 4), s.tiling)
     low = features_of_packing(p, s.tiling).reshape(16, 16) % 2
     assert np.array_equal(low, np.tile(low[:4, :4], (4, 4)))
@@ -75,7 +77,7 @@ def test_lift_honours_pins_it_can_hold_and_never_says_unsat():
     assert s.status is Status.SAT and s.tiling[3, 5] == 200
     # Two tiles at one cell: the restricted search cannot decide it; it ends unknown, not unsat.
     bad = PackingProblem("wang", 4, fixed=((0, 0, 1), (0, 0, 2)))
-    s = search.solve_lift(bad, seed=1, time_limit=1.5)
+    s = search.solve_lift(bad, RunOptions(seed=1, deadline=Deadline(1.5)))
     assert s.status is Status.UNKNOWN and s.tiling is None
 
 
@@ -136,5 +138,5 @@ def test_portfolio_on_a_dask_cluster():
 
 
 def test_lift_out_of_time_is_unknown_even_in_the_base_search():
-    s = search.solve_lift(PackingProblem("corner", 8), seed=1, time_limit=0.01)
+    s = search.solve_lift(PackingProblem("corner", 8), RunOptions(seed=1, deadline=Deadline(0.01)))
     assert s.status is Status.UNKNOWN and s.tiling is None and "time limit" in s.reason

@@ -28,7 +28,7 @@ from typing import Iterator
 
 import numpy as np
 
-from tilesolve.deadline import Deadline
+from tilesolve.deadline import NO_LIMIT, Deadline
 from tilesolve.errors import InvalidProblem
 from tilesolve.constructive.packing import apply_symmetry, symmetry_tile_map
 from tilesolve.model.solution import CountResult, Status
@@ -66,7 +66,7 @@ def _compat(ts: TileSet) -> tuple[np.ndarray, np.ndarray]:
     return east, south
 
 
-def enumerate_packings(kind: str, colors: int, *, anchored: bool = True, deadline: Deadline | None = None,
+def enumerate_packings(kind: str, colors: int, *, anchored: bool = True, deadline: Deadline = NO_LIMIT,
                        stats: dict | None = None) -> Iterator[np.ndarray]:
     """Yield every packing (``anchored``: every packing with tile 0 at cell (0, 0)).
 
@@ -93,7 +93,6 @@ def enumerate_packings(kind: str, colors: int, *, anchored: bool = True, deadlin
     stats = stats if stats is not None else {}
     stats["complete"] = False
     stats["nodes"] = 0
-    deadline = deadline or Deadline(None)
     cells = list(range(n))
 
     def candidates(p: int):
@@ -211,12 +210,12 @@ def packing_orbits(anchored_packings, kind: str, colors: int) -> list[np.ndarray
 
 
 def count_packings(kind: str, colors: int, *, up_to_symmetry: bool = False,
-                   time_limit: float | None = None) -> CountResult:
+                   deadline: Deadline = NO_LIMIT) -> CountResult:
     """Count all packings of the complete set over ``colors`` colours (C = 2).
 
     The value counts packings (or orbits, with ``up_to_symmetry``); ``stats`` holds
     ``anchored`` (packings with tile 0 at the origin) and ``nodes`` (search nodes). Status
-    ``unknown`` with value ``None`` when the time limit stopped the enumeration.
+    ``unknown`` with value ``None`` when the run's ``deadline`` stopped the enumeration.
 
     Examples
     --------
@@ -224,13 +223,12 @@ def count_packings(kind: str, colors: int, *, up_to_symmetry: bool = False,
     (32, 1)
     """
     t0 = time.perf_counter()
-    deadline = Deadline(time_limit)
     stats: dict = {}
     anchored = list(enumerate_packings(kind, colors, deadline=deadline, stats=stats))
     figures = {"anchored": len(anchored), "nodes": stats["nodes"]}
     if not stats["complete"]:
         return CountResult(None, Status.UNKNOWN, "backtrack", time.perf_counter() - t0,
-                           f"time limit of {time_limit:.3g} s reached", figures)
+                           f"time limit of {deadline.time_limit:.3g} s reached", figures)
     n = TileSet(kind, colors).n_tiles
     value = len(packing_orbits(anchored, kind, colors)) if up_to_symmetry else n * len(anchored)
     return CountResult(value, Status.SAT, "backtrack", time.perf_counter() - t0, None, figures)

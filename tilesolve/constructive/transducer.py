@@ -74,7 +74,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from tilesolve.deadline import Deadline, TimeLimitReached
+from tilesolve.deadline import NO_LIMIT, Deadline, TimeLimitReached
 from tilesolve.errors import InternalError, InvalidProblem
 from tilesolve.model.board import WangTileSet
 
@@ -410,11 +410,10 @@ def _level(k: int, full: Transducer, upper: np.ndarray, tile: np.ndarray, minimi
 
 
 def build_level(tileset: WangTileSet, previous: Level | None, *, minimise: bool = True,
-                max_transitions: int = DEFAULT_MAX_TRANSITIONS, deadline: Deadline | None = None) -> Level:
+                max_transitions: int = DEFAULT_MAX_TRANSITIONS, deadline: Deadline = NO_LIMIT) -> Level:
     """``T_1`` (``previous=None``) or ``T_{k+1}`` from ``T_k``: compose with ``T``, simplify, and
     minimise (or not: ``minimise=False`` keeps every state, for cross-checks). ``deadline`` is
     checked between the steps (:class:`~tilesolve.deadline.TimeLimitReached`)."""
-    deadline = deadline or Deadline(None)
     base = tile_transducer(tileset)
     if previous is None:
         return _level(1, base, np.full(base.n_transitions, -1, np.int64), np.arange(base.n_transitions,
@@ -493,7 +492,7 @@ class TransducerVerdict:
     seconds: float = 0.0
 
 
-def decide(tileset: WangTileSet, *, max_k: int = 30, deadline: Deadline | None = None, minimise: bool = True,
+def decide(tileset: WangTileSet, *, max_k: int = 30, deadline: Deadline = NO_LIMIT, minimise: bool = True,
            max_transitions: int = DEFAULT_MAX_TRANSITIONS) -> TransducerVerdict:
     """Search ``k = 1 .. max_k`` for an empty ``T_k`` or a periodic cycle (Jeandel-Rao §3).
 
@@ -518,7 +517,6 @@ def decide(tileset: WangTileSet, *, max_k: int = 30, deadline: Deadline | None =
     """
     if int(max_k) < 1:
         raise InvalidProblem(f"the largest k must be at least 1, got {max_k}")
-    deadline = deadline or Deadline(None)
     t0 = time.perf_counter()
     levels: list[Level] = []
     sizes: list[tuple[int, int, int]] = []

@@ -31,6 +31,7 @@ import numpy as np
 from tilesolve._random import rng_from_seed
 from tilesolve.errors import InvalidProblem, MethodNotApplicable
 from tilesolve.model.board import BoardProblem
+from tilesolve.model.run import RunOptions
 from tilesolve.model.solution import Solution, Status
 
 __all__ = ["theorem7_solve", "default_core"]
@@ -56,19 +57,22 @@ def default_core(problem: BoardProblem) -> np.ndarray:
     return core
 
 
-def theorem7_solve(problem: BoardProblem, core=None, *, core_solver: Callable[..., Solution],
-                   seed=None, time_limit: float | None = None) -> Solution:
+def theorem7_solve(problem: BoardProblem, run: RunOptions, core=None, *,
+                   core_solver: Callable[[BoardProblem, RunOptions], Solution]) -> Solution:
     """Solve a tiling problem by Theorem 7's strategy.
 
     Parameters
     ----------
     problem : BoardProblem
         Its tile set must satisfy the three-boundary condition (Def. 6).
+    run : RunOptions
+        The run: its seed draws the tiles outside the core; the core solver gets the run as it
+        is (its deadline included).
     core : array-like of bool or int, optional
         The cells of ``U`` (a mask or indices); default :func:`default_core`.
     core_solver : callable
-        ``core_solver(subproblem, seed=, time_limit=) -> Solution`` for ``G|U`` (the board
-        family passes its SAT route; constructive code never calls a solver itself).
+        A route, ``core_solver(subproblem, run) -> Solution``, for ``G|U`` (the board family
+        passes its SAT route; constructive code never calls a solver itself).
 
     Returns
     -------
@@ -95,6 +99,7 @@ def theorem7_solve(problem: BoardProblem, core=None, *, core_solver: Callable[..
             keep = m
         if keep.shape != (n,):
             raise InvalidProblem("the core must be a mask over cells or a list of cell indices")
+    seed = run.seed
     rng = rng_from_seed(seed)
     col = np.full((n, 4), -1, np.int64)
     wa, wl = np.nonzero(nc < 0)
@@ -145,7 +150,7 @@ def theorem7_solve(problem: BoardProblem, core=None, *, core_solver: Callable[..
     beta = np.full(sub.n_boundary, -1, np.int64)
     beta[sub.nbr_leg[sa, sl]] = col[idx[sa], sl]
     subproblem = BoardProblem(sub, ts, beta)
-    cs = core_solver(subproblem, seed=seed, time_limit=time_limit)
+    cs = core_solver(subproblem, run)
     stats = {"core_cells": int(keep.sum()), "core_method": cs.method}
     if not cs.status.has_tiling:
         reason = cs.reason if cs.status is Status.UNKNOWN else (

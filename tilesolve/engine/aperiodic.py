@@ -130,7 +130,7 @@ def _guide(grid: np.ndarray, m: int) -> tuple[np.ndarray, np.ndarray]:
     return east, south
 
 
-def _square_task(tiles: list, n_colors: int, n: int, end: float | None, solver: str | None,
+def _square_task(tiles: list, n_colors: int, n: int, deadline: Deadline, solver: str | None,
                  proof_dir: str | None, seed0: int, *, seed: int):
     """One run of the square portfolio: ``seed`` 0 decides the full formula, 1 searches the
     guided one (its guide from a :data:`GUIDE_SIDE` square); returns a Solution."""
@@ -138,8 +138,7 @@ def _square_task(tiles: list, n_colors: int, n: int, end: float | None, solver: 
     from tilesolve.engine.routes import sat_route
 
     tileset = WangTileSet(np.asarray(tiles, dtype=np.int64), n_colors)
-    limit = None if end is None else max(end - time.time(), 1e-3)
-    run = RunOptions(seed=seed0, deadline=Deadline(limit), solver=solver)
+    run = RunOptions(seed=seed0, deadline=deadline, solver=solver)  # the run's deadline, in this worker
     allowed, method = None, "sat"
     if seed == 1:
         g = decide(tileset, f"square {GUIDE_SIDE}x{GUIDE_SIDE}", run)
@@ -177,10 +176,9 @@ def square_scan(tileset: WangTileSet, max_n: int, run: RunOptions,
 
             with writing_proofs(proof_dir):
                 return decide(tileset, name, run)
-        end = None if run.deadline.time_limit is None else time.time() + run.deadline.remaining()
-        task = functools.partial(_square_task, tileset.tiles.tolist(), int(tileset.n_colors), n, end, run.solver,
-                                 proof_dir, run.seed)
-        sol = run_portfolio(task, [0, 1], workers=2, time_limit=run.deadline.remaining(), label=name)
+        task = functools.partial(_square_task, tileset.tiles.tolist(), int(tileset.n_colors), n, run.deadline,
+                                 run.solver, proof_dir, run.seed)
+        sol = run_portfolio(task, [0, 1], workers=2, deadline=run.deadline, label=name)
         return _certificate(name, sol, sol.method or "sat")
 
     n = max_n
@@ -274,7 +272,7 @@ def _cells(name: str) -> int:
     return rows * cols
 
 
-def _job(tiles: list, n_colors: int, names: Sequence[str], cached: dict, end: float | None, solver: str | None,
+def _job(tiles: list, n_colors: int, names: Sequence[str], cached: dict, deadline: Deadline, solver: str | None,
          proof_dir: str | None, store: str | None, seed0: int, *, seed: int) -> Certificate:
     """One lattice of a sweep (``seed`` is its index in ``names``), in a worker process: its
     cached refutation re-checked (``cached``), else decided by SAT."""
@@ -284,12 +282,10 @@ def _job(tiles: list, n_colors: int, names: Sequence[str], cached: dict, end: fl
     name = names[seed]
     rejected = None
     if name in cached:
-        limit = None if end is None else max(end - time.time(), 1e-3)
-        cert, rejected = _cached_refutation(tileset, cached[name], store, proof_dir, limit)
+        cert, rejected = _cached_refutation(tileset, cached[name], store, proof_dir, deadline.remaining())
         if cert is not None:
             return cert
-    limit = None if end is None else max(end - time.time(), 1e-3)
-    run = RunOptions(seed=seed0, deadline=Deadline(limit), solver=solver)
+    run = RunOptions(seed=seed0, deadline=deadline, solver=solver)  # the run's deadline, in this worker
     with writing_proofs(proof_dir), writing_proofs(store, cnf=False):
         cert = decide(tileset, name, run)
     if rejected is None:
@@ -328,10 +324,9 @@ def sweep(tileset: WangTileSet, names: Sequence[str], run: RunOptions, *, cache:
     refutations = {n: rec for n, rec in cached.items() if rec["status"] == "refuted"}
     # largest boards first: the long runs start early and the short ones fill the gaps at the end
     todo = sorted((n for n in names if n not in result), key=lambda n: -_cells(n))
-    end = None if run.deadline.time_limit is None else time.time() + run.deadline.remaining()
     store = None if cache is None else cache_proof_dir(cache)
-    task = functools.partial(_job, tileset.tiles.tolist(), int(tileset.n_colors), tuple(todo), refutations, end,
-                             run.solver, None if proof_dir is None else os.fspath(proof_dir), store, run.seed)
+    task = functools.partial(_job, tileset.tiles.tolist(), int(tileset.n_colors), tuple(todo), refutations,
+                             run.deadline, run.solver, None if proof_dir is None else os.fspath(proof_dir), store, run.seed)
     interrupted = False
     counts = {"tiles": 0, "refuted": 0, "undecided": 0}
     for c in result.values():

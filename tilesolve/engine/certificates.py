@@ -35,7 +35,7 @@ from collections import Counter
 from dataclasses import dataclass
 from typing import Any, Iterator, Mapping
 
-from tilesolve.deadline import Deadline
+from tilesolve.deadline import NO_LIMIT, Deadline
 from tilesolve.engine.result import Result
 from tilesolve.model.solution import Solution, Status
 from tilesolve.verify.drat import check_drat, dimacs_bytes, formula_arrays
@@ -386,7 +386,7 @@ def recheck_all(claims, proof_dir: str | os.PathLike | None = None, *, workers: 
 
     task = functools.partial(_recheck_job, [claims[i] for i in order],
                              None if proof_dir is None else os.fspath(proof_dir))
-    if _on_pool(task, len(claims), min(workers, len(claims)), RunOptions(seed=0, deadline=Deadline(None)), take,
+    if _on_pool(task, len(claims), min(workers, len(claims)), RunOptions(seed=0, deadline=NO_LIMIT), take,
                 lambda text: None, lambda: ""):
         raise KeyboardInterrupt
     return out

@@ -31,7 +31,7 @@ from __future__ import annotations
 import time
 from typing import Sequence
 
-from tilesolve.deadline import Deadline
+from tilesolve.deadline import NO_LIMIT, Deadline
 from tilesolve.engine.certificates import UNCERTIFIED
 from tilesolve.engine.result import Result, run_interruptible
 from tilesolve.errors import BackendUnavailable, InvalidProblem
@@ -55,12 +55,11 @@ def solve_cp_model(
     model,
     variables: Sequence,
     *,
-    time_limit: float | None = None,
     num_workers: int = DEFAULT_CPSAT_WORKERS,
     seed: int | None = None,
     has_objective: bool = False,
     core_search: bool | None = None,
-    deadline: Deadline | None = None,
+    deadline: Deadline = NO_LIMIT,
 ) -> Result:
     """Solve a CP-SAT model and read back ``variables``.
 
@@ -69,9 +68,6 @@ def solve_cp_model(
     model : ortools.sat.python.cp_model.CpModel
     variables : sequence of BoolVar
         Their values form :attr:`Result.model` (a list of bools).
-    time_limit : float, optional
-        ``max_time_in_seconds``; expiry gives ``UNKNOWN`` (no solution yet) or ``SAT``
-        (a solution, optimality not proved).
     num_workers : int
     seed : int, optional
         ``random_seed``; for satisfaction models also the seeded hint (see "Seeds").
@@ -82,7 +78,9 @@ def solve_cp_model(
         none, and then rarely proves optimality of closest-tiling objectives); default:
         on when ``has_objective``.
     deadline : Deadline, optional
-        The whole run's deadline (replaces ``time_limit``; the reason names its limit).
+        The whole run's deadline (what is left of it is ``max_time_in_seconds``; the reason
+        names its limit): expiry gives ``UNKNOWN`` (no solution yet) or ``SAT`` (a solution,
+        optimality not proved).
 
     Examples
     --------
@@ -98,8 +96,6 @@ def solve_cp_model(
     if num_workers < 1:
         raise InvalidProblem(f"num_workers must be >= 1, got {num_workers}")
     t0 = time.perf_counter()
-    if deadline is None:
-        deadline = Deadline(time_limit)
     time_limit = deadline.time_limit
     solver = cp_model.CpSolver()
     prm = solver.parameters

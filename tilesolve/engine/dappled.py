@@ -30,7 +30,7 @@ from tilesolve.encodings.registry import encode
 from tilesolve.engine.cpsat import DEFAULT_CPSAT_WORKERS, solve_cp_model
 from tilesolve.engine.maxsat import DEFAULT_MAXSAT_ORACLE, RC2Options, solve_lazy, solve_wcnf
 from tilesolve.engine.routes import sat_route
-from tilesolve.deadline import Deadline, TimeLimitReached
+from tilesolve.deadline import NO_LIMIT, Deadline, TimeLimitReached
 from tilesolve.engine.sat import DEFAULT_SAT_SOLVER, ModelEnumerator, count_models, solve_cnf
 from tilesolve.errors import InternalError, InvalidProblem
 from tilesolve.model.dappled import DappledProblem
@@ -60,8 +60,7 @@ def _enc_stats(enc: DappledEncoding, encode_s: float) -> dict:
 def solve_sat(
     problem: DappledProblem,
     *,
-    time_limit: float | None = None,
-    deadline: Deadline | None = None,
+    deadline: Deadline = NO_LIMIT,
     solver: str = DEFAULT_SAT_SOLVER,
     seed: int | None = None,
 ) -> Solution:
@@ -73,10 +72,9 @@ def solve_sat(
         Any variant (subsets, per-cell limits, cyclic, fixed cells, counts).
         ``closest_to`` only guides the search (solver phases); use
         :func:`solve_maxsat` for the closest tiling.
-    time_limit : float, optional
-        Seconds, encoding included; expiry gives ``Status.UNKNOWN``, never ``UNSAT``.
     deadline : Deadline, optional
-        The whole run's deadline (instead of ``time_limit``; messages name its limit).
+        The whole run's deadline, encoding included (messages name its limit); expiry gives
+        ``Status.UNKNOWN``, never ``UNSAT``.
     solver : str
         PySAT solver name (see :func:`tilesolve.engine.sat.proof_solvers`). UNSAT answers
         carry the DRAT proof it logged, checked by :mod:`tilesolve.verify.drat`
@@ -103,7 +101,7 @@ def solve_sat(
     """
     _check_problem(problem)
     t0 = time.perf_counter()
-    run = RunOptions(seed, deadline or Deadline(time_limit))
+    run = RunOptions(seed, deadline)
     try:
         enc = encode("dappled-cnf", problem, deadline=run.deadline)
     except TimeLimitReached as exc:
@@ -148,8 +146,7 @@ LAZY_MIN_CELLS = 10_000
 def solve_maxsat(
     problem: DappledProblem,
     *,
-    time_limit: float | None = None,
-    deadline: Deadline | None = None,
+    deadline: Deadline = NO_LIMIT,
     method: str = "auto",
     solver: str = DEFAULT_MAXSAT_ORACLE,
     seed: int | None = None,
@@ -164,8 +161,8 @@ def solve_maxsat(
     Parameters
     ----------
     problem : DappledProblem
-    time_limit : float, optional
-        Expiry gives ``UNKNOWN`` with ``stats["lower_bound"]``.
+    deadline : Deadline, optional
+        The whole run's deadline: expiry gives ``UNKNOWN`` with ``stats["lower_bound"]``.
     method : {"auto", "rc2", "lazy"}
         ``rc2``: one RC2 run on the whole weighted formula; ``lazy``: the exact lazy
         decomposition of :func:`tilesolve.engine.maxsat.solve_lazy` (not with counts).
@@ -187,7 +184,6 @@ def solve_maxsat(
     if method not in MAXSAT_METHODS:
         raise InvalidProblem(f"unknown MaxSAT method {method!r}; choose one of {', '.join(MAXSAT_METHODS)}")
     t0 = time.perf_counter()
-    deadline = deadline or Deadline(time_limit)
     if problem.closest_to is None:
         sol = solve_sat(problem, deadline=deadline, seed=seed)
         return sol.with_note("no closest_to target: solved as a satisfaction problem")
@@ -232,8 +228,7 @@ def solve_maxsat(
 def solve_cpsat(
     problem: DappledProblem,
     *,
-    time_limit: float | None = None,
-    deadline: Deadline | None = None,
+    deadline: Deadline = NO_LIMIT,
     num_workers: int = DEFAULT_CPSAT_WORKERS,
     seed: int | None = None,
     hint: bool = True,
@@ -257,7 +252,6 @@ def solve_cpsat(
     """
     _check_problem(problem)
     t0 = time.perf_counter()
-    deadline = deadline or Deadline(time_limit)
     try:
         m = build_cpsat(problem, deadline=deadline)
     except TimeLimitReached as exc:
@@ -285,12 +279,12 @@ class TilingEnumerator:
     :attr:`complete` is True once every tiling has been seen.
     """
 
-    def __init__(self, problem: DappledProblem, limit: int | None, time_limit: float | None, solver: str) -> None:
+    def __init__(self, problem: DappledProblem, limit: int | None, deadline: Deadline, solver: str) -> None:
         _check_problem(problem)
         self.problem = problem
         self.encoding = encode_cnf(problem)
         self._enum = ModelEnumerator(self.encoding.hard, self.encoding.projection(), solver=solver, limit=limit,
-                                     time_limit=time_limit)
+                                     deadline=deadline)
 
     def __iter__(self) -> Iterator[np.ndarray]:
         for model in self._enum:
@@ -312,8 +306,8 @@ class TilingEnumerator:
 def enumerate_tilings(
     problem: DappledProblem,
     limit: int | None = None,
-    time_limit: float | None = None,
     *,
+    deadline: Deadline = NO_LIMIT,
     solver: str = DEFAULT_SAT_SOLVER,
 ) -> TilingEnumerator:
     """Every tiling of ``problem`` (``closest_to`` ignored), each once.
@@ -327,13 +321,13 @@ def enumerate_tilings(
     >>> len(tilings)
     7
     """
-    return TilingEnumerator(problem, limit, time_limit, solver)
+    return TilingEnumerator(problem, limit, deadline, solver)
 
 
 def count_by_enumeration(
     problem: DappledProblem,
-    time_limit: float | None = None,
     *,
+    deadline: Deadline = NO_LIMIT,
     limit: int | None = None,
     solver: str = DEFAULT_SAT_SOLVER,
     progress: bool = False,
@@ -358,5 +352,5 @@ def count_by_enumeration(
     _check_problem(problem)
     enc = encode_cnf(problem)
     with status_line("counting by enumeration", progress) as show:
-        return count_models(enc.hard, enc.projection(), solver=solver, time_limit=time_limit, limit=limit,
+        return count_models(enc.hard, enc.projection(), solver=solver, deadline=deadline, limit=limit,
                             on_model=lambda n: show(f"{n:,} tilings so far"))

@@ -31,7 +31,7 @@ from typing import Sequence
 
 import numpy as np
 
-from tilesolve.deadline import Deadline
+from tilesolve.deadline import NO_LIMIT, Deadline
 from tilesolve.engine.result import Result, run_interruptible
 from tilesolve.engine.sat import LOAD_CHUNK, _chunks, _millions, _size_of, canonical_solver_name, seeded_phases
 from tilesolve.errors import InternalError, MethodNotApplicable
@@ -99,9 +99,8 @@ def solve_wcnf(
     *,
     weights: Sequence[int] | None = None,
     solver: str = DEFAULT_MAXSAT_ORACLE,
-    time_limit: float | None = None,
     options: RC2Options = RC2Options(),
-    deadline: Deadline | None = None,
+    deadline: Deadline = NO_LIMIT,
     seed: int | None = None,
 ) -> Result:
     """Solve hard clauses plus soft unit clauses with RC2.
@@ -115,11 +114,10 @@ def solve_wcnf(
         Default 1 each.
     solver : str
         RC2's SAT oracle (PySAT name).
-    time_limit : float, optional
-        Seconds; on expiry the result is ``UNKNOWN`` with ``stats["lower_bound"]``.
-        Loading the hard clauses into the oracle counts (chunks with deadline checks).
     deadline : Deadline, optional
-        The whole run's deadline (replaces ``time_limit``).
+        The whole run's deadline; on expiry the result is ``UNKNOWN`` with
+        ``stats["lower_bound"]``. Loading the hard clauses into the oracle counts (chunks with
+        deadline checks).
     seed : int, optional
         Shuffles the order of the soft clauses (which steers the cores RC2 meets first) and
         draws the oracle's initial phases (:func:`~tilesolve.engine.sat.seeded_phases`):
@@ -136,8 +134,6 @@ def solve_wcnf(
     from pysat.formula import WCNF
 
     t0 = time.perf_counter()
-    if deadline is None:
-        deadline = Deadline(time_limit)
     time_limit = deadline.time_limit
     name = _check_oracle(solver, time_limit)
     solver_name = f"rc2/{name}"
@@ -293,11 +289,10 @@ def solve_lazy(
     reference: np.ndarray,
     *,
     solver: str = DEFAULT_MAXSAT_ORACLE,
-    time_limit: float | None = None,
     options: RC2Options = RC2Options(),
     keep_min: int = 64,
     fallback_fraction: float = 0.2,
-    deadline: Deadline | None = None,
+    deadline: Deadline = NO_LIMIT,
 ) -> Result:
     """Exact MaxSAT by lazy hard clauses and independent components (see module doc).
 
@@ -319,7 +314,7 @@ def solve_lazy(
         decomposition no longer pays: the rest of the time goes to one RC2 run on the
         whole formula (:func:`solve_wcnf`; ``stats["fallback"]`` says so).
     deadline : Deadline, optional
-        The whole run's deadline (replaces ``time_limit``). The decomposition is
+        The whole run's deadline. The decomposition is
         deterministic and takes no seed.
 
     Returns
@@ -338,8 +333,6 @@ def solve_lazy(
     ('optimal', 1)
     """
     t0 = time.perf_counter()
-    if deadline is None:
-        deadline = Deadline(time_limit)
     time_limit = deadline.time_limit
     name = _check_oracle(solver, time_limit)
     if any(not b.grid_only for b in getattr(hard, "blocks", [])):

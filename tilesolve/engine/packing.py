@@ -21,6 +21,7 @@ from tilesolve._random import rng_from_seed
 from tilesolve.deadline import Deadline, TimeLimitReached
 from tilesolve.errors import InternalError, InvalidProblem
 from tilesolve.model.packing import PackingProblem
+from tilesolve.model.run import RunOptions
 from tilesolve.model.solution import Solution, Status
 
 __all__ = [
@@ -99,36 +100,40 @@ def packing_stats(enc, r=None, **more) -> dict:
     return out
 
 
-def unknown_solution(method, solver, seed, t0, time_limit, deadline, reason, stats, tries=None) -> Solution:
-    if time_limit is not None and deadline.expired() and "interrupted" not in (reason or ""):
-        reason = f"time limit of {time_limit:.3g} s reached"
+def unknown_solution(method: str, solver: str | None, run: RunOptions, t0: float, reason: str | None, stats: dict,
+                     tries: int | None = None) -> Solution:
+    """An ``unknown`` answer of a packing search begun at ``t0``: the reason names the run's time
+    limit when its deadline passed (unless it says so already, or says it was interrupted)."""
+    limit, expired = run.deadline.time_limit, run.deadline.expired()
+    if limit is not None and expired and not (reason or "").startswith(("interrupted", "time limit of")):
+        reason = f"time limit of {limit:.3g} s reached"
     if tries is not None:
         reason = f"{reason} after {tries} attempt(s)"
-    return Solution(Status.UNKNOWN, None, method, solver, seed, time.perf_counter() - t0, reason=reason, stats=stats)
+    return Solution(Status.UNKNOWN, None, method, solver, run.seed, time.perf_counter() - t0, reason=reason,
+                    stats=stats)
 
 
 # --------------------------------------------------------------------------- full problem
 
 
-def solve_sat(problem: PackingProblem, *, seed=None, time_limit=None, workers=None, progress=False,
-              solver=None) -> Solution:
+def solve_sat(problem: PackingProblem, run: RunOptions) -> Solution:
     """The full encoding (the seed picks the tile pinned at the origin and preferred phases)."""
     from tilesolve.encodings.registry import encode
     from tilesolve.engine.certificates import unsat_solution
 
     check_search_size(problem)
     t0 = time.perf_counter()
-    deadline = Deadline(time_limit)
+    deadline, seed, solver = run.deadline, run.seed, run.solver
     rng = rng_from_seed(seed)
     anchor = None if problem.fixed else (int(rng.integers(problem.n_tiles)) if seed is not None else 0)
     try:
         enc = encode("packing-cnf", problem, {"anchor_tile": anchor}, deadline=deadline)
     except TimeLimitReached as exc:
-        return unknown_solution("sat", solver or PACKING_SAT_SOLVER, seed, t0, None, deadline, str(exc), {})
+        return unknown_solution("sat", solver or PACKING_SAT_SOLVER, run, t0, str(exc), {})
     encode_s = time.perf_counter() - t0
     if deadline.expired():
-        return unknown_solution("sat", solver or PACKING_SAT_SOLVER, seed, t0, time_limit, deadline,
-                        "time limit reached while encoding", packing_stats(enc, encode_s=round(encode_s, 6)))
+        return unknown_solution("sat", solver or PACKING_SAT_SOLVER, run, t0, "time limit reached while encoding",
+                                packing_stats(enc, encode_s=round(encode_s, 6)))
     r = run_packing_sat(enc, solver=solver, deadline=deadline, rng=rng, with_proof=bool(problem.fixed))
     stats = packing_stats(enc, r, encode_s=round(encode_s, 6))
     if r.status is Status.SAT:
@@ -138,25 +143,24 @@ def solve_sat(problem: PackingProblem, *, seed=None, time_limit=None, workers=No
             raise InternalError("the unpinned packing encoding was reported unsatisfiable")
         return unsat_solution(enc.clauses, r, method="sat", seed=seed, t0=t0, stats=stats, check_proof=True,
                               deadline=deadline, encoding=enc.named)
-    return unknown_solution("sat", r.solver, seed, t0, time_limit, deadline, r.reason, stats)
+    return unknown_solution("sat", r.solver, run, t0, r.reason, stats)
 
 
-def solve_cpsat(problem: PackingProblem, *, seed=None, time_limit=None, workers=None, progress=False,
-                solver=None) -> Solution:
-    """The full encoding in CP-SAT (``workers`` parallel workers, default 2)."""
+def solve_cpsat(problem: PackingProblem, run: RunOptions) -> Solution:
+    """The full encoding in CP-SAT (``run.workers`` parallel workers, default 2)."""
     from tilesolve.encodings.packing import build_cpsat_packing
     from tilesolve.engine.cpsat import DEFAULT_CPSAT_WORKERS, solve_cp_model
 
     check_search_size(problem, route="cpsat")
     t0 = time.perf_counter()
-    deadline = Deadline(time_limit)
+    deadline, seed = run.deadline, run.seed
     anchor = None if problem.fixed else (int(rng_from_seed(seed).integers(problem.n_tiles)) if seed is not None else 0)
     try:
         model, place, enc = build_cpsat_packing(problem, anchor_tile=anchor, deadline=deadline)
     except TimeLimitReached as exc:
-        return unknown_solution("cpsat", "cp-sat", seed, t0, None, deadline, str(exc), {})
+        return unknown_solution("cpsat", "cp-sat", run, t0, str(exc), {})
     stats = packing_stats(enc, encode_s=round(time.perf_counter() - t0, 6))
-    r = solve_cp_model(model, place, deadline=deadline, num_workers=workers or DEFAULT_CPSAT_WORKERS, seed=seed)
+    r = solve_cp_model(model, place, deadline=deadline, num_workers=run.workers or DEFAULT_CPSAT_WORKERS, seed=seed)
     stats.update({k: v for k, v in r.stats.items() if k in ("conflicts", "branches", "workers")})
     if r.status is Status.SAT:
         return Solution(Status.SAT, enc.decode(r.model), "cpsat", "cp-sat", seed, time.perf_counter() - t0, stats=stats)
@@ -165,4 +169,4 @@ def solve_cpsat(problem: PackingProblem, *, seed=None, time_limit=None, workers=
     if r.status is Status.UNSAT:
         return Solution(Status.UNSAT, None, "cpsat", "cp-sat", seed, time.perf_counter() - t0, reason=r.reason,
                         stats=stats)
-    return unknown_solution("cpsat", "cp-sat", seed, t0, time_limit, deadline, r.reason, stats)
+    return unknown_solution("cpsat", "cp-sat", run, t0, r.reason, stats)

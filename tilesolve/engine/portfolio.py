@@ -57,7 +57,7 @@ Limits
   guard its entry point with ``if __name__ == "__main__":``; one that does not gets an
   :class:`~tilesolve.errors.InvalidProblem` saying so. Tasks from importable modules (all of
   tilesolve's routes) need no guard.
-- Each run honours the time limit baked into ``task``; ``time_limit`` here is the wall-clock
+- Each run honours the deadline baked into ``task``; ``deadline`` here is the wall-clock
   budget of the whole portfolio: no seed starts once it is spent, and runs still going
   :data:`GRACE_S` seconds later are stopped (status ``unknown``).
 - A Dask task that is already running cannot be stopped: cancelling releases its result,
@@ -90,18 +90,18 @@ import threading
 import time
 import traceback
 from concurrent.futures.process import BrokenProcessPool
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from multiprocessing.connection import wait as wait_for_any
 from typing import Any, Callable, Iterable
 
-from tilesolve._random import rng_from_seed
 from tilesolve.deadline import Deadline
 from tilesolve.engine.progress import status_line
 from tilesolve.engine.result import stop_on
 from tilesolve.errors import BackendUnavailable, InvalidProblem
+from tilesolve.model.run import RunOptions
 from tilesolve.model.solution import Solution, Status
 
-__all__ = ["run_portfolio", "escalate", "DEFAULT_WORKERS", "GRACE_S", "CONNECT_TIMEOUT_S", "QUICK_S",
+__all__ = ["run_portfolio", "escalate", "seeded_run", "DEFAULT_WORKERS", "GRACE_S", "CONNECT_TIMEOUT_S", "QUICK_S",
            "FIRST_BUDGET_S", "PORTFOLIO_SEEDS"]
 
 #: Processes when the caller names none: the machines tilesolve targets have two cores (as
@@ -109,7 +109,7 @@ __all__ = ["run_portfolio", "escalate", "DEFAULT_WORKERS", "GRACE_S", "CONNECT_T
 #: counts as one of them, and the others start only on idle cores.
 DEFAULT_WORKERS = 2
 
-#: Seconds the runs get, past ``time_limit``, to report before they are stopped: each run
+#: Seconds the runs get, past the deadline, to report before they are stopped: each run
 #: honours its own limit, which starts a little later than the portfolio's (process start).
 GRACE_S = 1.0
 
@@ -135,7 +135,7 @@ def run_portfolio(
     *,
     workers: int = DEFAULT_WORKERS,
     cluster: Any = None,
-    time_limit: float | None = None,
+    deadline: Deadline | None = None,
     progress: bool = False,
     label: str = "search",
 ) -> Solution:
@@ -146,8 +146,9 @@ def run_portfolio(
     task : callable
         ``task(seed=seed) -> Solution``: one independent randomised search that honours its
         own time limit. The seed is passed by keyword, so a :func:`functools.partial` of a
-        raw route works as it is, e.g. ``partial(tilesolve.families.packing_search.solve_lift,
-        problem, time_limit=60)``. Must pickle (module docstring).
+        route works as it is through :func:`seeded_run`, e.g. ``partial(seeded_run,
+        tilesolve.families.packing_search.solve_lift, problem, run)``. Must pickle (module
+        docstring).
     seeds : iterable of int
         One run per seed, started in this order (a seed starts when a worker is free).
     workers : int
@@ -156,10 +157,11 @@ def run_portfolio(
     cluster : str or distributed.Client, optional
         A Dask scheduler address (``"tcp://host:8786"``) or an open ``distributed.Client``:
         run the seeds there instead of in local processes.
-    time_limit : float, optional
-        Wall-clock budget of the whole portfolio in seconds: no seed starts after it, and
-        runs still going :data:`GRACE_S` later are stopped (in this process a run cannot be
-        stopped from outside: it ends at the limit baked into ``task``).
+    deadline : Deadline, optional
+        The run's deadline, the wall-clock budget of the whole portfolio: no seed starts after
+        it, and runs still going :data:`GRACE_S` later are stopped (in this process a run cannot
+        be stopped from outside: it ends at the deadline baked into ``task``). ``None``: a
+        portfolio run on its own, without a limit.
     progress : bool
         Show a one-line live status (label, runs started and finished, elapsed seconds) on
         stderr when it is a terminal.
@@ -180,8 +182,8 @@ def run_portfolio(
     Raises
     ------
     InvalidProblem
-        No seeds, a seed that is not a non-negative int, ``workers < 1``, a negative time
-        limit, a malformed cluster address, or a call made while a worker imports an
+        No seeds, a seed that is not a non-negative int, ``workers < 1``, a malformed cluster
+        address, or a call made while a worker imports an
         unguarded script (module docstring, Limits).
     BackendUnavailable
         ``cluster`` given but Dask distributed is not installed, or the scheduler cannot be
@@ -205,7 +207,8 @@ def run_portfolio(
     """
     _refuse_while_importing_main()
     seeds = _check_seeds(seeds)
-    deadline = Deadline(time_limit)  # validates time_limit
+    if deadline is None:  # a portfolio that is a run of its own, without a limit
+        deadline = Deadline(None)
     if cluster is not None:
         return _run_dask(task, seeds, cluster, deadline, progress, label)
     _check_workers(workers)
@@ -216,12 +219,11 @@ def run_portfolio(
     return _run_pool(task, seeds, min(workers, len(seeds)), deadline, progress, label)
 
 
-def escalate(route: Callable[..., Solution], problem: Any, *, name: str, seed: int | None = None,
-             time_limit: float | None = None, workers: int | None = None, cluster: Any = None,
-             progress: bool = False, solver: str | None = None) -> Solution:
+def escalate(route: Callable[[Any, RunOptions], Solution], problem: Any, run: RunOptions, *, name: str) -> Solution:
     """Run a heavy-tailed route: one seed here, joined by worker processes if it is slow.
 
-    The first run, ``route`` with ``seed``, runs in this process with the whole time limit,
+    The first run, ``route(problem, run)`` with the run's seed, runs in this process with the
+    run's whole deadline,
     exactly the plain call (Ctrl-C reaches it as usual). If it has not decided within
     :data:`QUICK_S` seconds, ``workers - 1`` worker processes start beside it and run fresh
     seeds ``seed + 1, seed + 2, ...`` with per-run budgets of :data:`FIRST_BUDGET_S` seconds
@@ -243,27 +245,22 @@ def escalate(route: Callable[..., Solution], problem: Any, *, name: str, seed: i
     Parameters
     ----------
     route : callable
-        The raw route, ``route(problem, *, seed, time_limit, solver) -> Solution``: a search
+        The raw route, ``route(problem, run) -> Solution`` (the one route signature): a search
         such as :func:`tilesolve.families.packing_search.solve_lift` or
         :func:`tilesolve.engine.packing.solve_sat`, never a facade's ``solve``. Workers run
         it, so it must pickle (a module-level function).
     problem : object
         The problem handed to ``route`` (pickled to the workers).
+    run : RunOptions
+        The run: ``seed`` (of the first run; the workers take ``seed + 1, ...``), ``deadline``
+        (the whole search's; each worker run gets its wave's budget within it,
+        :meth:`~tilesolve.deadline.Deadline.within`), ``workers`` (processes, this one included;
+        default ``None``: up to :data:`DEFAULT_WORKERS`, as idle cores allow, above; 1 on
+        Windows, which has no local workers), ``cluster`` (a Dask scheduler address or client,
+        :func:`run_portfolio`), ``progress`` (a live status line on stderr when it is a
+        terminal) and ``solver`` (for ``route``).
     name : str
         What the progress line and the notes call the search, e.g. ``"lift packing"``.
-    seed : int, optional
-        Seed of the first run (drawn when ``None``, so that the workers' seeds differ).
-    time_limit : float, optional
-        Wall-clock budget of the whole search in seconds.
-    workers : int, optional
-        Processes, this one included. Default: up to :data:`DEFAULT_WORKERS`, as idle cores
-        allow (above); 1 on Windows, which has no local workers.
-    cluster : str or distributed.Client, optional
-        A Dask scheduler address or client (:func:`run_portfolio`).
-    progress : bool
-        Show a live status line on stderr when it is a terminal.
-    solver : str, optional
-        Passed to ``route``.
 
     Returns
     -------
@@ -286,46 +283,52 @@ def escalate(route: Callable[..., Solution], problem: Any, *, name: str, seed: i
     --------
     >>> from tilesolve.families.packing_search import solve_lift
     >>> from tilesolve.model.packing import PackingProblem
-    >>> s = escalate(solve_lift, PackingProblem("corner", 4), name="lift packing", seed=1)
+    >>> s = escalate(solve_lift, PackingProblem("corner", 4), RunOptions(seed=1), name="lift packing")
     >>> s.status.value, s.seed, s.tiling.shape  # decided alone in well under QUICK_S
     ('sat', 1, (16, 16))
     """
     _refuse_while_importing_main()
+    workers, cluster = run.workers, run.cluster
     workers_given = workers is not None
     if workers is None:  # no local workers on Windows (module docstring, Limits): one seed
         workers = DEFAULT_WORKERS if os.name == "posix" or cluster is not None else 1
     n = workers
     _check_workers(n)
     if n == 1 and cluster is None:
-        with status_line(name, progress):
-            return route(problem, seed=seed, time_limit=time_limit, solver=solver)
-    seed0 = int(rng_from_seed(None).integers(2**31)) if seed is None else seed
+        with status_line(name, run.progress):
+            return route(problem, run)
+    worker_run = replace(run, workers=1, cluster=None, progress=False)  # what a worker's run may use
     if cluster is not None:
-        task = functools.partial(_wave_run, route, problem, seed0, n, FIRST_BUDGET_S, time_limit, solver)
-        seeds = [seed0 + i for i in range(1, PORTFOLIO_SEEDS + 1)]
-        return run_portfolio(task, seeds, cluster=cluster, time_limit=time_limit, progress=progress, label=name)
-    return _Escalation(route, problem, name, seed0, time_limit, n - 1, workers_given, solver).run(progress)
+        task = functools.partial(_wave_run, route, problem, run.seed, n, FIRST_BUDGET_S, worker_run)
+        seeds = [run.seed + i for i in range(1, PORTFOLIO_SEEDS + 1)]
+        return run_portfolio(task, seeds, cluster=cluster, deadline=run.deadline, progress=run.progress, label=name)
+    return _Escalation(route, problem, name, run, worker_run, n - 1, workers_given).run(run.progress)
 
 
-def _wave_run(route, problem, seed0, per_wave, first_budget, time_limit, solver, *, seed):
+def seeded_run(route: Callable[[Any, RunOptions], Solution], problem: Any, run: RunOptions, *, seed: int) -> Solution:
+    """``route(problem, run)`` with ``seed`` for the run's seed: a route as a portfolio task,
+    ``functools.partial(seeded_run, route, problem, run)`` (:func:`run_portfolio`)."""
+    return route(problem, replace(run, seed=seed))
+
+
+def _wave_run(route, problem, seed0, per_wave, first_budget, run: RunOptions, *, seed):
     """One worker run of :func:`escalate`: ``route`` with ``seed`` and the budget of its wave
-    (``per_wave`` runs per wave, the first wave ``first_budget`` seconds)."""
+    (``per_wave`` runs per wave, the first wave ``first_budget`` seconds) within the run's deadline."""
     budget = first_budget * 2 ** ((seed - seed0 - 1) // per_wave)
-    if time_limit is not None:
-        budget = min(budget, time_limit)
-    return route(problem, seed=seed, time_limit=budget, solver=solver)
+    return seeded_run(route, problem, replace(run, deadline=run.deadline.within(budget)), seed=seed)
 
 
 class _Escalation:
     """:func:`escalate` on local processes: the first run in the calling thread, the worker
-    pool driven by a helper thread (which also started the workers, so that they die with it)."""
+    pool (runs of ``worker_run`` with their own seeds) driven by a helper thread (which also
+    started the workers, so that they die with it)."""
 
-    def __init__(self, route, problem, name, seed0, time_limit, helpers, obey, solver) -> None:
-        self.route, self.problem, self.name, self.seed0 = route, problem, name, seed0
-        self.time_limit, self.solver = time_limit, solver
+    def __init__(self, route, problem, name, run: RunOptions, worker_run: RunOptions, helpers, obey) -> None:
+        self.route, self.problem, self.name, self.seed0 = route, problem, name, run.seed
+        self.run_options, self.worker_run = run, worker_run
         self.helpers = helpers  # at most this many workers; all of them when the caller named them (obey)
         self.obey = obey
-        self.clock = Deadline(time_limit)
+        self.clock = run.deadline
         self.first_done = threading.Event()  # the first run has returned
         self.stop_first = threading.Event()  # a worker decided (or failed): stop the first run
         self.wake_r, self.wake_w = multiprocessing.Pipe(duplex=False)  # wakes the helper
@@ -344,7 +347,7 @@ class _Escalation:
             helper.start()
             try:
                 with stop_on(self.stop_first):
-                    first = self.route(self.problem, seed=self.seed0, time_limit=self.time_limit, solver=self.solver)
+                    first = self.route(self.problem, self.run_options)
             except KeyboardInterrupt:
                 first = Solution(Status.UNKNOWN, seed=self.seed0, time_s=self.clock.elapsed(), reason="interrupted")
             finally:
@@ -365,17 +368,16 @@ class _Escalation:
             n = self.helpers if self.obey else min(self.helpers, _idle_cores(before, after, self.helpers))
             before = after
             if n >= 1:
-                self._drive_pool(n, rem)
+                self._drive_pool(n)
                 return
 
-    def _drive_pool(self, n: int, rem: float | None) -> None:
-        task = functools.partial(_wave_run, self.route, self.problem, self.seed0, n, FIRST_BUDGET_S, rem,
-                                 self.solver)
+    def _drive_pool(self, n: int) -> None:
+        task = functools.partial(_wave_run, self.route, self.problem, self.seed0, n, FIRST_BUDGET_S, self.worker_run)
         seeds = [self.seed0 + i for i in range(1, PORTFOLIO_SEEDS + 1)]
         where = f"on {_processes(n)} beside seed {self.seed0} in this process"
         pool = None
         try:
-            self.pool = pool = _Pool(task, seeds, n, Deadline(rem), self.name, where)
+            self.pool = pool = _Pool(task, seeds, n, self.clock, self.name, where)
             pool.start()
             self.winner, self.stop, self.stopped = pool.drive(
                 lambda text: self.show(f"seed {self.seed0} here; {text} in {_processes(n)}"), wake=self.wake_r)

@@ -50,7 +50,7 @@ from typing import Callable, Iterable, Iterator, Sequence
 
 import numpy as np
 
-from tilesolve.deadline import Deadline
+from tilesolve.deadline import NO_LIMIT, Deadline
 from tilesolve.engine.result import Result, run_interruptible
 from tilesolve.errors import BackendUnavailable, InvalidProblem, MethodNotApplicable
 from tilesolve.model.solution import CountResult, Status
@@ -330,18 +330,14 @@ class SatSession:
         except NotImplementedError:
             pass
 
-    def solve(self, assumptions: Sequence[int] = (), time_limit: float | None = None,
-              deadline: Deadline | None = None) -> Result:
+    def solve(self, assumptions: Sequence[int] = (), deadline: Deadline = NO_LIMIT) -> Result:
         """Decide the formula under ``assumptions``.
 
         Returns ``SAT`` with the model, ``UNSAT`` (with the DRAT proof when logging and
-        no assumptions were used), or ``UNKNOWN`` on the time limit or Ctrl-C. A
-        ``deadline`` (the whole run's) replaces ``time_limit`` and names the run's limit
-        in the reason.
+        no assumptions were used), or ``UNKNOWN`` at the ``deadline`` (the whole run's; the
+        reason names its limit) or on Ctrl-C.
         """
         t0 = time.perf_counter()
-        if deadline is None:
-            deadline = Deadline(time_limit)
         time_limit = deadline.time_limit
         assumptions = list(map(int, assumptions))
         stats = {"load_s": self.load_time, "clauses": self.n_clauses}
@@ -423,16 +419,14 @@ def solve_cnf(
     formula,
     *,
     solver: str = DEFAULT_SAT_SOLVER,
-    time_limit: float | None = None,
     with_proof: bool = False,
     assumptions: Sequence[int] = (),
     seed: int | None = None,
     phases: Sequence[int] | None = None,
-    deadline: Deadline | None = None,
+    deadline: Deadline = NO_LIMIT,
 ) -> Result:
-    """Decide a CNF formula once (loading included in ``runtime`` and in the time limit).
+    """Decide a CNF formula once (loading included in ``runtime``) within the run's ``deadline``.
 
-    ``deadline`` (the whole run's, when the caller has one) replaces ``time_limit``.
     ``phases`` (e.g. a target tiling) take precedence over the seed's random phases.
 
     Examples
@@ -443,8 +437,6 @@ def solve_cnf(
     True
     """
     t0 = time.perf_counter()
-    if deadline is None:
-        deadline = Deadline(time_limit)
     try:
         session = SatSession(formula, solver=solver, with_proof=with_proof, seed=seed, deadline=deadline)
     except KeyboardInterrupt:
@@ -481,7 +473,7 @@ class ModelEnumerator:
         *,
         solver: str = DEFAULT_SAT_SOLVER,
         limit: int | None = None,
-        time_limit: float | None = None,
+        deadline: Deadline = NO_LIMIT,
     ) -> None:
         if limit is not None and limit < 0:
             raise InvalidProblem(f"enumeration limit must be >= 0, got {limit}")
@@ -489,13 +481,13 @@ class ModelEnumerator:
         self.projection = np.asarray(list(projection), dtype=np.int64)
         self.solver = solver
         self.limit = limit
-        self.time_limit = time_limit
+        self.deadline = deadline
         self.count = 0
         self.complete = False
         self.reason: str | None = None
 
     def __iter__(self) -> Iterator[list[int]]:
-        deadline = Deadline(self.time_limit)
+        deadline = self.deadline
         proj = self.projection
         with SatSession(self.formula, solver=self.solver, deadline=deadline) as s:
             while True:
@@ -528,7 +520,7 @@ def count_models(
     projection: Iterable[int],
     *,
     solver: str = DEFAULT_SAT_SOLVER,
-    time_limit: float | None = None,
+    deadline: Deadline = NO_LIMIT,
     limit: int | None = None,
     on_model: Callable[[int], object] | None = None,
 ) -> CountResult:
@@ -536,7 +528,7 @@ def count_models(
 
     Returns a :class:`~tilesolve.model.solution.CountResult`: the exact count (status
     ``sat``), or ``None`` with status ``unknown`` when a limit, the time limit or Ctrl-C
-    stopped it (``note`` says which, starting with "interrupted" for Ctrl-C;
+    stopped it (the run's ``deadline``; ``note`` says which, starting with "interrupted" for Ctrl-C;
     ``stats["found"]`` is the number of models seen, a lower bound). ``on_model(count)`` is
     called after each model (progress).
 
@@ -546,7 +538,7 @@ def count_models(
     3
     """
     t0 = time.perf_counter()
-    e = ModelEnumerator(formula, projection, solver=solver, limit=limit, time_limit=time_limit)
+    e = ModelEnumerator(formula, projection, solver=solver, limit=limit, deadline=deadline)
     try:
         for _ in e:
             if on_model is not None:

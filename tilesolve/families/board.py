@@ -34,6 +34,7 @@ import numpy as np
 
 from tilesolve.errors import InvalidProblem, MethodNotApplicable
 from tilesolve.family import Codec, Demo, Family, Field, Form, RunOptions, form_size, raise_if_interrupted, register
+from tilesolve.family import run_deadline
 from tilesolve.family import solve as _solve
 from tilesolve.io.board_json import BOARD_SOLUTION, VERSIONS
 from tilesolve.model.board import BoardProblem
@@ -84,8 +85,7 @@ def theorem7(problem: BoardProblem, run: RunOptions) -> Solution:
     three-boundary tile set; ``unknown`` when the core fails)."""
     from tilesolve.constructive.wang import theorem7_solve
 
-    return theorem7_solve(problem, core_solver=lambda sub, *, seed, time_limit: sat(
-        sub, RunOptions(seed, _deadline(time_limit))), seed=run.seed, time_limit=run.time_limit)
+    return theorem7_solve(problem, run, core_solver=sat)
 
 
 def wall(problem: BoardProblem, run: RunOptions) -> Solution:
@@ -111,12 +111,6 @@ def npd(problem: BoardProblem, run: RunOptions) -> Solution:
     from tilesolve.families.walls import npd_route
 
     return npd_route(problem, run)
-
-
-def _deadline(time_limit):
-    from tilesolve.deadline import Deadline
-
-    return Deadline(time_limit)
 
 
 #: Solving routes by name. ``"auto"`` is not an entry: it picks one (:func:`auto_method`).
@@ -171,7 +165,7 @@ def enumerate_tilings(problem: BoardProblem, *, limit: int | None = None,
     from tilesolve.engine.sat import ModelEnumerator
 
     enc = encode_wang(problem)
-    for model in ModelEnumerator(enc.clauses, enc.projection(), limit=limit, time_limit=time_limit):
+    for model in ModelEnumerator(enc.clauses, enc.projection(), limit=limit, deadline=run_deadline(time_limit)):
         yield enc.decode(model)
 
 
@@ -191,19 +185,20 @@ def count(problem: BoardProblem, *, method: str = "auto", time_limit: float | No
     from tilesolve.engine.progress import status_line
 
     t0 = time.perf_counter()
+    deadline = run_deadline(time_limit)
     if method != "enumerate":
         from tilesolve.constructive.wang_count import count_problem, transfer_applies
         from tilesolve.deadline import TimeLimitReached
 
         if method == "transfer" or transfer_applies(problem) is None:
             try:
-                value = count_problem(problem, _deadline(time_limit))
+                value = count_problem(problem, deadline)
             except TimeLimitReached as exc:
                 return CountResult(None, Status.UNKNOWN, "transfer", time.perf_counter() - t0, note=str(exc))
             return CountResult(value, Status.SAT, "transfer", time.perf_counter() - t0)
     enc = encode_wang(problem)
     with status_line("counting by enumeration", progress) as show:
-        res = count_models(enc.clauses, enc.projection(), time_limit=time_limit,
+        res = count_models(enc.clauses, enc.projection(), deadline=deadline,
                            on_model=lambda n: show(f"{n:,} tilings so far"))
     return res.replace(time_s=time.perf_counter() - t0)
 
@@ -222,7 +217,7 @@ def crosscheck(problem: BoardProblem, *, seed: int | None = None, time_limit: fl
     rep = CrosscheckReport()
     for name in methods:
         try:
-            sol = raise_if_interrupted(SOLVERS[name](problem, RunOptions(seed, _deadline(time_limit))))
+            sol = raise_if_interrupted(SOLVERS[name](problem, RunOptions(seed, run_deadline(time_limit))))
         except MethodNotApplicable as exc:
             rep.lines.append(f"skip {name}: {exc}")
             continue

@@ -35,6 +35,7 @@ import numpy as np
 
 from tilesolve.errors import InvalidProblem, MethodNotApplicable
 from tilesolve.family import Codec, Demo, Family, Field, Form, RunOptions, form_size, raise_if_interrupted, register
+from tilesolve.family import run_deadline
 from tilesolve.family import solve as _solve
 from tilesolve.io.dappled_json import DAPPLED_FORMATS, DAPPLED_PROBLEM, DAPPLED_SOLUTION
 from tilesolve.model.dappled import DappledProblem
@@ -185,7 +186,7 @@ def count(
     For T = {0,1} and L = {H_0^2, V_1^2} the counts are OEIS A206994 (Remark 1.4).
     """
     from tilesolve.constructive.dappled_count import DEFAULT_MAX_OPERATIONS, count_dappled, enumeration_guard
-    from tilesolve.deadline import Deadline, TimeLimitReached
+    from tilesolve.deadline import TimeLimitReached
     from tilesolve.engine.progress import status_line
 
     if method not in COUNT_METHODS:
@@ -193,7 +194,7 @@ def count(
     if problem.closest_to is not None:
         raise InvalidProblem("counting ignores a closest-to target; drop it")
     t0 = time.perf_counter()
-    deadline = Deadline(time_limit)
+    deadline = run_deadline(time_limit)
     note = None
     if method in ("auto", "transfer"):
         try:
@@ -214,7 +215,7 @@ def count(
             note = f"transfer matrix not applicable ({exc}); counted by solver enumeration"
     from tilesolve.engine.dappled import count_by_enumeration
 
-    res = count_by_enumeration(problem, time_limit=deadline.remaining(), progress=progress)
+    res = count_by_enumeration(problem, deadline=deadline, progress=progress)
     notes = [n for n in (res.note, note) if n]
     return res.replace(time_s=time.perf_counter() - t0, note="; ".join(notes) or None)
 
@@ -227,7 +228,6 @@ def crosscheck(problem: DappledProblem, *, seed: int | None = None, time_limit: 
     return passes the verifier; on small plain grids the transfer-matrix count equals the
     enumeration count. Ctrl-C stops it (``KeyboardInterrupt``), whichever route is running.
     """
-    from tilesolve.deadline import Deadline
     from tilesolve.engine.dappled import tiling_satisfies_encoding
     from tilesolve.family import draw_seed
 
@@ -244,7 +244,7 @@ def crosscheck(problem: DappledProblem, *, seed: int | None = None, time_limit: 
             report.add(tiling_satisfies_encoding(problem, cons.tiling), "constructive tiling satisfies the CNF encoding")
             report.verdicts["constructive"] = Status.SAT
     for name in ("sat", "cpsat") + (("maxsat",) if problem.closest_to is not None else ()):
-        sol = raise_if_interrupted(SOLVERS[name](problem, RunOptions(seed, Deadline(time_limit))))
+        sol = raise_if_interrupted(SOLVERS[name](problem, RunOptions(seed, run_deadline(time_limit))))
         if sol.status.has_tiling:
             bad = dappled_violations(problem, sol.tiling)
             report.add(not bad, f"{name}: {sol.status.value}, tiling verifies ({len(bad)} violations)")

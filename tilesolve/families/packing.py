@@ -51,6 +51,7 @@ Examples
 from __future__ import annotations
 
 import time
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -58,7 +59,7 @@ import numpy as np
 from tilesolve._random import rng_from_seed
 from tilesolve.engine.packing import PACKING_SAT_SOLVER
 from tilesolve.errors import InvalidProblem, MethodNotApplicable
-from tilesolve.family import Codec, Demo, Family, Field, Form, RunOptions, register
+from tilesolve.family import Codec, Demo, Family, Field, Form, RunOptions, register, run_deadline
 from tilesolve.family import solve as _solve
 from tilesolve.io.packing_json import PACKING, VERSIONS
 from tilesolve.model.packing import PackingProblem
@@ -144,13 +145,11 @@ def _search(name: str):
             return sol.replace(notes=(f"the pins clash, so {name!r} was not run: decided on the full formula",)
                                + sol.notes)
         if name not in PORTFOLIO_ROUTES:
-            sol = raw(problem, seed=run.seed, time_limit=run.time_limit, workers=run.workers, solver=run.solver)
+            sol = raw(problem, run)
         else:
             from tilesolve.engine.portfolio import escalate
 
-            sol = escalate(raw, problem, name=f"{name} packing", seed=run.seed, time_limit=run.time_limit,
-                           workers=run.workers, cluster=run.cluster, progress=run.progress, solver=run.solver)
-            sol = _proof_written(sol, problem, run)
+            sol = _proof_written(escalate(raw, problem, run, name=f"{name} packing"), problem, run)
         if sol.status is Status.UNSAT and clashes:
             sol = sol.replace(reason=f"{sol.reason}; in words: " + "; ".join(clashes))
         return sol
@@ -169,7 +168,7 @@ def _proof_written(sol: Solution, problem: PackingProblem, run: RunOptions) -> S
 
     if sol.status is not Status.UNSAT or "proof_name" in sol.stats or not proofs_wanted():
         return sol
-    again = solve_sat(problem, seed=sol.seed, time_limit=run.deadline.remaining(), solver=run.solver)
+    again = solve_sat(problem, replace(run, seed=sol.seed))
     if again.status is Status.UNSAT:
         return again.with_note("decided by a worker process; decided again here to write its proof files")
     return sol.with_note(f"its proof files were not written: deciding it again here ended {again.status.value} "
@@ -280,7 +279,8 @@ def count(problem: PackingProblem, *, method: str = "auto", time_limit: float | 
         raise InvalidProblem(f"unknown count method {method!r}; choose auto or backtrack")
     if problem.fixed or (problem.colors_v is not None and problem.colors_v != problem.colors):
         raise InvalidProblem("packings are counted for square tile sets without pinned tiles")
-    return count_packings(problem.kind, problem.colors, up_to_symmetry=up_to_symmetry, time_limit=time_limit)
+    return count_packings(problem.kind, problem.colors, up_to_symmetry=up_to_symmetry,
+                          deadline=run_deadline(time_limit))
 
 
 # ----------------------------------------------------------------------------- the family record

@@ -24,18 +24,19 @@ of :mod:`tilesolve.constructive.packing`; the SAT calls go through
     and SAT completes it (the notes: "a solution for C colors can often be found faster by
     starting from a solution of C-1 colors").
 
-Each route has the engine signature ``route(problem, *, seed, time_limit, workers, progress,
-solver)`` so that portfolio workers (:func:`tilesolve.engine.portfolio.escalate`) run it as is.
+Each route has the one route signature ``route(problem, run) -> Solution`` (``run`` a
+:class:`~tilesolve.model.run.RunOptions`: seed, the run's deadline, solver), so that portfolio
+workers (:func:`tilesolve.engine.portfolio.escalate`) run it as is.
 """
 
 from __future__ import annotations
 
 import time
+from dataclasses import replace
 
 import numpy as np
 
 from tilesolve._random import rng_from_seed
-from tilesolve.deadline import Deadline
 from tilesolve.engine.packing import (
     PACKING_SAT_SOLVER,
     check_search_size,
@@ -45,17 +46,18 @@ from tilesolve.engine.packing import (
 )
 from tilesolve.errors import MethodNotApplicable
 from tilesolve.model.packing import PackingProblem
+from tilesolve.model.run import RunOptions
 from tilesolve.model.solution import Solution, Status
 
 __all__ = ["solve_hybrid", "solve_lift", "solve_recursive", "lift_factors", "lift_domains", "embedding_pins"]
 
 
-def _restricted_search(problem, method, make_domains, *, seed, time_limit, solver) -> Solution:
-    """Draw domains with ``make_domains(rng)`` and solve until a packing or the time limit."""
+def _restricted_search(problem, method, make_domains, run: RunOptions) -> Solution:
+    """Draw domains with ``make_domains(rng)`` and solve until a packing or the run's deadline."""
     from tilesolve.encodings.packing import encode_packing
 
     t0 = time.perf_counter()
-    deadline = Deadline(time_limit)
+    deadline, seed, solver = run.deadline, run.seed, run.solver
     rng = rng_from_seed(seed)
     tries, stats, r = 0, {}, None
     while True:
@@ -68,11 +70,10 @@ def _restricted_search(problem, method, make_domains, *, seed, time_limit, solve
             return Solution(Status.SAT, enc.decode(r.model), method, r.solver, seed, time.perf_counter() - t0,
                             stats=stats)
         if r.status is Status.UNKNOWN or deadline.expired():
-            return unknown_solution(method, r.solver, seed, t0, time_limit, deadline, r.reason, stats, tries)
+            return unknown_solution(method, r.solver, run, t0, r.reason, stats, tries)
 
 
-def solve_hybrid(problem: PackingProblem, *, seed=None, time_limit=None, workers=None, progress=False,
-                 solver=None) -> Solution:
+def solve_hybrid(problem: PackingProblem, run: RunOptions) -> Solution:
     """Wang only: each column's N/S edges are a random Eulerian circuit (so every column holds
     each vertical domino once); SAT colours the E/W edges and places the tiles. The packing is
     not an outer product (the columns differ and the rows are solver-built)."""
@@ -93,7 +94,7 @@ def solve_hybrid(problem: PackingProblem, *, seed=None, time_limit=None, workers
         d[np.arange(rows * cols), h.ravel()] = True  # H[r][c] is feature r*cols + c
         return d
 
-    return _restricted_search(problem, "hybrid", domains, seed=seed, time_limit=time_limit, solver=solver)
+    return _restricted_search(problem, "hybrid", domains, run)
 
 
 def lift_factors(colors: int) -> tuple[int, int]:
@@ -125,7 +126,7 @@ def lift_domains(problem: PackingProblem, base_features: np.ndarray | None, m: i
     return d & (colours[None, :] % m == tiled[:, None])
 
 
-def _base_packing(kind: str, m: int, rng, solver, deadline: Deadline):
+def _base_packing(kind: str, m: int, rng, run: RunOptions):
     """A packing over ``m >= 2`` colours for :func:`solve_lift` (``None`` when its own search
     ran out of time): the odd corner construction, a random Wang outer product for primes
     >= 5, else a lifted search."""
@@ -136,13 +137,10 @@ def _base_packing(kind: str, m: int, rng, solver, deadline: Deadline):
     mm, _ = lift_factors(m)
     if kind == "wang" and mm == 1 and m >= 5:
         return wang_packing(m, seed=rng)
-    sol = solve_lift(PackingProblem(kind, m), seed=int(rng.integers(2**31)), time_limit=deadline.remaining(),
-                     solver=solver)
-    return sol.tiling
+    return solve_lift(PackingProblem(kind, m), replace(run, seed=int(rng.integers(2**31)))).tiling
 
 
-def solve_lift(problem: PackingProblem, *, seed=None, time_limit=None, workers=None, progress=False,
-               solver=None) -> Solution:
+def solve_lift(problem: PackingProblem, run: RunOptions) -> Solution:
     """A packing over ``C = m*k`` colours as a base packing over ``m`` colours plus a ``k``-ary
     layer found by SAT (module docstring). Pins are honoured when the lifted space holds them."""
     from tilesolve.encodings.packing import features_of_packing
@@ -153,23 +151,22 @@ def solve_lift(problem: PackingProblem, *, seed=None, time_limit=None, workers=N
     rows, cols = problem.shape
     check_search_size(problem, rows * cols * k**4, route="lift")
     t0 = time.perf_counter()
-    deadline = Deadline(time_limit)
+    seed = run.seed
     base_info = []
 
     def domains(rng):
         if m == 1:
             return lift_domains(problem, None, 1)
-        base = _base_packing(problem.kind, m, rng, solver, deadline)
+        base = _base_packing(problem.kind, m, rng, run)
         if base is None:
             raise _NoBase()
         base_info.append(f"base packing over {m} colours, {k}-ary layer by SAT")
         return lift_domains(problem, features_of_packing(PackingProblem(problem.kind, m), base), m)
 
     try:
-        sol = _restricted_search(problem, "lift", domains, seed=seed, time_limit=time_limit, solver=solver)
+        sol = _restricted_search(problem, "lift", domains, run)
     except _NoBase:
-        return unknown_solution("lift", PACKING_SAT_SOLVER, seed, t0, time_limit, deadline,
-                        f"no base packing over {m} colours found", {})
+        return unknown_solution("lift", PACKING_SAT_SOLVER, run, t0, f"no base packing over {m} colours found", {})
     if sol.tiling is not None and seed is not None and not problem.fixed:
         # A random symmetry (translation, rotation, reflection, colour permutation) hides the
         # base layer's colour classes: the classes c mod m map to unrelated colours.
@@ -219,8 +216,7 @@ def embedding_pins(sub_grid, kind: str, sub_colors: int, colors: int, at: tuple[
 RECURSIVE_ATTEMPT_S = 5.0
 
 
-def solve_recursive(problem: PackingProblem, *, seed=None, time_limit=None, workers=None, progress=False,
-                    solver=None) -> Solution:
+def solve_recursive(problem: PackingProblem, run: RunOptions) -> Solution:
     """Figs. 5.11-5.12: pin a packing over ``C - 1`` colours in the bottom-left corner and let
     SAT place the remaining tiles around it.
 
@@ -239,26 +235,24 @@ def solve_recursive(problem: PackingProblem, *, seed=None, time_limit=None, work
         raise MethodNotApplicable("method 'recursive' needs C_h = C_v")
     check_search_size(problem, route="recursive")
     t0 = time.perf_counter()
-    deadline = Deadline(time_limit)
+    deadline, seed = run.deadline, run.seed
     rng = rng_from_seed(seed)
     sub_problem = PackingProblem(problem.kind, problem.colors - 1)
     tries, stats, r = 0, {}, None
     while not deadline.expired():
         tries += 1
-        budget = RECURSIVE_ATTEMPT_S * 2 ** (tries - 1)
-        rem = deadline.remaining()
-        attempt = Deadline(budget if rem is None else min(budget, rem))
+        attempt = deadline.within(RECURSIVE_ATTEMPT_S * 2 ** (tries - 1))
         if problem.kind == "corner" and sub_problem.colors % 2 == 1:
             sub = corner_packing_odd(sub_problem.colors, seed=rng)
         else:
-            s = solve_lift(sub_problem, seed=int(rng.integers(2**31)), time_limit=attempt.remaining(), solver=solver)
+            s = solve_lift(sub_problem, replace(run, seed=int(rng.integers(2**31)), deadline=attempt))
             if s.tiling is None:
                 continue
             sub = s.tiling
         pins = embedding_pins(sub, problem.kind, sub_problem.colors, problem.colors)
         full = PackingProblem(problem.kind, problem.colors, problem.colors_v, tuple(pins) + problem.fixed)
         enc = encode_packing(full)
-        r = run_packing_sat(enc, solver=solver, deadline=attempt, rng=rng)
+        r = run_packing_sat(enc, solver=run.solver, deadline=attempt, rng=rng)
         stats = packing_stats(enc, r, attempts=tries)
         if r.status is Status.SAT:
             note = (f"embeds a packing over {sub_problem.colors} colours in rows {pins[0][0]}-{pins[-1][0]}, "
@@ -268,4 +262,4 @@ def solve_recursive(problem: PackingProblem, *, seed=None, time_limit=None, work
         if "interrupted" in (r.reason or ""):
             break
     reason = r.reason if r is not None else "no attempt finished"
-    return unknown_solution("recursive", PACKING_SAT_SOLVER, seed, t0, time_limit, deadline, reason, stats, tries)
+    return unknown_solution("recursive", PACKING_SAT_SOLVER, run, t0, reason, stats, tries)

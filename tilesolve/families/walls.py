@@ -76,14 +76,23 @@ def is_free_wall(problem: BoardProblem) -> bool:
             and problem.max_v is not None and bool((problem.boundary < 0).all()))
 
 
+def _dappled(problem, run: RunOptions) -> Solution:
+    """The dappled family's pipeline on ``problem`` (its routes, verified there) as a part of
+    this run: the run's seed and deadline, none of its options."""
+    from dataclasses import replace
+
+    from tilesolve.family import get, run_route
+
+    return run_route(get("dappled"), problem, "auto", replace(run, options={}))
+
+
 def wall_route(problem: BoardProblem, run: RunOptions) -> Solution:
     """Solve a free wall problem through a dappled tiling (dappled §4).
 
     The dappled problem goes through the dappled family's own pipeline (Algorithm 1 where it
-    applies, SAT otherwise, e.g. for limit 1), so it is verified there too; its seed is the
-    run's seed.
+    applies, SAT otherwise, e.g. for limit 1), so it is verified there too; its seed and its
+    deadline are the run's.
     """
-    from tilesolve.families import dappled
     from tilesolve.constructive.brick import wall_from_dappled
     from tilesolve.model.dappled import DappledProblem, parse_condition
 
@@ -93,7 +102,7 @@ def wall_route(problem: BoardProblem, run: RunOptions) -> Solution:
     t0 = time.perf_counter()
     rows, cols = (int(v) + 1 for v in problem.board.labels.max(axis=0))
     dp = DappledProblem(rows, cols, 2, (parse_condition(f"H0={problem.max_h}"), parse_condition(f"V1={problem.max_v}")))
-    ds = dappled.solve(dp, seed=run.seed, time_limit=run.time_limit)
+    ds = _dappled(dp, run)
     notes = tuple(f"dappled: {n}" for n in ds.notes) + (f"dappled classes by {ds.method!r}",)
     if not ds.status.has_tiling:
         return Solution(ds.status, None, "wall", ds.solver, run.seed, time.perf_counter() - t0, reason=ds.reason,
@@ -198,7 +207,7 @@ def npd_route(problem: BoardProblem, run: RunOptions) -> Solution:
         * a rectangle ``Board.rect(cols, rows)`` (:func:`wall_problem`): a window of the plane
           tiled by repeating one period.
     run : RunOptions
-        ``run.seed``; ``run.time_limit`` bounds the dappling; family options:
+        ``run.seed``; ``run.deadline`` bounds the dappling; family options:
 
         ``period``: ``(width, height)`` of the repeating period in cells; default the board's
         ``(cols, rows)``; on a torus it must be the board's.
@@ -228,7 +237,6 @@ def npd_route(problem: BoardProblem, run: RunOptions) -> Solution:
         wall repeats with that period (the cyclic dappling is unsatisfiable: choose another
         period or method ``wall``).
     """
-    from tilesolve.families import dappled
     from tilesolve.constructive.npd import cyclic_limits, npd_legs, periodic_window
     from tilesolve.model.dappled import DappledProblem, parse_condition
 
@@ -245,7 +253,7 @@ def npd_route(problem: BoardProblem, run: RunOptions) -> Solution:
     p, q = cyclic_limits(ph, pw, problem.max_h, problem.max_v)
     t0 = time.perf_counter()
     dp = DappledProblem(ph, pw, 2, (parse_condition(f"H0={p}"), parse_condition(f"V1={q}")), cyclic=True)
-    ds = dappled.solve(dp, seed=run.seed, time_limit=run.time_limit)
+    ds = _dappled(dp, run)
     notes = tuple(f"dappled: {n}" for n in ds.notes) + (
         f"period {pw}x{ph}: cyclic dappling H0={p}, V1={q} by {ds.method!r}",)
     if not ds.status.has_tiling:

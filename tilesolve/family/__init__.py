@@ -62,6 +62,7 @@ from tilesolve.family.pipeline import (
     count,
     interrupted,
     raise_if_interrupted,
+    run_deadline,
     run_route,
     solve,
     writing_proofs,
@@ -122,6 +123,7 @@ __all__ = [
     "draw_solution",
     "ENTRY_POINT_GROUP",
     "run_route",
+    "run_deadline",
     "writing_proofs",
     "FileReport",
 ]

@@ -17,7 +17,7 @@ from tilesolve.family.seeds import check_seed, draw_seed
 from tilesolve.model.run import RunOptions
 from tilesolve.model.solution import CountResult, Solution, Status
 
-__all__ = ["solve", "run_route", "count", "interrupted", "raise_if_interrupted", "writing_proofs"]
+__all__ = ["solve", "run_route", "run_deadline", "count", "interrupted", "raise_if_interrupted", "writing_proofs"]
 
 
 def solve(
@@ -64,7 +64,7 @@ def solve(
         raise InvalidProblem(f"time limit must be a positive number of seconds, got {time_limit}")
     run = RunOptions(
         seed=draw_seed() if seed is None else check_seed(seed),
-        deadline=Deadline(time_limit),
+        deadline=run_deadline(time_limit),
         progress=progress,
         solver=solver,
         workers=workers,
@@ -72,6 +72,23 @@ def solve(
         options=dict(options or {}),
     )
     return run_route(fam, problem, method, run)
+
+
+def run_deadline(time_limit: float | None) -> Deadline:
+    """The :class:`~tilesolve.deadline.Deadline` of one run, from the seconds a user gave
+    (``None``: no limit): made once, where a run begins (:func:`solve`, :func:`count`, each run
+    of a crosscheck), and passed down; nothing below an entry point makes one.
+
+    >>> run_deadline(None).time_limit, run_deadline(2.5).time_limit
+    (None, 2.5)
+    >>> run_deadline(float("inf"))
+    Traceback (most recent call last):
+    ...
+    tilesolve.errors.InvalidProblem: time limit must be a finite number of seconds >= 0, got inf
+    """
+    if time_limit is not None and not 0 <= time_limit < float("inf"):
+        raise InvalidProblem(f"time limit must be a finite number of seconds >= 0, got {time_limit}")
+    return Deadline(time_limit)
 
 
 def run_route(fam: Family, problem: Any, method: str | Route, run: RunOptions) -> Solution:

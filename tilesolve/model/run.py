@@ -23,7 +23,10 @@ class RunOptions:
     seed : int
         Always set: the pipeline draws one when the caller gives none, and records it.
     deadline : Deadline
-        The whole run's wall-clock budget (encoding, solving and proof checking count).
+        The whole run's wall-clock budget (encoding, solving and proof checking count), made
+        once where the run begins (:func:`tilesolve.family.run_deadline`) and passed down as it
+        is; a part of the run with a budget of its own takes ``deadline.within(seconds)``.
+        Without one, a RunOptions is a run of its own, without a limit.
     progress : bool
         Show progress on a terminal.
     solver : str or None
@@ -43,11 +46,6 @@ class RunOptions:
     workers: int | None = None
     cluster: Any = None
     options: Mapping[str, Any] = field(default_factory=dict)
-
-    @property
-    def time_limit(self) -> float | None:
-        """Seconds left of the run's budget (``None`` = no limit)."""
-        return self.deadline.remaining()
 
     def option(self, name: str, default: Any = None) -> Any:
         """A family option, or ``default``."""
