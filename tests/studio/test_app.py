@@ -61,6 +61,19 @@ def test_every_family_with_a_form_is_listed(client):
     assert listed["dappled"]["methods"][0] == "auto"
     assert any(f["kind"] == "cells" for f in listed["dappled"]["fields"])
     assert listed["board"]["view"] and listed["stochastic"]["view"] and not listed["dappled"]["view"]
+    assert all(f["pictures"] == ["svg", "png"] for f in listed.values())
+
+
+def test_a_family_that_draws_only_svg_is_listed_so(client):
+    """The page offers the picture exports its family draws (Family.pictures)."""
+    form = family.Form(fields=(), build=lambda values: (None, {}), command=lambda values: ([], {}))
+    fam = family.register(family.Family(name="toy-svg", title="toy", problem_type=type("Toy", (), {}), routes={},
+                                        auto=lambda p: "x", verify=lambda p, t: [], pictures=("svg",), form=form))
+    try:
+        listed = {f["name"]: f for f in client.get("/api/families").json()["families"]}
+        assert listed["toy-svg"]["pictures"] == ["svg"]
+    finally:
+        family.unregister(fam.name)
 
 
 def test_check_describes_the_problem_and_the_painted_grids(client):

@@ -4,7 +4,8 @@ Endpoints (JSON in and out; every user mistake is HTTP 400 ``{"error": "<the CLI
 message>"}``):
 
 ``GET /``                           the page (``static/index.html``)
-``GET /api/families``               every family with a form: name, title, methods, fields, views
+``GET /api/families``               every family with a form: name, title, methods, fields, view,
+                                    the picture formats it draws
 ``POST /api/check``                 ``{family, values}`` -> the problem's description, the
                                     painted grids' extents, the CLI command
 ``POST /api/solve``                 ``{family, values, method, time_limit}`` -> ``{id}`` (a job)
@@ -144,7 +145,7 @@ def _guard(handler):
 def _family_json(fam: family.Family) -> dict:
     return {"name": fam.name, "title": fam.title, "methods": list(fam.methods),
             "route_help": dict(fam.route_help), "fields": [f.public() for f in fam.form.fields],
-            "view": fam.form.window is not None}
+            "view": fam.form.window is not None, "pictures": list(fam.pictures)}
 
 
 # ----------------------------------------------------------------------------- handlers

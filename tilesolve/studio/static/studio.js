@@ -223,7 +223,7 @@ function showResult(res) {
   $("export-json").href = `/api/jobs/${studio.lastJob}/solution.json`;
   for (const f of ["svg", "png"]) {
     $("export-" + f).href = `/api/jobs/${studio.lastJob}/picture.${f}`;
-    $("export-" + f).hidden = !res.picture;
+    $("export-" + f).hidden = !res.picture || !studio.fam.pictures.includes(f);  // the formats its family draws
   }
   $("command").textContent = res.command;
   $("exports").hidden = false;
