@@ -172,3 +172,54 @@ def test_the_pipeline_turns_a_route_out_of_time_into_unknown():
 
     s = family.solve(BoardProblem(Board.rect(2, 2), WangTileSet.brick(3)), route, time_limit=3, seed=1)
     assert calls == [3] and s.status is Status.UNKNOWN and s.reason.endswith("while encoding (5 clauses built)")
+
+
+# ------------------------------------------------------------ one deadline per run, one route signature
+def test_every_family_route_has_the_one_route_signature():
+    """``route(problem, run)`` for every route of every family (no keyword route with seconds)."""
+    import inspect
+
+    from tilesolve import family
+
+    for fam in family.families():
+        for name, route in fam.routes.items():
+            params = list(inspect.signature(route).parameters.values())
+            assert [p.kind for p in params] == [inspect.Parameter.POSITIONAL_OR_KEYWORD] * 2, (fam.name, name)
+
+
+#: The only modules that make a Deadline: the class itself (Deadline.within, a pickled one read
+#: in a worker, NO_LIMIT), a RunOptions made without one (a run of its own), the pipeline's
+#: run_deadline (where a run begins) and run_portfolio called on its own.
+DEADLINE_MAKERS = {"deadline.py", "model/run.py", "family/pipeline.py", "engine/portfolio.py"}
+
+
+def test_a_deadline_is_made_only_where_a_run_begins():
+    import tilesolve
+
+    root = os.path.dirname(tilesolve.__file__)
+    makers = set()
+    for folder, _, files in os.walk(root):
+        for name in files:
+            if name.endswith(".py"):
+                path = os.path.join(folder, name)
+                with open(path, encoding="utf-8") as f:
+                    code = [ln for ln in f if "Deadline(" in ln and ">>>" not in ln and "..." not in ln]
+                if code:
+                    makers.add(os.path.relpath(path, root).replace(os.sep, "/"))
+    assert makers == DEADLINE_MAKERS
+
+
+def test_a_part_of_a_run_takes_its_budget_within_the_runs_deadline():
+    run = Deadline(0.0)
+    assert run.within(20.0).expired() and run.within(None).expired()
+    assert Deadline(None).within(5.0).time_limit == 5.0 and Deadline(None).within(None).time_limit is None
+
+
+def test_a_pickled_deadline_keeps_counting_from_the_runs_start():
+    import pickle
+
+    run = Deadline(60.0)
+    before = run.elapsed()
+    there = pickle.loads(pickle.dumps(run))
+    assert there.time_limit == 60.0 and there.elapsed() >= before
+    assert pickle.loads(pickle.dumps(Deadline(0.0))).expired()
