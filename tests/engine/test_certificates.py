@@ -54,6 +54,7 @@ def _proof_files(folder, cnf: bytes, drat: bytes) -> dict:
 
 
 # ------------------------------------------------------------------------------ unsat files
+@pytest.mark.slow
 def test_honest_unsat_rechecked_and_without_proofs_says_not_rechecked(tmp_path):
     _unsat_dappled(tmp_path)
     proc = run("verify", "u.json", "--proof-dir", "proofs", cwd=tmp_path)
@@ -65,6 +66,7 @@ def test_honest_unsat_rechecked_and_without_proofs_says_not_rechecked(tmp_path):
     assert not proc.stdout.startswith("ok:")
 
 
+@pytest.mark.slow
 def test_satisfiable_problem_pointed_at_a_trivial_cnf_is_refused(tmp_path):
     """The issue's reproduction: a satisfiable 6x5 {H0=2, V1=2} problem whose stats point at
     ``p cnf 1 2 / 1 0 / -1 0`` and the proof ``0``."""
@@ -79,6 +81,7 @@ def test_satisfiable_problem_pointed_at_a_trivial_cnf_is_refused(tmp_path):
         assert not proc.stdout.startswith("ok:")
 
 
+@pytest.mark.slow
 def test_swapped_cnfs_and_proofs_are_refused(tmp_path):
     a = _unsat_dappled(tmp_path, "a.json", "3x3")
     b = _unsat_dappled(tmp_path, "b.json", "4x2")
@@ -100,6 +103,7 @@ def test_swapped_cnfs_and_proofs_are_refused(tmp_path):
     assert proc.returncode == 1 and "differs from the recorded" in proc.stdout
 
 
+@pytest.mark.slow
 def test_a_proof_is_checked_against_the_rederived_formula_not_the_file(tmp_path):
     """A forger who records the digest of the real CNF and writes a trivially unsat CNF file
     under that name, with the proof ``0``: the proof fails on the re-derived formula."""
@@ -119,6 +123,7 @@ def test_a_proof_is_checked_against_the_rederived_formula_not_the_file(tmp_path)
     assert proc.returncode == 1 and "failed against the re-derived CNF" in proc.stdout, proc.stdout
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("encoding,message", [
     ({"name": "dappled-cnf", "version": 0, "options": {"card_encoding": "auto"}},
      "proof made with encoding dappled-cnf v0; this version encodes v1: re-solve to re-certify"),
@@ -140,6 +145,7 @@ def test_changed_or_unknown_encodings_are_refused_plainly(tmp_path, encoding, me
         assert proc.returncode == 1 and message in proc.stdout and "Traceback" not in proc.stderr, proc.stdout
 
 
+@pytest.mark.slow
 def test_export_dimacs_writes_the_formula_verify_rederives(tmp_path):
     doc = _unsat_dappled(tmp_path)
     problem = {k: v for k, v in doc.items() if k in ("version", "size", "n_tiles", "conditions", "cyclic", "counts")}
@@ -183,6 +189,7 @@ def test_every_named_encoding_is_deterministic_and_pinned_to_its_version():
 
 
 # ------------------------------------------------------------------------- every family
+@pytest.mark.slow
 def test_honest_unsat_of_every_route_verifies_and_a_relabel_is_refused(tmp_path):
     (tmp_path / "lonely.json").write_text(json.dumps({"order": "NESW", "colors": 2, "tiles": [[0, 1, 0, 0]]}))
     runs = {
@@ -212,6 +219,7 @@ def _lines_end_with_one_verdict(stdout: str) -> str:
     return lines[-1]
 
 
+@pytest.mark.slow
 def test_relabelled_lattice_with_another_boards_proof_is_refused(tmp_path):
     """The issue's reproduction: periodic-8-20's "torus 7x6 shear 6" (which tiles) relabelled
     refuted with the 1x1 torus's proof, by a careful forger who also rewrites the conclusion
@@ -255,6 +263,7 @@ def test_relabelled_lattice_with_another_boards_proof_is_refused(tmp_path):
     assert not _lines_end_with_one_verdict(proc.stdout).startswith("ok:")
 
 
+@pytest.mark.slow
 def test_a_report_claims_no_more_than_its_certificates(tmp_path):
     """Without a witness, a sweep's report must hold every lattice it counts; dropping one, or
     claiming more in words, is refused."""
@@ -271,6 +280,7 @@ def test_a_report_claims_no_more_than_its_certificates(tmp_path):
     assert proc.returncode == 1 and "the conclusion is not what the certificates prove" in proc.stdout
 
 
+@pytest.mark.slow
 def test_transducer_emptiness_certificate_is_rederived(tmp_path):
     (tmp_path / "lonely.json").write_text(json.dumps({"order": "NESW", "colors": 2, "tiles": [[0, 1, 0, 0]]}))
     proc = run("aperiodic", "check", "lonely.json", "--method", "transducer", "--max-square", "3", "-o", "t.json",
@@ -290,6 +300,7 @@ def test_transducer_emptiness_certificate_is_rederived(tmp_path):
     assert not _lines_end_with_one_verdict(proc.stdout).startswith("ok:")
 
 
+@pytest.mark.slow
 def test_report_with_a_three_colour_tile_is_one_error_line(tmp_path):
     (tmp_path / "lonely.json").write_text(json.dumps({"order": "NESW", "colors": 2, "tiles": [[0, 1, 0, 0]]}))
     assert run("aperiodic", "check", "lonely.json", "--max-period", "1", "-o", "r.json", cwd=tmp_path).returncode == 0
@@ -303,6 +314,7 @@ def test_report_with_a_three_colour_tile_is_one_error_line(tmp_path):
 # ---------------------------------------------------------------------------------- caches
 
 
+@pytest.mark.slow
 def test_forged_cache_lines_are_decided_again_and_proofs_written_for_cached_refutations(tmp_path):
     (tmp_path / "d.json").write_text(json.dumps({"order": "NESW", "colors": 3, "tiles": DIAGONAL}))
     args = ["aperiodic", "check", "d.json", "--max-period", "3", "--shears", "--workers", "1"]
@@ -343,6 +355,7 @@ def test_forged_cache_lines_are_decided_again_and_proofs_written_for_cached_refu
     assert proc.returncode == 0 and f"{len(refuted)} refutation(s) re-checked" in proc.stdout, proc.stdout
 
 
+@pytest.mark.slow
 def test_a_cache_without_its_proofs_is_not_evidence(tmp_path):
     (tmp_path / "d.json").write_text(json.dumps({"order": "NESW", "colors": 3, "tiles": DIAGONAL}))
     args = ["aperiodic", "check", "d.json", "--max-period", "2", "--workers", "1"]
@@ -367,6 +380,7 @@ def test_sweep_api_without_a_witness_check_uses_no_cached_witness(tmp_path):
     assert "was not re-verified" in again[1].evidence["cache_rejected"]
 
 
+@pytest.mark.slow
 def test_many_refutations_rechecked_on_worker_processes(tmp_path):
     from tilesolve.engine.certificates import PARALLEL_RECHECK_MIN
 
