@@ -88,6 +88,7 @@ def small_problems(draw, closest=False):
 # ---------------------------------------------------------------- satisfiability
 
 
+@pytest.mark.slow
 @settings(max_examples=40)
 @given(small_problems())
 def test_sat_cpsat_and_brute_force_agree(p):
@@ -242,6 +243,7 @@ def test_model_enumerator_and_count_models_generic():
 # ---------------------------------------------------------------- closest tiling (MaxSAT)
 
 
+@pytest.mark.slow
 @settings(max_examples=25)
 @given(small_problems(closest=True))
 def test_maxsat_optimum_equals_brute_force_and_cpsat(p):
