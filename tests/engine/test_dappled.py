@@ -187,6 +187,7 @@ def test_empty_clause_problem_is_unsat():
 # ---------------------------------------------------------------- enumeration and counting
 
 
+@pytest.mark.fast_cases(1)
 @pytest.mark.parametrize("size", ["3x3", "4x3", "3x4"])
 @pytest.mark.parametrize("conds", [["H0=2", "V1=2"], ["H0=1", "V0=1"], ["H{0,1}=3", "V1=1"]])
 @pytest.mark.parametrize("cyclic", [False, True])
