@@ -155,6 +155,7 @@ def test_bad_arguments(kwargs):
 # -------------------------------------------------------------------- local worker processes
 
 
+@pytest.mark.slow
 def test_first_decisive_run_wins_and_the_others_are_terminated(tmp_path):
     t0 = time.perf_counter()
     s = run_portfolio(task(s0=f"sleep:{LONG_S}", s1="sat", s2=f"sleep:{LONG_S}"), [0, 1, 2], workers=2)
@@ -166,6 +167,7 @@ def test_first_decisive_run_wins_and_the_others_are_terminated(tmp_path):
     assert s.stats["portfolio_workers"] == 2 and s.time_s >= s.stats["run_time_s"]
 
 
+@pytest.mark.slow
 def test_more_seeds_than_workers_queue_up():
     s = run_portfolio(task(s5="sat"), range(6), workers=2)
     assert s.status is Status.SAT and s.seed == 5
@@ -173,11 +175,13 @@ def test_more_seeds_than_workers_queue_up():
     assert s.notes[-1].endswith("after 6 of 6 runs started, on 2 worker processes")
 
 
+@pytest.mark.slow
 def test_unsat_is_decisive():
     s = run_portfolio(task(s2="unsat"), range(4), workers=2)
     assert s.status is Status.UNSAT and s.seed == 2 and s.reason == "refuted"
 
 
+@pytest.mark.slow
 def test_all_unknown_is_unknown_never_unsat():
     s = run_portfolio(task(s0="unknown:budget", s1="unknown:time limit", s2="unknown:budget"), range(4), workers=2)
     assert s.status is Status.UNKNOWN
@@ -196,6 +200,7 @@ def test_time_limit_stops_running_runs():
     assert s.reason == "no run decided: 2 runs stopped (time limit); 1 seed not started (time limit)"
 
 
+@pytest.mark.slow
 def test_a_worker_exception_is_reraised_with_its_type_after_stopping_the_others():
     t0 = time.perf_counter()
     with pytest.raises(InvalidProblem, match="bad input for seed 1") as info:
@@ -204,11 +209,13 @@ def test_a_worker_exception_is_reraised_with_its_type_after_stopping_the_others(
     assert "Traceback" in str(info.value.__cause__) and "scripted" in str(info.value.__cause__)
 
 
+@pytest.mark.slow
 def test_an_exception_that_cannot_be_rebuilt_arrives_as_runtime_error():
     with pytest.raises(RuntimeError, match=r"test_portfolio\._OddError: odd 1 2"):
         run_portfolio(task(s0="odd"), [0, 1], workers=2)
 
 
+@pytest.mark.slow
 def test_a_worker_that_dies_breaks_the_pool():
     with pytest.raises(BrokenProcessPool, match="exit code 7.*seed 0"):
         run_portfolio(task(s0="exit", s1=f"sleep:{LONG_S}"), [0, 1], workers=2)
@@ -219,6 +226,7 @@ def test_unpicklable_task_is_a_type_error():
         run_portfolio(lambda seed: Solution(Status.SAT), [0, 1], workers=2)
 
 
+@pytest.mark.slow
 def test_ctrl_c_in_the_parent_stops_the_workers_and_returns_unknown(ctrl_c):
     t0 = time.perf_counter()
     s = run_portfolio(task(s0=f"sigint:{os.getpid()}:{LONG_S}", s1=f"sleep:{LONG_S}"), [0, 1, 2], workers=2)
@@ -227,6 +235,7 @@ def test_ctrl_c_in_the_parent_stops_the_workers_and_returns_unknown(ctrl_c):
     assert s.notes == ("no run decided: 2 runs stopped (interrupted); 1 seed not started (interrupted)",)
 
 
+@pytest.mark.slow
 def test_progress_line_on_a_terminal(monkeypatch):
     class Terminal(io.StringIO):
         def isatty(self):
@@ -259,6 +268,7 @@ def test_portfolio_line_inside_the_pipelines_line_draws_no_second_line(monkeypat
     assert all(part.startswith("  packing: solving with 'fake'") for part in drawn)  # one line, the outer one
 
 
+@pytest.mark.slow
 def test_no_progress_line_off_a_terminal(monkeypatch):
     term = io.StringIO()
     monkeypatch.setattr(sys, "stderr", term)
@@ -278,6 +288,7 @@ def dask_address():
         yield cluster.scheduler_address
 
 
+@pytest.mark.slow
 def test_dask_first_decisive_run_wins(dask_address):
     s = run_portfolio(task(s3="sat"), range(5), cluster=dask_address)
     assert s.status is Status.SAT and s.seed == 3
@@ -287,17 +298,20 @@ def test_dask_first_decisive_run_wins(dask_address):
                                   f"on the Dask cluster at {dask_address} (2 workers, 2 threads)")
 
 
+@pytest.mark.slow
 def test_dask_all_unknown(dask_address):
     s = run_portfolio(task(s0="unknown:budget", s1="unknown:budget"), range(3), cluster=dask_address)
     assert s.status is Status.UNKNOWN
     assert s.reason == "no run decided: 3 runs ended unknown (budget: 2, no reason given: 1)"
 
 
+@pytest.mark.slow
 def test_dask_exception_keeps_its_type(dask_address):
     with pytest.raises(InvalidProblem, match="bad input for seed 2"):
         run_portfolio(task(s2="raise"), range(3), cluster=dask_address)
 
 
+@pytest.mark.slow
 def test_dask_open_client_is_used_and_left_open(dask_address):
     from distributed import Client
 
@@ -307,6 +321,7 @@ def test_dask_open_client_is_used_and_left_open(dask_address):
         assert client.status == "running"
 
 
+@pytest.mark.slow
 def test_dask_time_limit(dask_address):
     t0 = time.perf_counter()
     s = run_portfolio(task(s0="sleep:2", s1="sleep:2"), range(2), cluster=dask_address, deadline=Deadline(0.1))
@@ -314,11 +329,13 @@ def test_dask_time_limit(dask_address):
     assert s.status is Status.UNKNOWN and s.reason == "no run decided: 2 runs stopped (time limit)"
 
 
+@pytest.mark.slow
 def test_dask_ctrl_c(dask_address, ctrl_c):
     s = run_portfolio(task(s0=f"sigint:{os.getpid()}:1"), range(2), cluster=dask_address)
     assert s.status is Status.UNKNOWN and s.reason == "interrupted"
 
 
+@pytest.mark.slow
 def test_unreachable_scheduler_is_a_one_line_error(monkeypatch):
     monkeypatch.setattr(pf, "CONNECT_TIMEOUT_S", 1.0)
     with pytest.raises(BackendUnavailable) as info:
@@ -425,6 +442,7 @@ def test_idle_cores_from_cpu_time_samples(monkeypatch):
         assert 0 <= idle <= total
 
 
+@pytest.mark.slow
 def test_escalate_worker_that_decides_stops_the_first_run(at_once):
     t0 = time.perf_counter()
     s = _escalate({1: "wait", 3: "sat"}, workers=3)  # the first run alone would wait forever
@@ -443,6 +461,7 @@ def test_escalate_first_run_that_decides_terminates_the_workers(at_once):
     assert s.notes[-1] == "portfolio: seed 1 decided it in this process; 2 runs started beside it on 2 worker processes"
 
 
+@pytest.mark.slow
 def test_escalate_undecided_keeps_the_first_runs_reason_and_summarises_the_workers(monkeypatch):
     monkeypatch.setattr(pf, "QUICK_S", 0.0)
     s = _escalate({}, workers=2, time_limit=3.0)
@@ -486,6 +505,7 @@ def _run_script(tmp_path: Path, code: str) -> subprocess.CompletedProcess:
                           timeout=600)
 
 
+@pytest.mark.slow
 def test_readme_packing_example_runs_as_a_script_without_main_guard(tmp_path):
     # The README's second Python example, verbatim: corner C = 8 takes longer than QUICK_S,
     # so a worker starts beside the first run if a core is idle (the worker used to re-run
@@ -501,6 +521,7 @@ def test_readme_packing_example_runs_as_a_script_without_main_guard(tmp_path):
     assert r.stdout.startswith("sat (64, 64) (")
 
 
+@pytest.mark.slow
 def test_forced_portfolio_runs_as_a_script_without_main_guard(tmp_path):
     r = _run_script(tmp_path, """\
         import functools
@@ -534,6 +555,7 @@ _MAIN_TASK = """\
     """
 
 
+@pytest.mark.slow
 def test_task_defined_in_a_guarded_script_runs_in_the_workers(tmp_path):
     call = 'if __name__ == "__main__":\n        print(run_portfolio(task, [0, 1], workers=2).notes[-1])'
     r = _run_script(tmp_path, _MAIN_TASK.format(call=call))
@@ -541,6 +563,7 @@ def test_task_defined_in_a_guarded_script_runs_in_the_workers(tmp_path):
     assert r.stdout == "portfolio: seed 1 decided it, after 2 of 2 runs started, on 2 worker processes\n"
 
 
+@pytest.mark.slow
 def test_task_defined_in_an_unguarded_script_is_a_clear_error(tmp_path):
     r = _run_script(tmp_path, _MAIN_TASK.format(call="print(run_portfolio(task, [0, 1], workers=2))"))
     assert r.returncode == 1 and r.stdout == ""
@@ -591,6 +614,7 @@ def _until(predicate) -> bool:
     return False
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
 @pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGKILL])
 def test_workers_die_with_the_cli_process(sig):
