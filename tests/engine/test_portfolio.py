@@ -414,6 +414,7 @@ def test_escalate_keeps_the_first_run_with_the_whole_time_limit(workers, monkeyp
         assert s.notes == () and "portfolio_runs" not in s.stats
 
 
+@pytest.mark.fast_cases(1)
 @pytest.mark.parametrize("idle, started", [(0.0, False), (0.2, False), (0.5, True), (1.0, True)])
 def test_escalate_by_default_starts_workers_only_on_idle_cores(idle, started, monkeypatch):
     clock = iter(range(1, 10**6))
