@@ -79,6 +79,7 @@ def _lemma_lines(proof):
     return [i for i, line in enumerate(proof) if not line.startswith("d") and line.strip() != "0"]
 
 
+@pytest.mark.slow
 def test_tampered_proofs_are_rejected_by_both(corpus):
     rejected = {"truncated": 0, "no empty clause": 0, "lemmas dropped": 0, "altered": 0, "invented": 0}
     for name, formula, proof in corpus:
@@ -105,6 +106,7 @@ def test_tampered_proofs_are_rejected_by_both(corpus):
     assert all(n > 0 for n in rejected.values()), rejected
 
 
+@pytest.mark.slow
 def test_plain_and_compiled_kernels_agree(corpus):
     for name, formula, proof in corpus:
         a = check_drat(formula, proof, kernels="plain")
@@ -126,6 +128,7 @@ def unsat_cnfs(draw):
         return clauses, list(s.get_proof())
 
 
+@pytest.mark.slow
 @settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(unsat_cnfs(), st.data())
 def test_random_unsat_cnfs_agree_with_dratify(case, data):
