@@ -9,6 +9,7 @@ witness read with the *input's* tiles is a valid tiling.
 from __future__ import annotations
 
 import json
+import shutil
 from pathlib import Path
 
 import pytest
@@ -55,3 +56,17 @@ def test_wang_solve_lists_the_tiles_in_the_input_order(tmp_path, tiles):
     assert doc["leg_order"] == ["N", "E", "S", "W"] and doc["tileset"] == tiles
     assert all(cell in tiles for cell in doc["tiles"])
     assert run("verify", "s.json", cwd=tmp_path).returncode == 0
+
+
+def test_a_report_written_before_keeps_its_own_order_and_verifies(tmp_path):
+    """A report written while tilesolve sorted the tiles (by W, N, E, S): its indices refer to
+    the list it holds, which the verifier reads in the order written, proofs included."""
+    old = Path(__file__).parent / "data" / "aperiodic_report"
+    shutil.copytree(old, tmp_path / "old")
+    report = json.loads((old / "v1-periodic-7-30.json").read_text())
+    listed = report["tileset"]["tiles"]
+    assert listed == sorted(listed, key=lambda t: [t[3], t[0], t[1], t[2]]) != json.loads(TILES.read_text())["tiles"]
+    assert _matches(listed, report["squares"][-1]["tiling"])
+    proc = run("verify", "v1-periodic-7-30.json", "--proof-dir", "proofs", cwd=tmp_path / "old")
+    assert proc.returncode == 0 and proc.stdout.startswith("ok:"), proc.stdout + proc.stderr
+    assert proc.stdout.count("verified against the re-derived CNF") == 4

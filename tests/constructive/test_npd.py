@@ -29,7 +29,7 @@ def period_legs(sol, rows: int, cols: int) -> np.ndarray:
     (9, 13, 5, 5, 6), (20, 20, 10, 3, 7), (11, 4, 10, 6, 8), (40, 30, 4, 3, 9),
 ])
 def test_npd_tiles_the_torus(rows, cols, n, nc, seed):
-    p = npd_problem(rows, cols, n, n_colors=nc)
+    p = npd_problem(cols, rows, n, n_colors=nc)
     assert p.board.kind == "torus" and p.board.n_boundary == 0
     sol = solve(p, "npd", seed=seed)
     assert sol.status is Status.SAT and sol.method == "npd"
@@ -41,7 +41,7 @@ def test_npd_tiles_the_torus(rows, cols, n, nc, seed):
 
 
 def test_different_limits_across_and_down():
-    p = npd_problem(10, 14, 2, max_v=6)
+    p = npd_problem(14, 10, 2, max_v=6)
     sol = solve(p, "npd", seed=11)
     assert board_violations(p, sol.tiling) == []
     hor, ver = line_lengths(periodic_window(period_legs(sol, 10, 14), 0, 0, 28, 20))
@@ -49,32 +49,32 @@ def test_different_limits_across_and_down():
 
 
 def test_same_seed_same_wall():
-    p = npd_problem(12, 16, 4)
+    p = npd_problem(16, 12, 4)
     a, b, c = (solve(p, "npd", seed=s).tiling for s in (21, 21, 22))
     assert np.array_equal(a, b) and not np.array_equal(a, c)
 
 
 def test_a_window_of_the_repeating_wall_is_cut_from_the_period():
-    torus = solve(npd_problem(8, 12, 3), "npd", seed=5)
-    q = wall_problem(10, 30, 3)
+    torus = solve(npd_problem(12, 8, 3), "npd", seed=5)
+    q = wall_problem(30, 10, 3)
     win = solve(q, "npd", seed=5, options={"period": (12, 8), "origin": (-5, 3)})
     assert board_violations(q, win.tiling) == []
     expect = periodic_window(period_legs(torus, 8, 12), -5, 3, 30, 10)
     assert np.array_equal(win.tiling.reshape(10, 30, 4), expect)
     # the default period is the rectangle itself, which then tiles the plane
-    r = solve(wall_problem(6, 9, 2), "npd", seed=1).tiling.reshape(6, 9, 4)
+    r = solve(wall_problem(9, 6, 2), "npd", seed=1).tiling.reshape(6, 9, 4)
     assert (r[:, -1, 2] == r[:, 0, 0]).all() and (r[-1, :, 3] == r[0, :, 1]).all()
 
 
 @pytest.mark.parametrize(("rows", "cols", "n"), [(3, 3, 1), (3, 3, 2), (5, 5, 1), (4, 5, 1)])
 def test_unsat_tori_agree_with_the_sat_route(rows, cols, n):
-    p = npd_problem(rows, cols, n)
+    p = npd_problem(cols, rows, n)
     assert solve(p, "npd", seed=0).status is Status.UNSAT
     assert solve(p, "sat", seed=0).status is Status.UNSAT
 
 
 def test_sat_route_agrees_where_npd_builds_one():
-    p = npd_problem(4, 6, 1)
+    p = npd_problem(6, 4, 1)
     assert solve(p, "npd", seed=0).status is Status.SAT
     assert solve(p, "sat", seed=0).status is Status.SAT
 
@@ -101,8 +101,8 @@ def test_cyclic_limits_fold_in_the_border_constraint():
 
 
 @pytest.mark.parametrize(("make", "options", "error", "words"), [
-    (lambda: npd_problem(2, 8, 2), {}, InvalidProblem, "at least 3x3"),
-    (lambda: npd_problem(8, 1, 2), {}, InvalidProblem, "at least 3x3"),
+    (lambda: npd_problem(8, 2, 2), {}, InvalidProblem, "at least 3x3"),
+    (lambda: npd_problem(1, 8, 2), {}, InvalidProblem, "at least 3x3"),
     (lambda: wall_problem(5, 5, 2), {"period": (2, 6)}, InvalidProblem, "at least 3x3"),
     (lambda: npd_problem(6, 6, 2), {"period": (4, 4)}, InvalidProblem, "the period is the board"),
     (lambda: wall_problem(5, 5, 2), {"period": (4, "x")}, InvalidProblem, "period"),

@@ -16,7 +16,7 @@ from tilesolve.verify.board import board_violations, line_runs
 @given(st.integers(1, 12), st.integers(1, 12), st.integers(1, 4), st.integers(1, 4), st.integers(3, 5),
        st.integers(0, 10**6))
 def test_walls_from_dappling_verify(rows, cols, p, q, k, seed):
-    prob, sol = brick_wall(rows, cols, p, max_v=q, n_colors=k, seed=seed)
+    prob, sol = brick_wall(cols, rows, p, max_v=q, n_colors=k, seed=seed)
     assert sol.status.value == "sat"
     assert board_violations(prob, sol.tiling) == []
     t = sol.tiling
@@ -36,7 +36,7 @@ def test_wall_keeps_the_dappled_classes():
 
 
 def test_long_line_is_caught_in_a_wall():
-    prob, sol = brick_wall(4, 8, 2, seed=0)
+    prob, sol = brick_wall(8, 4, 2, seed=0)
     t = np.array(sol.tiling)
     # make the whole first row horizontal: W = E everywhere (joins stay consistent)
     row = np.arange(8)

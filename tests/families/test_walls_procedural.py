@@ -36,7 +36,7 @@ def test_random_windows_verify_with_max_line(n):
         rows, cols = (int(v) for v in rng.integers(1, 24, size=2))
         x0, y0 = (int(v) for v in rng.integers(-10**12, 10**12, size=2))
         colors = int(rng.integers(3, 6))
-        p = wall_problem(rows, cols, n, n_colors=colors)
+        p = wall_problem(cols, rows, n, n_colors=colors)
         s = solve(p, "procedural", seed=int(rng.integers(0, 2**31)), options={"origin": (x0, y0)})
         assert s.status.value == "sat" and s.method == "procedural"
         assert s.tiling.shape == (rows * cols, 4)
@@ -60,7 +60,7 @@ def test_overlapping_windows_agree():
     b = (0, 9, 20, 11)
     seen = {}
     for x0, y0, rows, cols in (a, b):
-        s = solve(wall_problem(rows, cols, 4), "procedural", seed=21, options={"origin": (x0, y0)})
+        s = solve(wall_problem(cols, rows, 4), "procedural", seed=21, options={"origin": (x0, y0)})
         seen[(x0, y0)] = plane(s.tiling, x0, y0, rows, cols)
     wa, wb = seen[(-7, 3)], seen[(0, 9)]
     shared = wa.keys() & wb.keys()
@@ -159,17 +159,17 @@ def test_the_window_is_data_on_the_solution():
     def shape(problem):
         return problem.board.grid_spec.rows, problem.board.grid_spec.cols
 
-    p = wall_problem(12, 15, 4)
+    p = wall_problem(15, 12, 4)
     rows, cols = shape(p)
     s = solve(p, "procedural", seed=21, options={"origin": (-7, 3)})
     assert s.window == Window(-7, 3, cols, rows)
     cells, t = plane(s.tiling, -7, 3, rows, cols), s.tiling.reshape(rows, cols, 4)
     assert all(cells[s.window.cell(r, c)] == tuple(int(v) for v in t[r, c]) for r in range(rows) for c in range(cols))
-    p = wall_problem(6, 8, 3)
+    p = wall_problem(8, 6, 3)
     n = solve(p, "npd", seed=2, options={"origin": (5, -9), "period": (4, 6)})
     assert n.window == Window(5, -9, shape(p)[1], shape(p)[0])
     assert solve(npd_problem(6, 6, 3), "npd", seed=2).window == Window(0, 0, 6, 6)
-    assert solve(wall_problem(6, 8, 3), "wall", seed=2).window is None  # a finite wall is no window of the plane
+    assert solve(wall_problem(8, 6, 3), "wall", seed=2).window is None  # a finite wall is no window of the plane
 
 
 WALL_DATA = Path(__file__).resolve().parent.parent / "data" / "board_solution"

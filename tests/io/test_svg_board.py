@@ -22,7 +22,7 @@ def test_corners_merge_across_joins():
 
 
 def test_wall_svg_and_seam_arrows():
-    p, s = brick_wall(6, 10, 2, seed=1)
+    p, s = brick_wall(10, 6, 2, seed=1)
     svg = board_drawing(p, s.tiling, title="wall").tostring()
     assert svg.startswith("<svg") and "<rect" in svg and "<line" in svg
     m = BoardProblem(Board.mobius(6, 4), WangTileSet.brick(3))

@@ -101,7 +101,7 @@ def brick_wall_cmd(ctx, size, max_line, max_v, colors, seed, output, svg) -> Non
     check_brick_colors(colors)
     if seed is None:
         seed = draw_seed()
-    problem, sol = brick_wall(rows, cols, max_line, max_v=max_v, n_colors=colors, seed=seed)
+    problem, sol = brick_wall(cols, rows, max_line, max_v=max_v, n_colors=colors, seed=seed)
     finish(ctx, problem, sol, outs, output, svg)
 
 

@@ -128,7 +128,7 @@ def wall(ctx, region, max_line, colors, seed, method, period, output, svg, png, 
     if held:
         from tilesolve.families.walls import wall_problem
 
-        problem = wall_problem(rows, cols, max_line, n_colors=colors)
+        problem = wall_problem(cols, rows, max_line, n_colors=colors)
         options = {"origin": (x0, y0)} | ({"period": (pw, ph)} if method == "npd" else {})
         sol = raise_if_interrupted(family.solve(problem, route, seed=seed, options=options))
         finish(ctx, problem, sol, outs, output, svg, png, draw_png=draw)

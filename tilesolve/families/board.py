@@ -309,7 +309,7 @@ def _draw(problem: BoardProblem, sol: Solution, path, fmt: str, *, title: str | 
 def _brick_wall_demo() -> BoardProblem:
     from tilesolve.families.walls import wall_problem
 
-    return wall_problem(20, 32, 3)
+    return wall_problem(32, 20, 3)
 
 
 def _mobius_demo() -> BoardProblem:
@@ -420,7 +420,7 @@ def _form_window(values, window):
     from tilesolve.families.walls import wall_problem
 
     line = values["max_h"] or values["max_v"] or 3
-    problem = wall_problem(window.height, window.width, line, n_colors=values["colors"])
+    problem = wall_problem(window.width, window.height, line, n_colors=values["colors"])
     return problem, "procedural", {"origin": (window.x0, window.y0)}
 
 

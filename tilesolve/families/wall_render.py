@@ -126,7 +126,7 @@ def wall_source(method: str, *, colors: int, max_line: int | None, seed: int,
     if pw * ph > MAX_BOARD_CELLS:
         raise InvalidProblem(f"the npd period {pw}x{ph} has {pw * ph:,} cells, more than the {MAX_BOARD_CELLS:,} "
                              "a board may have; choose a smaller period (the wall repeats it)")
-    problem = npd_problem(ph, pw, max_line, n_colors=colors)
+    problem = npd_problem(pw, ph, max_line, n_colors=colors)
     sol = raise_if_interrupted(solve(problem, "npd", seed=seed))
     if not sol.status.has_tiling:
         raise MethodNotApplicable(f"no wall with lines <= {max_line} repeats with period {pw}x{ph} "

@@ -23,15 +23,15 @@ provides two routes of the board family:
 Examples
 --------
 >>> from tilesolve.verify.board import board_violations
->>> p, s = brick_wall(6, 9, 2, seed=1)
+>>> p, s = brick_wall(9, 6, 2, seed=1)
 >>> board_violations(p, s.tiling), s.method
 ([], 'wall')
 >>> from tilesolve.family import solve
->>> q = wall_problem(4, 6, 3)
+>>> q = wall_problem(6, 4, 3)
 >>> s = solve(q, "procedural", seed=5, options={"origin": (-100, 40)})
 >>> board_violations(q, s.tiling), s.method
 ([], 'procedural')
->>> t = npd_problem(8, 12, 4)
+>>> t = npd_problem(12, 8, 4)
 >>> s = solve(t, "npd", seed=2)
 >>> t.board.kind, board_violations(t, s.tiling), s.method
 ('torus', [], 'npd')
@@ -53,14 +53,15 @@ __all__ = ["wall_problem", "npd_problem", "is_free_wall", "wall_route", "procedu
            "brick_wall", "LINE_METHODS", "line_statistics"]
 
 
-def wall_problem(rows: int, cols: int, max_line: int, *, max_v: int | None = None, n_colors: int = 3) -> BoardProblem:
-    """The board problem of a ``rows x cols`` brick wall with lines of at most ``max_line``
-    cells across and ``max_v`` (default ``max_line``) down."""
-    return BoardProblem(Board.rect(cols, rows), WangTileSet.brick(n_colors), None, max_h=int(max_line),
+def wall_problem(width: int, height: int, max_line: int, *, max_v: int | None = None,
+                 n_colors: int = 3) -> BoardProblem:
+    """The board problem of a ``width x height`` brick wall (width first, as ``--size WxH``)
+    with lines of at most ``max_line`` cells across and ``max_v`` (default ``max_line``) down."""
+    return BoardProblem(Board.rect(width, height), WangTileSet.brick(n_colors), None, max_h=int(max_line),
                         max_v=int(max_line if max_v is None else max_v))
 
 
-def npd_problem(rows: int, cols: int, max_line: int, *, max_v: int | None = None,
+def npd_problem(width: int, height: int, max_line: int, *, max_v: int | None = None,
                 n_colors: int = 3) -> BoardProblem:
     """The board problem of one period of a repeatable wall: brick tiles on the
     ``rows x cols`` torus (:meth:`Board.torus`), lines of at most ``max_line`` cells across
@@ -275,12 +276,12 @@ def npd_route(problem: BoardProblem, run: RunOptions) -> Solution:
                     window=window)
 
 
-def brick_wall(rows: int, cols: int, max_line: int, *, max_v: int | None = None, n_colors: int = 3,
+def brick_wall(width: int, height: int, max_line: int, *, max_v: int | None = None, n_colors: int = 3,
                seed: int | None = None) -> tuple[BoardProblem, Solution]:
     """A verified brick wall: ``(problem, solution)`` (see the module docstring)."""
     from tilesolve.family import solve
 
-    problem = wall_problem(rows, cols, max_line, max_v=max_v, n_colors=n_colors)
+    problem = wall_problem(width, height, max_line, max_v=max_v, n_colors=n_colors)
     return problem, solve(problem, method="wall", seed=seed)
 
 

@@ -22,8 +22,10 @@
             "evidence": {"encoding": {"name": "wang-tiles-cnf", "version": 1, "options": {}},
                          "cnf_sha256": ..., "drat_sha256": ..., ...}, "time_s": 0.1}
 
-Tile indices refer to ``tileset.tiles`` in the order written (sorted as tilesolve sorts a
-set). A refutation's ``evidence`` names the encoding that re-derives its CNF from the tile set
+Tile indices refer to ``tileset.tiles`` in the order written, which is the order of the tile
+set the check was given (reports written before tilesolve kept that order list the tiles sorted
+by their colours W, N, E, S, and their indices refer to that list). A refutation's
+``evidence`` names the encoding that re-derives its CNF from the tile set
 and the board's name; a verdict taken from a sweep's cache says so (``"cached": true``,
 ``"cache_check"``), one decided again because its cache line did not hold says why
 (``"cache_rejected"``). The verdict and the status are what the certificates give
