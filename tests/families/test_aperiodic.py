@@ -125,6 +125,7 @@ def _names(n):
     return [lat.name() for lat in AperiodicProblem(DIAGONAL, 0, n, shears=True).lattices()]
 
 
+@pytest.mark.slow
 def test_sweep_workers_and_cache(tmp_path):
     names = _names(3)
     one, _ = sweep(DIAGONAL, names, RunOptions(seed=1, workers=1))
@@ -153,6 +154,7 @@ def test_time_limit_leaves_boards_undecided_never_refuted():
     assert all("time limit" in c.evidence["why"] for c in certs)
 
 
+@pytest.mark.slow
 def test_sweep_on_a_dask_cluster():
     import distributed
 
@@ -168,6 +170,7 @@ def test_certificate_shape_checked():
 
 
 # ------------------------------------------------------------------------------------ CLI
+@pytest.mark.slow
 def test_cli_check_verify_and_duplicates(tmp_path):
     (tmp_path / "t.json").write_text(json.dumps({"order": "NESW", "colors": 3, "tiles": [
         [0, 1, 1, 0], [1, 2, 2, 1], [2, 0, 0, 2], [2, 0, 0, 2]]}))
@@ -203,6 +206,7 @@ def test_transducer_route_gives_a_verified_torus_witness():
     assert verify_document(json.loads(solution_text(problem, s))).ok
 
 
+@pytest.mark.slow
 def test_cli_ctrl_c_writes_no_report_and_the_cache_resumes(tmp_path):
     import signal
     import subprocess
@@ -275,6 +279,7 @@ def test_a_report_without_a_witness_has_nothing_to_draw(tmp_path):
         assert not (tmp_path / f"r.{fmt}").exists()
 
 
+@pytest.mark.slow
 def test_demo_and_cli_draw(tmp_path):
     from tilesolve.families.aperiodic import FAMILY
 
