@@ -183,6 +183,7 @@ def test_cli_check_verify_and_duplicates(tmp_path):
     assert run("verify", "r.json", cwd=tmp_path).returncode == 0
 
 
+@pytest.mark.fast_cases(1)
 @pytest.mark.parametrize("tiles,msg", [
     ([[0, 1, 0]], "4 integer colours"),
     ([[0, 1, 0, 7]], "outside C"),
