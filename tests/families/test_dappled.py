@@ -45,6 +45,7 @@ def small_problems(draw, max_cells=9):
     return DappledProblem(rows, cols, n_tiles=n_tiles, conditions=conds, cyclic=draw(st.booleans()), fixed=fixed)
 
 
+@pytest.mark.slow
 @settings(max_examples=60, deadline=None)
 @given(problem=small_problems(), seed=st.integers(0, 1000))
 def test_auto_agrees_with_brute_force_and_every_route(problem, seed):
