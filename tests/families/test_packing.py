@@ -33,6 +33,7 @@ def test_cpsat_packings_verify(kind):
         assert is_packing(PackingProblem("wang", 3), s.tiling)
 
 
+@pytest.mark.slow
 def test_solver_packings_are_not_separable():
     """Random-looking: a Wang outer product repeats one W/E sequence in every row; SAT's need not."""
     g = facade.solve(PackingProblem("wang", 3), method="sat", seed=11).tiling
@@ -42,6 +43,7 @@ def test_solver_packings_are_not_separable():
     assert len({tuple(r) for r in (outer % 3).tolist()}) == 1
 
 
+@pytest.mark.slow
 def test_pinned_tiles_are_respected():
     pins = ((0, 0, 5), (4, 4, 7), (2, 3, 80))
     p = PackingProblem("wang", 3, fixed=pins)
@@ -70,11 +72,13 @@ def test_contradictory_pins_are_unsat_with_a_checked_proof():
         facade.solve(PackingProblem("wang", 3, fixed=((0, 0, 1), (0, 1, 2))), method="euler")
 
 
+@pytest.mark.slow
 def test_time_limit_gives_unknown_not_unsat():
     s = facade.solve(PackingProblem("corner", 4), method="sat", time_limit=0.5)
     assert s.status is Status.UNKNOWN and s.tiling is None and "time limit" in s.reason
 
 
+@pytest.mark.slow
 def test_auto_routes():
     for kind, c, method in [("wang", 2, "sat"), ("corner", 3, "outer"), ("wang", 3, "sat"), ("corner", 2, "sat"),
                             ("wang", 4, "lift"), ("wang", 5, "outer"), ("wang", 6, "lift"), ("wang", 8, "outer"),
@@ -100,6 +104,7 @@ def test_bad_input():
         facade.solve(PackingProblem("corner", 2), method="magic")
 
 
+@pytest.mark.slow
 def test_encoding_accepts_exactly_the_packings():
     """The published C=2/C=4 packings satisfy the CNF (placements and features set from them)."""
     from tilesolve.constructive.packing_known import FIG_5_11_CORNER_4
