@@ -13,6 +13,7 @@ from tilesolve.model.solution import Status
 from tilesolve.verify.packing import is_packing, packing_violations
 
 
+@pytest.mark.fast_cases(1)
 @pytest.mark.parametrize("kind", ["wang", "corner"])
 @pytest.mark.parametrize("c", [2, 3])
 def test_sat_packings_verify(kind, c):
@@ -124,6 +125,7 @@ def test_encoding_accepts_exactly_the_packings():
             assert not s.solve(assumptions=enc.place_var(cells, bad.ravel()).tolist())
 
 
+@pytest.mark.fast_cases(1)
 @pytest.mark.parametrize("c", [3, 4])
 def test_hybrid_wang_packings(c):
     """Random Eulerian N/S columns + SAT: valid, reproducible, and not an outer product."""
