@@ -38,6 +38,7 @@ def test_restricted_routes_refute_clashing_pins_with_a_checked_proof(method):
     assert s.status.value == "unsat" and "checked" in s.reason and "pinned at (0, 0) and at (1, 1)" in s.reason
 
 
+@pytest.mark.slow
 def test_cli_clashing_pins(tmp_path):
     proc = subprocess.run([shutil.which("tilesolve"), "pack", "--kind", "wang", "--colors", "3", "--method", "sat",
                            "--fix", "0,0,5", "--fix", "0,1,7"], cwd=tmp_path, capture_output=True, text=True,
