@@ -30,6 +30,7 @@ def test_features_round_trip(kind, c):
     assert np.array_equal(TileSet(kind, c).index(*f[cf].T).reshape(g.shape), g)
 
 
+@pytest.mark.slow
 def test_restricted_domains_shrink_the_encoding():
     p = PackingProblem("corner", 4)
     full = encode_packing(p, anchor_tile=None)
@@ -64,6 +65,7 @@ def test_lift_without_seed_keeps_the_base_layer():
     assert is_packing(PackingProblem("corner", 2), TileSet("corner", 2).index(*np.stack(TileSet("corner", 4).colors_of(s.tiling[:4, :4])) % 2))
 
 
+@pytest.mark.slow
 def test_corner_eight_colours_by_lift():
     """The headline search: 4,096 corner tiles on a 64x64 torus (2D de Bruijn torus over 8 symbols)."""
     s = facade.solve(PackingProblem("corner", 8), method="lift", seed=4, workers=1)
@@ -71,6 +73,7 @@ def test_corner_eight_colours_by_lift():
     assert packing_violations(PackingProblem("corner", 8), s.tiling) == []
 
 
+@pytest.mark.slow
 def test_lift_honours_pins_it_can_hold_and_never_says_unsat():
     p = PackingProblem("wang", 4, fixed=((3, 5, 200),))
     s = facade.solve(p, method="lift", seed=3, workers=1, time_limit=60)
@@ -100,6 +103,7 @@ def test_published_packings_are_recursive(kind):
         assert all(g[r, col] == t for r, col, t in pins)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("kind", ["corner", "wang"])
 def test_recursive_three_colours(kind):
     s = facade.solve(PackingProblem(kind, 3), method="recursive", seed=2, time_limit=120)
@@ -117,6 +121,7 @@ def test_recursive_and_embedding_refusals():
         search.embedding_pins(corner_packing_odd(3), "corner", 3, 4, at=(10, 0))
 
 
+@pytest.mark.slow
 def test_slow_first_run_escalates_to_a_portfolio(monkeypatch):
     """With QUICK_S = 0 a worker joins the in-process run at once; the seed that decided is
     named, and rerunning it alone (workers=1) gives the same packing."""
@@ -128,6 +133,7 @@ def test_slow_first_run_escalates_to_a_portfolio(monkeypatch):
     assert np.array_equal(rerun.tiling, s.tiling)
 
 
+@pytest.mark.slow
 def test_portfolio_on_a_dask_cluster():
     import distributed  # a test dependency (the "cluster" extra is part of the "test" extra)
 
