@@ -46,6 +46,7 @@ def test_restricted_domains_shrink_the_encoding():
     assert [] in encode_packing(p, anchor_tile=None, domains=d2).clauses.to_lists()
 
 
+@pytest.mark.fast_cases(1)
 @pytest.mark.parametrize("kind, c", [("corner", 4), ("wang", 4), ("corner", 6), ("wang", 6)])
 def test_lift_builds_verified_packings(kind, c):
     s = facade.solve(PackingProblem(kind, c), method="lift", seed=1, workers=1)
