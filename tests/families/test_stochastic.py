@@ -148,6 +148,7 @@ def test_reader_is_strict(edit, field):
     assert str(exc.value).startswith("t.json: ") and "\n" not in str(exc.value)
 
 
+@pytest.mark.slow
 def test_cli_tiling_verify_draw(tmp_path):
     args = ["tiling", "--kind", "corner", "--method", "scanline", "--set", "compact", "--colors", "3",
             "--region", "-6,-4,12x8", "--seed", "9"]
@@ -167,6 +168,7 @@ def test_cli_tiling_verify_draw(tmp_path):
     assert r2.returncode == 0
 
 
+@pytest.mark.slow
 def test_cli_corrupted_file_fails_verify(tmp_path):
     assert run(["tiling", "--kind", "wang", "--colors", "2", "--region", "0,0,6x5", "--seed", "3", "-o", "t.json"],
                tmp_path).returncode == 0
@@ -194,6 +196,7 @@ def test_cli_bad_input_one_line_exit_2(tmp_path, args):
     assert list(tmp_path.iterdir()) == []
 
 
+@pytest.mark.slow
 def test_cli_demo(tmp_path):
     r = run(["demo", "--family", "stochastic", "--out", "pics"], tmp_path)
     assert r.returncode == 0, r.stderr
