@@ -180,6 +180,7 @@ def test_cli_corrupted_file_fails_verify(tmp_path):
     assert r.returncode == 1 and "violation" in r.stdout + r.stderr
 
 
+@pytest.mark.fast_cases(1)
 @pytest.mark.parametrize("args", [
     ["--region", "0,0"],
     ["--region", "0,0,0x3"],
