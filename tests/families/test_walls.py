@@ -12,6 +12,7 @@ from tilesolve.model.board import Board, BoardProblem, WangTileSet, random_bound
 from tilesolve.verify.board import board_violations, line_runs
 
 
+@pytest.mark.slow
 @settings(max_examples=40)
 @given(st.integers(1, 12), st.integers(1, 12), st.integers(1, 4), st.integers(1, 4), st.integers(3, 5),
        st.integers(0, 10**6))
