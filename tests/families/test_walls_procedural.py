@@ -94,6 +94,7 @@ def invoke(*args):
     return CliRunner().invoke(main_group, list(args), catch_exceptions=False)
 
 
+@pytest.mark.slow
 def test_cli_writes_verifiable_drawable_file(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     r = invoke("wall", "--region", "-40,12,30x20", "--max-line", "3", "--colors", "4", "--seed", "7",
@@ -175,6 +176,7 @@ def test_the_window_is_data_on_the_solution():
 WALL_DATA = Path(__file__).resolve().parent.parent / "data" / "board_solution"
 
 
+@pytest.mark.slow
 def test_wall_file_window_verify_and_draw_read_the_data(tmp_path):
     r = run("wall", "--region", "-40,12,9x6", "--max-line", "3", "--seed", "7", "-o", "w.json", cwd=tmp_path)
     assert r.returncode == 0, r.stderr
@@ -192,6 +194,7 @@ def test_wall_file_window_verify_and_draw_read_the_data(tmp_path):
         (tmp_path / "m.svg").read_text()
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("edit", [lambda w: w.update(width=8), lambda w: w.update(height=9),
                                   lambda w: w.update(y_up=0)])
 def test_a_forged_wall_window_is_refused(tmp_path, edit):
@@ -205,6 +208,7 @@ def test_a_forged_wall_window_is_refused(tmp_path, edit):
     assert not (tmp_path / "f.svg").exists()
 
 
+@pytest.mark.slow
 def test_an_old_wall_file_reads_verifies_and_draws_its_window_unknown(tmp_path):
     """Written by ``tilesolve wall --region -4,3,6x4 --max-line 3 --seed 5`` as board-solution v1,
     its window only in a note: it still verifies and draws, with no window read from the note."""
