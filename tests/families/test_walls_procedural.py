@@ -134,6 +134,7 @@ def test_brick_wall_still_works(tmp_path, monkeypatch):
     assert json.loads(Path("b.json").read_text())["method"] == "wall"
 
 
+@pytest.mark.fast_cases(1)
 @pytest.mark.parametrize("args, msg", [
     (["--region", "0,0,6x4", "--max-line", "0"], "--max-line"),
     (["--region", "0,0,6x4", "--max-line", "2", "--colors", "2"], "#C >= 3"),
