@@ -195,13 +195,18 @@ def test_wall_file_window_verify_and_draw_read_the_data(tmp_path):
         (tmp_path / "m.svg").read_text()
 
 
+@pytest.fixture(scope="module")
+def wall_doc(tmp_path_factory):
+    d = tmp_path_factory.mktemp("wall")
+    assert run("wall", "--region", "0,0,9x6", "--max-line", "3", "--seed", "7", "-o", "w.json", cwd=d).returncode == 0
+    return json.loads((d / "w.json").read_text())
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("edit", [lambda w: w.update(width=8), lambda w: w.update(height=9),
                                   lambda w: w.update(y_up=0)])
-def test_a_forged_wall_window_is_refused(tmp_path, edit):
-    assert run("wall", "--region", "0,0,9x6", "--max-line", "3", "--seed", "7", "-o", "w.json",
-               cwd=tmp_path).returncode == 0
-    doc = json.loads((tmp_path / "w.json").read_text())
+def test_a_forged_wall_window_is_refused(tmp_path, wall_doc, edit):
+    doc = json.loads(json.dumps(wall_doc))
     edit(doc["window"])
     (tmp_path / "f.json").write_text(json.dumps(doc))
     for args in (["verify", "f.json"], ["draw", "f.json", "-o", "f.svg"]):

@@ -81,6 +81,7 @@ def test_a_window_whose_size_is_not_the_grids_is_refused(tiling, tmp_path, edit)
     assert "nothing drawn: the grid has shape [4, 5]" in line and not (tmp_path / "f.svg").exists()
 
 
+@pytest.mark.fast_cases(2)
 @pytest.mark.parametrize("edit,message", [
     (lambda d: d["window"].update(y_up=False), "y growing upwards"),
     (lambda d: d["window"].pop("y_up"), "exactly the fields x0, y0, width, height, y_up in version 2"),
@@ -93,7 +94,12 @@ def test_a_window_whose_size_is_not_the_grids_is_refused(tiling, tmp_path, edit)
 ])
 def test_a_malformed_window_is_one_line_exit_2(tiling, tmp_path, edit, message):
     name = edited(tiling, tmp_path, edit)
-    for args in (["verify", name], ["draw", name, "-o", "f.png"]):
-        line = one_line_error(run(*args, cwd=tmp_path))
-        assert line.startswith(f"tilesolve: error: {name}: ") and message in line, line
+    line = one_line_error(run("verify", name, cwd=tmp_path))
+    assert line.startswith(f"tilesolve: error: {name}: ") and message in line, line
+
+
+def test_draw_refuses_a_malformed_window_too(tiling, tmp_path):
+    name = edited(tiling, tmp_path, lambda d: d["window"].update(y_up=False))
+    line = one_line_error(run("draw", name, "-o", "f.png", cwd=tmp_path))
+    assert line.startswith(f"tilesolve: error: {name}: ") and "y growing upwards" in line
     assert not (tmp_path / "f.png").exists()

@@ -18,14 +18,15 @@ COMMANDS = {
 }
 
 
+@pytest.mark.fast_cases(3)
 @pytest.mark.parametrize("text,message", [
     ("1,2", "cannot read region '1,2': expected X0,Y0,WxH"),
     ("a,b,3x3", "cannot read region 'a,b,3x3'"),
+    ("0,0,0x3", "window size must be positive, got 0x3 (WxH)"),
+    (f"{2**62},0,3x3", "leaves the lattice tilesolve addresses"),
     ("0,0,3x", "cannot read region '0,0,3x'"),
     ("0,0,-3x3", "cannot read region '0,0,-3x3'"),
-    ("0,0,0x3", "window size must be positive, got 0x3 (WxH)"),
     ("0,0,3x0", "window size must be positive, got 3x0 (WxH)"),
-    (f"{2**62},0,3x3", "leaves the lattice tilesolve addresses"),
 ])
 def test_both_region_options_give_the_same_one_line_error(tmp_path, text, message):
     lines = set()
