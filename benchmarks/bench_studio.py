@@ -29,6 +29,7 @@ import uvicorn
 
 from _measure import best
 from tilesolve import family
+from tilesolve.model.window import Window
 from tilesolve.studio import worker
 from tilesolve.studio.app import create_app
 
@@ -53,7 +54,7 @@ def studio_solve(client, name, values):
 
 def local_view(values, n):
     fam, vals, _, _ = worker.pose("board", values)
-    problem, method, options = fam.form.window(vals, 0, 0, n, n)
+    problem, method, options = fam.form.window(vals, Window(0, 0, n, n))
     sol = family.solve(problem, method, seed=vals["seed"], options=options)
     return family.render(problem, sol, "png")
 
