@@ -8,6 +8,7 @@ import subprocess
 import sys
 
 import numpy as np
+import pytest
 from clitools import ENV, SCRIPT, one_line_error, run, snapshot
 from PIL import Image
 
@@ -18,6 +19,7 @@ from tilesolve.gpu.wall import WallRenderer
 NO_GL = dict(ENV, __EGL_VENDOR_LIBRARY_FILENAMES=os.devnull)
 
 
+@pytest.mark.slow
 def test_gpu_info_names_the_renderer(tmp_path):
     proc = run("gpu", "info", cwd=tmp_path)
     assert proc.returncode == 0, proc.stderr
@@ -25,6 +27,7 @@ def test_gpu_info_names_the_renderer(tmp_path):
     assert re.search(r"^samples: +1\b", proc.stdout, re.M)
 
 
+@pytest.mark.slow
 def test_render_wall_and_texture_write_the_library_pictures(tmp_path):
     proc = run("render", "wall", "--size", "200x120", "--max-line", "3", "--cell", "16", "--seed", "4",
                "--origin", "-50,7", "-o", "w.png", cwd=tmp_path)
@@ -40,6 +43,7 @@ def test_render_wall_and_texture_write_the_library_pictures(tmp_path):
     assert np.array_equal(np.asarray(Image.open(tmp_path / "a.png")), at.image)
 
 
+@pytest.mark.slow
 def test_benchmark_prints_frames_per_second(tmp_path):
     proc = run("render", "wall", "--size", "320x200", "--benchmark", "3", cwd=tmp_path)
     assert proc.returncode == 0, proc.stderr
@@ -47,6 +51,7 @@ def test_benchmark_prints_frames_per_second(tmp_path):
     assert not list(tmp_path.iterdir())
 
 
+@pytest.mark.slow
 def test_without_gl_one_line_naming_the_packages_and_the_cpu_routes_still_work(tmp_path):
     (tmp_path / "keep.png").write_bytes(b"earlier")
     before = snapshot(tmp_path)
