@@ -58,12 +58,17 @@ def test_a_version_1_report_still_reads_and_verifies(tmp_path, verdict):
     assert f"verdict {verdict}" in p.stdout.splitlines()[0]
 
 
-def test_a_report_whose_words_are_not_its_certificates_is_refused(tmp_path):
+def test_a_report_whose_words_are_not_its_certificates_is_false(tmp_path):
     doc = check(tmp_path, "periodic")
-    for key, value, said in (("verdict", "open", "periodic"), ("status", "unknown", "sat")):
+    for key, value, said in (("verdict", "open", "the verdict 'open' is not what the certificates give: 'periodic'"),
+                             ("status", "unknown", "status 'unknown' NOT confirmed: the aperiodicity report's "
+                                                   "certificates give 'sat'")):
         (tmp_path / "bad.json").write_text(json.dumps(dict(doc, **{key: value})))
-        line = one_line_error(run("verify", "bad.json", cwd=tmp_path))
-        assert f"'{key}' is '{value}', but the report's certificates give '{said}'" in line, line
+        p = run("verify", "bad.json", cwd=tmp_path)
+        assert p.returncode == 1 and said in p.stdout and not p.stdout.startswith("ok:"), p.stdout
+    (tmp_path / "bad.json").write_text(json.dumps(dict(doc, verdict="aperiodic")))  # not a word a report says
+    assert "'verdict' must be one of periodic, finite, open, undecided" in one_line_error(
+        run("verify", "bad.json", cwd=tmp_path))
 
 
 def test_a_report_draws_its_witness(tmp_path):

@@ -235,7 +235,7 @@ def test_relabelled_lattice_with_another_boards_proof_is_refused(tmp_path):
 
     def report(periods):
         rep = build_report(problem, (), None, periods)
-        return json.loads(solution_text(problem, Solution(Status.SAT, rep, "sat", None, 1, 0.0)))
+        return json.loads(solution_text(problem, Solution(rep.status, None, "sat", None, 1, 0.0, report=rep)))
 
     _write(tmp_path, "r.json", report(certs))
     proc = run("aperiodic", "verify", "r.json", "--proof-dir", "proofs", cwd=tmp_path)
@@ -408,10 +408,10 @@ def test_an_unsat_found_by_a_portfolio_worker_still_gets_its_proof_files(tmp_pat
     from tilesolve.engine.packing import solve_sat
     from tilesolve.model.packing import PackingProblem
 
-    def in_a_worker(route, problem, **kw):  # what a worker hands back: digests, no files written here
+    def in_a_worker(route, problem, run, **kw):  # what a worker hands back: digests, no files written here
         import contextvars
 
-        return contextvars.Context().run(solve_sat, problem, seed=kw["seed"])
+        return contextvars.Context().run(solve_sat, problem, run)
 
     monkeypatch.setattr(portfolio, "escalate", in_a_worker)
     problem = PackingProblem("corner", 2, fixed=((0, 0, 0), (0, 1, 15)))

@@ -241,7 +241,7 @@ def _from_cache(rec: dict, how: str) -> Certificate | None:
 
 
 def _cached_refutation(tileset: WangTileSet, rec: dict, store: str | None, proof_dir: str | None,
-                       time_limit: float | None) -> tuple[Certificate | None, str]:
+                       deadline: Deadline) -> tuple[Certificate | None, str]:
     """A cached refutation, used only when its proof (kept in ``store``) refutes the CNF
     re-derived from the tile set and the board's name; its CNF and proof then go to
     ``proof_dir`` like any other refutation's. Returns ``(certificate or None, why not)``."""
@@ -256,7 +256,7 @@ def _cached_refutation(tileset: WangTileSet, rec: dict, store: str | None, proof
         problem = board_problem(tileset, str(rec.get("board")))
     except InvalidProblem as exc:
         return None, str(exc)
-    check = recheck_unsat(problem, ev, store, time_limit=time_limit)
+    check = recheck_unsat(problem, ev, store, deadline=deadline)
     if not check.ok:
         return None, check.lines[-1]
     name = proof_name(ev["cnf_sha256"], ev["drat_sha256"])
@@ -282,7 +282,7 @@ def _job(tiles: list, n_colors: int, names: Sequence[str], cached: dict, deadlin
     name = names[seed]
     rejected = None
     if name in cached:
-        cert, rejected = _cached_refutation(tileset, cached[name], store, proof_dir, deadline.remaining())
+        cert, rejected = _cached_refutation(tileset, cached[name], store, proof_dir, deadline)
         if cert is not None:
             return cert
     run = RunOptions(seed=seed0, deadline=deadline, solver=solver)  # the run's deadline, in this worker

@@ -126,8 +126,8 @@ def _clash(formula, core) -> str:
 
 
 def unsat_solution(formula, r: Result, *, method: str, seed, t0: float, stats: dict,
-                   check_proof: bool = True, proof_time_limit: float | None = None,
-                   deadline: Deadline | None = None, encoding: Mapping[str, Any] | None = None) -> Solution:
+                   check_proof: bool = True, deadline: Deadline = NO_LIMIT,
+                   encoding: Mapping[str, Any] | None = None) -> Solution:
     """``UNSAT`` when the solver's DRAT proof passes the check, else ``UNKNOWN``.
 
     Parameters
@@ -140,8 +140,6 @@ def unsat_solution(formula, r: Result, *, method: str, seed, t0: float, stats: d
         Provenance for the Solution (``t0``: ``time.perf_counter()`` when the route began).
     check_proof : bool
         ``False`` skips the check, and the answer is then ``unknown`` ("not checked").
-    proof_time_limit : float, optional
-        Seconds for the check when no ``deadline`` is given.
     deadline : Deadline, optional
         The run's deadline: the check stops when it passes (answer ``unknown``).
     encoding : Mapping, optional
@@ -185,12 +183,10 @@ def unsat_solution(formula, r: Result, *, method: str, seed, t0: float, stats: d
     if not check_proof:
         return unknown(f"{solver} reported unsatisfiable; its DRAT proof of {len(r.proof)} lines was not checked "
                        "(checking turned off)")
-    if deadline is not None:
-        if deadline.expired():
-            return unknown(f"{solver} reported unsatisfiable; its DRAT proof was not checked: time limit of "
-                           f"{deadline.time_limit:.3g} s reached before the check")
-        proof_time_limit = deadline.remaining()
-    chk = check_drat(formula, proof, time_limit=proof_time_limit)
+    if deadline.expired():
+        return unknown(f"{solver} reported unsatisfiable; its DRAT proof was not checked: time limit of "
+                       f"{deadline.time_limit:.3g} s reached before the check")
+    chk = check_drat(formula, proof, time_limit=deadline.remaining())
     stats.update(proof_status=chk.status, proof_lemmas=chk.lemmas, proof_checked_lemmas=chk.checked,
                  proof_check_s=round(chk.time_s, 6))
     if chk.status == "failed":
@@ -260,7 +256,7 @@ NOT_THE_ENCODING = "the CNF is not the encoding of this problem"
 
 
 def recheck_unsat(problem: Any, evidence: Mapping[str, Any], proof_dir: str | os.PathLike | None = None, *,
-                  time_limit: float | None = None) -> Recheck:
+                  deadline: Deadline = NO_LIMIT) -> Recheck:
     """Re-derive the CNF of ``problem`` with the named encoding ``evidence`` records and check the
     recorded claim against it (``tilesolve verify``, ``aperiodic verify``, a sweep's cache).
 
@@ -333,7 +329,7 @@ def recheck_unsat(problem: Any, evidence: Mapping[str, Any], proof_dir: str | os
             if fh.read(len(cnf) + 1) != cnf:  # never more than the re-derived CNF's size
                 return refused(bound, f"{NOT_THE_ENCODING}: {base}.cnf differs from the CNF re-derived from it",
                                cnf=cnf)
-    chk = check_drat(flat, drat, time_limit=time_limit)
+    chk = check_drat(flat, drat, time_limit=deadline.remaining())
     line = f"{base}.drat: {chk.status} against the re-derived CNF: {chk.reason} ({chk.time_s:.3g} s)"
     verdict = "re-checked" if chk.verified else "refused"
     return Recheck(verdict, (bound, line), cnf, drat, time.perf_counter() - t0)

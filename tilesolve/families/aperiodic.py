@@ -170,18 +170,21 @@ def refutations(problem: AperiodicProblem, sol: Solution) -> list[tuple[str, obj
 
 
 def _violations(problem: AperiodicProblem, report) -> list:
-    """The family's verifier (:func:`aperiodic_violations`), and a sweep's conclusion must be the
-    one its certificates give (:func:`build_report`): a report's words claim no more than them."""
+    """The family's verifier (:func:`aperiodic_violations`), and a report's words claim no more
+    than its certificates: the verdict a file states must be theirs, a sweep's conclusion the one
+    they give (:func:`build_report`)."""
     from tilesolve.constructive.transducer import UNDECIDED_OPENINGS
+    from tilesolve.verify.dappled import Violation
 
     out = aperiodic_violations(problem, report)
+    if isinstance(report, AperiodicReport) and report.stated not in (None, report.verdict):
+        out.append(Violation("verdict", f"the verdict {report.stated!r} is not what the certificates give: "
+                                        f"{report.verdict!r}"))
     certs = report.squares + report.periods if isinstance(report, AperiodicReport) else ()
     if out or any("transducer" in str(c.method) for c in certs):
         return out
     if not certs and report.conclusion.startswith(UNDECIDED_OPENINGS):
         return out  # the transducer's undecided report: no certificate, nothing claimed
-    from tilesolve.verify.dappled import Violation
-
     said = build_report(problem, report.squares, report.largest_square, report.periods).conclusion
     if report.conclusion != said:
         out.append(Violation("conclusion", f"the conclusion is not what the certificates prove: {said!r}"))

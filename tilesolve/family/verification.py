@@ -185,10 +185,12 @@ def _verify_report(fam: Family, problem: Any, sol: Solution, source: str, what: 
                    max_cnf: int) -> FileReport:
     """:func:`verify_document` of a file whose answer is a report (``Solution.report``) about ``what``."""
     report = sol.report
+    false = [] if sol.status is report.status else [
+        f"status {sol.status.value!r} NOT confirmed: the {report.title}'s certificates give {report.status.value!r}"]
     violations = list(fam.verify(problem, report))
     if violations:
-        return _violations_report(source, f"{report.title} of {what}", violations, ())
-    return _claims_checked(fam, problem, sol, source, proof_dir, workers, max_cnf, [],
+        return _violations_report(source, f"{report.title} of {what}", violations, false)
+    return _claims_checked(fam, problem, sol, source, proof_dir, workers, max_cnf, false,
                            f"ok: {source} is a valid {report.title} ({what}): verdict {report.verdict}",
                            (f"  conclusion: {report.conclusion}",))
 

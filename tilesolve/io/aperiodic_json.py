@@ -29,9 +29,10 @@ by their colours W, N, E, S, and their indices refer to that list). A refutation
 and the board's name; a verdict taken from a sweep's cache says so (``"cached": true``,
 ``"cache_check"``), one decided again because its cache line did not hold says why
 (``"cache_rejected"``). The verdict and the status are what the certificates give
-(:attr:`~tilesolve.model.aperiodic.AperiodicReport.verdict`, ``.status``): a file whose
-``verdict`` or ``status`` says otherwise is refused. Version 1 (no ``verdict``; ``status``
-``"sat"`` whatever the verdict) is read with both taken from its certificates. Readers reject
+(:attr:`~tilesolve.model.aperiodic.AperiodicReport.verdict`, ``.status``); in a file they
+are claims, which ``tilesolve verify`` holds to the certificates (a file that says otherwise is
+false, exit 1). Version 1 (no ``verdict``; ``status`` ``"sat"`` whatever the verdict) is read
+with both taken from its certificates. Readers reject
 unknown fields and malformed values (a tile that is not four colours of the set, a ``colours``
 count other than the number of colours the tiles use, a tile written twice, a ``time_s`` that
 is not a duration, ...) with one line naming the file and field; the certificates' claims are
@@ -47,7 +48,7 @@ import numpy as np
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.jsonio import check_document, check_time_s, provenance_to_dict, solution_from_provenance
 from tilesolve.io.tileset_json import compact_tileset
-from tilesolve.model.aperiodic import STATUSES, AperiodicProblem, AperiodicReport, Certificate
+from tilesolve.model.aperiodic import STATUSES, VERDICTS, AperiodicProblem, AperiodicReport, Certificate
 from tilesolve.model.solution import Solution
 
 __all__ = ["APERIODIC_REPORT", "VERSIONS", "report_to_dict", "report_from_dict", "certificate_to_dict"]
@@ -153,12 +154,12 @@ def report_from_dict(doc: dict, source: Any = "<document>") -> tuple[AperiodicPr
     for key in ("conclusion", "literature"):
         if doc.get(key) is not None and not isinstance(doc[key], str):
             raise _fail(source, key, "must be a string")
-    report = AperiodicReport(certs["squares"], certs["periods"], _int(doc, "largest_square", source, optional=True),
-                             doc.get("conclusion") or "", doc.get("literature"))
-    sol = solution_from_provenance(doc, source, report, what="report")
+    stated = None
     if doc["version"] >= 2:
-        for key, said, given in (("verdict", report.verdict, doc.get("verdict")),
-                                 ("status", report.status.value, sol.status.value)):
-            if given != said:
-                raise _fail(source, key, f"is {given!r}, but the report's certificates give {said!r}")
-    return problem, sol.replace(status=report.status, tiling=None, report=report)
+        stated = doc.get("verdict")
+        if stated not in VERDICTS:
+            raise _fail(source, "verdict", f"must be one of {', '.join(VERDICTS)}, got {str(stated)[:60]!r}")
+    report = AperiodicReport(certs["squares"], certs["periods"], _int(doc, "largest_square", source, optional=True),
+                             doc.get("conclusion") or "", doc.get("literature"), stated)
+    sol = solution_from_provenance(doc, source, report, what="report").replace(tiling=None, report=report)
+    return problem, sol if doc["version"] >= 2 else sol.replace(status=report.status)

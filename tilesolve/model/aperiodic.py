@@ -263,6 +263,9 @@ class AperiodicReport:
         What the certificates prove, and only that.
     literature : str or None
         What the literature says about a built-in set (quoted, not checked here).
+    stated : str or None
+        The verdict a report file states (``None``: not stated): a claim, which the family's
+        verifier holds to :attr:`verdict`.
     """
 
     #: What the answer is, in the words :func:`tilesolve.family.verify_document` and the studio use.
@@ -273,6 +276,7 @@ class AperiodicReport:
     largest_square: int | None = None
     conclusion: str = ""
     literature: str | None = None
+    stated: str | None = None
 
     @property
     def undecided(self) -> list[Certificate]:
