@@ -128,6 +128,7 @@ def test_sizes_are_refused_before_allocation(client):
     assert r.status_code == 400 and "1..128 cells" in r.json()["error"]
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", ["dappled", "board", "packing", "stochastic", "aperiodic"])
 def test_each_family_solves_verifies_and_exports(client, name):
     state = solve(client, {"family": name, "values": {"seed": 3}})
@@ -188,6 +189,7 @@ def test_unsat_shows_the_reason(client):
     assert client.get(f"/api/jobs/{state['id']}/picture.png").status_code == 400
 
 
+@pytest.mark.slow
 def test_clashing_pins_are_unsat_not_an_error(client):
     state = solve(client, {"family": "packing", "values": {"pins": [[5] * 9] * 9, "seed": 1}})
     assert state["result"]["status"] == "unsat" and "pinned at" in state["result"]["reason"]
@@ -223,6 +225,7 @@ def test_too_many_solves_are_refused_not_queued(client, monkeypatch):
     assert solve(client, {"family": "dappled", "values": {"size": "4x4", "seed": 1}})["state"] == "done"
 
 
+@pytest.mark.slow
 def test_concurrent_requests(client):
     out = []
 
@@ -239,6 +242,7 @@ def test_concurrent_requests(client):
     assert sorted(map(str, out)) == ["200"] * 4 + ["done"] * 4
 
 
+@pytest.mark.slow
 def test_view_tiles_agree_where_windows_overlap(client):
     from PIL import Image
     import io
@@ -259,6 +263,7 @@ def test_view_tiles_agree_where_windows_overlap(client):
     assert client.get("/api/view/board.png?values=%7B").status_code == 400
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("body", [
     {"family": "dappled", "values": {"size": "9x7", "cond": "H0=2, V1=3", "tiles": 3, "seed": 11,
                                      "fixed": [[0] + [-1] * 8] + [[-1] * 9] * 6}},
@@ -286,6 +291,7 @@ def test_the_cli_command_reproduces_the_tiling(client, body, tmp_path):
     assert verify.returncode == 0, verify.stderr
 
 
+@pytest.mark.slow
 def test_a_window_of_the_plane_is_shown_from_its_data(client):
     res = solve(client, {"family": "stochastic", "values": {"x0": -3, "y0": 2, "size": "5x4", "seed": 1}})["result"]
     assert res["window"] == {"x0": -3, "y0": 2, "width": 5, "height": 4, "y_up": True}
