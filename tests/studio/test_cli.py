@@ -22,6 +22,7 @@ def test_loopback(host, loop):
     assert is_loopback(host) is loop
 
 
+@pytest.mark.slow
 def test_other_hosts_are_warned_about():
     proc = subprocess.run([shutil.which("tilesolve"), "studio", "--host", "0.0.0.0", "--port", "0", "--no-browser",
                            "--exit-after", "1"], capture_output=True, text=True, timeout=120)
