@@ -143,6 +143,7 @@ def test_bodies_are_limited_while_they_are_read(client):
     assert r.status_code == 413
 
 
+@pytest.mark.slow
 def test_a_refused_large_request_leaves_nothing_behind(client):
     # its error's traceback held the parsed grid in a reference cycle, until a full collection
     rows = [[100_000] * 1024] * 1000  # one row object 1000 times; the parsed grid has 1000 rows
@@ -235,6 +236,7 @@ def alive(pid: int) -> bool:
     return fields is not None and fields[0] != "Z"
 
 
+@pytest.mark.slow
 def test_forged_headers_are_refused_by_the_real_server():
     proc, url = start_server()
     try:
@@ -255,6 +257,7 @@ def test_forged_headers_are_refused_by_the_real_server():
         proc.wait()
 
 
+@pytest.mark.slow
 @pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")
 def test_solver_processes_die_with_a_killed_server():
     proc, url = start_server()
