@@ -151,7 +151,9 @@ def solve(problem: BoardProblem, *, method: str | Any = "auto", seed: int | None
     Returns
     -------
     Solution
-        ``tiling`` is an ``(n_cells, 4)`` array of leg colours (W, N, E, S).
+        ``tiling`` is an ``(n_cells, 4)`` array of leg colours in the board model's leg order
+        W, N, E, S (the columns of ``Board.nbr_cell``); files and printed text give each cell's
+        tile N, E, S, W (``tilesolve.model.board.wang_to_nesw``).
     """
     if not isinstance(problem, BoardProblem):
         raise InvalidProblem(f"expected a BoardProblem, got {type(problem).__name__}")
