@@ -2,7 +2,8 @@
 
 The work is :func:`tilesolve.family.verify_file` (usable from Python): the file's format
 names its family in the registry, the family's codec reads it, and the family's independent
-verifier checks the tiling; status and objective claims are checked too.
+verifier checks the tiling (or the report: an aperiodicity check's certificates and verdict);
+status and objective claims are checked too.
 """
 
 from __future__ import annotations
@@ -28,7 +29,10 @@ def verify(ctx, file: str, proof_dir: str | None, max_cnf: int) -> None:
     Re-checks exactly what the file holds (its problem fields and its tiling) with the
     family's independent verifier and lists every violation with its position. The file's
     status must match its content (sat/optimal need a valid tiling, unsat/unknown hold
-    none) and a recorded objective must equal the tiling's.
+    none) and a recorded objective must equal the tiling's. A report (an aperiodicity check) is
+    not a tiling: its certificates are checked, and "ok: FILE is a valid aperiodicity report
+    (...): verdict V" names its verdict (periodic, finite, open or undecided), which, like its
+    status, must be what its certificates give.
 
     An unsat answer (or a refuted board of an aperiodicity report) is bound to the problem the
     file states: its CNF is re-derived with the named encoding the file records (name, version,
