@@ -145,10 +145,9 @@ def run_portfolio(
     ----------
     task : callable
         ``task(seed=seed) -> Solution``: one independent randomised search that honours its
-        own time limit. The seed is passed by keyword, so a :func:`functools.partial` of a
-        route works as it is through :func:`seeded_run`, e.g. ``partial(seeded_run,
-        tilesolve.families.packing_search.solve_lift, problem, run)``. Must pickle (module
-        docstring).
+        own deadline. The seed is passed by keyword: a route becomes a task through
+        :func:`seeded_run`, e.g. ``partial(seeded_run, tilesolve.families.packing_search.solve_lift,
+        problem, run)``. Must pickle (module docstring).
     seeds : iterable of int
         One run per seed, started in this order (a seed starts when a worker is free).
     workers : int
@@ -223,8 +222,8 @@ def escalate(route: Callable[[Any, RunOptions], Solution], problem: Any, run: Ru
     """Run a heavy-tailed route: one seed here, joined by worker processes if it is slow.
 
     The first run, ``route(problem, run)`` with the run's seed, runs in this process with the
-    run's whole deadline,
-    exactly the plain call (Ctrl-C reaches it as usual). If it has not decided within
+    run's whole deadline, exactly the plain call (Ctrl-C reaches it as usual). If it has not
+    decided within
     :data:`QUICK_S` seconds, ``workers - 1`` worker processes start beside it and run fresh
     seeds ``seed + 1, seed + 2, ...`` with per-run budgets of :data:`FIRST_BUDGET_S` seconds
     that double with every wave (a restart strategy against heavy tails). The first decisive
