@@ -185,6 +185,7 @@ def test_auto_falls_back_when_a_route_fails_verification(plugin, monkeypatch):
     assert s.status.value == "sat" and any("fell back to 'sat'" in n for n in s.notes)
 
 
+@pytest.mark.slow
 def test_cli_verify_demo_draw_and_export_handle_the_new_family(plugin, tmp_path):
     root, toy = plugin
     out = tmp_path / "demo"
