@@ -227,6 +227,7 @@ READERS = {
 }
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("reader", list(READERS))
 def test_mutated_files_give_one_line_or_an_answer(reader, driver, seeds, tmp_path_factory):
     folder, files = seeds
@@ -245,6 +246,7 @@ def test_mutated_files_give_one_line_or_an_answer(reader, driver, seeds, tmp_pat
     check()
 
 
+@pytest.mark.slow
 def test_driver_answers_as_the_console_script(driver, seeds):
     """The driver's answers are the installed script's: same exit code, same stderr."""
     folder, _ = seeds
