@@ -258,6 +258,7 @@ def test_driver_answers_as_the_console_script(driver, seeds):
         assert (mine["rc"], mine["stderr"]) == (theirs.returncode, theirs.stderr), argv
 
 
+@pytest.mark.fast_cases(1)
 @pytest.mark.parametrize("field,value", [("seed", "NaN"), ("seed", "-1"), ("time_s", "1e999"), ("time_s", "-0.5"),
                                          ("time_s", "Infinity")])
 def test_seed_and_time_must_be_finite_and_non_negative_in_every_family(field, value, seeds):
