@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
+import pytest
 
 from clitools import ENV, SCRIPT, one_line_error, run
 
@@ -27,6 +28,7 @@ def test_endless_inputs_stop_at_the_input_limit(tmp_path):
     assert "TILESOLVE_MAX_INPUT" in one_line_error(piped)
 
 
+@pytest.mark.slow
 def test_the_limit_is_documented_and_can_be_raised(tmp_path):
     run("-q", "dappled", "solve", "--size", "6x4", "--cond", "H0=2", "--seed", "1", "-o", "t.json", cwd=tmp_path)
     size = (tmp_path / "t.json").stat().st_size
@@ -42,6 +44,7 @@ def test_the_limit_is_documented_and_can_be_raised(tmp_path):
     assert "--max-input" in run("--help", cwd=tmp_path).stdout
 
 
+@pytest.mark.slow
 def test_a_file_that_contradicts_its_format_is_refused(tmp_path):
     (tmp_path / "short.txt").write_text("3 4 2 2\n1 1 2 1\n2 4 3 1\n")  # header: 3 tiles; 2 follow
     line = one_line_error(run("wang", "count", "--tiles", "short.txt", "--board", "rect:2x2", cwd=tmp_path))
@@ -59,6 +62,7 @@ def test_a_file_that_contradicts_its_format_is_refused(tmp_path):
                                                 cwd=tmp_path))
 
 
+@pytest.mark.slow
 def test_colours_are_relabelled_compactly(tmp_path):
     (tmp_path / "big.tiles").write_text("0 0 1 0\n1 3 2 0\n2 0 2 99999992\n")
     proc = run("wang", "count", "--tiles", "big.tiles", "--board", "rect:2x2", cwd=tmp_path)
@@ -73,6 +77,7 @@ def test_colours_are_relabelled_compactly(tmp_path):
     assert proc.returncode == 0 and "2 colours" in proc.stderr
 
 
+@pytest.mark.slow
 def test_export_sizes_the_cnf_before_encoding(tmp_path):
     line = one_line_error(run("export", "dimacs", "--size", "2048x2048", "--tiles", "10", "--cond", "H0=2",
                               "-o", "big.cnf", cwd=tmp_path))
@@ -96,6 +101,7 @@ def test_a_bug_is_one_internal_error_line_exit_70(tmp_path):
     assert "70" in run("verify", "--help", cwd=tmp_path).stdout
 
 
+@pytest.mark.slow
 def test_proof_files_and_sweep_caches_are_read_through_the_limit(tmp_path):
     """A DRAT proof past the input limit is not read (the unsat claim is not confirmed, exit 1);
     a sweep cache past it is one error line (exit 2), as any other input."""
