@@ -32,6 +32,7 @@ def test_the_tour_is_long_enough():
     assert len(TOUR) >= 20 and len(PYTHON) >= 3
 
 
+@pytest.mark.slow
 @pytest.mark.xdist_group("readme")
 @pytest.mark.parametrize("line", TOUR)
 def test_tour_command(folder, line):
@@ -46,6 +47,7 @@ def test_tour_command(folder, line):
         assert proc.stdout.strip().splitlines()[-1].replace(",", "") == promised.group(1).strip().replace(",", "")
 
 
+@pytest.mark.slow
 @pytest.mark.xdist_group("readme")
 @pytest.mark.parametrize("code", PYTHON)
 def test_python_example(folder, code):
