@@ -64,6 +64,7 @@ def test_cpsat_seeded_satisfaction_repeats_with_two_workers():
     assert np.array_equal(first, _tiling(_dappled, "cpsat", 5, workers=1)[0])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("method", ["sat", "cpsat"])
 def test_console_script_seed_repeats_across_processes(method):
     import os
