@@ -22,6 +22,7 @@ def _modules_after_cli(args: list[str]) -> set[str]:
     return set(mods.split())
 
 
+@pytest.mark.fast_cases(1)
 @pytest.mark.parametrize("args", [
     ["dappled", "solve", "--size", "100x100", "--cond", "H0=2,V1=2"],
     ["dappled", "solve", "--size", "60x40", "--cond", "H0=3,V1=3", "--cyclic"],
