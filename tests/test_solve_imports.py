@@ -34,6 +34,7 @@ def test_small_constructive_solve_loads_nothing_heavy(tmp_path, args):
     assert json.loads(out.read_text())["status"] == "sat"
 
 
+@pytest.mark.slow
 def test_picture_still_loads_its_library(tmp_path):
     loaded = _modules_after_cli(["dappled", "solve", "--size", "8x8", "--cond", "H0=2,V1=2",
                                  "-o", str(tmp_path / "t.json"), "--svg", str(tmp_path / "t.svg")])
