@@ -134,6 +134,7 @@ def _console_script() -> list[str]:
     return [exe] if exe else [sys.executable, "-m", "tilesolve.cli.main"]
 
 
+@pytest.mark.slow
 def test_cli_short_time_limit_on_a_large_unsat_proof_never_reports_unsat():
     # Defect 17: 40x40 {H0^2, V1^2} with at most 499 tiles 1 is unsatisfiable, and its proof
     # (millions of literals) cannot be checked in 2 s: the answer must be unknown (exit 3),
