@@ -37,6 +37,7 @@ def _matches(tiles, grid):
     return east and south
 
 
+@pytest.mark.slow
 def test_aperiodic_report_and_witness_use_the_input_order(tmp_path, tiles):
     proc = run("aperiodic", "check", "p.json", "--max-square", "4", "--workers", "1", "--seed", "1", "-o", "r.json",
                cwd=tmp_path)
@@ -48,6 +49,7 @@ def test_aperiodic_report_and_witness_use_the_input_order(tmp_path, tiles):
     assert run("verify", "r.json", cwd=tmp_path).returncode == 0
 
 
+@pytest.mark.slow
 def test_wang_solve_lists_the_tiles_in_the_input_order(tmp_path, tiles):
     proc = run("wang", "solve", "--tiles", "p.json", "--board", "rect:4x4", "--boundary", "free", "--seed", "1",
                "-o", "s.json", cwd=tmp_path)
