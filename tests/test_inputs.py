@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
+
 import pytest
 
 from clitools import ENV, SCRIPT, one_line_error, run
