@@ -1,8 +1,9 @@
 """Cost of writing and reading solution files, against the solve, old format vs new.
 
 Boards: a linear-algorithm tiling (brick paper §4) of the ``s x s`` rectangle with a
-random boundary, written and read back as ``tilesolve/board-solution`` version 1 (edge
-list and tiles as JSON lists: the baseline) and version 2 (grid + mask + base64 arrays).
+random boundary, written and read back as ``tilesolve/board-solution`` version 3 with plain
+lists (edge list and tiles as JSON lists, version 1's layout: the baseline) and with encoded
+arrays (grid + mask + base64 arrays, version 2's layout).
 Dappled: an Algorithm 1 tiling (dappled paper §2) for ``{H_0^2, V_1^2}``, written as
 ``tilesolve/dappled-solution`` version 1 (rows of digits) and version 2 (bit-packed).
 
@@ -75,7 +76,7 @@ def main() -> None:
             t = time.perf_counter()
             sol = solve_linear(p, seed=1)
             t_solve = time.perf_counter() - t
-            for version, compact in (("v1 (old)", False), ("v2", True)):
+            for version, compact in (("lists (old)", False), ("encoded", True)):
                 measure(f"board {version}", f"{s}x{s}", b.n_cells, t_solve,
                         lambda: write_board_solution(path, p, sol, compact=compact),
                         lambda: read_board_solution(path), path, 1 if not compact else args.repeat, rows)

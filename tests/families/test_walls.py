@@ -62,9 +62,9 @@ def test_direct_sat_with_limits_and_fixed_boundary(board):
 def test_line_limit_can_make_a_board_unsolvable():
     # a 1x3 strip: the middle cell's W and E are joined to cells, N/S fixed equal -> must be W_H
     b = Board.rect(3, 1)
-    base = BoardProblem(b, WangTileSet.brick(3), [0, 1, 1, 0, 1, 0, 1, 0])
+    base = BoardProblem(b, WangTileSet.brick(3), [1, 1, 0, 0, 1, 0, 1, 0])
     assert wang.solve(base, method="sat").status.value == "sat"
-    lim = BoardProblem(b, WangTileSet.brick(3), [0, 1, 1, 0, 1, 0, 1, 0], max_h=1, max_v=1)
+    lim = BoardProblem(b, WangTileSet.brick(3), [1, 1, 0, 0, 1, 0, 1, 0], max_h=1, max_v=1)
     s = wang.solve(lim, method="sat")
     assert s.status.value in ("sat", "unsat")
     if s.status.value == "sat":

@@ -123,10 +123,12 @@ def test_reads_a_version_1_file_written_by_hand(tmp_path):
     q, t = read_board_solution(path)
     b = Board.rect(2, 1)
     assert np.array_equal(q.board.nbr_cell, b.nbr_cell) and np.array_equal(q.board.nbr_leg, b.nbr_leg)
-    assert q.boundary.tolist() == [1, -1, -1, 0, -1, -1] and t.tiling.tolist() == doc["tiles"]
+    # boundary legs renumbered by cell, then N, E, S, W: W of cell 0 (was 0) is now 2, N of cell 1 stays 3
+    assert q.boundary.tolist() == [-1, -1, 1, 0, -1, -1] and t.tiling.tolist() == doc["tiles"]
     # the same file in version 3: tiles and leg numbers in N, E, S, W; boundary legs numbered alike
     v3 = _as_version_3(doc)
-    assert v3["tiles"] == [[0, 2, 1, 1], [0, 2, 2, 2]] and v3["edges"][2] == [0, 1, 1, 3]
+    assert v3["tiles"] == [[0, 2, 1, 1], [0, 2, 2, 2]] and v3["edges"][:3] == [[0, 3, -1, 2], [0, 0, -1, 0], [0, 1, 1, 3]]
+    assert v3["boundary"] == [None, None, 1, 0, None, None]
     path.write_text(json.dumps(v3))
     q3, t3 = read_board_solution(path)
     assert np.array_equal(q3.board.nbr_cell, b.nbr_cell) and np.array_equal(q3.board.nbr_leg, b.nbr_leg)
@@ -140,7 +142,20 @@ def _as_version_3(doc: dict) -> dict:
     out["edges"] = [[a, NESW_INDEX[ka], b, kb if b < 0 else NESW_INDEX[kb]] for a, ka, b, kb in doc["edges"]]
     if isinstance(doc["tileset"], list):
         out["tileset"] = [[w_n_e_s[i] for i in (1, 2, 3, 0)] for w_n_e_s in doc["tileset"]]
-    return out
+    return _walls_renumbered(out)
+
+
+def _walls_renumbered(doc: dict) -> dict:
+    """``doc`` with its wall legs numbered 0, 1, ... by cell, then by leg number (in the
+    document's own leg order), the boundary colours moved along."""
+    walls = sorted((a, ka, kb) for a, ka, b, kb in doc["edges"] if b < 0)
+    new = {kb: i for i, (_, _, kb) in enumerate(walls)}
+    doc["edges"] = [[a, ka, b, new[kb] if b < 0 else kb] for a, ka, b, kb in doc["edges"]]
+    boundary = [None] * len(new)
+    for old, i in new.items():
+        boundary[i] = doc["boundary"][old]
+    doc["boundary"] = boundary
+    return doc
 
 
 def _as_version_1(doc: dict) -> dict:
@@ -150,7 +165,7 @@ def _as_version_1(doc: dict) -> dict:
     out.update(version=1, leg_order=["W", "N", "E", "S"])
     out["tiles"] = [[n_e_s_w[i] for i in (3, 0, 1, 2)] for n_e_s_w in out["tiles"]]
     out["edges"] = [[a, back[ka], b, kb if b < 0 else back[kb]] for a, ka, b, kb in out["edges"]]
-    return out
+    return _walls_renumbered(out)
 
 
 def test_versions_1_and_3_of_one_solution_read_the_same(tmp_path):

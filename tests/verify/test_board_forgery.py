@@ -93,14 +93,14 @@ def test_a_missing_or_extra_cell_is_a_violation(files):
 
 @pytest.mark.fast_cases(1)
 @pytest.mark.parametrize("forge, expected", [
-    # the first edge (leg W of cell [0, 0] on the wall, boundary leg 0) dropped
-    (lambda e: e[1:], "the file does not list the edge where leg W of cell [0, 0] meets the wall (boundary leg 0)"),
+    # the first edge (leg W of cell [0, 0] on the wall, boundary leg 1 after N's 0) dropped
+    (lambda e: e[1:], "the file does not list the edge where leg W of cell [0, 0] meets the wall (boundary leg 1)"),
     # listed twice
     (lambda e: e + [e[3]], "is listed twice"),
     # a join to another cell
     (lambda e: [[0, 2, 7, 0]] + e[1:], "edge 0 (cell 0 leg S, cell 7 leg N) is not an edge of the board"),
     # boundary legs renumbered
-    (lambda e: [[0, 3, -1, 1]] + e[1:], "edge 0 (cell 0 leg W, the wall's boundary leg 1) is not an edge of the board"),
+    (lambda e: [[0, 3, -1, 0]] + e[1:], "edge 0 (cell 0 leg W, the wall's boundary leg 0) is not an edge of the board"),
     # cells and legs that do not exist
     (lambda e: [[0, 7, -1, 0]] + e[1:], "names a cell, leg or boundary leg the board does not have"),
     (lambda e: [[0, 0, 5000, 1]] + e[1:], "names a cell, leg or boundary leg the board does not have"),

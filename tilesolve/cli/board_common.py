@@ -18,7 +18,7 @@ BOARD_HELP = (
     "\b\nBoards (SPEC): rect:WxH, torus:WxH, cylinder:WxH, mobius:WxH (Example 5: columns "
     "wrap with a twist), klein:WxH, ring:WxH, or mask:FILE (text: '#' = cell, '.' = hole; or "
     "a PNG whose opaque pixels are cells).\n\b\nTiles and printed cells: colours N, E, S, W. Boundary "
-    "legs are numbered by cell (row-major), then by leg W, N, E, S (the brick paper's l1..l4)."
+    "legs are numbered by cell (row-major), then by leg N, E, S, W."
 )
 
 

@@ -444,7 +444,7 @@ FORM = Form(
         Field("colors", "int", "colours #C", 3, "edge colours of the brick tiles (Def. 9)", low=3, high=8,
               option="--colors"),
         Field("boundary", "text", "boundary colours", "free", "free, random, or a colour per boundary leg "
-              "(comma-separated, - = free; legs numbered by cell, then W N E S)", option="--boundary"),
+              "(comma-separated, - = free; legs numbered by cell, then N E S W)", option="--boundary"),
         Field("max_h", "int", "longest horizontal line", None, "no horizontal line through more cells (SAT route)",
               low=1, high=1 << 20, option="--max-h"),
         Field("max_v", "int", "longest vertical line", None, "no vertical line through more cells (SAT route)",

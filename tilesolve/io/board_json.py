@@ -36,8 +36,9 @@ plus the solution's ``status``, ``method``, ``solver``, ``seed``, ``time_s``, ``
 ``notes`` and ``stats``, and the free texts ``created_by`` and ``comment``. A reader refuses
 any other field.
 
-Boundary legs are numbered ``0, 1, ...`` in order of cell, then of the cell's legs W, N, E,
-S (the board model's numbering, which ``--boundary`` files use too), in every version.
+Boundary legs are numbered ``0, 1, ...`` in order of cell, then of the cell's legs: N, E, S, W
+in version 3 (the board model's numbering, which ``--boundary`` files use too), W, N, E, S in
+versions 1 and 2 (converted when read, :func:`_boundary_seam`).
 
 The board is *described* by ``board_kind`` with ``grid`` and ``mask``; a file without
 ``grid`` (written before version 1 had it) describes a board of a kind in
@@ -104,14 +105,16 @@ rules and a five-line Python reader are in :mod:`tilesolve.io.jsonio`.
 Version 3 (written by tilesolve now)
 ------------------------------------
 Version 2's fields, with every tile in the order N, E, S, W: ``tileset``, each cell's
-``tiles`` and the leg numbers of ``edges`` (0 = N, 1 = E, 2 = S, 3 = W), and an optional
-``window``. An array may be a plain list (as in version 1; ``boundary`` then holds ``null``
-for a free leg) or an encoded array; tilesolve writes plain lists, with ``cells`` and
+``tiles`` and the leg numbers of ``edges`` (0 = N, 1 = E, 2 = S, 3 = W); the wall legs of a
+grid board numbered in order of cell, then of leg N, E, S, W; and an optional ``window``.
+An array may be a plain list (as in version 1; ``boundary`` then holds ``null`` for a free
+leg) or an encoded array; tilesolve writes plain lists, with ``cells`` and
 ``edges`` listed, for boards of at most :data:`COMPACT_MIN_CELLS` cells, and encoded arrays
 (grid boards as their grid and mask alone) for larger ones.
 
 The board model keeps the brick paper's legs W, N, E, S (:mod:`tilesolve.model.board`); a
-file's leg order is converted to it and back at one place, :func:`_leg_seam`.
+file's leg order is converted to it and back at one place, :func:`_leg_seam` (and an older
+file's boundary-leg numbers at :func:`_boundary_seam`).
 """
 
 from __future__ import annotations
@@ -199,6 +202,29 @@ def _leg_seam(version: int, *, tiles=None, edges=None, to_file: bool) -> tuple:
             legs[move] = perm[legs[move]]
         edges = e.tolist()
     return tiles, edges
+
+
+def _boundary_seam(version: int, board: Board, boundary: np.ndarray, listed):
+    """A version 1 or 2 file's boundary-leg numbers as the board model gives them, for a board
+    rebuilt from the file's description: the colours of ``boundary`` and the wall legs of the
+    ``listed`` ``(cells, edges)``. Those versions numbered boundary legs in order of cell, then
+    of leg W, N, E, S; the model numbers them by cell, then N, E, S, W, as version 3 does. A
+    board given by its joins alone keeps the file's own numbers.
+    """
+    if version >= 3 or board.grid_spec is None:
+        return boundary, listed
+    a, k = np.nonzero(board.nbr_cell < 0)  # in order of cell, then of leg W, N, E, S
+    new = board.nbr_leg[a, k]  # the model's number of the file's boundary leg 0, 1, ...
+    if boundary.shape == new.shape:  # another length is BoardProblem's to name
+        moved = np.empty_like(boundary)
+        moved[new] = boundary
+        boundary = moved
+    if listed is not None:
+        e = listed[1].copy()
+        wall = (e[:, 2] == -1) & (e[:, 3] >= 0) & (e[:, 3] < new.size)
+        e[wall, 3] = new[e[wall, 3]]
+        listed = (listed[0], e)
+    return boundary, listed
 
 
 def board_solution_to_dict(problem: BoardProblem, solution: Solution, *, compact: bool | None = None) -> dict:
@@ -415,6 +441,7 @@ def board_solution_from_dict(doc: dict, source: Any = "<document>") -> tuple[Boa
         raise InvalidProblem(f"{source}: a version 1 board solution lists 'cells' and 'edges'")
     board = _board(doc, source, version, kind, listed)
     beta = _boundary(doc, source, version, board.n_boundary)
+    beta, listed = _boundary_seam(version, board, beta, listed)
     lines = {name: _int(doc, name, source, optional=True) for name in ("max_h", "max_v")}
     for name, v in lines.items():
         if v is not None and not 1 <= v <= MAX_LINE:
@@ -461,9 +488,13 @@ def read_board_solution(path: str | os.PathLike) -> tuple[BoardProblem, Solution
 
 
 def read_boundary(path: str | os.PathLike) -> np.ndarray:
-    """A boundary file: a JSON list of colours by boundary-leg number (``null`` = free), or an
-    object whose ``"boundary"`` field is that list. Returns colours with ``-1`` for free legs."""
+    """A boundary file: a JSON list of colours by boundary-leg number (``null`` = free; legs
+    numbered by cell, then N, E, S, W), or an object whose ``"boundary"`` field is that list.
+    A board solution's boundary is read as the solution is (any version, its numbers as the
+    board model's). Returns colours with ``-1`` for free legs."""
     data = read_json(path)
+    if isinstance(data, dict) and data.get("format") == BOARD_SOLUTION:
+        return board_solution_from_dict(data, path)[0].boundary
     if isinstance(data, dict):
         data = data.get("boundary")
     return _colour_list(data, "boundary", path, "a boundary file holds a list of colours (null = free), "

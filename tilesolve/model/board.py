@@ -28,7 +28,8 @@ reader and writer and the CLI's text convert with them). Colours are ``0 .. n_co
 A board is stored as two ``(n, 4)`` int64 arrays: ``nbr_cell[a, k]`` is the cell joined to
 leg ``k`` of cell ``a`` and ``nbr_leg[a, k]`` the leg of that cell it meets, or
 ``nbr_cell[a, k] = -1`` for the wall and then ``nbr_leg[a, k]`` is the number of that
-*boundary leg* (``0 .. n_boundary-1``, in order of cell then leg).
+*boundary leg* (``0 .. n_boundary-1``; the builders number them in order of cell, then of leg
+in the public order N, E, S, W, so a boundary given as a list reads as the tiles do).
 
 Boards cut from a grid (rectangles, tori, cylinders, Möbius strips, Klein bottles, rings,
 masks, and their restrictions) also carry their :class:`GridSpec`: the grid's size and how
@@ -72,6 +73,8 @@ GRID_KINDS: dict[str, tuple[str | None, str | None]] = {
 _FULL_KINDS = frozenset({"rect", "torus", "cylinder", "mobius", "klein"})
 
 _DELTA = {W: (0, -1), N: (-1, 0), E: (0, 1), S: (1, 0)}
+#: Where each leg (W, N, E, S) comes in the public order N, E, S, W.
+_NESW_RANK = np.array([3, 0, 1, 2])
 _WRAPS = (None, "plain", "twist")
 
 
@@ -296,7 +299,7 @@ class Board:
         nl = self.nbr_leg[keep_arr].copy()
         nc2 = new[nc]  # -1 maps via new[-1] = -1 (wall stays wall)
         wall = nc2 < 0
-        nl[wall] = np.arange(int(wall.sum()))
+        nl[wall] = _boundary_numbers(wall)
         # a restriction of a valid board is valid; a grid board stays one (its mask shrinks)
         return Board._built(self.labels[keep_arr], nc2, nl, self.kind if keep_arr.all() else f"{self.kind}|U",
                             self.grid_spec)
@@ -376,7 +379,7 @@ class Board:
             nc[:, k] = seen.ravel() if full else seen[m]
         nl = np.where(nc >= 0, (np.arange(4, dtype=np.int64) + 2) % 4, np.int64(-1))
         wall = nc < 0
-        nl[wall] = np.arange(int(np.count_nonzero(wall)), dtype=np.int64)
+        nl[wall] = _boundary_numbers(wall)
         return cls._built(np.stack([rows, cols], axis=1), nc, nl, kind, GridSpec(H, Wd, wrap_rows, wrap_cols))
 
     @classmethod
@@ -530,6 +533,19 @@ class Board:
         rows = int(self.labels[:, 0].max()) + 1 if self.n_cells else 0
         cols = int(self.labels[:, 1].max()) + 1 if self.n_cells else 0
         return f"{self.kind} board, {self.n_cells} cells in {cols}x{rows}, {self.n_boundary} boundary legs"
+
+
+def _boundary_numbers(wall: np.ndarray) -> np.ndarray:
+    """The numbers of the wall legs ``wall`` (``(n, 4)`` booleans), in the row-major order of
+    its true entries: ``0, 1, ...`` in order of cell, then of leg in the public order N, E, S, W.
+
+    >>> _boundary_numbers(np.array([[True, True, False, True]])).tolist()  # W, N and S of one cell
+    [2, 0, 1]
+    """
+    a, k = np.nonzero(wall)
+    out = np.empty(a.size, dtype=np.int64)
+    out[np.argsort(a * 4 + _NESW_RANK[k], kind="stable")] = np.arange(a.size, dtype=np.int64)
+    return out
 
 
 def _check_dims(rows: int, cols: int) -> None:

@@ -64,8 +64,8 @@ def board_violations(problem, tiling) -> list[Violation]:
     Examples
     --------
     >>> from tilesolve.model.board import Board, BoardProblem, WangTileSet
-    >>> p = BoardProblem(Board.rect(1, 1), WangTileSet.brick(3), [0, 1, 0, 1])
-    >>> [v.kind for v in board_violations(p, [[0, 1, 0, 1]])]
+    >>> p = BoardProblem(Board.rect(1, 1), WangTileSet.brick(3), [1, 0, 1, 0])  # boundary N, E, S, W
+    >>> [v.kind for v in board_violations(p, [[0, 1, 0, 1]])]  # legs W, N, E, S
     ['cross']
     """
     board = problem.board
