@@ -185,22 +185,25 @@ def _leg_seam(version: int, *, tiles=None, edges=None, to_file: bool) -> tuple:
     legs W, N, E, S: each cell's ``tiles`` (colours per leg) and the leg numbers of ``edges``
     (``[a, ka, b, kb]``; ``kb`` numbers a boundary leg where ``b = -1`` and is left alone),
     into the file (``to_file``) or out of it. Leg numbers outside 0..3 are left as read, for
-    the board's checks to name.
+    the board's checks to name. Returns ``(tiles, edges)`` as ``(n, 4)`` integer arrays (or
+    ``None`` where not given).
 
-    >>> _leg_seam(3, tiles=[[0, 1, 2, 3]], edges=[[0, 2, 1, 0], [0, 0, -1, 0]], to_file=True)
+    >>> tiles, edges = _leg_seam(3, tiles=[[0, 1, 2, 3]], edges=[[0, 2, 1, 0], [0, 0, -1, 0]], to_file=True)
+    >>> tiles.tolist(), edges.tolist()
     ([[1, 2, 3, 0]], [[0, 1, 1, 3], [0, 3, -1, 0]])
     """
     if LEG_ORDERS[version] == LEG_NAMES:
-        return tiles, edges
+        as_rows = lambda a: None if a is None else np.asarray(a, dtype=np.int64).reshape(-1, 4)  # noqa: E731
+        return as_rows(tiles), as_rows(edges)
     if tiles is not None:
-        tiles = (wang_to_nesw(tiles) if to_file else wang_from_nesw(tiles)).tolist()
+        tiles = wang_to_nesw(tiles) if to_file else wang_from_nesw(tiles)
     if edges is not None:
         perm = _NESW_OF_LEG if to_file else _LEG_OF_NESW
         e = np.asarray(edges, dtype=np.int64).reshape(-1, 4).copy()
         for legs, on in ((e[:, 1], np.ones(len(e), bool)), (e[:, 3], e[:, 2] >= 0)):
             move = on & (legs >= 0) & (legs < 4)
             legs[move] = perm[legs[move]]
-        edges = e.tolist()
+        edges = e
     return tiles, edges
 
 
@@ -265,10 +268,10 @@ def board_solution_to_dict(problem: BoardProblem, solution: Solution, *, compact
                              edges=b.edge_array() if not compact or b.grid_spec is None else None)
     if edges is not None:
         doc["cells"] = array(b.labels)
-        doc["edges"] = array(np.asarray(edges, dtype=np.int64).reshape(-1, 4))
+        doc["edges"] = array(edges)
     if compact:
         doc["boundary"] = encode_array(problem.boundary)
-        doc["tiles"] = None if tiles is None else encode_array(np.asarray(tiles, dtype=np.int64))
+        doc["tiles"] = None if tiles is None else encode_array(tiles)
     else:
         doc["boundary"] = [None if c < 0 else c for c in problem.boundary.tolist()]
         doc["tiles"] = tiles
@@ -320,7 +323,7 @@ def _tileset(doc: dict, source: Any, version: int) -> WangTileSet:
     if not 1 <= colors <= MAX_LIST_COLORS:
         raise InvalidProblem(f"{source}: 'colors' is {colors}; a list of tiles has 1 to {MAX_LIST_COLORS} colours here")
     tiles = decode_array(ts, "tileset", source)
-    if LEG_ORDERS[version] == LEG_NAMES and tiles.size and tiles.shape[-1:] == (4,):
+    if LEG_ORDERS[version] == LEG_NAMES and tiles.ndim == 2 and tiles.shape[1] == 4:
         tiles = wang_to_nesw(tiles)  # versions 1 and 2 list the legs W, N, E, S
     try:
         return WangTileSet(tiles, colors)
@@ -433,7 +436,7 @@ def board_solution_from_dict(doc: dict, source: Any = "<document>") -> tuple[Boa
             raise InvalidProblem(f"{source}: a board solution lists 'cells' and 'edges' together")
         edges = _array(doc, "edges", source, version, 2, 4)
         listed = (_array(doc, "cells", source, version, 2, 2),
-                  np.asarray(_leg_seam(version, edges=edges, to_file=False)[1], dtype=np.int64).reshape(-1, 4))
+                  _leg_seam(version, edges=edges, to_file=False)[1])
         if listed[0].shape[0] > MAX_BOARD_CELLS:
             raise InvalidProblem(f"{source}: 'cells' lists {listed[0].shape[0]:,} cells; tilesolve's boards have at "
                                  f"most {MAX_BOARD_CELLS:,}")
@@ -457,7 +460,7 @@ def board_solution_from_dict(doc: dict, source: Any = "<document>") -> tuple[Boa
     if doc.get("tiles") is not None:
         tiling = _array(doc, "tiles", source, version, 2)
         if tiling.ndim == 2 and tiling.shape[1] == 4:  # another shape is left for the verifier to name
-            tiling = np.asarray(_leg_seam(version, tiles=tiling, to_file=False)[0], dtype=np.int64).reshape(-1, 4)
+            tiling = _leg_seam(version, tiles=tiling, to_file=False)[0]
     solution = solution_from_provenance(doc, source, tiling, what="tiles")
     if doc.get("window") is not None:
         if version < 3:
