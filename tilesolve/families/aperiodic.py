@@ -30,7 +30,7 @@ tile set and board name (:func:`refutations`) and checks the proof against it.
 Examples
 --------
 >>> from tilesolve.model.board import WangTileSet
->>> ws = WangTileSet.from_nesw([[0, 1, 1, 1], [1, 1, 0, 1]], 2)   # N, E, S, W: a 2-row period
+>>> ws = WangTileSet([[0, 1, 1, 1], [1, 1, 0, 1]], 2)   # N, E, S, W: a 2-row period
 >>> s = solve(AperiodicProblem(ws, 3, 2), seed=1, workers=1)
 >>> s.report.largest_square, [c.status for c in s.report.periods]
 (3, ['refuted', 'refuted', 'tiles', 'tiles'])

@@ -64,9 +64,9 @@ def wall_problem(width: int, height: int, max_line: int, *, max_v: int | None = 
 def npd_problem(width: int, height: int, max_line: int, *, max_v: int | None = None,
                 n_colors: int = 3) -> BoardProblem:
     """The board problem of one period of a repeatable wall: brick tiles on the
-    ``rows x cols`` torus (:meth:`Board.torus`), lines of at most ``max_line`` cells across
+    ``width x height`` torus (:meth:`Board.torus`), lines of at most ``max_line`` cells across
     and ``max_v`` (default ``max_line``) down, across the seams too (004 App. A)."""
-    return BoardProblem(Board.torus(cols, rows), WangTileSet.brick(n_colors), None, max_h=int(max_line),
+    return BoardProblem(Board.torus(width, height), WangTileSet.brick(n_colors), None, max_h=int(max_line),
                         max_v=int(max_line if max_v is None else max_v))
 
 
@@ -278,7 +278,7 @@ def npd_route(problem: BoardProblem, run: RunOptions) -> Solution:
 
 def brick_wall(width: int, height: int, max_line: int, *, max_v: int | None = None, n_colors: int = 3,
                seed: int | None = None) -> tuple[BoardProblem, Solution]:
-    """A verified brick wall: ``(problem, solution)`` (see the module docstring)."""
+    """A verified ``width x height`` brick wall: ``(problem, solution)`` (see the module docstring)."""
     from tilesolve.family import solve
 
     problem = wall_problem(width, height, max_line, max_v=max_v, n_colors=n_colors)
