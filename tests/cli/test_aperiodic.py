@@ -33,6 +33,7 @@ def check(tmp_path, verdict: str):
     return doc
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("verdict", sorted(CASES))
 def test_verify_names_a_report_and_its_verdict_not_a_tiling(tmp_path, verdict):
     check(tmp_path, verdict)
@@ -46,6 +47,7 @@ def test_verify_names_a_report_and_its_verdict_not_a_tiling(tmp_path, verdict):
     assert p.returncode == 0 and p.stdout.splitlines()[-1] == head, p.stdout
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("verdict", ["periodic", "undecided"])
 def test_a_version_1_report_still_reads_and_verifies(tmp_path, verdict):
     doc = check(tmp_path, verdict)
@@ -71,6 +73,7 @@ def test_a_report_whose_words_are_not_its_certificates_is_false(tmp_path):
         run("verify", "bad.json", cwd=tmp_path))
 
 
+@pytest.mark.slow
 def test_a_report_draws_its_witness(tmp_path):
     check(tmp_path, "periodic")
     p = run("draw", "r.json", "-o", "w.svg", cwd=tmp_path)
