@@ -306,6 +306,7 @@ def folder(tmp_path):
     (tmp_path / "locked.json").chmod(stat.S_IRUSR | stat.S_IWUSR)
 
 
+@pytest.mark.fast_cases(1)
 @pytest.mark.parametrize("command,args", [pytest.param(c, a, id=f"{c or 'tilesolve'}: {n}")
                                           for c, cases in CASES.items() for n, a in cases])
 def test_refused_in_one_line_leaving_everything_as_it_was(folder, command, args):
