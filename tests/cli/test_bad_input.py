@@ -369,6 +369,7 @@ def _commands(args: tuple[str, ...], folder) -> list[str]:
     return [name for block in blocks for name in re.findall(r"^  (\S+)", block, flags=re.M)]
 
 
+@pytest.mark.slow
 def test_every_command_is_swept(tmp_path):
     """The tools have their cases above; a family's commands are swept from their own options
     (a new family edits nothing here), and any cases above come on top."""
