@@ -45,6 +45,7 @@ def test_the_cli_board_is_the_api_board(tmp_path):
                                                                      "wrap_cols": "twist"}
 
 
+@pytest.mark.fast_cases(1)
 @pytest.mark.parametrize("command", [["wang", "solve"], ["brick", "solve"], ["brick", "count"]])
 def test_help_states_the_free_default(tmp_path, command):
     out = " ".join(run(*command, "--help", cwd=tmp_path).stdout.split())
