@@ -53,6 +53,7 @@ def test_help_states_the_free_default(tmp_path, command):
     assert "the default for every tile set, as in the Python API" in out
 
 
+@pytest.mark.slow
 def test_a_general_tile_set_is_solved_under_the_same_free_boundary_as_the_api(tmp_path):
     """periodic-7-30 tiles a 3x3 square: with a random boundary (the old default) it was unsat."""
     from tilesolve.families.board import solve
