@@ -8,6 +8,7 @@ import time
 import pytest
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("args", [
     ("dappled", "crosscheck", "--size", "12x12", "--cond", "H0=2,V1=2", "--trials", "1000"),
     ("brick", "crosscheck", "--board", "rect:12x12", "--trials", "1000"),
