@@ -14,6 +14,7 @@ def run(*args, cwd: Path):
     return subprocess.run([SCRIPT, *args], cwd=cwd, capture_output=True, text=True, timeout=300)
 
 
+@pytest.mark.fast_cases(1)
 @pytest.mark.parametrize("make", [
     ("dappled", "solve", "--size", "9x7", "--cond", "H0=2,V1=2", "--seed", "1", "-o", "s.json"),
     ("brick", "solve", "--board", "mobius:8x4", "--seed", "1", "-o", "s.json"),
