@@ -30,6 +30,7 @@ def test_every_family_draws_svg_and_png(tmp_path, make):
         assert img.size[0] > 0 and len(img.getcolors(maxcolors=1 << 16)) > 2  # not a blank picture
 
 
+@pytest.mark.slow
 def test_draw_refuses_what_it_cannot_draw(tmp_path):
     fixed = tmp_path / "fix.txt"
     fixed.write_text("1???\n?0??\n?011\n?0??\n")
@@ -42,6 +43,7 @@ def test_draw_refuses_what_it_cannot_draw(tmp_path):
     assert proc.returncode == 2 and proc.stderr.startswith("tilesolve: error:") and "svg or .png" in proc.stderr
 
 
+@pytest.mark.slow
 def test_a_solution_draws_itself_in_a_notebook():
     from tilesolve.families import board, dappled
     from tilesolve.model import DappledProblem
