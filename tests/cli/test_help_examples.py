@@ -50,6 +50,7 @@ def folder(tmp_path_factory):
     return d
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("command", COMMANDS, ids=" ".join)
 def test_help_examples_run(folder, command):
     shown = examples(command)
