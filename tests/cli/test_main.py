@@ -46,6 +46,7 @@ def _write_solution(path: Path, tiling=TILING) -> None:
 
 
 # ----------------------------------------------------------------------------- basics
+@pytest.mark.slow
 def test_version_and_help(tmp_path):
     proc = run("--version", cwd=tmp_path)
     assert proc.returncode == 0 and proc.stdout.startswith("tilesolve ")
@@ -61,6 +62,7 @@ def _section(text: str, title: str) -> list[str]:
     return [line.split()[0] for line in block.splitlines() if line.startswith("  ") and line[2] != " "]
 
 
+@pytest.mark.slow
 def test_help_lists_the_family_commands_then_the_tools(tmp_path):
     """The registry says which commands are a family's; they come first, in its order."""
     from tilesolve import family
@@ -89,6 +91,7 @@ def test_verify_help(tmp_path):
     assert "Example:" in out and "tilesolve verify" in out and "Exit codes" in out
 
 
+@pytest.mark.slow
 def test_backends(tmp_path):
     proc = run("backends", cwd=tmp_path)
     assert proc.returncode == 0, proc.stdout
@@ -98,6 +101,7 @@ def test_backends(tmp_path):
 
 
 # ----------------------------------------------------------------------------- verify
+@pytest.mark.slow
 def test_verify_valid_and_corrupted(tmp_path):
     good = tmp_path / "good.json"
     _write_solution(good)
@@ -118,6 +122,7 @@ def test_verify_valid_and_corrupted(tmp_path):
     assert proc.returncode == 1 and "tile 7 is not in 0..1" in proc.stdout
 
 
+@pytest.mark.slow
 def test_verify_bad_files(tmp_path):
     (tmp_path / "broken.json").write_text('{"format": "tilesolve/dappled-solution", ')
     assert "malformed JSON" in one_line_error(run("verify", "broken.json", cwd=tmp_path))
@@ -189,6 +194,7 @@ def test_export_refuses_bad_input(tmp_path):
     assert os.listdir(tmp_path) == []
 
 
+@pytest.mark.slow
 def test_usage_errors_exit_2(tmp_path):
     assert "--no-such-option" in one_line_error(run("dappled", "solve", "--size", "4x4", "--no-such-option",
                                                     cwd=tmp_path))
@@ -199,6 +205,7 @@ def test_usage_errors_exit_2(tmp_path):
 
 
 # ----------------------------------------------------------------------------- contract (uses the solvers)
+@pytest.mark.slow
 def test_solve_contract(tmp_path):
     proc = run("dappled", "solve", "--size", "12x8", "--cond", "H0=2", "--cond", "V1=3", "--seed", "3",
                "-o", "t.json", "--svg", "t.svg", "--png", "t.png", cwd=tmp_path)
@@ -239,6 +246,7 @@ def test_solve_fix_count_and_text_output(tmp_path):
     assert grid.shape == (3, 6) and grid[0, 0] == 1 and grid[2, 5] == 0 and 8 <= grid.sum() <= 10
 
 
+@pytest.mark.slow
 def test_solve_unsat(tmp_path):
     proc = run("dappled", "solve", "--size", "3x1", "--cond", "H0=1,H1=1", "--count", "1=3", "-o", "u.json",
                cwd=tmp_path)
@@ -262,6 +270,7 @@ def test_solve_json_to_stdout_and_quiet(tmp_path):
     assert json.loads(proc.stdout)["format"] == "tilesolve/dappled-solution"
 
 
+@pytest.mark.slow
 def test_solve_problem_file(tmp_path):
     dappled_json.write_problem(tmp_path / "p.json", DappledProblem.from_strings("7x5", ["H0=2", "V1=2"], n_tiles=3))
     proc = run("dappled", "solve", "--problem", "p.json", "-o", "t.json", cwd=tmp_path)
@@ -270,6 +279,7 @@ def test_solve_problem_file(tmp_path):
     one_line_error(run("dappled", "solve", "--problem", "p.json", "--size", "3x3", cwd=tmp_path))
 
 
+@pytest.mark.slow
 def test_count_last_line(tmp_path):
     # Remark 1.4: T = {0, 1}, L = {H0=2, V1=2} on 3x3 has 174 tilings (OEIS A206994).
     proc = run("dappled", "count", "--size", "3x3", "--cond", "H0=2", "--cond", "V1=2", cwd=tmp_path)
@@ -279,6 +289,7 @@ def test_count_last_line(tmp_path):
     assert proc.stdout.strip().splitlines()[-1] == "174"
 
 
+@pytest.mark.slow
 def test_crosscheck(tmp_path):
     proc = run("dappled", "crosscheck", "--size", "4x4", "--cond", "H0=2", "--cond", "V1=2", "--seed", "1",
                "--trials", "2", cwd=tmp_path)
@@ -298,6 +309,7 @@ def test_export_dimacs(tmp_path, suffix):
     assert text.startswith("c ") and ("p cnf 16 32" in text if suffix == "cnf" else "p wcnf" in text or "h " in text)
 
 
+@pytest.mark.slow
 def test_export_needs_matching_suffix(tmp_path):
     (tmp_path / "target.txt").write_text("0000\n" * 4)
     one_line_error(run("export", "dimacs", "--size", "4x4", "--cond", "H0=2", "--closest-to", "target.txt",
@@ -305,6 +317,7 @@ def test_export_needs_matching_suffix(tmp_path):
     one_line_error(run("export", "dimacs", "--size", "4x4", "--cond", "H0=2", "-o", "t.wcnf", cwd=tmp_path))
 
 
+@pytest.mark.slow
 def test_demo(tmp_path):
     proc = run("demo", "--out", "pics", cwd=tmp_path, timeout=300)
     assert proc.returncode == 0, proc.stdout + proc.stderr
