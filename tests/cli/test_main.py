@@ -75,6 +75,7 @@ def test_help_lists_the_family_commands_then_the_tools(tmp_path):
     assert {"dappled", "brick", "pack", "tiling", "aperiodic"} <= set(_section(out, "Family commands"))
 
 
+@pytest.mark.fast_cases(1)
 @pytest.mark.parametrize(
     "command",
     [["dappled", "solve"], ["dappled", "count"], ["dappled", "crosscheck"], ["export", "dimacs"]],
@@ -165,6 +166,7 @@ def inputs(tmp_path) -> Path:
     return tmp_path
 
 
+@pytest.mark.fast_cases(1)
 @pytest.mark.parametrize("case", sorted(BAD_INPUTS))
 def test_bad_input_one_line_exit_2_no_file(inputs, case):
     before = sorted(os.listdir(inputs))
@@ -225,6 +227,7 @@ def test_solve_contract(tmp_path):
     assert json.loads((tmp_path / "u.json").read_text())["tiling"] == doc["tiling"]  # same seed, same tiling
 
 
+@pytest.mark.fast_cases(1)
 @pytest.mark.parametrize("method", ["constructive", "sat", "maxsat", "cpsat"])
 def test_solve_methods(tmp_path, method):
     args = ["--size", "6x5", "--cond", "H0=2,V1=2", "--cyclic", "--method", method, "-o", "t.json", "--seed", "1"]
