@@ -26,6 +26,7 @@ posix_only = pytest.mark.skipif(os.name != "posix", reason="signals, FIFOs and p
 
 
 # ----------------------------------------------------------------------------- printed results (defect 5)
+@pytest.mark.fast_cases(1)
 @pytest.mark.parametrize("args", [
     ["brick", "solve", "--board", "rect:5x3", "--seed", "2"],
     ["brick", "wall", "--size", "5x3", "--max-line", "2", "--seed", "2"],
@@ -51,6 +52,7 @@ def test_board_help_names_only_real_outputs(tmp_path, command):
 
 
 # ----------------------------------------------------------------------------- '-' is stdout (defect 10)
+@pytest.mark.fast_cases(1)
 @pytest.mark.parametrize("args,start", [
     (["dappled", "solve", "--size", "4x3", "--cond", "H0=2", "--seed", "1", "-o", "-"], '"format"'),
     (["dappled", "solve", "--size", "4x3", "--cond", "H0=2", "--seed", "1", "--svg", "-"], "<svg"),
