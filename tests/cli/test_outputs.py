@@ -170,6 +170,7 @@ HARD = {
 PICTURE = {"pack": "--svg", "dappled": "--png"}
 
 
+@pytest.mark.slow
 @posix_only
 @pytest.mark.parametrize("sig,code,word", [(signal.SIGINT, 130, "interrupted"), (signal.SIGTERM, 143, "terminated")])
 @pytest.mark.parametrize("command", sorted(HARD))
@@ -182,6 +183,7 @@ def test_interruption_writes_nothing(tmp_path, command, sig, code, word):
     assert snapshot(tmp_path) == before  # out.json untouched, no picture, no temporary
 
 
+@pytest.mark.slow
 def test_time_limit_writes_the_unknown_record(tmp_path):
     proc = run(*HARD["pack"], "--time-limit", "1", "-o", "out.json", cwd=tmp_path)
     assert proc.returncode == 3, proc.stderr
