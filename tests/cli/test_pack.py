@@ -36,6 +36,7 @@ def one_line_error(proc) -> str:
     return lines[0]
 
 
+@pytest.mark.fast_cases(1)
 @pytest.mark.parametrize("kind,c,method", [("wang", 4, "auto"), ("corner", 3, "euler"), ("wang", 2, "sat"),
                                            ("corner", 2, "cpsat"), ("corner", 4, "known"),
                                            ("wang", 4, "hybrid")])
@@ -65,6 +66,7 @@ def test_verify_lists_violations(tmp_path):
     assert any(w in proc.stdout for w in near)
 
 
+@pytest.mark.fast_cases(1)
 @pytest.mark.parametrize("kind,sym,expected", [("corner", False, 32), ("corner", True, 1), ("wang", False, 203520)])
 def test_count_last_line(tmp_path, kind, sym, expected):
     args = ["pack", "count", "--kind", kind, "--colors", "2"] + (["--up-to-symmetry"] if sym else [])
