@@ -75,6 +75,7 @@ def test_count_last_line(tmp_path, kind, sym, expected):
     assert proc.stdout.strip().splitlines()[-1] == str(expected)
 
 
+@pytest.mark.slow
 def test_unsat_pins_and_unknown_exit_codes(tmp_path):
     proc = run("pack", "--kind", "corner", "--colors", "2", "--fix", "0,0,0", "--fix", "0,1,15", "-o", "u.json",
                cwd=tmp_path)
@@ -88,6 +89,7 @@ def test_unsat_pins_and_unknown_exit_codes(tmp_path):
     assert json.loads((tmp_path / "t.json").read_text())["status"] == "unknown"
 
 
+@pytest.mark.slow
 def test_bad_input_is_one_line(tmp_path):
     assert "at least 2" in one_line_error(run("pack", "--kind", "wang", "--colors", "1", cwd=tmp_path))
     line = one_line_error(run("pack", "--kind", "corner", "--colors", "20", "--method", "sat", "-o", "x.json",
@@ -127,6 +129,7 @@ def test_json_round_trip_and_bad_files(tmp_path):
             packing_from_dict(d, "f.json")
 
 
+@pytest.mark.slow
 def test_demo_entry_writes_verified_pictures(tmp_path):
     p = run("demo", "--family", "packing", "--out", "pics", cwd=tmp_path)
     assert p.returncode == 0, p.stderr
@@ -136,6 +139,7 @@ def test_demo_entry_writes_verified_pictures(tmp_path):
         assert (tmp_path / "pics" / f"{name}.svg").exists()
 
 
+@pytest.mark.slow
 def test_lift_and_recursive_from_the_command_line(tmp_path):
     p = run("pack", "--kind", "corner", "--colors", "4", "--method", "lift", "--seed", "2", "-o", "c4.json",
             cwd=tmp_path)
@@ -150,6 +154,7 @@ def test_lift_and_recursive_from_the_command_line(tmp_path):
     assert is_packing(PackingProblem("wang", 3), grid)
 
 
+@pytest.mark.slow
 def test_unreachable_cluster_is_a_one_line_error(tmp_path):
     p = run("pack", "--kind", "corner", "--colors", "4", "--method", "lift", "--cluster", "tcp://127.0.0.1:9",
             "-o", "c.json", cwd=tmp_path)
