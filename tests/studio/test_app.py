@@ -150,6 +150,7 @@ def test_each_family_solves_verifies_and_exports(client, name):
     assert client.get("/api/jobs/j999999").status_code == 400
 
 
+@pytest.mark.slow
 def test_large_tilings_come_as_png(client):
     state = solve(client, {"family": "dappled", "values": {"size": "64x64", "seed": 1}})
     assert state["result"]["picture"]["format"] == "png"
