@@ -57,6 +57,7 @@ def test_version_1_still_reads_verifies_and_draws_with_its_window(tiling, tmp_pa
     assert old["grid"] == new["grid"] and {**old["window"], "y_up": True} == new["window"]
 
 
+@pytest.mark.slow
 def test_verify_and_draw_show_the_window_from_the_data(tiling, tmp_path):
     name = edited(tiling, tmp_path, lambda d: d.update(notes=["window x 0..0, y 0..0"]))  # a note is not the data
     v = run("verify", name, cwd=tmp_path)
