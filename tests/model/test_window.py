@@ -38,6 +38,7 @@ def test_both_region_options_give_the_same_one_line_error(tmp_path, text, messag
     assert list(tmp_path.iterdir()) == []
 
 
+@pytest.mark.slow
 def test_both_region_options_read_width_then_height(tmp_path):
     for name, args in COMMANDS.items():
         r = run(*args, "--region", "-2,7,5x3", "-o", f"{name}.json", cwd=tmp_path)
