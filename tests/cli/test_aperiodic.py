@@ -60,6 +60,7 @@ def test_a_version_1_report_still_reads_and_verifies(tmp_path, verdict):
     assert f"verdict {verdict}" in p.stdout.splitlines()[0]
 
 
+@pytest.mark.slow
 def test_a_report_whose_words_are_not_its_certificates_is_false(tmp_path):
     doc = check(tmp_path, "periodic")
     for key, value, said in (("verdict", "open", "the verdict 'open' is not what the certificates give: 'periodic'"),
