@@ -163,6 +163,7 @@ def test_torus_h0_v1_values(n, value):
     assert count_dappled(P(f"{n}x{n}", ["H0=2", "V1=2"], cyclic=True)) == value
 
 
+@pytest.mark.slow
 def test_torus_agrees_with_solver_enumeration():
     from tilesolve.engine.dappled import count_by_enumeration
 
