@@ -460,6 +460,7 @@ FORM = Form(
     window=_form_window,
 )
 
+
 def _warm() -> None:
     """Compile the linear algorithm's kernels now (the studio's long-lived server)."""
     from tilesolve.constructive.brick import compile_kernels

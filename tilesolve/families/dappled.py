@@ -411,6 +411,7 @@ FORM = Form(
     cells=lambda problem, sol: sol.tiling,
 )
 
+
 def _warm() -> None:
     """Compile the constructive kernels now (the studio's long-lived server)."""
     from tilesolve.constructive.dappled import compile_kernels
