@@ -330,6 +330,14 @@ def test_demo(tmp_path):
         assert run("verify", str(js), cwd=tmp_path).returncode == 0
 
 
+def test_demo_of_one_family(tmp_path):
+    """The fast tier's demo: one family's showcase (all of them: test_demo, slow)."""
+    proc = run("demo", "--family", "aperiodic", "--out", "pics", cwd=tmp_path, timeout=300)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    assert sorted(p.suffix for p in (tmp_path / "pics").iterdir()) == [".json", ".svg"]
+    assert run("verify", str(next((tmp_path / "pics").glob("*.json"))), cwd=tmp_path).returncode == 0
+
+
 # ----------------------------------------------------------------------------- in-process (click runner)
 def test_interrupt_exits_130_without_files(tmp_path, monkeypatch):
     from tilesolve.families import dappled
