@@ -27,6 +27,13 @@ def test_gpu_info_names_the_renderer(tmp_path):
     assert re.search(r"^samples: +1\b", proc.stdout, re.M)
 
 
+def test_render_wall_writes_a_small_picture(tmp_path):
+    """The fast tier's render: a small wall, pixel for pixel the library's (wall and texture: below, slow)."""
+    proc = run("render", "wall", "--size", "64x32", "--max-line", "3", "--seed", "3", "-o", "w.png", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    assert np.array_equal(np.asarray(Image.open(tmp_path / "w.png")), WallRenderer(max_line=3, seed=3).image(64, 32))
+
+
 @pytest.mark.slow
 def test_render_wall_and_texture_write_the_library_pictures(tmp_path):
     proc = run("render", "wall", "--size", "200x120", "--max-line", "3", "--cell", "16", "--seed", "4",
