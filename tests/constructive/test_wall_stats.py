@@ -128,6 +128,18 @@ def test_line_statistics_bad_input(kwargs, words):
         line_statistics(method, n, **kwargs)
 
 
+def test_command_writes_a_small_table(tmp_path):
+    """The fast tier's wall-lines: one generator on a small wall (both, with pictures: below, slow)."""
+    proc = run("wall-lines", "--method", "procedural", "--max-line", "3", "--size", "12x8", "--samples", "1",
+               "--seed", "2", "-o", "t.csv", "--svg", "h.svg", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    rows = list(csv.DictReader((tmp_path / "t.csv").open()))
+    assert [(r["method"], r["direction"]) for r in rows] == [("procedural", "vertical"), ("procedural", "horizontal")]
+    for r in rows:
+        assert int(r["lines"]) == sum(int(r[f"length_{k}"]) for k in (1, 2, 3)) and int(r["longest"]) <= 3
+    assert (tmp_path / "h.svg").read_text().startswith("<?xml")
+
+
 @pytest.mark.slow
 def test_command_writes_table_and_pictures(tmp_path):
     proc = run("wall-lines", "--method", "procedural", "--method", "npd", "--max-line", "3", "--size", "24x16",
