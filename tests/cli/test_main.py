@@ -92,7 +92,6 @@ def test_verify_help(tmp_path):
     assert "Example:" in out and "tilesolve verify" in out and "Exit codes" in out
 
 
-@pytest.mark.slow
 def test_backends(tmp_path):
     proc = run("backends", cwd=tmp_path)
     assert proc.returncode == 0, proc.stdout
