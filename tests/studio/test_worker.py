@@ -70,7 +70,6 @@ def test_warming_runs_every_family_hook(svg_only):
     assert calls == ["warm"]
 
 
-@pytest.mark.slow
 def test_the_built_in_hooks_compile_the_kernels():
     code = ("from tilesolve.constructive import _brick_kernels, _dappled_kernels\n"
             "from tilesolve.studio.worker import warm_families\n"
