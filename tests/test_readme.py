@@ -33,7 +33,6 @@ def test_the_tour_is_long_enough():
 
 
 @pytest.mark.slow
-@pytest.mark.xdist_group("readme")
 @pytest.mark.parametrize("line", TOUR)
 def test_tour_command(folder, line):
     command, _, comment = line.partition("#")
