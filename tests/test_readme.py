@@ -47,7 +47,6 @@ def test_tour_command(folder, line):
 
 
 @pytest.mark.slow
-@pytest.mark.xdist_group("readme")
 @pytest.mark.parametrize("code", PYTHON)
 def test_python_example(folder, code):
     (folder / "example.py").write_text(code)
