@@ -24,8 +24,8 @@ from tilesolve.studio.app import create_app
 CHROMIUM = "/usr/bin/chromium"
 ARTIFACTS = Path(__file__).resolve().parents[1] / "artifacts" / "studio"
 EXE = os.path.join(os.path.dirname(sys.executable), "tilesolve")
-#: Every test here drives Chromium: slow, and one pytest-xdist worker shares one browser and server.
-pytestmark = [pytest.mark.slow, pytest.mark.xdist_group("browser")]
+#: Every test here drives Chromium: slow.
+pytestmark = pytest.mark.slow
 
 
 
