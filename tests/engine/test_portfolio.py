@@ -288,7 +288,6 @@ def dask_address():
         yield cluster.scheduler_address
 
 
-@pytest.mark.xdist_group("dask")
 @pytest.mark.slow
 def test_dask_first_decisive_run_wins(dask_address):
     s = run_portfolio(task(s3="sat"), range(5), cluster=dask_address)
@@ -299,7 +298,6 @@ def test_dask_first_decisive_run_wins(dask_address):
                                   f"on the Dask cluster at {dask_address} (2 workers, 2 threads)")
 
 
-@pytest.mark.xdist_group("dask")
 @pytest.mark.slow
 def test_dask_all_unknown(dask_address):
     s = run_portfolio(task(s0="unknown:budget", s1="unknown:budget"), range(3), cluster=dask_address)
@@ -307,14 +305,12 @@ def test_dask_all_unknown(dask_address):
     assert s.reason == "no run decided: 3 runs ended unknown (budget: 2, no reason given: 1)"
 
 
-@pytest.mark.xdist_group("dask")
 @pytest.mark.slow
 def test_dask_exception_keeps_its_type(dask_address):
     with pytest.raises(InvalidProblem, match="bad input for seed 2"):
         run_portfolio(task(s2="raise"), range(3), cluster=dask_address)
 
 
-@pytest.mark.xdist_group("dask")
 @pytest.mark.slow
 def test_dask_open_client_is_used_and_left_open(dask_address):
     from distributed import Client
@@ -325,7 +321,6 @@ def test_dask_open_client_is_used_and_left_open(dask_address):
         assert client.status == "running"
 
 
-@pytest.mark.xdist_group("dask")
 @pytest.mark.slow
 def test_dask_time_limit(dask_address):
     t0 = time.perf_counter()
@@ -334,7 +329,6 @@ def test_dask_time_limit(dask_address):
     assert s.status is Status.UNKNOWN and s.reason == "no run decided: 2 runs stopped (time limit)"
 
 
-@pytest.mark.xdist_group("dask")
 @pytest.mark.slow
 def test_dask_ctrl_c(dask_address, ctrl_c):
     s = run_portfolio(task(s0=f"sigint:{os.getpid()}:1"), range(2), cluster=dask_address)
