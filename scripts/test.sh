@@ -11,7 +11,9 @@
 #    not used). Without root, sudo or apt-get it stops with one line naming what is missing.
 # 2. A virtual environment, $VENV (default .venv), made when missing, with tilesolve and its
 #    test extra installed into it (pip install ".[test]": a real install, as a user gets).
-# 3. python -m pytest -q -n auto --dist loadgroup, in that environment.
+# 3. python -m pytest -q -n auto --dist loadscope, in that environment: pytest-xdist on every
+#    core, each test module in one worker (its module fixtures built once; the README tour runs
+#    in order in one folder).
 set -euo pipefail
 
 cd "$(dirname "$0")/.."
@@ -67,7 +69,7 @@ python -m pip install -q ".[test]"
 
 # Exit code 5 means "no tests collected": a failure here.
 status=0
-python -m pytest -q -n auto --dist loadgroup "$@" || status=$?
+python -m pytest -q -n auto --dist loadscope "$@" || status=$?
 if [ "$status" -eq 5 ]; then
     echo "scripts/test.sh: pytest collected no tests" >&2
     exit 1
