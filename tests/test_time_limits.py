@@ -116,7 +116,7 @@ def test_only_a_checked_proof_gives_unsat():
     [
         ({"check_proof": False}, "not checked (checking turned off)"),
         ({"deadline": AfterChecks(0)}, "not checked: time limit"),
-        ({"proof_time_limit": 0.0}, "not checked: time limit of 0 s reached"),
+        ({"deadline": Deadline(0.0)}, "not checked: time limit of 0 s reached"),
     ],
 )
 def test_an_unchecked_proof_gives_unknown(kwargs, words):

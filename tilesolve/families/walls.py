@@ -356,7 +356,7 @@ def line_statistics(method: str, n: int, *, width: int = 128, height: int = 128,
             lines = wall_lines(legs, margin=n)
         else:
             make = npd_problem if method == "npd" else wall_problem
-            problem = make(h, w, n, n_colors=nc)
+            problem = make(w, h, n, n_colors=nc)
             sol = solve(problem, method, seed=seed_k)
             if not sol.status.has_tiling:
                 raise InvalidProblem(f"no {method} wall of {w}x{h} cells with lines <= {n} ({sol.status.value}); "
