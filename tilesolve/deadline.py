@@ -7,15 +7,22 @@ once per run, from the seconds the user gave, at the public entry point
 down; a part of the run with a budget of its own (a portfolio wave, one attempt of a
 restarting search) takes :meth:`Deadline.within`, never a new one. A deadline handed to a
 worker process (pickled) keeps counting from the run's start there.
+
+A run's clock starts when the run begins, except where the command line asks for the whole
+command to count (:func:`first_run_counted_from`): ``tilesolve ... --time-limit 3`` ends within
+about 3 s of its process starting, start-up included.
 """
 
 from __future__ import annotations
 
+import contextlib
+import contextvars
+import os
 import time
 
 from tilesolve.errors import InvalidProblem, TilesolveError
 
-__all__ = ["Deadline", "TimeLimitReached", "NO_LIMIT"]
+__all__ = ["Deadline", "TimeLimitReached", "NO_LIMIT", "process_start", "first_run_counted_from", "run_start"]
 
 
 class TimeLimitReached(TilesolveError):
@@ -30,13 +37,16 @@ class TimeLimitReached(TilesolveError):
 
 
 class Deadline:
-    """A wall-clock deadline shared by the steps of one solve (``None`` = no limit)."""
+    """A wall-clock deadline shared by the steps of one solve (``None`` = no limit).
 
-    def __init__(self, time_limit: float | None) -> None:
+    ``start`` is the :func:`time.perf_counter` reading its clock counts from (default: now).
+    """
+
+    def __init__(self, time_limit: float | None, start: float | None = None) -> None:
         if time_limit is not None and time_limit < 0:
             raise InvalidProblem(f"time limit must be >= 0 seconds, got {time_limit}")
         self._clock = time.perf_counter
-        self.start = self._clock()
+        self.start = self._clock() if start is None else start
         self.time_limit = time_limit
 
     def within(self, seconds: float | None) -> "Deadline":
@@ -89,6 +99,61 @@ class Deadline:
 #: it never passes. Engine functions take it as their default instead of making a deadline of
 #: their own; time is never measured with it (its start is the import).
 NO_LIMIT = Deadline(None)
+
+
+#: Start-up longer than this is taken for a clock that cannot be read (a process start is not
+#: counted then): no real start-up of tilesolve is that slow.
+_MAX_START_UP_S = 60.0
+
+
+def process_start() -> float:
+    """The :func:`time.perf_counter` reading at which this process started (fork or spawn).
+
+    Read from ``/proc/self/stat`` (its start time, in clock ticks since boot: 10 ms steps on
+    Linux); where that cannot be read, or gives no sensible start-up time, it is now.
+
+    >>> 0 <= time.perf_counter() - process_start() < _MAX_START_UP_S
+    True
+    """
+    now = time.perf_counter()
+    try:
+        with open("/proc/self/stat", "rb") as fh:
+            stat = fh.read()
+        ticks = int(stat.rsplit(b")", 1)[1].split()[19])  # field 22, after "pid (comm)"
+        spent = time.clock_gettime(time.CLOCK_BOOTTIME) - ticks / os.sysconf("SC_CLK_TCK")
+    except (OSError, ValueError, IndexError, AttributeError):
+        return now
+    return now - spent if 0 <= spent < _MAX_START_UP_S else now
+
+
+_FIRST_RUN_START: contextvars.ContextVar[float | None] = contextvars.ContextVar("first_run_start", default=None)
+
+
+@contextlib.contextmanager
+def first_run_counted_from(start: float):
+    """Within the block, the first run that begins (:func:`run_start`) counts from ``start``
+    (a :func:`time.perf_counter` reading, e.g. :func:`process_start`), the later ones from
+    their own beginning; used by the command line so that a time limit covers start-up."""
+    token = _FIRST_RUN_START.set(start)
+    try:
+        yield
+    finally:
+        _FIRST_RUN_START.reset(token)
+
+
+def run_start() -> float:
+    """Where the clock of a run beginning now starts: the start given by the enclosing
+    :func:`first_run_counted_from`, if no run has taken it yet, otherwise now.
+
+    >>> with first_run_counted_from(1.5):
+    ...     run_start(), run_start() > 1.5
+    (1.5, True)
+    """
+    start = _FIRST_RUN_START.get()
+    if start is None:
+        return time.perf_counter()
+    _FIRST_RUN_START.set(None)
+    return start
 
 
 def _unpickled(time_limit: float | None, elapsed: float, sent: float) -> Deadline:

@@ -405,3 +405,26 @@ def test_split_conditions():
 
     assert split_conditions(["H0=2, V{0, 1}=3 H1=2", "V1=inf"]) == ["H0=2", "V{0, 1}=3", "H1=2", "V1=inf"]
     assert split_conditions(["H{0,2}=3,V1=2"]) == ["H{0,2}=3", "V1=2"]
+
+
+def test_time_limit_counts_from_the_start_of_the_command(tmp_path, monkeypatch):
+    """A --time-limit covers the whole command: the run's clock starts where the command started
+    (for the console script, the process's start), not where the run begins. A command said to
+    have started 100 s ago is out of its 50 s at once; one that started now is not; and the next
+    run in this process counts from its own beginning again."""
+    import time
+
+    from tilesolve.cli.group import run as run_in_process
+    from tilesolve.deadline import run_start
+
+    monkeypatch.chdir(tmp_path)
+    args = ["dappled", "solve", "--size", "8x8", "--cond", "H0=2,V1=2", "--method", "sat", "--time-limit", "50",
+            "-o", "t.json"]
+    assert run_in_process(args, started=time.perf_counter() - 100) == 3
+    doc = json.loads((tmp_path / "t.json").read_text())
+    assert doc["status"] == "unknown" and "time limit of 50 s reached" in doc["reason"]
+    assert doc["time_s"] >= 100
+    assert run_in_process(args, started=time.perf_counter()) == 0
+    assert json.loads((tmp_path / "t.json").read_text())["status"] == "sat"
+    before = time.perf_counter()
+    assert run_start() >= before  # the command's start is not left behind for a later run

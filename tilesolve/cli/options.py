@@ -145,12 +145,28 @@ seed_opt = click.option(
     "--seed", type=click.IntRange(0, MAX_SEED), default=None, metavar="N",
     help=f"Random seed 0..{MAX_SEED}; the same seed gives the same tiling.",
 )
+
+
+def _time_limit_from_start(ctx: click.Context, param: click.Parameter, value: float | None) -> float | None:
+    """With a time limit, the command's first run counts from where the command started (the
+    process, for the console script: ``started`` in the root context's object), so that the
+    whole command, start-up included, ends within the limit."""
+    obj = ctx.find_root().obj
+    started = obj.get("started") if isinstance(obj, dict) else None
+    if value is not None and started is not None:
+        from tilesolve.deadline import first_run_counted_from
+
+        ctx.with_resource(first_run_counted_from(started))
+    return value
+
+
 time_limit_opt = click.option(
     "--time-limit",
     type=Seconds(),
     default=None,
     metavar="S",
-    help="Stop after S seconds with status unknown (exit 3).",
+    callback=_time_limit_from_start,
+    help="Stop S seconds after the command started, start-up included, with status unknown (exit 3).",
 )
 initial_opt = click.option(
     "--initial",

@@ -8,7 +8,7 @@ import functools
 import os
 from typing import Any, Mapping
 
-from tilesolve.deadline import Deadline, TimeLimitReached
+from tilesolve.deadline import Deadline, TimeLimitReached, run_start
 from tilesolve.errors import InternalError, InvalidProblem, MethodNotApplicable
 from tilesolve.family.contract import Family, Route
 from tilesolve.family.drawing import render
@@ -77,7 +77,8 @@ def solve(
 def run_deadline(time_limit: float | None) -> Deadline:
     """The :class:`~tilesolve.deadline.Deadline` of one run, from the seconds a user gave
     (``None``: no limit): made once, where a run begins (:func:`solve`, :func:`count`, each run
-    of a crosscheck), and passed down; nothing below an entry point makes one.
+    of a crosscheck), and passed down; nothing below an entry point makes one. Its clock starts
+    now, or where the command line says (:func:`~tilesolve.deadline.run_start`).
 
     >>> run_deadline(None).time_limit, run_deadline(2.5).time_limit
     (None, 2.5)
@@ -88,7 +89,7 @@ def run_deadline(time_limit: float | None) -> Deadline:
     """
     if time_limit is not None and not 0 <= time_limit < float("inf"):
         raise InvalidProblem(f"time limit must be a finite number of seconds >= 0, got {time_limit}")
-    return Deadline(time_limit)
+    return Deadline(time_limit, start=run_start())
 
 
 def run_route(fam: Family, problem: Any, method: str | Route, run: RunOptions) -> Solution:
