@@ -20,13 +20,15 @@ kernel that reports ``callback(done, total)`` can be handed ``t.set``), ``t.note
 detail (``"decided 3, refuted 1, undecided 0"``, ``"seed 7"``). With a ``total`` the bar shows
 the fraction done and an ETA; without one it shows the count and rate, or, with ``unit=None``
 (work that cannot be counted, e.g. one solver call), the label, the note and the elapsed time,
-refreshed twice a second. Tasks nest (``levels`` outside, ``seeds`` inside): each is a line of its
+refreshed twice a second. On a terminal a task shows once it has run :data:`DELAY_S` seconds,
+so quick work draws nothing. Tasks nest (``levels`` outside, ``seeds`` inside): each is a line of its
 own, erased when its ``with`` block ends. ``progress.announce(text)`` prints one line that stays
 (the estimate before a run that will be long: ``"about 40 s: 2,100,000 states x 16 rows"``).
 
 Keep kernels fast: advance per row, level, band or seed, never per cell. Updates from several
-threads are safe. A :class:`Progress` is not picklable on purpose: a worker process gets
-``progress=False`` (:func:`as_progress`) and its parent reports for it.
+threads are safe. A :class:`Progress` is false when it shows nothing (``if progress:`` before
+preparing a costly estimate), and pickles as :data:`SILENT`: a worker process reports nothing;
+its parent reports for it.
 
 >>> with SILENT.task("rows", total=3, unit="row") as t:
 ...     for _ in range(3):
@@ -37,8 +39,11 @@ threads are safe. A :class:`Progress` is not picklable on purpose: a worker proc
 {'label': 'rows', 'done': 0, 'total': 2, 'unit': 'row', 'note': '', 'elapsed_s': ..., 'eta_s': None, 'depth': 0}
 {'label': 'rows', 'done': 1, 'total': 2, 'unit': 'row', 'note': '', 'elapsed_s': ..., 'eta_s': ..., 'depth': 0}
 {'label': 'rows', 'done': 1, ..., 'closed': True}
->>> as_progress(False) is SILENT, as_progress(None) is SILENT
-(True, True)
+>>> as_progress(False) is SILENT, as_progress(None) is SILENT, bool(SILENT)
+(True, True, False)
+>>> import pickle
+>>> pickle.loads(pickle.dumps(p)) is SILENT
+True
 """
 
 from __future__ import annotations
@@ -50,7 +55,12 @@ import threading
 import time
 from typing import Any, Callable, Iterator
 
-__all__ = ["Progress", "Task", "SILENT", "Terminal", "Stream", "terminal", "as_progress"]
+__all__ = ["Progress", "Task", "SILENT", "Terminal", "Stream", "terminal", "as_progress", "DELAY_S", "DELAY_ENV"]
+
+#: Seconds a task runs before its bar shows on a terminal (quick work draws nothing).
+DELAY_S = 0.5
+#: Environment variable overriding :data:`DELAY_S` (``0``: every bar at once).
+DELAY_ENV = "TILESOLVE_PROGRESS_DELAY"
 
 
 class Task:
@@ -73,7 +83,7 @@ class Progress:
     """Where a run reports progress. This base class is silent (:data:`SILENT`); subclasses
     (:class:`Terminal`, :class:`Stream`) override :meth:`_open` and :meth:`announce`."""
 
-    #: Whether anything is shown: a caller may skip preparing a costly estimate when False.
+    #: Whether anything is shown (also the truth value): skip a costly estimate when False.
     enabled = False
 
     @contextlib.contextmanager
@@ -105,8 +115,16 @@ class Progress:
     def _close(self, task: Task) -> None:
         pass
 
+    def __bool__(self) -> bool:
+        return self.enabled
+
     def __reduce__(self):
-        raise TypeError("a Progress reports in the process that made it; pass progress=False to a worker")
+        # A worker process cannot draw on its parent's terminal or stream: it gets SILENT.
+        return _silent, ()
+
+
+def _silent() -> "Progress":
+    return SILENT
 
 
 _NULL_TASK = Task()
@@ -136,10 +154,15 @@ def terminal(quiet: bool = False) -> Progress:
 
 
 class _Bar(Task):
-    """A task drawn as a tqdm bar."""
+    """A task drawn as a tqdm bar (once it has run ``bar.delay`` seconds)."""
 
     def __init__(self, bar, label: str, ticker: bool) -> None:
         self.bar, self.label, self.ticker = bar, label, ticker
+
+    def draw(self) -> None:
+        """Redraw the bar, unless it is younger than its delay (tqdm's own updates wait too)."""
+        if time.time() >= self.bar.start_t + self.bar.delay:
+            self.bar.refresh()
 
     def advance(self, n: int = 1) -> None:
         self.bar.update(n)
@@ -154,17 +177,22 @@ class _Bar(Task):
             self.bar.set_description_str(f"{self.label}: {text}" if text else self.label, refresh=False)
         else:
             self.bar.set_postfix_str(text, refresh=False)
-        self.bar.refresh()
+        self.draw()
 
 
 class Terminal(Progress):
     """tqdm bars on stderr, one line per open task, refreshed twice a second by a helper thread
-    (so an ETA and the elapsed time move even between updates) and erased when done."""
+    (so an ETA and the elapsed time move even between updates) and erased when done.
+
+    A task shows up once it has run ``delay`` seconds (default :data:`DELAY_S`, or the
+    environment's :data:`DELAY_ENV`): quick work leaves the terminal alone.
+    """
 
     enabled = True
 
-    def __init__(self, every: float = 0.5) -> None:
+    def __init__(self, every: float = 0.5, delay: float | None = None) -> None:
         self.every = every
+        self.delay = _delay() if delay is None else delay
         self._open_bars: list[_Bar] = []
         self._lock = threading.Lock()
         self._stop: threading.Event | None = None
@@ -177,7 +205,7 @@ class Terminal(Progress):
             size = _unsized()
             bar = tqdm(total=total, desc=label, unit=unit or "it", file=sys.stderr, leave=False,
                        dynamic_ncols=size is None, ncols=size and size[0], nrows=size and size[1],
-                       position=len(self._open_bars), mininterval=0.1, smoothing=0.1,
+                       position=len(self._open_bars), mininterval=0.1, smoothing=0.1, delay=self.delay,
                        bar_format="{desc} [{elapsed}]" if ticker else None)
             task = _Bar(bar, label, ticker)
             self._open_bars.append(task)
@@ -199,12 +227,21 @@ class Terminal(Progress):
         while not stop.wait(self.every):
             with self._lock:
                 for task in self._open_bars:
-                    task.bar.refresh()
+                    task.draw()
 
     def announce(self, text: str) -> None:
         from tqdm import tqdm
 
         tqdm.write(text, file=sys.stderr)
+
+
+def _delay() -> float:
+    """Seconds before a bar shows: :data:`DELAY_ENV` when it holds a number >= 0, else :data:`DELAY_S`."""
+    try:
+        value = float(os.environ.get(DELAY_ENV, DELAY_S))
+    except ValueError:
+        return DELAY_S
+    return value if value >= 0 else DELAY_S
 
 
 def _unsized() -> tuple[int, int] | None:

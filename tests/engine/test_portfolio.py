@@ -28,12 +28,12 @@ import pytest
 
 import tilesolve.engine.portfolio as pf
 from tilesolve.deadline import Deadline
-from tilesolve.engine import progress
 from tilesolve.engine.portfolio import escalate, run_portfolio
 from tilesolve.engine.result import run_interruptible
 from tilesolve.errors import BackendUnavailable, InvalidProblem
 from tilesolve.model.run import RunOptions
 from tilesolve.model.solution import Solution, Status
+from tilesolve.progress import Stream
 
 LONG_S = 60.0  # a run the portfolio must stop, not wait for
 BOUND_S = 30.0  # "it did not wait for the 60 s run": not a speed goal
@@ -236,36 +236,27 @@ def test_ctrl_c_in_the_parent_stops_the_workers_and_returns_unknown(ctrl_c):
 
 
 @pytest.mark.slow
-def test_progress_line_on_a_terminal(monkeypatch):
-    class Terminal(io.StringIO):
-        def isatty(self):
-            return True
-
-    term = Terminal()
-    monkeypatch.setattr(sys, "stderr", term)
-    monkeypatch.setattr(pf, "status_line", functools.partial(progress.status_line, every=0.01))
-    s = run_portfolio(task(s0="unknown:budget", s1="sleep:1", s2="sat"), range(3), workers=2, progress=True,
-                      label="packing")
+def test_progress_counts_seeds():
+    sent: list[dict] = []
+    s = run_portfolio(task(s0="unknown:budget", s1="sleep:1", s2="sat"), range(3), workers=2,
+                      progress=Stream(sent.append, every=0), label="packing")
     assert s.status is Status.SAT
-    out = term.getvalue()
-    assert "packing: " in out and " runs finished, " in out and " running ... " in out
-    assert out.endswith("\r\033[K")  # erased when the call returns
+    assert {(m["label"], m["unit"], m["total"]) for m in sent} == {("packing", "seed", 3)}
+    assert any(m["done"] == 1 and m["note"] == "2 running" for m in sent)  # seed 0 ended unknown, two run
+    assert sent[-1].get("closed")
 
 
-def test_portfolio_line_inside_the_pipelines_line_draws_no_second_line(monkeypatch):
-    class Terminal(io.StringIO):
-        def isatty(self):
-            return True
-
-    term = Terminal()
-    monkeypatch.setattr(sys, "stderr", term)
-    with progress.status_line("packing: solving with 'fake'", True, every=0.01):
-        s = run_portfolio(task(s0="sleep:0.3", s1="sleep:0.3", s2="sat"), range(3), workers=1, progress=True,
+def test_portfolio_progress_nests_in_the_pipelines():
+    sent: list[dict] = []
+    stream = Stream(sent.append, every=0)
+    with stream.task("packing: solving with 'fake'", unit=None):
+        s = run_portfolio(task(s0="sleep:0.3", s1="sleep:0.3", s2="sat"), range(3), workers=1, progress=stream,
                           label="fake search")
     assert s.status is Status.SAT
-    drawn = [part for part in term.getvalue().split("\r\033[K") if part]
-    assert any(": fake search: " in part and " runs finished, 1 running ... " in part for part in drawn)
-    assert all(part.startswith("  packing: solving with 'fake'") for part in drawn)  # one line, the outer one
+    inner = [m for m in sent if m["label"] == "fake search"]
+    assert inner and all(m["depth"] == 1 for m in inner)
+    assert {m["done"] for m in inner} == {0, 1, 2}  # seeds finished, counted as each next one starts
+    assert inner[-2]["note"] == "1 running (seed 2)"
 
 
 @pytest.mark.slow

@@ -3,13 +3,13 @@
 from __future__ import annotations
 
 import re
-import sys
 from typing import Iterable
 
 import click
 
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.units import big, human_bytes
+from tilesolve.progress import Progress, terminal
 
 __all__ = ["CliError", "usage_error", "build_problem", "check_writable", "say", "verbosity", "progress_wanted",
            "split_conditions", "check_colors", "human_bytes", "big",
@@ -55,12 +55,10 @@ def say(message: str, *, level: int = 0) -> None:
         click.echo(message, err=True)
 
 
-def progress_wanted() -> bool:
-    """Show progress only on an interactive terminal, and not under ``-q``."""
-    try:
-        return sys.stderr.isatty() and verbosity() >= 0
-    except (AttributeError, ValueError):
-        return False
+def progress_wanted() -> Progress:
+    """Where a command reports progress: bars on stderr when it is a terminal and ``-q`` is not
+    given, else silence (:func:`tilesolve.progress.terminal`; false when silent)."""
+    return terminal(quiet=verbosity() < 0)
 
 
 _SPLIT = re.compile(r"[,\s]+(?![^{]*\})")

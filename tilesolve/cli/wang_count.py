@@ -11,7 +11,7 @@ from __future__ import annotations
 import click
 
 from tilesolve.cli import options as opt
-from tilesolve.cli.common import say
+from tilesolve.cli.common import progress_wanted, say
 from tilesolve.errors import InvalidProblem
 from tilesolve.family import raise_if_interrupted
 
@@ -78,7 +78,7 @@ def wang_count(ctx, tiles_path, tiles_format, builtin, board_spec, method, time_
     for note in notes:
         say(f"note: {note}")
     problem = BoardProblem(read_board_spec(board_spec), ts)
-    res = raise_if_interrupted(facade.count(problem, method=method, time_limit=time_limit))
+    res = raise_if_interrupted(facade.count(problem, method=method, time_limit=time_limit, progress=progress_wanted()))
     say(f"{'count' if res.value is not None else 'unknown'} by {res.method}: {problem.describe()}  "
         f"({res.time_s:.3f} s)")
     if res.value is None:

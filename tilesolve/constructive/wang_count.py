@@ -28,6 +28,7 @@ from __future__ import annotations
 import numpy as np
 
 from tilesolve.errors import InvalidProblem, MethodNotApplicable
+from tilesolve.progress import SILENT, Progress
 
 __all__ = ["MAX_STATES", "transfer_applies", "count_grid", "count_problem"]
 
@@ -55,7 +56,7 @@ def transfer_applies(problem) -> str | None:
     return None
 
 
-def _rows(nesw: np.ndarray, k: int, width: int, cyclic: bool, deadline=None):
+def _rows(nesw: np.ndarray, k: int, width: int, cyclic: bool, deadline=None, progress: Progress = SILENT):
     """Every row of ``width`` matching tiles, merged by ``(N word, S word)``: arrays
     ``(u, v, count)`` with words coded base ``k`` (first cell most significant)."""
     if width * np.log2(max(k, 2)) >= 62:
@@ -72,30 +73,32 @@ def _rows(nesw: np.ndarray, k: int, width: int, cyclic: bool, deadline=None):
     order = np.argsort(w, kind="stable")  # tiles grouped by their W colour
     first = np.searchsorted(w[order], np.arange(k))
     deg = np.bincount(w, minlength=k)
-    for j in range(1, width):
-        if deadline is not None:
-            deadline.check(f"building rows (column {j + 1} of {width})")
-        reps = deg[h]
-        total = int(reps.sum())
-        if total > MAX_STATES:
-            raise InvalidProblem(f"too many partial rows ({total:,} at column {j + 1} of {width}) for the "
-                                 f"transfer method; count a smaller board")
-        left = np.repeat(np.arange(len(h)), reps)
-        within = np.arange(total) - np.repeat(np.cumsum(reps) - reps, reps)
-        right = order[first[h][left] + within]
-        u, v, h0, h, c = u[left] * k + n[right], v[left] * k + s[right], h0[left], e[right], c[left]
-        if flat:
-            kw = k ** (j + 1)
-            key, inv = np.unique(((u * kw + v) * k + h0) * k + h, return_inverse=True)
-            h, rest = key % k, key // k
-            h0, rest = rest % k, rest // k
-            v, u = rest % kw, rest // kw
-        else:
-            key, inv = np.unique(np.stack([u, v, h0, h], axis=1), axis=0, return_inverse=True)
-            u, v, h0, h = key[:, 0], key[:, 1], key[:, 2], key[:, 3]
-        merged = np.zeros(len(key), dtype=ctype)
-        np.add.at(merged, inv.reshape(-1), c)
-        c = merged
+    with progress.task("counting: building row words", total=width - 1, unit="column") as bar:
+        for j in range(1, width):
+            if deadline is not None:
+                deadline.check(f"building rows (column {j + 1} of {width})")
+            reps = deg[h]
+            total = int(reps.sum())
+            if total > MAX_STATES:
+                raise InvalidProblem(f"too many partial rows ({total:,} at column {j + 1} of {width}) for the "
+                                     f"transfer method; count a smaller board")
+            left = np.repeat(np.arange(len(h)), reps)
+            within = np.arange(total) - np.repeat(np.cumsum(reps) - reps, reps)
+            right = order[first[h][left] + within]
+            u, v, h0, h, c = u[left] * k + n[right], v[left] * k + s[right], h0[left], e[right], c[left]
+            if flat:
+                kw = k ** (j + 1)
+                key, inv = np.unique(((u * kw + v) * k + h0) * k + h, return_inverse=True)
+                h, rest = key % k, key // k
+                h0, rest = rest % k, rest // k
+                v, u = rest % kw, rest // kw
+            else:
+                key, inv = np.unique(np.stack([u, v, h0, h], axis=1), axis=0, return_inverse=True)
+                u, v, h0, h = key[:, 0], key[:, 1], key[:, 2], key[:, 3]
+            merged = np.zeros(len(key), dtype=ctype)
+            np.add.at(merged, inv.reshape(-1), c)
+            c = merged
+            bar.advance()
     if cyclic:
         keep = h0 == h
         u, v, c = u[keep], v[keep], c[keep]
@@ -105,7 +108,7 @@ def _rows(nesw: np.ndarray, k: int, width: int, cyclic: bool, deadline=None):
     return key[:, 0], key[:, 1], counts.astype(object)
 
 
-def _trace_power(rows_u, rows_v, counts, height: int, deadline=None) -> int:
+def _trace_power(rows_u, rows_v, counts, height: int, deadline=None, progress: Progress = SILENT) -> int:
     """``trace(T^height)`` of the sparse word-to-word matrix, exactly."""
     import networkx as nx
 
@@ -128,16 +131,18 @@ def _trace_power(rows_u, rows_v, counts, height: int, deadline=None) -> int:
     np.add.at(t, (a, b), counts[keep].astype(float))
     # float64 repeated squaring; exact while every entry stays below 2**53 (integers)
     result, base, e, exact = None, t, height, True
-    while e:
-        if deadline is not None:
-            deadline.check("raising the torus transfer matrix to its power")
-        if e & 1:
-            result = base if result is None else result @ base
-            exact &= bool(result.max() < _EXACT_FLOAT)
-        e >>= 1
-        if e:
-            base = base @ base
-            exact &= bool(base.max() < _EXACT_FLOAT)
+    with progress.task("counting: torus matrix power", total=height.bit_length(), unit="squaring") as bar:
+        while e:
+            if deadline is not None:
+                deadline.check("raising the torus transfer matrix to its power")
+            if e & 1:
+                result = base if result is None else result @ base
+                exact &= bool(result.max() < _EXACT_FLOAT)
+            e >>= 1
+            if e:
+                base = base @ base
+                exact &= bool(base.max() < _EXACT_FLOAT)
+            bar.advance()
     if exact:
         return int(round(float(np.trace(result))))
     # above 2**53: the trace modulo primes small enough that float64 products stay exact,
@@ -147,15 +152,18 @@ def _trace_power(rows_u, rows_v, counts, height: int, deadline=None) -> int:
     if p_max < 1000:
         raise InvalidProblem(f"the torus has {m:,} row words on cycles; too many for exact transfer counting")
     residues, primes, prod = [], [], 1
-    for p in _primes_below(p_max):
-        if prod.bit_length() > bits:
-            break
-        tp = np.zeros((m, m))
-        np.add.at(tp, (a, b), np.array([int(x) % p for x in counts[keep]], dtype=float))
-        tp = np.fmod(tp, p)
-        residues.append(_trace_power_mod(tp, height, p, deadline))
-        primes.append(p)
-        prod *= p
+    n_primes = -(-int(bits) // int(np.log2(p_max))) + 1  # about: each prime adds log2(p) bits
+    with progress.task("counting: matrix power modulo primes", total=n_primes, unit="prime") as primes_done:
+        for p in _primes_below(p_max):
+            if prod.bit_length() > bits:
+                break
+            tp = np.zeros((m, m))
+            np.add.at(tp, (a, b), np.array([int(x) % p for x in counts[keep]], dtype=float))
+            tp = np.fmod(tp, p)
+            residues.append(_trace_power_mod(tp, height, p, deadline))
+            primes.append(p)
+            prod *= p
+            primes_done.advance()
     total = 0
     for r, p in zip(residues, primes):  # CRT
         q = prod // p
@@ -184,7 +192,7 @@ def _trace_power_mod(t: np.ndarray, height: int, p: int, deadline=None) -> int:
 
 
 def count_grid(tileset, rows: int, cols: int, *, wrap_rows: bool = False, wrap_cols: bool = False,
-               deadline=None) -> int:
+               deadline=None, progress: Progress = SILENT) -> int:
     """The number of tilings of a ``rows x cols`` grid by ``tileset`` (free boundary), exactly.
 
     Parameters
@@ -197,6 +205,9 @@ def count_grid(tileset, rows: int, cols: int, *, wrap_rows: bool = False, wrap_c
         The E legs of the last column meet the W legs of column 0.
     deadline : Deadline, optional
         Checked between steps (raises :class:`~tilesolve.deadline.TimeLimitReached`).
+    progress : Progress, optional
+        Shown per column while the row words are built, then per row (or per squaring of a
+        torus's matrix) (:mod:`tilesolve.progress`).
 
     Examples
     --------
@@ -215,26 +226,28 @@ def count_grid(tileset, rows: int, cols: int, *, wrap_rows: bool = False, wrap_c
     ways.sort(key=lambda way: way[2])
     for i, (nesw, rows, cols, wrap_rows, wrap_cols) in enumerate(ways):
         try:
-            u, v, c = _rows(nesw, tileset.n_colors, cols, wrap_cols, deadline)
+            u, v, c = _rows(nesw, tileset.n_colors, cols, wrap_cols, deadline, progress)
             break
         except InvalidProblem:
             if i == len(ways) - 1 or rows == cols and np.array_equal(ways[0][0], ways[1][0]):
                 raise
     if wrap_rows:
-        return _trace_power(u, v, c, rows, deadline)
+        return _trace_power(u, v, c, rows, deadline, progress)
     words, inv = np.unique(np.concatenate([u, v]), return_inverse=True)
     a, b = inv[: len(u)], inv[len(u):]
     x = np.ones(len(words), dtype=object)  # free top boundary: every N word once
-    for i in range(rows):
-        if deadline is not None:
-            deadline.check(f"counting row {i + 1} of {rows}")
-        y = np.zeros(len(words), dtype=object)
-        np.add.at(y, b, x[a] * c)
-        x = y
+    with progress.task("counting: rows", total=rows, unit="row") as bar:
+        for i in range(rows):
+            if deadline is not None:
+                deadline.check(f"counting row {i + 1} of {rows}")
+            y = np.zeros(len(words), dtype=object)
+            np.add.at(y, b, x[a] * c)
+            x = y
+            bar.advance()
     return int(x.sum())
 
 
-def count_problem(problem, deadline=None) -> int:
+def count_problem(problem, deadline=None, progress: Progress = SILENT) -> int:
     """:func:`count_grid` for a :class:`~tilesolve.model.board.BoardProblem`; raises
     :class:`~tilesolve.errors.MethodNotApplicable` where :func:`transfer_applies` says no."""
     why = transfer_applies(problem)
@@ -242,4 +255,4 @@ def count_problem(problem, deadline=None) -> int:
         raise MethodNotApplicable(f"the transfer method counts free rectangles, cylinders and tori; {why}")
     spec = problem.board.grid_spec
     return count_grid(problem.tileset, spec.rows, spec.cols, wrap_rows=spec.wrap_rows == "plain",
-                      wrap_cols=spec.wrap_cols == "plain", deadline=deadline)
+                      wrap_cols=spec.wrap_cols == "plain", deadline=deadline, progress=progress)

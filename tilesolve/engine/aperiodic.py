@@ -44,7 +44,6 @@ from typing import Callable, Sequence
 import numpy as np
 
 from tilesolve.deadline import Deadline
-from tilesolve.engine.progress import status_line
 from tilesolve.errors import InvalidProblem
 from tilesolve.model.aperiodic import Certificate, board_of, parse_board_name
 from tilesolve.model.board import BoardProblem, WangTileSet
@@ -151,8 +150,7 @@ def _square_task(tiles: list, n_colors: int, n: int, deadline: Deadline, solver:
         return sat_route(enc, run, method=method, solver=solver or DEFAULT_SOLVER, t0=t0)
 
 
-def square_scan(tileset: WangTileSet, max_n: int, run: RunOptions,
-                show: Callable[[str], None] = lambda text: None, *,
+def square_scan(tileset: WangTileSet, max_n: int, run: RunOptions, *,
                 proof_dir: str | os.PathLike | None = None) -> tuple[list[Certificate], int | None]:
     """The largest ``n <= max_n`` for which ``tileset`` tiles an ``n x n`` square.
 
@@ -160,7 +158,7 @@ def square_scan(tileset: WangTileSet, max_n: int, run: RunOptions,
     processes (default 2): the full formula and the guided one; the first decisive answer wins
     (a witness from either; a refutation only from the full formula, with its checked proof).
     Returns the certificates decided (in the order decided) and that ``n`` (``None`` when
-    undecided).
+    undecided). ``run.progress`` shows the squares decided and the bounds known.
     """
     from tilesolve.engine.portfolio import run_portfolio
 
@@ -168,9 +166,10 @@ def square_scan(tileset: WangTileSet, max_n: int, run: RunOptions,
     known_sat, known_unsat = 0, max_n + 1
     proof_dir = None if proof_dir is None else os.fspath(proof_dir)
 
-    def at(n: int) -> Certificate:
+    def at(n: int, bar) -> Certificate:
         name = f"square {n}x{n}"
-        show(f"deciding {name}")
+        bar.note(f"deciding {name}; " + (f"tiles {known_sat}x{known_sat}, " if known_sat else "")
+                 + (f"not {known_unsat}x{known_unsat}" if known_unsat <= max_n else "no bound above"))
         if n <= DIRECT_SIDE or (run.workers or 2) < 2:
             from tilesolve.engine.certificates import writing_proofs
 
@@ -178,20 +177,22 @@ def square_scan(tileset: WangTileSet, max_n: int, run: RunOptions,
                 return decide(tileset, name, run)
         task = functools.partial(_square_task, tileset.tiles.tolist(), int(tileset.n_colors), n, run.deadline,
                                  run.solver, proof_dir, run.seed)
-        sol = run_portfolio(task, [0, 1], workers=2, deadline=run.deadline, label=name)
+        sol = run_portfolio(task, [0, 1], workers=2, deadline=run.deadline, progress=run.progress, label=name)
         return _certificate(name, sol, sol.method or "sat")
 
     n = max_n
-    while known_unsat - known_sat > 1:
-        c = at(n)
-        certs.append(c)
-        if c.status == "tiles":
-            known_sat = n
-        elif c.status == "refuted":
-            known_unsat = n
-        else:
-            return certs, None
-        n = (known_sat + known_unsat) // 2
+    with run.progress.task("squares", unit="square") as bar:
+        while known_unsat - known_sat > 1:
+            c = at(n, bar)
+            certs.append(c)
+            bar.advance()
+            if c.status == "tiles":
+                known_sat = n
+            elif c.status == "refuted":
+                known_unsat = n
+            else:
+                return certs, None
+            n = (known_sat + known_unsat) // 2
     return certs, known_sat
 
 
@@ -341,23 +342,23 @@ def sweep(tileset: WangTileSet, names: Sequence[str], run: RunOptions, *, cache:
             _append_cache(cache, digest, cert)
         return cert.status == "undecided" and str(cert.evidence.get("why", "")).startswith("interrupted")
 
-    with status_line(label, run.progress) as show:
-        def detail() -> str:
-            return (f"{len(result)}/{len(names)} decided or cached: {counts['tiles']} tiled, "
-                    f"{counts['refuted']} refuted, {counts['undecided']} undecided")
+    with run.progress.task(label, total=len(names), unit="board") as bar:
+        def show() -> None:  # boards decided or cached, of all
+            bar.note(f"{counts['tiles']} tiled, {counts['refuted']} refuted, {counts['undecided']} undecided")
+            bar.set(len(result))
 
         try:
             if not todo:
                 pass
             elif run.cluster is not None:
-                interrupted = _on_dask(task, len(todo), run, take, show, detail)
+                interrupted = _on_dask(task, len(todo), run, take, show)
             elif (run.workers or 2) > 1 and len(todo) > 1:
-                interrupted = _on_pool(task, len(todo), min(run.workers or 2, len(todo)), run, take, show, detail)
+                interrupted = _on_pool(task, len(todo), min(run.workers or 2, len(todo)), run, take, show)
             else:
                 for i in range(len(todo)):
                     if run.deadline.expired():
                         break
-                    show(detail())
+                    show()
                     if take(i, task(seed=i)):
                         interrupted = True
                         break
@@ -369,8 +370,8 @@ def sweep(tileset: WangTileSet, names: Sequence[str], run: RunOptions, *, cache:
     return [result.get(n) or Certificate(n, "undecided", None, "sat", {"why": why}) for n in names], interrupted
 
 
-def _on_pool(task, n_jobs: int, n_workers: int, run: RunOptions, take, show, detail) -> bool:
-    """Every job on local worker processes; True when Ctrl-C stopped it."""
+def _on_pool(task, n_jobs: int, n_workers: int, run: RunOptions, take, show) -> bool:
+    """Every job on local worker processes, ``show()`` as they end; True when Ctrl-C stopped it."""
     from multiprocessing.connection import wait as wait_for_any
 
     from tilesolve.engine.portfolio import GRACE_S, _Pool, _unpack_exception
@@ -382,7 +383,7 @@ def _on_pool(task, n_jobs: int, n_workers: int, run: RunOptions, take, show, det
             busy = pool.busy()
             if not busy:
                 return False
-            show(detail())
+            show()
             timeout = None
             if run.deadline.time_limit is not None:
                 timeout = run.deadline.time_limit + GRACE_S - run.deadline.elapsed()
@@ -404,8 +405,8 @@ def _on_pool(task, n_jobs: int, n_workers: int, run: RunOptions, take, show, det
         pool.close()
 
 
-def _on_dask(task, n_jobs: int, run: RunOptions, take, show, detail) -> bool:
-    """Every job as a Dask future; True when Ctrl-C stopped it."""
+def _on_dask(task, n_jobs: int, run: RunOptions, take, show) -> bool:
+    """Every job as a Dask future, ``show()`` as they end; True when Ctrl-C stopped it."""
     from tilesolve.engine.portfolio import GRACE_S, _connect
 
     client, owned = _connect(run.cluster)
@@ -420,7 +421,7 @@ def _on_dask(task, n_jobs: int, run: RunOptions, take, show, detail) -> bool:
             timeout = max(0.0, run.deadline.time_limit + GRACE_S - run.deadline.elapsed())
         pending = as_completed(futures, loop=client.loop, timeout=timeout)
         while True:
-            show(detail())
+            show()
             try:
                 fut = next(pending)
             except StopIteration:

@@ -62,8 +62,8 @@ Limits
   :data:`GRACE_S` seconds later are stopped (status ``unknown``).
 - A Dask task that is already running cannot be stopped: cancelling releases its result,
   and the run ends at its own time limit on the cluster.
-- Tasks should not draw progress on the terminal (every worker shares it); the portfolio
-  draws one status line (``progress=True``).
+- Tasks should not report progress (a worker's ``RunOptions.progress`` pickles as silent);
+  the portfolio reports the runs started and finished (``progress``, :mod:`tilesolve.progress`).
 
 Examples
 --------
@@ -95,7 +95,7 @@ from multiprocessing.connection import wait as wait_for_any
 from typing import Any, Callable, Iterable
 
 from tilesolve.deadline import Deadline
-from tilesolve.engine.progress import status_line
+from tilesolve.progress import Progress, Task, as_progress
 from tilesolve.engine.result import stop_on
 from tilesolve.errors import BackendUnavailable, InvalidProblem
 from tilesolve.model.run import RunOptions
@@ -136,7 +136,7 @@ def run_portfolio(
     workers: int = DEFAULT_WORKERS,
     cluster: Any = None,
     deadline: Deadline | None = None,
-    progress: bool = False,
+    progress: Progress | bool = False,
     label: str = "search",
 ) -> Solution:
     """Run ``task(seed=seed)`` for each seed concurrently; return the first decisive Solution.
@@ -161,9 +161,9 @@ def run_portfolio(
         it, and runs still going :data:`GRACE_S` later are stopped (in this process a run cannot
         be stopped from outside: it ends at the deadline baked into ``task``). ``None``: a
         portfolio run on its own, without a limit.
-    progress : bool
-        Show a one-line live status (label, runs started and finished, elapsed seconds) on
-        stderr when it is a terminal.
+    progress : Progress or bool
+        Where to report the runs finished and running (:func:`tilesolve.progress.as_progress`;
+        ``True``: a bar on stderr when it is a terminal).
     label : str
         What the status line and messages call the search.
 
@@ -206,6 +206,7 @@ def run_portfolio(
     """
     _refuse_while_importing_main()
     seeds = _check_seeds(seeds)
+    progress = as_progress(progress)
     if deadline is None:  # a portfolio that is a run of its own, without a limit
         deadline = Deadline(None)
     if cluster is not None:
@@ -256,8 +257,8 @@ def escalate(route: Callable[[Any, RunOptions], Solution], problem: Any, run: Ru
         :meth:`~tilesolve.deadline.Deadline.within`), ``workers`` (processes, this one included;
         default ``None``: up to :data:`DEFAULT_WORKERS`, as idle cores allow, above; 1 on
         Windows, which has no local workers), ``cluster`` (a Dask scheduler address or client,
-        :func:`run_portfolio`), ``progress`` (a live status line on stderr when it is a
-        terminal) and ``solver`` (for ``route``).
+        :func:`run_portfolio`), ``progress`` (where the seeds' runs are reported,
+        :mod:`tilesolve.progress`) and ``solver`` (for ``route``).
     name : str
         What the progress line and the notes call the search, e.g. ``"lift packing"``.
 
@@ -294,7 +295,7 @@ def escalate(route: Callable[[Any, RunOptions], Solution], problem: Any, run: Ru
     n = workers
     _check_workers(n)
     if n == 1 and cluster is None:
-        with status_line(name, run.progress):
+        with run.progress.task(name, unit=None):
             return route(problem, run)
     worker_run = replace(run, workers=1, cluster=None, progress=False)  # what a worker's run may use
     if cluster is not None:
@@ -336,13 +337,13 @@ class _Escalation:
         self.stop: str | None = None  # why the pool's runs were cut, and how many (_Pool.drive)
         self.stopped = 0
         self.error: BaseException | None = None
-        self.show: Callable[[str], None] = lambda text: None
+        self.bar: Task = Task()
 
-    def run(self, progress: bool) -> Solution:
+    def run(self, progress: Progress) -> Solution:
         helper = threading.Thread(target=self._helper, name=f"tilesolve-{self.name}-portfolio", daemon=True)
-        with status_line(self.name, progress) as show:
-            self.show = show
-            show(f"seed {self.seed0}")
+        with progress.task(self.name, unit=None) as bar:
+            self.bar = bar
+            bar.note(f"seed {self.seed0}")
             helper.start()
             try:
                 with stop_on(self.stop_first):
@@ -379,7 +380,8 @@ class _Escalation:
             self.pool = pool = _Pool(task, seeds, n, self.clock, self.name, where)
             pool.start()
             self.winner, self.stop, self.stopped = pool.drive(
-                lambda text: self.show(f"seed {self.seed0} here; {text} in {_processes(n)}"), wake=self.wake_r)
+                lambda running: self.bar.note(f"seed {self.seed0} here; {pool.runs.detail(running)} in {_processes(n)}"),
+                wake=self.wake_r)
         except BaseException as exc:  # noqa: BLE001 - re-raised by the caller's thread
             self.error = exc
         finally:
@@ -466,6 +468,11 @@ class _Runs:
     def detail(self, running: int, state: str = "running") -> str:
         return f"{self.finished}/{len(self.seeds)} runs finished, {running} {state}"
 
+    def report(self, bar: Task, running: int, state: str = "running") -> None:
+        """Show the runs finished as ``bar``'s count (one unit a seed), the runs ``running`` beside it."""
+        bar.set(self.finished)
+        bar.note(f"{running} {state}")
+
     def record(self, seed: int, sol: Solution) -> bool:
         """Count an undecided run; True when it ends the whole portfolio (a run that returns
         ``unknown`` because of Ctrl-C)."""
@@ -517,11 +524,11 @@ def _runs(n: int) -> str:
 # ------------------------------------------------------------------------ in this process
 
 
-def _run_single(task, seed: int, progress: bool, label: str) -> Solution:
+def _run_single(task, seed: int, progress: Progress, label: str) -> Solution:
     """One seed: the plain call (its own Solution, unchanged), Ctrl-C giving ``unknown``."""
     t0 = time.perf_counter()
-    with status_line(label, progress) as show:
-        show("1 run")
+    with progress.task(label, unit=None) as bar:
+        bar.note(f"seed {seed}")
         try:
             return task(seed=seed)
         except KeyboardInterrupt:
@@ -529,17 +536,17 @@ def _run_single(task, seed: int, progress: bool, label: str) -> Solution:
     return Solution(Status.UNKNOWN, seed=seed, time_s=time.perf_counter() - t0, reason="interrupted")
 
 
-def _run_inline(task, seeds: list[int], deadline: Deadline, progress: bool, label: str) -> Solution:
+def _run_inline(task, seeds: list[int], deadline: Deadline, progress: Progress, label: str) -> Solution:
     runs = _Runs(seeds, "in this process (1 worker)", 1, deadline)
     stop, stopped = None, 0
-    with status_line(label, progress) as show:
+    with progress.task(label, total=len(seeds), unit="seed") as bar:
         try:
             for seed in seeds:
                 if deadline.expired():
                     stop = "time limit"
                     break
                 runs.started += 1
-                show(runs.detail(1))
+                runs.report(bar, 1, f"running (seed {seed})")
                 sol = task(seed=seed)
                 if sol.status in _DECISIVE:
                     return runs.won(seed, sol)
@@ -761,16 +768,16 @@ class _Pool:
                 raise BrokenProcessPool(f"a {self.label} worker process is gone "
                                         f"(exit code {w.process.poll()})") from None
 
-    def drive(self, show: Callable[[str], None], wake=None) -> tuple[tuple[int, Solution] | None, str | None, int]:
+    def drive(self, show: Callable[[int], None], wake=None) -> tuple[tuple[int, Solution] | None, str | None, int]:
         """Run seeds until one decides: ``(winner, None, 0)``; else ``(None, stop, stopped)``
         with ``stop`` the reason runs were cut (``"time limit"``, ``"interrupted"``, or
-        ``"stopped"`` when ``wake`` became readable) and ``stopped`` how many. Re-raises a
-        run's exception, or BrokenProcessPool."""
+        ``"stopped"`` when ``wake`` became readable) and ``stopped`` how many. ``show(running)``
+        is called whenever the runs change. Re-raises a run's exception, or BrokenProcessPool."""
         while True:
             busy = self.busy()
             if not busy:
                 return None, "time limit" if self.queue else None, 0  # seeds left: the budget is spent
-            show(self.runs.detail(len(busy)))
+            show(len(busy))
             timeout = None
             if self.deadline.time_limit is not None:
                 timeout = self.deadline.time_limit + GRACE_S - self.deadline.elapsed()
@@ -817,12 +824,12 @@ class _Pool:
             w.conn.close()
 
 
-def _run_pool(task, seeds: list[int], n: int, deadline: Deadline, progress: bool, label: str) -> Solution:
+def _run_pool(task, seeds: list[int], n: int, deadline: Deadline, progress: Progress, label: str) -> Solution:
     pool = _Pool(task, seeds, n, deadline, label)
-    with status_line(label, progress) as show:
+    with progress.task(label, total=len(seeds), unit="seed") as bar:
         try:
             pool.start()
-            winner, stop, stopped = pool.drive(show)
+            winner, stop, stopped = pool.drive(functools.partial(pool.runs.report, bar))
         except KeyboardInterrupt:
             winner, stop, stopped = None, "interrupted", len(pool.busy())
         finally:
@@ -866,7 +873,7 @@ def _first_line(exc: BaseException) -> str:
     return text.splitlines()[0] if text else type(exc).__name__
 
 
-def _run_dask(task, seeds: list[int], cluster, deadline: Deadline, progress: bool, label: str) -> Solution:
+def _run_dask(task, seeds: list[int], cluster, deadline: Deadline, progress: Progress, label: str) -> Solution:
     client, owned = _connect(cluster)  # checks first that Dask distributed is installed
     from distributed import as_completed
 
@@ -877,7 +884,7 @@ def _run_dask(task, seeds: list[int], cluster, deadline: Deadline, progress: boo
         where = f"on the Dask cluster at {client.scheduler.address} ({n} workers, {threads} threads)"
         runs = _Runs(seeds, where, n, deadline, started_word="submitted")
         stop = None
-        with status_line(label, progress) as show:
+        with progress.task(label, total=len(seeds), unit="seed") as bar:
             try:
                 futures = [client.submit(task, seed=s, pure=False) for s in seeds]
                 seed_of = {f.key: s for f, s in zip(futures, seeds)}
@@ -887,7 +894,7 @@ def _run_dask(task, seeds: list[int], cluster, deadline: Deadline, progress: boo
                     timeout = max(0.0, deadline.time_limit + GRACE_S - deadline.elapsed())
                 pending = as_completed(futures, loop=client.loop, timeout=timeout)
                 while True:
-                    show(runs.detail(len(seeds) - runs.finished, "queued or running"))
+                    runs.report(bar, len(seeds) - runs.finished, "queued or running")
                     try:
                         fut = next(pending)
                     except StopIteration:

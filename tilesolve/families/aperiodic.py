@@ -98,17 +98,15 @@ def sat(problem: AperiodicProblem, run: RunOptions) -> Solution:
     parallel; ``run.options``: ``proof_dir`` (CNF + DRAT of every refutation), ``cache`` (a
     results file: decided lattices are read from it and added to it)."""
     from tilesolve.engine.aperiodic import square_scan, sweep
-    from tilesolve.engine.progress import status_line
 
     proof_dir = run.option("proof_dir")
     squares, largest = [], None
     if problem.max_square:
-        with status_line("squares", run.progress) as show:
-            try:
-                squares, largest = square_scan(problem.tileset, problem.max_square, run, show, proof_dir=proof_dir)
-            except KeyboardInterrupt:
-                return Solution(Status.UNKNOWN, None, "sat", None, run.seed, run.deadline.elapsed(),
-                                reason="interrupted (Ctrl-C) while scanning squares")
+        try:
+            squares, largest = square_scan(problem.tileset, problem.max_square, run, proof_dir=proof_dir)
+        except KeyboardInterrupt:
+            return Solution(Status.UNKNOWN, None, "sat", None, run.seed, run.deadline.elapsed(),
+                            reason="interrupted (Ctrl-C) while scanning squares")
         if squares and squares[-1].status == "undecided" and str(squares[-1].evidence.get("why")).startswith(
                 "interrupted"):
             return Solution(Status.UNKNOWN, None, "sat", None, run.seed, run.deadline.elapsed(),

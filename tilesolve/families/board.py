@@ -39,6 +39,7 @@ from tilesolve.family import solve as _solve
 from tilesolve.io.board_json import BOARD_SOLUTION, VERSIONS
 from tilesolve.model.board import BoardProblem
 from tilesolve.model.solution import CountResult, CrosscheckReport, Solution, Status
+from tilesolve.progress import Progress, as_progress
 from tilesolve.verify.board import board_violations
 
 __all__ = [
@@ -171,21 +172,22 @@ def enumerate_tilings(problem: BoardProblem, *, limit: int | None = None,
         yield enc.decode(model)
 
 
-def count(problem: BoardProblem, *, method: str = "auto", time_limit: float | None = None, progress: bool = False,
-          force: bool = False) -> CountResult:
+def count(problem: BoardProblem, *, method: str = "auto", time_limit: float | None = None,
+          progress: Progress | bool = False, force: bool = False) -> CountResult:
     """Count the valid tilings of a (small) board problem exactly.
 
     ``method``: ``"transfer"`` (a transfer matrix over row words, :mod:`tilesolve.constructive.
     wang_count`: free rectangles, cylinders and tori, any tile set), ``"enumerate"`` (SAT
     enumeration, any board) or ``"auto"`` (transfer where it applies, else enumeration).
+    ``progress`` (:func:`tilesolve.progress.as_progress`) shows the transfer's columns and rows,
+    or the tilings enumerated so far.
     """
     from tilesolve.encodings.wang import encode_wang
     from tilesolve.engine.sat import count_models
 
     if method not in ("auto", "enumerate", "transfer"):
         raise InvalidProblem(f"unknown count method {method!r}; choose auto, transfer or enumerate")
-    from tilesolve.engine.progress import status_line
-
+    progress = as_progress(progress)
     t0 = time.perf_counter()
     deadline = run_deadline(time_limit)
     if method != "enumerate":
@@ -194,14 +196,13 @@ def count(problem: BoardProblem, *, method: str = "auto", time_limit: float | No
 
         if method == "transfer" or transfer_applies(problem) is None:
             try:
-                value = count_problem(problem, deadline)
+                value = count_problem(problem, deadline, progress)
             except TimeLimitReached as exc:
                 return CountResult(None, Status.UNKNOWN, "transfer", time.perf_counter() - t0, note=str(exc))
             return CountResult(value, Status.SAT, "transfer", time.perf_counter() - t0)
     enc = encode_wang(problem)
-    with status_line("counting by enumeration", progress) as show:
-        res = count_models(enc.clauses, enc.projection(), deadline=deadline,
-                           on_model=lambda n: show(f"{n:,} tilings so far"))
+    with progress.task("counting by enumeration", unit="tiling") as bar:
+        res = count_models(enc.clauses, enc.projection(), deadline=deadline, on_model=bar.set)
     return res.replace(time_s=time.perf_counter() - t0)
 
 

@@ -65,6 +65,7 @@ from tilesolve.io.packing_json import PACKING, VERSIONS
 from tilesolve.model.packing import PackingProblem
 from tilesolve.model.solution import CountResult, Solution, Status
 from tilesolve.verify.packing import packing_violations
+from tilesolve.progress import Progress
 
 __all__ = ["FAMILY", "SOLVERS", "METHODS", "PACKING_SAT_SOLVER", "PORTFOLIO_ROUTES", "solve", "count",
            "auto_method", "euler", "outer", "known", "sat", "cpsat", "hybrid", "lift", "recursive"]
@@ -220,7 +221,7 @@ def solve(
     time_limit: float | None = None,
     workers: int | None = None,
     cluster=None,
-    progress: bool = False,
+    progress: Progress | bool = False,
     solver: str | None = None,
 ) -> Solution:
     """Find a tile packing (or prove that the pinned tiles allow none) and verify it.
@@ -243,6 +244,9 @@ def solve(
         (default: up to 2, as idle cores allow; ``1`` runs one seed only).
     cluster : str or distributed.Client, optional
         A Dask scheduler address (``tcp://host:8786``): the portfolio's runs go there instead.
+    progress : Progress or bool
+        Where the search reports (:func:`tilesolve.progress.as_progress`): a lift's levels and
+        attempts, a portfolio's seeds.
     solver : str, optional
         PySAT solver of the ``sat`` route (default :data:`PACKING_SAT_SOLVER`).
 

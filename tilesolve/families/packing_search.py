@@ -53,24 +53,28 @@ __all__ = ["solve_hybrid", "solve_lift", "solve_recursive", "lift_factors", "lif
 
 
 def _restricted_search(problem, method, make_domains, run: RunOptions) -> Solution:
-    """Draw domains with ``make_domains(rng)`` and solve until a packing or the run's deadline."""
+    """Draw domains with ``make_domains(rng)`` and solve until a packing or the run's deadline;
+    ``run.progress`` shows a line per level (a lift's base search is a level below) and its attempts."""
     from tilesolve.encodings.packing import encode_packing
 
     t0 = time.perf_counter()
     deadline, seed, solver = run.deadline, run.seed, run.solver
     rng = rng_from_seed(seed)
     tries, stats, r = 0, {}, None
-    while True:
-        tries += 1
-        domains = make_domains(rng)
-        enc = encode_packing(problem, anchor_tile=None, domains=domains)
-        r = run_packing_sat(enc, solver=solver, deadline=deadline, rng=rng)
-        stats = packing_stats(enc, r, attempts=tries)
-        if r.status is Status.SAT:
-            return Solution(Status.SAT, enc.decode(r.model), method, r.solver, seed, time.perf_counter() - t0,
-                            stats=stats)
-        if r.status is Status.UNKNOWN or deadline.expired():
-            return unknown_solution(method, r.solver, run, t0, r.reason, stats, tries)
+    with run.progress.task(f"{method}: {problem.colors} colours", unit=None) as bar:
+        while True:
+            tries += 1
+            bar.note(f"attempt {tries}: drawing the restriction")
+            domains = make_domains(rng)
+            bar.note(f"attempt {tries}: SAT search")
+            enc = encode_packing(problem, anchor_tile=None, domains=domains)
+            r = run_packing_sat(enc, solver=solver, deadline=deadline, rng=rng)
+            stats = packing_stats(enc, r, attempts=tries)
+            if r.status is Status.SAT:
+                return Solution(Status.SAT, enc.decode(r.model), method, r.solver, seed, time.perf_counter() - t0,
+                                stats=stats)
+            if r.status is Status.UNKNOWN or deadline.expired():
+                return unknown_solution(method, r.solver, run, t0, r.reason, stats, tries)
 
 
 def solve_hybrid(problem: PackingProblem, run: RunOptions) -> Solution:

@@ -16,6 +16,7 @@ from tilesolve.family.registry import family_of
 from tilesolve.family.seeds import check_seed, draw_seed
 from tilesolve.model.run import RunOptions
 from tilesolve.model.solution import CountResult, Solution, Status
+from tilesolve.progress import Progress
 
 __all__ = ["solve", "run_route", "run_deadline", "count", "interrupted", "raise_if_interrupted", "writing_proofs"]
 
@@ -26,7 +27,7 @@ def solve(
     *,
     seed: int | None = None,
     time_limit: float | None = None,
-    progress: bool = False,
+    progress: Progress | bool = False,
     solver: str | None = None,
     workers: int | None = None,
     cluster: Any = None,
@@ -94,13 +95,11 @@ def run_deadline(time_limit: float | None) -> Deadline:
 
 def run_route(fam: Family, problem: Any, method: str | Route, run: RunOptions) -> Solution:
     """The pipeline of :func:`solve` once the run is resolved (also used by crosschecks)."""
-    from tilesolve.engine.progress import status_line
-
     route, name = fam.lookup(method, problem)
     notes: list[str] = []
     if method == "auto":
         notes.append(f"auto chose {name!r}")
-    with status_line(f"{fam.name}: solving with {name!r}", run.progress):
+    with run.progress.task(f"{fam.name}: solving with {name!r}", unit=None):
         try:
             try:
                 sol = route(problem, run)
@@ -119,7 +118,7 @@ def run_route(fam: Family, problem: Any, method: str | Route, run: RunOptions) -
         notes.append(f"{name!r} output failed verification ({len(bad)} violations, first: {bad[0]}); "
                      f"fell back to {fam.fallback!r}")
         name = fam.fallback
-        with status_line(f"{fam.name}: solving with {name!r}", run.progress):
+        with run.progress.task(f"{fam.name}: solving with {name!r}", unit=None):
             sol = fam.routes[name](problem, run)
         bad = fam.verify(problem, sol.answer) if sol.answer is not None else ()
     if bad:
@@ -146,7 +145,6 @@ def _certify_infeasible(fam: Family, problem: Any, run: RunOptions, name: str, s
     within what is left of the run's deadline; ``unknown`` ("uncertified: ...") when that
     fails, so that ``unsat`` always comes with a checked proof."""
     from tilesolve.engine.certificates import UNCERTIFIED
-    from tilesolve.engine.progress import status_line
 
     if sol.status is Status.UNSAT:
         claim = f"found it unsatisfiable without a checked proof ({sol.reason})"
@@ -162,7 +160,7 @@ def _certify_infeasible(fam: Family, problem: Any, run: RunOptions, name: str, s
         return uncertified(f"the {fam.name} family has no 'sat' route to certify it")
     if run.deadline.expired():
         return uncertified("no time left to certify it with the 'sat' route")
-    with status_line(f"{fam.name}: certifying {name!r}'s infeasibility with 'sat'", run.progress):
+    with run.progress.task(f"{fam.name}: certifying {name!r}'s infeasibility with 'sat'", unit=None):
         try:
             cert = fam.routes["sat"](problem, run)
         except (TimeLimitReached, MethodNotApplicable) as exc:
@@ -203,8 +201,8 @@ def raise_if_interrupted(result):
     return result
 
 
-def count(problem: Any, *, method: str = "auto", time_limit: float | None = None, progress: bool = False,
-          force: bool = False) -> CountResult:
+def count(problem: Any, *, method: str = "auto", time_limit: float | None = None,
+          progress: Progress | bool = False, force: bool = False) -> CountResult:
     """Count the solutions of ``problem`` exactly with its family's counter."""
     fam = family_of(problem)
     if fam.count is None:

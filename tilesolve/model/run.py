@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 from typing import Any, Mapping
 
 from tilesolve.deadline import Deadline
+from tilesolve.progress import SILENT, Progress, as_progress
 
 __all__ = ["RunOptions"]
 
@@ -27,8 +28,10 @@ class RunOptions:
         once where the run begins (:func:`tilesolve.family.run_deadline`) and passed down as it
         is; a part of the run with a budget of its own takes ``deadline.within(seconds)``.
         Without one, a RunOptions is a run of its own, without a limit.
-    progress : bool
-        Show progress on a terminal.
+    progress : Progress
+        Where the run reports progress (:mod:`tilesolve.progress`; default silent). A bool is
+        taken as :func:`tilesolve.progress.as_progress` takes it: ``True``, bars on stderr when
+        it is a terminal. Pickled (to a worker process), it is silent.
     solver : str or None
         Backend choice (e.g. a PySAT solver name) for routes that take one.
     workers : int or None
@@ -41,11 +44,14 @@ class RunOptions:
 
     seed: int
     deadline: Deadline = field(default_factory=lambda: Deadline(None))
-    progress: bool = False
+    progress: Progress = SILENT
     solver: str | None = None
     workers: int | None = None
     cluster: Any = None
     options: Mapping[str, Any] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "progress", as_progress(self.progress))
 
     def option(self, name: str, default: Any = None) -> Any:
         """A family option, or ``default``."""
