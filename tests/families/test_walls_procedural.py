@@ -223,3 +223,51 @@ def test_an_old_wall_file_reads_verifies_and_draws_its_window_unknown(tmp_path):
     assert v.returncode == 0 and v.stdout.startswith("ok: "), v.stdout + v.stderr
     d = run("draw", "old.json", "-o", "old.svg", cwd=tmp_path)
     assert d.returncode == 0 and "top-left cell" not in d.stderr + (tmp_path / "old.svg").read_text()
+
+
+@pytest.mark.parametrize("region, n, band", [((-40, 12, 90, 70), 2, 1 << 16), ((3, -8, 101, 47), 3, 300)])
+def test_the_streamed_wall_file_is_the_solved_one(tmp_path, monkeypatch, region, n, band):
+    """``wall -o`` of a procedural wall (write_procedural_wall, checked in bands and written in
+    pieces) writes the file that solve() and write_board_solution write, but for time_s."""
+    from tilesolve.families import walls
+    from tilesolve.io.board_json import write_board_solution
+
+    monkeypatch.setattr(walls, "CHECK_CELLS", band)
+    x0, y0, w, h = region
+    sol = walls.write_procedural_wall(tmp_path / "s.json", region, colors=4, max_line=n, seed=9)
+    problem = wall_problem(w, h, n, n_colors=4)
+    held = solve(problem, "procedural", seed=9, options={"origin": (x0, y0)})
+    assert np.array_equal(sol.tiling, held.tiling) and sol.window == held.window and sol.notes == held.notes
+    write_board_solution(tmp_path / "h.json", problem, held)
+    a, b = (json.loads((tmp_path / f).read_text()) for f in ("s.json", "h.json"))
+    assert a.pop("time_s") >= 0 and b.pop("time_s") >= 0 and a == b
+
+
+def test_a_streamed_wall_that_fails_the_verifier_is_not_written(tmp_path, monkeypatch):
+    """A wall with horizontal lines of at most 2 bricks and longer vertical ones, checked against
+    n = 2 in bands of 2 rows, each of which passes alone: the rows kept from the band above
+    catch the lines that cross band borders, and no file is written."""
+    from tilesolve.constructive import walls as constructive
+    from tilesolve.constructive.walls import line_lengths
+    from tilesolve.errors import InternalError
+    from tilesolve.families import walls
+
+    wall = walls.brick_wall(40, 40, 2, max_v=8, seed=3)[1].tiling.reshape(40, 40, 4)
+    hor, ver = line_lengths(wall)
+    assert hor.max() <= 2 and ver.max() > 2
+    monkeypatch.setattr(constructive, "wall_window", lambda x0, y0, w, h, **kw: wall[:h, :w])
+    monkeypatch.setattr(walls, "CHECK_CELLS", 2 * 40)
+    with pytest.raises(InternalError, match="the procedural wall of seed 1 fails the board verifier in the band"):
+        walls.write_procedural_wall(tmp_path / "w.json", (0, 0, 40, 40), colors=3, max_line=2, seed=1)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_cli_streams_a_procedural_wall_file_that_verifies(tmp_path):
+    r = run("wall", "--region", "-5,7,80x60", "--max-line", "2", "--seed", "4", "-o", "w.json", "--png", "w.png",
+            cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert "4,800 cells checked with the board verifier" in r.stderr and "wrote w.json, w.png" in r.stderr
+    doc = json.loads((tmp_path / "w.json").read_text())
+    assert doc["tiles"]["shape"] == [4800, 4] and doc["window"]["x0"] == -5 and doc["method"] == "procedural"
+    v = run("verify", "w.json", cwd=tmp_path)
+    assert v.returncode == 0 and v.stdout.startswith("ok: "), v.stdout + v.stderr

@@ -89,6 +89,30 @@ def test_large_boards_are_written_compactly_and_small_ones_as_lists():
     assert board_solution_to_dict(*_problem_and_solution(Board.rect(80, 80)))["mask"] is None
 
 
+@pytest.mark.parametrize("rows, cols, colours", [(3, 5, 3), (70, 90, 3), (70, 90, 2), (33, 301, 4)])
+def test_a_rectangle_streamed_is_the_same_file(tmp_path, monkeypatch, rows, cols, colours):
+    """write_rect_solution writes the bytes write_board_solution writes, in pieces (here of 6
+    and 12 cells too), whatever dtype the tiles take (``bits`` for colours 0 and 1)."""
+    from tilesolve.io import board_json
+    from tilesolve.model.window import Window
+
+    legs = np.random.default_rng(rows).integers(0, colours, (rows, cols, 4))
+    sol = Solution(Status.SAT, legs.reshape(-1, 4), "procedural", None, 5, 0.25, notes=("a note",),
+                   window=Window(-3, 8, cols, rows))
+    problem = BoardProblem(Board.rect(cols, rows), WangTileSet.brick(3), None, max_h=2, max_v=3)
+    write_board_solution(tmp_path / "whole.json", problem, sol)
+    for piece in (6, 12, board_json.STREAM_CELLS):
+        monkeypatch.setattr(board_json, "STREAM_CELLS", piece)
+        board_json.write_rect_solution(tmp_path / "streamed.json", legs.astype(np.int8), WangTileSet.brick(3), sol,
+                                       max_h=2, max_v=3)
+        assert (tmp_path / "streamed.json").read_bytes() == (tmp_path / "whole.json").read_bytes()
+    tiles = json.loads((tmp_path / "whole.json").read_text())["tiles"]
+    if rows * cols > COMPACT_MIN_CELLS:
+        assert tiles["dtype"] == ("bits" if colours == 2 else "uint8")
+    else:
+        assert isinstance(tiles, list)
+
+
 def test_version_3_reads_with_base64_and_numpy_alone(tmp_path):
     """What the module docstring tells another tool, done by hand."""
     board = Board.mobius(6, 4).restrict(np.arange(24) != 7)

@@ -163,8 +163,12 @@ def test_cli_refusals_one_line_no_file(tmp_path, monkeypatch, args, msg):
 
 
 def test_console_script_refuses_a_held_region_in_one_line(tmp_path):
-    r = run("wall", "--region", "0,0,20000x20000", "--max-line", "2", "-o", "w.json", cwd=tmp_path)
+    r = run("wall", "--region", "0,0,20000x20000", "--max-line", "2", "--method", "npd", "-o", "w.json", cwd=tmp_path)
     assert "about 83.4 GiB" in one_line_error(r) and not (tmp_path / "w.json").exists()
+    # -o of a procedural wall is streamed: the file format's limit, not memory, refuses it
+    r = run("wall", "--region", "0,0,20000x20000", "--max-line", "2", "-o", "w.json", cwd=tmp_path)
+    assert "a board-solution file (-o) holds at most 67,108,864 cells" in one_line_error(r)
+    assert not (tmp_path / "w.json").exists()
 
 
 @pytest.mark.slow
@@ -175,10 +179,13 @@ def test_ctrl_c_during_a_streamed_picture_leaves_no_file(tmp_path):
 
     from clitools import SCRIPT
 
-    proc = subprocess.Popen([SCRIPT, "wall", "--region", "0,0,3000x3000", "--max-line", "2", "--seed", "1",
+    # 400 M cells take many seconds however fast the machine: the signal comes once the picture's
+    # temporary file is there, while bands are being written
+    proc = subprocess.Popen([SCRIPT, "wall", "--region", "0,0,20000x20000", "--max-line", "2", "--seed", "1",
                              "--png", "big.png"], cwd=tmp_path, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                             text=True)
-    time.sleep(3)
+    while proc.poll() is None and not any(tmp_path.iterdir()):
+        time.sleep(0.05)
     proc.send_signal(signal.SIGINT)
     out, err = proc.communicate(timeout=120)
     assert proc.returncode == 130, err

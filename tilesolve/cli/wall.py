@@ -16,17 +16,24 @@ from tilesolve.model.window import parse_region
 __all__ = ["wall"]
 
 
-#: Memory a wall held whole takes per cell (-o, --svg, printed text): measured peak RSS of
-#: ``tilesolve wall --region 0,0,2000x2000 -o w.json``, 1.0 GiB for 4 M cells.
+#: Memory a wall held whole takes per cell (--svg, printed text, --method npd or dappled with -o):
+#: measured peak RSS of ``tilesolve wall --region 0,0,2000x2000 --method npd -o w.json``, 1.0 GiB for 4 M cells.
 HELD_BYTES_PER_CELL = 224
 
 
-def _check_held(rows: int, cols: int, svg) -> None:
-    """Refuse a region that -o, --svg or the printed text would have to hold whole."""
+def _check_held(rows: int, cols: int, svg, streamed: bool) -> None:
+    """Refuse a region that -o, --svg or the printed text would have to hold whole (``streamed``:
+    -o alone of a procedural wall, which holds 4 bytes a cell and writes the file as it goes)."""
     from tilesolve.io.svg import MAX_SVG_CELLS
     from tilesolve.model.board import MAX_BOARD_CELLS
 
     cells = rows * cols
+    if streamed:
+        if cells > MAX_BOARD_CELLS:
+            raise InvalidProblem(
+                f"region {cols}x{rows} has {big(cells)} cells: a board-solution file (-o) holds at most "
+                f"{big(MAX_BOARD_CELLS)} cells; draw it with --png alone, which streams the picture band by band")
+        return
     limit, what = (MAX_SVG_CELLS, "an SVG holds") if svg else (MAX_BOARD_CELLS, "-o and the printed text hold")
     if cells > limit:
         raise InvalidProblem(
@@ -73,8 +80,9 @@ def wall(ctx, region, max_line, colors, seed, method, period, output, svg, png, 
 
     --png draws the bricks of the procedural and npd walls (merged from the edge structure) as a
     map, computed and written band by band: a region of any size (20,000 x 20,000 cells and more)
-    takes the memory of one band (a dappled wall is drawn by its tiles' legs). -o, --svg and the
-    printed text hold the whole wall, so they take smaller regions.
+    takes the memory of one band (a dappled wall is drawn by its tiles' legs). -o of a procedural
+    wall is checked band by band and written as it goes (4 bytes a cell); --svg, the printed
+    text and -o of the other methods hold the whole wall as a board, so they take smaller regions.
 
     \b
     Example:
@@ -94,9 +102,11 @@ def wall(ctx, region, max_line, colors, seed, method, period, output, svg, png, 
     outs = Outputs(output, svg, png)
     window = parse_region(region)
     x0, y0, (rows, cols) = window.x0, window.y0, window.shape
-    held = bool(output or svg or not outs) or method == "dappled"  # a dappled wall is built whole
-    if held:
-        _check_held(rows, cols, svg)
+    streamed = method == "procedural" and not svg  # -o written as it goes, --png band by band
+    # a dappled wall is built whole
+    held = bool(svg or not outs) or method == "dappled" or (bool(output) and not streamed)
+    if held or output:
+        _check_held(rows, cols, svg, not held)
     check_brick_colors(colors)
     if (map_kind or ppc) and not png:
         raise InvalidProblem("--map and --ppc choose what --png draws; add --png FILE")
@@ -133,14 +143,23 @@ def wall(ctx, region, max_line, colors, seed, method, period, output, svg, png, 
         sol = raise_if_interrupted(family.solve(problem, route, seed=seed, options=options))
         finish(ctx, problem, sol, outs, output, svg, png, draw_png=draw)
         return
+    sol = rep = None
     with outs.commit():
-        rep = draw(png)
+        if output:
+            from tilesolve.families.walls import write_procedural_wall
+
+            sol = write_procedural_wall(output, (x0, y0, cols, rows), colors=colors, max_line=max_line, seed=seed)
+        if png:
+            rep = draw(png)
     say(f"sat: {method} brick wall, window {window.describe()}, lines <= {max_line}, {colors} colours")
     say(f"  method {method}, seed {seed}" + (f", period {pw}x{ph}" if method == "npd" else "")
-        + f", {rep.time_s:.3f} s")
-    bands = f"{rep.bands} band{'s' if rep.bands > 1 else ''}"
-    checked = f"{big(rep.verified_cells)} cells checked with the board verifier" if check else "not verified"
-    say(f"  {map_kind or 'id'} map {rep.size_px[0]}x{rep.size_px[1]} px, drawn in {bands}; {checked}")
-    if png != "-":
-        say(f"  wrote {png}")
+        + f", {sum(r.time_s for r in (sol, rep) if r is not None):.3f} s")
+    if sol is not None:
+        say(f"  {big(rows * cols)} cells checked with the board verifier")
+    if rep is not None:
+        bands = f"{rep.bands} band{'s' if rep.bands > 1 else ''}"
+        checked = f"{big(rep.verified_cells)} cells checked with the board verifier" if check else "not verified"
+        say(f"  {map_kind or 'id'} map {rep.size_px[0]}x{rep.size_px[1]} px, drawn in {bands}; {checked}")
+    if outs.files:
+        say(f"  wrote {', '.join(outs.files)}")
     ctx.exit(0)

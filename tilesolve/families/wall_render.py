@@ -37,7 +37,8 @@ from typing import Callable
 
 import numpy as np
 
-from tilesolve.errors import InternalError, InvalidProblem
+from tilesolve.errors import InvalidProblem
+from tilesolve.families.walls import BandChecker, npd_problem
 
 __all__ = ["RenderReport", "write_wall_png", "wall_source", "wall_map_pixels", "default_ppc", "BAND_PIXELS", "BAND_CELLS", "MAX_RENDER_PIXELS"]
 
@@ -118,7 +119,6 @@ def wall_source(method: str, *, colors: int, max_line: int | None, seed: int,
     from tilesolve.errors import MethodNotApplicable
     from tilesolve.family import raise_if_interrupted, solve
     from tilesolve.model.board import MAX_BOARD_CELLS
-    from tilesolve.families.walls import npd_problem
 
     if max_line is None or period is None:
         raise InvalidProblem("the npd wall needs a line limit and a period")
@@ -192,7 +192,7 @@ def write_wall_png(path, region: tuple[int, int, int, int], *, colors: int = 3, 
                          period=(w, h) if period is None else period)
     band = max(1, min(h, BAND_PIXELS // (w * ppc * ppc), BAND_CELLS // w))
     n_bands = -(-h // band)
-    checker = _BandChecker(colors, max_line) if verify else None
+    checker = BandChecker(colors, max_line) if verify else None
     t0 = time.perf_counter()
     state = {"verified": 0}
 
@@ -202,42 +202,11 @@ def write_wall_png(path, region: tuple[int, int, int, int], *, colors: int = 3, 
             yb = y0 + h - top - hh  # the band's bottom row (y north)
             legs = window(x0 - 1, yb - 1, w + 2, hh + 2)
             if checker is not None:
-                state["verified"] += checker.check(x0, yb, w, hh, legs[1:-1, 1:-1], seed, last=top + hh >= h)
+                state["verified"] += checker.check(legs[1:-1, 1:-1], f"the {method} wall of seed {seed}",
+                                                   (x0, yb + hh - 1), last=top + hh >= h)
             yield wall_map_pixels(legs, kind, colors=colors, ppc=ppc, origin=(x0, yb))
             if progress is not None:
                 progress(f"band {k + 1}/{n_bands}: {top + hh:,} of {h:,} rows, {time.perf_counter() - t0:.1f} s")
 
     write_bands_png(path, width, height, bands(), kind, compression=compression)
     return RenderReport((width, height), w * h, n_bands, state["verified"], time.perf_counter() - t0)
-
-
-class _BandChecker:
-    """Board-verifies consecutive bands, each grown by the ``max_line`` rows above it (taken
-    from the previous band), so that no vertical line escapes across a band border."""
-
-    def __init__(self, colors: int, max_line: int | None) -> None:
-        self.colors, self.n = colors, max_line
-        self.keep = 0 if max_line is None else int(max_line)
-        self.above: np.ndarray | None = None
-        self._problems: dict[tuple[int, int], object] = {}
-
-    def _problem(self, rows: int, cols: int):
-        from tilesolve.model.board import Board, BoardProblem, WangTileSet
-
-        key = (rows, cols)
-        if key not in self._problems:  # bands share one shape (the last one may differ)
-            self._problems = {key: BoardProblem(Board.rect(cols, rows), WangTileSet.brick(self.colors), None,
-                                                max_h=self.n, max_v=self.n)}
-        return self._problems[key]
-
-    def check(self, x0: int, yb: int, w: int, hh: int, legs: np.ndarray, seed: int, *, last: bool) -> int:
-        from tilesolve.verify.board import board_violations
-
-        part = legs if self.above is None or self.keep == 0 else np.concatenate([self.above, legs])
-        bad = board_violations(self._problem(part.shape[0], w), part.reshape(-1, 4))
-        if bad:
-            raise InternalError(f"the procedural wall of seed {seed} fails the board verifier in the band of rows "
-                                f"y {yb}..{yb + hh - 1}, x {x0}..{x0 + w - 1}: {bad[0]}")
-        if self.keep and not last:
-            self.above = part[-self.keep:].copy()
-        return hh * w

@@ -50,7 +50,11 @@ from tilesolve.model.solution import Solution, Status
 from tilesolve.model.window import Window
 
 __all__ = ["wall_problem", "npd_problem", "is_free_wall", "wall_route", "procedural_route", "npd_route",
-           "brick_wall", "LINE_METHODS", "line_statistics"]
+           "brick_wall", "write_procedural_wall", "BandChecker", "CHECK_CELLS", "LINE_METHODS", "line_statistics"]
+
+#: Cells the board verifier checks at a time when a wall is checked band by band
+#: (:class:`BandChecker`; the verifier's board and arrays take about 150 bytes a cell).
+CHECK_CELLS = 1 << 16
 
 
 def wall_problem(width: int, height: int, max_line: int, *, max_v: int | None = None,
@@ -167,9 +171,111 @@ def procedural_route(problem: BoardProblem, run: RunOptions) -> Solution:
     rows, cols = (int(v) + 1 for v in problem.board.labels.max(axis=0))
     window = Window(x0, y0, cols, rows)
     legs = wall_window(x0, y0, cols, rows, colors=problem.n_colors, max_line=problem.max_h, seed=run.seed)
-    note = f"window {window.describe()} of the infinite wall of seed {run.seed}"
     return Solution(Status.SAT, legs.reshape(rows * cols, 4), "procedural", None, run.seed,
-                    time.perf_counter() - t0, notes=(note,), window=window)
+                    time.perf_counter() - t0, notes=(_window_note(window, run.seed),), window=window)
+
+
+def _window_note(window: Window, seed: int) -> str:
+    return f"window {window.describe()} of the infinite wall of seed {seed}"
+
+
+def write_procedural_wall(path, region: tuple[int, int, int, int], *, colors: int = 3, max_line: int,
+                          seed: int) -> Solution:
+    """Write the window ``region = (x0, y0, w, h)`` of the infinite procedural wall as a
+    ``tilesolve/board-solution`` file, checked band by band and streamed (``tilesolve wall -o``).
+
+    The file is the one :func:`tilesolve.family.solve` with :func:`procedural_route` and
+    :func:`tilesolve.io.board_json.write_board_solution` give (the same wall, provenance and
+    bytes; only ``time_s`` differs), and the wall passes the same board verifier
+    (:func:`tilesolve.verify.board.board_violations`, line limits included), but neither the
+    board of the whole window nor the file's text is built: the legs are computed once (4
+    bytes a cell, as :func:`tilesolve.constructive.walls.wall_window` gives them), checked
+    :data:`CHECK_CELLS` cells at a time by a :class:`BandChecker` (each band grown by the
+    ``max_line`` rows above it, so that every join and line is seen whole), and the tiles are
+    written a piece at a time (:func:`tilesolve.io.board_json.write_rect_solution`).
+
+    Returns
+    -------
+    Solution
+        ``sat``, method ``procedural``, the window's legs ``(w * h, 4)`` (W, N, E, S), its
+        ``window`` and ``time_s`` (generation and check, as :func:`tilesolve.family.solve`
+        times a route and its verification).
+
+    Raises
+    ------
+    InvalidProblem
+        A bad region, colour count, line limit or seed (:func:`wall_window`'s checks).
+    InternalError
+        The wall fails the board verifier (a bug); nothing is written.
+    """
+    from tilesolve.constructive.walls import wall_window
+    from tilesolve.io.board_json import write_rect_solution
+
+    x0, y0, w, h = (int(v) for v in region)
+    t0 = time.perf_counter()
+    window = Window(x0, y0, w, h)
+    legs = wall_window(x0, y0, w, h, colors=colors, max_line=max_line, seed=seed)
+    checker = BandChecker(colors, max_line)
+    band = max(1, CHECK_CELLS // w)
+    for top in range(0, h, band):
+        part = legs[top:top + band]
+        checker.check(part, f"the procedural wall of seed {seed}", window.cell(top, 0), last=top + band >= h)
+    sol = Solution(Status.SAT, legs.reshape(w * h, 4), "procedural", None, seed, time.perf_counter() - t0,
+                   notes=(_window_note(window, seed),), window=window)
+    write_rect_solution(path, legs, WangTileSet.brick(colors), sol, max_h=max_line, max_v=max_line)
+    return sol
+
+
+class BandChecker:
+    """Board-verifies a wall given as consecutive bands of rows, top to bottom, each grown by
+    the ``max_line`` rows above it (kept from the band before), so that no join between
+    bands and no vertical line across a band border escapes the board verifier
+    (:func:`tilesolve.verify.board.board_violations`, line limits included).
+
+    Examples
+    --------
+    >>> from tilesolve.constructive.walls import wall_window
+    >>> legs = wall_window(0, 0, 8, 9, colors=3, max_line=2, seed=1)
+    >>> c = BandChecker(3, 2)
+    >>> [c.check(legs[r:r + 3], "a wall", (0, 8 - r), last=r == 6) for r in (0, 3, 6)]
+    [24, 24, 24]
+    """
+
+    def __init__(self, colors: int, max_line: int | None) -> None:
+        self.colors, self.n = colors, max_line
+        self.keep = 0 if max_line is None else int(max_line)
+        self.above: np.ndarray | None = None
+        self._problems: dict[tuple[int, int], BoardProblem] = {}
+
+    def _problem(self, rows: int, cols: int) -> BoardProblem:
+        key = (rows, cols)
+        if key not in self._problems:  # bands share one shape (the first and last may differ)
+            self._problems = {key: BoardProblem(Board.rect(cols, rows), WangTileSet.brick(self.colors), None,
+                                                max_h=self.n, max_v=self.n)}
+        return self._problems[key]
+
+    def check(self, legs: np.ndarray, what: str, at: tuple[int, int], *, last: bool) -> int:
+        """Check the next band, ``(rows, cols, 4)`` legs whose top-left cell is the wall's
+        cell ``at = (x, y)`` (for the message); the number of its cells.
+
+        Raises
+        ------
+        InternalError
+            The band, with the rows kept above it, fails the board verifier.
+        """
+        from tilesolve.errors import InternalError
+        from tilesolve.verify.board import board_violations
+
+        hh, w = legs.shape[:2]
+        part = legs if self.above is None or self.keep == 0 else np.concatenate([self.above, legs])
+        bad = board_violations(self._problem(part.shape[0], w), part.reshape(-1, 4))
+        if bad:
+            x, y = at
+            raise InternalError(f"{what} fails the board verifier in the band of rows y {y - hh + 1}..{y}, "
+                                f"x {x}..{x + w - 1}: {bad[0]}")
+        if self.keep and not last:
+            self.above = part[-self.keep:].copy()
+        return hh * w
 
 
 def _period(value, default: tuple[int, int]) -> tuple[int, int]:

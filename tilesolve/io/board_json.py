@@ -120,6 +120,7 @@ file's boundary-leg numbers at :func:`_boundary_seam`).
 from __future__ import annotations
 
 import dataclasses
+import json
 import os
 from dataclasses import dataclass
 from typing import Any
@@ -127,9 +128,10 @@ from typing import Any
 import numpy as np
 
 from tilesolve.errors import InvalidProblem
-from tilesolve.io.atomic import write_text_atomic
+from tilesolve.io.atomic import atomic_write, write_text_atomic
 from tilesolve.io.jsonio import (
-    check_document, decode_array, dumps, encode_array, provenance_to_dict, read_json, solution_from_provenance,
+    check_document, decode_array, dumps, encode_array, encoded_dtype, encoded_text, provenance_to_dict, read_json,
+    solution_from_provenance,
 )
 from tilesolve.model.board import (
     GRID_KINDS, LEG_NAMES, MAX_BOARD_CELLS, MAX_BRICK_COLORS, Board, BoardProblem, GridSpec, WangTileSet,
@@ -139,8 +141,8 @@ from tilesolve.model.solution import Solution
 from tilesolve.model.window import Window
 
 __all__ = ["BOARD_SOLUTION", "VERSIONS", "VERSION", "LEG_ORDERS", "COMPACT_MIN_CELLS", "MAX_LIST_COLORS", "MAX_LINE", "ListedBoardProblem",
-           "board_solution_to_dict", "board_solution_from_dict", "write_board_solution", "read_board_solution",
-           "read_boundary"]
+           "board_solution_to_dict", "board_solution_from_dict", "write_board_solution", "write_rect_solution",
+           "read_board_solution", "read_boundary"]
 
 BOARD_SOLUTION = "tilesolve/board-solution"
 #: Versions of ``tilesolve/board-solution`` this module reads.
@@ -151,6 +153,10 @@ VERSION = 3
 LEG_ORDERS = {1: LEG_NAMES, 2: LEG_NAMES, 3: ("N", "E", "S", "W")}
 #: Boards with more cells than this are written with encoded arrays.
 COMPACT_MIN_CELLS = 4096
+#: Cells of tiles :func:`write_rect_solution` encodes at a time (a multiple of 6: whole base64 pieces).
+STREAM_CELLS = 6 << 14
+#: Stands for the tiles' base64 text in the document :func:`write_rect_solution` splits around it.
+_PIECES = "\x00tiles"
 #: Most colours a tile set given as a list of tiles may declare: more than 16,384 tiles can
 #: use with four new colours each.
 MAX_LIST_COLORS = 1 << 16
@@ -230,6 +236,29 @@ def _boundary_seam(version: int, board: Board, boundary: np.ndarray, listed):
     return boundary, listed
 
 
+def _head(kind: str, tileset: WangTileSet, max_h: int | None, max_v: int | None, solution: Solution) -> dict:
+    """The fields of a version 3 document before the board's grid and arrays."""
+    doc = {
+        "format": BOARD_SOLUTION,
+        "version": VERSION,
+        "board_kind": kind,
+        "leg_order": list(LEG_ORDERS[VERSION]),
+        "colors": tileset.n_colors,
+        "tileset": "brick" if tileset.is_brick else np.asarray(tileset.tiles),
+        "max_h": max_h,
+        "max_v": max_v,
+        **provenance_to_dict(solution),
+        "stats": {k: v for k, v in solution.stats.items() if not isinstance(v, np.ndarray)},
+    }
+    if solution.window is not None:
+        doc["window"] = solution.window.to_dict()
+    return doc
+
+
+def _grid_fields(spec: GridSpec) -> dict:
+    return {"rows": spec.rows, "cols": spec.cols, "wrap_rows": spec.wrap_rows, "wrap_cols": spec.wrap_cols}
+
+
 def board_solution_to_dict(problem: BoardProblem, solution: Solution, *, compact: bool | None = None) -> dict:
     """The JSON document (version 3) of a board solution.
 
@@ -244,25 +273,11 @@ def board_solution_to_dict(problem: BoardProblem, solution: Solution, *, compact
     b = problem.board
     if compact is None:
         compact = b.n_cells > COMPACT_MIN_CELLS
-    stats = {k: v for k, v in solution.stats.items() if not isinstance(v, np.ndarray)}
-    doc = {
-        "format": BOARD_SOLUTION,
-        "version": VERSION,
-        "board_kind": b.kind,
-        "leg_order": list(LEG_ORDERS[VERSION]),
-        "colors": problem.n_colors,
-        "tileset": "brick" if problem.tileset.is_brick else np.asarray(problem.tileset.tiles),
-        "max_h": problem.max_h,
-        "max_v": problem.max_v,
-        **provenance_to_dict(solution),
-        "stats": stats,
-    }
-    if solution.window is not None:
-        doc["window"] = solution.window.to_dict()
+    doc = _head(b.kind, problem.tileset, problem.max_h, problem.max_v, solution)
     array = encode_array if compact else np.asarray
     if b.grid_spec is not None:
         spec = b.grid_spec
-        doc["grid"] = {"rows": spec.rows, "cols": spec.cols, "wrap_rows": spec.wrap_rows, "wrap_cols": spec.wrap_cols}
+        doc["grid"] = _grid_fields(spec)
         doc["mask"] = None if b.n_cells == spec.rows * spec.cols else array(b.mask_of().astype(np.uint8))
     tiles, edges = _leg_seam(VERSION, to_file=True, tiles=solution.tiling,
                              edges=b.edge_array() if not compact or b.grid_spec is None else None)
@@ -483,6 +498,60 @@ def write_board_solution(path: str | os.PathLike, problem: BoardProblem, solutio
     """Write a ``tilesolve/board-solution`` file atomically (``compact`` as in
     :func:`board_solution_to_dict`)."""
     write_text_atomic(path, dumps(board_solution_to_dict(problem, solution, compact=compact)))
+
+
+def write_rect_solution(path: str | os.PathLike, legs, tileset: WangTileSet, solution: Solution, *,
+                        max_h: int | None = None, max_v: int | None = None) -> None:
+    """Write the ``tilesolve/board-solution`` file of a tiling of the free rectangle, streamed.
+
+    The file is byte for byte :func:`write_board_solution` of
+    ``BoardProblem(Board.rect(cols, rows), tileset, None, max_h=max_h, max_v=max_v)`` and
+    ``solution`` with the tiling ``legs``, but neither the board nor the document's text is
+    built whole: the tiles' base64 is written a piece at a time, so a large wall costs its
+    ``legs`` and one piece (:data:`STREAM_CELLS` cells).
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        Written atomically (``"-"``: standard output).
+    legs : numpy.ndarray
+        ``(rows, cols, 4)`` leg colours (W, N, E, S) of each cell, row 0 at the top.
+    tileset, solution, max_h, max_v
+        As :class:`~tilesolve.model.board.BoardProblem` and
+        :func:`board_solution_to_dict` take them (``solution.tiling`` is not read).
+
+    Examples
+    --------
+    >>> import io, json
+    >>> from tilesolve.model.solution import Status
+    >>> legs = np.array([[[0, 1, 0, 2], [0, 1, 2, 1]]])
+    >>> out = io.StringIO()
+    >>> from contextlib import redirect_stdout
+    >>> with redirect_stdout(out):
+    ...     write_rect_solution("-", legs, WangTileSet.brick(3), Solution(Status.SAT))
+    >>> json.loads(out.getvalue())["tiles"]
+    [[1, 0, 2, 0], [1, 2, 1, 0]]
+    """
+    legs = np.asarray(legs)
+    rows, cols = legs.shape[:2]
+    n = rows * cols
+    flat = legs.reshape(n, 4)
+    if n <= COMPACT_MIN_CELLS:  # plain lists, cells and edges listed: small enough to build whole
+        problem = BoardProblem(Board.rect(cols, rows), tileset, None, max_h=max_h, max_v=max_v)
+        write_board_solution(path, problem, dataclasses.replace(solution, tiling=flat))
+        return
+    doc = _head("rect", tileset, max_h, max_v, solution)
+    doc["grid"] = _grid_fields(GridSpec(rows, cols, None, None))
+    doc["mask"] = None
+    doc["boundary"] = encode_array(np.full(2 * (rows + cols), -1, np.int8))
+    name = encoded_dtype(int(flat.min()), int(flat.max()))
+    doc["tiles"] = {"dtype": name, "shape": [n, 4], "data": _PIECES}
+    head, tail = dumps(doc).split(json.dumps(_PIECES))
+    with atomic_write(path, "w") as f:
+        f.write(head + '"')
+        for i in range(0, n, STREAM_CELLS):
+            f.write(encoded_text(_leg_seam(VERSION, tiles=flat[i:i + STREAM_CELLS], to_file=True)[0], name))
+        f.write('"' + tail)
 
 
 def read_board_solution(path: str | os.PathLike) -> tuple[BoardProblem, Solution]:

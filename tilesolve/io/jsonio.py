@@ -55,6 +55,8 @@ __all__ = [
     "parse_json",
     "dumps",
     "encode_array",
+    "encoded_dtype",
+    "encoded_text",
     "decode_array",
     "ARRAY_DTYPES",
     "COMPACT_MIN_CELLS",
@@ -251,14 +253,33 @@ def encode_array(a) -> dict:
     arr = np.asarray(a)
     if arr.dtype != bool and not np.issubdtype(arr.dtype, np.integer):
         raise TypeError(f"encode_array takes integer arrays, not {arr.dtype}")
-    lo, hi = (int(arr.min()), int(arr.max())) if arr.size else (0, 0)
+    name = encoded_dtype(*((int(arr.min()), int(arr.max())) if arr.size else (0, 0)))
+    return {"dtype": name, "shape": list(arr.shape), "data": encoded_text(arr, name)}
+
+
+def encoded_dtype(lo: int, hi: int) -> str:
+    """The ``dtype`` name :func:`encode_array` gives an array whose values span ``lo .. hi``.
+
+    >>> encoded_dtype(0, 1), encoded_dtype(0, 2), encoded_dtype(-1, 2)
+    ('bits', 'uint8', 'int8')
+    """
     if lo >= 0 and hi <= 1:
-        name, raw = "bits", np.packbits(arr.astype(bool, copy=False), axis=None).tobytes()
+        return "bits"
+    return next(n for n, d in ARRAY_DTYPES.items() if np.iinfo(d).min <= lo and hi <= np.iinfo(d).max)
+
+
+def encoded_text(arr: np.ndarray, name: str) -> str:
+    """The base64 ``data`` of ``arr``'s values (row-major) as ``dtype`` ``name``.
+
+    Pieces of an array concatenate to the whole's text when every piece but the last holds
+    a multiple of 24 values (3 bytes of ``bits``, a multiple of 3 bytes of any integer type):
+    a writer can stream a large array's text piece by piece.
+    """
+    if name == "bits":
+        raw = np.packbits(np.asarray(arr).astype(bool, copy=False), axis=None).tobytes()
     else:
-        name = next(n for n, d in ARRAY_DTYPES.items()
-                    if np.iinfo(d).min <= lo and hi <= np.iinfo(d).max)
         raw = np.ascontiguousarray(arr, dtype=ARRAY_DTYPES[name]).tobytes()
-    return {"dtype": name, "shape": list(arr.shape), "data": base64.b64encode(raw).decode("ascii")}
+    return base64.b64encode(raw).decode("ascii")
 
 
 def decode_array(value: Any, what: str, source: Any, *, ndim: int | None = None) -> np.ndarray:
