@@ -209,6 +209,40 @@ def test_cancel_a_long_search_and_the_server_goes_on(client):
     assert solve(client, {"family": "dappled", "values": {"size": "8x8", "seed": 1}})["state"] == "done"
 
 
+def test_progress_is_streamed_as_server_sent_events(client):
+    """The solve's progress tasks come as events (the page's bar and status line) until the job
+    ends; the last event is the job's final state, without its result."""
+    job = client.post("/api/solve", json=LONG).json()["id"]
+    seen = []
+
+    def cancel_once_progress_shows():
+        while True:
+            state = client.get(f"/api/jobs/{job}?wait=0.5").json()
+            if state["progress"] or state["state"] != "running":
+                seen.append(state)
+                client.post(f"/api/jobs/{job}/cancel", json={})
+                return
+
+    canceller = threading.Thread(target=cancel_once_progress_shows)
+    canceller.start()
+    r = client.get(f"/api/jobs/{job}/events")  # TestClient returns once the stream has ended
+    canceller.join()
+    assert r.status_code == 200 and r.headers["content-type"].startswith("text/event-stream")
+    events = [json.loads(line[len("data: "):]) for line in r.text.splitlines() if line.startswith("data: ")]
+    assert r.text.endswith("\n\n") and len(events) >= 2
+    assert seen[0]["progress"][0]["label"] == "packing: solving with 'sat'" and seen[0]["progress"][0]["unit"] is None
+    assert any(e["progress"] and e["progress"][0]["label"] == "packing: solving with 'sat'" for e in events)
+    assert all(e["state"] == "running" for e in events[:-1])
+    assert events[-1]["state"] == "cancelled" and events[-1]["progress"] == [] and "result" not in events[-1]
+
+
+def test_the_events_of_an_ended_job_are_its_final_state(client):
+    state = solve(client, {"family": "dappled", "values": {"size": "4x4", "seed": 1}})
+    assert state["state"] == "done" and state["progress"] == []
+    r = client.get(f"/api/jobs/{state['id']}/events")
+    assert [json.loads(line[6:])["state"] for line in r.text.splitlines() if line.startswith("data: ")] == ["done"]
+
+
 def test_a_time_limit_gives_unknown(client):
     state = solve(client, dict(LONG, time_limit=1))
     assert state["result"]["status"] == "unknown"

@@ -145,7 +145,8 @@ def test_cancel_a_long_search(page):
     page.fill("#seed", "1")
     page.click("#solve")
     page.wait_for_function("document.getElementById('status').textContent.startsWith('solving')")
-    time.sleep(1.0)
+    # the solve's progress, streamed by the server: the route's task, with its elapsed time
+    page.wait_for_function("document.getElementById('status').textContent.includes(\"packing: solving with 'sat'\")")
     page.click("#cancel")
     page.wait_for_function("document.getElementById('status').textContent.startsWith('cancelled')", timeout=20_000)
     assert page.is_enabled("#solve")

@@ -9,8 +9,12 @@ message>"}``):
 ``POST /api/check``                 ``{family, values}`` -> the problem's description, the
                                     painted grids' extents, the CLI command
 ``POST /api/solve``                 ``{family, values, method, time_limit}`` -> ``{id}`` (a job)
-``GET /api/jobs/{id}?wait=S``       the job: state, elapsed time, and when done its result
-                                    (status, method, verdict, picture, solution JSON, command)
+``GET /api/jobs/{id}?wait=S``       the job: state, elapsed time, progress, and when done its
+                                    result (status, method, verdict, picture, solution JSON, command)
+``GET /api/jobs/{id}/events``       the job's progress as Server-Sent Events: the job's state
+                                    without its result (``data: {...}``), sent when its progress
+                                    changes and at least every :data:`EVENT_EVERY_S` seconds,
+                                    the last one when it has ended
 ``POST /api/jobs/{id}/cancel``      end a running solve
 ``GET /api/jobs/{id}/solution.json|picture.svg|picture.png``  the exports (the CLI's files)
 ``GET /api/view/{family}.png?values=JSON&x=&y=&n=``  one n x n window of an infinite
@@ -41,7 +45,7 @@ import anyio
 from starlette.applications import Starlette
 from starlette.middleware import Middleware
 from starlette.requests import Request
-from starlette.responses import FileResponse, JSONResponse, Response
+from starlette.responses import FileResponse, JSONResponse, Response, StreamingResponse
 from starlette.routing import Mount, Route
 from starlette.staticfiles import StaticFiles
 
@@ -58,6 +62,8 @@ __all__ = ["create_app", "MAX_BODY", "MAX_VIEW_CELLS", "STATIC"]
 MAX_BODY = 8 << 20
 #: Largest window side of a procedural view tile (cells).
 MAX_VIEW_CELLS = 128
+#: Most seconds between two events of a job's event stream (the elapsed time moves on).
+EVENT_EVERY_S = 1.0
 #: Requests read, parsed and posed at once (a painted 1024 x 1024 grid takes tens of MiB while
 #: posed); the others wait with their bodies unread.
 POSING = 2
@@ -215,6 +221,23 @@ async def job_state(request: Request) -> Response:
 
 
 @_guard
+async def job_events(request: Request) -> Response:
+    job = _job(request)
+
+    async def events():
+        version = -1
+        while True:
+            version = await anyio.to_thread.run_sync(job.wait_change, version, EVENT_EVERY_S)
+            state = job.public()
+            state.pop("result", None)  # the page fetches it once (GET /api/jobs/ID)
+            yield f"data: {json.dumps(state)}\n\n"
+            if state["state"] != "running":
+                return
+
+    return StreamingResponse(events(), media_type="text/event-stream", headers={"Cache-Control": "no-cache"})
+
+
+@_guard
 async def cancel(request: Request) -> Response:
     job = _job(request)
     await anyio.to_thread.run_sync(request.app.state.jobs.cancel, job.id)
@@ -273,6 +296,7 @@ def _routes() -> list:
         Route("/api/solve", solve, methods=["POST"]),
         Route("/api/jobs/{id}", job_state),
         Route("/api/jobs/{id}/cancel", cancel, methods=["POST"]),
+        Route("/api/jobs/{id}/events", job_events),
         Route("/api/jobs/{id}/{what}", export),
         Route("/api/view/{family}.png", view),
         Mount("/static", StaticFiles(directory=STATIC), name="static"),

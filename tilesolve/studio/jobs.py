@@ -6,6 +6,11 @@ started ahead and wait for a request, so a solve starts at once. Cancelling a so
 process: whatever the solver was doing, nothing of it is left in the server, and other solves
 go on. A thread per job waits for the answer, so no request handler ever blocks the event loop.
 
+Progress: the solve reports on a :class:`tilesolve.progress.Stream` whose snapshots the worker
+sends up its pipe (``("progress", snapshot)``) as they come; the waiting thread keeps the open
+tasks in :attr:`Job.tasks` and wakes whoever waits for a change (:meth:`Job.wait_change`, the
+server's event stream).
+
 Memory: a solve may grow by :data:`SOLVE_MEMORY` bytes of resident memory above what its
 process held when it started; the thread that waits for it reads the process's resident size
 (``/proc/PID/statm``) every :data:`WATCH_S` seconds and ends a process past the cap, and the job
@@ -81,12 +86,20 @@ class TooBusy(InvalidProblem):
 
 
 def _child(conn) -> None:
-    """The worker process: die with the forkserver, wait for one request, solve it and send
-    ``("ok", answer)``, ``("error", message)`` or ``("internal", message)``, then end (an
-    internal error's traceback goes to the server's standard error)."""
+    """The worker process: die with the forkserver, wait for one request, solve it, sending
+    ``("progress", snapshot)`` as it goes, and send ``("ok", answer)``, ``("error", message)``
+    or ``("internal", message)``, then end (an internal error's traceback goes to the server's
+    standard error)."""
     from tilesolve.engine.portfolio import _die_with_parent
     from tilesolve.errors import InvalidProblem as Bad
+    from tilesolve.progress import Stream
     from tilesolve.studio.worker import solve_request
+
+    sending = threading.Lock()  # a portfolio reports from a helper thread too
+
+    def send(message) -> None:
+        with sending:
+            conn.send(message)
 
     _die_with_parent(int(os.environ.get(PARENT_ENV, os.getppid())))  # the forkserver's id, set by warm
     try:
@@ -94,14 +107,14 @@ def _child(conn) -> None:
     except (EOFError, OSError):  # the server went away before giving this process a job
         return
     try:
-        conn.send(("ok", solve_request(*request)))
+        send(("ok", solve_request(*request, progress=Stream(lambda snapshot: send(("progress", snapshot))))))
     except Bad as exc:
-        conn.send(("error", " ".join(str(exc).split())))
+        send(("error", " ".join(str(exc).split())))
     except MemoryError:
-        conn.send(("error", "out of memory in the solver process; try a smaller problem"))
+        send(("error", "out of memory in the solver process; try a smaller problem"))
     except Exception as exc:  # noqa: BLE001 - reported to the page as an internal error, the server goes on
         traceback.print_exc(limit=8, file=sys.stderr)
-        conn.send(("internal", " ".join(str(exc).split()) or "no message"))
+        send(("internal", " ".join(str(exc).split()) or "no message"))
     finally:
         conn.close()
 
@@ -132,12 +145,39 @@ class Job:
     done: threading.Event = field(default_factory=threading.Event)
     process: Any = None
     resident: int = 0  # the process's resident memory when it took the job (bytes)
+    tasks: list = field(default_factory=list)  # the solve's open progress tasks, outermost first
+    announced: str | None = None  # the solve's last announcement (an estimate)
+    version: int = 0  # counts the changes of progress and state
+    changed: threading.Condition = field(default_factory=threading.Condition)
+
+    def take_progress(self, snapshot: dict) -> None:
+        """Keep a :class:`tilesolve.progress.Stream` snapshot: a task at depth ``d`` replaces
+        the tasks from ``d`` on; a closed one removes them."""
+        with self.changed:
+            if "announce" in snapshot:
+                self.announced = str(snapshot["announce"])
+            else:
+                depth = int(snapshot.get("depth", 0))
+                self.tasks = self.tasks[:depth] + ([] if snapshot.get("closed") else [snapshot])
+            self.bump()
+
+    def bump(self) -> None:
+        """Count a change and wake who waits for one (call with :attr:`changed` held)."""
+        self.version += 1
+        self.changed.notify_all()
+
+    def wait_change(self, version: int, timeout: float) -> int:
+        """Wait until the job changed since ``version`` (or ``timeout`` seconds); the version now."""
+        with self.changed:
+            self.changed.wait_for(lambda: self.version != version, timeout)
+            return self.version
 
     def public(self) -> dict:
-        """What ``GET /api/jobs/ID`` answers."""
+        """What ``GET /api/jobs/ID`` answers: the state, the time, the open progress tasks
+        (:mod:`tilesolve.progress` snapshots), and when done the result or the error."""
         end = self.finished if self.finished is not None else time.perf_counter()
         out = {"id": self.id, "family": self.family, "state": self.state, "elapsed_s": round(end - self.started, 3),
-               "time_limit": self.time_limit}
+               "time_limit": self.time_limit, "progress": list(self.tasks), "announce": self.announced}
         if self.result is not None:
             out["result"] = self.result
         if self.error is not None:
@@ -225,13 +265,18 @@ class Jobs:
         """Wait for the job's answer, reading its memory meanwhile (ended past the cap)."""
         kind, payload = "gone", None
         try:
-            while not conn.poll(WATCH_S):
+            while True:
                 if _resident(job.process.pid) - job.resident > SOLVE_MEMORY:
                     job.process.kill()
                     kind = "memory"
                     break
-            else:
+                if not conn.poll(WATCH_S):
+                    continue
                 kind, payload = conn.recv()
+                if kind != "progress":
+                    break
+                job.take_progress(payload)
+                kind, payload = "gone", None
         except (EOFError, OSError):
             pass
         finally:
@@ -253,6 +298,9 @@ class Jobs:
                                                      f"(the tilesolve command has no such limit)")
                 else:
                     job.state, job.error = "error", f"the solver process ended (exit code {job.process.exitcode})"
+        with job.changed:
+            job.tasks = []
+            job.bump()
         job.done.set()
         job.process.join()
 

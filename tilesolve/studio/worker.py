@@ -16,6 +16,7 @@ from typing import Any, Mapping
 
 from tilesolve import family
 from tilesolve.errors import InvalidProblem
+from tilesolve.progress import SILENT, Progress
 
 __all__ = ["pose", "solve_request", "picture", "command_line", "warm_families", "SVG_MAX_CELLS", "MAX_TIME_LIMIT"]
 
@@ -83,12 +84,13 @@ def picture(problem: Any, sol, fmt: str | None = None) -> dict:
     return {"format": "png", "data": base64.b64encode(data).decode("ascii")}
 
 
-def solve_request(name: str, values: Any, method: str, time_limit: float | None) -> dict:
-    """Solve one studio request; the answer the page shows (JSON-ready)."""
+def solve_request(name: str, values: Any, method: str, time_limit: float | None, *,
+                  progress: Progress = SILENT) -> dict:
+    """Solve one studio request, reporting on ``progress``; the answer the page shows (JSON-ready)."""
     fam, vals, problem, options = pose(name, values)
     method, time_limit = check_run(fam, method, time_limit)
     t0 = time.perf_counter()
-    sol = family.solve(problem, method, seed=vals["seed"], time_limit=time_limit,
+    sol = family.solve(problem, method, seed=vals["seed"], time_limit=time_limit, progress=progress,
                        options=options)
     out: dict[str, Any] = {
         "family": fam.name,

@@ -182,19 +182,43 @@ async function solve() {
   try {
     const { id } = await api("/api/solve", request());
     studio.job = id; studio.lastJob = id;
-    let job;
-    do {
-      job = await api(`/api/jobs/${id}?wait=0.25`);
-      const limit = job.time_limit ? ` of ${job.time_limit} s` : "";
-      if (job.state === "running") $("status").textContent = `solving… ${job.elapsed_s.toFixed(1)} s${limit}`;
-      if (job.time_limit) { $("progress").max = job.time_limit; $("progress").value = job.elapsed_s; }
-      else $("progress").removeAttribute("value");
-    } while (job.state === "running");
+    await follow(id);
+    const job = await api(`/api/jobs/${id}`);
     if (job.state === "done") showResult(job.result);
     else if (job.state === "cancelled") $("status").textContent = `cancelled after ${job.elapsed_s.toFixed(1)} s`;
     else { $("status").textContent = ""; showError(job.error); }
   } catch (e) { $("status").textContent = ""; showError(e.message); }
   finally { $("solve").disabled = false; $("cancel").disabled = true; $("progress").hidden = true; studio.job = null; }
+}
+
+// The solve's progress, streamed by the server (Server-Sent Events) until the job ends.
+function follow(id) {
+  return new Promise((resolve, reject) => {
+    const events = new EventSource(`/api/jobs/${id}/events`);
+    events.onmessage = (e) => {
+      const job = JSON.parse(e.data);
+      if (job.state === "running") showProgress(job);
+      else { events.close(); resolve(job); }
+    };
+    events.onerror = () => { events.close(); reject(new Error("lost the connection to the studio server")); };
+  });
+}
+
+// "solving… 3.2 s of 10 s · periods 12/40 boards, 2 tiled, 10 refuted, 0 undecided"; the bar shows
+// the innermost task with a known total, else the time limit, else it is indeterminate.
+function showProgress(job) {
+  const limit = job.time_limit ? ` of ${job.time_limit} s` : "";
+  const tasks = job.progress.map((t) => {
+    const count = t.unit === null ? "" : t.total === null ? ` ${t.done} ${t.unit}s` : ` ${t.done}/${t.total} ${t.unit}s`;
+    const eta = t.eta_s === null ? "" : `, about ${Math.ceil(t.eta_s)} s left`;
+    return `${t.label}${count}${t.note ? ": " + t.note : ""}${eta}`;
+  });
+  const lines = [`solving… ${job.elapsed_s.toFixed(1)} s${limit}`, ...(job.announce ? [job.announce] : []), ...tasks];
+  $("status").textContent = lines.join(" · ");
+  const known = job.progress.filter((t) => t.total).pop();
+  if (known) { $("progress").max = known.total; $("progress").value = known.done; }
+  else if (job.time_limit) { $("progress").max = job.time_limit; $("progress").value = job.elapsed_s; }
+  else $("progress").removeAttribute("value");
 }
 
 function showResult(res) {
