@@ -94,8 +94,6 @@ def wall(ctx, region, max_line, colors, seed, method, period, output, svg, png, 
 
     Without -o, --svg or --png the wall is printed as text: each cell's colours N E S W.
     """
-    import time
-
     from tilesolve import family
     from tilesolve.model.dappled import parse_size
 
@@ -124,17 +122,9 @@ def wall(ctx, region, max_line, colors, seed, method, period, output, svg, png, 
         from tilesolve.families.wall_render import write_wall_png
 
         def draw(path):
-            last = [0.0]
-
-            def show(line: str) -> None:  # a line every 2 s at most, on a terminal
-                now = time.monotonic()
-                if now - last[0] >= 2:
-                    last[0] = now
-                    say(line)
-
             return write_wall_png(path, (x0, y0, cols, rows), colors=colors, max_line=max_line, seed=seed,
                                   method=method, period=(pw, ph), kind=map_kind or "id", ppc=ppc, verify=check,
-                                  progress=show if progress_wanted() else None)
+                                  progress=progress_wanted())
     if held:
         from tilesolve.families.walls import wall_problem
 

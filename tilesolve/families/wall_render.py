@@ -39,6 +39,7 @@ import numpy as np
 
 from tilesolve.errors import InvalidProblem
 from tilesolve.families.walls import BandChecker, npd_problem
+from tilesolve.progress import Progress, as_progress
 
 __all__ = ["RenderReport", "write_wall_png", "wall_source", "wall_map_pixels", "default_ppc", "BAND_PIXELS", "BAND_CELLS", "MAX_RENDER_PIXELS"]
 
@@ -141,7 +142,7 @@ def wall_source(method: str, *, colors: int, max_line: int | None, seed: int,
 def write_wall_png(path, region: tuple[int, int, int, int], *, colors: int = 3, max_line: int | None = None,
                    seed: int = 0, method: str = "procedural", period: tuple[int, int] | None = None,
                    kind: str = "id", ppc: int | None = None, verify: bool = True,
-                   compression: int = 6, progress: Callable[[str], None] | None = None) -> RenderReport:
+                   compression: int = 6, progress: Progress | bool = False) -> RenderReport:
     """Draw the window ``region = (x0, y0, w, h)`` of an infinite wall as a PNG map, streamed.
 
     Parameters
@@ -165,8 +166,8 @@ def write_wall_png(path, region: tuple[int, int, int, int], *, colors: int = 3, 
         :class:`~tilesolve.errors.InternalError` and no file is written.
     compression : int
         zlib level of the PNG (0-9).
-    progress : callable, optional
-        Called with a line of text after each band.
+    progress : Progress or bool
+        Where the bands drawn are counted (:func:`tilesolve.progress.as_progress`).
 
     Returns
     -------
@@ -197,7 +198,7 @@ def write_wall_png(path, region: tuple[int, int, int, int], *, colors: int = 3, 
     state = {"verified": 0}
 
     def bands():
-        for k, top in enumerate(range(0, h, band)):
+        for top in range(0, h, band):
             hh = min(band, h - top)
             yb = y0 + h - top - hh  # the band's bottom row (y north)
             legs = window(x0 - 1, yb - 1, w + 2, hh + 2)
@@ -205,8 +206,8 @@ def write_wall_png(path, region: tuple[int, int, int, int], *, colors: int = 3, 
                 state["verified"] += checker.check(legs[1:-1, 1:-1], f"the {method} wall of seed {seed}",
                                                    (x0, yb + hh - 1), last=top + hh >= h)
             yield wall_map_pixels(legs, kind, colors=colors, ppc=ppc, origin=(x0, yb))
-            if progress is not None:
-                progress(f"band {k + 1}/{n_bands}: {top + hh:,} of {h:,} rows, {time.perf_counter() - t0:.1f} s")
+            bar.advance()
 
-    write_bands_png(path, width, height, bands(), kind, compression=compression)
+    with as_progress(progress).task(f"PNG {width:,} x {height:,} px", total=n_bands, unit="band") as bar:
+        write_bands_png(path, width, height, bands(), kind, compression=compression)
     return RenderReport((width, height), w * h, n_bands, state["verified"], time.perf_counter() - t0)
