@@ -14,7 +14,7 @@ import time
 import click
 
 from tilesolve.cli import options as opt
-from tilesolve.cli.common import say
+from tilesolve.cli.common import progress_wanted, say
 from tilesolve.cli.outputs import Outputs
 from tilesolve.errors import InvalidProblem
 
@@ -121,7 +121,7 @@ def texture(example, colors, size, tile, scale, origin, seed, hash_, per_fragmen
     mapper = TextureMapper(at, seed=seed, origin=(x0, y0), tile_px=scale, hash=hash_, two_pass=not per_fragment)
     with outs.commit():
         if output:
-            write_png(output, w, h, mapper.bands(w, h))
+            write_png(output, w, h, mapper.bands(w, h), progress_wanted())
         if atlas:
             write_png(atlas, at.image.shape[1], at.image.shape[0], [at.image])
     say(f"texture {w}x{h} from {example}: {colors}^4 = {colors**4} corner tiles of {tile} px, "
@@ -174,7 +174,7 @@ def wall(size, max_line, colors, cell, samples, origin, seed, per_fragment, outp
                             samples=samples, per_fragment=per_fragment)
     with outs.commit():
         if output:
-            write_png(output, w, h, renderer.bands(w, h))
+            write_png(output, w, h, renderer.bands(w, h), progress_wanted())
     limit = f"lines of at most {max_line} bricks" if max_line else "no line limit"
     say(f"wall {w}x{h}, {limit}, {samples} sample(s), seed {seed}, in {time.perf_counter() - t:.2f} s "
         f"({renderer.ctx.info['GL_RENDERER']})")

@@ -17,6 +17,7 @@ from tilesolve.constructive.hashes import check_int, check_window
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.atomic import atomic_write
 from tilesolve.io.png import MAX_PNG_PIXELS
+from tilesolve.progress import Progress, as_progress
 
 __all__ = ["parse_size", "parse_origin", "write_png", "pass_layout", "assemble_bands"]
 
@@ -75,8 +76,9 @@ def assemble_bands(width: int, height: int, pass_w: int, band_h: int, read_pass)
         yield band
 
 
-def write_png(path: str | os.PathLike, width: int, height: int, bands) -> None:
-    """Write the RGBA ``bands`` (``(rows, width, 4)`` uint8, from the top) as one PNG, atomically."""
+def write_png(path: str | os.PathLike, width: int, height: int, bands, progress: Progress | bool = False) -> None:
+    """Write the RGBA ``bands`` (``(rows, width, 4)`` uint8, from the top) as one PNG, atomically;
+    the rows written are counted on ``progress`` (:func:`tilesolve.progress.as_progress`) band by band."""
     import png
 
     writer = png.Writer(width, height, greyscale=False, alpha=True, bitdepth=8, compression=6)
@@ -84,6 +86,8 @@ def write_png(path: str | os.PathLike, width: int, height: int, bands) -> None:
     def rows():
         for band in bands:
             yield from band.reshape(band.shape[0], -1)
+            bar.advance(band.shape[0])
 
-    with atomic_write(path, "wb") as f:
+    with atomic_write(path, "wb") as f, as_progress(progress).task(f"PNG {width:,} x {height:,} px", total=height,
+                                                                   unit="row") as bar:
         writer.write(f, rows())
