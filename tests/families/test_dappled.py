@@ -151,7 +151,7 @@ def test_progress_shows_route_and_time_on_a_terminal_only(monkeypatch, capsys):
     import io
     import sys
 
-    from tilesolve.engine.progress import ticker
+    from tilesolve.progress import Terminal
 
     class Tty(io.StringIO):
         def isatty(self):
@@ -159,12 +159,12 @@ def test_progress_shows_route_and_time_on_a_terminal_only(monkeypatch, capsys):
 
     fake = Tty()
     monkeypatch.setattr(sys, "stderr", fake)
-    with ticker("solving with 'sat'", True, every=0.01):
+    with Terminal(every=0.01, delay=0).task("solving with 'sat'", unit=None):
         import time
 
         time.sleep(0.1)
-    assert "solving with 'sat' ..." in fake.getvalue()
-    assert fake.getvalue().endswith("\r\033[K")  # the line is erased when the call returns
+    assert "solving with 'sat' [00:00]" in fake.getvalue()
+    assert fake.getvalue().rstrip(" ").endswith("\r")  # the line is erased when the call returns
     monkeypatch.undo()
     solve(DappledProblem.from_strings("6x6", ["H0=1", "V1=2"]), progress=True)
     assert capsys.readouterr().err == ""  # not a terminal: nothing drawn

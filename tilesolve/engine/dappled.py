@@ -36,6 +36,7 @@ from tilesolve.errors import InternalError, InvalidProblem
 from tilesolve.model.dappled import DappledProblem
 from tilesolve.model.run import RunOptions
 from tilesolve.model.solution import CountResult, Solution, Status
+from tilesolve.progress import Progress, as_progress
 
 __all__ = [
     "solve_sat",
@@ -330,15 +331,15 @@ def count_by_enumeration(
     deadline: Deadline = NO_LIMIT,
     limit: int | None = None,
     solver: str = DEFAULT_SAT_SOLVER,
-    progress: bool = False,
+    progress: Progress | bool = False,
 ) -> CountResult:
     """Count tilings by enumeration (:func:`tilesolve.engine.sat.count_models` on the CNF,
     projected on the grid variables): exact, or ``unknown`` with ``stats["found"]`` a lower bound.
 
     Parameters
     ----------
-    progress : bool
-        Show a running count on standard error when it is a terminal.
+    progress : Progress or bool
+        Where the tilings found so far are counted (:func:`tilesolve.progress.as_progress`).
 
     Examples
     --------
@@ -347,10 +348,8 @@ def count_by_enumeration(
     >>> count_by_enumeration(DappledProblem.from_strings("2x2", ["H0=2", "V1=2"])).value
     16
     """
-    from tilesolve.engine.progress import status_line
-
     _check_problem(problem)
     enc = encode_cnf(problem)
-    with status_line("counting by enumeration", progress) as show:
+    with as_progress(progress).task("counting by enumeration", unit="tiling") as bar:
         return count_models(enc.hard, enc.projection(), solver=solver, deadline=deadline, limit=limit,
-                            on_model=lambda n: show(f"{n:,} tilings so far"))
+                            on_model=bar.set)
