@@ -47,9 +47,10 @@ ALLOWED = {
     "cli": {"base", "model", "io", "facades", "studio"},
     "studio": {"base", "model", "verify", "verify.drat", "encodings", "constructive", "io", "engine", "facades"},
 }
-#: Third-party packages a verifier may use (DESIGN.md: "dependency-light (numpy only)").
-VERIFY_THIRD_PARTY = {"numpy", "__future__", "dataclasses", "typing", "time", "math", "itertools", "collections",
-                      "hashlib", "os", "functools", "enum"}
+#: Third-party packages a verifier may use (DESIGN.md: "dependency-light (numpy only)"; numba
+#: compiles the board verifier's one-pass loop, written in the verifier from the definitions).
+VERIFY_THIRD_PARTY = {"numpy", "numba", "sys", "__future__", "dataclasses", "typing", "time", "math", "itertools",
+                      "collections", "hashlib", "os", "functools", "enum"}
 
 
 def layer_of(module: str) -> str | None:

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from tilesolve.verify import _board_kernel
 from tilesolve.verify.dappled import Violation
 
 __all__ = ["board_violations", "is_valid_board_tiling", "line_runs", "listing_violations", "MAX_LISTED"]
@@ -68,16 +69,36 @@ def board_violations(problem, tiling) -> list[Violation]:
     >>> [v.kind for v in board_violations(p, [[0, 1, 0, 1]])]  # legs W, N, E, S
     ['cross']
     """
-    board = problem.board
-    labels, nc, nl = board.labels, board.nbr_cell, board.nbr_leg
-    n = labels.shape[0]
+    n = problem.board.n_cells
     k = int(problem.tileset.n_colors)
     t = np.asarray(tiling)
     if t.shape != (n, 4):
         return [Violation("shape", f"tiling has shape {t.shape}, the board needs ({n}, 4): 4 leg colours per cell")]
     if t.size and not np.issubdtype(t.dtype, np.integer):
         return [Violation("colour", "leg colours must be integers")]
-    t = t.astype(np.int64, copy=False)
+    if t.size == 0:
+        return []
+    clean = _compiled_clean(problem, t)
+    if clean is None:  # no compiled pass for this board: whole-array checks
+        clean = _in_range(t, k) and _grid_clean(problem, t)
+    return [] if clean else _violations(problem, t.astype(np.int64, copy=False))
+
+
+def _in_range(t: np.ndarray, k: int) -> bool:
+    """Whether every entry of the integer array ``t`` is in ``0..k-1`` (one pass: a negative
+    entry seen unsigned is larger than any ``k``)."""
+    if t.dtype.kind == "i":
+        t = t.view(np.dtype(f"u{t.dtype.itemsize}"))
+    return int(t.max()) < k
+
+
+def _violations(problem, t: np.ndarray) -> list[Violation]:
+    """:func:`board_violations` from the board's join arrays, each violation named: ``t`` is an
+    ``(n, 4)`` int64 array."""
+    board = problem.board
+    labels, nc, nl = board.labels, board.nbr_cell, board.nbr_leg
+    n = labels.shape[0]
+    k = int(problem.tileset.n_colors)
     out: list[Violation] = []
     if t.size and (int(t.min()) < 0 or int(t.max()) >= k):
         for a, leg in np.argwhere((t < 0) | (t >= k)):
@@ -140,6 +161,189 @@ def board_violations(problem, tiling) -> list[Violation]:
             r, c = _where(labels, a)
             out.append(Violation("line", f"{what} tiles longer than {lim} ends here", r, c))
     return out
+
+
+def _compiled_clean(problem, t: np.ndarray) -> bool | None:
+    """:func:`tilesolve.verify._board_kernel.grid_clean` of the tiling ``t``, where it applies
+    (a board cut from a grid with no sides identified, tiles it can look up) and numba is at
+    hand (:func:`tilesolve.verify._board_kernel.compiled`); None elsewhere."""
+    board, k = problem.board, int(problem.tileset.n_colors)
+    spec = board.grid_spec
+    if spec is None or spec[2] is not None or spec[3] is not None:
+        return None
+    brick = bool(problem.tileset.is_brick)
+    if not brick and k**4 > 4 * board.n_cells + (1 << 16):
+        return None
+    kernel = _board_kernel.compiled(board.n_cells)
+    if kernel is None:
+        return None
+    rows, cols = int(spec[0]), int(spec[1])
+    full = board.n_cells == rows * cols
+    known = np.zeros(0 if brick else k**4, bool)
+    if not brick:
+        legs = np.asarray(problem.tileset.legs, dtype=np.int64)
+        known[((legs[:, 0] * k + legs[:, 1]) * k + legs[:, 2]) * k + legs[:, 3]] = True
+    return bool(kernel(np.ascontiguousarray(t), board.labels, np.empty(0 if full else (rows + 2) * (cols + 2), np.int32),
+                       rows, cols, k, brick, known, problem.boundary, int(problem.max_h or 0),
+                       int(problem.max_v or 0)))
+
+
+def _grid_clean(problem, t: np.ndarray) -> bool:
+    """True when ``t``, colours already in ``0..k-1``, is certainly a valid tiling of a board cut
+    from a grid: every check of :func:`board_violations`, made with whole-array operations on
+    the ``(rows, cols)`` grid of one small integer per leg.
+
+    The joins are re-derived here from the grid's definition (:class:`~tilesolve.model.board.GridSpec`;
+    the board-solution format, version 2): the legs W, N, E, S of the cell at ``(r, c)`` meet
+    the E, S, W, N legs of the cells at ``(r, c-1)``, ``(r-1, c)``, ``(r, c+1)``, ``(r+1, c)``,
+    across identified sides (``"twist"``: row ``r`` meets row ``rows-1-r``, column ``c`` meets
+    ``cols-1-c``); a leg with no cell there meets the wall. The wall legs found so must be as
+    many as the problem's boundary colours, each a wall leg of the board's join arrays too.
+
+    False when any check fails or the board has no grid: :func:`board_violations` then names
+    every violation from the board's join arrays.
+    """
+    board, k = problem.board, int(problem.tileset.n_colors)
+    spec = board.grid_spec
+    if spec is None or k > 1 << 16:
+        return False
+    rows, cols, wrap_rows, wrap_cols = int(spec[0]), int(spec[1]), spec[2], spec[3]
+    n = t.shape[0]
+    leg, word = (np.uint8, np.uint32) if k <= 256 else (np.uint16, np.uint64)
+    words = np.ascontiguousarray(t, dtype=leg).view(word).reshape(n)  # a cell's 4 legs in one word
+    if n == rows * cols:
+        present = None
+        g = words.view(leg).reshape(rows, cols, 4)
+    else:
+        lab = board.labels
+        present = np.zeros(rows * cols, bool)
+        present[lab[:, 0] * cols + lab[:, 1]] = True
+        grid = np.zeros(rows * cols, word)
+        grid[present] = words
+        present = present.reshape(rows, cols)
+        g = grid.view(leg).reshape(rows, cols, 4)
+    w, nn, e, s = (g[..., leg] for leg in range(4))
+
+    def held(bad: np.ndarray, *where) -> bool:
+        """Whether ``bad`` is false wherever the cells at the indices ``where`` are all present."""
+        for ix in where if present is not None else ():
+            bad = bad & present[ix]
+        return not bad.any()
+
+    everywhere = (slice(None), slice(None))
+    # (1) tiles in W
+    h, v = w == e, nn == s
+    if problem.tileset.is_brick:
+        if not held(h == v, everywhere):
+            return False
+    elif not _grid_tiles_in(g, present, np.asarray(problem.tileset.legs, dtype=np.int64), k):
+        return False
+    # joined legs agree: E with the W of the next column, S with the N of the next row, and
+    # across the identified sides
+    if not (held(e[:, :-1] != w[:, 1:], (slice(None), slice(None, -1)), (slice(None), slice(1, None)))
+            and held(s[:-1] != nn[1:], (slice(None, -1),), (slice(1, None),))):
+        return False
+    if wrap_cols is not None:
+        across = slice(None, None, -1) if wrap_cols == "twist" else slice(None)
+        if not held(e[:, -1] != w[across, 0], (slice(None), -1), (across, 0)):
+            return False
+    if wrap_rows is not None:
+        across = slice(None, None, -1) if wrap_rows == "twist" else slice(None)
+        if not held(s[-1] != nn[0, across], (-1, slice(None)), (0, across)):
+            return False
+    # (2) boundary constraints, on the wall legs the grid has
+    if not _grid_boundary_holds(problem, t, present, rows, cols, wrap_rows, wrap_cols):
+        return False
+    # line lengths (dappled paper §4): runs go along the rows (columns), across identified sides
+    for lim, member, wrap, down in ((problem.max_h, h, wrap_cols, False), (problem.max_v, v, wrap_rows, True)):
+        if lim is not None:
+            member = member if present is None else member & present
+            if _long_run(member.T if down else member, int(lim), wrap):
+                return False
+    return True
+
+
+def _grid_tiles_in(g: np.ndarray, present, table: np.ndarray, k: int) -> bool:
+    """Whether every present cell of the grid ``g`` (legs W, N, E, S) holds a tile of ``table``."""
+    n_keys = k**4
+    if n_keys <= 4 * g.shape[0] * g.shape[1] + (1 << 16):  # a table of every key
+        known = np.zeros(n_keys, bool)
+        known[((table[:, 0] * k + table[:, 1]) * k + table[:, 2]) * k + table[:, 3]] = True
+        key = g[..., 0].astype(np.int64)
+        for leg in range(1, 4):
+            key *= k
+            key += g[..., leg]
+        ok = known[key]
+    else:
+        ok = _rows_in(g.reshape(-1, 4).astype(np.int64), table, k).reshape(g.shape[:2])
+    return bool(ok.all() if present is None else ok[present].all())
+
+
+def _grid_boundary_holds(problem, t: np.ndarray, present, rows: int, cols: int, wrap_rows, wrap_cols) -> bool:
+    """Whether the wall legs of the grid are the problem's boundary legs and carry their colours."""
+    beta = problem.boundary
+    fixed = bool((beta >= 0).any())
+    if present is None:  # every cell: the wall legs are the sides not identified
+        r, c = np.arange(rows), np.arange(cols)
+        sides = [(None if wrap_cols else r * cols, 0), (None if wrap_rows else c, 1),
+                 (None if wrap_cols else r * cols + cols - 1, 2), (None if wrap_rows else (rows - 1) * cols + c, 3)]
+        walls = [(cells, leg) for cells, leg in sides if cells is not None]
+    else:
+        has = np.zeros((4, rows, cols), bool)  # a cell across each leg
+        has[0][:, 1:], has[1][1:], has[2][:, :-1], has[3][:-1] = present[:, :-1], present[:-1], present[:, 1:], present[1:]
+        if wrap_cols is not None:
+            across = slice(None, None, -1) if wrap_cols == "twist" else slice(None)
+            has[0][:, 0], has[2][:, -1] = present[across, -1], present[across, 0]
+        if wrap_rows is not None:
+            across = slice(None, None, -1) if wrap_rows == "twist" else slice(None)
+            has[1][0], has[3][-1] = present[-1, across], present[0, across]
+        cell = np.cumsum(present.ravel(), dtype=np.int32) - 1 if fixed else None  # cells in row-major order
+        walls = []
+        for leg in range(4):
+            spots = np.flatnonzero(present & ~has[leg])
+            walls.append((cell[spots] if fixed else spots, leg))
+    if sum(cells.size for cells, _ in walls) != beta.size:
+        return False
+    if not fixed:
+        return True
+    nc, nl = problem.board.nbr_cell, problem.board.nbr_leg
+    for cells, leg in walls:
+        if (nc[cells, leg] >= 0).any():
+            return False
+        req = beta[nl[cells, leg]]
+        if ((req >= 0) & (t[cells, leg] != req)).any():
+            return False
+    return True
+
+
+def _long_run(member: np.ndarray, lim: int, wrap) -> bool:
+    """Whether some run of ``member`` cells along the rows of ``member`` is longer than ``lim``;
+    ``wrap`` (``None``, ``"plain"`` or ``"twist"``) says how the end of a row continues."""
+    if wrap is None:
+        return _window_any(member, lim + 1)
+    after = member[::-1] if wrap == "twist" else member  # the row each row runs on into
+    whole = member.all(axis=1)
+    if (whole & whole[::-1] if wrap == "twist" else whole).any():  # a closed line: endless
+        return True
+    cols = member.shape[1]
+    more = min(lim, 2 * cols if wrap == "twist" else cols)  # beyond it, a run would close up
+    chain = np.concatenate([member, after, member], axis=1)[:, :cols + more]
+    return _window_any(chain, lim + 1)
+
+
+def _window_any(m: np.ndarray, width: int) -> bool:
+    """Whether some ``width`` consecutive entries of a row of ``m`` are all true (windows
+    doubled, then joined with overlap: a logarithmic number of whole-array ands)."""
+    if width > m.shape[1]:
+        return False
+    acc, span = m, 1  # acc[:, i]: m[:, i:i + span] all true
+    while 2 * span <= width:
+        acc = acc[:, :-span] & acc[:, span:]
+        span *= 2
+    rest = width - span
+    if rest:
+        acc = acc[:, :-rest] & acc[:, rest:]
+    return bool(acc.any())
 
 
 def _rows_in(rows: np.ndarray, table: np.ndarray, k: int) -> np.ndarray:
