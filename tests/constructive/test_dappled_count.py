@@ -484,3 +484,85 @@ def test_deadline_stops_a_count():
         count_dappled(torus, deadline=AfterChecks(0))
     with pytest.raises(TimeLimitReached, match=r"while counting \(1 of \d+ row sweeps\)"):
         count_dappled(torus, deadline=AfterChecks(1))
+
+
+# --------------------------------------------------------------------- meeting in the middle
+@st.composite
+def upside_down_problems(draw):
+    """Problems that read the same upside down (the sweep meets in the middle on them)."""
+    n_tiles = draw(st.sampled_from([2, 2, 3]))
+    rows = draw(st.integers(4, 6))
+    cols = draw(st.integers(1, 2 if n_tiles == 3 else 16 // rows))
+    conds = []
+    for _ in range(draw(st.integers(1, 3))):
+        axis = draw(st.sampled_from("HV"))
+        tiles = tuple(draw(st.sets(st.integers(0, n_tiles - 1), min_size=1, max_size=n_tiles - 1)))
+        if axis == "H" and draw(st.booleans()):
+            top = np.array(draw(st.lists(st.integers(0, 3), min_size=rows * cols, max_size=rows * cols)))
+            lim = top.reshape(rows, cols)
+            lim = np.where(np.arange(rows)[:, None] < rows // 2, lim, lim[::-1]).astype(np.int32)
+        else:
+            lim = draw(st.sampled_from([1, 2, 3]))
+        conds.append(Condition(axis, tiles, lim))
+    fixed = None
+    if draw(st.booleans()):
+        cells = np.full((rows, cols), -1, dtype=np.int8)
+        r, c, t = draw(st.integers(0, rows - 1)), draw(st.integers(0, cols - 1)), draw(st.integers(0, n_tiles - 1))
+        cells[r, c] = cells[rows - 1 - r, c] = t
+        fixed = cells
+    return DappledProblem(rows, cols, n_tiles=n_tiles, conditions=tuple(conds), fixed=fixed)
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(upside_down_problems())
+def test_meeting_in_the_middle_matches_brute_force(problem):
+    assert count_dappled(problem, orientation="rows") == brute_count(problem)
+
+
+@pytest.mark.parametrize(
+    "size, conds, kw",
+    [
+        ("12x12", ["H0=2", "V1=2"], {}),  # even height, 2 primes
+        ("9x11", ["H0=2", "V1=2"], {}),  # odd height
+        ("6x9", ["H{0,1}=2", "V2=1", "V0=2"], {"n_tiles": 3}),
+        ("7x8", ["H0=1", "V1=3", "V0=2"], {"fixed": "symmetric"}),
+    ],
+)
+def test_meeting_in_the_middle_matches_the_full_sweep(monkeypatch, size, conds, kw):
+    # The count met in the middle (top half, join, dot product) against the full sweep down
+    # the grid (the previous implementation), on problems that read the same upside down.
+    import tilesolve.constructive.dappled_count as dc
+
+    if kw.get("fixed") == "symmetric":
+        fixed = np.full((8, 7), -1, dtype=np.int8)
+        fixed[1, 2] = fixed[6, 2] = 1
+        fixed[3, 5] = fixed[4, 5] = 0
+        kw = {"fixed": fixed}
+    p = P(size, conds, **kw)
+    plan, fr, aut, _ = dc._plan(p, "rows")
+    assert dc._meets_in_middle(fr, aut)
+    met = count_dappled(p, orientation="rows")
+    monkeypatch.setattr(dc, "_MEET_IN_MIDDLE", False)
+    assert count_dappled(p, orientation="rows") == met
+
+
+def test_meeting_in_the_middle_needs_an_upside_down_problem():
+    import tilesolve.constructive.dappled_count as dc
+
+    fixed = np.full((6, 6), -1, dtype=np.int8)
+    fixed[0, 0] = 1
+    lim = np.full((6, 6), 2, dtype=np.int32)
+    lim[5, 3] = 3
+    for p in (P("6x6", ["H0=2", "V1=2"], fixed=fixed),
+              DappledProblem(6, 6, conditions=(Condition("H", (0,), 2), Condition("V", (1,), lim)))):
+        _, fr, aut, _ = dc._plan(p, "rows")
+        assert not dc._meets_in_middle(fr, aut)
+
+
+@pytest.mark.slow
+def test_16x16_count_met_in_the_middle():
+    # The issue's benchmark problem: the value the full sweep down the grid gave before the
+    # sweep met in the middle, now from the top half, the join and 3 primes.
+    p = P("16x16", ["H0=2", "V1=2"])
+    assert plan_count(p).n_primes == 4  # the single rows' bound; the strips' bound needs 3
+    assert count_dappled(p) == 411103206295730445015104794639495341872054142122022

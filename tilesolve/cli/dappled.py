@@ -161,7 +161,7 @@ def count(ctx, method, time_limit, force, **problem_kw) -> None:
     \b
     Example:
       tilesolve dappled count --size 3x3 --cond H0=2 --cond V1=2        # prints 174
-      tilesolve dappled count --size 10x10 --cond H0=2,V1=2 --cyclic
+      tilesolve dappled count --size 8x8 --cond H0=2,V1=2 --cyclic       # prints 543336096522
 
     Exit 0 whenever the count is exact (0 included), 3 when the time limit ran out.
     """

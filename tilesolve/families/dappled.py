@@ -40,6 +40,7 @@ from tilesolve.family import solve as _solve
 from tilesolve.io.dappled_json import DAPPLED_FORMATS, DAPPLED_PROBLEM, DAPPLED_SOLUTION
 from tilesolve.model.dappled import DappledProblem
 from tilesolve.model.solution import CountResult, CrosscheckReport, Solution, Status
+from tilesolve.progress import Progress, as_progress
 from tilesolve.verify.dappled import dappled_violations, hamming_distance
 
 __all__ = [
@@ -175,7 +176,7 @@ def count(
     *,
     method: str = "auto",
     time_limit: float | None = None,
-    progress: bool = False,
+    progress: Progress | bool = False,
     force: bool = False,
 ) -> CountResult:
     """Count the tilings that satisfy ``problem`` exactly.
@@ -184,23 +185,28 @@ def count(
     and cyclic conditions, fixed cells); ``"enumerate"`` enumerates solver models with
     blocking clauses (any problem, small counts); ``"auto"`` prefers the transfer matrix.
     For T = {0,1} and L = {H_0^2, V_1^2} the counts are OEIS A206994 (Remark 1.4).
+
+    ``progress`` (:func:`tilesolve.progress.as_progress`) shows the row sweeps done, with an
+    ETA, and announces the planner's estimate before a transfer count expected to take more
+    than :data:`ANNOUNCE_S` seconds.
     """
     from tilesolve.constructive.dappled_count import DEFAULT_MAX_OPERATIONS, count_dappled, enumeration_guard
     from tilesolve.deadline import TimeLimitReached
-    from tilesolve.engine.progress import status_line
 
     if method not in COUNT_METHODS:
         raise InvalidProblem(f"unknown count method {method!r}; choose one of {', '.join(COUNT_METHODS)}")
     if problem.closest_to is not None:
         raise InvalidProblem("counting ignores a closest-to target; drop it")
+    progress = as_progress(progress)
     t0 = time.perf_counter()
     deadline = run_deadline(time_limit)
     note = None
     if method in ("auto", "transfer"):
         try:
-            with status_line("counting (transfer matrix)", progress) as show:
-                value = count_dappled(problem, progress=lambda done, total: show(f"{done}/{total} row sweeps"),
-                                      deadline=deadline,
+            if progress:
+                _announce(problem, progress)
+            with progress.task("counting: row sweeps", unit="row") as bar:
+                value = count_dappled(problem, progress=bar.set, deadline=deadline,
                                       max_operations=None if (time_limit is not None or force) else
                                       DEFAULT_MAX_OPERATIONS)
             return CountResult(value, Status.SAT, "transfer", time.perf_counter() - t0)
@@ -215,9 +221,26 @@ def count(
             note = f"transfer matrix not applicable ({exc}); counted by solver enumeration"
     from tilesolve.engine.dappled import count_by_enumeration
 
-    res = count_by_enumeration(problem, deadline=deadline, progress=progress)
+    res = count_by_enumeration(problem, deadline=deadline, progress=bool(progress))
     notes = [n for n in (res.note, note) if n]
     return res.replace(time_s=time.perf_counter() - t0, note="; ".join(notes) or None)
+
+
+#: A transfer count planned to take longer than this (seconds) is announced with its estimate.
+ANNOUNCE_S = 2.0
+
+
+def _announce(problem: DappledProblem, progress: Progress) -> None:
+    """Print the planner's estimate before a long transfer count (nothing when it is quick or
+    when the planner refuses: the count says why)."""
+    from tilesolve.constructive.dappled_count import plan_count
+
+    try:
+        plan = plan_count(problem)
+    except MethodNotApplicable:
+        return
+    if plan.route in ("transfer", "torus") and plan.seconds > ANNOUNCE_S:
+        progress.announce(f"counting: about {plan.seconds:.0f} s by the planner's estimate ({plan.describe()})")
 
 
 def crosscheck(problem: DappledProblem, *, seed: int | None = None, time_limit: float | None = None) -> CrosscheckReport:
