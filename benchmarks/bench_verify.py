@@ -3,20 +3,29 @@
 Dappled: the tilings of Algorithm 1 (dappled paper §2) for ``L = {H_0^2, V_1^2}`` on
 square grids, checked by :func:`tilesolve.verify.dappled_violations` (sliding-window ANDs
 in row blocks) and by the previous checker, copied below as the baseline (run lengths
-built one column at a time in int64). Boards: a linear-algorithm tiling (brick paper §4)
-of a board with holes, checked by :func:`tilesolve.verify.board_violations` and by the
-previous join check (2-D fancy indexing), also copied below. Then the dappled API
+built one column at a time in int64). Then the dappled API
 (:func:`tilesolve.families.dappled.solve`, which verifies its answer) against its kernel
 (:func:`tilesolve.constructive.dappled.make_dappled`).
 
+Boards (issue 19, "board verifier kernel"): :func:`tilesolve.verify.board_violations` on
+valid tilings of a rectangle (linear algorithm, brick paper §4, random boundary), a rectangle
+with holes (the same), a procedural brick wall with lines of at most 2 bricks (004 §3-4) and
+an NPD wall on a torus (004 App. A), against the join-array checks it made before
+(``tilesolve.verify.board._violations``, still the code that names violations), paired in
+the same run. ``new`` is the whole function (the compiled one-pass kernel where it applies:
+numba is loaded by the solvers here); ``numpy`` is its whole-array pass alone, the one used
+where numba is not loaded (``tilesolve verify`` of files under 8M cells).
+
 Times are the best of ``--repeat`` runs (one core); peak memory is tracemalloc's peak of
-one further run. Goals (issue "Cost around the solver"): >= 100 M cells/s for the dappled
-verifier at 4096x4096, and the API within 2x of the kernel there.
+one further run. Goals: >= 100 M cells/s for the dappled verifier at 4096x4096, and the
+API within 2x of the kernel there; >= 100 M cells/s for the board verifier on rect and mask
+boards at 1000x1000 (issue 19).
 
 Usage::
 
     python benchmarks/bench_verify.py           # dappled 1024^2, 2048^2, 4096^2; boards 1000^2
     python benchmarks/bench_verify.py --quick   # dappled 1024^2; boards 316^2
+    python benchmarks/bench_verify.py --boards  # boards 1000^2 only
 """
 
 from __future__ import annotations
@@ -25,7 +34,7 @@ import argparse
 import time
 
 import numpy as np
-from _measure import peak_mib  # noqa: E402 - benchmarks/ is on sys.path
+from _measure import best as best_cpu, peak_mib  # noqa: E402 - benchmarks/ is on sys.path
 
 
 # ----------------------------------------------------------------------------- baselines
@@ -59,16 +68,6 @@ def old_dappled_bad_cells(tiling: np.ndarray, problem) -> int:
     return bad
 
 
-def old_board_join_mismatches(tiling: np.ndarray, board) -> int:
-    """The previous join check of ``board_violations`` (2-D fancy indexing)."""
-    t = np.asarray(tiling).astype(np.int64)
-    nc, nl = board.nbr_cell, board.nbr_leg
-    a_idx, legs = np.nonzero(nc >= 0)
-    b_idx, b_legs = nc[a_idx, legs], nl[a_idx, legs]
-    first = (a_idx * 4 + legs) <= (b_idx * 4 + b_legs)
-    return int((first & (t[a_idx, legs] != t[b_idx, b_legs])).sum())
-
-
 # ----------------------------------------------------------------------------- measuring
 def best(fn, repeat: int) -> tuple[float, object]:
     out, t_best = None, np.inf
@@ -84,16 +83,51 @@ def row(what, size, cells, t_old, t_new, m_old, m_new, note=""):
           f"{m_old:>9.1f} {m_new:>9.1f} {t_old / t_new:>7.1f}x  {note}")
 
 
+def board_rows(side: int, repeat: int) -> None:
+    """The board verifier on valid tilings of ``side x side`` boards, against its previous checks."""
+    from tilesolve.constructive.brick import solve_linear
+    from tilesolve.families import walls
+    from tilesolve.family import solve
+    from tilesolve.model.board import Board, BoardProblem, WangTileSet, random_boundary
+    from tilesolve.verify import board as vb
+
+    print(f"\nboard verifier, CPU seconds (best of {repeat}; old: 1 run)")
+    print(f"{'board verifier':<26} {'cells':>9} {'old s':>8} {'new s':>8} {'new Mc/s':>9} {'numpy s':>8} "
+          f"{'numpy Mc/s':>10} {'old MiB':>8} {'new MiB':>8} {'new/old':>8}")
+    cases = []
+    for name, b in (("rect", Board.rect(side, side)), ("mask (holes)", Board.with_holes(side, side, side * side // 400,
+                                                                                       12, seed=1))):
+        p = BoardProblem(b, WangTileSet.brick(3), random_boundary(b, 3, seed=1))
+        cases.append((f"{name}, random boundary", p, solve_linear(p, seed=1).tiling))
+    q = walls.wall_problem(side, side, 2)
+    cases.append(("wall, lines <= 2", q, solve(q, "procedural", seed=7).tiling))
+    t_side = side // 2 // 12 * 12
+    q = walls.npd_problem(t_side, t_side, 4)
+    cases.append((f"npd torus {t_side}^2, lines <= 4", q, solve(q, "npd", seed=2).tiling))
+    for what, p, t in cases:
+        n = p.board.n_cells
+        _, t_old, v_old = best_cpu(lambda: vb._violations(p, np.asarray(t, dtype=np.int64)), 1)
+        _, t_new, v_new = best_cpu(lambda: vb.board_violations(p, t), repeat)
+        _, t_np, ok = best_cpu(lambda: vb._in_range(t, p.n_colors) and vb._grid_clean(p, t), repeat)
+        assert v_old == [] and v_new == [] and ok
+        m_old = peak_mib(lambda: vb._violations(p, np.asarray(t, dtype=np.int64)))
+        m_new = peak_mib(lambda: vb.board_violations(p, t))
+        print(f"{what:<26} {n:>9,} {t_old:>8.3f} {t_new:>8.4f} {n / t_new / 1e6:>9.0f} {t_np:>8.4f} "
+              f"{n / t_np / 1e6:>10.0f} {m_old:>8.1f} {m_new:>8.1f} {t_old / t_new:>7.0f}x")
+    print("goal: >= 100 M cells/s (new) on rect and mask boards")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--boards", action="store_true", help="the board rows only")
     args = ap.parse_args()
-    from tilesolve.constructive.brick import solve_linear
+    if args.boards:
+        board_rows(316 if args.quick else 1000, args.repeat)
+        return
     from tilesolve.constructive.dappled import make_dappled
-    from tilesolve.model.board import Board, BoardProblem, WangTileSet, random_boundary
     from tilesolve.model.dappled import DappledProblem
-    from tilesolve.verify.board import board_violations
     from tilesolve.verify.dappled import dappled_violations
 
     print(f"{'verifier':<18} {'size':>10} {'old s':>9} {'new s':>9} {'new Mc/s':>10} "
@@ -111,17 +145,7 @@ def main() -> None:
             peak_mib(lambda: old_dappled_bad_cells(tiling, p)), peak_mib(lambda: dappled_violations(p, tiling)),
             f"kernel {t_kernel:.3f} s")
     bs = 316 if args.quick else 1000
-    warm = Board.rect(4, 4)
-    solve_linear(BoardProblem(warm, WangTileSet.brick(3)), seed=0)  # numba compile or cache load
-    b = Board.with_holes(bs, bs, bs * bs // 400, 12, seed=1)
-    bp = BoardProblem(b, WangTileSet.brick(3), random_boundary(b, 3, seed=1))
-    t_solve, sol = best(lambda: solve_linear(bp, seed=1), 1)
-    t_new, v = best(lambda: board_violations(bp, sol.tiling), args.repeat)
-    t_old, n_old = best(lambda: old_board_join_mismatches(sol.tiling, b), args.repeat)
-    assert v == [] and n_old == 0
-    row("board joins+all", f"{bs}x{bs}", b.n_cells, t_old, t_new,
-        peak_mib(lambda: old_board_join_mismatches(sol.tiling, b)), peak_mib(lambda: board_violations(bp, sol.tiling)),
-        f"old = joins only; linear solve {t_solve:.3f} s")
+    board_rows(bs, args.repeat)
     try:
         from tilesolve.families import dappled as api
     except ImportError as exc:  # the facade is being rewired

@@ -107,7 +107,8 @@ def test_tile_lists_on_every_grid_board(compiled, shape, k, seed, corruptions):
     for how in corruptions:
         t = _corrupt(p, t, how, rng)
         _agree(p, t, compiled)
-    assert _agree(p, t.astype(np.int8), compiled) == _agree(p, t, compiled)
+    small = t.clip(-128, 127).astype(np.int8)  # colours as a file reads them (int8), the large ones clipped
+    assert _agree(p, small, compiled) == _agree(p, small.astype(np.int64), compiled)
 
 
 @pytest.fixture(scope="module")

@@ -23,13 +23,13 @@ COMPILED_FROM = 8_000_000
 _COMPILED = None
 
 
-def grid_clean(t, lab, index, rows, cols, k, brick, known, beta, max_h, max_v):
+def grid_clean(t, lab, present, rows, cols, k, brick, known, beta, max_h, max_v):
     """True when the tiling ``t`` (``(n, 4)`` integers, legs W, N, E, S) passes every check.
 
     The cells are the board's in row-major order of its grid: ``lab`` holds their ``[row,
     col]`` labels, unless every cell of the ``rows x cols`` grid is present (``n = rows *
-    cols``; then ``lab`` is not read). ``index`` (``(rows + 2) * (cols + 2)`` int32) is scratch
-    space for a board with holes. A cell's W, N, E, S legs meet the E, S, W, N legs of the cells
+    cols``; then ``lab`` is not read). ``present`` (``(rows + 2) * (cols + 2)`` uint8) is
+    scratch space for a board with holes. A cell's W, N, E, S legs meet the E, S, W, N legs of the cells
     at ``(r, c-1)``, ``(r-1, c)``, ``(r, c+1)``, ``(r+1, c)``, or the wall where there is none;
     the wall legs are numbered in order of cell, then of leg N, E, S, W, and ``beta`` gives each
     its colour (``-1``: free). Colours are ``0..k-1``; tiles are brick tiles (``brick``: exactly
@@ -40,14 +40,54 @@ def grid_clean(t, lab, index, rows, cols, k, brick, known, beta, max_h, max_v):
     """
     n = t.shape[0]
     full = n == rows * cols
-    span = cols + 2  # the index grid has a border of -1 (the wall) all round
-    if not full:
-        index[:] = -1
-        for i in range(n):
-            index[(lab[i, 0] + 1) * span + lab[i, 1] + 1] = i
     hcap = max_h if max_h > 0 else n + 1
     vcap = max_v if max_v > 0 else n + 1
     vrun = np.zeros(cols, np.int64)
+    if full:  # the inside first (tiles, joins, lines), then the wall legs round the border
+        for r in range(rows):
+            bad = False
+            hrun = 0
+            for c in range(cols):
+                i = r * cols + c
+                w = np.int64(t[i, 0])
+                nn = np.int64(t[i, 1])
+                e = np.int64(t[i, 2])
+                s = np.int64(t[i, 3])
+                if (w < 0) | (w >= k) | (nn < 0) | (nn >= k) | (e < 0) | (e >= k) | (s < 0) | (s >= k):
+                    return False  # before a colour is used as an index
+                h = w == e
+                v = nn == s
+                if brick:
+                    bad |= h == v
+                else:
+                    bad |= not known[((w * k + nn) * k + e) * k + s]
+                if c > 0:
+                    bad |= t[i - 1, 2] != w
+                if r > 0:
+                    bad |= t[i - cols, 3] != nn
+                hrun = (hrun + 1) * h
+                run = (vrun[c] + 1) * v
+                vrun[c] = run
+                bad |= (hrun > hcap) | (run > vcap)
+            if bad:
+                return False
+        wall = 0
+        for r in range(rows):
+            for c in range(0, cols, 1 if r == 0 or r == rows - 1 else max(cols - 1, 1)):
+                i = r * cols + c
+                for leg, out in ((1, r == 0), (2, c == cols - 1), (3, r == rows - 1), (0, c == 0)):
+                    if out:
+                        if wall >= beta.shape[0]:
+                            return False
+                        if beta[wall] >= 0 and beta[wall] != t[i, leg]:
+                            return False
+                        wall += 1
+        return wall == beta.shape[0]
+    span = cols + 2  # the grid of cells present has a border of absent cells (the wall) all round
+    present[:] = 0
+    for i in range(n):
+        present[(lab[i, 0] + 1) * span + lab[i, 1] + 1] = 1
+    above = np.empty(cols, np.int64)  # the last cell seen in each column
     nb = beta.shape[0]
     wall = 0
     i = 0
@@ -55,43 +95,36 @@ def grid_clean(t, lab, index, rows, cols, k, brick, known, beta, max_h, max_v):
         bad = False
         hrun = 0
         for c in range(cols):
-            if full:
-                up = i - cols if r > 0 else -1
-                left = i - 1 if c > 0 else -1
-                edge = (r == 0) | (c == 0) | (r + 1 == rows) | (c + 1 == cols)
-            else:
-                p = (r + 1) * span + c + 1
-                if index[p] < 0:
-                    continue
-                up, left = index[p - span], index[p - 1]
-                edge = (up < 0) | (left < 0) | (index[p + 1] < 0) | (index[p + span] < 0)
+            p = (r + 1) * span + c + 1
+            if not present[p]:
+                continue
+            up, right, down, left = present[p - span], present[p + 1], present[p + span], present[p - 1]
             w = np.int64(t[i, 0])
             nn = np.int64(t[i, 1])
             e = np.int64(t[i, 2])
             s = np.int64(t[i, 3])
             if (w < 0) | (w >= k) | (nn < 0) | (nn >= k) | (e < 0) | (e >= k) | (s < 0) | (s >= k):
-                return False  # before a colour is used as an index
+                return False
             h = w == e
             v = nn == s
             if brick:
                 bad |= h == v
             else:
                 bad |= not known[((w * k + nn) * k + e) * k + s]
-            bad |= (up >= 0) & (t[max(up, 0), 3] != nn)
-            bad |= (left >= 0) & (t[max(left, 0), 2] != w)
-            hrun = h * (1 + hrun * (left >= 0))
-            vrun[c] = v * (1 + vrun[c] * (up >= 0))
-            bad |= (hrun > hcap) | (vrun[c] > vcap)
-            if edge:  # wall legs, in order N, E, S, W
-                if full:
-                    across = (up, i + 1 if c + 1 < cols else -1, i + cols if r + 1 < rows else -1, left)
-                else:
-                    across = (up, index[p + 1], index[p + span], left)
-                for leg in range(4):
-                    if across[leg] < 0:
+            if up:  # cells are numbered in row-major order: the cell above is the last one seen in
+                bad |= t[above[c], 3] != nn  # its column, the cell to the left the one before
+            if left:
+                bad |= t[i - 1, 2] != w
+            above[c] = i
+            hrun = (hrun + 1) * h if left else np.int64(h)
+            run = (vrun[c] + 1) * v if up else np.int64(v)
+            vrun[c] = run
+            bad |= (hrun > hcap) | (run > vcap)
+            if not (up & right & down & left):  # wall legs, in order N, E, S, W
+                for across, colour in ((up, nn), (right, e), (down, s), (left, w)):
+                    if not across:
                         if wall >= nb:
                             return False
-                        colour = (nn, e, s, w)[leg]
                         bad |= (beta[wall] >= 0) & (beta[wall] != colour)
                         wall += 1
             i += 1
