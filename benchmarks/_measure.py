@@ -31,3 +31,18 @@ def peak_mib(fn) -> float:
         return tracemalloc.get_traced_memory()[1] / 2**20
     finally:
         tracemalloc.stop()
+
+
+def command(argv: list[str], env: dict | None = None) -> tuple[float, float, float, int, str]:
+    """Run ``argv`` as a fresh process: wall s, CPU s (user + sys of the process, from
+    ``os.wait4``), peak RSS (MiB), exit code, and the last line of its stderr."""
+    import os
+    import subprocess
+
+    t = time.perf_counter()
+    proc = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=env)
+    _, status, ru = os.wait4(proc.pid, 0)
+    wall = time.perf_counter() - t
+    err = proc.stderr.read().decode(errors="replace").strip().splitlines()
+    proc.stderr.close()
+    return wall, ru.ru_utime + ru.ru_stime, ru.ru_maxrss / 1024, os.waitstatus_to_exitcode(status), (err or [""])[-1]
