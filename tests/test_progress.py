@@ -69,11 +69,19 @@ def test_count_is_silent_without_a_terminal(tmp_path):
     assert "count by transfer" in proc.stderr
 
 
-@pytest.mark.parametrize("quiet", [("-q",), ("--quiet",)])
-def test_count_is_silent_with_q(tmp_path, quiet):
-    code, out, tty = run_on_tty(*quiet, *COUNT, cwd=tmp_path)
+@pytest.mark.parametrize("where", ["before", "after"])
+@pytest.mark.parametrize("quiet", ["-q", "--quiet"])
+def test_count_is_silent_with_q(tmp_path, quiet, where):
+    """``-q`` before the command or after it: no bar and no summary."""
+    args = (quiet, *COUNT) if where == "before" else (*COUNT, quiet)
+    code, out, tty = run_on_tty(*args, cwd=tmp_path)
     assert code == 0 and out.strip() == "262019"
-    assert tty.strip() == ""  # no bar and no summary
+    assert tty.strip() == ""
+
+
+def test_v_after_the_command_counts_with_q_before_it(tmp_path):
+    code, _, tty = run_on_tty("-q", *COUNT, "-v", cwd=tmp_path)
+    assert code == 0 and "counting: rows" in tty and "count by transfer" in tty
 
 
 def test_quick_work_draws_nothing_by_default(tmp_path):

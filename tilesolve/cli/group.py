@@ -83,7 +83,38 @@ class TilesolveGroup(click.Group):
         if target is None:
             return None
         module, attr = target.split(":")
-        return getattr(importlib.import_module(module), attr)
+        return _verbosity_options(getattr(importlib.import_module(module), attr))
+
+
+def _verbosity_options(cmd: click.Command) -> click.Command:
+    """``cmd`` and its subcommands with ``-v``/``-q`` of their own (``tilesolve pack ... -q``),
+    counted with those given before the command."""
+    if not any(p.name == "quiet" for p in cmd.params):
+        cmd.params += [click.Option(["-v", "--verbose"], count=True, expose_value=False, callback=_counted(1),
+                                    help="More output (-v before the command counts too)."),
+                       click.Option(["-q", "--quiet"], count=True, expose_value=False, callback=_counted(-1),
+                                    help="Less output: no summary or progress on stderr (-q before the command counts too).")]
+    for sub in getattr(cmd, "commands", {}).values():
+        _verbosity_options(sub)
+    return cmd
+
+
+def _counted(sign: int):
+    def callback(ctx: click.Context, param: click.Parameter, count: int) -> None:
+        if count:
+            root = ctx.find_root()
+            _set_verbosity(root, root.ensure_object(dict).get("verbosity", 0) + sign * count)
+
+    return callback
+
+
+def _set_verbosity(ctx: click.Context, level: int) -> None:
+    """``-v`` count minus ``-q`` count so far: kept for :func:`tilesolve.cli.common.verbosity`,
+    and the log level (-q: errors; default: warnings; -v: info; -vv: debug)."""
+    ctx.ensure_object(dict)["verbosity"] = level
+    logging.basicConfig(stream=sys.stderr, format="tilesolve: %(levelname)s: %(message)s")
+    logging.getLogger().setLevel(
+        {-1: logging.ERROR, 0: logging.WARNING, 1: logging.INFO}.get(max(-1, min(level, 2)), logging.DEBUG))
 
 
 #: Commands that serve every family through the registry: name -> "module:attribute".
@@ -127,7 +158,7 @@ def _family_commands() -> dict[str, str]:
     epilog=EXIT_HELP,
 )
 @click.option("-v", "--verbose", count=True, help="More output (-vv: debug log).")
-@click.option("-q", "--quiet", count=True, help="Less output: no summary on stderr.")
+@click.option("-q", "--quiet", count=True, help="Less output: no summary or progress on stderr.")
 @click.option("--max-input", metavar="SIZE", default=None,
               help="Read input files up to SIZE bytes (e.g. 512M, 2G; default 256M, or $TILESOLVE_MAX_INPUT); "
               "larger files, pipes and devices are refused.")
@@ -142,13 +173,7 @@ def main_group(ctx: click.Context, verbose: int, quiet: int, max_input: str | No
       tilesolve dappled solve --size 12x8 --cond H0=2 --cond V1=2 --svg t.svg
       tilesolve dappled solve --help                    options and condition syntax
     """
-    level = verbose - quiet
-    logging.basicConfig(
-        stream=sys.stderr,
-        level={-1: logging.ERROR, 0: logging.WARNING, 1: logging.INFO}.get(max(-1, min(level, 2)), logging.DEBUG),
-        format="tilesolve: %(levelname)s: %(message)s",
-    )
-    ctx.ensure_object(dict)["verbosity"] = level
+    _set_verbosity(ctx, verbose - quiet)
     if max_input is not None:
         from tilesolve.inputs import MAX_INPUT_ENV, parse_byte_size
 
