@@ -110,6 +110,8 @@ def _write_atomic(path: str, data: bytes) -> None:
 
 def _clash(formula, core) -> str:
     """Which labelled constraints a propagation-only refutation uses, in words."""
+    from tilesolve.verify.drat import formula_arrays
+
     _, _, blocks = formula_arrays(formula) if hasattr(formula, "blocks") else (None, None, [])
     named = [(label, lo, n) for label, lo, n in blocks if label]
     if not named or core is None:
@@ -160,6 +162,8 @@ def unsat_solution(formula, r: Result, *, method: str, seed, t0: float, stats: d
     >>> s.status.value, s.reason
     ('unknown', 'cadical153 reported unsatisfiable; its DRAT proof of 3 lines was not checked (checking turned off)')
     """
+    from tilesolve.verify.drat import check_drat, dimacs_bytes  # loaded on use: a sat answer needs no checker
+
     stats = dict(stats)
     if encoding is not None:
         stats["encoding"] = {"name": encoding["name"], "version": encoding["version"],
@@ -284,6 +288,7 @@ def recheck_unsat(problem: Any, evidence: Mapping[str, Any], proof_dir: str | os
     from tilesolve.encodings.registry import encode, resolve
     from tilesolve.errors import InvalidProblem
     from tilesolve.inputs import read_input
+    from tilesolve.verify.drat import check_drat, dimacs_bytes, formula_arrays
 
     t0 = time.perf_counter()
 
