@@ -11,6 +11,7 @@ import struct
 import subprocess
 import termios
 import threading
+import time
 from pathlib import Path
 
 import pytest
@@ -129,3 +130,29 @@ def test_silent_and_pickling():
 def test_terminal_is_silent_off_a_tty(monkeypatch, capsys):
     assert terminal() is SILENT  # pytest captures stderr: not a terminal
     assert as_progress(True) is SILENT
+
+
+def test_a_bar_drawn_after_its_delay_is_erased(monkeypatch):
+    """A task shows once past its delay, and its line is erased when it ends (a bar tqdm itself
+    never drew since the delay is still erased: the terminal keeps no stale line)."""
+    import io
+    import re
+    import sys
+
+    class Tty(io.StringIO):
+        def isatty(self):
+            return True
+
+    fake = Tty()
+    monkeypatch.setattr(sys, "stderr", fake)
+    p = terminal()
+    assert isinstance(p, Terminal)
+    p.every, p.delay = 3600, 0.2  # no redraw from the helper thread: this test draws
+    with p.task("solving", unit=None) as task:
+        task.note("seed 1")
+        assert fake.getvalue() == ""  # younger than its delay: nothing drawn
+        time.sleep(0.3)  # past the delay (the sleep bounds nothing)
+        task.note("seed 2")
+    out = fake.getvalue()
+    assert "solving: seed 2 [00:00]" in out and "seed 1" not in out
+    assert re.search(r"solving: seed 2 \[00:00\]\r {23,}\r$", out), repr(out)

@@ -161,8 +161,10 @@ class _Bar(Task):
 
     def draw(self) -> None:
         """Redraw the bar, unless it is younger than its delay (tqdm's own updates wait too)."""
-        if time.time() >= self.bar.start_t + self.bar.delay:
+        now = time.time()
+        if now >= self.bar.start_t + self.bar.delay:
             self.bar.refresh()
+            self.bar.last_print_t = now  # tqdm erases a bar when it closes only if it printed it
 
     def advance(self, n: int = 1) -> None:
         self.bar.update(n)
