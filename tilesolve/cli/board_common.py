@@ -7,7 +7,7 @@ from __future__ import annotations
 import click
 
 from tilesolve.cli import options as opt
-from tilesolve.cli.common import big, human_bytes, say
+from tilesolve.cli.common import big, human_bytes, progress_wanted, say
 from tilesolve.errors import InvalidProblem
 from tilesolve.model.board import MAX_BRICK_COLORS
 
@@ -114,7 +114,7 @@ def solve_board(ctx, problem, method, seed, time_limit, outs, output, svg) -> No
     from tilesolve.families import board as facade
 
     check_svg_cells(svg, problem.board.n_cells)
-    sol = facade.solve(problem, method=method, seed=seed, time_limit=time_limit)
+    sol = facade.solve(problem, method=method, seed=seed, time_limit=time_limit, progress=progress_wanted())
     finish(ctx, problem, sol, outs, output, svg)
 
 

@@ -130,7 +130,7 @@ def wall(ctx, region, max_line, colors, seed, method, period, output, svg, png, 
 
         problem = wall_problem(cols, rows, max_line, n_colors=colors)
         options = {"origin": (x0, y0)} | ({"period": (pw, ph)} if method == "npd" else {})
-        sol = raise_if_interrupted(family.solve(problem, route, seed=seed, options=options))
+        sol = raise_if_interrupted(family.solve(problem, route, seed=seed, options=options, progress=progress_wanted()))
         finish(ctx, problem, sol, outs, output, svg, png, draw_png=draw)
         return
     sol = rep = None

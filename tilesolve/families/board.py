@@ -129,7 +129,7 @@ def auto_method(problem: BoardProblem) -> str:
 
 
 def solve(problem: BoardProblem, *, method: str | Any = "auto", seed: int | None = None,
-          time_limit: float | None = None, progress: bool = False) -> Solution:
+          time_limit: float | None = None, progress: Progress | bool = False) -> Solution:
     """Find a valid tiling of a board problem (or prove none exists), verified independently.
 
     Parameters
