@@ -268,8 +268,8 @@ def solve(
                   workers=workers, cluster=cluster)
 
 
-def count(problem: PackingProblem, *, method: str = "auto", time_limit: float | None = None, progress: bool = False,
-          force: bool = False, up_to_symmetry: bool = False) -> CountResult:
+def count(problem: PackingProblem, *, method: str = "auto", time_limit: float | None = None,
+          progress: Progress | bool = False, force: bool = False, up_to_symmetry: bool = False) -> CountResult:
     """Count all packings of ``problem``'s tile set (C = 2): the notes publish 32 corner and
     203,520 Wang packings.
 

@@ -44,6 +44,7 @@ from tilesolve.family import Codec, Demo, Family, Field, Form, RunOptions, form_
 from tilesolve.family import solve as _solve
 from tilesolve.io.stochastic_json import STOCHASTIC_TILING, VERSIONS
 from tilesolve.model.solution import Solution, Status
+from tilesolve.progress import Progress
 from tilesolve.model.stochastic import StochasticProblem
 from tilesolve.model.window import Window
 from tilesolve.verify.dappled import Violation
@@ -104,7 +105,7 @@ def stochastic_violations(problem: StochasticProblem, grid) -> list[Violation]:
 
 
 def solve(problem: StochasticProblem, *, method: str | Any = "auto", seed: int | None = None,
-          time_limit: float | None = None, progress: bool = False) -> Solution:
+          time_limit: float | None = None, progress: Progress | bool = False) -> Solution:
     """Tile the problem's window and verify it (:func:`tilesolve.family.solve` with this family's routes).
 
     Parameters
