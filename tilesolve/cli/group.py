@@ -61,6 +61,10 @@ class TilesolveGroup(click.Group):
             raise CliError(f"{what} for this problem; try smaller sizes or numbers", 2) from None
         except (click.ClickException, click.exceptions.Exit, click.Abort):
             raise
+        except SystemError as exc:  # Ctrl-C inside a compiled (numba) kernel comes back wrapped in one
+            if isinstance(exc.__cause__, KeyboardInterrupt):
+                ctx.exit(_interrupted())
+            raise _internal(exc) from None
         except Exception as exc:  # noqa: BLE001 - any other exception is a bug: exit 70, one line
             raise _internal(exc) from None
 

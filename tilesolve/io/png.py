@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import io
 import os
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Iterable
 
 import numpy as np
 
@@ -32,8 +32,8 @@ from tilesolve.io.svg import tile_colour
 if TYPE_CHECKING:  # pillow is imported by the functions that draw, not by importing this module
     from PIL import Image
 
-__all__ = ["MAX_PNG_PIXELS", "tiling_image", "write_png", "edge_image", "write_board_png", "write_packing_png",
-           "write_tileset_png"]
+__all__ = ["MAX_PNG_PIXELS", "tiling_image", "write_png", "edge_image", "cell_pixels", "write_packed_rows",
+           "write_board_png", "write_packing_png", "write_tileset_png"]
 
 #: Largest picture written (pixels); pictures stream row by row, so this bounds time, not memory.
 MAX_PNG_PIXELS = 1 << 32
@@ -123,7 +123,7 @@ def write_png(path: str | os.PathLike, tiling, *, scale: int | None = None, repe
     height, width = idx.shape[0] * repeat * scale, idx.shape[1] * repeat * scale
     writer = png.Writer(width, height, palette=palette, bitdepth=8, compression=6)
     with atomic_write(path, "wb") as f:
-        writer.write_packed(f, (row.tobytes() for row in _pixel_rows(idx, repeat, scale, grid)))
+        write_packed_rows(writer, f, (row.tobytes() for row in _pixel_rows(idx, repeat, scale, grid)))
 
 
 def _side_masks(scale: int, kind: str) -> np.ndarray:
@@ -158,13 +158,8 @@ def edge_image(colours, positions, shape: tuple[int, int], kind: str = "wang", *
     hi = int(c.max()) if c.size else 0
     if hi >= 254:
         raise InvalidProblem(f"PNG pictures support at most 254 colours, got colour {hi}")
-    masks = _side_masks(scale, kind)
-    part = np.argmax(masks, axis=0)  # which side each pixel of a cell shows
     cells = np.zeros((rows, cols, scale, scale), dtype=np.uint8)
-    cells[pos[:, 0], pos[:, 1]] = (c[:, part] + 1).astype(np.uint8)
-    if scale >= 8:  # a thin outline around each cell
-        cells[pos[:, 0], pos[:, 1], 0, :] = 255
-        cells[pos[:, 0], pos[:, 1], :, 0] = 255
+    cells[pos[:, 0], pos[:, 1]] = cell_pixels(c, kind, scale)
     from PIL import Image
 
     img = Image.fromarray(np.ascontiguousarray(cells.transpose(0, 2, 1, 3).reshape(rows * scale, cols * scale)))
@@ -174,6 +169,66 @@ def edge_image(colours, positions, shape: tuple[int, int], kind: str = "wang", *
     pal[255 * 3: 256 * 3] = _GRID_RGB
     img.putpalette(pal)
     return img
+
+
+def cell_pixels(colours, kind: str, scale: int) -> np.ndarray:
+    """``(n, scale, scale)`` palette indices of cells drawn by their four side (Wang) or corner
+    colours (``(n, 4)``, each below 254): colour ``k`` as index ``k + 1`` in its triangle or
+    quadrant (:func:`_side_masks`), and from 8 px a thin outline (index 255) along the top and
+    left sides.
+
+    >>> cell_pixels([[0, 1, 2, 3]], "corner", 2)[0].tolist()  # NE, SE, SW, NW
+    [[4, 1], [3, 2]]
+    """
+    part = np.argmax(_side_masks(scale, kind), axis=0)  # which side each pixel of a cell shows
+    cells = (np.asarray(colours).reshape(-1, 4).astype(np.uint8) + 1)[:, part]
+    if scale >= 8:
+        cells[:, 0, :] = 255
+        cells[:, :, 0] = 255
+    return cells
+
+
+def write_packed_rows(writer, f, rows: Iterable) -> None:
+    """Write a PNG as pypng's ``writer.write_packed(f, rows)`` does (the same pixels), each
+    row that repeats the row before it written with PNG's *Up* filter: a row of zeros, which
+    zlib compresses many times faster and smaller than the row itself. Pictures of cells
+    many pixels high repeat most of their rows.
+
+    Parameters
+    ----------
+    writer : png.Writer
+        Not interlaced.
+    f : binary file
+    rows : iterable of bytes-like
+        The packed rows, top to bottom.
+    """
+    import zlib
+
+    import png
+
+    writer.write_preamble(f)
+    compressor = zlib.compressobj(writer.compression if writer.compression is not None else -1)
+    data, previous, zeros = bytearray(), None, b""
+    for row in rows:
+        row = bytes(row)
+        if row == previous:
+            if len(zeros) != len(row):
+                zeros = bytes(len(row))
+            data += b"\x02"
+            data += zeros
+        else:
+            data += b"\x00"
+            data += row
+            previous = row
+        if len(data) > writer.chunk_limit:
+            out = compressor.compress(data)
+            if out:
+                png.write_chunk(f, b"IDAT", out)
+            data = bytearray()
+    out = compressor.compress(bytes(data)) + compressor.flush()
+    if out:
+        png.write_chunk(f, b"IDAT", out)
+    png.write_chunk(f, b"IEND")
 
 
 def _save(path, img: Image.Image) -> None:

@@ -14,8 +14,8 @@ this module only knows how a map becomes PNG bytes:
     8-bit RGB: red = ``u``, green = ``v`` (the brick's Cartesian parameterization, Fig. 10
     left), blue 0.
 
-The file is written through pypng's row writer from an iterator of bands, atomically (a
-temporary file renamed at the end): memory is one band, whatever the picture's size.
+The file is written row by row from an iterator of bands (:func:`tilesolve.io.png.write_packed_rows`),
+atomically (a temporary file renamed at the end): memory is one band, whatever the picture's size.
 
 Examples
 --------
@@ -38,6 +38,7 @@ import numpy as np
 
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.atomic import atomic_write
+from tilesolve.io.png import write_packed_rows
 
 __all__ = ["N_BRICK_COLOURS", "MORTAR", "DISTANCE_FULL", "MAP_KINDS", "brick_palette", "map_pixels",
            "write_bands_png"]
@@ -127,4 +128,4 @@ def write_bands_png(path: str | os.PathLike, width: int, height: int, bands: Ite
             raise InvalidProblem(f"the bands gave {n} pixel rows for a {height} px high picture")
 
     with atomic_write(path, "wb") as f:
-        writer.write_packed(f, (row.tobytes() for row in rows()))
+        write_packed_rows(writer, f, rows())
