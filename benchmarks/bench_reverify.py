@@ -20,16 +20,28 @@ their ratios; the goal is ``re-verify / sweep checking <= 1``. The
 numba kernels are compiled (cached on disk) before timing by one small check, so neither side
 pays a first compile.
 
+Before the sweep, a first table (issue 19, "``tilesolve verify FILE`` vs ``json.load``"): the whole
+command ``tilesolve verify FILE`` on solution files a user writes (``brick solve --board
+rect:SxS``, the same on a board with 10% of its cells holes (``mask:``), ``dappled
+solve --size SxS``, ``wall --region 0,0,SxS --max-line 2``), each run as a fresh process
+beside ``python -c "json.load(open(FILE))"`` of the same file, paired in the same run:
+median wall and CPU time (user + sys) and peak RSS of ``--repeat`` runs after a warm-up,
+bytecode cached as in an installed package (:mod:`bench_startup`). The ratio is of CPU
+times; the goal is ``<= 3x``. ``python -c "import numpy, json; json.load(...)"`` is listed
+too: what any numpy program reading the file pays.
+
 Usage::
 
-    python benchmarks/bench_reverify.py                  # tori up to 8 x 8, one worker
+    python benchmarks/bench_reverify.py                  # files 1000^2, then tori up to 8 x 8, one worker
     python benchmarks/bench_reverify.py --max-period 10 --workers 2
+    python benchmarks/bench_reverify.py --only files --side 2000 --repeat 5
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import os
 import resource
 import shutil
 import subprocess
@@ -37,6 +49,8 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+
+from bench_startup import ENV, measure  # noqa: E402 - benchmarks/ is on sys.path
 
 
 def _tilesolve() -> str:
@@ -56,12 +70,57 @@ def _timed(args: list[str], cwd: Path) -> tuple[float, float]:
     return took, (cpu1.ru_utime + cpu1.ru_stime) - (cpu0.ru_utime + cpu0.ru_stime)
 
 
+#: A numpy program that reads a JSON file: the floor of any command that checks it with numpy.
+NUMPY_LOAD = "import json, sys, numpy; json.load(open(sys.argv[1]))"
+
+
+def files_table(side: int, repeat: int) -> None:
+    """``tilesolve verify FILE`` against ``json.load`` of FILE, whole processes (module docstring)."""
+    import numpy as np
+
+    with tempfile.TemporaryDirectory() as d:
+        cwd = Path(d)
+        ENV["PYTHONPYCACHEPREFIX"] = str(cwd / "pycache")
+        holes = np.random.default_rng(1).random((side, side)) >= 0.1
+        (cwd / "holes.txt").write_text("\n".join("".join("#" if v else "." for v in row) for row in holes))
+        made = [
+            ("brick rect", "b.json", ["brick", "solve", "--board", f"rect:{side}x{side}", "--seed", "1"]),
+            ("brick mask (10% holes)", "m.json", ["brick", "solve", "--board", "mask:holes.txt", "--seed", "1"]),
+            ("dappled H0=2,V1=2", "d.json", ["dappled", "solve", "--size", f"{side}x{side}", "--cond", "H0=2,V1=2",
+                                             "--seed", "1"]),
+            ("wall, lines <= 2", "w.json", ["wall", "--region", f"0,0,{side}x{side}", "--max-line", "2", "--seed",
+                                            "7"]),
+        ]
+        py = sys.executable
+        print(f"tilesolve verify FILE vs json.load of FILE, {side}x{side} cells, {repeat} runs each (median; CPU = "
+              "user + sys of the process)")
+        print(f"{'file':30s} {'MB':>6s} {'verify wall':>11s} {'CPU s':>7s} {'RSS MiB':>8s} {'json.load CPU':>13s} "
+              f"{'ratio':>6s} {'numpy+json CPU':>14s} {'ratio':>6s}")
+        for what, name, argv in made:
+            _timed([*argv, "-o", name], cwd)
+            path = str(cwd / name)
+            v_wall, v_cpu, v_rss = measure([_tilesolve(), "verify", path], repeat)
+            _, j_cpu, _ = measure([py, "-c", "import json, sys; json.load(open(sys.argv[1]))", path], repeat)
+            _, n_cpu, _ = measure([py, "-c", NUMPY_LOAD, path], repeat)
+            mb = os.path.getsize(path) / 1e6
+            print(f"{what:30s} {mb:6.1f} {v_wall:11.3f} {v_cpu:7.3f} {v_rss:8.1f} {j_cpu:13.3f} {v_cpu / j_cpu:5.1f}x "
+                  f"{n_cpu:14.3f} {v_cpu / n_cpu:5.1f}x", flush=True)
+        print("goal: tilesolve verify <= 3x json.load (CPU)")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--max-period", type=int, default=8, help="tori p x q with p, q <= this")
     ap.add_argument("--workers", type=int, default=1, help="sweep worker processes")
     ap.add_argument("--repeat", type=int, default=1, help="runs of the re-verification (best is shown)")
+    ap.add_argument("--only", choices=("files", "sweep"), default=None, help="run one of the two tables")
+    ap.add_argument("--side", type=int, default=1000, help="files table: boards of side x side cells")
     args = ap.parse_args()
+    if args.only != "sweep":
+        files_table(args.side, max(args.repeat, 3))
+        if args.only == "files":
+            return
+        print()
     with tempfile.TemporaryDirectory() as d:
         cwd = Path(d)
         # compile (or load from numba's cache) the checker's kernels before anything is timed
