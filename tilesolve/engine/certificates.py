@@ -38,7 +38,6 @@ from typing import Any, Iterator, Mapping
 from tilesolve.deadline import NO_LIMIT, Deadline
 from tilesolve.engine.result import Result
 from tilesolve.model.solution import Solution, Status
-from tilesolve.verify.drat import check_drat, dimacs_bytes, formula_arrays
 
 __all__ = ["unsat_solution", "writing_proofs", "proofs_wanted", "proof_text", "proof_name", "write_proof_files", "recheck_unsat",
            "recheck_all", "Recheck", "NOT_THE_ENCODING", "UNCERTIFIED"]
