@@ -1,10 +1,22 @@
 """The registry of families: the only list of them. Facades :func:`register` their family;
-the entry points under :data:`ENTRY_POINT_GROUP` make sure every facade is imported."""
+the entry points under :data:`ENTRY_POINT_GROUP` make sure every facade is imported.
+
+The scan of the entry points is cached (:data:`SCAN_CACHE`): importing :mod:`importlib.metadata`
+alone costs more than a small command's whole solve. The cache holds while ``sys.path`` is the
+same and holds the same ``.dist-info`` (and ``.egg-info``) entries, each with the same
+modification time (installing, upgrading, reinstalling or removing a package writes or removes
+its own); otherwise the entry points are scanned again and the cache rewritten. Where the
+package's folder cannot be written they are scanned every time.
+"""
 
 from __future__ import annotations
 
+import importlib
+import json
+import os
+import sys
 import threading
-from typing import Any, Iterable
+from typing import Any, Iterable, NamedTuple
 
 from tilesolve.errors import InternalError, InvalidProblem
 from tilesolve.family.contract import Codec, Demo, Family
@@ -25,6 +37,11 @@ __all__ = [
 #: Entry-point group under which packages declare their families.
 ENTRY_POINT_GROUP = "tilesolve.families"
 
+
+#: The cached scan of the entry points (see the module docstring).
+SCAN_CACHE = os.path.join(os.path.dirname(__file__), "__pycache__", "entry_points.json")
+#: How many ``sys.path`` lists the cache keeps a scan for (the oldest is dropped).
+_SCANS_KEPT = 8
 
 _REGISTRY: dict[str, Family] = {}
 _LOADED = False
@@ -66,9 +83,7 @@ def _load_builtin() -> None:
             return
         _loading_now = True
         try:
-            from importlib.metadata import entry_points
-
-            for ep in sorted(entry_points(group=ENTRY_POINT_GROUP), key=lambda e: e.name):
+            for ep in _entry_points():
                 if ep.name not in _REGISTRY:
                     _load_entry(ep)
         finally:
@@ -76,7 +91,67 @@ def _load_builtin() -> None:
             _LOADED = True
 
 
-def _load_entry(ep) -> None:
+class EntryPoint(NamedTuple):
+    """One entry point of :data:`ENTRY_POINT_GROUP`: ``name = module:attribute``."""
+
+    name: str
+    value: str
+
+    def load(self) -> Any:
+        """Import the module and return the attribute (as :meth:`importlib.metadata.EntryPoint.load`)."""
+        module, _, attr = self.value.partition(":")
+        obj = importlib.import_module(module.strip())
+        for part in filter(None, attr.strip().split(".")):
+            obj = getattr(obj, part)
+        return obj
+
+
+def _entry_points() -> list[EntryPoint]:
+    """The entry points of :data:`ENTRY_POINT_GROUP`, by name: from :data:`SCAN_CACHE` while it
+    holds, else scanned (and cached). The cache keeps a scan for each of the last
+    :data:`_SCANS_KEPT` ``sys.path`` lists (the console script's, ``python -c``'s, ...)."""
+    path, key = json.dumps(sys.path), [_installed(entry) for entry in sys.path]
+    try:
+        with open(SCAN_CACHE, encoding="utf-8") as fh:
+            scans = dict(json.load(fh))
+    except (OSError, ValueError, TypeError):
+        scans = {}  # no cache yet, or an unreadable one
+    scan = scans.get(path)
+    if isinstance(scan, dict) and scan.get("key") == key:
+        return [EntryPoint(name, value) for name, value in scan["entry_points"]]
+    from importlib.metadata import entry_points
+
+    found = sorted(EntryPoint(ep.name, ep.value) for ep in entry_points(group=ENTRY_POINT_GROUP))
+    scans.pop(path, None)
+    scans[path] = {"key": key, "entry_points": found}
+    tmp = f"{SCAN_CACHE}.{os.getpid()}.tmp"
+    try:
+        os.makedirs(os.path.dirname(SCAN_CACHE), exist_ok=True)
+        with open(tmp, "w", encoding="utf-8") as fh:
+            json.dump(list(scans.items())[-_SCANS_KEPT:], fh)
+        os.replace(tmp, SCAN_CACHE)
+    except OSError:  # a read-only installation: scanned every time
+        try:
+            os.remove(tmp)
+        except OSError:
+            pass
+    return found
+
+
+def _installed(path: str) -> list | int | None:
+    """What :mod:`importlib.metadata` would read in a ``sys.path`` entry (``""``: the working
+    folder), as a cache key: each ``.dist-info``/``.egg-info`` entry with its modification time
+    (ns; reinstalling writes it anew); a file (a zip), its own time; ``None`` if absent."""
+    try:
+        if not os.path.isdir(path or "."):
+            return os.stat(path).st_mtime_ns
+        with os.scandir(path or ".") as it:
+            return sorted([e.name, e.stat().st_mtime_ns] for e in it if e.name.endswith((".dist-info", ".egg-info")))
+    except OSError:
+        return None
+
+
+def _load_entry(ep: EntryPoint) -> None:
     """Import one entry point's family (its facade registers it) and record it."""
     fam = ep.load()
     if not isinstance(fam, Family):
@@ -95,10 +170,9 @@ def get(name: str) -> Family:
     if name in _REGISTRY:
         return _REGISTRY[name]
     if not _LOADED:
-        from importlib.metadata import entry_points
-
-        for ep in entry_points(group=ENTRY_POINT_GROUP, name=name):
-            _load_entry(ep)
+        for ep in _entry_points():
+            if ep.name == name:
+                _load_entry(ep)
         if name in _REGISTRY:
             return _REGISTRY[name]
     _load_builtin()
