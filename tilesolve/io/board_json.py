@@ -135,7 +135,7 @@ from tilesolve.io.jsonio import (
 )
 from tilesolve.model.board import (
     GRID_KINDS, LEG_NAMES, MAX_BOARD_CELLS, MAX_BRICK_COLORS, Board, BoardProblem, GridSpec, WangTileSet,
-    described_board, grid_kind, wang_from_nesw, wang_to_nesw,
+    described_board, grid_kind, wang_to_nesw,
 )
 from tilesolve.model.solution import Solution
 from tilesolve.model.window import Window
@@ -201,8 +201,12 @@ def _leg_seam(version: int, *, tiles=None, edges=None, to_file: bool) -> tuple:
     if LEG_ORDERS[version] == LEG_NAMES:
         as_rows = lambda a: None if a is None else np.asarray(a, dtype=np.int64).reshape(-1, 4)  # noqa: E731
         return as_rows(tiles), as_rows(edges)
-    if tiles is not None:
-        tiles = wang_to_nesw(tiles) if to_file else wang_from_nesw(tiles)
+    if tiles is not None and to_file:
+        tiles = wang_to_nesw(tiles)
+    elif tiles is not None:  # a file's integer array: its columns N, E, S, W moved into int64 at once
+        read = np.asarray(tiles).reshape(-1, 4)
+        tiles = np.empty(read.shape, np.int64)
+        tiles[:, _LEG_OF_NESW] = read
     if edges is not None:
         perm = _NESW_OF_LEG if to_file else _LEG_OF_NESW
         e = np.asarray(edges, dtype=np.int64).reshape(-1, 4).copy()
@@ -414,10 +418,10 @@ def _colour_list(value: Any, what: str, source: Any, message: str) -> np.ndarray
     return decode_array([-1 if v is None else v for v in value], what, source, ndim=1)
 
 
-def _boundary(doc: dict, source: Any, version: int, n_boundary: int) -> np.ndarray:
+def _boundary(doc: dict, source: Any, version: int, board: Board) -> np.ndarray:
     bnd = doc.get("boundary")
     if bnd is None:
-        return np.full(n_boundary, -1, np.int64)
+        return np.full(board.n_boundary, -1, np.int64)
     if version >= 2 and not (version >= 3 and isinstance(bnd, list)):
         return decode_array(bnd, "boundary", source, ndim=1)
     return _colour_list(bnd, "boundary", source, "'boundary' must be a list of colours or null")
@@ -458,7 +462,7 @@ def board_solution_from_dict(doc: dict, source: Any = "<document>") -> tuple[Boa
     elif version < 2:
         raise InvalidProblem(f"{source}: a version 1 board solution lists 'cells' and 'edges'")
     board = _board(doc, source, version, kind, listed)
-    beta = _boundary(doc, source, version, board.n_boundary)
+    beta = _boundary(doc, source, version, board)
     beta, listed = _boundary_seam(version, board, beta, listed)
     lines = {name: _int(doc, name, source, optional=True) for name in ("max_h", "max_v")}
     for name, v in lines.items():
@@ -547,10 +551,11 @@ def write_rect_solution(path: str | os.PathLike, legs, tileset: WangTileSet, sol
     name = encoded_dtype(int(flat.min()), int(flat.max()))
     doc["tiles"] = {"dtype": name, "shape": [n, 4], "data": _PIECES}
     head, tail = dumps(doc).split(json.dumps(_PIECES))
+    order = _leg_seam(VERSION, tiles=np.arange(4), to_file=True)[0][0]  # the seam's columns, taken in place
     with atomic_write(path, "w") as f:
         f.write(head + '"')
         for i in range(0, n, STREAM_CELLS):
-            f.write(encoded_text(_leg_seam(VERSION, tiles=flat[i:i + STREAM_CELLS], to_file=True)[0], name))
+            f.write(encoded_text(flat[i:i + STREAM_CELLS][:, order], name))
         f.write('"' + tail)
 
 
