@@ -13,6 +13,12 @@ Usage::
     python benchmarks/bench_algorithm1.py --use-cache  # keep numba's on-disk cache
 
 Goals: >= 25 million cells/s (a 4096^2 tiling in < 1 s) and >= 100x the plain Python.
+
+Then the whole command (issue 19): ``tilesolve dappled solve --size 100x100 --cond H0=2,V1=2
+-o t.json`` beside a plain numpy script doing Algorithm 1 and writing the same JSON
+(``bench_startup.PLAIN_SCRIPT``), both as fresh processes, alternated ``--runs`` times: medians
+of wall and CPU time, peak RSS, and the ratio (goal: the command no slower than the script).
+``--command-only`` skips the kernel table.
 """
 
 from __future__ import annotations
@@ -70,11 +76,55 @@ def _peak(fn):
     return peak
 
 
+def whole_command(runs: int) -> None:
+    """The command against the plain script (module doc), as fresh processes, alternated."""
+    import shutil
+    import statistics
+
+    from _measure import command
+    from bench_startup import PLAIN_SCRIPT
+
+    exe = shutil.which("tilesolve") or os.path.join(os.path.dirname(sys.executable), "tilesolve")
+    with tempfile.TemporaryDirectory() as tmp:
+        env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}  # bytecode cached, as installed
+        env["PYTHONPYCACHEPREFIX"] = os.path.join(tmp, "pycache")
+        script = os.path.join(tmp, "alg1.py")
+        with open(script, "w") as f:
+            f.write(PLAIN_SCRIPT)
+        rows = {
+            "plain numpy Algorithm 1 script": [sys.executable, script, os.path.join(tmp, "p.json")],
+            "tilesolve dappled solve": [exe, "dappled", "solve", "--size", "100x100", "--cond", "H0=2,V1=2", "-o",
+                                        os.path.join(tmp, "t.json")],
+        }
+        got: dict[str, list] = {k: [] for k in rows}
+        for argv in rows.values():
+            command(argv, env)  # warm-up (fills the bytecode cache)
+        for _ in range(runs):
+            for label, argv in rows.items():
+                wall, cpu, rss, rc, err = command(argv, env)
+                assert rc == 0, (label, err)
+                got[label].append((wall, cpu, rss))
+    print(f"whole command, 100x100, L = {{H_0^2, V_1^2}}, -o JSON; {runs} alternated runs each (medians)")
+    print(f"{'':32} {'wall s':>7} {'CPU s':>7} {'RSS MiB':>8}")
+    med = {}
+    for label, rs in got.items():
+        med[label] = [statistics.median(r[i] for r in rs) for i in range(2)] + [max(r[2] for r in rs)]
+        print(f"{label:32} {med[label][0]:7.3f} {med[label][1]:7.3f} {med[label][2]:8.1f}")
+    cmd, plain = med["tilesolve dappled solve"], med["plain numpy Algorithm 1 script"]
+    print(f"command / script: {cmd[1] / plain[1]:.2f}x CPU, {cmd[0] / plain[0]:.2f}x wall "
+          "(goal: <= 1x, no slower than the script)")
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="small sizes only")
     ap.add_argument("--use-cache", action="store_true", help="keep numba's on-disk cache (compile time then = load)")
+    ap.add_argument("--runs", type=int, default=7, help="runs of the whole command and of the script (default 7)")
+    ap.add_argument("--command-only", action="store_true", help="only the whole command against the script")
     args = ap.parse_args(argv)
+    if args.command_only:
+        whole_command(args.runs)
+        return 0
     if not args.use_cache:  # measure a real compile: point numba at an empty cache
         os.environ["NUMBA_CACHE_DIR"] = tempfile.mkdtemp(prefix="tilesolve-bench-numba-")
 
@@ -133,6 +183,8 @@ def main(argv=None) -> int:
     print(f"throughput ratio numba / python at {n}x{n}: {ratio:,.0f}x (goal >= 100x)")
     big = max(numba_rate)
     print(f"numba at {big}x{big}: {numba_rate[big] / 1e6:.1f} M cells/s (goal >= 25 M cells/s)")
+    print()
+    whole_command(args.runs)
     return 0
 
 

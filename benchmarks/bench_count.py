@@ -1,12 +1,24 @@
 """Benchmark of the exact dappled-tiling counter (tilesolve.constructive.dappled_count).
 
-Counts the ``{H_0^2, V_1^2}``-dappled tilings with ``T = {0, 1}`` (dappled paper, Remark 1.4;
-OEIS A206994) on square grids, plus a few other problems, and prints a table of wall time,
-number of digits, primes used and peak Python-heap memory (tracemalloc, which sees numpy
-buffers). The one-time numba compilation is measured separately, in a subprocess with an empty
-numba cache.
+Two tables.
 
-Run: ``python benchmarks/bench_count.py [--max N] [--repeat R]``.
+*Whole commands* (issue 19), each a fresh process measured beside its anchor in the same run
+(wall, CPU = user + sys of the process, peak RSS):
+
+* ``tilesolve dappled count --size 16x16 --cond H0=2,V1=2`` (goal <= 5 s CPU) beside the same
+  count in this process, and beside the full sweep down the grid (``_MEET_IN_MIDDLE`` off: the
+  previous algorithm, which also gives the count to cross-check);
+* ``tilesolve dappled count --size 18x18 --cond H0=2,V1=2``: refused at once with the estimate
+  (exit 2, one line; goal: refused or counted);
+* the cyclic example of ``tilesolve dappled count --help`` (goal <= 3 s), beside its count in
+  this process.
+
+*In process*: the ``{H_0^2, V_1^2}``-dappled tilings with ``T = {0, 1}`` (dappled paper,
+Remark 1.4; OEIS A206994) on square grids, plus a few other problems: wall time, number of
+digits, primes used and peak Python-heap memory (tracemalloc, which sees numpy buffers). The
+one-time numba compilation is measured separately, in a subprocess with an empty numba cache.
+
+Run: ``python benchmarks/bench_count.py [--max N] [--repeat R] [--side S] [--no-commands]``.
 """
 
 from __future__ import annotations
@@ -20,6 +32,7 @@ import time
 import tracemalloc
 
 import numpy as np
+from _measure import command
 
 _COMPILE_SNIPPET = """
 import time
@@ -60,11 +73,66 @@ def measure(problem, repeat: int):
     return n, best, peak, (seen[-1] if seen else 0)
 
 
+def _cpu(fn):
+    """CPU seconds of this process spent in ``fn()``, and its result."""
+    c = time.process_time()
+    out = fn()
+    return time.process_time() - c, out
+
+
+def commands(side: int) -> None:
+    """The whole-command table (module doc)."""
+    import shutil
+
+    import tilesolve.constructive.dappled_count as dc
+    from tilesolve.model.dappled import DappledProblem
+
+    exe = shutil.which("tilesolve") or os.path.join(os.path.dirname(sys.executable), "tilesolve")
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}  # cache bytecode as installed
+    conds = ["H0=2", "V1=2"]
+    dc.count_dappled(DappledProblem.from_strings("3x3", conds))  # load compiled code
+    command([exe, "dappled", "count", "--size", "3x3", "--cond", "H0=2,V1=2"], env)  # warm the caches
+    help_text = subprocess.run([exe, "dappled", "count", "--help"], capture_output=True, text=True, env=env).stdout
+    example = next(line.split("#")[0].split() for line in help_text.splitlines() if "--cyclic" in line)
+    size = example[example.index("--size") + 1]
+
+    rows = []
+    big = DappledProblem.from_strings(f"{side}x{side}", conds)
+    wall, cpu, rss, rc, _ = command([exe, "dappled", "count", "--size", f"{side}x{side}", "--cond", "H0=2,V1=2"], env)
+    k_cpu, value = _cpu(lambda: dc.count_dappled(big))
+    dc._MEET_IN_MIDDLE = False
+    try:
+        f_cpu, full = _cpu(lambda: dc.count_dappled(big))
+    finally:
+        dc._MEET_IN_MIDDLE = True
+    assert value == full, "the count met in the middle differs from the full sweep"
+    rows.append((f"count {side}x{side}", wall, cpu, rss, rc, f"count_dappled {k_cpu:.2f} s (command {cpu / k_cpu:.2f}x "
+                 f"it); the full sweep {f_cpu:.2f} s ({f_cpu / k_cpu:.2f}x the meeting in the middle)"))
+    wall, cpu, rss, rc, err = command([exe, "dappled", "count", "--size", "18x18", "--cond", "H0=2,V1=2"], env)
+    rows.append(("count 18x18", wall, cpu, rss, rc, err[:150] + ("..." if len(err) > 150 else "")))
+    wall, cpu, rss, rc, _ = command(example, env)
+    k_cpu, _ = _cpu(lambda: dc.count_dappled(DappledProblem.from_strings(size, conds, cyclic=True)))
+    rows.append((f"help: count {size} --cyclic", wall, cpu, rss, rc,
+                 f"count_dappled {k_cpu:.2f} s (command {cpu / k_cpu:.2f}x it)"))
+
+    print(f"whole commands (fresh processes; CPU = user + sys), {{H0^2, V1^2}}")
+    print(f"{'command':<26} {'wall s':>7} {'CPU s':>7} {'RSS MiB':>8} {'exit':>4}  anchor in this process (CPU)")
+    for label, wall, cpu, rss, rc, anchor in rows:
+        print(f"{label:<26} {wall:7.2f} {cpu:7.2f} {rss:8.0f} {rc:4d}  {anchor}")
+    print(f"goals: count 16x16 <= 5 s CPU; 18x18 refused with the estimate (exit 2) or counted; "
+          "the cyclic help example <= 3 s")
+    print()
+
+
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--max", type=int, default=14, help="largest square side (default 14)")
     ap.add_argument("--repeat", type=int, default=3, help="timing repeats, best kept (default 3)")
+    ap.add_argument("--side", type=int, default=16, help="grid side of the whole count command (default 16)")
+    ap.add_argument("--no-commands", action="store_true", help="skip the whole-command table")
     args = ap.parse_args(argv)
+    if not args.no_commands:
+        commands(args.side)
 
     imp, cold, cached = compile_time()
     print(f"import {imp:.2f} s; first call: {cold:.2f} s with an empty numba cache (compile), "
@@ -90,7 +158,8 @@ def main(argv=None) -> None:
         p = DappledProblem.from_strings(size, conds, **kw)
         plan = plan_count(p)
         n, t, peak, steps = measure(p, args.repeat)
-        primes = steps // plan.rows if plan.route == "transfer" else "-"  # progress total = primes * rows
+        sweeps = plan.rows - plan.rows // 2 + 1 if plan.halves else plan.rows  # per prime
+        primes = steps // sweeps if plan.route == "transfer" else "-"  # progress total = primes * sweeps
         extra = "fixed" if "fixed" in kw else ""
         states = f"{plan.column_states}^{plan.cols}" if plan.route == "transfer" else plan.route
         print(f"{size:>6} {','.join(conds):<26} {p.n_tiles:>3} {extra:<6} {states:>12} {primes:>6} "

@@ -39,19 +39,24 @@ def dappled() -> None:
 
 
 def _pictures_ok(ctx, problem, svg, png, repeat) -> None:
-    """Refuse impossible pictures, and picture options without a picture, before any solving."""
-    from tilesolve.io.png import MAX_PNG_PIXELS
-    from tilesolve.io.svg import check_svg_size
+    """Refuse impossible pictures, and picture options without a picture, before any solving.
 
+    The picture modules are imported only when a picture is asked for (start-up)."""
     if not (svg or png):
         given = [f"--{n}" for n in ("repeat", "grid") if ctx.get_parameter_source(n) == click.core.ParameterSource.COMMANDLINE]
         if given:
             raise InvalidProblem(f"{' and '.join(given)} only {'change' if len(given) > 1 else 'changes'} "
                                  "the picture: add --svg FILE or --png FILE")
     if svg:
+        from tilesolve.io.svg import check_svg_size
+
         check_svg_size(problem.rows, problem.cols)
-    if png and problem.size * repeat * repeat > MAX_PNG_PIXELS:
-        raise InvalidProblem(f"a {repeat}x{repeat} repeat of this grid is larger than the {MAX_PNG_PIXELS:,} px PNG limit")
+    if png:
+        from tilesolve.io.png import MAX_PNG_PIXELS
+
+        if problem.size * repeat * repeat > MAX_PNG_PIXELS:
+            raise InvalidProblem(f"a {repeat}x{repeat} repeat of this grid is larger than the {MAX_PNG_PIXELS:,} px "
+                                 "PNG limit")
 
 
 def _summary(problem, sol, written: list[str], extra: list[str]) -> None:

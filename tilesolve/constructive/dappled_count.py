@@ -90,11 +90,11 @@ __all__ = [
 #: Default ceiling on the working memory of one count (bytes).
 DEFAULT_MAX_MEMORY = 2 * 2**30
 
-#: Default ceiling on the estimated modular additions of a torus count (a few minutes).
+#: Default ceiling on the estimated modular additions of a torus count (about a minute).
 DEFAULT_MAX_OPERATIONS = 10**11
 
 #: Modular additions per second assumed by time estimates (one laptop core, numba).
-OPERATIONS_PER_SECOND = 5 * 10**8
+OPERATIONS_PER_SECOND = 2 * 10**9
 
 #: Tilings per second assumed for a count by enumeration (a SAT call and a blocking clause each).
 ENUMERATION_RATE = 1000
@@ -389,16 +389,19 @@ class CountPlan:
         States of one column (``s``); the tensor has ``s ** cols`` entries.
     tensor_states : int
     n_primes : int
-        Residue computations combined by the Chinese remainder theorem (an upper estimate: the
-        count itself may use fewer once strip counts tighten the bound).
+        Residue computations combined by the Chinese remainder theorem.
     bound_bits : int
-        Bits of the rigorous upper bound (product of single-line counts) behind ``n_primes``.
+        Bits of the rigorous upper bound behind ``n_primes`` (the product of the single lines'
+        counts, or of narrow column strips' when that is smaller).
     memory_bytes : int
         Estimated peak working memory of the tensor route.
     operations : int
         Estimated modular additions.
     start_profiles : int
         Sweeps per prime of the ``"torus"`` route (1 otherwise).
+    halves : bool
+        The ``"transfer"`` sweep meets in the middle: the problem reads the same upside down,
+        so only the lower half of the rows is swept (then one join sweep per prime).
     """
 
     route: str
@@ -413,6 +416,7 @@ class CountPlan:
     memory_bytes: int
     operations: int
     start_profiles: int = 1
+    halves: bool = False
 
     @property
     def seconds(self) -> float:
@@ -420,12 +424,13 @@ class CountPlan:
         return self.operations / OPERATIONS_PER_SECOND
 
     def describe(self) -> str:
-        """The work in words, e.g. ``"3^16 = 43,046,721 states x 16 rows, 4 primes at most"``."""
+        """The work in words, e.g. ``"3^16 = 43,046,721 states x 8 of 16 rows, 3 primes"``."""
         if self.route not in ("transfer", "torus"):
             return f"route {self.route}"
         starts = f", {self.start_profiles:,} start profiles" if self.route == "torus" else ""
-        return (f"{self.column_states}^{self.cols} = {self.tensor_states:,} states x {self.rows} rows{starts}, "
-                f"{self.n_primes} prime{'s' if self.n_primes != 1 else ''} at most")
+        rows = f"{self.rows - self.rows // 2} of {self.rows} rows" if self.halves else f"{self.rows} rows"
+        return (f"{self.column_states}^{self.cols} = {self.tensor_states:,} states x {rows}{starts}, "
+                f"{self.n_primes} prime{'s' if self.n_primes != 1 else ''}")
 
 
 def _tensor_size(fr: _Frame, torus: bool = False) -> tuple[_Automaton, int, int, int]:
@@ -529,7 +534,7 @@ def _plan(
         raise MethodNotApplicable("exact counting: the column run states are too many in both orientations")
     sized.sort(key=lambda t: (t[3] > max_memory, t[4], t[3]))  # fits, then fewest operations
     cand, aut, n, mem, ops = sized[0]
-    bound = _count_bound(cand)
+    bound = _tight_bound(cand, aut)
     k = _n_primes(bound) if bound > 0 else 0
     plan = CountPlan(
         "transfer",
@@ -543,6 +548,7 @@ def _plan(
         bound.bit_length(),
         mem,
         ops * max(k, 1),
+        halves=_meets_in_middle(cand, aut),
     )
     return plan, cand, aut, bound
 
@@ -609,7 +615,7 @@ def _plan_torus(fr: _Frame, orientation: str | None, max_memory: int):
         raise MethodNotApplicable("exact counting: the column run states are too many in both orientations")
     sized.sort(key=lambda t: (t[3] > max_memory, t[4]))
     cand, aut, n, mem, ops, starts = sized[0]
-    bound = _count_bound(cand)
+    bound = _tight_bound(cand, aut)
     k = _n_primes(bound) if bound > 0 else 0
     n_starts = n if starts is None else len(starts[0])
     plan = CountPlan("torus", cand.transposed, cand.rows, cand.cols, cand.K, aut.s, n, k, bound.bit_length(), mem,
@@ -632,7 +638,7 @@ def plan_count(
     >>> p = DappledProblem.from_strings("12x12", ["H0=2", "V1=2"])
     >>> pl = plan_count(p)
     >>> pl.route, pl.column_states, pl.tensor_states, pl.n_primes
-    ('transfer', 3, 531441, 3)
+    ('transfer', 3, 531441, 2)
     >>> plan_count(DappledProblem.from_strings("4x4", ["H0=2", "V1=2"], cyclic=True)).route
     'torus'
     """
@@ -1032,17 +1038,10 @@ def count_dappled(
         if deadline is not None:
             deadline.check("planning the count")
         starts = _torus_starts(fr, aut)
-        n_primes = plan.n_primes
-        if _STRIP_BOUND and n_primes >= 2 and fr.cols >= 2:
-            # The strips' own counts (no wrapping) bound the torus count too.
-            n_primes = min(n_primes, _n_primes(min(bound, _strip_bound(fr, aut.s))))
-        return _transfer_count(fr, aut, n_primes, progress, deadline, starts)
+        return _transfer_count(fr, aut, plan.n_primes, progress, deadline, starts)
     if deadline is not None:
         deadline.check("planning the count")
-    n_primes = plan.n_primes
-    if _STRIP_BOUND and n_primes >= 2 and fr.cols >= 2:
-        n_primes = min(n_primes, _n_primes(min(bound, _strip_bound(fr, aut.s))))
-    return _transfer_count(fr, aut, n_primes, progress, deadline)
+    return _transfer_count(fr, aut, plan.n_primes, progress, deadline)
 
 
 def _duration(seconds: float) -> str:
@@ -1064,6 +1063,15 @@ def _column_strip(fr: _Frame, c0: int, c1: int) -> _Frame:
 
 #: Largest tensor (entries) of one column strip of :func:`_strip_bound`.
 _STRIP_STATES = 1 << 15
+
+
+def _tight_bound(fr: _Frame, aut: _Automaton) -> int:
+    """The single lines' bound on the count, tightened by the column strips' (:func:`_strip_bound`)
+    when it needs several primes."""
+    bound = _count_bound(fr)
+    if _STRIP_BOUND and bound > 0 and _n_primes(bound) >= 2 and fr.cols >= 2:
+        bound = min(bound, _strip_bound(fr, aut.s))
+    return bound
 
 
 def _strip_bound(fr: _Frame, s: int) -> int:
