@@ -16,18 +16,30 @@ the row's baseline. Goals (issue 9, "Start-up"):
   interpreted and compiled (numba, warm cache) in fresh processes around each module's
   ``THRESHOLD`` and prints the CPU time of each.
 
-``tilesolve brick solve --board rect:100x100`` is listed against ``python -c "import numpy"``.
+``tilesolve brick solve --board rect:100x100`` and ``tilesolve --help`` (which loads every family
+and command) are listed against ``python -c "import numpy"``.
+
+``--first-run`` measures instead the first run after install (issue 19: the README tour's
+first run within 2x of a warm run): ``tilesolve demo`` (the quick start) and every command of
+the README's tour, in order in a fresh folder holding a copy of ``examples/``, once with an
+empty numba cache (a private ``NUMBA_CACHE_DIR``: the kernels compile) and once more with the
+cache that run filled, bytecode compiled beforehand in both (as ``pip install`` does). It
+prints the commands whose CPU time differs by more than half a second, and the totals. The
+tour takes a few minutes a pass.
 
 Usage::
 
     python benchmarks/bench_startup.py               # 9 runs a command
     python benchmarks/bench_startup.py --repeat 5 --no-crossover
+    python benchmarks/bench_startup.py --first-run
 """
 
 from __future__ import annotations
 
 import argparse
 import os
+import re
+import shlex
 import shutil
 import statistics
 import subprocess
@@ -97,6 +109,9 @@ solve_linear(BoardProblem(board, WangTileSet.brick(3), random_boundary(board, 3,
 #: PYTHONDONTWRITEBYTECODE would otherwise recompile every tilesolve module on every run.
 ENV = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
 
+#: The repository (README.md, examples/).
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
 
 def run_once(argv: list[str]) -> tuple[float, float, float]:
     """Wall seconds, CPU seconds (user + sys) and peak RSS (MiB) of one run of ``argv``."""
@@ -119,15 +134,64 @@ def measure(argv: list[str], repeat: int) -> tuple[float, float, float]:
     return (statistics.median(r[0] for r in runs), statistics.median(r[1] for r in runs), max(r[2] for r in runs))
 
 
+def tour() -> list[list[str]]:
+    """The quick start's ``tilesolve demo``, then the README's tour commands (as tests/test_readme.py reads them)."""
+    readme = open(os.path.join(ROOT, "README.md"), encoding="utf-8").read()
+    lines = [line for kind, body in re.findall(r"```(bash|python)\n(.*?)```", readme, re.S) if kind == "bash"
+             for line in body.splitlines() if line.startswith("tilesolve ") and line.split()[1] != "demo"]
+    return [["demo"]] + [shlex.split(line.partition("#")[0])[1:] for line in lines]
+
+
+def tour_pass(tilesolve: str, commands: list[list[str]], folder: str) -> list[tuple[float, float]]:
+    """Wall and CPU seconds of each command, run in order in a fresh ``folder`` with ``examples/``."""
+    shutil.copytree(os.path.join(ROOT, "examples"), os.path.join(folder, "examples"))
+    out = []
+    for argv in commands:
+        t = time.perf_counter()
+        proc = subprocess.Popen([tilesolve, *argv], cwd=folder, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                                env=ENV)
+        _, status, ru = os.wait4(proc.pid, 0)
+        if os.waitstatus_to_exitcode(status) not in (0, 1):  # the tour has unsat examples (exit 1)
+            raise SystemExit(f"tilesolve {' '.join(argv)} exited {os.waitstatus_to_exitcode(status)}")
+        out.append((time.perf_counter() - t, ru.ru_utime + ru.ru_stime))
+    return out
+
+
+def first_run(tilesolve: str, tmp: str) -> None:
+    """The README tour with an empty numba cache, then again with the cache it filled."""
+    import tilesolve as package
+
+    ENV["NUMBA_CACHE_DIR"] = os.path.join(tmp, "numba")
+    subprocess.run([sys.executable, "-m", "compileall", "-q", os.path.dirname(package.__file__)], env=ENV, check=True)
+    commands = tour()
+    cold = tour_pass(tilesolve, commands, os.path.join(tmp, "cold"))
+    warm = tour_pass(tilesolve, commands, os.path.join(tmp, "warm"))
+    print(f"README tour, {len(commands)} commands: first run (empty numba cache) vs warm (cache filled by the first)")
+    print(f"{'command':60s} {'cold wall':>9s} {'cold CPU':>9s} {'warm wall':>9s} {'warm CPU':>9s} {'CPU ratio':>9s}")
+    for argv, (cw, cc), (ww, wc) in zip(commands, cold, warm):
+        if abs(cc - wc) > 0.5:
+            print(f"{' '.join(argv)[:60]:60s} {cw:9.2f} {cc:9.2f} {ww:9.2f} {wc:9.2f} {cc / wc:8.2f}x")
+    total = [sum(r[i] for r in runs) for runs in (cold, warm) for i in (0, 1)]
+    print(f"{'whole tour':60s} {total[0]:9.2f} {total[1]:9.2f} {total[2]:9.2f} {total[3]:9.2f} "
+          f"{total[1] / total[3]:8.2f}x")
+    print(f"(the other commands differ by at most 0.5 s CPU) goal: first run <= 2x warm; wall ratio "
+          f"{total[0] / total[2]:.2f}x, CPU ratio {total[1] / total[3]:.2f}x")
+
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeat", type=int, default=9)
     ap.add_argument("--no-crossover", action="store_true", help="skip the interpreted/compiled table")
+    ap.add_argument("--first-run", action="store_true", help="the README tour with an empty numba cache, then warm")
     args = ap.parse_args()
     py = sys.executable
     tilesolve = shutil.which("tilesolve") or os.path.join(os.path.dirname(py), "tilesolve")
     with tempfile.TemporaryDirectory() as tmp:
         ENV["PYTHONPYCACHEPREFIX"] = os.path.join(tmp, "pycache")
+        if args.first_run:
+            first_run(tilesolve, tmp)
+            return
         script = os.path.join(tmp, "dappled_alg1.py")
         with open(script, "w") as f:
             f.write(PLAIN_SCRIPT)
@@ -142,6 +206,7 @@ def main() -> None:
             ("python -c pass", [py, "-c", "pass"], None),
             ('python -c "import numpy"', [py, "-c", "import numpy"], None),
             ("tilesolve --version", [tilesolve, "--version"], "python -c pass"),
+            ("tilesolve --help", [tilesolve, "--help"], 'python -c "import numpy"'),
             ("plain Algorithm 1 script 100x100", [py, script, out], None),
             ("tilesolve dappled solve 100x100", [tilesolve, "dappled", "solve", "--size", "100x100", "--cond",
                                                  "H0=2,V1=2", "-o", out], "plain Algorithm 1 script 100x100"),
