@@ -23,13 +23,12 @@ COMPILED_FROM = 8_000_000
 _COMPILED = None
 
 
-def grid_clean(t, lab, present, rows, cols, k, brick, known, beta, max_h, max_v):
+def grid_clean(t, lab, rows, cols, k, brick, known, beta, max_h, max_v):
     """True when the tiling ``t`` (``(n, 4)`` integers, legs W, N, E, S) passes every check.
 
     The cells are the board's in row-major order of its grid: ``lab`` holds their ``[row,
     col]`` labels, unless every cell of the ``rows x cols`` grid is present (``n = rows *
-    cols``; then ``lab`` is not read). ``present`` (``(rows + 2) * (cols + 2)`` uint8) is
-    scratch space for a board with holes. A cell's W, N, E, S legs meet the E, S, W, N legs of the cells
+    cols``; then ``lab`` is not read). A cell's W, N, E, S legs meet the E, S, W, N legs of the cells
     at ``(r, c-1)``, ``(r-1, c)``, ``(r, c+1)``, ``(r+1, c)``, or the wall where there is none;
     the wall legs are numbered in order of cell, then of leg N, E, S, W, and ``beta`` gives each
     its colour (``-1``: free). Colours are ``0..k-1``; tiles are brick tiles (``brick``: exactly
@@ -83,22 +82,40 @@ def grid_clean(t, lab, present, rows, cols, k, brick, known, beta, max_h, max_v)
                             return False
                         wall += 1
         return wall == beta.shape[0]
-    span = cols + 2  # the grid of cells present has a border of absent cells (the wall) all round
-    present[:] = 0
-    for i in range(n):
-        present[(lab[i, 0] + 1) * span + lab[i, 1] + 1] = 1
+    # a board with holes, row by row: the cells present in the rows above, here and below
+    # (the row below read ahead from the labels, which are in row-major order)
+    above_row = np.zeros(cols, np.uint8)
+    this_row = np.zeros(cols, np.uint8)
+    below_row = np.zeros(cols, np.uint8)
     above = np.empty(cols, np.int64)  # the last cell seen in each column
     nb = beta.shape[0]
     wall = 0
     i = 0
+    ahead = 0
+    while ahead < n and lab[ahead, 0] == 0:
+        if not 0 <= lab[ahead, 1] < cols:
+            return False
+        this_row[lab[ahead, 1]] = 1
+        ahead += 1
     for r in range(rows):
+        first, end = i, ahead  # the cells of row r
+        below_row[:] = 0
+        while ahead < n and lab[ahead, 0] == r + 1:
+            if not 0 <= lab[ahead, 1] < cols:
+                return False
+            below_row[lab[ahead, 1]] = 1
+            ahead += 1
         bad = False
         hrun = 0
-        for c in range(cols):
-            p = (r + 1) * span + c + 1
-            if not present[p]:
-                continue
-            up, right, down, left = present[p - span], present[p + 1], present[p + span], present[p - 1]
+        last = -1
+        for i in range(first, end):
+            c = lab[i, 1]
+            if c <= last:  # not in row-major order
+                return False
+            last = c
+            up, down = np.int64(above_row[c]), np.int64(below_row[c])
+            left = np.int64(this_row[c - 1]) if c > 0 else np.int64(0)
+            right = np.int64(this_row[c + 1]) if c + 1 < cols else np.int64(0)
             w = np.int64(t[i, 0])
             nn = np.int64(t[i, 1])
             e = np.int64(t[i, 2])
@@ -127,10 +144,11 @@ def grid_clean(t, lab, present, rows, cols, k, brick, known, beta, max_h, max_v)
                             return False
                         bad |= (beta[wall] >= 0) & (beta[wall] != colour)
                         wall += 1
-            i += 1
+        i = end
         if bad:
             return False
-    return wall == nb
+        above_row, this_row, below_row = this_row, below_row, above_row
+    return i == n and wall == nb
 
 
 def compiled(n: int):

@@ -183,7 +183,7 @@ def _compiled_clean(problem, t: np.ndarray) -> bool | None:
     if not brick:
         legs = np.asarray(problem.tileset.legs, dtype=np.int64)
         known[((legs[:, 0] * k + legs[:, 1]) * k + legs[:, 2]) * k + legs[:, 3]] = True
-    return bool(kernel(np.ascontiguousarray(t), board.labels, np.empty(0 if full else (rows + 2) * (cols + 2), np.uint8),
+    return bool(kernel(np.ascontiguousarray(t), board.labels,
                        rows, cols, k, brick, known, problem.boundary, int(problem.max_h or 0),
                        int(problem.max_v or 0)))
 
