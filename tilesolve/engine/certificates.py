@@ -387,6 +387,6 @@ def recheck_all(claims, proof_dir: str | os.PathLike | None = None, *, workers: 
     task = functools.partial(_recheck_job, [claims[i] for i in order],
                              None if proof_dir is None else os.fspath(proof_dir))
     if _on_pool(task, len(claims), min(workers, len(claims)), RunOptions(seed=0, deadline=NO_LIMIT), take,
-                lambda text: None, lambda: ""):
+                lambda: None):
         raise KeyboardInterrupt
     return out
