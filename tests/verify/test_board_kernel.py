@@ -39,12 +39,7 @@ def compiled():
 def _kernel_says(kernel, p: BoardProblem, t: np.ndarray) -> bool:
     """What the kernel (plain Python or compiled) says of ``t``, through the same arguments
     :func:`tilesolve.verify.board._compiled_clean` gives it."""
-    old = _board_kernel._COMPILED
-    _board_kernel._COMPILED = kernel
-    try:
-        return vb._compiled_clean(p, t)
-    finally:
-        _board_kernel._COMPILED = old
+    return vb._compiled_clean(p, t, kernel)
 
 
 def _agree(p: BoardProblem, t: np.ndarray, compiled) -> bool:
@@ -178,3 +173,11 @@ def test_the_grids_wall_legs_are_the_boards():
             wrong = beta.copy()
             wrong[j] = (wrong[j] + 1) % 3
             assert not vb._grid_clean(BoardProblem(b, p.tileset, wrong), t)
+
+
+def test_the_kernel_is_left_to_boards_that_pay_for_it():
+    """Small boards are checked with numpy even where numba is loaded (loading the compiled
+    code costs more); large ones use the kernel once numba is loaded."""
+    assert _board_kernel.compiled(_board_kernel.COMPILED_MIN - 1) is None
+    assert _board_kernel.compiled(_board_kernel.COMPILED_FROM) is not None
+    assert _board_kernel.compiled(_board_kernel.COMPILED_MIN) is not None

@@ -14,11 +14,14 @@ import sys
 
 import numpy as np
 
-__all__ = ["COMPILED_FROM", "compiled", "grid_clean"]
+__all__ = ["COMPILED_FROM", "COMPILED_MIN", "compiled", "grid_clean"]
 
 #: Cells from which loading numba (a few tenths of a second, when nothing loaded it yet) pays
-#: for itself against the numpy checks (about 20-40 M cells/s on one core).
+#: for itself against the numpy checks (about 30-100 M cells/s on one core).
 COMPILED_FROM = 8_000_000
+#: Fewest cells for which the kernel is used even where numba is loaded: loading its compiled
+#: code from numba's cache costs more than the numpy checks of a smaller board.
+COMPILED_MIN = 250_000
 
 _COMPILED = None
 
@@ -152,9 +155,12 @@ def grid_clean(t, lab, rows, cols, k, brick, known, beta, max_h, max_v):
 
 
 def compiled(n: int):
-    """:func:`grid_clean` compiled by numba, when numba is loaded already or ``n`` cells pay for
-    loading it (:data:`COMPILED_FROM`); None otherwise, or where numba cannot be loaded."""
+    """:func:`grid_clean` compiled by numba for a board of ``n`` cells, at least
+    :data:`COMPILED_MIN`, when numba is loaded already or ``n`` cells pay for loading it
+    (:data:`COMPILED_FROM`); None otherwise, or where numba cannot be loaded."""
     global _COMPILED
+    if n < COMPILED_MIN:
+        return None
     if _COMPILED is None:
         if "numba" not in sys.modules and n < COMPILED_FROM:
             return None

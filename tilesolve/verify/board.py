@@ -9,6 +9,13 @@ A tiling of a board is an ``(n_cells, 4)`` integer array: the colour of each cel
 in the board model's order W, N, E, S (see :mod:`tilesolve.model.board`); messages name
 each colour by its side, ``N=1 E=0 S=2 W=0``, so they read the same in any order.
 
+A tiling of a board cut from a grid (:attr:`Board.grid_spec`: rectangles, boards with holes,
+rings, cylinders, tori, Möbius strips, Klein bottles and their restrictions) is first checked
+in one pass over the grid, the joins re-derived from the grid's definition: by the compiled
+loop of :mod:`tilesolve.verify._board_kernel` where no sides are identified and numba is at
+hand, else by whole-array numpy operations. Only a tiling that fails it (or a board given by
+its joins alone) is checked from the join arrays, which name every violation.
+
 A file that lists its board's cells and edges besides describing the board (kind, grid,
 mask) makes a second claim: that the list *is* that board. :func:`listing_violations`
 checks it, so that a tiling is never judged on a board other than the one the file names.
@@ -163,10 +170,10 @@ def _violations(problem, t: np.ndarray) -> list[Violation]:
     return out
 
 
-def _compiled_clean(problem, t: np.ndarray) -> bool | None:
-    """:func:`tilesolve.verify._board_kernel.grid_clean` of the tiling ``t``, where it applies
-    (a board cut from a grid with no sides identified, tiles it can look up) and numba is at
-    hand (:func:`tilesolve.verify._board_kernel.compiled`); None elsewhere."""
+def _compiled_clean(problem, t: np.ndarray, kernel=None) -> bool | None:
+    """:func:`tilesolve.verify._board_kernel.grid_clean` of the tiling ``t``, by ``kernel`` or
+    where it pays (:func:`tilesolve.verify._board_kernel.compiled`), on a board cut from a grid
+    with no sides identified whose tiles it can look up; None elsewhere."""
     board, k = problem.board, int(problem.tileset.n_colors)
     spec = board.grid_spec
     if spec is None or spec[2] is not None or spec[3] is not None:
@@ -174,7 +181,7 @@ def _compiled_clean(problem, t: np.ndarray) -> bool | None:
     brick = bool(problem.tileset.is_brick)
     if not brick and k**4 > 4 * board.n_cells + (1 << 16):
         return None
-    kernel = _board_kernel.compiled(board.n_cells)
+    kernel = kernel or _board_kernel.compiled(board.n_cells)
     if kernel is None:
         return None
     rows, cols = int(spec[0]), int(spec[1])
