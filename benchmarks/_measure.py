@@ -3,8 +3,12 @@ this folder, so it is on ``sys.path``)."""
 
 from __future__ import annotations
 
+import os
+import subprocess
+import tempfile
 import time
 import tracemalloc
+from typing import NamedTuple
 
 import numpy as np
 
@@ -46,3 +50,39 @@ def command(argv: list[str], env: dict | None = None) -> tuple[float, float, flo
     err = proc.stderr.read().decode(errors="replace").strip().splitlines()
     proc.stderr.close()
     return wall, ru.ru_utime + ru.ru_stime, ru.ru_maxrss / 1024, os.waitstatus_to_exitcode(status), (err or [""])[-1]
+
+
+class ChildRun(NamedTuple):
+    """What one child process cost: wall seconds, CPU seconds (user, sys) and peak RSS (MiB)."""
+
+    wall: float
+    user: float
+    sys: float
+    rss_mib: float
+    stdout: str
+
+    @property
+    def cpu(self) -> float:
+        return self.user + self.sys
+
+
+def child(argv: list[str], *, cwd=None) -> ChildRun:
+    """Run ``argv`` as a child process and measure that process alone (``os.wait4``: its own
+    CPU time and peak resident size, not the sum over children as ``RUSAGE_CHILDREN`` gives).
+    A non-zero exit stops the benchmark with the child's stderr."""
+    t = time.perf_counter()
+    with tempfile.TemporaryFile() as out, tempfile.TemporaryFile() as err:
+        proc = subprocess.Popen(argv, cwd=cwd, stdout=out, stderr=err)
+        _, status, ru = os.wait4(proc.pid, 0)
+        wall = time.perf_counter() - t
+        proc.returncode = os.waitstatus_to_exitcode(status)
+        out.seek(0)
+        err.seek(0)
+        if proc.returncode != 0:
+            raise SystemExit(f"{' '.join(argv)} exited {proc.returncode}: {err.read().decode(errors='replace')}")
+        return ChildRun(wall, ru.ru_utime, ru.ru_stime, ru.ru_maxrss / 1024, out.read().decode(errors="replace"))
+
+
+def best_child(argv: list[str], repeat: int, *, cwd=None) -> ChildRun:
+    """The run of least CPU time among ``repeat`` runs of :func:`child` (after none: warm up first)."""
+    return min((child(argv, cwd=cwd) for _ in range(repeat)), key=lambda r: r.cpu)

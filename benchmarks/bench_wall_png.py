@@ -19,10 +19,20 @@ The table shows cells, pixels, wall and CPU seconds, peak RSS, throughput (milli
 CPU second) and, for streamed cases, the ratio of memory and CPU time to the whole-array write
 of the same size.
 
+``--verify-cost`` measures what the board verifier costs the whole command (issue 19):
+``tilesolve wall --region 0,0,SxS --max-line 2 --png w.png`` with ``--no-verify`` and with the
+default ``--verify``, each a child process (CPU time user + sys and peak RSS from ``os.wait4``,
+the run of least CPU of ``--repeat`` after one warm-up run of each), and prints the ratio
+verified / unverified and the verification's share, (verified - unverified) / unverified.
+
 Usage::
 
-    python benchmarks/bench_wall_png.py            # 2000^2 and 5000^2 all ways, 20000^2 streamed
-    python benchmarks/bench_wall_png.py --quick    # 1000^2 and 2000^2 both ways
+    python benchmarks/bench_wall_png.py                  # 2000^2 and 5000^2 all ways, 20000^2 streamed
+    python benchmarks/bench_wall_png.py --quick          # 1000^2 and 2000^2 both ways
+    python benchmarks/bench_wall_png.py --verify-cost    # wall --png 6000^2, verified beside --no-verify
+    python benchmarks/bench_wall_png.py --verify-cost --full   # the same at 20000^2 (minutes)
+
+Goal (issue 19): verification <= 1x generation, i.e. the verified run <= 2x the unverified one.
 """
 
 from __future__ import annotations
@@ -35,6 +45,8 @@ import subprocess
 import sys
 import tempfile
 import time
+
+from _measure import best_child  # noqa: E402 - benchmarks/ is on sys.path
 
 COLORS, MAX_LINE, SEED, KIND = 3, 2, 7, "id"
 
@@ -74,11 +86,41 @@ def child(mode: str, side: int, ppc: int) -> dict:
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
+def verify_cost(side: int, repeat: int) -> None:
+    """``tilesolve wall --png`` verified beside ``--no-verify`` (module docstring)."""
+    exe = os.path.join(os.path.dirname(sys.executable), "tilesolve")
+    base = [exe, "wall", "--region", f"0,0,{side}x{side}", "--max-line", str(MAX_LINE), "--seed", str(SEED),
+            "--png", "w.png"]
+    cells = side * side
+    print(f"wall --png {side}x{side} = {cells:,} cells, n = {MAX_LINE}, default px per cell; best CPU of {repeat}")
+    print(f"{'run':<14}{'wall s':>8}{'cpu s':>8}{'sys s':>8}{'RSS MiB':>9}{'Mcells/cpu s':>13}{'file MiB':>9}"
+          f"{'cpu ratio':>10}{'verify share':>13}")
+    runs = {}
+    with tempfile.TemporaryDirectory() as d:
+        for flag in ("--no-verify", "--verify"):
+            best_child(base + [flag], 1, cwd=d)  # warm-up: bytecode and numba caches
+        for flag in ("--no-verify", "--verify"):
+            runs[flag] = best_child(base + [flag], repeat, cwd=d), os.path.getsize(os.path.join(d, "w.png")) / 2**20
+    plain = runs["--no-verify"][0]
+    for flag, (r, mib) in runs.items():
+        share = (r.cpu - plain.cpu) / plain.cpu
+        print(f"{flag:<14}{r.wall:>8.1f}{r.cpu:>8.2f}{r.sys:>8.2f}{r.rss_mib:>9.0f}{cells / r.cpu / 1e6:>13.1f}"
+              f"{mib:>9.1f}{r.cpu / plain.cpu:>10.2f}{share:>13.2f}")
+    print("cpu ratio: over --no-verify; verify share: (verified - unverified) / unverified CPU; "
+          "goal (issue 19): share <= 1 (ratio <= 2)")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--child", nargs=4, metavar=("MODE", "SIDE", "PPC", "PATH"))
+    ap.add_argument("--verify-cost", action="store_true", help="wall --png verified beside --no-verify")
+    ap.add_argument("--full", action="store_true", help="--verify-cost at 20000^2 rather than 6000^2")
+    ap.add_argument("--repeat", type=int, default=2, help="--verify-cost: runs of each, the least CPU kept")
     args = ap.parse_args()
+    if args.verify_cost:
+        verify_cost(20000 if args.full else 6000, args.repeat)
+        return
     if args.child:
         mode, side, ppc, path = args.child
         print(json.dumps(run_case(mode, int(side), int(ppc), path)))

@@ -188,7 +188,7 @@ def cell_pixels(colours, kind: str, scale: int) -> np.ndarray:
     return cells
 
 
-def write_packed_rows(writer, f, rows: Iterable) -> None:
+def write_packed_rows(writer, f, rows: Iterable, *, strategy: int | None = None) -> None:
     """Write a PNG as pypng's ``writer.write_packed(f, rows)`` does (the same pixels), each
     row that repeats the row before it written with PNG's *Up* filter: a row of zeros, which
     zlib compresses many times faster and smaller than the row itself. Pictures of cells
@@ -201,13 +201,17 @@ def write_packed_rows(writer, f, rows: Iterable) -> None:
     f : binary file
     rows : iterable of bytes-like
         The packed rows, top to bottom.
+    strategy : int, optional
+        zlib's strategy (default ``zlib.Z_DEFAULT_STRATEGY``); ``zlib.Z_RLE`` looks for runs
+        alone, several times faster, and as small where the pixels come in runs.
     """
     import zlib
 
     import png
 
     writer.write_preamble(f)
-    compressor = zlib.compressobj(writer.compression if writer.compression is not None else -1)
+    level = writer.compression if writer.compression is not None else -1
+    compressor = zlib.compressobj(level, strategy=zlib.Z_DEFAULT_STRATEGY if strategy is None else strategy)
     data, previous, zeros = bytearray(), None, b""
     for row in rows:
         row = bytes(row)
