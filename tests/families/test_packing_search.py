@@ -147,3 +147,14 @@ def test_portfolio_on_a_dask_cluster():
 def test_lift_out_of_time_is_unknown_even_in_the_base_search():
     s = search.solve_lift(PackingProblem("corner", 8), RunOptions(seed=1, deadline=Deadline(0.01)))
     assert s.status is Status.UNKNOWN and s.tiling is None and "time limit" in s.reason
+
+
+def test_lift_reports_each_level_and_its_attempts():
+    from tilesolve.progress import Stream
+
+    sent: list[dict] = []
+    sol = search.solve_lift(PackingProblem("corner", 4), RunOptions(seed=1, progress=Stream(sent.append, every=0)))
+    assert sol.status is Status.SAT
+    assert {(m["label"], m["depth"]) for m in sent} == {("lift level 2: 4 colours", 0), ("lift level 1: 2 colours", 1)}
+    assert {m["note"] for m in sent if m["depth"] == 0} >= {"attempt 1: drawing the restriction", "attempt 1: SAT search"}
+    assert sent[-1]["label"] == "lift level 2: 4 colours" and sent[-1]["closed"]

@@ -49,19 +49,21 @@ from tilesolve.model.packing import PackingProblem
 from tilesolve.model.run import RunOptions
 from tilesolve.model.solution import Solution, Status
 
-__all__ = ["solve_hybrid", "solve_lift", "solve_recursive", "lift_factors", "lift_domains", "embedding_pins"]
+__all__ = ["solve_hybrid", "solve_lift", "solve_recursive", "lift_factors", "lift_levels", "lift_domains", "embedding_pins"]
 
 
 def _restricted_search(problem, method, make_domains, run: RunOptions) -> Solution:
     """Draw domains with ``make_domains(rng)`` and solve until a packing or the run's deadline;
-    ``run.progress`` shows a line per level (a lift's base search is a level below) and its attempts."""
+    ``run.progress`` shows a line per level (a lift's base search is a level below, numbered
+    down to 1, :func:`lift_levels`) and its attempts."""
     from tilesolve.encodings.packing import encode_packing
 
     t0 = time.perf_counter()
     deadline, seed, solver = run.deadline, run.seed, run.solver
     rng = rng_from_seed(seed)
     tries, stats, r = 0, {}, None
-    with run.progress.task(f"{method}: {problem.colors} colours", unit=None) as bar:
+    level = f" level {lift_levels(problem.kind, problem.colors)}" if method == "lift" else ""  # 1: the lowest
+    with run.progress.task(f"{method}{level}: {problem.colors} colours", unit=None) as bar:
         while True:
             tries += 1
             bar.note(f"attempt {tries}: drawing the restriction")
@@ -109,6 +111,20 @@ def lift_factors(colors: int) -> tuple[int, int]:
     """
     k = next(d for d in range(2, colors + 1) if colors % d == 0)
     return colors // k, k
+
+
+def lift_levels(kind: str, colors: int) -> int:
+    """How many SAT searches a lift to ``colors`` nests: one per level down to a base that is
+    built (nothing below ``m = 1``; an odd corner base or a prime Wang base >= 5 is constructed,
+    :func:`_base_packing`).
+
+    >>> lift_levels("corner", 8), lift_levels("corner", 6), lift_levels("wang", 10), lift_levels("corner", 7)
+    (3, 1, 1, 1)
+    """
+    m, _ = lift_factors(colors)
+    if m == 1 or (kind == "corner" and m % 2 == 1) or (kind == "wang" and lift_factors(m)[0] == 1 and m >= 5):
+        return 1
+    return 1 + lift_levels(kind, m)
 
 
 def lift_domains(problem: PackingProblem, base_features: np.ndarray | None, m: int) -> np.ndarray:
