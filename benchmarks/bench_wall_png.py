@@ -97,8 +97,8 @@ def verify_cost(side: int, repeat: int) -> None:
           f"{'cpu ratio':>10}{'verify share':>13}")
     runs = {}
     with tempfile.TemporaryDirectory() as d:
-        for flag in ("--no-verify", "--verify"):
-            best_child(base + [flag], 1, cwd=d)  # warm-up: bytecode and numba caches
+        for flag in ("--no-verify", "--verify"):  # warm-up: bytecode and numba caches
+            best_child(base[:3] + ["0,0,64x64"] + base[4:] + [flag], 1, cwd=d)
         for flag in ("--no-verify", "--verify"):
             runs[flag] = best_child(base + [flag], repeat, cwd=d), os.path.getsize(os.path.join(d, "w.png")) / 2**20
     plain = runs["--no-verify"][0]

@@ -67,8 +67,8 @@ def _check_held(rows: int, cols: int, svg, streamed: bool) -> None:
 @click.option("--ppc", type=click.IntRange(1, 256), default=None, metavar="N",
               help="--png pixels per cell  [default: about 1024 px on the longer side, 1 to 32]")
 @click.option("--verify/--no-verify", "check", default=True, show_default=True,
-              help="Check every --png band with the board verifier (line limits included); the check takes "
-                   "most of the time of a large picture.")
+              help="Check every --png band with the board verifier (line limits included); -o is always "
+                   "checked.")
 @click.pass_context
 def wall(ctx, region, max_line, colors, seed, method, period, output, svg, png, map_kind, ppc, check) -> None:
     """A brick wall in which no line runs through more than N bricks, cut from an infinite wall.
