@@ -137,7 +137,7 @@ def _interrupt(args: list[str], cwd: Path, sig: int) -> tuple[int, str]:
     os.close(slave)
     out = b""
     try:
-        while b" s" not in out:  # the progress line: "label ... N s"
+        while b"solving with" not in out:  # the progress line: "family: solving with 'route' [00:00]"
             ready, _, _ = select.select([master], [], [], 120)
             assert ready, f"no progress line: {out!r}"
             try:
