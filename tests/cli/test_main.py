@@ -10,6 +10,7 @@ from __future__ import annotations
 import json
 import os
 import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -428,3 +429,22 @@ def test_time_limit_counts_from_the_start_of_the_command(tmp_path, monkeypatch):
     assert json.loads((tmp_path / "t.json").read_text())["status"] == "sat"
     before = time.perf_counter()
     assert run_start() >= before  # the command's start is not left behind for a later run
+
+
+def test_the_console_script_ends_as_the_interpreter_would(tmp_path):
+    """The console script leaves its process without the interpreter's teardown, but only after
+    what the interpreter does first at exit: threads that are not daemons finish, atexit
+    handlers run, stdout is flushed, and the exit code is the command's."""
+    code = ("import atexit, sys, threading, time\n"
+            "atexit.register(lambda: print('atexit ran'))\n"
+            "threading.Thread(target=lambda: (time.sleep(0.2), open('thread.txt', 'w').write('done'))).start()\n"
+            "from tilesolve.cli.main import main\n"
+            "sys.argv = ['tilesolve', 'dappled', 'count', '--size', '3x3', '--cond', 'H0=2', '--cond', 'V1=2']\n"
+            "sys.exit(main())\n")
+    proc = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    assert proc.stdout.splitlines()[-2:] == ["174", "atexit ran"]
+    assert (tmp_path / "thread.txt").read_text() == "done"
+    proc = subprocess.run([sys.executable, "-c", code.replace("V1=2'", "V1=2', '--time-limit', 'x'")], cwd=tmp_path,
+                          capture_output=True, text=True, timeout=300)
+    assert proc.returncode == 2 and proc.stdout.splitlines() == ["atexit ran"]
