@@ -95,12 +95,15 @@ def test_quick_work_draws_nothing_by_default(tmp_path):
     assert code == 0 and "counting" not in tty and "count by transfer" in tty
 
 
-def test_sweep_shows_boards_decided_refuted_undecided(tmp_path):
+def test_sweep_shows_boards_decided_refuted_undecided_and_verify_the_claims(tmp_path):
     code, _, tty = run_on_tty("aperiodic", "check", "--builtin", "jeandel-rao", "--max-period", "2", "--workers", "1",
-                              "--seed", "1", "-o", "jr.json", cwd=tmp_path)
+                              "--seed", "1", "-o", "jr.json", "--proof-dir", "proofs", cwd=tmp_path)
     assert code == 0, tty
-    assert "periods" in tty and "board" in tty
-    assert "refuted" in tty and "undecided" in tty
+    assert "periods:" in tty and "/4 [" in tty and "board" in tty  # 4 tori: 1x1, 1x2, 2x1, 2x2
+    assert "tiled, " in tty and " refuted, " in tty and " undecided" in tty
+    code, _, tty = run_on_tty("verify", "jr.json", "--proof-dir", "proofs", cwd=tmp_path)
+    assert code == 0, tty
+    assert "re-checking refutations:" in tty and "/4 [" in tty and "claim" in tty
 
 
 def test_stream_snapshots():

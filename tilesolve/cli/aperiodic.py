@@ -147,7 +147,7 @@ def verify_report(ctx, report, proof_dir, workers, max_cnf) -> None:
     fam, codec, _ = read_document(report)
     if fam.name != "aperiodic":
         raise InvalidProblem(f"{report} is a {codec.format} file, not an aperiodicity report")
-    result = verify_file(report, proof_dir, workers=workers, max_cnf=max_cnf)
+    result = verify_file(report, proof_dir, workers=workers, max_cnf=max_cnf, progress=progress_wanted())
     for line in result.lines[1:] + result.lines[:1]:
         click.echo(line)
     ctx.exit(result.exit_code)

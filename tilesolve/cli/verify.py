@@ -11,6 +11,7 @@ from __future__ import annotations
 import click
 
 from tilesolve.cli import options as opt
+from tilesolve.cli.common import progress_wanted
 
 __all__ = ["verify"]
 
@@ -57,7 +58,7 @@ def verify(ctx, file: str, proof_dir: str | None, max_cnf: int) -> None:
     """
     from tilesolve.family import verify_file
 
-    report = verify_file(file, proof_dir, max_cnf=max_cnf)
+    report = verify_file(file, proof_dir, max_cnf=max_cnf, progress=progress_wanted())
     for line in report.lines:
         click.echo(line)
     ctx.exit(report.exit_code)

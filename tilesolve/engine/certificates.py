@@ -38,6 +38,7 @@ from typing import Any, Iterator, Mapping
 from tilesolve.deadline import NO_LIMIT, Deadline
 from tilesolve.engine.result import Result
 from tilesolve.model.solution import Solution, Status
+from tilesolve.progress import SILENT, Progress
 
 __all__ = ["unsat_solution", "writing_proofs", "proofs_wanted", "proof_text", "proof_name", "write_proof_files", "recheck_unsat",
            "recheck_all", "Recheck", "NOT_THE_ENCODING", "UNCERTIFIED"]
@@ -358,10 +359,12 @@ def _proof_size(evidence: Mapping[str, Any], proof_dir: str | os.PathLike | None
     return os.path.getsize(path) if os.path.isfile(path) else 0
 
 
-def recheck_all(claims, proof_dir: str | os.PathLike | None = None, *, workers: int = 1) -> list[Recheck]:
+def recheck_all(claims, proof_dir: str | os.PathLike | None = None, *, workers: int = 1,
+                progress: Progress = SILENT) -> list[Recheck]:
     """:func:`recheck_unsat` of every ``(what, problem, evidence)`` claim (results in the claims'
     order); on ``workers`` local processes when there are at least :data:`PARALLEL_RECHECK_MIN`
-    claims (a report's refuted boards), else here. Ctrl-C raises ``KeyboardInterrupt``.
+    claims (a report's refuted boards), else here. The claims done are counted on ``progress``.
+    Ctrl-C raises ``KeyboardInterrupt``.
 
     The largest proofs are checked first: the checker's compiled kernels, loaded for them, then
     serve the small ones too (checked first, each small proof would run interpreted), and the
@@ -370,11 +373,21 @@ def recheck_all(claims, proof_dir: str | os.PathLike | None = None, *, workers: 
     claims = list(claims)
     order = sorted(range(len(claims)), key=lambda i: -_proof_size(claims[i][2], proof_dir))
     out: list[Recheck | None] = [None] * len(claims)
-    if workers <= 1 or len(claims) < PARALLEL_RECHECK_MIN:
-        for i in order:
-            _, problem, evidence = claims[i]
-            out[i] = recheck_unsat(problem, evidence, proof_dir)
+    if not claims:
         return out
+    with progress.task("re-checking refutations", total=len(claims), unit="claim") as bar:
+        if workers <= 1 or len(claims) < PARALLEL_RECHECK_MIN:
+            for i in order:
+                _, problem, evidence = claims[i]
+                out[i] = recheck_unsat(problem, evidence, proof_dir)
+                bar.advance()
+        else:
+            _recheck_on_workers(claims, order, proof_dir, workers, out, bar)
+    return out
+
+
+def _recheck_on_workers(claims, order, proof_dir, workers: int, out: list, bar) -> None:
+    """:func:`recheck_all` on local worker processes, the largest proofs first."""
     import functools
 
     from tilesolve.engine.aperiodic import _on_pool
@@ -382,6 +395,7 @@ def recheck_all(claims, proof_dir: str | os.PathLike | None = None, *, workers: 
 
     def take(i: int, rc: Recheck) -> bool:
         out[order[i]] = rc
+        bar.advance()
         return False
 
     task = functools.partial(_recheck_job, [claims[i] for i in order],
@@ -389,4 +403,3 @@ def recheck_all(claims, proof_dir: str | os.PathLike | None = None, *, workers: 
     if _on_pool(task, len(claims), min(workers, len(claims)), RunOptions(seed=0, deadline=NO_LIMIT), take,
                 lambda: None):
         raise KeyboardInterrupt
-    return out

@@ -11,6 +11,7 @@ from tilesolve.errors import InvalidProblem
 from tilesolve.family.contract import Family
 from tilesolve.family.files import identify
 from tilesolve.model.solution import Solution, Status
+from tilesolve.progress import Progress, as_progress
 
 __all__ = [
     "cnf_estimate",
@@ -84,12 +85,12 @@ RECHECK_NEEDS = ("re-checking needs the DRAT proof: solve with --proof-dir DIR, 
 TOO_LARGE = "cannot be re-derived here"
 
 
-def _recheck(claims, proof_dir, workers: int, max_cnf: int) -> tuple[list[str], list[str], int]:
+def _recheck(claims, proof_dir, workers: int, max_cnf: int, progress: Progress) -> tuple[list[str], list[str], int]:
     """Re-derive and (with ``proof_dir``) re-check each claimed refutation
     (:func:`tilesolve.engine.certificates.recheck_all`, on ``workers`` processes): ``(refused
     lines, detail lines, refutations re-checked)``. A claim whose CNF is estimated above
     ``max_cnf`` bytes of DIMACS text (:func:`cnf_size_refusal`) is not re-derived, and so not
-    confirmed."""
+    confirmed. The claims re-checked are counted on ``progress``."""
     from tilesolve.engine.certificates import recheck_all
 
     claims = [(what, problem, evidence if isinstance(evidence, Mapping) else {}) for what, problem, evidence in claims]
@@ -101,7 +102,7 @@ def _recheck(claims, proof_dir, workers: int, max_cnf: int) -> tuple[list[str], 
             refused.append(line)
             details.append(f"  {line}")
     claims = [c for c, (_, why) in zip(claims, sized) if why is None]
-    for (what, _, _), rc in zip(claims, recheck_all(claims, proof_dir, workers=workers)):
+    for (what, _, _), rc in zip(claims, recheck_all(claims, proof_dir, workers=workers, progress=progress)):
         if rc.verdict == "refused":
             refused.append(f"{what}: {rc.lines[-1]}")
         checked += rc.ok
@@ -110,7 +111,7 @@ def _recheck(claims, proof_dir, workers: int, max_cnf: int) -> tuple[list[str], 
 
 
 def verify_document(doc: dict, source: str = "<document>", proof_dir: str | os.PathLike | None = None, *,
-                    workers: int = 1, max_cnf: int = DEFAULT_MAX_CNF) -> FileReport:
+                    workers: int = 1, max_cnf: int = DEFAULT_MAX_CNF, progress: Progress | bool = False) -> FileReport:
     """Check every claim a solution document makes (``tilesolve verify``).
 
     The tiling must pass the family's independent verifier; the status must match the
@@ -134,21 +135,22 @@ def verify_document(doc: dict, source: str = "<document>", proof_dir: str | os.P
     0 whatever its verdict (``undecided`` included): what is checked is that its claims hold.
 
     The first line is the verdict (``ok: ...`` only when every check passed); detail lines follow,
-    indented.
+    indented. ``progress`` (:func:`tilesolve.progress.as_progress`) counts the refutations re-checked.
     """
+    progress = as_progress(progress)
     fam, codec = identify(doc, source)
     problem, sol = codec.read(doc, source)
     if sol is None:
         raise InvalidProblem(f"{source}: a {codec.format} file holds no solution to verify; solve it first")
     what = problem.describe() if hasattr(problem, "describe") else fam.name
     if sol.report is not None:
-        return _verify_report(fam, problem, sol, source, what, proof_dir, workers, max_cnf)
+        return _verify_report(fam, problem, sol, source, what, proof_dir, workers, max_cnf, progress)
     false: list[str] = []
     if sol.tiling is None:
         if sol.status.has_tiling:
             false.append(f"status {sol.status.value!r} claims a tiling, but the file holds none")
         elif sol.status is Status.UNSAT:
-            return _verify_unsat(fam, problem, sol, source, proof_dir, workers, max_cnf)
+            return _verify_unsat(fam, problem, sol, source, proof_dir, workers, max_cnf, progress)
         else:
             why = f" ({sol.reason})" if sol.reason else ""
             return FileReport(sol.status.exit_code, (f"{source}: status {sol.status.value}{why}; "
@@ -167,7 +169,7 @@ def verify_document(doc: dict, source: str = "<document>", proof_dir: str | os.P
                 false.append(f"objective {sol.objective} recorded, but the problem has no objective")
         elif sol.objective != value:
             false.append(f"recorded objective {sol.objective}, but the tiling's value is {value}")
-    return _claims_checked(fam, problem, sol, source, proof_dir, workers, max_cnf, false,
+    return _claims_checked(fam, problem, sol, source, proof_dir, workers, max_cnf, progress, false,
                            f"ok: {source} is a valid tiling of {what}")
 
 
@@ -182,7 +184,7 @@ def _violations_report(source: str, what: str, violations: Sequence, false: Sequ
 
 
 def _verify_report(fam: Family, problem: Any, sol: Solution, source: str, what: str, proof_dir, workers: int,
-                   max_cnf: int) -> FileReport:
+                   max_cnf: int, progress: Progress) -> FileReport:
     """:func:`verify_document` of a file whose answer is a report (``Solution.report``) about ``what``."""
     report = sol.report
     false = [] if sol.status is report.status else [
@@ -190,18 +192,18 @@ def _verify_report(fam: Family, problem: Any, sol: Solution, source: str, what: 
     violations = list(fam.verify(problem, report))
     if violations:
         return _violations_report(source, f"{report.title} of {what}", violations, false)
-    return _claims_checked(fam, problem, sol, source, proof_dir, workers, max_cnf, false,
+    return _claims_checked(fam, problem, sol, source, proof_dir, workers, max_cnf, progress, false,
                            f"ok: {source} is a valid {report.title} ({what}): verdict {report.verdict}",
                            (f"  conclusion: {report.conclusion}",))
 
 
 def _claims_checked(fam: Family, problem: Any, sol: Solution, source: str, proof_dir, workers: int, max_cnf: int,
-                    false: list[str], head: str, said: tuple[str, ...] = ()) -> FileReport:
+                    progress: Progress, false: list[str], head: str, said: tuple[str, ...] = ()) -> FileReport:
     """The end of :func:`verify_document` once the answer itself holds: its refutations re-derived
     (and re-checked with ``proof_dir``); exit 1 with ``false`` and the refused ones, else ``head``
     with what was re-checked, then the lines ``said`` and the details."""
     claims = _refutations(fam, problem, sol) if not false else []
-    refused, details, checked = _recheck(claims, proof_dir, workers, max_cnf)
+    refused, details, checked = _recheck(claims, proof_dir, workers, max_cnf, progress)
     false += refused
     if false:
         verdict = "NOT confirmed" if all(TOO_LARGE in f for f in false) else "false"
@@ -215,13 +217,13 @@ def _claims_checked(fam: Family, problem: Any, sol: Solution, source: str, proof
 
 
 def _verify_unsat(fam: Family, problem: Any, sol: Solution, source: str, proof_dir, workers: int,
-                  max_cnf: int) -> FileReport:
+                  max_cnf: int, progress: Progress) -> FileReport:
     """:func:`verify_document` of a file whose status is ``unsat``."""
     why = f" ({sol.reason})" if sol.reason else ""
     claims = _refutations(fam, problem, sol)
     if not claims:
         return FileReport(1, (f"{source}: status unsat NOT confirmed: the file names no refutation to re-check",))
-    refused, details, _ = _recheck(claims, proof_dir, workers, max_cnf)
+    refused, details, _ = _recheck(claims, proof_dir, workers, max_cnf, progress)
     if refused:
         size_only = all(TOO_LARGE in line for line in refused)
         head = f"{source}: status unsat NOT confirmed: its certificate {TOO_LARGE if size_only else 'does not hold'}"
@@ -235,8 +237,8 @@ def _verify_unsat(fam: Family, problem: Any, sol: Solution, source: str, proof_d
 
 
 def verify_file(path: str | os.PathLike, proof_dir: str | os.PathLike | None = None, *,
-                workers: int = 1, max_cnf: int = DEFAULT_MAX_CNF) -> FileReport:
+                workers: int = 1, max_cnf: int = DEFAULT_MAX_CNF, progress: Progress | bool = False) -> FileReport:
     """:func:`verify_document` on a file (one-line errors for unreadable or malformed files)."""
     from tilesolve.io.jsonio import read_json
 
-    return verify_document(read_json(path), str(path), proof_dir, workers=workers, max_cnf=max_cnf)
+    return verify_document(read_json(path), str(path), proof_dir, workers=workers, max_cnf=max_cnf, progress=progress)
