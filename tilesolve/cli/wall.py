@@ -138,7 +138,8 @@ def wall(ctx, region, max_line, colors, seed, method, period, output, svg, png, 
         if output:
             from tilesolve.families.walls import write_procedural_wall
 
-            sol = write_procedural_wall(output, (x0, y0, cols, rows), colors=colors, max_line=max_line, seed=seed)
+            with progress_wanted().task(f"wall: {big(rows * cols)} cells built, checked and written", unit=None):
+                sol = write_procedural_wall(output, (x0, y0, cols, rows), colors=colors, max_line=max_line, seed=seed)
         if png:
             rep = draw(png)
     say(f"sat: {method} brick wall, window {window.describe()}, lines <= {max_line}, {colors} colours")
