@@ -77,8 +77,9 @@ def tiling(ctx, kind, method, variant, colors, region, hash_, algorithm, seed, o
             rows, cols = problem.shape
             raise InvalidProblem(f"a {cols}x{rows} window is too large for SVG (at most {MAX_SVG_TILES:,} tiles); "
                                  "use --png")
-    sol = facade.solve(problem, method=method, seed=seed, progress=progress_wanted())
-    with outs.commit(sol):
+    progress = progress_wanted()
+    sol = facade.solve(problem, method=method, seed=seed, progress=progress)
+    with outs.commit(sol), progress.task(f"writing a window of {problem.n_cells:,} tiles", unit=None):
         if output:
             write_solution(output, problem, sol)
         if png:
