@@ -73,50 +73,56 @@ def measure(problem, repeat: int):
     return n, best, peak, (seen[-1] if seen else 0)
 
 
-def _cpu(fn):
-    """CPU seconds of this process spent in ``fn()``, and its result."""
-    c = time.process_time()
-    out = fn()
-    return time.process_time() - c, out
+#: One count in a fresh process (argv: size, cyclic 0/1, meet in the middle 0/1): the CPU
+#: seconds of the call alone (compiled code loaded first) and the count.
+_ANCHOR = """
+import sys, time
+import tilesolve.constructive.dappled_count as dc
+from tilesolve.model.dappled import DappledProblem
+dc.count_dappled(DappledProblem.from_strings("3x3", ["H0=2", "V1=2"]))
+dc._MEET_IN_MIDDLE = sys.argv[3] == "1"
+p = DappledProblem.from_strings(sys.argv[1], ["H0=2", "V1=2"], cyclic=sys.argv[2] == "1")
+c = time.process_time()
+n = dc.count_dappled(p)
+print(time.process_time() - c, n)
+"""
+
+
+def _anchor(size: str, cyclic: bool = False, meet: bool = True) -> tuple[float, int]:
+    """(CPU s, count) of :data:`_ANCHOR` (a fresh process, so this one stays small: a child's
+    peak RSS as ``wait4`` reports it starts from its parent's)."""
+    out = subprocess.run([sys.executable, "-c", _ANCHOR, size, str(int(cyclic)), str(int(meet))],
+                         capture_output=True, text=True, check=True).stdout.split()
+    return float(out[0]), int(out[1])
 
 
 def commands(side: int) -> None:
-    """The whole-command table (module doc)."""
+    """The whole-command table (module doc); every process is a fresh one."""
     import shutil
-
-    import tilesolve.constructive.dappled_count as dc
-    from tilesolve.model.dappled import DappledProblem
 
     exe = shutil.which("tilesolve") or os.path.join(os.path.dirname(sys.executable), "tilesolve")
     env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}  # cache bytecode as installed
-    conds = ["H0=2", "V1=2"]
-    dc.count_dappled(DappledProblem.from_strings("3x3", conds))  # load compiled code
     command([exe, "dappled", "count", "--size", "3x3", "--cond", "H0=2,V1=2"], env)  # warm the caches
     help_text = subprocess.run([exe, "dappled", "count", "--help"], capture_output=True, text=True, env=env).stdout
     example = next(line.split("#")[0].split() for line in help_text.splitlines() if "--cyclic" in line)
     size = example[example.index("--size") + 1]
 
     rows = []
-    big = DappledProblem.from_strings(f"{side}x{side}", conds)
     wall, cpu, rss, rc, _ = command([exe, "dappled", "count", "--size", f"{side}x{side}", "--cond", "H0=2,V1=2"], env)
-    k_cpu, value = _cpu(lambda: dc.count_dappled(big))
-    dc._MEET_IN_MIDDLE = False
-    try:
-        f_cpu, full = _cpu(lambda: dc.count_dappled(big))
-    finally:
-        dc._MEET_IN_MIDDLE = True
+    k_cpu, value = _anchor(f"{side}x{side}")
+    f_cpu, full = _anchor(f"{side}x{side}", meet=False)
     assert value == full, "the count met in the middle differs from the full sweep"
     rows.append((f"count {side}x{side}", wall, cpu, rss, rc, f"count_dappled {k_cpu:.2f} s (command {cpu / k_cpu:.2f}x "
                  f"it); the full sweep {f_cpu:.2f} s ({f_cpu / k_cpu:.2f}x the meeting in the middle)"))
     wall, cpu, rss, rc, err = command([exe, "dappled", "count", "--size", "18x18", "--cond", "H0=2,V1=2"], env)
     rows.append(("count 18x18", wall, cpu, rss, rc, err[:150] + ("..." if len(err) > 150 else "")))
     wall, cpu, rss, rc, _ = command(example, env)
-    k_cpu, _ = _cpu(lambda: dc.count_dappled(DappledProblem.from_strings(size, conds, cyclic=True)))
+    k_cpu, _ = _anchor(size, cyclic=True)
     rows.append((f"help: count {size} --cyclic", wall, cpu, rss, rc,
                  f"count_dappled {k_cpu:.2f} s (command {cpu / k_cpu:.2f}x it)"))
 
     print(f"whole commands (fresh processes; CPU = user + sys), {{H0^2, V1^2}}")
-    print(f"{'command':<26} {'wall s':>7} {'CPU s':>7} {'RSS MiB':>8} {'exit':>4}  anchor in this process (CPU)")
+    print(f"{'command':<26} {'wall s':>7} {'CPU s':>7} {'RSS MiB':>8} {'exit':>4}  anchor in a process of its own (CPU)")
     for label, wall, cpu, rss, rc, anchor in rows:
         print(f"{label:<26} {wall:7.2f} {cpu:7.2f} {rss:8.0f} {rc:4d}  {anchor}")
     print(f"goals: count 16x16 <= 5 s CPU; 18x18 refused with the estimate (exit 2) or counted; "
