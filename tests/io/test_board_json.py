@@ -382,3 +382,16 @@ def test_files_of_versions_1_and_2_still_read_and_verify(tmp_path, name):
     # written again, as version 3, it reads to the same problem and tiling
     write_board_solution(tmp_path / "v3.json", q, t)
     _same(q, t, *read_board_solution(tmp_path / "v3.json"))
+
+
+def test_a_large_grid_board_is_read_and_verified_without_its_joins(tmp_path):
+    """A compact file of a grid board is read and verified from its grid: the board's join
+    arrays (8 bytes a leg) are never built."""
+    from tilesolve.families import board as wang
+
+    b = Board.rect(80, 60)
+    p = BoardProblem(b, WangTileSet.brick(3))
+    s = wang.solve(p, seed=1)
+    write_board_solution(tmp_path / "b.json", p, s)
+    q, t = read_board_solution(tmp_path / "b.json")
+    assert wang.FAMILY.verify(q, t.tiling) == [] and "nbr_cell" not in vars(q.board)

@@ -198,3 +198,27 @@ def test_from_edges_reports_bad_cells_and_legs():
         Board.from_edges([[0, 0]], [[5, 0, -1, 0]])
     with pytest.raises(InvalidProblem, match="cell 0 leg 7, which does not exist"):
         Board.from_edges([[0, 0], [0, 1]], [[1, 0, 0, 7]])
+
+
+@pytest.mark.parametrize("kind", ["rect", "torus", "cylinder", "mobius", "klein", "ring"])
+def test_a_grid_boards_joins_are_made_on_first_use(kind):
+    """A board built from its grid counts its boundary legs on the grid, before its joins
+    exist, as many as its joins then hold; a copy made by pickling keeps working."""
+    import pickle
+
+    rng = np.random.default_rng(3)
+    for w, h in ((2, 2), (5, 4), (3, 7)):
+        b = getattr(Board, kind)(w, h)
+        keep = rng.random(b.n_cells) > 0.3
+        keep[0] = True
+        for board in (b, Board.from_grid_spec(b.grid_spec, b.restrict(keep).mask_of())):
+            fresh = Board.from_grid_spec(board.grid_spec, board.mask_of(), kind=board.kind)
+            n_boundary = fresh.n_boundary
+            assert "nbr_cell" not in vars(fresh)
+            copy = pickle.loads(pickle.dumps(fresh))
+            assert n_boundary == int((fresh.nbr_cell < 0).sum()) == board.n_boundary
+            for name in ("labels", "nbr_cell", "nbr_leg"):
+                assert np.array_equal(getattr(fresh, name), getattr(board, name))
+                assert np.array_equal(getattr(copy, name), getattr(board, name))
+    with pytest.raises(AttributeError):
+        Board.rect(2, 2).no_such_thing  # noqa: B018

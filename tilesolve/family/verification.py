@@ -91,6 +91,8 @@ def _recheck(claims, proof_dir, workers: int, max_cnf: int, progress: Progress) 
     lines, detail lines, refutations re-checked)``. A claim whose CNF is estimated above
     ``max_cnf`` bytes of DIMACS text (:func:`cnf_size_refusal`) is not re-derived, and so not
     confirmed. The claims re-checked are counted on ``progress``."""
+    if not claims:  # a tiling's file claims no refutation: nothing to load
+        return [], [], 0
     from tilesolve.engine.certificates import recheck_all
 
     claims = [(what, problem, evidence if isinstance(evidence, Mapping) else {}) for what, problem, evidence in claims]

@@ -203,10 +203,8 @@ def _leg_seam(version: int, *, tiles=None, edges=None, to_file: bool) -> tuple:
         return as_rows(tiles), as_rows(edges)
     if tiles is not None and to_file:
         tiles = wang_to_nesw(tiles)
-    elif tiles is not None:  # a file's integer array: its columns N, E, S, W moved into int64 at once
-        read = np.asarray(tiles).reshape(-1, 4)
-        tiles = np.empty(read.shape, np.int64)
-        tiles[:, _LEG_OF_NESW] = read
+    elif tiles is not None:  # a file's integer array: its columns reordered while narrow, then widened once
+        tiles = np.asarray(tiles).reshape(-1, 4)[:, _NESW_OF_LEG].astype(np.int64)
     if edges is not None:
         perm = _NESW_OF_LEG if to_file else _LEG_OF_NESW
         e = np.asarray(edges, dtype=np.int64).reshape(-1, 4).copy()

@@ -204,6 +204,12 @@ class Board:
 
     @property
     def n_boundary(self) -> int:
+        if "_grid_mask" in self.__dict__ and "nbr_cell" not in self.__dict__:  # counted on the grid
+            m = self._grid_mask
+            there = _padded(m, self.grid_spec, False)
+            H, Wd = m.shape
+            return int(sum(np.count_nonzero(m & ~there[1 + dr : H + 1 + dr, 1 + dc : Wd + 1 + dc])
+                           for dr, dc in _DELTA.values()))
         return int((self.nbr_cell < 0).sum())
 
     @property
@@ -338,7 +344,8 @@ class Board:
         The index of every cell is looked up in the grid padded by one cell all round, the
         padding holding ``-1`` (the wall) or, where sides are identified, the cells of the
         opposite side (reversed for a twist): one shifted view of the padded grid per leg,
-        no per-cell Python.
+        no per-cell Python. The joins are made on first use: a board only described, counted
+        or checked against its grid (a file read and verified) never builds them.
 
         Examples
         --------
@@ -357,30 +364,47 @@ class Board:
         m = np.asarray(mask, dtype=bool)
         if m.shape != (H, Wd):
             raise InvalidProblem(f"a mask of shape {m.shape} does not fit a {Wd}x{H} grid")
-        rows, cols = np.nonzero(m)
-        n = rows.size
-        if n == 0:
+        lab = np.stack(np.nonzero(m), axis=1).astype(np.int64, copy=False)  # [row, col], in row-major order
+        if lab.shape[0] == 0:
             raise InvalidProblem("the board mask has no cells")
-        pad = np.full((H + 2, Wd + 2), -1, dtype=np.int64)
-        index = pad[1:-1, 1:-1]
+        self = object.__new__(cls)
+        lab.setflags(write=False)
+        m = m.copy()
+        m.setflags(write=False)
+        for name, value in (("labels", lab), ("kind", kind), ("grid_spec", GridSpec(H, Wd, wrap_rows, wrap_cols)),
+                            ("_grid_mask", m)):
+            object.__setattr__(self, name, value)
+        return self  # the joins are made on first use (_grid_joins)
+
+    def __getattr__(self, name: str):
+        """The joins of a board built from its grid (:meth:`from_grid_spec`), made on first use."""
+        if name in ("nbr_cell", "nbr_leg") and "_grid_mask" in self.__dict__:
+            self._grid_joins()
+            return self.__dict__[name]
+        raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+
+    def _grid_joins(self) -> None:
+        """Set :attr:`nbr_cell` and :attr:`nbr_leg` of a board built by :meth:`from_grid_spec`."""
+        m, spec = self._grid_mask, self.grid_spec
+        n = self.labels.shape[0]
+        index = np.full(m.shape, -1, dtype=np.int64)
         index[m] = np.arange(n, dtype=np.int64)
-        if wrap_cols is not None:
-            flip = slice(None, None, -1) if wrap_cols == "twist" else slice(None)
-            pad[1:-1, 0] = index[flip, -1]
-            pad[1:-1, -1] = index[flip, 0]
-        if wrap_rows is not None:
-            flip = slice(None, None, -1) if wrap_rows == "twist" else slice(None)
-            pad[0, 1:-1] = index[-1, flip]
-            pad[-1, 1:-1] = index[0, flip]
+        pad = _padded(index, spec, -1)
+        H, Wd = m.shape
         full = n == H * Wd
         nc = np.empty((n, 4), dtype=np.int64)
         for k, (dr, dc) in _DELTA.items():
             seen = pad[1 + dr : H + 1 + dr, 1 + dc : Wd + 1 + dc]  # the neighbour across leg k
-            nc[:, k] = seen.ravel() if full else seen[m]
+            if full:
+                nc.reshape(H, Wd, 4)[:, :, k] = seen
+            else:
+                nc[:, k] = seen[m]
         nl = np.where(nc >= 0, (np.arange(4, dtype=np.int64) + 2) % 4, np.int64(-1))
         wall = nc < 0
         nl[wall] = _boundary_numbers(wall)
-        return cls._built(np.stack([rows, cols], axis=1), nc, nl, kind, GridSpec(H, Wd, wrap_rows, wrap_cols))
+        for name, arr in (("nbr_cell", nc), ("nbr_leg", nl)):
+            arr.setflags(write=False)
+            object.__setattr__(self, name, arr)
 
     @classmethod
     def _shape(cls, kind: str, width: int, height: int) -> "Board":
@@ -533,6 +557,24 @@ class Board:
         rows = int(self.labels[:, 0].max()) + 1 if self.n_cells else 0
         cols = int(self.labels[:, 1].max()) + 1 if self.n_cells else 0
         return f"{self.kind} board, {self.n_cells} cells in {cols}x{rows}, {self.n_boundary} boundary legs"
+
+
+def _padded(grid: np.ndarray, spec: GridSpec, wall) -> np.ndarray:
+    """``grid`` (one value per cell of ``spec``'s grid) padded by one cell all round: ``wall``,
+    or where sides are identified the values of the opposite side (reversed for a twist)."""
+    H, Wd = grid.shape
+    pad = np.full((H + 2, Wd + 2), wall, dtype=grid.dtype)
+    inner = pad[1:-1, 1:-1]
+    inner[...] = grid
+    if spec[3] is not None:
+        flip = slice(None, None, -1) if spec[3] == "twist" else slice(None)
+        pad[1:-1, 0] = inner[flip, -1]
+        pad[1:-1, -1] = inner[flip, 0]
+    if spec[2] is not None:
+        flip = slice(None, None, -1) if spec[2] == "twist" else slice(None)
+        pad[0, 1:-1] = inner[-1, flip]
+        pad[-1, 1:-1] = inner[0, flip]
+    return pad
 
 
 def _boundary_numbers(wall: np.ndarray) -> np.ndarray:
