@@ -31,6 +31,8 @@ from tilesolve.verify.dappled import Violation
 __all__ = ["board_violations", "is_valid_board_tiling", "line_runs", "listing_violations", "MAX_LISTED"]
 
 _LEGS = ("W", "N", "E", "S")
+#: Where each leg W, N, E, S stands in the order N, E, S, W of the boundary legs' numbers.
+_NESW_RANK = np.array([3, 0, 1, 2])
 #: Differences between a listed board and its description reported one by one, per kind
 #: (cells, edges); one more violation counts the rest.
 MAX_LISTED = 1000
@@ -287,7 +289,8 @@ def _grid_tiles_in(g: np.ndarray, present, table: np.ndarray, k: int) -> bool:
 
 
 def _grid_boundary_holds(problem, t: np.ndarray, present, rows: int, cols: int, wrap_rows, wrap_cols) -> bool:
-    """Whether the wall legs of the grid are the problem's boundary legs and carry their colours."""
+    """Whether the grid has as many wall legs as the problem has boundary colours, and each wall
+    leg, numbered as the board model numbers them, carries its colour."""
     beta = problem.boundary
     fixed = bool((beta >= 0).any())
     if present is None:  # every cell: the wall legs are the sides not identified
@@ -313,14 +316,13 @@ def _grid_boundary_holds(problem, t: np.ndarray, present, rows: int, cols: int, 
         return False
     if not fixed:
         return True
-    nc, nl = problem.board.nbr_cell, problem.board.nbr_leg
-    for cells, leg in walls:
-        if (nc[cells, leg] >= 0).any():
-            return False
-        req = beta[nl[cells, leg]]
-        if ((req >= 0) & (t[cells, leg] != req)).any():
-            return False
-    return True
+    # wall legs are numbered in order of cell, then of leg N, E, S, W
+    cells = np.concatenate([c for c, _ in walls]).astype(np.int64)
+    legs = np.concatenate([np.full(c.size, leg) for c, leg in walls])
+    number = np.empty(cells.size, np.int64)
+    number[np.argsort(cells * 4 + _NESW_RANK[legs], kind="stable")] = np.arange(cells.size)
+    req = beta[number]
+    return not ((req >= 0) & (t[cells, legs] != req)).any()
 
 
 def _long_run(member: np.ndarray, lim: int, wrap) -> bool:
