@@ -354,6 +354,24 @@ def test_interrupt_exits_130_without_files(tmp_path, monkeypatch):
     assert os.listdir(tmp_path) == []
 
 
+@pytest.mark.parametrize("cause, code", [(KeyboardInterrupt(), 130), (ValueError("a bug"), 70)])
+def test_ctrl_c_inside_a_compiled_kernel_exits_130(tmp_path, monkeypatch, cause, code):
+    """Ctrl-C while a numba kernel runs comes back as a SystemError caused by KeyboardInterrupt:
+    an interruption (130), where a SystemError of another cause is a bug (70)."""
+    from tilesolve.families import dappled
+    from tilesolve.cli.main import main_group
+
+    def kernel(*args, **kwargs):
+        raise SystemError("CPUDispatcher(<function kernel>) returned a result with an exception set") from cause
+
+    monkeypatch.setattr(dappled, "solve", kernel)
+    monkeypatch.chdir(tmp_path)
+    result = CliRunner().invoke(main_group, ["dappled", "solve", "--size", "4x4", "--cond", "H0=2", "-o", "t.json"])
+    assert result.exit_code == code
+    assert ("interrupted" in result.output) == (code == 130) and "Traceback" not in result.output
+    assert os.listdir(tmp_path) == []
+
+
 def test_interrupted_solution_exits_130_and_keeps_old_files(tmp_path, monkeypatch):
     """The engine returns Ctrl-C inside a solver as an unknown solution; the CLI writes nothing."""
     from tilesolve.families import dappled
