@@ -40,15 +40,22 @@ import tracemalloc
 
 import numpy as np
 
-from tilesolve.constructive.stochastic import direct_corner, direct_wang, make_hash, scanline_wang
 from _measure import best, best_child  # noqa: E402 - benchmarks/ is on sys.path
 
 C, SEED, X0, Y0 = 3, 5, -1234, 777
 
 
+def kernels():
+    """:mod:`tilesolve.constructive.stochastic`, imported when first needed (``--command``
+    measures children before: a child's peak RSS starts from its parent's)."""
+    from tilesolve.constructive import stochastic
+
+    return stochastic
+
+
 def py_direct_corner(w, h, hash_name):
     """§3.3.1 tile by tile: four scalar hash evaluations and eq. 2.5."""
-    hsh = make_hash(hash_name, C, SEED)
+    hsh = kernels().make_hash(hash_name, C, SEED)
     out = []
     for y in range(Y0 + h - 1, Y0 - 1, -1):
         row = []
@@ -62,7 +69,7 @@ def py_direct_corner(w, h, hash_name):
 
 def py_direct_wang(w, h, hash_name):
     """§3.3.2.3 tile by tile: N, E, S, W = h(2x+1, 2y+2), h(2x+2, 2y+1), h(2x+1, 2y), h(2x, 2y+1)."""
-    hsh = make_hash(hash_name, C, SEED)
+    hsh = kernels().make_hash(hash_name, C, SEED)
     out = []
     for y in range(Y0 + h - 1, Y0 - 1, -1):
         row = []
@@ -76,7 +83,7 @@ def py_direct_wang(w, h, hash_name):
 
 def py_scanline_wang(w, h, hash_name, compact):
     """§3.2.1 tile by tile, west to east, north to south, choices from the scalar hash."""
-    hsh = make_hash(hash_name, math.lcm(C, 2) if compact else C * C, SEED)
+    hsh = kernels().make_hash(hash_name, math.lcm(C, 2) if compact else C * C, SEED)
     top = Y0 + h
     south = [(hsh.scalar(x, top) % C) if compact else (hsh.scalar(x, top) // C) % C for x in range(X0, X0 + w)]
     out = []
@@ -96,18 +103,21 @@ def py_scanline_wang(w, h, hash_name, compact):
 
 
 CASES = [
-    ("direct corner", lambda w, h, hs: direct_corner(X0, Y0, w, h, colors=C, seed=SEED, hash=hs), py_direct_corner),
-    ("direct wang edges", lambda w, h, hs: direct_wang(X0, Y0, w, h, colors=C, seed=SEED, hash=hs), py_direct_wang),
-    ("scanline wang", lambda w, h, hs: scanline_wang(X0, Y0, w, h, colors=C, seed=SEED, hash=hs),
+    ("direct corner", lambda w, h, hs: kernels().direct_corner(X0, Y0, w, h, colors=C, seed=SEED, hash=hs),
+     py_direct_corner),
+    ("direct wang edges", lambda w, h, hs: kernels().direct_wang(X0, Y0, w, h, colors=C, seed=SEED, hash=hs),
+     py_direct_wang),
+    ("scanline wang", lambda w, h, hs: kernels().scanline_wang(X0, Y0, w, h, colors=C, seed=SEED, hash=hs),
      lambda w, h, hs: py_scanline_wang(w, h, hs, False)),
     ("scanline wang compact",
-     lambda w, h, hs: scanline_wang(X0, Y0, w, h, colors=C, seed=SEED, variant="compact", hash=hs),
+     lambda w, h, hs: kernels().scanline_wang(X0, Y0, w, h, colors=C, seed=SEED, variant="compact", hash=hs),
      lambda w, h, hs: py_scanline_wang(w, h, hs, True)),
 ]
 
 
 def kernel_child(side: int) -> None:
     """In a child: the CPU seconds of the best of 3 calls of direct_corner (after one), as JSON."""
+    direct_corner = kernels().direct_corner
     direct_corner(0, 0, side, side, colors=C, seed=SEED)
     _, cpu, _ = best(lambda: direct_corner(0, 0, side, side, colors=C, seed=SEED), 3)
     print(json.dumps({"kernel_cpu": cpu}))

@@ -41,7 +41,6 @@ import tracemalloc
 
 import numpy as np
 
-from tilesolve.constructive.walls import _ScalarWall, dappling_period, wall_window
 from _measure import best, best_child  # noqa: E402 - benchmarks/ is on sys.path
 
 COLORS, SEED = 3, 7
@@ -53,6 +52,8 @@ def peak_rss_mib() -> float:
 
 def python_baseline(side: int, n):
     """Per-cell Python transcription over a side x side window at the origin; (seconds, tiles)."""
+    from tilesolve.constructive.walls import _ScalarWall, dappling_period
+
     scalar = _ScalarWall(COLORS, dappling_period(n), n is not None and n % 2 == 1, SEED)
     t = time.perf_counter()
     tiles = [[scalar.tile(i, j) for i in range(side)] for j in range(side - 1, -1, -1)]
@@ -90,9 +91,11 @@ def main() -> None:
     ap.add_argument("--command", action="store_true", help="the whole wall -o command beside wall_window")
     ap.add_argument("--side", type=int, default=3163, help="--command: the window's side in cells")
     args = ap.parse_args()
-    if args.command:
+    if args.command:  # before the kernels are imported: a child's peak RSS starts from this process's
         command_rows(args.side, args.repeat)
         return
+    from tilesolve.constructive.walls import wall_window
+
     sides = [316, 1000] if args.quick else [316, 1000, 3163]
     wall_window(0, 0, 8, 8, colors=COLORS, max_line=2, seed=SEED)  # compile
     wall_window(0, 0, 8, 8, colors=COLORS, max_line=None, seed=SEED)
