@@ -12,9 +12,10 @@ valid tilings of a rectangle (linear algorithm, brick paper §4, random boundary
 with holes (the same), a procedural brick wall with lines of at most 2 bricks (004 §3-4) and
 an NPD wall on a torus (004 App. A), against the join-array checks it made before
 (``tilesolve.verify.board._violations``, still the code that names violations), paired in
-the same run. ``new`` is the whole function (the compiled one-pass kernel where it applies:
-numba is loaded by the solvers here); ``numpy`` is its whole-array pass alone, the one used
-where numba is not loaded (``tilesolve verify`` of files under 8M cells).
+the same run: its two passes, each timed alone on the same tiling, ``numpy`` (whole-array
+operations on the grid: what a file or a solve is checked with) and ``compiled`` (the numba
+kernel, warm: what a process uses once it has checked 50M cells, e.g. the bands of a large
+wall).
 
 Times are the best of ``--repeat`` runs (one core); peak memory is tracemalloc's peak of
 one further run. Goals: >= 100 M cells/s for the dappled verifier at 4096x4096, and the
@@ -89,11 +90,13 @@ def board_rows(side: int, repeat: int) -> None:
     from tilesolve.families import walls
     from tilesolve.family import solve
     from tilesolve.model.board import Board, BoardProblem, WangTileSet, random_boundary
+    from tilesolve.verify import _board_kernel
     from tilesolve.verify import board as vb
 
-    print(f"\nboard verifier, CPU seconds (best of {repeat}; old: 1 run)")
-    print(f"{'board verifier':<26} {'cells':>9} {'old s':>8} {'new s':>8} {'new Mc/s':>9} {'numpy s':>8} "
-          f"{'numpy Mc/s':>10} {'old MiB':>8} {'new MiB':>8} {'new/old':>8}")
+    kernel = _board_kernel.compiled(_board_kernel.COMPILED_FROM)  # loaded (and compiled) before timing
+    print(f"\nboard verifier, CPU seconds (best of {repeat}; old: 1 run); Mc/s = million cells a second")
+    print(f"{'board':<30} {'cells':>9} {'old s':>7} {'numpy s':>8} {'Mc/s':>5} {'compiled s':>10} {'Mc/s':>5} "
+          f"{'old MiB':>8} {'numpy MiB':>9} {'old/numpy':>9} {'old/compiled':>12}")
     cases = []
     for name, b in (("rect", Board.rect(side, side)), ("mask (holes)", Board.with_holes(side, side, side * side // 400,
                                                                                        12, seed=1))):
@@ -107,14 +110,18 @@ def board_rows(side: int, repeat: int) -> None:
     for what, p, t in cases:
         n = p.board.n_cells
         _, t_old, v_old = best_cpu(lambda: vb._violations(p, np.asarray(t, dtype=np.int64)), 1)
-        _, t_new, v_new = best_cpu(lambda: vb.board_violations(p, t), repeat)
         _, t_np, ok = best_cpu(lambda: vb._in_range(t, p.n_colors) and vb._grid_clean(p, t), repeat)
-        assert v_old == [] and v_new == [] and ok
+        _, t_comp, ok_comp = best_cpu(lambda: vb._compiled_clean(p, t, kernel), repeat)
+        assert v_old == [] and ok and ok_comp in (True, None) and vb.board_violations(p, t) == []
         m_old = peak_mib(lambda: vb._violations(p, np.asarray(t, dtype=np.int64)))
-        m_new = peak_mib(lambda: vb.board_violations(p, t))
-        print(f"{what:<26} {n:>9,} {t_old:>8.3f} {t_new:>8.4f} {n / t_new / 1e6:>9.0f} {t_np:>8.4f} "
-              f"{n / t_np / 1e6:>10.0f} {m_old:>8.1f} {m_new:>8.1f} {t_old / t_new:>7.0f}x")
-    print("goal: >= 100 M cells/s (new) on rect and mask boards")
+        m_np = peak_mib(lambda: vb._in_range(t, p.n_colors) and vb._grid_clean(p, t))
+        comp = (f"{t_comp:>10.4f} {n / t_comp / 1e6:>5.0f}" if ok_comp else f"{'-':>10} {'-':>5}")
+        ratio = f"{t_old / t_comp:>11.0f}x" if ok_comp else f"{'-':>12}"
+        print(f"{what:<30} {n:>9,} {t_old:>7.3f} {t_np:>8.4f} {n / t_np / 1e6:>5.0f} {comp} {m_old:>8.1f} {m_np:>9.1f} "
+              f"{t_old / t_np:>8.0f}x {ratio}")
+    print("compiled: the kernel of tilesolve.verify._board_kernel (no identified sides; used once a process has "
+          f"checked {_board_kernel.COMPILED_FROM:,} cells); numpy: the whole-array pass (every grid board)")
+    print("goal: >= 100 M cells/s on rect and mask boards")
 
 
 def main() -> None:

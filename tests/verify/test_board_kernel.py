@@ -175,9 +175,12 @@ def test_the_grids_wall_legs_are_the_boards():
             assert not vb._grid_clean(BoardProblem(b, p.tileset, wrong), t)
 
 
-def test_the_kernel_is_left_to_boards_that_pay_for_it():
-    """Small boards are checked with numpy even where numba is loaded (loading the compiled
-    code costs more); large ones use the kernel once numba is loaded."""
-    assert _board_kernel.compiled(_board_kernel.COMPILED_MIN - 1) is None
-    assert _board_kernel.compiled(_board_kernel.COMPILED_FROM) is not None
-    assert _board_kernel.compiled(_board_kernel.COMPILED_MIN) is not None
+def test_the_kernel_is_loaded_once_the_numpy_checks_would_pay_for_it(monkeypatch):
+    """A process checks boards with numpy until it has checked COMPILED_FROM cells (loading
+    the compiled kernel costs more than one file's or one solve's numpy checks)."""
+    monkeypatch.setattr(_board_kernel, "_COMPILED", None)
+    monkeypatch.setattr(_board_kernel, "_numpy_cells", 0)
+    assert _board_kernel.compiled(_board_kernel.COMPILED_FROM // 2) is None
+    assert _board_kernel.compiled(_board_kernel.COMPILED_FROM // 2 - 1) is None
+    assert _board_kernel.compiled(1) is not None
+    assert _board_kernel.compiled(1) is not None

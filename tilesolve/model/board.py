@@ -190,6 +190,9 @@ class Board:
         if spec is None:
             raise InvalidProblem(f"this {self.kind} board is not cut from a grid")
         rows, cols = int(spec[0]), int(spec[1])
+        built = self.__dict__.get("_grid_mask")
+        if built is not None and built.shape == (rows, cols):  # the mask the board was built from
+            return built.copy()
         lab = self.labels
         if lab.size and (lab.min() < 0 or lab[:, 0].max() >= rows or lab[:, 1].max() >= cols):
             raise InvalidProblem(f"the board's cell labels do not fit a {cols}x{rows} grid")

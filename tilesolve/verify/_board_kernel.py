@@ -2,27 +2,24 @@
 identified (a rectangle, a rectangle with holes, a ring), compiled by numba.
 
 :func:`tilesolve.verify.board.board_violations` calls :func:`grid_clean` through
-:func:`compiled` when numba is loaded already or the board is large enough to pay for
-loading it (:data:`COMPILED_FROM`); otherwise it checks the same with whole-array numpy
-operations. Written from the definitions (brick paper, Def. 2 and Def. 9; dappled paper §4)
+:func:`compiled` once a process has checked enough cells to pay for loading it
+(:data:`COMPILED_FROM`); until then it checks the same with whole-array numpy operations. Written from the definitions (brick paper, Def. 2 and Def. 9; dappled paper §4)
 with nothing shared with the solvers whose tilings it checks.
 """
 
 from __future__ import annotations
 
-import sys
-
 import numpy as np
 
-__all__ = ["COMPILED_FROM", "COMPILED_MIN", "compiled", "grid_clean"]
+__all__ = ["COMPILED_FROM", "compiled", "grid_clean"]
 
-#: Cells from which loading numba (a few tenths of a second, when nothing loaded it yet) pays
-#: for itself against the numpy checks (about 30-100 M cells/s on one core).
-COMPILED_FROM = 8_000_000
-#: Fewest cells for which the kernel is used even where numba is loaded: loading its compiled
-#: code from numba's cache costs more than the numpy checks of a smaller board.
-COMPILED_MIN = 250_000
+#: Cells of numpy checks a process makes before it loads the compiled kernel instead (the
+#: ski-rental rule): loading it from numba's cache costs 0.1-0.3 s (and importing numba, where
+#: nothing did, 0.5 s more), while it saves 4-20 ns a cell against the numpy checks, so one
+#: file or one solve never pays for it, but the bands of a large wall do.
+COMPILED_FROM = 50_000_000
 
+_numpy_cells = 0
 _COMPILED = None
 
 
@@ -155,14 +152,13 @@ def grid_clean(t, lab, rows, cols, k, brick, known, beta, max_h, max_v):
 
 
 def compiled(n: int):
-    """:func:`grid_clean` compiled by numba for a board of ``n`` cells, at least
-    :data:`COMPILED_MIN`, when numba is loaded already or ``n`` cells pay for loading it
-    (:data:`COMPILED_FROM`); None otherwise, or where numba cannot be loaded."""
-    global _COMPILED
-    if n < COMPILED_MIN:
-        return None
+    """:func:`grid_clean` compiled by numba, for a board of ``n`` cells: once loaded, or once
+    this process has checked :data:`COMPILED_FROM` cells with numpy; None otherwise, or where
+    numba cannot be loaded."""
+    global _COMPILED, _numpy_cells
     if _COMPILED is None:
-        if "numba" not in sys.modules and n < COMPILED_FROM:
+        _numpy_cells += n
+        if _numpy_cells < COMPILED_FROM:
             return None
         try:
             import numba

@@ -224,12 +224,9 @@ def _grid_clean(problem, t: np.ndarray) -> bool:
         present = None
         g = words.view(leg).reshape(rows, cols, 4)
     else:
-        lab = board.labels
-        present = np.zeros(rows * cols, bool)
-        present[lab[:, 0] * cols + lab[:, 1]] = True
+        present = board.mask_of()
         grid = np.zeros(rows * cols, word)
-        grid[present] = words
-        present = present.reshape(rows, cols)
+        grid[present.ravel()] = words
         g = grid.view(leg).reshape(rows, cols, 4)
     w, nn, e, s = (g[..., leg] for leg in range(4))
 
@@ -299,18 +296,20 @@ def _grid_boundary_holds(problem, t: np.ndarray, present, rows: int, cols: int, 
                  (None if wrap_cols else r * cols + cols - 1, 2), (None if wrap_rows else (rows - 1) * cols + c, 3)]
         walls = [(cells, leg) for cells, leg in sides if cells is not None]
     else:
-        has = np.zeros((4, rows, cols), bool)  # a cell across each leg
-        has[0][:, 1:], has[1][1:], has[2][:, :-1], has[3][:-1] = present[:, :-1], present[:-1], present[:, 1:], present[1:]
+        there = np.zeros((rows + 2, cols + 2), bool)  # the cells present, padded as the grid's sides meet
+        there[1:-1, 1:-1] = present
         if wrap_cols is not None:
             across = slice(None, None, -1) if wrap_cols == "twist" else slice(None)
-            has[0][:, 0], has[2][:, -1] = present[across, -1], present[across, 0]
+            there[1:-1, 0], there[1:-1, -1] = present[across, -1], present[across, 0]
         if wrap_rows is not None:
             across = slice(None, None, -1) if wrap_rows == "twist" else slice(None)
-            has[1][0], has[3][-1] = present[-1, across], present[0, across]
-        cell = np.cumsum(present.ravel(), dtype=np.int32) - 1 if fixed else None  # cells in row-major order
+            there[0, 1:-1], there[-1, 1:-1] = present[-1, across], present[0, across]
+        cell = np.full(rows * cols, -1, np.int64)
+        if fixed:
+            cell[present.ravel()] = np.arange(int(np.count_nonzero(present)))  # cells in row-major order
         walls = []
-        for leg in range(4):
-            spots = np.flatnonzero(present & ~has[leg])
+        for leg, (dr, dc) in enumerate(((0, -1), (-1, 0), (0, 1), (1, 0))):  # the cell across W, N, E, S
+            spots = np.flatnonzero(present & ~there[1 + dr:rows + 1 + dr, 1 + dc:cols + 1 + dc])
             walls.append((cell[spots] if fixed else spots, leg))
     if sum(cells.size for cells, _ in walls) != beta.size:
         return False
