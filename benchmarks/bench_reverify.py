@@ -35,6 +35,7 @@ Usage::
     python benchmarks/bench_reverify.py                  # files 1000^2, then tori up to 8 x 8, one worker
     python benchmarks/bench_reverify.py --max-period 10 --workers 2
     python benchmarks/bench_reverify.py --only files --side 2000 --repeat 5
+    python benchmarks/bench_reverify.py --only files --before f399833   # and as that revision ran it
 """
 
 from __future__ import annotations
@@ -74,13 +75,27 @@ def _timed(args: list[str], cwd: Path) -> tuple[float, float]:
 NUMPY_LOAD = "import json, sys, numpy; json.load(open(sys.argv[1]))"
 
 
-def files_table(side: int, repeat: int) -> None:
-    """``tilesolve verify FILE`` against ``json.load`` of FILE, whole processes (module docstring)."""
+#: ``tilesolve verify`` run from a package folder given by PYTHONPATH (an earlier revision's).
+VERIFY_FROM_PATH = "import sys; from tilesolve.cli.main import main; sys.argv[0] = 'tilesolve'; main()"
+
+
+def _before(rev: str, into: Path) -> Path:
+    """The ``tilesolve`` package of git revision ``rev`` of this repository, extracted under ``into``."""
+    repo = Path(__file__).resolve().parent.parent
+    archive = subprocess.run(["git", "archive", rev, "tilesolve"], cwd=repo, capture_output=True, check=True).stdout
+    subprocess.run(["tar", "-x", "-C", str(into)], input=archive, check=True)
+    return into
+
+
+def files_table(side: int, repeat: int, before: str | None = None) -> None:
+    """``tilesolve verify FILE`` against ``json.load`` of FILE, whole processes (module docstring);
+    with ``before``, also ``tilesolve verify FILE`` as revision ``before`` runs it."""
     import numpy as np
 
     with tempfile.TemporaryDirectory() as d:
         cwd = Path(d)
         ENV["PYTHONPYCACHEPREFIX"] = str(cwd / "pycache")
+        old = _before(before, Path(tempfile.mkdtemp(dir=d))) if before else None
         holes = np.random.default_rng(1).random((side, side)) >= 0.1
         (cwd / "holes.txt").write_text("\n".join("".join("#" if v else "." for v in row) for row in holes))
         made = [
@@ -95,7 +110,8 @@ def files_table(side: int, repeat: int) -> None:
         print(f"tilesolve verify FILE vs json.load of FILE, {side}x{side} cells, {repeat} runs each (median; CPU = "
               "user + sys of the process)")
         print(f"{'file':30s} {'MB':>6s} {'verify wall':>11s} {'CPU s':>7s} {'RSS MiB':>8s} {'json.load CPU':>13s} "
-              f"{'ratio':>6s} {'numpy+json CPU':>14s} {'ratio':>6s}")
+              f"{'ratio':>6s} {'numpy+json CPU':>14s} {'ratio':>6s}" + (f" {before + ' CPU':>12s} {'RSS MiB':>8s} "
+                                                                      f"{'ratio':>6s}" if before else ""))
         for what, name, argv in made:
             _timed([*argv, "-o", name], cwd)
             path = str(cwd / name)
@@ -103,8 +119,16 @@ def files_table(side: int, repeat: int) -> None:
             _, j_cpu, _ = measure([py, "-c", "import json, sys; json.load(open(sys.argv[1]))", path], repeat)
             _, n_cpu, _ = measure([py, "-c", NUMPY_LOAD, path], repeat)
             mb = os.path.getsize(path) / 1e6
-            print(f"{what:30s} {mb:6.1f} {v_wall:11.3f} {v_cpu:7.3f} {v_rss:8.1f} {j_cpu:13.3f} {v_cpu / j_cpu:5.1f}x "
-                  f"{n_cpu:14.3f} {v_cpu / n_cpu:5.1f}x", flush=True)
+            line = (f"{what:30s} {mb:6.1f} {v_wall:11.3f} {v_cpu:7.3f} {v_rss:8.1f} {j_cpu:13.3f} {v_cpu / j_cpu:5.1f}x "
+                    f"{n_cpu:14.3f} {v_cpu / n_cpu:5.1f}x")
+            if old is not None:
+                ENV["PYTHONPATH"] = str(old)
+                try:
+                    _, b_cpu, b_rss = measure([py, "-c", VERIFY_FROM_PATH, "verify", path], repeat)
+                finally:
+                    del ENV["PYTHONPATH"]
+                line += f" {b_cpu:12.3f} {b_rss:8.1f} {b_cpu / j_cpu:5.1f}x"
+            print(line, flush=True)
         print("goal: tilesolve verify <= 3x json.load (CPU)")
 
 
@@ -115,9 +139,11 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=1, help="runs of the re-verification (best is shown)")
     ap.add_argument("--only", choices=("files", "sweep"), default=None, help="run one of the two tables")
     ap.add_argument("--side", type=int, default=1000, help="files table: boards of side x side cells")
+    ap.add_argument("--before", metavar="REV", default=None,
+                    help="files table: also tilesolve verify as git revision REV runs it (its package extracted)")
     args = ap.parse_args()
     if args.only != "sweep":
-        files_table(args.side, max(args.repeat, 3))
+        files_table(args.side, max(args.repeat, 3), args.before)
         if args.only == "files":
             return
         print()
