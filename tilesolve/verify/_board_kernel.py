@@ -23,12 +23,12 @@ _numpy_cells = 0
 _COMPILED = None
 
 
-def grid_clean(t, lab, rows, cols, k, brick, known, beta, max_h, max_v):
+def grid_clean(t, present, rows, cols, k, brick, known, beta, max_h, max_v):
     """True when the tiling ``t`` (``(n, 4)`` integers, legs W, N, E, S) passes every check.
 
-    The cells are the board's in row-major order of its grid: ``lab`` holds their ``[row,
-    col]`` labels, unless every cell of the ``rows x cols`` grid is present (``n = rows *
-    cols``; then ``lab`` is not read). A cell's W, N, E, S legs meet the E, S, W, N legs of the cells
+    The cells are the board's, numbered in row-major order of the ``rows x cols`` grid's cells
+    ``present`` (a ``(rows, cols)`` 0/1 array, not read where every cell is: ``n = rows *
+    cols``). A cell's W, N, E, S legs meet the E, S, W, N legs of the cells
     at ``(r, c-1)``, ``(r-1, c)``, ``(r, c+1)``, ``(r+1, c)``, or the wall where there is none;
     the wall legs are numbered in order of cell, then of leg N, E, S, W, and ``beta`` gives each
     its colour (``-1``: free). Colours are ``0..k-1``; tiles are brick tiles (``brick``: exactly
@@ -82,40 +82,25 @@ def grid_clean(t, lab, rows, cols, k, brick, known, beta, max_h, max_v):
                             return False
                         wall += 1
         return wall == beta.shape[0]
-    # a board with holes, row by row: the cells present in the rows above, here and below
-    # (the row below read ahead from the labels, which are in row-major order)
-    above_row = np.zeros(cols, np.uint8)
-    this_row = np.zeros(cols, np.uint8)
-    below_row = np.zeros(cols, np.uint8)
+    # a board with holes: its mask, row by row (cells are numbered in row-major order of it)
+    if present.shape != (rows, cols):
+        return False
     above = np.empty(cols, np.int64)  # the last cell seen in each column
     nb = beta.shape[0]
     wall = 0
     i = 0
-    ahead = 0
-    while ahead < n and lab[ahead, 0] == 0:
-        if not 0 <= lab[ahead, 1] < cols:
-            return False
-        this_row[lab[ahead, 1]] = 1
-        ahead += 1
     for r in range(rows):
-        first, end = i, ahead  # the cells of row r
-        below_row[:] = 0
-        while ahead < n and lab[ahead, 0] == r + 1:
-            if not 0 <= lab[ahead, 1] < cols:
-                return False
-            below_row[lab[ahead, 1]] = 1
-            ahead += 1
         bad = False
         hrun = 0
-        last = -1
-        for i in range(first, end):
-            c = lab[i, 1]
-            if c <= last:  # not in row-major order
+        for c in range(cols):
+            if not present[r, c]:
+                continue
+            if i >= n:
                 return False
-            last = c
-            up, down = np.int64(above_row[c]), np.int64(below_row[c])
-            left = np.int64(this_row[c - 1]) if c > 0 else np.int64(0)
-            right = np.int64(this_row[c + 1]) if c + 1 < cols else np.int64(0)
+            up = np.int64(present[r - 1, c]) if r > 0 else np.int64(0)
+            down = np.int64(present[r + 1, c]) if r + 1 < rows else np.int64(0)
+            left = np.int64(present[r, c - 1]) if c > 0 else np.int64(0)
+            right = np.int64(present[r, c + 1]) if c + 1 < cols else np.int64(0)
             w = np.int64(t[i, 0])
             nn = np.int64(t[i, 1])
             e = np.int64(t[i, 2])
@@ -144,10 +129,9 @@ def grid_clean(t, lab, rows, cols, k, brick, known, beta, max_h, max_v):
                             return False
                         bad |= (beta[wall] >= 0) & (beta[wall] != colour)
                         wall += 1
-        i = end
+            i += 1
         if bad:
             return False
-        above_row, this_row, below_row = this_row, below_row, above_row
     return i == n and wall == nb
 
 

@@ -192,7 +192,8 @@ def _compiled_clean(problem, t: np.ndarray, kernel=None) -> bool | None:
     if not brick:
         legs = np.asarray(problem.tileset.legs, dtype=np.int64)
         known[((legs[:, 0] * k + legs[:, 1]) * k + legs[:, 2]) * k + legs[:, 3]] = True
-    return bool(kernel(np.ascontiguousarray(t), board.labels,
+    present = np.zeros((0, 0), np.uint8) if full else board.mask_of().view(np.uint8)
+    return bool(kernel(np.ascontiguousarray(t), present,
                        rows, cols, k, brick, known, problem.boundary, int(problem.max_h or 0),
                        int(problem.max_v or 0)))
 
