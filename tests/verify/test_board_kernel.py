@@ -22,11 +22,15 @@ SHAPES = ["rect", "torus", "cylinder", "mobius", "klein", "ring"]
 
 
 def _board(kind: str, w: int, h: int, holes: int, seed: int) -> Board:
+    """The ``kind`` board of ``w x h`` with about ``holes`` tenths of its cells removed: by
+    restriction (odd seeds) or built from its grid and mask (even seeds)."""
     b = getattr(Board, kind)(w, h)
     if holes:
         keep = np.random.default_rng(seed).random(b.n_cells) >= holes / 10
         if keep.any():
             b = b.restrict(keep)
+            if seed % 2 == 0:
+                b = Board.from_grid_spec(b.grid_spec, b.mask_of(), kind=b.kind)
     return b
 
 
