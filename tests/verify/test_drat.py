@@ -8,7 +8,10 @@ from __future__ import annotations
 
 import ast
 import itertools
+import os
 import pathlib
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -16,7 +19,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from pysat.solvers import Solver
 
+from clitools import SCRIPT
 from tilesolve.verify import _drat_kernels as K
+from tilesolve.verify import drat as D
 from tilesolve.verify.drat import check_drat, parse_drat
 
 
@@ -226,3 +231,80 @@ def test_compiled_and_interpreted_kernels_give_the_same_verdicts(case, lemmas):
         assert a.core.tolist() == b.core.tolist()
     if lemmas == "all":
         assert a.verified == check_drat(clauses, proof, engine="forward").verified
+
+
+# ------------------------------------------------------------ interpreted or compiled kernels
+COMPILED = object()  # what the stand-in for the compilation returns
+
+
+@pytest.fixture
+def choice(monkeypatch):
+    """A process that has compiled and interpreted nothing yet; ``choice(cached)`` says whether
+    numba's cache holds the kernels, and compiling returns COMPILED."""
+    monkeypatch.setattr(D, "_COMPILED", None)
+    monkeypatch.setattr(D, "_PLAIN_WORK", 0)
+    monkeypatch.setattr(D, "_compile", lambda: COMPILED)
+
+    def cached(ready: bool) -> None:
+        monkeypatch.setattr(D, "_cache_may_hold_kernels", lambda: ready)
+        monkeypatch.setattr(D, "_kernel_cache", lambda: (ready, None))
+
+    return cached
+
+
+def test_a_warm_cache_is_loaded_from_compile_from(choice):
+    choice(True)
+    assert D._kernels(D.COMPILE_FROM - 1) is K
+    assert D._kernels(D.COMPILE_FROM) is COMPILED
+    assert D._kernels(1) is COMPILED  # once loaded, always
+
+
+def test_interpreted_work_adds_up_to_the_threshold(choice):
+    choice(True)
+    half = D.COMPILE_FROM // 2 + 1
+    assert D._kernels(half) is K
+    assert D._kernels(half) is COMPILED  # the ski-rental rule: a loop of small checks ends compiled
+
+
+def test_a_cold_cache_compiles_only_for_large_work(choice):
+    choice(False)
+    assert D._kernels(D.COLD_COMPILE_FROM - 1) is K  # the first check after an install: no compilation
+    assert D._kernels(D.COLD_COMPILE_FROM, time_limit=1.0) is K  # no time to compile
+    assert D._kernels(D.COLD_COMPILE_FROM) is COMPILED
+    assert D._kernels(0, "plain") is K
+
+
+def test_forced_paths(choice):
+    choice(False)
+    assert D._kernels(10**9, "plain") is K
+    assert D._kernels(0, "compiled") is COMPILED
+
+
+def _python(code: str, cache: pathlib.Path) -> list[str]:
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache))
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True)
+    return out.stdout.split()
+
+
+@pytest.mark.slow
+def test_the_cold_cache_is_seen_without_importing_numba(tmp_path):
+    """The quick look finds the cache where numba writes it (an empty NUMBA_CACHE_DIR, then the
+    same folder once the kernels are compiled), without importing numba."""
+    look = ("import sys; from tilesolve.verify import drat as D; "
+            "print(D._cache_may_hold_kernels(), 'numba' in sys.modules)")
+    assert _python(look, tmp_path) == ["False", "False"]
+    assert _python("from tilesolve.verify import drat as D; D._kernels(0, 'compiled'); "
+                   "print(D._kernel_cache()[0])", tmp_path) == ["True"]
+    assert _python(look, tmp_path) == ["True", "False"]
+
+
+def test_a_tiny_proof_after_install_compiles_nothing(tmp_path):
+    """The README's unsat Wang packing with an empty numba cache: the proof is checked by the
+    interpreted kernels, and no kernel is compiled into the cache."""
+    cache = tmp_path / "numba"
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache))
+    proc = subprocess.run([SCRIPT, "pack", "--kind", "wang", "--colors", "3", "--method", "sat", "--fix", "0,0,5",
+                           "--fix", "0,1,7", "-o", str(tmp_path / "w.json")], env=env, capture_output=True, text=True)
+    assert proc.returncode == 1, proc.stderr
+    assert "DRAT proof checked by tilesolve.verify.drat" in proc.stdout + proc.stderr
+    assert not list(cache.rglob("_drat_kernels.*"))

@@ -23,7 +23,9 @@ Two engines check the same rules:
     propagation, two watched literals). Lemmas nothing uses are not checked, as in
     drat-trim: they cannot make the refutation wrong. ``lemmas="all"`` checks every lemma.
     The loops (:mod:`tilesolve.verify._drat_kernels`) run compiled by numba on large proofs
-    and interpreted on small ones (:data:`COMPILE_FROM` literals), with the same verdicts.
+    and interpreted on small ones, with the same verdicts: from :data:`COMPILE_FROM` units of
+    work when numba's cache holds the compiled kernels, from :data:`COLD_COMPILE_FROM` when
+    they would first have to compile (the first check after an install).
 ``"forward"``
     A plain-Python forward checker that checks every lemma in order (the reference the
     backward engine is tested against, and the baseline of ``benchmarks/bench_drat.py``).
@@ -50,8 +52,10 @@ True
 
 from __future__ import annotations
 
+import glob
 import hashlib
 import os
+import sys
 import threading
 import time
 import types
@@ -65,13 +69,25 @@ from tilesolve.verify import _drat_kernels as K
 
 __all__ = ["DratResult", "check_drat", "parse_drat", "dimacs_bytes", "cnf_sha256", "formula_arrays", "read_dimacs",
            "check_proof_files",
-           "COMPILE_FROM", "ENGINES"]
+           "COMPILE_FROM", "COLD_COMPILE_FROM", "PROOF_WEIGHT", "ENGINES"]
 
 ENGINES = ("backward", "forward")
 
-#: Literals (formula + proof) from which the compiled kernels are used (importing numba and
-#: loading its cache costs about half a second; the interpreted kernels do ~20k literals in that).
-COMPILE_FROM = 20_000
+#: Work of a check, in formula literals, that one proof literal costs the interpreted kernels
+#: (measured on Jeandel-Rao torus proofs: ~11 us a formula literal, 100-180 us a proof literal).
+PROOF_WEIGHT = 10
+
+#: Work (formula literals + :data:`PROOF_WEIGHT` x proof literals, summed over this process's
+#: interpreted checks) from which the compiled kernels are used when numba's cache holds them:
+#: importing numba and loading the cache costs about half a second of CPU, what the interpreted
+#: kernels spend on some 50k formula literals.
+COMPILE_FROM = 50_000
+
+#: Work from which the kernels are compiled when numba's cache does not hold them yet (the first
+#: check after an install): compiling costs 5-7 s of CPU, what the interpreted kernels spend on
+#: some 500k formula literals. Below it a check runs interpreted and leaves the cache empty, so a
+#: tiny proof never pays the compilation.
+COLD_COMPILE_FROM = 500_000
 
 #: Seconds a kernel call may take between two deadline checks (the steps per call adapt).
 _SLICE_S = 0.05
@@ -396,15 +412,11 @@ def _parse_binary(data: bytes) -> list[tuple[bool, list[int]]]:
 # ----------------------------------------------------------------------------- kernels
 _COMPILED: types.SimpleNamespace | None = None
 _LOCK = threading.Lock()
+_PLAIN_WORK = 0  # work the interpreted kernels have done in this process (the ski-rental rule)
 
 
 #: Seconds of time limit below which a first compilation (no numba cache yet) is not started.
 _COMPILE_S = 60.0
-
-#: Literals from which a check waits for another process's first compilation of the kernels
-#: instead of running interpreted (about 10k literals a second) while it compiles (seconds).
-WAIT_FROM = 50_000
-
 
 def _kernel_funcs() -> dict[str, types.FunctionType]:
     return {k: v for k, v in vars(K).items() if isinstance(v, types.FunctionType) and v.__module__ == K.__name__}
@@ -425,6 +437,25 @@ def _kernel_cache() -> tuple[bool, str | None]:
         return ready, os.path.join(files[0]._cache_path, "tilesolve-drat-compile.lock")
     except (AttributeError, OSError, IndexError, RuntimeError):  # another numba's layout, or no cache directory
         return False, None
+
+
+def _cache_may_hold_kernels() -> bool:
+    """False when no numba cache file of the kernels lies where numba writes them (looked for
+    without importing numba, which costs about 0.4 s): then the cache is surely cold.
+
+    The places are numba's: ``NUMBA_CACHE_DIR``, else ``__pycache__`` beside the source or the
+    user-wide cache (``$XDG_CACHE_HOME/numba``). True once numba is imported (the exact look,
+    :func:`_kernel_cache`, is then cheap) or when a file is found."""
+    if "numba" in sys.modules:
+        return True
+    base = os.environ.get("NUMBA_CACHE_DIR")
+    if base:
+        places = [os.path.join(base, "*")]
+    else:
+        user = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+        places = [os.path.join(os.path.dirname(K.__file__), "__pycache__"), os.path.join(user, "numba", "*")]
+    stem = glob.escape(os.path.splitext(os.path.basename(K.__file__))[0])
+    return any(glob.glob(os.path.join(place, f"{stem}.*.nbi")) for place in places)
 
 
 def _compile() -> types.SimpleNamespace:
@@ -452,19 +483,27 @@ def _compile() -> types.SimpleNamespace:
 def _kernels(work: int, mode: str = "auto", time_limit: float | None = None):
     """The kernel namespace: the module itself (interpreted) or its numba-compiled copy.
 
-    ``auto`` interprets small proofs. Without numba's cache it also interprets large ones when
-    a short ``time_limit`` leaves no room to compile (the interpreted loops stop on time), and
-    ones under :data:`WAIT_FROM` literals while another process compiles; the first process
-    to need them compiles the kernels, under a file lock, and the others wait for its cache."""
-    global _COMPILED
-    if mode == "plain" or (mode == "auto" and _COMPILED is None and work < COMPILE_FROM):
+    ``auto`` interprets a check while the work of this process's interpreted checks, this one
+    included, stays under :data:`COMPILE_FROM`, or under :data:`COLD_COMPILE_FROM` while numba's
+    cache does not hold the kernels; also when a short ``time_limit`` leaves no room to compile
+    them (the interpreted loops stop on time). Otherwise the first process to need the kernels
+    compiles them, under a file lock, and the others wait for its cache."""
+    global _COMPILED, _PLAIN_WORK
+    if mode == "plain":
         return K
     with _LOCK:
         if _COMPILED is not None:
             return _COMPILED
-        ready, lock_path = _kernel_cache()
-        if mode == "auto" and not ready and time_limit is not None and time_limit < _COMPILE_S:
-            return K
+        total = _PLAIN_WORK + work
+        ready, lock_path = False, None
+        if mode == "auto":
+            if total >= COMPILE_FROM and (total >= COLD_COMPILE_FROM or _cache_may_hold_kernels()):
+                ready, lock_path = _kernel_cache()
+            if not ready and (total < COLD_COMPILE_FROM or (time_limit is not None and time_limit < _COMPILE_S)):
+                _PLAIN_WORK = total
+                return K
+        else:
+            ready, lock_path = _kernel_cache()
         try:
             import fcntl
 
@@ -472,13 +511,8 @@ def _kernels(work: int, mode: str = "auto", time_limit: float | None = None):
         except (ImportError, OSError):
             fh = None
         try:
-            if fh is not None:
-                try:
-                    fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
-                except BlockingIOError:  # another process is compiling them
-                    if mode == "auto" and work < WAIT_FROM:
-                        return K
-                    fcntl.flock(fh, fcntl.LOCK_EX)
+            if fh is not None:  # wait while another process compiles them, then load its cache
+                fcntl.flock(fh, fcntl.LOCK_EX)
             _COMPILED = _compile()
         finally:
             if fh is not None:
@@ -736,7 +770,8 @@ def check_drat(
     pivot[nonempty] = lits[start[n_f:n_cl][nonempty]]
     n_vars = int(codes.max() >> 1) if codes.size else 0
     L = 2 * n_vars + 2
-    k = _kernels(int(codes.size), kernels, None if time_limit is None else time_limit - elapsed())
+    work = int(f_lits.size) + PROOF_WEIGHT * int(p_lits.size)
+    k = _kernels(work, kernels, None if time_limit is None else time_limit - elapsed())
     taut = np.zeros(n_cl, np.int8)
     chash = np.zeros(n_cl, np.int64)
     mark = np.full(L, -1, np.int64)
