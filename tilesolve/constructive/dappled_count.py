@@ -976,8 +976,8 @@ def count_dappled(
         tori with conditions along both axes by the trace of the transfer operator.
     progress : callable, optional
         Called as ``progress(done, total)`` after each row of each residue computation (the
-        facade draws it with :func:`tilesolve.engine.progress.status_line`; constructive
-        code never writes to the terminal itself).
+        facade passes a :mod:`tilesolve.progress` task's ``set``; constructive code never
+        writes to the terminal itself).
     max_memory : int
         Refuse (before allocating) when the estimated working memory exceeds this many bytes.
     orientation : {None, 'rows', 'cols'}

@@ -221,7 +221,7 @@ def count(
             note = f"transfer matrix not applicable ({exc}); counted by solver enumeration"
     from tilesolve.engine.dappled import count_by_enumeration
 
-    res = count_by_enumeration(problem, deadline=deadline, progress=bool(progress))
+    res = count_by_enumeration(problem, deadline=deadline, progress=progress)
     notes = [n for n in (res.note, note) if n]
     return res.replace(time_s=time.perf_counter() - t0, note="; ".join(notes) or None)
 
