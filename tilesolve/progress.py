@@ -170,9 +170,12 @@ class _Bar(Task):
         self.bar.update(n)
 
     def set(self, done: int, total: int | None = None) -> None:
-        if total is not None and total != self.bar.total:
+        new_total = total is not None and total != self.bar.total
+        if new_total:
             self.bar.total = total
         self.bar.update(done - self.bar.n)
+        if new_total:  # the bar's shape changes (a fraction, an ETA): show it now, not at tqdm's next interval
+            self.draw()
 
     def note(self, text: str) -> None:
         if self.ticker:  # no count to put it beside: the note follows the label
