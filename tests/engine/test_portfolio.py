@@ -28,7 +28,7 @@ import pytest
 
 import tilesolve.engine.portfolio as pf
 from tilesolve.deadline import Deadline
-from tilesolve.engine.portfolio import escalate, run_portfolio
+from tilesolve.engine.portfolio import escalate, run_portfolio, seeded_run
 from tilesolve.engine.result import run_interruptible
 from tilesolve.errors import BackendUnavailable, InvalidProblem
 from tilesolve.model.run import RunOptions
@@ -360,7 +360,7 @@ def planned_route(plan: dict, run: RunOptions):
     """
     seed, solver = run.seed, run.solver
     action, _, arg = plan.get(seed, "wait").partition(":")
-    stats = {"pid": os.getpid(), "time_limit": run.deadline.time_limit}
+    stats = {"pid": os.getpid(), "time_limit": run.deadline.time_limit, "nice": os.nice(0)}
     if action == "raise":
         raise InvalidProblem(f"bad input for seed {seed}")
     if action == "wait":
@@ -379,9 +379,11 @@ def _escalate(plan: dict, *, time_limit: float | None = None, **kwargs) -> Solut
 
 @pytest.fixture
 def at_once(monkeypatch):
-    """Workers join the first run at once, and their runs last past the 30 s bound."""
+    """Workers join the first run at once, and their runs last past the 30 s bound; they keep
+    this process's priority (niced, a loaded machine could stretch their start past the bound)."""
     monkeypatch.setattr(pf, "QUICK_S", 0.0)
     monkeypatch.setattr(pf, "FIRST_BUDGET_S", LONG_S)
+    monkeypatch.setattr(pf, "WORKER_NICE", 0)
 
 
 def test_escalate_first_run_that_decides_quickly_is_the_plain_call():
@@ -451,6 +453,24 @@ def test_escalate_first_run_that_decides_terminates_the_workers(at_once):
     assert time.perf_counter() - t0 < BOUND_S
     assert s.status is Status.SAT and s.seed == 1 and s.stats["pid"] == os.getpid()
     assert s.notes[-1] == "portfolio: seed 1 decided it in this process; 2 runs started beside it on 2 worker processes"
+
+
+@pytest.mark.slow
+def test_escalate_workers_run_at_the_lowest_priority(monkeypatch):
+    """The first run keeps this process's priority; its workers take WORKER_NICE more."""
+    monkeypatch.setattr(pf, "QUICK_S", 0.0)
+    s = _escalate({1: "wait", 2: "sat"}, workers=2)
+    assert s.status is Status.SAT and s.seed == 2 and s.stats["pid"] != os.getpid()
+    assert s.stats["nice"] == min(19, os.nice(0) + pf.WORKER_NICE)
+    first = planned_route({1: "sat"}, RunOptions(seed=1))
+    assert first.stats["nice"] == os.nice(0)
+
+
+@pytest.mark.slow
+def test_portfolio_workers_keep_the_callers_priority():
+    s = run_portfolio(functools.partial(seeded_run, planned_route, {1: "sat"}, RunOptions(seed=0)), [0, 1],
+                      workers=2)
+    assert s.status is Status.SAT and s.stats["pid"] != os.getpid() and s.stats["nice"] == os.nice(0)
 
 
 @pytest.mark.slow
@@ -613,6 +633,7 @@ def test_workers_die_with_the_cli_process(sig):
     # A CLI run escalates at once to 2 worker processes whose runs would last 600 s (corner
     # C = 4 by full SAT: minutes per seed); the parent is then terminated or killed.
     boot = ("import sys; import tilesolve.engine.portfolio as p; p.QUICK_S = 0.0; p.FIRST_BUDGET_S = 600.0; "
+            "p.WORKER_NICE = 0; "  # niced, a loaded machine could stretch their start past the bound
             "from tilesolve.cli.main import main; sys.exit(main(sys.argv[1:]))")
     cli = subprocess.Popen([sys.executable, "-c", boot, "pack", "--kind", "corner", "--colors", "4", "--method", "sat",
                             "--seed", "1", "--workers", "3"], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)

@@ -35,17 +35,19 @@ and answers over a :func:`multiprocessing.Pipe`. Not a :mod:`multiprocessing` st
 ``spawn`` and ``forkserver`` re-import the caller's ``__main__`` in every worker, which
 re-runs a script that lacks an ``if __name__ == "__main__":`` guard (the worker then tries
 to start its own pool and dies: a library call must not depend on the caller's script
-layout), and ``fork`` copies the parent's threads' locks (OR-tools, numba, the progress line,
-a Dask client) in whatever state they were. A worker imports the caller's ``__main__`` only
-when the task was defined there (see Limits). On Linux a worker dies with the thread that
-started it (``prctl(PR_SET_PDEATHSIG)``): a parent killed by SIGTERM or SIGKILL, which runs
-no cleanup, leaves no worker running its search to the end; elsewhere a watchdog thread in
-the worker checks the parent twice a second. Start-up cost is the imports: about 0.5 s of
-CPU per worker for the interpreter and this module (numpy is most of it; measured with
-``python -X importtime``), then the task's own (the solver stack, pysat, OR-tools, numba:
-about 1 s more), as with ``spawn``. On the shared dev machine (2 cores, load 7) a whole
-:func:`run_portfolio` call of 2 seeds on 2 workers took 2.0-2.2 s with a task that answers
-at once and 3.7-4.1 s with the corner C = 4 lift.
+layout), and ``fork`` copies the parent's threads' locks (OR-tools, numba, the progress
+line, a Dask client) in whatever state they were. A worker imports the caller's
+``__main__`` only when the task was defined there (see Limits). On Linux a worker dies with
+the thread that started it (``prctl(PR_SET_PDEATHSIG)``): a parent killed by SIGTERM or
+SIGKILL, which runs no cleanup, leaves no worker running its search to the end; elsewhere a
+watchdog thread in the worker checks the parent twice a second. :func:`escalate`'s workers
+lower their priority first (:data:`WORKER_NICE`); :func:`run_portfolio`'s keep the
+caller's. Start-up cost is the imports: about 0.5 s of CPU per worker for the interpreter
+and this module (numpy is most of it; measured with ``python -X importtime``), then the
+task's own (the solver stack, pysat, OR-tools, numba: about 1 s more), as with ``spawn``.
+On the shared dev machine (2 cores, load 7) a whole :func:`run_portfolio` call of 2 seeds
+on 2 workers took 2.0-2.2 s with a task that answers at once and 3.7-4.1 s with the corner
+C = 4 lift.
 
 Limits
 ------
@@ -102,7 +104,7 @@ from tilesolve.model.run import RunOptions
 from tilesolve.model.solution import Solution, Status
 
 __all__ = ["run_portfolio", "escalate", "seeded_run", "DEFAULT_WORKERS", "GRACE_S", "CONNECT_TIMEOUT_S", "QUICK_S",
-           "FIRST_BUDGET_S", "PORTFOLIO_SEEDS"]
+           "FIRST_BUDGET_S", "PORTFOLIO_SEEDS", "WORKER_NICE"]
 
 #: Processes when the caller names none: the machines tilesolve targets have two cores (as
 #: :data:`tilesolve.engine.cpsat.DEFAULT_CPSAT_WORKERS`). For :func:`escalate` this process
@@ -125,6 +127,11 @@ QUICK_S = 5.0
 FIRST_BUDGET_S = 20.0
 #: Seeds :func:`escalate`'s workers may draw (seed + 1, seed + 2, ...).
 PORTFOLIO_SEEDS = 64
+#: Niceness of :func:`escalate`'s worker processes (``os.nice``; 19, the lowest priority): a
+#: worker runs on a core nothing else wants, and on a busy one it yields to the first run. The
+#: first run and its workers share one scheduling group (Linux autogroups: one session), so a
+#: worker at the first run's priority halves the first run's share of a loaded machine.
+WORKER_NICE = 19
 
 _DECISIVE = (Status.SAT, Status.OPTIMAL, Status.UNSAT)
 
@@ -236,8 +243,11 @@ def escalate(route: Callable[[Any, RunOptions], Solution], problem: Any, run: Ru
     checked again every :data:`QUICK_S` seconds until one is): a worker on a busy machine
     takes its CPU from the first run (Linux shares the CPU between sessions, and the first
     run and its workers are one session), which made a loaded 2-core machine twice as slow
-    (``benchmarks/bench_portfolio.py``). So the default is never slower than the single
-    seed, up to the start-up of a worker. A ``workers`` the caller names is obeyed.
+    (``benchmarks/bench_portfolio.py``). And the workers run at the lowest priority
+    (:data:`WORKER_NICE`): a machine that becomes busy after they started takes their CPU, not
+    the first run's, and their start-up (imports, the task's set-up) does not slow it either.
+    So the default is never slower than the single seed, up to what a worker costs on the
+    memory bus. A ``workers`` the caller names is obeyed (the count; they are niced all the same).
 
     With ``cluster``, every run goes to the Dask cluster (seeds ``seed + 1, ...``); with
     ``workers=1`` and no cluster, this is the plain call.
@@ -377,7 +387,7 @@ class _Escalation:
         where = f"on {_processes(n)} beside seed {self.seed0} in this process"
         pool = None
         try:
-            self.pool = pool = _Pool(task, seeds, n, self.clock, self.name, where)
+            self.pool = pool = _Pool(task, seeds, n, self.clock, self.name, where, nice=WORKER_NICE)
             pool.start()
             self.winner, self.stop, self.stopped = pool.drive(
                 lambda running: self.bar.note(f"seed {self.seed0} here; {pool.runs.detail(running)} in {_processes(n)}"),
@@ -601,7 +611,7 @@ def _unpack_exception(packed: tuple) -> BaseException:
 #: by terminating the workers, so no worker prints a KeyboardInterrupt traceback), take the
 #: parent's ``sys.path`` from the pipe (so the task's modules import as they do there), then
 #: hand over to :func:`_worker_main`.
-_BOOT = ("import signal, sys; signal.signal(signal.SIGINT, signal.SIG_IGN); "
+_BOOT = ("import os, signal, sys; os.nice({nice}); signal.signal(signal.SIGINT, signal.SIG_IGN); "
          "from multiprocessing.connection import Connection; conn = Connection({fd}); sys.path[:] = conn.recv(); "
          "from tilesolve.engine.portfolio import _worker_main; _worker_main(conn, {ppid})")
 
@@ -724,11 +734,12 @@ def _pickled_task(task) -> bytes:
 class _Pool:
     """Worker processes running ``task`` on a queue of seeds until one decides."""
 
-    def __init__(self, task, seeds: list[int], n: int, deadline: Deadline, label: str, where: str = "") -> None:
+    def __init__(self, task, seeds: list[int], n: int, deadline: Deadline, label: str, where: str = "",
+                 nice: int = 0) -> None:
         if os.name != "posix":
             raise BackendUnavailable("local worker processes need a POSIX system; use workers=1 or a Dask cluster")
         self.blob = _pickled_task(task)
-        self.n, self.label, self.deadline = n, label, deadline
+        self.n, self.label, self.deadline, self.nice = n, label, deadline, nice
         self.where = where or f"on {_processes(n)}"
         self.runs = _Runs(seeds, self.where, n, deadline)
         self.queue = collections.deque(seeds)
@@ -739,8 +750,8 @@ class _Pool:
             parent_end, child_end = multiprocessing.Pipe()
             fd = child_end.fileno()
             try:
-                process = subprocess.Popen([sys.executable, "-c", _BOOT.format(fd=fd, ppid=os.getpid())],
-                                           pass_fds=(fd,), stdin=subprocess.DEVNULL)
+                boot = _BOOT.format(fd=fd, ppid=os.getpid(), nice=self.nice)
+                process = subprocess.Popen([sys.executable, "-c", boot], pass_fds=(fd,), stdin=subprocess.DEVNULL)
             finally:
                 child_end.close()
             self.workers.append(_Worker(process, parent_end))
