@@ -26,11 +26,20 @@ Large proofs against drat-trim (``--large``)
     seconds are the best of ``--repeat`` runs; ``ratio`` is tilesolve's CPU time over
     drat-trim's (the goal: at most 1 on every proof tilesolve writes).
 
+First run after an install (``--first-run``)
+    ``tilesolve pack --kind wang --colors 3 --method sat --fix 0,0,5 --fix 0,1,7`` (unsat; unit
+    propagation refutes it, and its DRAT proof of 2 lemmas is checked) with an empty numba
+    cache (a fresh ``NUMBA_CACHE_DIR`` each run) against a cache holding the compiled DRAT
+    kernels, in turns: wall and CPU time, peak RSS, and the ratio to warm (issue 19: the first
+    run within 2x of a warm one; a tiny proof is checked by the interpreted kernels and
+    compiles nothing, ``tilesolve.verify.drat.COLD_COMPILE_FROM``).
+
 Usage::
 
     python benchmarks/bench_drat.py              # tori up to 12 x 12
     python benchmarks/bench_drat.py --max 6      # quick
     python benchmarks/bench_drat.py --large 13x13 16x16 15x16 14x16 --proof-dir /tmp/jr-proofs
+    python benchmarks/bench_drat.py --first-run --repeat 5
 """
 
 from __future__ import annotations
@@ -40,18 +49,17 @@ import json
 import os
 import resource
 import shutil
+import statistics
 import subprocess
+import sys
 import tempfile
 import time
 from pathlib import Path
 
-import dratify
-from _measure import best, peak_mib  # noqa: E402 - benchmarks/ is on sys.path
-from pysat.solvers import Solver
+from _measure import best, child, peak_mib  # noqa: E402 - benchmarks/ is on sys.path
 
-from tilesolve.encodings.wang import encode_wang
-from tilesolve.model.board import Board, BoardProblem, WangTileSet
-from tilesolve.verify.drat import check_drat, dimacs_bytes, read_dimacs
+# The checker and the solvers are imported where they are used: --first-run measures whole
+# commands from a small parent (a child's peak RSS starts from its parent's).
 
 TILES = Path(__file__).resolve().parents[1] / "tilesolve" / "data" / "tilesets" / "jeandel-rao.json"
 
@@ -66,10 +74,21 @@ def main() -> None:
                     "or 'existing' for the pairs already in --proof-dir")
     ap.add_argument("--proof-dir", help="where the large proofs are written (default: a temporary folder)")
     ap.add_argument("--drat-trim", help="drat-trim binary (default: drat-trim on PATH)")
+    ap.add_argument("--first-run", action="store_true", help="the unsat Wang packing whose tiny proof is checked: "
+                    "empty numba cache against a filled one")
     args = ap.parse_args()
+    if args.first_run:
+        first_run(args)
+        return
     if args.large:
         large(args)
         return
+    import dratify
+    from pysat.solvers import Solver
+
+    from tilesolve.encodings.wang import encode_wang
+    from tilesolve.model.board import Board, BoardProblem, WangTileSet
+    from tilesolve.verify.drat import check_drat, dimacs_bytes
 
     doc = json.loads(TILES.read_text())
     tiles = WangTileSet(doc["tiles"], doc["colors"])
@@ -119,9 +138,12 @@ def main() -> None:
 
 def write_proofs(tori: list[str], directory: Path) -> None:
     """CNF and DRAT proof of each torus, as ``aperiodic check --proof-dir`` makes them."""
+    from pysat.solvers import Solver
+
     from tilesolve.encodings.wang_tiles import encode_tiles
     from tilesolve.io.builtin_tilesets import load
     from tilesolve.model.aperiodic import board_of
+    from tilesolve.verify.drat import dimacs_bytes
 
     tiles = load("jeandel-rao")[0]
     for name in tori:
@@ -143,6 +165,8 @@ def children_cpu() -> float:
 
 def large(args) -> None:
     """tilesolve's checker against drat-trim on large proofs (see the module docstring)."""
+    from tilesolve.verify.drat import check_drat, read_dimacs
+
     binary = args.drat_trim or shutil.which("drat-trim")
     directory = Path(args.proof_dir or tempfile.mkdtemp(prefix="jr-proofs-"))
     directory.mkdir(parents=True, exist_ok=True)
@@ -173,6 +197,43 @@ def large(args) -> None:
             dt, dc, ratio = f"{t_dt:.3f}", f"{c_dt:.3f}", f"{c_ts / c_dt:.2f}x"
         print(f"{drat.name:>28} {drat.stat().st_size / 1e6:>6.1f} {r.lemmas:>8} {r.checked:>8} {t_ts:>8.3f} "
               f"{c_ts:>7.3f} {dt:>8} {dc:>7} {ratio:>6}", flush=True)
+
+
+#: The README's unsat Wang packing: unit propagation refutes it, its DRAT proof has 2 lemmas.
+FIRST_RUN = ["pack", "--kind", "wang", "--colors", "3", "--method", "sat", "--fix", "0,0,5", "--fix", "0,1,7"]
+
+
+def first_run(args) -> None:
+    """The command a tiny proof is checked in, first after an install (an empty numba cache
+    of its own: ``NUMBA_CACHE_DIR``) against warm (a cache holding the compiled DRAT kernels),
+    in turns, ``--repeat`` times each (at least 3); medians."""
+    script = Path(sys.executable).with_name("tilesolve")
+    tilesolve = str(script) if script.exists() else shutil.which("tilesolve")
+    repeat = max(3, args.repeat)
+    with tempfile.TemporaryDirectory() as tmp:
+        warm_cache = os.path.join(tmp, "warm")
+        env = dict(os.environ, NUMBA_CACHE_DIR=warm_cache)
+        subprocess.run([sys.executable, "-c", "from tilesolve.verify import drat; drat._kernels(0, 'compiled')"],
+                       env=env, check=True)  # fills the warm cache
+        argv = [tilesolve, *FIRST_RUN, "-o", os.path.join(tmp, "w.json")]
+        runs: dict[str, list] = {"first run (empty cache)": [], "warm (kernels cached)": []}
+        for i in range(repeat):
+            cold_cache = os.path.join(tmp, f"cold{i}")
+            for label, cache in zip(runs, (cold_cache, warm_cache)):
+                r = child(argv, env=dict(os.environ, NUMBA_CACHE_DIR=cache))
+                if r.returncode != 1:  # unsat
+                    raise SystemExit(f"{' '.join(argv)} exited {r.returncode}: {r.stderr}")
+                runs[label].append(r)
+            compiled = [p.name for p in Path(cold_cache).rglob("_drat_kernels.*.nbi")]
+    print(f"tilesolve {' '.join(FIRST_RUN)} -o w.json  (exit 1: unsat; {repeat} runs each, in turns; medians)")
+    print(f"{'run':26s} {'wall_s':>7} {'cpu_s':>7} {'peak_MiB':>8} {'cpu/warm':>8} {'wall/warm':>9}")
+    med = {label: {k: statistics.median(getattr(r, k) for r in rs) for k in ("wall", "cpu", "rss_mib")}
+           for label, rs in runs.items()}
+    warm = med["warm (kernels cached)"]
+    for label, m in med.items():
+        print(f"{label:26s} {m['wall']:7.2f} {m['cpu']:7.2f} {m['rss_mib']:8.0f} {m['cpu'] / warm['cpu']:8.2f} "
+              f"{m['wall'] / warm['wall']:9.2f}")
+    print(f"DRAT kernels compiled by the first run: {len(compiled)} (goal: first run <= 2x warm)")
 
 
 if __name__ == "__main__":
