@@ -385,8 +385,8 @@ def test_files_of_versions_1_and_2_still_read_and_verify(tmp_path, name):
 
 
 def test_a_large_grid_board_is_read_and_verified_without_its_joins(tmp_path):
-    """A compact file of a grid board is read and verified from its grid: the board's join
-    arrays (8 bytes a leg) are never built."""
+    """A compact file of a grid board is read and verified from its grid: the board's labels
+    and join arrays (8 bytes a leg) are never built."""
     from tilesolve.families import board as wang
 
     b = Board.rect(80, 60)
@@ -394,4 +394,5 @@ def test_a_large_grid_board_is_read_and_verified_without_its_joins(tmp_path):
     s = wang.solve(p, seed=1)
     write_board_solution(tmp_path / "b.json", p, s)
     q, t = read_board_solution(tmp_path / "b.json")
-    assert wang.FAMILY.verify(q, t.tiling) == [] and "nbr_cell" not in vars(q.board)
+    assert wang.FAMILY.verify(q, t.tiling) == [] and q.describe() == p.describe()
+    assert "nbr_cell" not in vars(q.board) and "labels" not in vars(q.board)

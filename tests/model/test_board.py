@@ -202,8 +202,9 @@ def test_from_edges_reports_bad_cells_and_legs():
 
 @pytest.mark.parametrize("kind", ["rect", "torus", "cylinder", "mobius", "klein", "ring"])
 def test_a_grid_boards_joins_are_made_on_first_use(kind):
-    """A board built from its grid counts its boundary legs on the grid, before its joins
-    exist, as many as its joins then hold; a copy made by pickling keeps working."""
+    """A board built from its grid counts its cells and boundary legs on the grid, before its
+    labels (of a full grid) and joins exist, as many as they then hold; a copy made by pickling
+    keeps working."""
     import pickle
 
     rng = np.random.default_rng(3)
@@ -213,8 +214,9 @@ def test_a_grid_boards_joins_are_made_on_first_use(kind):
         keep[0] = True
         for board in (b, Board.from_grid_spec(b.grid_spec, b.restrict(keep).mask_of())):
             fresh = Board.from_grid_spec(board.grid_spec, board.mask_of(), kind=board.kind)
-            n_boundary = fresh.n_boundary
+            n_boundary, n_cells, said = fresh.n_boundary, fresh.n_cells, fresh.describe()
             assert "nbr_cell" not in vars(fresh)
+            assert n_cells == board.n_cells and said == board.describe()
             copy = pickle.loads(pickle.dumps(fresh))
             assert n_boundary == int((fresh.nbr_cell < 0).sum()) == board.n_boundary
             for name in ("labels", "nbr_cell", "nbr_leg"):

@@ -203,7 +203,8 @@ class Board:
     # ------------------------------------------------------------------ basics
     @property
     def n_cells(self) -> int:
-        return int(self.labels.shape[0])
+        n = self.__dict__.get("_n_cells")  # a board built from its grid knows it before its labels
+        return int(self.labels.shape[0]) if n is None else n
 
     @property
     def n_boundary(self) -> int:
@@ -367,29 +368,41 @@ class Board:
         m = np.asarray(mask, dtype=bool)
         if m.shape != (H, Wd):
             raise InvalidProblem(f"a mask of shape {m.shape} does not fit a {Wd}x{H} grid")
-        lab = np.stack(np.nonzero(m), axis=1).astype(np.int64, copy=False)  # [row, col], in row-major order
-        if lab.shape[0] == 0:
+        n = int(np.count_nonzero(m))
+        if n == 0:
             raise InvalidProblem("the board mask has no cells")
         self = object.__new__(cls)
-        lab.setflags(write=False)
         m = m.copy()
         m.setflags(write=False)
-        for name, value in (("labels", lab), ("kind", kind), ("grid_spec", GridSpec(H, Wd, wrap_rows, wrap_cols)),
-                            ("_grid_mask", m)):
+        for name, value in (("kind", kind), ("grid_spec", GridSpec(H, Wd, wrap_rows, wrap_cols)), ("_grid_mask", m),
+                            ("_n_cells", n)):
             object.__setattr__(self, name, value)
+        if n < H * Wd:  # the labels of a full grid are made on first use too
+            self._grid_labels()
         return self  # the joins are made on first use (_grid_joins)
 
     def __getattr__(self, name: str):
-        """The joins of a board built from its grid (:meth:`from_grid_spec`), made on first use."""
-        if name in ("nbr_cell", "nbr_leg") and "_grid_mask" in self.__dict__:
-            self._grid_joins()
+        """The labels and joins of a board built from its grid (:meth:`from_grid_spec`), made on
+        first use."""
+        if name in ("labels", "nbr_cell", "nbr_leg") and "_grid_mask" in self.__dict__:
+            if name == "labels":
+                self._grid_labels()
+            else:
+                self._grid_joins()
             return self.__dict__[name]
         raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+
+    def _grid_labels(self) -> None:
+        """Set :attr:`labels` of a board built by :meth:`from_grid_spec`: its cells' ``[row, col]``
+        in row-major order."""
+        lab = np.stack(np.nonzero(self._grid_mask), axis=1).astype(np.int64, copy=False)
+        lab.setflags(write=False)
+        object.__setattr__(self, "labels", lab)
 
     def _grid_joins(self) -> None:
         """Set :attr:`nbr_cell` and :attr:`nbr_leg` of a board built by :meth:`from_grid_spec`."""
         m, spec = self._grid_mask, self.grid_spec
-        n = self.labels.shape[0]
+        n = self.n_cells
         index = np.full(m.shape, -1, dtype=np.int64)
         index[m] = np.arange(n, dtype=np.int64)
         pad = _padded(index, spec, -1)
@@ -557,8 +570,11 @@ class Board:
         return cls(lab, nc, nl, kind=str(kind))
 
     def describe(self) -> str:
-        rows = int(self.labels[:, 0].max()) + 1 if self.n_cells else 0
-        cols = int(self.labels[:, 1].max()) + 1 if self.n_cells else 0
+        if "labels" not in self.__dict__ and "_grid_mask" in self.__dict__:  # a full grid, labels not made
+            rows, cols = self._grid_mask.shape
+        else:
+            rows = int(self.labels[:, 0].max()) + 1 if self.n_cells else 0
+            cols = int(self.labels[:, 1].max()) + 1 if self.n_cells else 0
         return f"{self.kind} board, {self.n_cells} cells in {cols}x{rows}, {self.n_boundary} boundary legs"
 
 
