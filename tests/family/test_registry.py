@@ -83,3 +83,18 @@ def test_a_second_command_does_not_scan_the_installed_packages():
     runs = [subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.strip()
             for _ in range(2)]
     assert runs[1] == "False"
+
+
+def test_families_come_in_entry_point_order_whatever_was_imported_first():
+    """A process that imported one facade first (registering it first) lists the families in the
+    same order as the console script does (the --help test compared the two)."""
+    import subprocess
+    import sys
+
+    code = ("import tilesolve.families.stochastic, tilesolve.families.packing\n"
+            "from tilesolve import family\n"
+            "print(' '.join(f.name for f in family.families()))")
+    late = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.split()
+    fresh = subprocess.run([sys.executable, "-c", code.split("\n", 1)[1]], capture_output=True, text=True,
+                           check=True).stdout.split()
+    assert late == fresh and late.index("packing") > late.index("board")

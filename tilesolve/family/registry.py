@@ -44,6 +44,9 @@ SCAN_CACHE = os.path.join(os.path.dirname(__file__), "__pycache__", "entry_point
 _SCANS_KEPT = 8
 
 _REGISTRY: dict[str, Family] = {}
+#: Each entry point's place in :func:`_entry_points` (by name): the order :func:`families`
+#: gives, whichever facade a process happened to import first.
+_ORDER: dict[str, int] = {}
 _LOADED = False
 #: Held while the entry points load: another thread asking for the families waits for them all
 #: (a server's warm-up thread and its first request); the loading thread itself, re-entered by
@@ -83,7 +86,8 @@ def _load_builtin() -> None:
             return
         _loading_now = True
         try:
-            for ep in _entry_points():
+            for i, ep in enumerate(_entry_points()):
+                _ORDER.setdefault(ep.name, i)
                 if ep.name not in _REGISTRY:
                     _load_entry(ep)
         finally:
@@ -160,9 +164,10 @@ def _load_entry(ep: EntryPoint) -> None:
 
 
 def families() -> list[Family]:
-    """Every registered family, in registration order."""
+    """Every registered family: those of the entry points in their order (by name), then any
+    registered otherwise, in registration order."""
     _load_builtin()
-    return list(_REGISTRY.values())
+    return sorted(_REGISTRY.values(), key=lambda f: _ORDER.get(f.name, len(_ORDER)))
 
 
 def get(name: str) -> Family:
