@@ -85,9 +85,11 @@ COMPILE_FROM = 50_000
 
 #: Work from which the kernels are compiled when numba's cache does not hold them yet (the first
 #: check after an install): compiling costs 5-7 s of CPU, what the interpreted kernels spend on
-#: some 500k formula literals. Below it a check runs interpreted and leaves the cache empty, so a
-#: tiny proof never pays the compilation.
-COLD_COMPILE_FROM = 500_000
+#: some 500k units of work (~12 us a unit); buying at half that price, since a command that
+#: checks one proof this large usually checks more (``aperiodic check`` of finite-jv7: 335k,
+#: then 286k). Below it a check runs interpreted and leaves the cache empty, so a small proof
+#: never pays the compilation (the unsat C = 3 Wang packing of the README: 139k).
+COLD_COMPILE_FROM = 250_000
 
 #: Seconds a kernel call may take between two deadline checks (the steps per call adapt).
 _SLICE_S = 0.05
