@@ -280,6 +280,24 @@ def test_forced_paths(choice):
     assert D._kernels(0, "compiled") is COMPILED
 
 
+def test_a_check_that_outlasts_its_estimate_goes_on_compiled(monkeypatch, php6):
+    """Charged what it costs (here: any time is a lot of work), an interpreted check switches to
+    the compiled kernels between two calls, with the verdict of the interpreted kernels alone."""
+    f, proof = php6
+    alone = check_drat(f, proof, kernels="plain", lemmas="all")
+    real = D._compile
+    compiled = []
+    monkeypatch.setattr(D, "_COMPILED", None)
+    monkeypatch.setattr(D, "_PLAIN_WORK", 0)
+    monkeypatch.setattr(D, "_compile", lambda: compiled.append(1) or real())
+    monkeypatch.setattr(D, "UNIT_S", 1e-12)
+    r = check_drat(f, proof, lemmas="all")  # a small proof: it starts interpreted
+    assert compiled == [1] and D._COMPILED is not None
+    assert (r.status, r.reason, r.checked, r.rat_lemmas) == (alone.status, alone.reason, alone.checked,
+                                                             alone.rat_lemmas)
+    assert r.core.tolist() == alone.core.tolist()
+
+
 def _python(code: str, cache: pathlib.Path) -> list[str]:
     env = dict(os.environ, NUMBA_CACHE_DIR=str(cache))
     out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True)
