@@ -121,11 +121,11 @@ def commands(side: int) -> None:
     rows.append((f"help: count {size} --cyclic", wall, cpu, rss, rc,
                  f"count_dappled {k_cpu:.2f} s (command {cpu / k_cpu:.2f}x it)"))
 
-    print(f"whole commands (fresh processes; CPU = user + sys), {{H0^2, V1^2}}")
+    print("whole commands (fresh processes; CPU = user + sys), {H0^2, V1^2}")
     print(f"{'command':<26} {'wall s':>7} {'CPU s':>7} {'RSS MiB':>8} {'exit':>4}  anchor in a process of its own (CPU)")
     for label, wall, cpu, rss, rc, anchor in rows:
         print(f"{label:<26} {wall:7.2f} {cpu:7.2f} {rss:8.0f} {rc:4d}  {anchor}")
-    print(f"goals: count 16x16 <= 5 s CPU; 18x18 refused with the estimate (exit 2) or counted; "
+    print("goals: count 16x16 <= 5 s CPU; 18x18 refused with the estimate (exit 2) or counted; "
           "the cyclic help example <= 3 s")
     print()
 

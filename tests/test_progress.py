@@ -15,7 +15,7 @@ import time
 from pathlib import Path
 
 import pytest
-from clitools import ENV, SCRIPT, run
+from clitools import ENV, SCRIPT
 
 from tilesolve.progress import DELAY_ENV, SILENT, Stream, Terminal, as_progress, terminal
 
