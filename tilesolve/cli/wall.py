@@ -121,10 +121,12 @@ def wall(ctx, region, max_line, colors, seed, method, period, output, svg, png, 
     if method != "dappled":
         from tilesolve.families.wall_render import write_wall_png
 
-        def draw(path):
+        def draw_streamed(path):
             return write_wall_png(path, (x0, y0, cols, rows), colors=colors, max_line=max_line, seed=seed,
                                   method=method, period=(pw, ph), kind=map_kind or "id", ppc=ppc, verify=check,
                                   progress=progress_wanted())
+
+        draw = draw_streamed
     if held:
         from tilesolve.families.walls import wall_problem
 
