@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import json
 import os
-import shutil
 import subprocess
 import sys
 import textwrap
@@ -22,6 +21,7 @@ import pytest
 
 from tilesolve import family
 from tilesolve.errors import InternalError, InvalidProblem
+from clitools import SCRIPT
 
 TOY = textwrap.dedent('''
     """1-D dappling: a row of n cells, tiles 0/1, no run of 1s longer than k."""
@@ -155,7 +155,7 @@ def plugin(tmp_path):
 
 def _cli(root: Path, *args: str, cwd: Path) -> subprocess.CompletedProcess:
     env = dict(os.environ, PYTHONPATH=str(root) + os.pathsep + os.environ.get("PYTHONPATH", ""))
-    return subprocess.run([shutil.which("tilesolve"), *args], cwd=cwd, capture_output=True, text=True, env=env,
+    return subprocess.run([SCRIPT, *args], cwd=cwd, capture_output=True, text=True, env=env,
                           timeout=300)
 
 

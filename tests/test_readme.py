@@ -12,6 +12,7 @@ import sys
 from pathlib import Path
 
 import pytest
+from clitools import SCRIPT
 
 ROOT = Path(__file__).resolve().parents[1]
 README = (ROOT / "README.md").read_text(encoding="utf-8")
@@ -36,7 +37,7 @@ def test_the_tour_is_long_enough():
 @pytest.mark.parametrize("line", TOUR)
 def test_tour_command(folder, line):
     command, _, comment = line.partition("#")
-    proc = subprocess.run([shutil.which("tilesolve"), *shlex.split(command)[1:]], cwd=folder, capture_output=True,
+    proc = subprocess.run([SCRIPT, *shlex.split(command)[1:]], cwd=folder, capture_output=True,
                           text=True, timeout=900)
     expected = 1 if "unsat" in comment else 0
     assert proc.returncode == expected, (line, proc.stdout[-2000:], proc.stderr[-2000:])

@@ -17,6 +17,7 @@ from tilesolve import family
 from tilesolve.model.board import Board, BoardProblem, WangTileSet
 from tilesolve.model.dappled import DappledProblem
 from tilesolve.model.packing import PackingProblem
+from clitools import SCRIPT
 
 
 def _dappled():
@@ -67,13 +68,9 @@ def test_cpsat_seeded_satisfaction_repeats_with_two_workers():
 @pytest.mark.slow
 @pytest.mark.parametrize("method", ["sat", "cpsat"])
 def test_console_script_seed_repeats_across_processes(method):
-    import os
-    import shutil
     import subprocess
-    import sys
 
-    exe = shutil.which("tilesolve", path=os.path.dirname(sys.executable))
-    cmd = ([exe] if exe else [sys.executable, "-m", "tilesolve.cli.main"]) + [
+    cmd = [SCRIPT,
         "dappled", "solve", "--size", "12x12", "--cond", "H0=2,V1=2", "--method", method, "--seed"]
     out = [subprocess.run(cmd + [str(s)], capture_output=True, text=True, timeout=300) for s in (1, 1, 2)]
     assert all(o.returncode == 0 for o in out), [o.stderr for o in out]

@@ -10,9 +10,7 @@ guarantee (how far past the limit a command ends) is measured by
 from __future__ import annotations
 
 import os
-import shutil
 import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -25,6 +23,7 @@ from tilesolve.engine.result import Result
 from tilesolve.engine.sat import SatSession, solve_cnf
 from tilesolve.model.dappled import DappledProblem
 from tilesolve.model.solution import Status
+from clitools import SCRIPT
 
 
 class AfterChecks(Deadline):
@@ -129,17 +128,12 @@ def test_no_proof_gives_unknown():
     assert s.status is Status.UNKNOWN and "logged no proof" in s.reason
 
 
-def _console_script() -> list[str]:
-    exe = shutil.which("tilesolve", path=os.path.dirname(sys.executable))
-    return [exe] if exe else [sys.executable, "-m", "tilesolve.cli.main"]
-
-
 @pytest.mark.slow
 def test_cli_short_time_limit_on_a_large_unsat_proof_never_reports_unsat():
     # Defect 17: 40x40 {H0^2, V1^2} with at most 499 tiles 1 is unsatisfiable, and its proof
     # (millions of literals) cannot be checked in 2 s: the answer must be unknown (exit 3),
     # or unsat only with a checked proof.
-    cmd = _console_script() + ["dappled", "solve", "--size", "40x40", "--cond", "H0=2,V1=2", "--count", "1=..499",
+    cmd = [SCRIPT, "dappled", "solve", "--size", "40x40", "--cond", "H0=2,V1=2", "--count", "1=..499",
                                "--method", "sat", "--time-limit", "2"]
     out = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
     assert out.returncode in (1, 3), out.stderr

@@ -4,15 +4,14 @@ board solutions: exit codes, one-line errors, and a JSON any tool can re-check."
 from __future__ import annotations
 
 import json
-import shutil
 import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 from click.testing import CliRunner
 
 from tilesolve.cli.main import main_group
+from clitools import SCRIPT
 
 
 def invoke(*args, cwd=None):
@@ -116,8 +115,7 @@ def test_brick_wall_line_limits(tmp_path, monkeypatch):
 
 
 def test_console_script_contract(tmp_path):
-    exe = Path(sys.executable).parent / "tilesolve"
-    script = str(exe) if exe.exists() else shutil.which("tilesolve")
+    script = SCRIPT
     r = subprocess.run([script, "brick", "solve", "--board", "rect:12x8", "--colors", "3", "--boundary", "random",
                         "--seed", "5", "--method", "linear", "-o", "o.json"], cwd=tmp_path, capture_output=True,
                        text=True, timeout=300)

@@ -1,11 +1,11 @@
 """Ctrl-C stops a cross-check sweep (issue: five SIGINTs were ignored and all trials ran)."""
 
-import shutil
 import signal
 import subprocess
 import time
 
 import pytest
+from clitools import SCRIPT
 
 
 @pytest.mark.slow
@@ -16,7 +16,7 @@ import pytest
     ("crosscheck", "tiling", "--trials", "1000", "--seed", "1"),
 ])
 def test_sigint_ends_a_crosscheck_with_130(tmp_path, args):
-    proc = subprocess.Popen([shutil.which("tilesolve"), *args], cwd=tmp_path, stdout=subprocess.PIPE,
+    proc = subprocess.Popen([SCRIPT, *args], cwd=tmp_path, stdout=subprocess.PIPE,
                             stderr=subprocess.PIPE, text=True)
     seen = 0
     for line in proc.stdout:  # wait until the sweep is under way

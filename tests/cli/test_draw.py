@@ -1,13 +1,12 @@
 """`tilesolve draw FILE -o pic.svg|png`: every family's solution files drawn through the registry."""
 
-import shutil
 import subprocess
 from pathlib import Path
 
 import pytest
 from PIL import Image
+from clitools import SCRIPT
 
-SCRIPT = shutil.which("tilesolve")
 
 
 def run(*args, cwd: Path):

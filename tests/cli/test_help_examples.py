@@ -12,8 +12,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from clitools import SCRIPT
 
-SCRIPT = shutil.which("tilesolve")
 ROOT = Path(__file__).resolve().parents[2]
 COMMANDS = [("dappled", "solve"), ("dappled", "count"), ("dappled", "crosscheck"), ("brick", "solve"),
             ("brick", "wall"), ("brick", "count"), ("brick", "crosscheck"), ("wang", "solve"), ("wall",), ("pack",),

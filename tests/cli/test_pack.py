@@ -4,9 +4,7 @@ from __future__ import annotations
 
 import json
 import os
-import shutil
 import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -17,15 +15,11 @@ from tilesolve.errors import InvalidProblem
 from tilesolve.model.packing import PackingProblem
 from tilesolve.model.solution import Solution, Status
 from tilesolve.verify.packing import is_packing
-
-
-def _script() -> str:
-    here = Path(sys.executable).parent / "tilesolve"
-    return str(here) if here.exists() else shutil.which("tilesolve")
+from clitools import SCRIPT
 
 
 def run(*args: str, cwd: Path) -> subprocess.CompletedProcess:
-    return subprocess.run([_script(), *args], cwd=cwd, capture_output=True, text=True, timeout=300,
+    return subprocess.run([SCRIPT, *args], cwd=cwd, capture_output=True, text=True, timeout=300,
                           env=dict(os.environ, COLUMNS="100"))
 
 

@@ -27,7 +27,7 @@ from tilesolve.model.board import Board, BoardProblem, WangTileSet
 from tilesolve.model.dappled import DappledProblem, parse_condition
 from tilesolve.model.packing import PackingProblem
 from tilesolve.model.solution import Status
-from tilesolve.verify.drat import check_drat, check_proof_files, cnf_sha256, dimacs_bytes, read_dimacs
+from tilesolve.verify.drat import check_drat, check_proof_files, cnf_sha256, dimacs_bytes
 
 
 def counter_tiles(a: int, b: int) -> WangTileSet:

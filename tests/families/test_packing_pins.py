@@ -2,7 +2,6 @@
 (issue: `pack --method lift --fix 0,0,11 --fix 1,1,11` ran forever)."""
 
 import itertools
-import shutil
 import subprocess
 
 import numpy as np
@@ -11,6 +10,7 @@ import pytest
 from tilesolve.families import packing
 from tilesolve.model.packing import PackingProblem
 from tilesolve.verify.grid import grid_violations
+from clitools import SCRIPT
 
 
 @pytest.mark.parametrize("kind, colors", [("wang", 2), ("corner", 2), ("wang", 3)])
@@ -40,7 +40,7 @@ def test_restricted_routes_refute_clashing_pins_with_a_checked_proof(method):
 
 @pytest.mark.slow
 def test_cli_clashing_pins(tmp_path):
-    proc = subprocess.run([shutil.which("tilesolve"), "pack", "--kind", "wang", "--colors", "3", "--method", "sat",
+    proc = subprocess.run([SCRIPT, "pack", "--kind", "wang", "--colors", "3", "--method", "sat",
                            "--fix", "0,0,5", "--fix", "0,1,7"], cwd=tmp_path, capture_output=True, text=True,
                           timeout=300)
     assert proc.returncode == 1 and "tile 7 cannot sit east of tile 5" in proc.stderr

@@ -5,7 +5,6 @@ and the CLI promises through the console script (tiling, verify, draw, demo)."""
 from __future__ import annotations
 
 import json
-import shutil
 import subprocess
 
 import numpy as np
@@ -19,8 +18,8 @@ from tilesolve.io.jsonio import read_json
 from tilesolve.model.solution import Status
 from tilesolve.model.stochastic import StochasticProblem
 from tilesolve.families.stochastic import FAMILY, stochastic_violations
+from clitools import SCRIPT
 
-SCRIPT = shutil.which("tilesolve")
 
 CASES = [  # (kind, colors, variant, method)
     ("wang", 2, "complete", "direct"),

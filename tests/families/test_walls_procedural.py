@@ -7,13 +7,12 @@ from __future__ import annotations
 import json
 import shutil
 import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 from click.testing import CliRunner
-from clitools import one_line_error, run
+from clitools import SCRIPT, one_line_error, run
 
 from tilesolve.cli.main import main_group
 from tilesolve.errors import InvalidProblem, MethodNotApplicable
@@ -144,9 +143,7 @@ def test_brick_wall_still_works(tmp_path, monkeypatch):
     (["--region", "9000000000000000000,0,6x4", "--max-line", "2"], "2**62"),
 ])
 def test_bad_input_one_line_exit_2_no_file(tmp_path, args, msg):
-    exe = Path(sys.executable).parent / "tilesolve"
-    script = str(exe) if exe.exists() else shutil.which("tilesolve")
-    r = subprocess.run([script, "wall", *args, "-o", "x.json"], cwd=tmp_path, capture_output=True, text=True,
+    r = subprocess.run([SCRIPT, "wall", *args, "-o", "x.json"], cwd=tmp_path, capture_output=True, text=True,
                        timeout=300)
     assert r.returncode == 2, r.stderr
     lines = r.stderr.strip().splitlines()

@@ -10,6 +10,7 @@ from tilesolve.io.tileset_json import read_tileset, tileset_to_dict, write_tiles
 from tilesolve.model.board import WangTileSet
 from tilesolve.model.tiles import TileSet
 from tilesolve.verify.grid import grid_violations
+from clitools import SCRIPT
 
 
 def test_tileset_round_trip_in_nesw_order(tmp_path):
@@ -63,11 +64,10 @@ def test_tileset_converter_keeps_the_edges(colors, colors_v, variant):
 
 @pytest.mark.slow
 def test_cli_writes_a_tileset_file_that_wang_solve_reads(tmp_path):
-    import shutil
     import subprocess
 
     def run(*args):
-        return subprocess.run([shutil.which("tilesolve"), *args], cwd=tmp_path, capture_output=True, text=True,
+        return subprocess.run([SCRIPT, *args], cwd=tmp_path, capture_output=True, text=True,
                               timeout=300)
 
     p = run("tiles", "--kind", "wang", "--colors", "3", "--set", "compact", "-o", "c3.json", "--png", "c3.png")

@@ -4,7 +4,6 @@ unknown host."""
 
 from __future__ import annotations
 
-import shutil
 import socket
 import subprocess
 
@@ -14,6 +13,7 @@ from click.testing import CliRunner
 from tests.clitools import one_line_error, run
 from tilesolve.cli.main import main_group  # noqa: E402
 from tilesolve.cli.studio import is_loopback  # noqa: E402
+from clitools import SCRIPT
 
 
 @pytest.mark.parametrize("host, loop", [("127.0.0.1", True), ("localhost", True), ("::1", True), ("127.8.0.1", True),
@@ -24,7 +24,7 @@ def test_loopback(host, loop):
 
 @pytest.mark.slow
 def test_other_hosts_are_warned_about():
-    proc = subprocess.run([shutil.which("tilesolve"), "studio", "--host", "0.0.0.0", "--port", "0", "--no-browser",
+    proc = subprocess.run([SCRIPT, "studio", "--host", "0.0.0.0", "--port", "0", "--no-browser",
                            "--exit-after", "1"], capture_output=True, text=True, timeout=120)
     assert proc.returncode == 0, proc.stderr
     assert "warning: --host 0.0.0.0 serves the studio to other machines" in proc.stderr
