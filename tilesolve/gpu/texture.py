@@ -54,7 +54,7 @@ from tilesolve.gpu.context import gpu_context, max_render_size, release
 from tilesolve.gpu.picture import assemble_bands, pass_layout
 
 __all__ = ["MAX_COLORS", "MAX_ATLAS", "Atlas", "check_atlas", "corner_packing", "synthesize_atlas", "read_example",
-           "TextureMapper"]
+           "example_patches", "diamond_mask", "PassRenderer", "TextureMapper"]
 
 #: Largest ``C`` of an atlas (``C**4 = 4096`` tiles).
 MAX_COLORS = 8
@@ -256,27 +256,11 @@ def synthesize_atlas(example, grid, colors: int, *, tile: int = 64, seed: int = 
     True
     """
     c, t = check_atlas(colors, tile)
-    ex = np.asarray(example, dtype=np.uint8)
-    if ex.ndim != 3 or ex.shape[2] not in (3, 4):
-        raise InvalidProblem(f"the example must be an RGB or RGBA image, got an array of shape {ex.shape}")
-    if ex.shape[2] == 3:
-        ex = np.dstack([ex, np.full(ex.shape[:2], 255, dtype=np.uint8)])
-    eh, ew = ex.shape[:2]
-    if eh < t or ew < t:
-        raise InvalidProblem(f"the example image ({ew}x{eh} px) is smaller than one tile ({t}x{t} px): "
-                             "use a smaller --tile")
+    patch = example_patches(example, t, seed)
     g = np.asarray(grid, dtype=np.int64)
-    rng = rng_from_seed(seed)
-
-    def patch():
-        r, q = int(rng.integers(eh - t + 1)), int(rng.integers(ew - t + 1))
-        return ex[r:r + t, q:q + t].astype(np.float32)
-
-    corner = [patch() for _ in range(c)]
+    corner = [patch(t) for _ in range(c)]
     h = t // 2
-    yy, xx = np.mgrid[0:t, 0:t].astype(np.float32) + 0.5
-    radius = np.abs(yy - h) + np.abs(xx - h)  # the diamond, inside the inscribed circle
-    alpha = np.clip((0.45 * t - radius) / (0.2 * t), 0.0, 1.0)[..., None]
+    alpha = diamond_mask(t, (h, h), 0.45 * t, 0.2 * t)  # the diamond, inside the inscribed circle
     atlas = np.empty((g.shape[0] * t, g.shape[1] * t, 4), dtype=np.uint8)
     for (r, q), k in np.ndenumerate(g):
         nw, sw, se, ne = k % c, (k // c) % c, (k // c**2) % c, k // c**3
@@ -285,9 +269,43 @@ def synthesize_atlas(example, grid, colors: int, *, tile: int = 64, seed: int = 
         img[:h, h:] = corner[ne][h:, :h]
         img[h:, :h] = corner[sw][:h, h:]
         img[h:, h:] = corner[se][:h, :h]
-        img = img * (1.0 - alpha) + patch() * alpha
+        img = img * (1.0 - alpha) + patch(t) * alpha
         atlas[r * t:(r + 1) * t, q * t:(q + 1) * t] = np.rint(img).astype(np.uint8)
     return atlas
+
+
+def example_patches(example, size: int, seed, *, what: str = "one tile"):
+    """A function ``patch(n)`` drawing random ``n x n`` float32 RGBA patches of ``example``.
+
+    ``example`` is an ``(H, W, 3 or 4)`` uint8 image of at least ``size`` pixels each way
+    (``what``, named in the refusal); the patches come from ``seed``'s stream, in the order drawn.
+    """
+    ex = np.asarray(example, dtype=np.uint8)
+    if ex.ndim != 3 or ex.shape[2] not in (3, 4):
+        raise InvalidProblem(f"the example must be an RGB or RGBA image, got an array of shape {ex.shape}")
+    if ex.shape[2] == 3:
+        ex = np.dstack([ex, np.full(ex.shape[:2], 255, dtype=np.uint8)])
+    eh, ew = ex.shape[:2]
+    if eh < size or ew < size:
+        raise InvalidProblem(f"the example image ({ew}x{eh} px) is smaller than {what} ({size}x{size} px): "
+                             "use a smaller --tile")
+    rng = rng_from_seed(seed)
+
+    def patch(n: int) -> np.ndarray:
+        r, q = int(rng.integers(eh - n + 1)), int(rng.integers(ew - n + 1))
+        return ex[r:r + n, q:q + n].astype(np.float32)
+
+    return patch
+
+
+def diamond_mask(tile: int, centre, edge: float, width: float) -> np.ndarray:
+    """``(tile, tile, 1)`` float32 weights of a feathered diamond (an L1 disc) centred at
+    ``centre = (row, col)`` in tile coordinates (pixel ``(r, q)`` has its centre at
+    ``(r + 0.5, q + 0.5)``): 1 inside L1 radius ``edge - width``, falling linearly to 0 at ``edge``.
+    """
+    yy, xx = np.mgrid[0:tile, 0:tile].astype(np.float32) + 0.5
+    radius = np.abs(yy - centre[0]) + np.abs(xx - centre[1])
+    return np.clip((edge - radius) / width, 0.0, 1.0)[..., None]
 
 
 class Atlas:
@@ -321,8 +339,90 @@ class Atlas:
         return out
 
 
+# ------------------------------------------------------------------------------------ passes
+class PassRenderer:
+    """What the GPU pictures share: integer textures, a full-screen quad, and pictures of any
+    size drawn in render passes of at most :attr:`max_pass` pixels each way.
+
+    A subclass sets ``ctx``, ``max_pass`` and ``_quad`` (:meth:`_setup`) and draws a pass with
+    ``_pass(fbo, offset, scratch)``: the picture's pixels ``offset + [0, fbo.size)`` (GL
+    coordinates, y up) into ``fbo``, with ``scratch`` from :meth:`_scratch` (a render target the
+    passes reuse, or ``None``).
+    """
+
+    def _setup(self) -> None:
+        self.ctx = gpu_context()
+        self.max_pass = max_render_size(self.ctx)
+        self._quad = self.ctx.buffer(np.array([-1, -1, 1, -1, -1, 1, 1, 1], dtype="f4").tobytes())
+
+    def _vertex_array(self, fragment_shader: str):
+        """``(program, vertex array)`` of a fragment shader over the full-screen quad."""
+        prog = self.ctx.program(vertex_shader=_VERTEX, fragment_shader=fragment_shader)
+        return prog, self.ctx.vertex_array(prog, [(self._quad, "2f", "in_pos")])
+
+    def _int_texture(self, a: np.ndarray, components: int):
+        """An unsigned integer texture (read with ``texelFetch`` through a ``usampler2D``)."""
+        a = np.ascontiguousarray(a, dtype=np.uint32)
+        tex = self.ctx.texture((a.shape[1], a.shape[0]), components, a.tobytes(), dtype="u4")
+        tex.filter = (self.ctx.NEAREST, self.ctx.NEAREST)
+        return tex
+
+    def _check_pass(self, width, height) -> tuple[int, int]:
+        w, h = check_int(width, "width", 1), check_int(height, "height", 1)
+        if w > self.max_pass or h > self.max_pass:
+            raise InvalidProblem(f"one render pass is at most {self.max_pass} px each way; got {w}x{h}")
+        return w, h
+
+    def _scratch(self, w: int, h: int):
+        """A render target reused by the passes of at most ``w x h`` pixels (none by default)."""
+        return None
+
+    def _pass(self, fbo, offset, scratch) -> None:
+        raise NotImplementedError
+
+    def frame(self, width: int, height: int):
+        """A render target and a function drawing one frame of the picture's lower-left pass into it."""
+        w, h = self._check_pass(width, height)
+        scratch = self._scratch(w, h)
+        fbo = self.ctx.simple_framebuffer((w, h), components=4)
+
+        def draw() -> None:
+            self._pass(fbo, (0, 0), scratch)
+
+        return fbo, draw
+
+    def bands(self, width: int, height: int):
+        """The picture as ``(rows, width, 4)`` uint8 bands from the top.
+
+        Each render pass is at most :func:`max_render_size` pixels each way (and about 16
+        million pixels); wider pictures take several passes per band.
+        """
+        w, h, pass_w, band_h = pass_layout(width, height, self.max_pass)
+        scratch = self._scratch(pass_w, band_h)
+        fbos: dict = {}
+
+        def read_pass(left, bottom, pw, bh):
+            if (pw, bh) not in fbos:
+                fbos[(pw, bh)] = self.ctx.simple_framebuffer((pw, bh), components=4)
+            fbo = fbos[(pw, bh)]
+            self._pass(fbo, (left, bottom), scratch)
+            return np.frombuffer(fbo.read(components=4), dtype=np.uint8).reshape(bh, pw, 4)
+
+        try:
+            yield from assemble_bands(w, h, pass_w, band_h, read_pass)
+        finally:
+            for fbo in fbos.values():
+                release(fbo)
+            if scratch is not None:
+                release(scratch)
+
+    def image(self, width: int, height: int) -> np.ndarray:
+        """The whole picture, ``(height, width, 4)`` uint8, row 0 at the top."""
+        return np.concatenate(list(self.bands(width, height)), axis=0)
+
+
 # ------------------------------------------------------------------------------------ renderer
-class TextureMapper:
+class TextureMapper(PassRenderer):
     """Renders windows of the infinite non-periodic texture of an :class:`Atlas` (§5.4).
 
     Pixel ``(px, py)`` of a ``W x H`` picture (``py`` from the top) whose SW tile is
@@ -366,13 +466,11 @@ class TextureMapper:
         for i, t in enumerate(self.tables):
             perm[i, :2 * t.size] = np.concatenate([t, t])
         red = (np.arange(sum(self.sizes) + 1) % rng % self.colors).astype(np.uint32)
-        self.ctx = gpu_context()
-        self.max_pass = max_render_size(self.ctx)
+        self._setup()
         self._perm = self._int_texture(perm, 1)
         self._red = self._int_texture(red[None, :], 1)
         self._programs: dict = {}
         self._rows: dict = {}
-        self._quad = self.ctx.buffer(np.array([-1, -1, 1, -1, -1, 1, 1, 1], dtype="f4").tobytes())
         if atlas is not None:
             import moderngl
 
@@ -382,13 +480,6 @@ class TextureMapper:
             self._atlas.filter = (moderngl.LINEAR_MIPMAP_LINEAR, moderngl.LINEAR)
             self._atlas.repeat_x = self._atlas.repeat_y = True
             self._where = self._int_texture(atlas.where()[None, :, :], 2)
-
-    def _int_texture(self, a: np.ndarray, components: int):
-        """An unsigned integer texture (read with ``texelFetch`` through a ``usampler2D``)."""
-        a = np.ascontiguousarray(a, dtype=np.uint32)
-        tex = self.ctx.texture((a.shape[1], a.shape[0]), components, a.tobytes(), dtype="u4")
-        tex.filter = (self.ctx.NEAREST, self.ctx.NEAREST)
-        return tex
 
     def _row_tables(self, first: int, count: int, x_axis: bool):
         """Row tables of ``count`` tile columns (``x_axis``) or rows from tile ``first`` of the picture."""
@@ -411,7 +502,7 @@ class TextureMapper:
         if kind not in self._programs:
             src = {"ids": _FRAGMENT_IDS, "direct": _FRAGMENT_DIRECT, "places": _FRAGMENT_PLACES,
                    "two_pass": _FRAGMENT_TWO_PASS}[kind]
-            prog = self.ctx.program(vertex_shader=_VERTEX, fragment_shader=src)
+            prog, vao = self._vertex_array(src)
             units = {"u_perm": 0, "u_px": 1, "u_ym": 2, "u_red": 3, "u_where": 4, "u_atlas": 5, "u_places": 6}
             for name, unit in units.items():
                 if name in prog:
@@ -422,7 +513,7 @@ class TextureMapper:
                 prog["u_grid"].value = self.colors**2
             if "u_lod" in prog:
                 prog["u_lod"].value = float(np.log2(self.atlas.tile / self.tile_px))
-            self._programs[kind] = (prog, self.ctx.vertex_array(prog, [(self._quad, "2f", "in_pos")]))
+            self._programs[kind] = (prog, vao)
         return self._programs[kind]
 
     def _draw(self, kind: str, fbo, offset, tile_px: int, first, count, places=None) -> None:
@@ -444,12 +535,6 @@ class TextureMapper:
             places.use(6)
         vao.render(mode=self.ctx.TRIANGLE_STRIP)
 
-    def _check_pass(self, width, height) -> tuple[int, int]:
-        w, h = check_int(width, "width", 1), check_int(height, "height", 1)
-        if w > self.max_pass or h > self.max_pass:
-            raise InvalidProblem(f"one render pass is at most {self.max_pass} px each way; got {w}x{h}")
-        return w, h
-
     def _need_atlas(self) -> None:
         if self.atlas is None:
             raise InvalidProblem("this texture mapper has no atlas (made with colors= only): pass an Atlas")
@@ -467,7 +552,7 @@ class TextureMapper:
             fbo.release()
             tex.release()
 
-    def _pass(self, fbo, offset, ids_fbo=None) -> None:
+    def _pass(self, fbo, offset, ids_fbo) -> None:
         """Draw the picture's pixels ``offset + [0, fbo.size)`` (GL coordinates) into ``fbo``."""
         (ox, oy), (w, h), t = offset, fbo.size, self.tile_px
         first = (ox // t, oy // t)
@@ -478,48 +563,9 @@ class TextureMapper:
         self._draw("places", ids_fbo, first, 1, first, count)
         self._draw("two_pass", fbo, offset, t, first, count, places=ids_fbo.color_attachments[0])
 
-    def _ids_target(self, w: int, h: int):
+    def _scratch(self, w: int, h: int):
+        """The tiles' places: one texel per tile of a pass of at most ``w x h`` pixels."""
+        self._need_atlas()
         t = self.tile_px
         n = (min(self.max_pass, (w - 1) // t + 2), min(self.max_pass, (h - 1) // t + 2))
         return self.ctx.framebuffer(color_attachments=[self.ctx.texture(n, 2, dtype="u4")])
-
-    def frame(self, width: int, height: int):
-        """A render target and a function drawing one frame of the picture's lower-left pass into it."""
-        w, h = self._check_pass(width, height)
-        self._need_atlas()
-        fbo = self.ctx.simple_framebuffer((w, h), components=4)
-        ids = self._ids_target(w, h)
-
-        def draw() -> None:
-            self._pass(fbo, (0, 0), ids)
-
-        return fbo, draw
-
-    def bands(self, width: int, height: int):
-        """The picture as ``(rows, width, 4)`` uint8 bands from the top.
-
-        Each render pass is at most :func:`max_render_size` pixels each way (and about 16
-        million pixels); wider pictures take several passes per band.
-        """
-        self._need_atlas()
-        w, h, pass_w, band_h = pass_layout(width, height, self.max_pass)
-        ids = self._ids_target(pass_w, band_h)
-        fbos: dict = {}
-
-        def read_pass(left, bottom, pw, bh):
-            if (pw, bh) not in fbos:
-                fbos[(pw, bh)] = self.ctx.simple_framebuffer((pw, bh), components=4)
-            fbo = fbos[(pw, bh)]
-            self._pass(fbo, (left, bottom), ids)
-            return np.frombuffer(fbo.read(components=4), dtype=np.uint8).reshape(bh, pw, 4)
-
-        try:
-            yield from assemble_bands(w, h, pass_w, band_h, read_pass)
-        finally:
-            for fbo in fbos.values():
-                release(fbo)
-            release(ids)
-
-    def image(self, width: int, height: int) -> np.ndarray:
-        """The whole picture, ``(height, width, 4)`` uint8, row 0 at the top."""
-        return np.concatenate(list(self.bands(width, height)), axis=0)

@@ -1,0 +1,269 @@
+"""Textures that never repeat: an example image over an aperiodic Wang tile set (issue 20, §1).
+
+The tiles
+---------
+:meth:`WangAtlas.from_example` synthesises the tiles of a Wang set from an example image by the
+construction of Cohen, Shade, Hiller and Deussen (*Wang tiles for image and texture
+generation*, SIGGRAPH 2003; class notes §5.3, Fig. 5.4 a): every edge colour gets one
+diamond-shaped sample of the example, a diamond per colour of the horizontal (N, S) edges and
+one per colour of the vertical (E, W) edges, and a tile is the four diamonds of its N, E, S, W
+colours, each centred on the midpoint of its edge and cut by the tile. The diamonds meet along
+the tile's diagonals, where they are blended with the feathered masks of the corner-tile atlas
+(:func:`tilesolve.gpu.texture.diamond_mask`; the notes' Cohen et al. cut a seam there instead).
+A texel of a tile's border away from its corners comes from its edge's diamond alone, and the
+tile across that edge shows the other half of the same diamond, so matching edges meet without a
+seam; near a corner two diamonds mix (the corner problem of Wang tiles, §2.7).
+
+The tiling
+----------
+The tile at cell ``(x, y)`` is the tile of a window of the set's constructive route
+(:mod:`tilesolve.families.aperiodic_window`, verified): the coding of a toral Z²-rotation by a
+Markov partition for Jeandel-Rao and U19 (Labbé, arXiv:1903.06137), balanced rows for the
+Kari and Kari-Culik sets. Since the set is aperiodic, the texture has no period.
+
+The picture
+-----------
+A ``W x H`` picture grows from its SW corner, like the corner-tile textures
+(:class:`tilesolve.gpu.texture.TextureMapper`): pixel ``(px, py)`` (``py`` from the top) lies
+in cell ``(x0 + px // s, y0 + (H - 1 - py) // s)`` with ``s`` pixels a tile side. A pixel ``l``
+pixels from its tile's W (S) side shows texel ``(2 l + 1) T // (2 s)`` from the atlas tile's W
+(S) side (``T`` texels a tile side): the nearest texel, in integers. An aperiodic set has no
+tile packing (a packing is a periodic tiling of a torus), so the atlas cannot be laid out for
+seamless filtering across tile borders (§5.4) and the picture samples nearest texels.
+
+:class:`WangTexture` draws the picture on the CPU (numpy gathers from the atlas) and
+:class:`WangTextureMapper` on the GPU, pixel for pixel the same, band by band.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from tilesolve.constructive.hashes import check_int, check_window
+from tilesolve.errors import InvalidProblem
+from tilesolve.gpu.texture import DIV_GLSL, MAX_ATLAS, PassRenderer, diamond_mask, example_patches
+
+__all__ = ["WangAtlas", "texel_of_pixel", "window_tiles", "WangTexture", "WangTextureMapper"]
+
+#: Feather of the diamonds' blend across the diagonals, as a fraction of the tile side (each side).
+FEATHER = 0.1
+
+
+def window_tiles(name: str, x0: int, y0: int, width: int, height: int, seed: int) -> np.ndarray:
+    """Tile indices of the ``width x height`` cells from ``(x0, y0)`` of the ``seed``'s tiling
+    by the aperiodic set ``name``, row 0 the top row, verified
+    (:func:`tilesolve.families.aperiodic_window.tiling`)."""
+    from tilesolve.families.aperiodic_window import tiling
+
+    _, sol = tiling(name, (x0, y0, width, height), seed=seed)
+    return np.asarray(sol.tiling)
+
+
+def texel_of_pixel(tile_px: int, tile: int) -> np.ndarray:
+    """``(tile_px,)`` int64: the texel (from a tile's W or S side) that the pixel ``l`` pixels
+    from the side shows, ``(2 l + 1) tile // (2 tile_px)``, the texel under its centre."""
+    s, t = check_int(tile_px, "pixels per tile", 1), check_int(tile, "tile size", 1)
+    return (2 * np.arange(s, dtype=np.int64) + 1) * t // (2 * s)
+
+
+class WangAtlas:
+    """The tile images of a Wang set: tile ``k`` is the ``tile x tile`` block in row
+    ``k // cols``, column ``k % cols`` of ``image`` (``(rows * tile, cols * tile, 4)`` uint8)."""
+
+    def __init__(self, tiles, image) -> None:
+        self.tiles = np.asarray(tiles, dtype=np.int64)
+        if self.tiles.ndim != 2 or self.tiles.shape[1] != 4 or not len(self.tiles):
+            raise InvalidProblem(f"a Wang atlas needs tiles as N, E, S, W colours, got shape {self.tiles.shape}")
+        self.image = np.asarray(image, dtype=np.uint8)
+        m = len(self.tiles)
+        self.cols = math.isqrt(m - 1) + 1
+        rows = -(-m // self.cols)
+        if self.image.ndim != 3 or self.image.shape[2] != 4 or self.image.shape[0] % rows \
+                or self.image.shape[1] != self.image.shape[0] // rows * self.cols:
+            raise InvalidProblem(f"a Wang atlas of {m} tiles is an RGBA image of {rows} x {self.cols} square tiles")
+        self.tile = self.image.shape[0] // rows
+
+    @classmethod
+    def from_example(cls, example, tiles, *, tile: int = 64, seed: int = 0) -> "WangAtlas":
+        """The tiles ``tiles`` (``(m, 4)`` N, E, S, W colours) synthesised from ``example``
+        (Cohen et al. 2003: a diamond per edge colour; see the module).
+
+        Examples
+        --------
+        >>> ex = np.random.default_rng(0).integers(0, 256, (40, 50, 3), dtype=np.uint8)
+        >>> at = WangAtlas.from_example(ex, [[0, 1, 1, 0], [0, 0, 1, 1], [1, 1, 0, 0]], tile=16, seed=1)
+        >>> at.image.shape, at.cols
+        ((32, 32, 4), 2)
+        >>> # the N border away from the corners is the N colour's diamond: the same in tiles 0 and 1
+        >>> top = [at.block(k)[0, 2:14] for k in range(3)]
+        >>> bool((top[0] == top[1]).all()), bool((top[0] == top[2]).all())
+        (True, False)
+        """
+        tl = np.asarray(tiles, dtype=np.int64)
+        if tl.ndim != 2 or tl.shape[1] != 4 or not len(tl) or tl.min() < 0:
+            raise InvalidProblem(f"Wang tiles are rows of 4 colours N, E, S, W (>= 0), got shape {tl.shape}")
+        t = check_int(tile, "tile size", 8)
+        if t % 2:
+            raise InvalidProblem(f"the tile size must be even (diamonds centred on the edges' midpoints), got {t}")
+        cols = math.isqrt(len(tl) - 1) + 1
+        if cols * t > MAX_ATLAS:
+            raise InvalidProblem(f"an atlas of {cols} x {cols} tiles of {t} px is {cols * t} px wide, more than the "
+                                 f"{MAX_ATLAS} px every OpenGL 4.5 texture may have: use a smaller tile")
+        e = math.ceil(FEATHER * t)
+        n = t + 2 * e  # a diamond and its feather: L1 radius t / 2 + e around the sample's centre
+        patch = example_patches(example, n, seed, what="a diamond sample of one tile with its feather")
+        k = int(tl.max()) + 1
+        horizontal = [patch(n) for _ in range(k)]  # N and S edges
+        vertical = [patch(n) for _ in range(k)]  # E and W edges
+        h = t / 2
+        # (diamonds, centre of the diamond in tile coordinates, first row and column of the tile in the sample)
+        sides = ((horizontal, (0, h), (n // 2, e)), (vertical, (h, t), (e, n // 2 - t)),
+                 (horizontal, (t, h), (n // 2 - t, e)), (vertical, (h, 0), (e, n // 2)))
+        weights = [diamond_mask(t, c, h + e, 2 * e) for _, c, _ in sides]
+        total = sum(weights)  # >= 1/2 everywhere: every point is within t / 2 of some edge's midpoint
+        idx = np.arange(t)
+        cut = [(np.clip(r + idx, 0, n - 1), np.clip(q + idx, 0, n - 1)) for _, _, (r, q) in sides]
+        rows = -(-len(tl) // cols)
+        image = np.zeros((rows * t, cols * t, 4), dtype=np.uint8)
+        for i, colours in enumerate(tl):
+            img = sum(w * d[c][ry][:, qx] for w, (d, _, _), c, (ry, qx) in zip(weights, sides, colours, cut))
+            r, q = divmod(i, cols)
+            image[r * t:(r + 1) * t, q * t:(q + 1) * t] = np.rint(img / total).astype(np.uint8)
+        return cls(tl, image)
+
+    def block(self, k: int) -> np.ndarray:
+        """The ``tile x tile x 4`` image of tile ``k``."""
+        r, q = divmod(int(k), self.cols)
+        t = self.tile
+        return self.image[r * t:(r + 1) * t, q * t:(q + 1) * t]
+
+    def places(self) -> np.ndarray:
+        """``(m, 2)`` uint32: each tile's block (column, row counted from the atlas's bottom)."""
+        rows = self.image.shape[0] // self.tile
+        r, q = np.divmod(np.arange(len(self.tiles)), self.cols)
+        return np.stack([q, rows - 1 - r], axis=1).astype(np.uint32)
+
+
+class _Picture:
+    """What the CPU and GPU pictures share: the set, the atlas, the seed, where the picture sits."""
+
+    def __init__(self, name: str, atlas: WangAtlas, *, seed: int = 0, origin=(0, 0), tile_px: int | None = None):
+        self.name = name
+        self.atlas = atlas
+        self.seed = seed
+        x0, y0 = origin
+        self.x0, self.y0, _, _ = check_window(x0, y0, 1, 1, what="origin")
+        self.tile_px = check_int(tile_px if tile_px is not None else atlas.tile, "pixels per tile", 1)
+        self.texel = texel_of_pixel(self.tile_px, atlas.tile)
+
+    def cells(self, left: int, bottom: int, width: int, height: int) -> tuple[int, int, int, int]:
+        """``(first column, first row, columns, rows)`` of the cells (relative to the picture's SW
+        cell) under the pixels ``[left, left + width) x [bottom, bottom + height)`` (y from the bottom)."""
+        s = self.tile_px
+        c0, r0 = left // s, bottom // s
+        return c0, r0, (left + width - 1) // s - c0 + 1, (bottom + height - 1) // s - r0 + 1
+
+    def window(self, c0: int, r0: int, cols: int, rows: int) -> np.ndarray:
+        """The tile indices of those cells, row 0 the top row."""
+        return window_tiles(self.name, self.x0 + c0, self.y0 + r0, cols, rows, self.seed)
+
+
+class WangTexture(_Picture):
+    """The picture on the CPU: the route's window, then one numpy gather from the atlas per band.
+    """
+
+    def pixels(self, left: int, bottom: int, width: int, height: int) -> np.ndarray:
+        """``(height, width, 4)`` uint8: the pixels ``[left, left + width) x [bottom, bottom + height)``
+        (y from the picture's bottom), row 0 the top row."""
+        c0, r0, cols, rows = self.cells(left, bottom, width, height)
+        grid = self.window(c0, r0, cols, rows)
+        s, t = self.tile_px, self.atlas.tile
+        x = np.arange(left, left + width, dtype=np.int64)
+        y = np.arange(bottom + height - 1, bottom - 1, -1, dtype=np.int64)  # from the top
+        k = grid[(rows - 1 - (y // s - r0))[:, None], (x // s - c0)[None, :]]
+        block_row, block_col = np.divmod(k, self.atlas.cols)
+        return self.atlas.image[block_row * t + (t - 1 - self.texel[y % s])[:, None],
+                                block_col * t + self.texel[x % s][None, :]]
+
+    def bands(self, width: int, height: int, band_h: int = 1 << 10):
+        """The ``width x height`` picture as ``(rows, width, 4)`` uint8 bands from the top."""
+        w, h = check_int(width, "width", 1), check_int(height, "height", 1)
+        for top in range(0, h, band_h):
+            bh = min(band_h, h - top)
+            yield self.pixels(0, h - top - bh, w, bh)
+
+    def image(self, width: int, height: int) -> np.ndarray:
+        """The whole picture, ``(height, width, 4)`` uint8, row 0 at the top."""
+        return np.concatenate(list(self.bands(width, height)), axis=0)
+
+
+# ------------------------------------------------------------------------------------ GPU
+#: Each fragment: its cell, the cell's tile (``u_tiles``), the tile's block in the atlas and the texel.
+_FRAGMENT_LOOKUP = """
+#version 450
+""" + DIV_GLSL + """
+uniform usampler2D u_tiles;  // the tile of each cell of the pass, (0, 0) = u_first
+uniform usampler2D u_place;  // tile -> (column, row from the bottom) of its block in the atlas
+uniform usampler2D u_texel;  // pixel l of a tile side -> texel (2 l + 1) T / (2 s) of the atlas tile
+uniform sampler2D u_atlas;   // the tile images, GL rows from the bottom
+uniform int u_tile_px;       // s: output pixels per tile side
+uniform int u_tile;          // T: atlas texels per tile side
+uniform ivec2 u_offset;      // pixel offset of this pass in the whole picture (>= 0)
+uniform ivec2 u_first;       // the pass's first cell, relative to the picture's SW cell
+out vec4 f_colour;
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy) + u_offset;
+    ivec2 c = floor_div(p, u_tile_px);
+    ivec2 l = p - c * u_tile_px;
+    uint k = texelFetch(u_tiles, c - u_first, 0).r;
+    ivec2 block = ivec2(texelFetch(u_place, ivec2(int(k), 0), 0).xy);
+    ivec2 texel = ivec2(int(texelFetch(u_texel, ivec2(l.x, 0), 0).r), int(texelFetch(u_texel, ivec2(l.y, 0), 0).r));
+    f_colour = texelFetch(u_atlas, block * u_tile + texel, 0);
+}
+"""
+
+
+class WangTextureMapper(_Picture, PassRenderer):
+    """The picture on the GPU (moderngl, OpenGL 4.5 through EGL), pixel for pixel :class:`WangTexture`.
+
+    Each render pass draws one fragment per pixel: its cell, the cell's tile from an integer
+    texture of the pass's tiles (:meth:`cell_tiles`), the tile's block in the atlas, and one
+    ``texelFetch`` of the texel under the pixel.
+    """
+
+    def __init__(self, name: str, atlas: WangAtlas, *, seed: int = 0, origin=(0, 0), tile_px: int | None = None):
+        super().__init__(name, atlas, seed=seed, origin=origin, tile_px=tile_px)
+        self._setup()
+        img = np.ascontiguousarray(atlas.image[::-1])  # GL rows run from the bottom
+        self._atlas = self.ctx.texture((img.shape[1], img.shape[0]), 4, img.tobytes())
+        self._atlas.filter = (self.ctx.NEAREST, self.ctx.NEAREST)
+        self._place = self._int_texture(atlas.places()[None, :, :], 2)
+        self._texel = self._int_texture(self.texel[None, :], 1)
+        prog, vao = self._lookup = self._vertex_array(_FRAGMENT_LOOKUP)
+        for uniform, unit in (("u_tiles", 0), ("u_place", 1), ("u_texel", 2), ("u_atlas", 3)):
+            prog[uniform].value = unit
+        prog["u_tile_px"].value = self.tile_px
+        prog["u_tile"].value = atlas.tile
+
+    def cell_tiles(self, c0: int, r0: int, cols: int, rows: int) -> np.ndarray:
+        """The tiles the GPU draws in those cells (relative to the picture's SW cell), row 0 the top row."""
+        return self.window(c0, r0, cols, rows)
+
+    def _pass(self, fbo, offset, scratch) -> None:
+        (left, bottom), (w, h) = offset, fbo.size
+        c0, r0, cols, rows = self.cells(left, bottom, w, h)
+        tiles = self._int_texture(self.cell_tiles(c0, r0, cols, rows)[::-1], 1)
+        try:
+            prog, vao = self._lookup
+            prog["u_offset"].value = (left, bottom)
+            prog["u_first"].value = (c0, r0)
+            fbo.use()
+            tiles.use(0)
+            self._place.use(1)
+            self._texel.use(2)
+            self._atlas.use(3)
+            vao.render(mode=self.ctx.TRIANGLE_STRIP)
+        finally:
+            tiles.release()
