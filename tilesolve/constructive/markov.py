@@ -47,6 +47,8 @@ from __future__ import annotations
 import functools
 import json
 import math
+import os
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from fractions import Fraction
 from importlib import resources
@@ -391,7 +393,11 @@ def markov_window(name: str, window: Window, seed: int) -> np.ndarray:
 
 def orbit_window(name: str, window: Window, start: tuple[Any, Any]) -> np.ndarray:
     """:func:`markov_window` for the orbit of an explicit start ``(x, y)`` (numbers of
-    ``Q(φ)``: :class:`QPhi`, rationals or ``[a, b]`` pairs); it may lie on an edge or a vertex."""
+    ``Q(φ)``: :class:`QPhi`, rationals or ``[a, b]`` pairs); it may lie on an edge or a vertex.
+
+    Large windows run the compiled kernel on every core this process may use (threads over
+    bands of rows); the output does not depend on the number of threads.
+    """
     from tilesolve.constructive._markov_kernels import FLAG, KERNELS
 
     part = partition(name)
@@ -401,30 +407,65 @@ def orbit_window(name: str, window: Window, start: tuple[Any, Any]) -> np.ndarra
     out = np.empty((h, w), np.uint8)
     rows = np.arange(h, dtype=np.int64)
     ys = window.y0 + h - 1 - rows if window.y_up else window.y0 + rows
-    k = KERNELS.pick(h * w)
-    tol = float_tolerance(part)
-    fl = {f: float(getattr(part, f)) for f in ("lx", "ly", "sx", "hx", "hy")}
-    bp = np.empty(int(part.nbreaks.max()))
+    kern = KERNELS.pick(h * w)
+    compiled = kern is not KERNELS.plain()
+    tol = float_tolerance(part, BLOCK)
+    lx, ly, sx, hy = (float(getattr(part, f)) for f in ("lx", "ly", "sx", "hy"))
+    steps = _wrap(np.arange(min(w, BLOCK)) * float(part.hx), lx)  # v[c]: c steps, in every block
+    bands = []  # (first row, rows, first column, u, yp, slab)
     for r0 in range(0, h, BLOCK):
         block_ys = ys[r0:r0 + BLOCK]
         ybase = int(block_ys.min())
         y = py + ybase * part.hy
         ell = (y / part.ly).floor()
-        yr = float(y - ell * part.ly) + (block_ys - ybase) * fl["hy"]
-        lr = np.floor(yr / fl["ly"])
-        yp = yr - lr * fl["ly"]
+        yr = float(y - ell * part.ly) + (block_ys - ybase) * hy
+        lr = np.floor(yr / ly)
+        yp = yr - lr * ly
         slab = np.searchsorted(part.ybounds, yp, side="right") - 1
         near = np.abs(yp[:, None] - part.ybounds[None, :]).min(axis=1) < tol
         slab[near | (slab < 0) | (slab >= len(part.ylo))] = -1
         for c0 in range(0, w, BLOCK):
             x = px + (window.x0 + c0) * part.hx - ell * part.sx
-            bx = float(x - (x / part.lx).floor() * part.lx)
-            u = bx - lr * fl["sx"]
-            u -= np.floor(u / fl["lx"]) * fl["lx"]
-            view = out[r0:r0 + BLOCK, c0:c0 + BLOCK]
-            if k.code_block(view, u, yp, slab, part.ylo, part.x0, part.slope, part.labels, part.nbreaks,
-                            fl["hx"], fl["lx"], tol, bp):
-                for i, j in zip(*np.nonzero(view == FLAG)):
-                    view[i, j] = part.label_at(px + (window.x0 + c0 + int(j)) * part.hx,
-                                               py + int(block_ys[i]) * part.hy)
+            u = _wrap(float(x - (x / part.lx).floor() * part.lx) - lr * sx, lx)
+            for a in range(0, len(block_ys), _BAND):
+                bands.append((r0 + a, c0, u[a:a + _BAND], yp[a:a + _BAND], slab[a:a + _BAND]))
+    bins = 1024 if compiled else 8  # the speed only (kernel docstring)
+
+    def code(band):
+        r0, c0, u, yp, slab = band
+        view = out[r0:r0 + len(u), c0:c0 + BLOCK]
+        return kern.code_block(view, steps[:view.shape[1]], u, yp, slab, part.ylo, part.x0, part.slope,
+                               part.labels, part.nbreaks, lx, tol, np.empty(int(part.nbreaks.max())),
+                               np.empty(bins + 1, np.uint8), np.empty(view.shape[1], np.int64))
+
+    threads = min(_cores(), len(bands)) if compiled else 1
+    if threads > 1:
+        with ThreadPoolExecutor(threads) as pool:
+            flagged = list(pool.map(code, bands))
+    else:
+        flagged = [code(band) for band in bands]
+    for (r0, c0, u, _, _), n in zip(bands, flagged):
+        if n:
+            view = out[r0:r0 + len(u), c0:c0 + BLOCK]
+            for i, j in zip(*np.nonzero(view == FLAG)):
+                view[i, j] = part.label_at(px + (window.x0 + c0 + int(j)) * part.hx, py + int(ys[r0 + i]) * part.hy)
     return out
+
+
+#: Rows of one task of the thread pool.
+_BAND = 256
+
+
+def _cores() -> int:
+    """The cores this process may run on."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # not on Linux
+        return os.cpu_count() or 1
+
+
+def _wrap(a, lx: float):
+    """``a mod lx`` in ``[0, lx)`` (float64, elementwise)."""
+    a = np.asarray(a, dtype=np.float64)
+    a = a - np.floor(a / lx) * lx
+    return np.where(a >= lx, a - lx, np.where(a < 0, a + lx, a))
