@@ -8,7 +8,7 @@ slab ``s`` the line cuts ``[0, lx)`` at the breakpoints ``x0[s, k] + slope[s, k]
 Column ``c`` of the row is the point ``x = (u[r] + v[c]) mod lx`` of that line, where ``v[c]``
 is ``c`` steps of the rotation (``c hx mod lx``), shared by the rows of the block.
 
-A row first gets a *bucket table*: ``[0, lx)`` cut into ``len(table) - 1`` equal bins, each
+A row first gets a *bucket table*: ``[0, lx)`` cut into equal bins (1024 compiled), each
 holding the label of the interval that covers it with a margin of ``2 tol``, or :data:`FLAG`
 where a breakpoint comes that close. Most cells then cost one look-up. A cell whose bin is
 marked is located among the breakpoints; one that lies within ``tol`` of a breakpoint (or a
@@ -33,16 +33,19 @@ FLAG = 255
 
 @kernel()
 def fill_table(table, bp, nb, labels, lx, margin):
-    """The bucket table of one row (module docstring) for the breakpoints ``bp[:nb]``."""
-    nbins = table.shape[0] - 1
+    """The bucket table of one row (module docstring) for the breakpoints ``bp[:nb]``, written
+    twice: bins ``n .. 2n - 1`` cover ``[lx, 2 lx)`` as bins ``0 .. n - 1`` cover ``[0, lx)``,
+    so a point ``u + v`` of ``[0, 2 lx)`` needs no reduction; the last entry is :data:`FLAG`."""
+    nbins = (table.shape[0] - 1) // 2
     width = lx / nbins
-    for i in range(nbins + 1):
+    for i in range(2 * nbins + 1):
         table[i] = FLAG
     for k in range(nb - 1):
         lo = max(0, int(math.ceil((bp[k] + margin) / width)))
         hi = min(nbins, int(math.floor((bp[k + 1] - margin) / width)))
         for i in range(lo, hi):
             table[i] = labels[k]
+            table[i + nbins] = labels[k]
 
 
 @kernel()
@@ -60,9 +63,9 @@ def locate(x, bp, nb, labels, tol):
 def code_block(out, v, u, yp, slab, ylo, x0, slope, labels, nbreaks, lx, tol, bp, table, todo):
     """Code ``out[r, c]`` (uint8) for every row ``r`` and column ``c``; return the number of
     cells left :data:`FLAG`. ``bp`` (float64, ``nbreaks.max()`` entries), ``table`` (uint8,
-    bins + 1) and ``todo`` (int64, ``out.shape[1]`` entries) are scratch."""
+    2 bins + 1) and ``todo`` (int64, ``out.shape[1]`` entries) are scratch."""
     h, w = out.shape
-    scale = (table.shape[0] - 1) / lx
+    scale = ((table.shape[0] - 1) // 2) / lx
     flagged = 0
     for r in range(h):
         s = slab[r]
@@ -79,9 +82,7 @@ def code_block(out, v, u, yp, slab, ylo, x0, slope, labels, nbreaks, lx, tol, bp
         ur = u[r]
         m = 0
         for c in range(w):
-            x = v[c] + ur
-            x = x - lx if x >= lx else x
-            lab = table[int(x * scale)]
+            lab = table[int((v[c] + ur) * scale)]
             out[r, c] = lab
             if lab == FLAG:
                 todo[m] = c

@@ -436,7 +436,7 @@ def orbit_window(name: str, window: Window, start: tuple[Any, Any]) -> np.ndarra
         view = out[r0:r0 + len(u), c0:c0 + BLOCK]
         return kern.code_block(view, steps[:view.shape[1]], u, yp, slab, part.ylo, part.x0, part.slope,
                                part.labels, part.nbreaks, lx, tol, np.empty(int(part.nbreaks.max())),
-                               np.empty(bins + 1, np.uint8), np.empty(view.shape[1], np.int64))
+                               np.empty(2 * bins + 1, np.uint8), np.empty(view.shape[1], np.int64))
 
     threads = min(_cores(), len(bands)) if compiled else 1
     if threads > 1:
