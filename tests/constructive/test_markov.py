@@ -225,3 +225,33 @@ def test_a_point_on_an_edge_takes_the_label_of_its_infinitesimal_move(name):
 def test_origins_beyond_the_window_lattice_are_refused():
     with pytest.raises(InvalidProblem, match="2\\*\\*62"):
         markov_window("jeandel-rao", Window(2**62 - 2, 0, 4, 4), 1)
+
+
+# --------------------------------------------------------------------------- the GPU tables
+@pytest.mark.parametrize("name", NAMES)
+def test_polygon_arrays_and_cell_point_code_like_the_window(name):
+    arrays = markov.polygon_arrays(name)
+    (lx, _), (sx, ly) = arrays["lattice"].astype(float)
+    hx, hy = arrays["rotation"].astype(float)
+    window = Window(2**40 + 3, -(2**45), 16, 12)
+    grid = markov_window(name, window, 11)
+    ax, ay = markov.cell_point(name, 11, window.x0, window.y0)
+    compared = 0
+    for r in range(window.height):
+        for c in range(window.width):
+            x, y = window.cell(r, c)
+            px, py = ax + (x - window.x0) * hx, ay + (y - window.y0) * hy
+            ell = math.floor(py / ly)
+            py, px = py - ell * ly, px - ell * sx
+            px -= math.floor(px / lx) * lx
+            clear = []
+            for vs, n, tile in zip(arrays["vertices"].astype(float), arrays["counts"], arrays["tiles"]):
+                vs = vs[:n]
+                d = np.roll(vs, -1, axis=0) - vs
+                cross = d[:, 0] * (py - vs[:, 1]) - d[:, 1] * (px - vs[:, 0])
+                if (cross > 1e-5).all():
+                    clear.append(tile)
+            if clear:
+                compared += 1
+                assert clear == [grid[r, c]]
+    assert compared >= 0.9 * grid.size

@@ -1,0 +1,344 @@
+"""Windows of Kari's and Culik's aperiodic tilings, row by row from balanced sequences (issue 20, §1).
+
+J. Kari, *A small aperiodic set of Wang tiles*, Discrete Math. 160 (1996) 259-264 (14 tiles),
+and K. Culik II, *An aperiodic set of 13 Wang tiles*, Discrete Math. 160 (1996) 245-251.
+
+The construction
+----------------
+The *balanced representation* of a real ``x`` is the sequence of digits
+``d_j(x) = floor((j + 1) x) - floor(j x)``, ``j`` in Z; every digit is ``floor(x)`` or
+``ceil(x)``, and any ``n`` consecutive digits sum to ``n x`` within 1. A tile of these sets is
+a transition of a sequential machine that multiplies by ``q = p / r``: it reads a digit ``a``
+(its N edge), writes a digit ``b`` (its S edge), and takes a carry ``s`` in on its W edge and
+gives ``t`` out on its E edge with
+
+    ``p a + s = r b + t``.
+
+With ``y = q x`` and the carry ``c_j = p floor(j x) - r floor(j y)`` on the edge between cells
+``j - 1`` and ``j``, the cell ``j`` of a row is the transition ``(d_j(x), d_j(y), c_j,
+c_{j+1})``; ``c_j`` lies in ``{1 - p, ..., r - 1}`` for every real ``x`` (from ``z - 1 <
+floor(z) <= z``). A row whose N edges carry ``x`` thus carries ``f(x)`` on its S edges, and
+the row below it carries ``f(f(x))``: the rows of a tiling run **downwards** through an orbit of
+
+    ``f(x) = 2 x``  for ``x <= 1``,     ``f(x) = 2 x / J``  for ``x > 1``,
+
+with ``J = 3`` for Kari's set (``q = 2/3``; Kari writes ``[1/2, 1]`` and ``(1, 2]``) and
+``J = 6`` for Culik's (``q = 1/3``; Culik writes ``[1/3, 1)`` and ``[1, 2]``). On
+``I = (2/J, 2]`` the map ``f`` is a bijection of ``I`` (in ``log x`` it is the rotation by
+``log 2`` of a circle of length ``log(2 J / 2) = log J``), so every ``x0`` in ``I`` has a
+bi-infinite orbit, in closed form:
+
+    row ``y`` carries ``x(y) = x0 2**-y J**-m``, ``m`` the one integer that puts it in ``I``.
+
+Any window is therefore cut from one tiling of the plane fixed by ``x0`` (drawn from the seed):
+windows of a seed agree where they overlap, at any origin. Arithmetic is exact: ``x0`` is a
+rational, ``x(y)`` a rational of about ``1.6 |y|`` bits, and every floor is an integer
+division. Rows are refused beyond ``|y| > MAX_ROW`` (the cost of a row grows with ``|y|``).
+
+The tiles as transitions
+------------------------
+The built-in files (``kari-14.json``, ``kari-culik-13.json``, N, E, S, W) are read here as the
+transitions :attr:`Machine.tiles` (kind, primed, ``a``, ``b``, ``s``), in the files' order; the
+colours follow from :attr:`Machine.carry_colours` (the E/W colours of each kind's carries) and
+the digits (the N/S colour of digit ``d`` is ``d``), as :func:`tile_colours` rebuilds them
+(the tests compare them with the files). *Kind* 0 is a row with ``x <= 1`` (``q = 2``), kind 1
+one with ``x > 1`` (``q = 2/J``). In Culik's set a digit 0 written by a kind-0 row has a colour
+of its own (3, "primed"): a kind-0 row below a kind-0 row reads it, and only with the one tile
+(index 3) that turns it into a 1 -- the only output a kind-0 row below a kind-0 row can write
+there (its ``x`` is in ``(2/3, 1]``).
+
+Examples
+--------
+>>> from tilesolve.model.window import Window
+>>> balanced_window("kari-14", Window(0, 0, 8, 3), seed=1)
+array([[13, 11, 10, 13, 11, 10, 13, 11],
+       [ 2,  1,  3,  2,  1,  3,  2,  1],
+       [13, 11,  6, 11, 10,  5, 10,  9]], dtype=uint8)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from tilesolve._random import rng_from_seed
+from tilesolve.constructive import _balanced_kernels as _k
+from tilesolve.errors import InternalError, InvalidProblem
+from tilesolve.model.window import Window
+
+__all__ = ["NAMES", "MAX_ROW", "Machine", "machine", "tile_colours", "balanced_window", "balanced_window_exact"]
+
+#: The built-in tile sets this route draws.
+NAMES = ("kari-14", "kari-culik-13")
+#: Rows ``y`` with ``|y| <= MAX_ROW`` are drawn: ``x(y)`` has about ``1.6 |y|`` bits.
+MAX_ROW = 1 << 20
+#: Fixed-point bits of the fast path: ``floor(phi + c x)`` is read from ``phi`` and ``x`` to
+#: ``BITS`` bits, decided exactly wherever the rounding could change it.
+BITS = 47
+#: Columns per exact restart of the fast path, so that ``phi + c x`` stays below ``2**63``
+#: (``x <= 2``: ``CHUNK * 2**(BITS + 1) + 2**BITS < 2**63``).
+CHUNK = 1 << 14
+#: ``G`` values (the floors of one band) per band of rows.
+_BAND_CELLS = 1 << 20
+
+
+@dataclass(frozen=True)
+class Machine:
+    """The sequential machine of one tile set.
+
+    Attributes
+    ----------
+    name : str
+        The built-in tile set.
+    jump : int
+        ``J``: ``f(x) = 2 x`` on ``(2/J, 1]``, ``2 x / J`` on ``(1, 2]``.
+    steps : ((int, int), (int, int))
+        ``(p, r)`` of kind 0 (``q = 2``) and kind 1 (``q = 2/J`` in lowest terms).
+    primed_colour : int or None
+        The colour of a digit 0 written by a kind-0 row (Culik's set), ``None`` where a 0 has
+        colour 0 whoever wrote it (Kari's).
+    carry_colours : (dict, dict)
+        The E/W colour of each carry, for kind 0 and kind 1.
+    tiles : tuple of (kind, primed, a, b, s)
+        Tile ``i`` of the built-in file is the transition reading ``a`` (primed: a 0 written by
+        a kind-0 row), writing ``b``, with carry ``s`` in (W) and ``s + p a - r b`` out (E).
+    """
+
+    name: str
+    jump: int
+    steps: tuple[tuple[int, int], tuple[int, int]]
+    primed_colour: int | None
+    carry_colours: tuple[dict[int, int], dict[int, int]]
+    tiles: tuple[tuple[int, int, int, int, int], ...]
+
+    def carries(self, kind: int) -> range:
+        """The carries a row of ``kind`` can hold: ``1 - p .. r - 1``."""
+        p, r = self.steps[kind]
+        return range(1 - p, r)
+
+    def transition(self, i: int) -> tuple[int, int, int, int, int, int]:
+        """Tile ``i`` as ``(kind, primed, a, b, s, t)``, ``t`` its carry out."""
+        kind, primed, a, b, s = self.tiles[i]
+        p, r = self.steps[kind]
+        return kind, primed, a, b, s, s + p * a - r * b
+
+
+_MACHINES = {
+    "kari-14": Machine(
+        "kari-14", 3, ((2, 1), (2, 3)), None,
+        ({-1: 7, 0: 0}, {-1: 4, 0: 3, 1: 5, 2: 6}),
+        ((0, 0, 1, 2, -1), (0, 0, 1, 1, -1), (0, 0, 0, 1, 0), (0, 0, 1, 2, 0),
+         (1, 0, 2, 1, -1), (1, 0, 2, 1, 0), (1, 0, 2, 1, 1), (1, 0, 2, 2, 1), (1, 0, 2, 2, 2),
+         (1, 0, 1, 1, 0), (1, 0, 1, 1, 1), (1, 0, 1, 1, 2), (1, 0, 1, 0, -1), (1, 0, 1, 0, 0))),
+    "kari-culik-13": Machine(
+        "kari-culik-13", 6, ((2, 1), (1, 3)), 3,
+        ({-1: 4, 0: 3}, {0: 2, 1: 1, 2: 0}),
+        ((0, 0, 0, 0, 0), (0, 0, 1, 2, 0), (0, 0, 0, 1, 0), (0, 1, 0, 1, 0), (0, 0, 0, 0, -1),
+         (0, 0, 1, 2, -1), (0, 0, 1, 1, -1),
+         (1, 0, 2, 1, 2), (1, 0, 1, 1, 2), (1, 0, 2, 1, 1), (1, 0, 1, 0, 1), (1, 0, 2, 0, 0),
+         (1, 0, 1, 0, 0))),
+}
+
+
+def machine(name: str) -> Machine:
+    """The machine of built-in set ``name`` (one of :data:`NAMES`)."""
+    try:
+        return _MACHINES[name]
+    except (KeyError, TypeError):
+        raise InvalidProblem(f"no balanced-sequence route for {name!r}; it draws {', '.join(NAMES)}") from None
+
+
+def tile_colours(name: str) -> list[list[int]]:
+    """The tiles ``[N, E, S, W]`` of ``name`` rebuilt from the machine's transitions.
+
+    >>> tile_colours("kari-culik-13")[3]
+    [3, 4, 1, 3]
+    """
+    m = machine(name)
+    out = []
+    for i in range(len(m.tiles)):
+        kind, primed, a, b, s, t = m.transition(i)
+        north = m.primed_colour if primed else a
+        south = m.primed_colour if (m.primed_colour is not None and kind == 0 and b == 0) else b
+        out.append([north, m.carry_colours[kind][t], south, m.carry_colours[kind][s]])
+    return out
+
+
+# --------------------------------------------------------------------------- the orbit
+def _start(m: Machine, seed: int) -> tuple[int, int]:
+    """``x0 = u / v`` in ``(2/J, 2)``, drawn from ``seed``."""
+    k = int(rng_from_seed(seed).integers(1, 1 << 62))
+    # x0 = (2/J) (1 + (J - 1) k / 2**62)
+    return 2 * ((1 << 62) + (m.jump - 1) * k), m.jump << 62
+
+
+def _row_value(m: Machine, start: tuple[int, int], y: int) -> tuple[int, int]:
+    """``x(y) = P / Q`` (not in lowest terms): ``x0 2**-y J**-m`` in ``(2/J, 2]``."""
+    u, v = start
+    num, den = (u << -y, v) if y <= 0 else (u, v << y)
+    # x = num / den J**-m with the least m that makes x <= 2: m estimated, then corrected.
+    e = math.floor((num.bit_length() - den.bit_length() - 1) / math.log2(m.jump))
+    p, q = (num, den * m.jump**e) if e >= 0 else (num * m.jump**-e, den)
+    while p > 2 * q:
+        q *= m.jump
+    while m.jump * p <= 2 * q:
+        p *= m.jump
+    return p, q
+
+
+def _check_rows(window: Window) -> None:
+    lo, hi = window.y0 - 1, window.y0 + window.height
+    if max(abs(lo), abs(hi)) > MAX_ROW:
+        raise InvalidProblem(f"window {window.describe()}: the balanced-sequence route draws rows y within "
+                             f"+-{MAX_ROW:,} (row y holds a rational of about 1.6 |y| bits)")
+
+
+# --------------------------------------------------------------------------- the reference
+def balanced_window_exact(name: str, window: Window, seed: int) -> np.ndarray:
+    """:func:`balanced_window` cell by cell with exact integers (slow: the cross-check).
+
+    Each row's ``x(y) = P / Q`` comes from the closed form on its own (no iteration of ``f``),
+    each digit and carry from its definition (``floor(j x) = j P // Q``), each tile from a
+    search of :attr:`Machine.tiles`.
+
+    >>> from tilesolve.model.window import Window
+    >>> w = Window(-3, -2, 5, 4)
+    >>> bool((balanced_window_exact("kari-culik-13", w, 7) == balanced_window("kari-culik-13", w, 7)).all())
+    True
+    """
+    m = machine(name)
+    window = Window.of(window)
+    _check_rows(window)
+    start = _start(m, seed)
+    out = np.empty(window.shape, np.uint8)
+    for row in range(window.height):
+        y = window.cell(row, 0)[1]
+        (P, Q), (Pb, Qb), (Pa, Qa) = (_row_value(m, start, y + d) for d in (0, -1, 1))
+        kind = int(P > Q)
+        p, r = m.steps[kind]
+        primed_row = m.primed_colour is not None and Pa <= Qa
+        for col in range(window.width):
+            j = window.x0 + col
+            a = (j + 1) * P // Q - j * P // Q
+            b = (j + 1) * Pb // Qb - j * Pb // Qb
+            s = p * (j * P // Q) - r * (j * Pb // Qb)
+            out[row, col] = m.tiles.index((kind, int(primed_row and a == 0), a, b, s))
+    return out
+
+
+# --------------------------------------------------------------------------- the fast path
+def _lut(m: Machine) -> tuple[np.ndarray, int]:
+    """``lut[2 kind + above, a, b, s - smin]``: the tile of a transition in a row of ``kind``
+    whose row above has kind ``above`` (255 where none), and ``smin``."""
+    smin = min(min(m.carries(0)), min(m.carries(1)))
+    span = max(max(m.carries(0)), max(m.carries(1))) - smin + 1
+    lut = np.full((4, 3, 3, span), 255, np.uint8)
+    for i, (kind, primed, a, b, s) in enumerate(m.tiles):
+        for above in (0, 1):
+            if int(m.primed_colour is not None and above == 0 and a == 0) == primed:
+                lut[2 * kind + above, a, b, s - smin] = i
+    return lut, smin
+
+
+def balanced_window(name: str, window: Window, seed: int) -> np.ndarray:
+    """The window ``window`` of the tiling of built-in set ``name`` that ``seed`` fixes.
+
+    Parameters
+    ----------
+    name : str
+        ``"kari-14"`` or ``"kari-culik-13"`` (:data:`NAMES`).
+    window : Window or (x0, y0, width, height)
+        The cells; rows ``y`` within ``+-MAX_ROW``, columns anywhere.
+    seed : int
+        Chooses ``x0`` (hence the tiling of the plane); the same seed gives the same tiling.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``uint8`` of shape ``(height, width)``: the tile indices (the built-in file's order) of
+        the cells ``window.cell(r, c)`` (row 0 is the top row when y grows upwards).
+
+    Raises
+    ------
+    InvalidProblem
+        An unknown name, a negative seed, or rows beyond ``MAX_ROW``.
+
+    Notes
+    -----
+    Row by row downwards: ``x`` of the next row is ``f(x)``, exact, and
+    ``G[c] = floor(j x) - floor(x0 x)`` of the window's columns ``j = x0 + c`` is read in
+    int64 fixed point from ``floor(2**BITS frac(x0 x))`` and ``floor(2**BITS x)``, restarted
+    exactly every :data:`CHUNK` columns. The rounding error of ``phi + c x`` is below
+    ``c + 1`` units, so a floor is decided unless the low bits lie within ``c + 1`` of the
+    next unit; those few (about ``c / 2**BITS`` of the cells) are computed with exact
+    integers. The digits and carries are differences of ``G`` of two rows, and a table gives
+    the tile. ``O(1)`` big-integer operations a row, ``O(width)`` machine words.
+    """
+    return _window(name, window, seed, BITS)
+
+
+def _window(name: str, window: Window, seed: int, bits: int) -> np.ndarray:
+    """:func:`balanced_window` with ``bits`` fixed-point bits (tests lower it so that the
+    exact fix-ups happen often)."""
+    m = machine(name)
+    window = Window.of(window)
+    _check_rows(window)
+    start = _start(m, seed)
+    lut, smin = _lut(m)
+    h, w = window.height, window.width
+    j0 = window.x0
+    kern = _k.KERNELS.pick(h * w)
+    out = np.empty((h, w), np.uint8)
+    band = max(1, _BAND_CELLS // (w + 1))
+
+    # Line i is the row y = y0 + h - i: i = 0 is the row above the window (its kind only),
+    # lines 1..h the window's rows, line h + 1 the row below (its digits are row h's S edges).
+    P, Q = _row_value(m, start, window.y0 + h)
+    above = int(P > Q)
+    P, Q = (P * m.steps[above][0], Q * m.steps[above][1])
+    pending = None  # the last line of the previous band, the first of this one
+    for top in range(0, h, band):
+        rows = min(band, h - top)
+        lines = [] if pending is None else [pending]
+        while len(lines) < rows + 1:
+            lines.append(_line(m, P, Q, j0, w, bits))
+            kind = lines[-1][0]
+            P, Q = P * m.steps[kind][0], Q * m.steps[kind][1]
+        pending = lines[-1]
+        phi = np.array([ln[4] for ln in lines], np.int64)
+        off = np.array([ln[5] for ln in lines], np.int64)
+        xt = np.array([ln[6] for ln in lines], np.int64)
+        G = np.empty((rows + 1, w + 1), np.int32)
+        if kern.floors_kernel(phi, off, xt, bits, CHUNK, G):
+            for i, c in zip(*np.nonzero(G < 0)):
+                _, Pi, Qi, Ri = lines[i][:4]
+                G[i, c] = (Ri + int(c) * Pi) // Qi
+        kinds = [ln[0] for ln in lines]
+        code = np.empty(rows, np.int64)
+        s0 = np.empty(rows, np.int64)
+        pr = np.empty((rows, 2), np.int64)
+        for i in range(rows):
+            kind = kinds[i]
+            p, r = m.steps[kind]
+            code[i] = 2 * kind + (above if i == 0 else kinds[i - 1])
+            s0[i] = p * lines[i][7] - r * lines[i + 1][7] - smin
+            pr[i] = p, r
+        above = kinds[rows - 1]
+        if kern.tiles_kernel(G, s0, pr, code, lut, out[top:top + rows]):
+            raise InternalError(f"{name}: a cell of window {window.describe()} has no tile (seed {seed})")
+    return out if window.y_up else out[::-1].copy()
+
+
+def _line(m: Machine, P: int, Q: int, j0: int, w: int, bits: int) -> tuple:
+    """One line's numbers: ``(kind, P, Q, R, phi, off, xt, F)`` with ``F = floor(j0 x)``,
+    ``R = j0 P - F Q``, ``phi[q]``/``off[q]`` the fixed-point fraction and the floor (less
+    ``F``) at the start of column chunk ``q``, and ``xt = floor(2**bits x)``."""
+    F, R = divmod(j0 * P, Q)
+    phi, off = [], []
+    for c in range(0, w + 1, CHUNK):
+        o, rq = divmod(R + c * P, Q)
+        phi.append((rq << bits) // Q)
+        off.append(o)
+    return int(P > Q), P, Q, R, phi, off, (P << bits) // Q, F
