@@ -14,6 +14,8 @@ from PIL import Image
 
 from tilesolve.gpu.texture import Atlas, TextureMapper, read_example
 from tilesolve.gpu.wall import WallRenderer
+from tilesolve.gpu.wang_texture import WangAtlas, WangTexture
+from tilesolve.io.builtin_tilesets import load
 
 #: Points libglvnd at no EGL vendor: what a machine without Mesa's EGL looks like.
 NO_GL = dict(ENV, __EGL_VENDOR_LIBRARY_FILENAMES=os.devnull)
@@ -80,3 +82,64 @@ def test_version_and_cpu_modules_do_not_import_moderngl():
             "print('moderngl' in sys.modules, 'glcontext' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300, check=True)
     assert out.stdout.split() == ["False", "False"]
+
+
+# ------------------------------------------------------------------------------------ aperiodic textures
+def _example(folder):
+    img = np.random.default_rng(3).integers(0, 256, (48, 56, 3), dtype=np.uint8)
+    Image.fromarray(img).save(folder / "ex.png")
+    return img
+
+
+def test_render_texture_aperiodic_gpu_and_cpu_write_the_same_picture(tmp_path):
+    """The fast tier's aperiodic texture: GPU and CPU files identical, and the library's picture."""
+    ex = _example(tmp_path)
+    args = ["render", "texture", "--example", "ex.png", "--aperiodic", "jeandel-rao", "--tile", "16", "--scale", "6",
+            "--size", "90x50", "--seed", "4", "--origin", "-30,8"]
+    gpu = run(*args, "-o", "gpu.png", "--atlas", "atlas.png", cwd=tmp_path)
+    assert gpu.returncode == 0, gpu.stderr
+    assert re.search(r"^  cells coded by the shader: 135; left to the CPU route .*: 0$", gpu.stderr, re.M)
+    cpu = run(*args, "--cpu", "-o", "cpu.png", cwd=tmp_path)
+    assert cpu.returncode == 0, cpu.stderr
+    assert "(CPU)" in cpu.stderr
+    picture = np.asarray(Image.open(tmp_path / "gpu.png"))
+    assert np.array_equal(np.asarray(Image.open(tmp_path / "cpu.png")), picture)
+    at = WangAtlas.from_example(ex, load("jeandel-rao")[0].tiles, tile=16, seed=4)
+    assert np.array_equal(np.asarray(Image.open(tmp_path / "atlas.png")), at.image)
+    assert np.array_equal(picture, WangTexture("jeandel-rao", at, seed=4, origin=(-30, 8), tile_px=6).image(90, 50))
+
+
+@pytest.mark.slow
+def test_render_texture_aperiodic_on_the_cpu_needs_no_gl(tmp_path):
+    _example(tmp_path)
+    args = ["render", "texture", "--example", "ex.png", "--aperiodic", "kari-culik-13", "--tile", "16", "--size", "64x48",
+            "--seed", "2"]
+    proc = subprocess.run([SCRIPT, *args, "--cpu", "-o", "cpu.png"], cwd=tmp_path, capture_output=True, text=True,
+                          env=NO_GL, timeout=300)
+    assert proc.returncode == 0, proc.stderr
+    one_line_error(subprocess.run([SCRIPT, *args, "-o", "gpu.png"], cwd=tmp_path, capture_output=True, text=True,
+                                  env=NO_GL, timeout=300))
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["cpu.png", "ex.png"]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("args,says", [
+    (["--aperiodic", "periodic-7-30"], "no constructive route"),
+    (["--aperiodic", "nope"], "no constructive route"),
+    (["--cpu"], "--cpu draws aperiodic textures"),
+    (["--aperiodic", "jeandel-rao", "--colors", "2"], "--colors: options of corner-tile textures"),
+    (["--aperiodic", "jeandel-rao", "--per-fragment", "--hash", "table"], "--hash, --per-fragment"),
+    (["--aperiodic", "jeandel-rao", "--tile", "18", "--cpu", "--benchmark", "2"], "--benchmark times the GPU"),
+    (["--aperiodic", "labbe-u19", "--tile", "9"], "even"),
+    (["--aperiodic", "kari-14", "--tile", "8", "--origin", "0,-4611686018427387000"], "rows y within"),
+    (["--aperiodic", "kari-14", "--tile", "64"], "smaller than a diamond"),
+])
+def test_render_texture_aperiodic_bad_input_one_line_exit_2(tmp_path, args, says):
+    _example(tmp_path)
+    (tmp_path / "keep.png").write_bytes(b"earlier")
+    before = snapshot(tmp_path)
+    for where in ([], ["--cpu"]) if "--cpu" not in args and "--benchmark" not in args else ([],):
+        proc = run("render", "texture", "--example", "ex.png", "--size", "40x30", *args, *where, "-o", "keep.png",
+                   cwd=tmp_path)
+        assert says in one_line_error(proc)
+    assert snapshot(tmp_path) == before

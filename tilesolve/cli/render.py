@@ -3,6 +3,7 @@
 ::
 
     tilesolve render texture --example IMG --colors C --size WxH -o out.png [--benchmark N]
+    tilesolve render texture --example IMG --aperiodic NAME --size WxH -o out.png [--cpu]
     tilesolve render wall --size WxH [--max-line N] [--samples S] -o out.png [--benchmark N]
     tilesolve gpu info
 """
@@ -69,6 +70,7 @@ def render() -> None:
     Examples:
       tilesolve render wall --size 640x360 --max-line 4 --seed 3 -o wall.png
       tilesolve render texture --example wall.png --colors 3 --tile 32 --size 800x600 -o texture.png
+      tilesolve render texture --example wall.png --aperiodic jeandel-rao --seed 1 --tile 32 --size 800x600 -o t.png
     """
 
 
@@ -78,6 +80,12 @@ def render() -> None:
               help="The example texture (any image Pillow reads), at least one tile in each direction.")
 @click.option("--colors", type=click.IntRange(2, 8), default=3, show_default=True, metavar="C",
               help="Corner colours: the atlas packs the C^4 corner tiles in a C^2 x C^2 tile packing.")
+@click.option("--aperiodic", default=None, metavar="NAME",
+              help="Instead of corner tiles, the Wang tiles of this aperiodic set, placed by its constructive route: "
+                   "jeandel-rao or labbe-u19 (Markov partitions, coded in the shader), kari-14 or kari-culik-13 "
+                   "(balanced rows): a texture that never repeats.")
+@click.option("--cpu", is_flag=True,
+              help="With --aperiodic: draw on the CPU (no OpenGL needed); the same pixels as the GPU.")
 @click.option("--size", required=True, metavar="WxH", help="Picture size in pixels (any size: rendered in passes).")
 @click.option("--tile", type=click.IntRange(8, 1024), default=64, show_default=True, metavar="PX",
               help="Side of an atlas tile in texels (even; the atlas, C^2 tiles a side, at most 16384 px).")
@@ -91,7 +99,9 @@ def render() -> None:
 @click.option("--atlas", type=click.Path(dir_okay=False), metavar="ATLAS.png", help="Also write the packed atlas.")
 @_OUTPUT
 @_BENCH
-def texture(example, colors, size, tile, scale, origin, seed, hash_, per_fragment, atlas, output, benchmark) -> None:
+@click.pass_context
+def texture(ctx, example, colors, aperiodic, cpu, size, tile, scale, origin, seed, hash_, per_fragment, atlas, output,
+            benchmark) -> None:
     """An arbitrarily large non-periodic texture from an example image (Wei 2004; Lagae §5.4).
 
     The example is synthesised over the complete corner tile set by the corner-patch
@@ -100,36 +110,102 @@ def texture(example, colors, size, tile, scale, origin, seed, hash_, per_fragmen
     pixel's tile by the direct stochastic corner tiling (§3.3.1), the same tiles as
     `tilesolve tiling --kind corner --method direct` with the same seed.
 
+    With --aperiodic NAME the tiles are instead the Wang tiles of an aperiodic set, each
+    edge colour a diamond of the example (Cohen et al. 2003), and the tile at each cell is
+    the one of `tilesolve aperiodic tiling --builtin NAME` with the same seed and origin:
+    the texture never repeats. Pixels sample the nearest texel (an aperiodic set has no
+    tile packing to filter across); --cpu draws the same pixels without OpenGL.
+
     \b
     Examples:
       tilesolve render wall --size 256x256 --seed 5 -o bricks.png
       tilesolve render texture --example bricks.png --colors 3 --tile 32 --size 800x600 -o texture.png
       tilesolve render texture --example bricks.png --colors 2 --tile 32 --scale 16 --size 640x480 --origin -1000,20 -o small.png --atlas atlas.png
       tilesolve render texture --example bricks.png --colors 3 --tile 32 --size 1920x1080 --benchmark 5
+      tilesolve render texture --example bricks.png --aperiodic jeandel-rao --seed 1 --tile 32 --size 800x600 -o jr.png
+      tilesolve render texture --example bricks.png --aperiodic kari-culik-13 --tile 32 --scale 16 --size 640x480 --origin 5,-20 --cpu -o kc.png --atlas kc-atlas.png
     """
-    from tilesolve.gpu.picture import parse_origin, parse_size, write_png
     from tilesolve.gpu.texture import Atlas, TextureMapper, check_atlas, read_example
 
-    _need_output(output, benchmark)
-    outs = Outputs(output, atlas)
-    w, h = parse_size(size)
-    x0, y0 = parse_origin(origin)
+    if aperiodic is not None or cpu:
+        _aperiodic_texture(ctx, example, aperiodic, cpu, size, tile, scale, origin, seed, atlas, output, benchmark)
+        return
+    outs, w, h, x0, y0 = _texture_setup(output, atlas, benchmark, size, origin)
     check_atlas(colors, tile)
     image = read_example(example)
     t = time.perf_counter()
     at = Atlas.from_example(image, colors, tile=tile, seed=seed)
     mapper = TextureMapper(at, seed=seed, origin=(x0, y0), tile_px=scale, hash=hash_, two_pass=not per_fragment)
+    _texture_finish(outs, output, atlas, mapper, at.image, w, h, benchmark, t,
+                    f"texture {w}x{h} from {example}: {colors}^4 = {colors**4} corner tiles of {tile} px, seed {seed}")
+
+
+def _texture_setup(output, atlas, benchmark, size, origin):
+    """``(outputs, width, height, x0, y0)`` of a texture, checked before any work."""
+    from tilesolve.gpu.picture import parse_origin, parse_size
+
+    _need_output(output, benchmark)
+    outs = Outputs(output, atlas)
+    w, h = parse_size(size)
+    return (outs, w, h, *parse_origin(origin))
+
+
+def _texture_finish(outs, output, atlas, picture, atlas_image, w: int, h: int, benchmark, t: float, summary: str,
+                    notes=list) -> None:
+    """Write the picture (``output``, streamed) and the atlas image (``atlas``) together, say what
+    was drawn and on what (then the lines ``notes()``), and run the benchmark."""
+    from tilesolve.gpu.picture import write_png
+
     with outs.commit():
         if output:
-            write_png(output, w, h, mapper.bands(w, h), progress_wanted())
+            write_png(output, w, h, picture.bands(w, h), progress_wanted())
         if atlas:
-            write_png(atlas, at.image.shape[1], at.image.shape[0], [at.image])
-    say(f"texture {w}x{h} from {example}: {colors}^4 = {colors**4} corner tiles of {tile} px, "
-        f"seed {seed}, in {time.perf_counter() - t:.2f} s ({mapper.ctx.info['GL_RENDERER']})")
+            write_png(atlas, atlas_image.shape[1], atlas_image.shape[0], [atlas_image])
+    renderer = picture.ctx.info["GL_RENDERER"] if hasattr(picture, "ctx") else "CPU"
+    say(f"{summary}, in {time.perf_counter() - t:.2f} s ({renderer})")
+    for note in notes():
+        say(f"  {note}")
     if outs.files:
         say(f"  wrote {', '.join(outs.files)}")
     if benchmark:
-        _benchmark(mapper, w, h, benchmark)
+        _benchmark(picture, w, h, benchmark)
+
+
+def _aperiodic_texture(ctx, example, name, cpu, size, tile, scale, origin, seed, atlas, output, benchmark) -> None:
+    """``render texture --aperiodic NAME``: Wang tiles of an aperiodic set placed by its constructive route."""
+    from click.core import ParameterSource
+
+    from tilesolve.gpu.texture import read_example
+    from tilesolve.gpu.wang_texture import WangAtlas, check_aperiodic
+
+    if name is None:
+        raise InvalidProblem("--cpu draws aperiodic textures (--aperiodic NAME); corner textures are drawn on the GPU")
+    given = [opt_ for p, opt_ in (("colors", "--colors"), ("hash_", "--hash"), ("per_fragment", "--per-fragment"))
+             if ctx.get_parameter_source(p) is not ParameterSource.DEFAULT]
+    if given:
+        raise InvalidProblem(f"{', '.join(given)}: options of corner-tile textures, not of --aperiodic ones")
+    if cpu and benchmark is not None:
+        raise InvalidProblem("--benchmark times the GPU: leave out --cpu")
+    outs, w, h, x0, y0 = _texture_setup(output, atlas, benchmark, size, origin)
+    tileset, route = check_aperiodic(name, tile)
+    image = read_example(example)
+    t = time.perf_counter()
+    at = WangAtlas.from_example(image, tileset.tiles, tile=tile, seed=seed)
+    if cpu:
+        from tilesolve.gpu.wang_texture import WangTexture as Picture
+    else:
+        from tilesolve.gpu.wang_texture import WangTextureMapper as Picture
+    picture = Picture(name, at, seed=seed, origin=(x0, y0), tile_px=scale)
+    summary = f"texture {w}x{h} from {example}: the {len(tileset)} Wang tiles of {name} ({route} route) of {tile} px, " \
+              f"seed {seed}"
+
+    def notes() -> list[str]:
+        if not getattr(picture, "codes_in_shader", False):
+            return []
+        return [f"cells coded by the shader: {picture.decided:,}; left to the CPU route (near a polygon edge): "
+                f"{picture.undecided:,}"]
+
+    _texture_finish(outs, output, atlas, picture, at.image, w, h, benchmark, t, summary, notes)
 
 
 @render.command("wall", context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP,

@@ -41,14 +41,41 @@ import math
 
 import numpy as np
 
+from tilesolve.constructive._markov_kernels import FLAG
 from tilesolve.constructive.hashes import check_int, check_window
 from tilesolve.errors import InvalidProblem
 from tilesolve.gpu.texture import DIV_GLSL, MAX_ATLAS, PassRenderer, diamond_mask, example_patches
 
-__all__ = ["WangAtlas", "texel_of_pixel", "window_tiles", "WangTexture", "WangTextureMapper"]
+__all__ = ["WangAtlas", "check_tile", "check_aperiodic", "texel_of_pixel", "window_tiles", "WangTexture",
+           "WangTextureMapper"]
 
 #: Feather of the diamonds' blend across the diagonals, as a fraction of the tile side (each side).
 FEATHER = 0.1
+
+
+def check_tile(tile, n_tiles: int) -> int:
+    """``tile`` checked: even (the diamonds are centred on the edges' midpoints), at least 8, and
+    an atlas of ``n_tiles`` tiles (``ceil(sqrt(n_tiles))`` a side) of at most :data:`MAX_ATLAS` texels."""
+    t = check_int(tile, "tile size", 8)
+    if t % 2:
+        raise InvalidProblem(f"the tile size must be even (diamonds centred on the edges' midpoints), got {t}")
+    cols = math.isqrt(n_tiles - 1) + 1
+    if cols * t > MAX_ATLAS:
+        raise InvalidProblem(f"an atlas of {cols} x {cols} tiles of {t} px is {cols * t} px wide, more than the "
+                             f"{MAX_ATLAS} px every OpenGL 4.5 texture may have: use a smaller tile")
+    return t
+
+
+def check_aperiodic(name: str, tile: int):
+    """``(WangTileSet, route)`` of the built-in aperiodic set ``name``, which must have a
+    constructive route (:func:`tilesolve.families.aperiodic_window.route_of`), with ``tile`` checked."""
+    from tilesolve.families.aperiodic_window import route_of
+    from tilesolve.io.builtin_tilesets import load
+
+    route = route_of(name)
+    tileset, _ = load(name)
+    check_tile(tile, len(tileset))
+    return tileset, route
 
 
 def window_tiles(name: str, x0: int, y0: int, width: int, height: int, seed: int) -> np.ndarray:
@@ -104,13 +131,8 @@ class WangAtlas:
         tl = np.asarray(tiles, dtype=np.int64)
         if tl.ndim != 2 or tl.shape[1] != 4 or not len(tl) or tl.min() < 0:
             raise InvalidProblem(f"Wang tiles are rows of 4 colours N, E, S, W (>= 0), got shape {tl.shape}")
-        t = check_int(tile, "tile size", 8)
-        if t % 2:
-            raise InvalidProblem(f"the tile size must be even (diamonds centred on the edges' midpoints), got {t}")
+        t = check_tile(tile, len(tl))
         cols = math.isqrt(len(tl) - 1) + 1
-        if cols * t > MAX_ATLAS:
-            raise InvalidProblem(f"an atlas of {cols} x {cols} tiles of {t} px is {cols * t} px wide, more than the "
-                                 f"{MAX_ATLAS} px every OpenGL 4.5 texture may have: use a smaller tile")
         e = math.ceil(FEATHER * t)
         n = t + 2 * e  # a diamond and its feather: L1 radius t / 2 + e around the sample's centre
         patch = example_patches(example, n, seed, what="a diamond sample of one tile with its feather")
@@ -225,6 +247,145 @@ void main() {
 """
 
 
+#: One fragment per cell: the tile of the cell's point in the Markov partition (Labbé 2021), by
+#: its slab (a band of the fundamental domain between two vertex heights, where the polygon edges
+#: crossing it keep their order) and the interval of the slab's breakpoints that holds it.
+_FRAGMENT_MARKOV = """
+#version 450
+uniform sampler2D u_rows;      // row r of the pass: (height above the slab's floor, x shift, slab or -1)
+uniform sampler2D u_cols;      // column c of the pass: x of the point, reduced modulo lx
+uniform sampler2D u_cuts;      // slab s, breakpoint k: (x at the slab's floor, slope dx/dy)
+uniform usampler2D u_labels;   // slab s, interval k: the tile
+uniform usampler2D u_nbreaks;  // slab s: breakpoints (the first at 0, the last at lx)
+uniform float u_lx;            // the fundamental domain's width
+uniform float u_tol;           // the float32 error bound: closer to a breakpoint is undecided
+out uint f_tile;
+void main() {
+    ivec2 c = ivec2(gl_FragCoord.xy);
+    precise vec4 row = texelFetch(u_rows, ivec2(c.y, 0), 0);
+    int s = int(row.z);
+    if (s < 0) { f_tile = FLAG; return; }
+    precise float x = texelFetch(u_cols, ivec2(c.x, 0), 0).r + row.y;
+    if (x >= u_lx) x -= u_lx;
+    int nb = int(texelFetch(u_nbreaks, ivec2(s, 0), 0).r);
+    vec2 cut = texelFetch(u_cuts, ivec2(0, s), 0).xy;
+    precise float lo = cut.x + cut.y * row.x;
+    cut = texelFetch(u_cuts, ivec2(1, s), 0).xy;
+    precise float hi = cut.x + cut.y * row.x;
+    int k = 1;
+    while (k < nb - 1 && x >= hi) {
+        k += 1;
+        lo = hi;
+        cut = texelFetch(u_cuts, ivec2(k, s), 0).xy;
+        hi = cut.x + cut.y * row.x;
+    }
+    f_tile = (x - lo < u_tol || hi - x < u_tol) ? FLAG : texelFetch(u_labels, ivec2(k - 1, s), 0).r;
+}
+"""
+
+
+class _MarkovCells:
+    """The cells of a pass coded by the shader :data:`_FRAGMENT_MARKOV` from the partition of
+    :func:`tilesolve.constructive.markov.partition` and the orbit start of
+    :func:`~tilesolve.constructive.markov.start_point`.
+
+    Cell ``(X, Y)`` codes the point ``x0 + (X hx, Y hy)`` modulo the lattice ``<(lx, 0), (sx, ly)>``:
+    with ``l = floor((y0 + Y hy) / ly)`` its height is ``yp = y0 + Y hy - l ly`` and its abscissa
+    ``(x0 + X hx) - l sx`` modulo ``lx``. float32 cannot reduce coordinates of up to ``2**62``,
+    so the CPU reduces them per row (``yp``, the slab holding it, ``-l sx mod lx``) and per
+    column (``x0 + X hx mod lx``), exactly at the first row and column of every block of
+    :data:`~tilesolve.constructive.markov.BLOCK` and in float64 steps inside it, as
+    :func:`~tilesolve.constructive.markov.orbit_window` does; a row within the float64 error
+    bound of a slab boundary is left undecided. The shader adds the two, reduces once, and
+    finds the breakpoints around the point in float32; a cell within :attr:`tolerance` of one is
+    left undecided (:data:`FLAG`), and the mapper takes it from the CPU route's window.
+    """
+
+    def __init__(self, mapper: "WangTextureMapper", name: str, seed: int) -> None:
+        from tilesolve.constructive.markov import float_tolerance, partition, start_point
+
+        self.part = p = partition(name)
+        self.start = start_point(name, seed)
+        self.tol64 = float_tolerance(p)
+        self.lx, self.ly, self.sx, self.hx, self.hy = (float(getattr(p, f)) for f in ("lx", "ly", "sx", "hx", "hy"))
+        # float32 error of |x - breakpoint| (u = 2**-24, values below L, slopes below M): the
+        # stored column and shift and x's two roundings give (2 e64 + 7 u L); a breakpoint
+        # x0 + slope dy adds (M e64 + u L (3 + 3 M)); times 4 for safety.
+        big_l, big_m, u = max(self.lx, self.ly), p.max_slope, 2.0 ** -24
+        self.tolerance = 4 * ((2 + big_m) * self.tol64 + (10 + 3 * big_m) * big_l * u)
+        self.mapper = mapper
+        cuts = np.stack([p.x0, p.slope], axis=2).astype(np.float32)
+        self._cuts = mapper.ctx.texture((cuts.shape[1], cuts.shape[0]), 2, cuts.tobytes(), dtype="f4")
+        self._cuts.filter = (mapper.ctx.NEAREST, mapper.ctx.NEAREST)
+        self._labels = mapper._int_texture(p.labels, 1)
+        self._nbreaks = mapper._int_texture(p.nbreaks[None, :], 1)
+        prog, _ = self.program = mapper._vertex_array(_FRAGMENT_MARKOV.replace("FLAG", f"{FLAG}u"))
+        for uniform, unit in (("u_rows", 0), ("u_cols", 1), ("u_cuts", 2), ("u_labels", 3), ("u_nbreaks", 4)):
+            prog[uniform].value = unit
+        prog["u_lx"].value = self.lx
+
+    def _float_texture(self, a: np.ndarray, components: int):
+        a = np.ascontiguousarray(a, dtype=np.float32)
+        tex = self.mapper.ctx.texture((a.shape[1], a.shape[0]), components, a.tobytes(), dtype="f4")
+        tex.filter = (self.mapper.ctx.NEAREST, self.mapper.ctx.NEAREST)
+        return tex
+
+    def rows(self, y: int, n: int) -> np.ndarray:
+        """``(n, 4)`` float64 per row ``y .. y + n - 1``: height above its slab's floor, the x
+        shift ``-l sx mod lx``, the slab (``-1``: undecided), 0."""
+        from tilesolve.constructive.markov import BLOCK
+
+        p, out = self.part, np.zeros((n, 4))
+        for b in range(0, n, BLOCK):
+            m = min(BLOCK, n - b)
+            yb = self.start[1] + (y + b) * p.hy
+            ell = (yb / p.ly).floor()
+            shift = -ell * p.sx
+            yr = float(yb - ell * p.ly) + np.arange(m) * self.hy
+            lr = np.floor(yr / self.ly)
+            yp = yr - lr * self.ly
+            xs = float(shift - (shift / p.lx).floor() * p.lx) - lr * self.sx
+            slab = np.searchsorted(p.ybounds, yp, side="right") - 1
+            near = np.abs(yp[:, None] - p.ybounds[None, :]).min(axis=1) < self.tol64
+            slab[near | (slab < 0) | (slab >= len(p.ylo))] = -1
+            out[b:b + m, 0] = yp - p.ylo[np.maximum(slab, 0)]
+            out[b:b + m, 1] = xs - np.floor(xs / self.lx) * self.lx
+            out[b:b + m, 2] = slab
+        return out
+
+    def cols(self, x: int, n: int) -> np.ndarray:
+        """``(n,)`` float64 per column ``x .. x + n - 1``: ``x0 + X hx mod lx``."""
+        from tilesolve.constructive.markov import BLOCK
+
+        p, out = self.part, np.zeros(n)
+        for b in range(0, n, BLOCK):
+            m = min(BLOCK, n - b)
+            xb = self.start[0] + (x + b) * p.hx
+            t = float(xb - (xb / p.lx).floor() * p.lx) + np.arange(m) * self.hx
+            out[b:b + m] = t - np.floor(t / self.lx) * self.lx
+        return out
+
+    def code(self, x: int, y: int, cols: int, rows: int) -> np.ndarray:
+        """``(rows, cols)`` uint32 tiles of the cells ``x .. x + cols - 1`` by ``y .. y + rows - 1``
+        (absolute), row 0 the top row, :data:`FLAG` where the shader cannot decide."""
+        ctx = self.mapper.ctx
+        row_tex = self._float_texture(self.rows(y, rows)[None, :, :], 4)
+        col_tex = self._float_texture(self.cols(x, cols)[None, :], 1)
+        target = ctx.texture((cols, rows), 1, dtype="u4")
+        fbo = ctx.framebuffer(color_attachments=[target])
+        try:
+            prog, vao = self.program
+            prog["u_tol"].value = self.tolerance
+            fbo.use()
+            for unit, tex in enumerate((row_tex, col_tex, self._cuts, self._labels, self._nbreaks)):
+                tex.use(unit)
+            vao.render(mode=ctx.TRIANGLE_STRIP)
+            return np.frombuffer(fbo.read(components=1, dtype="u4"), dtype=np.uint32).reshape(rows, cols)[::-1]
+        finally:
+            for obj in (fbo, target, row_tex, col_tex):
+                obj.release()
+
+
 class WangTextureMapper(_Picture, PassRenderer):
     """The picture on the GPU (moderngl, OpenGL 4.5 through EGL), pixel for pixel :class:`WangTexture`.
 
@@ -246,10 +407,30 @@ class WangTextureMapper(_Picture, PassRenderer):
             prog[uniform].value = unit
         prog["u_tile_px"].value = self.tile_px
         prog["u_tile"].value = atlas.tile
+        from tilesolve.constructive.markov import NAMES
+
+        self._markov = _MarkovCells(self, name, seed) if name in NAMES else None
+        #: Whether the shader codes the cells (the Markov sets) or the CPU route gives them.
+        self.codes_in_shader = self._markov is not None
+        #: Cells coded by the shader and cells it left to the CPU route, over the pictures drawn.
+        self.decided = self.undecided = 0
 
     def cell_tiles(self, c0: int, r0: int, cols: int, rows: int) -> np.ndarray:
-        """The tiles the GPU draws in those cells (relative to the picture's SW cell), row 0 the top row."""
-        return self.window(c0, r0, cols, rows)
+        """The tiles the GPU draws in those cells (relative to the picture's SW cell), row 0 the top row.
+
+        For the Markov sets the shader codes them (:class:`_MarkovCells`) and a cell it leaves
+        undecided is taken from the CPU route's window (counted in :attr:`undecided`); the
+        other sets' windows come from the CPU route.
+        """
+        if self._markov is None:
+            return self.window(c0, r0, cols, rows)
+        tiles = self._markov.code(self.x0 + c0, self.y0 + r0, cols, rows)
+        flagged = tiles == FLAG
+        if flagged.any():
+            self.undecided += int(flagged.sum())
+            tiles = np.where(flagged, self.window(c0, r0, cols, rows), tiles)
+        self.decided += int(tiles.size - flagged.sum())
+        return tiles
 
     def _pass(self, fbo, offset, scratch) -> None:
         (left, bottom), (w, h) = offset, fbo.size
