@@ -9,7 +9,8 @@ sets*, Annales Henri Lebesgue 4 (2021) 283-324, arXiv:1903.06137, gives two part
     Jeandel-Rao tiles, with the rotation ``R0^n(x) = x + n``;
 ``labbe-u19``
     ``PU``: 19 polygons of ``R²/Z²`` labelled by the 19 tiles of Labbé's self-similar set U,
-    with the rotation ``RU^n(x) = x + φ⁻¹ n``.
+    with the rotation ``RU^n(x) = x + φ⁻² n`` (``φ⁻² = 2 - φ``; of ``±φ⁻¹, ±φ⁻²`` on each
+    axis, the one whose codings are valid U tilings, as the tests check).
 
 The tile at cell ``n = (X, Y)`` is the label of the polygon that contains ``R^n(x0)``: the
 coding of an orbit is a valid tiling (the paper's theorems; every window here is checked by
@@ -34,8 +35,9 @@ Each cell is first decided in float64 from an exactly reduced base point (per bl
 most :data:`BLOCK` x :data:`BLOCK` cells, so the float error does not grow with the origin or
 the window). A cell whose float point lies within the error bound :func:`float_tolerance` of
 a polygon edge is decided again in exact arithmetic in ``Q(φ)`` (integers: the sign of
-``a + b√5`` exactly). Origins anywhere in the window lattice (``|x|, |y| <= 2**62``) work: their
-reduction modulo the lattice is exact.
+``a + b√5`` exactly). No origin is refused: every origin of the window lattice
+(``|x|, |y| <= 2**62``, :class:`Window` refuses the others) is reduced modulo the lattice
+exactly, so the float error bound depends on the block size only.
 
 >>> w = markov_window("jeandel-rao", Window(-3, 5, 6, 2), seed=1)
 >>> w.shape, w.dtype.name
@@ -357,7 +359,8 @@ def float_tolerance(part: Partition, block: int = BLOCK) -> float:
 
     The quantities of :mod:`._markov_kernels` (domain sizes, steps, a reduced base point) are
     at most 8 and each is stored to within ``2**-50``; a row's height ``yp = by + r hy - l ly``
-    (``r, l <= 8 block``) and a column's ``x = u + c hx - k lx`` each add at most a few
+    and its offset ``u = bx - l sx - k lx`` (``r, l, k <= 8 block``), a column's step
+    ``v = c hx - k' lx`` (``c, k' <= 8 block``) and a cell's ``x = u + v`` each add at most a few
     roundings of numbers below ``8 (block + 1)``: the error of ``x`` and of ``yp`` is below
     ``25 (2 block + 2) 2**-50``. A breakpoint ``x0 + slope (yp - ylo)`` adds ``|slope|`` times
     the error of ``yp``. So ``|x - breakpoint|`` is off by less than
