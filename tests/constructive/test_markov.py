@@ -176,6 +176,24 @@ def test_float_path_agrees_with_exact_path(name):
             assert grid[r, c] == part.label_at(start[0] + x * part.hx, start[1] + y * part.hy)
 
 
+@pytest.mark.slow
+@pytest.mark.parametrize("name", NAMES)
+def test_float_path_agrees_with_exact_path_across_blocks(name):
+    """Full-size blocks, where the float error is largest (a 4500 x 4300 window)."""
+    window = Window(-(2**50) - 4000, 2**55 + 17, 4500, 4300)  # two blocks each way
+    grid = markov_window(name, window, 8)
+    start = markov.start_point(name, 8)
+    part = partition(name)
+    rng = np.random.default_rng(0)
+    edges = [0, 1, 4095, 4096, 4097]
+    cells = [(r, c) for r in edges + [4299] for c in edges + [4499]] + list(zip(rng.integers(0, 4300, 100),
+                                                                          rng.integers(0, 4500, 100)))
+    for r, c in cells:
+        x, y = window.cell(int(r), int(c))
+        assert grid[r, c] == part.label_at(start[0] + x * part.hx, start[1] + y * part.hy)
+    assert mismatches(name, grid[4090:4102, 4090:4102]) == 0
+
+
 @pytest.mark.parametrize("name", NAMES)
 def test_plain_and_compiled_kernels_agree(name, monkeypatch):
     out = {}
