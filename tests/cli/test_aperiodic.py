@@ -80,3 +80,28 @@ def test_a_report_draws_its_witness(tmp_path):
     p = run("draw", "r.json", "-o", "w.svg", cwd=tmp_path)
     assert p.returncode == 0, p.stderr
     assert (tmp_path / "w.svg").read_text().startswith("<svg")
+
+
+def test_the_transducer_stops_at_the_time_limit_and_writes_an_undecided_report(tmp_path):
+    """periodic-10-35's transducers grow past a million transitions before k = 35: a 2 s limit
+    stops the search (every step of a level looks at the deadline), exit 3, and the report
+    says where it stopped and claims nothing."""
+    p = run("aperiodic", "check", "--builtin", "periodic-10-35", "--method", "transducer", "--max-period", "35",
+            "--time-limit", "2", "-o", "r.json", cwd=tmp_path)
+    assert p.returncode == 3, p.stderr
+    assert "verdict undecided;" in p.stderr and "Traceback" not in p.stderr
+    doc = json.loads((tmp_path / "r.json").read_text())
+    assert (doc["verdict"], doc["status"], doc["squares"], doc["periods"]) == ("undecided", "unknown", [], [])
+    assert "time limit of 2 s reached while " in doc["conclusion"], doc["conclusion"]
+    assert run("verify", "r.json", cwd=tmp_path).returncode == 0
+
+
+@pytest.mark.slow
+def test_a_transducer_refutation_of_a_rectangle_is_named_a_rectangle(tmp_path):
+    p = run("aperiodic", "check", "--builtin", "finite-jv7", "--method", "transducer", "--max-square", "12",
+            "-o", "t.json", "--proof-dir", "proofs", cwd=tmp_path)
+    assert p.returncode == 0, p.stderr
+    (cert,) = json.loads((tmp_path / "t.json").read_text())["squares"]
+    assert (cert["board"], cert["status"]) == ("rectangle 8x26", "refuted")
+    p = run("aperiodic", "verify", "t.json", "--proof-dir", "proofs", cwd=tmp_path)
+    assert p.returncode == 0 and "rectangle 8x26: " in p.stdout and p.stdout.splitlines()[-1].startswith("ok: ")

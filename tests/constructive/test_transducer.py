@@ -19,7 +19,7 @@ from tilesolve.constructive.transducer import (
     build_level, compose, decide, minimize, periodic_cycle, simplify, strip_width, tile_transducer,
     torus_tiling, transducer_report, unfold,
 )
-from tilesolve.deadline import Deadline
+from tilesolve.deadline import Deadline, TimeLimitReached
 from tilesolve.engine.aperiodic import decide as sat_decide
 from tilesolve.model.aperiodic import AperiodicProblem
 from tilesolve.model.board import Board, BoardProblem, WangTileSet
@@ -183,6 +183,120 @@ def test_simplify_keeps_cycles_only():
     assert sorted(ts.tiles[kept].tolist()) == sorted(ts.tiles[[e for e in range(3) if t.src[e] == t.dst[e]]].tolist())
 
 
+def random_graph(rng, n: int, m: int) -> tuple[np.ndarray, np.ndarray]:
+    return rng.integers(0, n, m).astype(np.int64), rng.integers(0, n, m).astype(np.int64)
+
+
+def nx_components(src, dst, n: int) -> set[frozenset]:
+    import networkx as nx
+
+    g = nx.DiGraph()
+    g.add_nodes_from(range(n))
+    g.add_edges_from(zip(src.tolist(), dst.tolist()))
+    return {frozenset(c) for c in nx.strongly_connected_components(g)}
+
+
+@pytest.mark.parametrize("mode", ["plain", "compiled"])
+def test_components_agree_with_networkx(monkeypatch, mode):
+    """Tarjan's kernel, interpreted and compiled, splits random graphs as networkx does."""
+    from tilesolve.constructive import _transducer_kernels as K
+    from tilesolve.constructive.transducer import _components
+
+    monkeypatch.setattr(K.KERNELS, "mode", mode)
+    rng = np.random.default_rng(5)
+    for n, m in [(1, 0), (1, 1), (2, 2), (30, 25), (30, 45), (200, 260), (500, 2000)]:
+        src, dst = random_graph(rng, n, m)
+        label = _components(src, dst, n)
+        got = {frozenset(np.flatnonzero(label == c).tolist()) for c in np.unique(label)}
+        assert got == nx_components(src, dst, n), (n, m)
+
+
+def shortest_cycle_through_least_state(t) -> int | None:
+    """The length of periodic_cycle's answer by networkx: over the strongly connected parts of
+    the transitions that write what they read, the shortest cycle through each part's least state."""
+    import networkx as nx
+
+    same = np.flatnonzero(t.north == t.south)
+    if (t.src[same] == t.dst[same]).any():
+        return 1
+    g = nx.DiGraph()
+    g.add_edges_from(zip(t.src[same].tolist(), t.dst[same].tolist()))
+    best = None
+    for comp in nx.strongly_connected_components(g):
+        if len(comp) > 1:
+            start = min(comp)
+            dist = nx.single_source_shortest_path_length(g.subgraph(comp), start)
+            length = min(dist[u] for u in g.predecessors(start) if u in comp) + 1
+            best = length if best is None else min(best, length)
+    return best
+
+
+def test_periodic_cycle_is_a_shortest_cycle_that_writes_what_it_reads():
+    from tilesolve.constructive.transducer import Transducer
+
+    rng = np.random.default_rng(9)
+    for trial in range(300):
+        n, m = int(rng.integers(1, 12)), int(rng.integers(0, 30))
+        src, dst = random_graph(rng, n, m)
+        north, south = rng.integers(0, 2, m).astype(np.int64), rng.integers(0, 2, m).astype(np.int64)
+        t = Transducer(n, src, dst, north, south)
+        cyc = periodic_cycle(t)
+        want = shortest_cycle_through_least_state(t)
+        if want is None:
+            assert cyc is None, trial
+            continue
+        assert cyc.size == want, trial
+        assert np.array_equal(t.north[cyc], t.south[cyc]), trial
+        assert np.array_equal(t.dst[cyc], np.roll(t.src[cyc], -1)), trial
+
+
+class RecordingDeadline(Deadline):
+    """A deadline that records what the search was doing at each look, and passes at look
+    number ``passes_at`` (never when ``None``): no clock, so the tests do not depend on speed."""
+
+    def __init__(self, passes_at: int | None = None):
+        super().__init__(None)
+        self.doing: list[str] = []
+        self.passes_at = passes_at
+
+    def check(self, doing: str) -> None:
+        self.doing.append(doing)
+        if self.passes_at is not None and len(self.doing) >= self.passes_at:
+            raise TimeLimitReached(f"time limit reached while {doing}")
+
+
+def test_every_step_of_a_level_looks_at_the_deadline():
+    """Composing, simplifying and every round of minimising look at the deadline (so no step runs
+    long unwatched), and wherever it passes the search ends undecided, never with an error."""
+    ts = load_tiles("aperiodic_11_4")
+    levels = [build_level(ts, None)]
+    for _ in range(3):
+        levels.append(build_level(ts, levels[-1]))
+    d = RecordingDeadline()
+    build_level(ts, levels[-1], deadline=d)
+    kinds = [w.split()[0] for w in d.doing]
+    assert {"composing", "simplifying", "minimising"} <= set(kinds)
+    assert kinds.count("composing") >= 3 and kinds.count("simplifying") >= 2
+    rounds = kinds.count("minimising") - 2  # the look before minimising, and the one before the exact check
+    assert rounds >= 2  # refinement took rounds, each watched
+    d = RecordingDeadline()
+    assert decide(ts, max_k=5, deadline=d).verdict == "undecided"
+    total = len(d.doing)
+    for passes_at in range(1, total + 1):
+        v = decide(ts, max_k=5, deadline=RecordingDeadline(passes_at))
+        assert v.verdict == "undecided" and "time limit reached while" in v.reason, passes_at
+        assert v.k == len(v.sizes) < 5
+
+
+def test_strip_width_looks_at_the_deadline():
+    ts = load_tiles("finite_14")
+    with pytest.raises(TimeLimitReached):
+        strip_width(ts, 8, deadline=Deadline(0))
+    d = RecordingDeadline()
+    assert strip_width(ts, 8, deadline=d) == 26
+    assert sum(w.startswith("composing") for w in d.doing) >= 7
+
+
 def test_periodic_cycle_and_unfold_by_hand():
     # 2 rows: A (N0 S1) on top of B (N1 S0); horizontally A-A and B-B (colour 0), a 2 x 1 torus
     ts = WangTileSet([[0, 0, 1, 0], [1, 0, 0, 0]], 2)
@@ -211,7 +325,7 @@ def test_report_with_sat_certificates():
     verdict, rep = transducer_report(AperiodicProblem(ts, 0, 10), RunOptions(seed=1, options={"max_k": 10}),
                                      refute=refute)
     (cert,) = rep.squares
-    assert verdict == "empty" and cert.board == "square 8x26" and cert.status == "refuted"
+    assert verdict == "empty" and cert.board == "rectangle 8x26" and cert.status == "refuted"
     assert cert.method == "sat+transducer" and cert.evidence["strip_width"] == 26
     assert cert.evidence["drat_sha256"] and "tiles no plane" in rep.conclusion
     ts = load_tiles("hard")
@@ -321,6 +435,15 @@ def test_report_without_a_rectangle_is_undecided(monkeypatch):
                                      refute=lambda b, run: sat_decide(ts, b, run))
     assert verdict == "undecided" and rep.squares == () and "could not be computed" in rep.conclusion
 
+    def too_late(*args, **kwargs):
+        raise TimeLimitReached("time limit of 1 s reached while composing (9 candidate transitions)")
+
+    monkeypatch.setattr(tr, "strip_width", too_late)
+    verdict, rep = transducer_report(AperiodicProblem(ts, 0, 10), RunOptions(seed=1),
+                                     refute=lambda b, run: sat_decide(ts, b, run))
+    assert verdict == "undecided" and rep.squares == () and "time limit of 1 s reached" in rep.conclusion
+    assert rep.status.value == "unknown"
+
 
 @pytest.mark.slow
 def test_family_route_end_to_end():
@@ -331,7 +454,7 @@ def test_family_route_end_to_end():
     ts, info = load("finite-jv7")
     s = solve(AperiodicProblem(ts, 0, 10, name="finite-jv7", info=info), method="transducer", seed=1)
     (cert,) = s.report.squares
-    assert (s.status.value, s.method, cert.board, cert.status) == ("sat", "transducer", "square 8x26", "refuted")
+    assert (s.status.value, s.method, cert.board, cert.status) == ("sat", "transducer", "rectangle 8x26", "refuted")
     ts, info = load("periodic-8-28")
     s = solve(AperiodicProblem(ts, 0, 30, name="periodic-8-28", info=info), method="transducer", seed=1)
     (cert,) = s.report.periods

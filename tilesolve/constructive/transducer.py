@@ -186,11 +186,12 @@ def _renumber(src: np.ndarray, dst: np.ndarray) -> tuple[np.ndarray, np.ndarray,
     return inv[: src.size], inv[src.size:], used
 
 
-def compose(top: Transducer, bottom: Transducer, *,
-            max_transitions: int = DEFAULT_MAX_TRANSITIONS) -> tuple[Transducer, np.ndarray, np.ndarray]:
+def compose(top: Transducer, bottom: Transducer, *, max_transitions: int = DEFAULT_MAX_TRANSITIONS,
+            deadline: Deadline = NO_LIMIT) -> tuple[Transducer, np.ndarray, np.ndarray]:
     """``top ∘ bottom``: ``bottom``'s rows under ``top``'s, where ``top`` writes what ``bottom``
     reads. States are the pairs that transitions touch; transitions that agree on source,
-    target, input and output are merged.
+    target, input and output are merged. ``deadline`` is checked between the passes over the
+    candidate transitions (each a sort or a few array operations).
 
     Returns
     -------
@@ -202,6 +203,8 @@ def compose(top: Transducer, bottom: Transducer, *,
     ------
     InvalidProblem
         When more than ``max_transitions`` candidate transitions would be built.
+    TimeLimitReached
+        When ``deadline`` passes.
 
     Examples
     --------
@@ -220,37 +223,44 @@ def compose(top: Transducer, bottom: Transducer, *,
     if total > max_transitions:
         raise InvalidProblem(f"a composition would have {total:,} candidate transitions, "
                              f"more than the limit of {max_transitions:,}")
+    doing = f"composing ({total:,} candidate transitions)"
+    deadline.check(doing)
     i = np.repeat(np.arange(top.src.size, dtype=np.int64), per_top)
     offset = np.arange(total, dtype=np.int64) - np.repeat(np.cumsum(per_top) - per_top, per_top)
     j = order[starts[top.south[i]] + offset]
     nb = np.int64(bottom.n_states)
+    deadline.check(doing)
     src, dst, _ = _renumber(top.src[i] * nb + bottom.src[j], top.dst[i] * nb + bottom.dst[j])
     n = np.int64(max(int(src.max(initial=-1)), int(dst.max(initial=-1))) + 1)
     north, south = top.north[i], bottom.south[j]
     nv = np.int64(max(n_colours, 1))
+    deadline.check(doing)
     first = _first_of_each(np.stack([src, dst, north, south], axis=1), [n, n, nv, nv])
-    first.sort()
+    deadline.check(doing)
     src, dst, used = _renumber(src[first], dst[first])
     return Transducer(int(used.size), src, dst, north[first], south[first]), i[first], j[first]
 
 
-def _trim(src: np.ndarray, dst: np.ndarray, n: int) -> np.ndarray:
-    """Transitions left after repeatedly removing states without an incoming or an outgoing
-    transition (no transition on a cycle is lost): a numpy pass that shrinks the graph
-    networkx then splits into components."""
-    keep = np.ones(src.size, bool)
-    while True:
-        has_in = np.bincount(dst[keep], minlength=n) > 0
-        has_out = np.bincount(src[keep], minlength=n) > 0
-        new = keep & has_in[src] & has_out[dst]
-        if np.count_nonzero(new) == np.count_nonzero(keep):
-            return keep
-        keep = new
+def _out_edges(src: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Compressed rows of the edges ``src -> ...`` over ``n`` states: ``(indptr, order)``, the
+    edges out of state ``v`` being ``order[indptr[v]:indptr[v + 1]]`` (in their given order)."""
+    indptr = np.zeros(n + 1, np.int64)
+    np.cumsum(np.bincount(src, minlength=n), out=indptr[1:])
+    return indptr, np.argsort(src, kind="stable")
+
+
+def _components(src: np.ndarray, dst: np.ndarray, n: int) -> np.ndarray:
+    """The strongly connected component of each of ``n`` states of the graph of edges
+    ``src -> dst`` (Tarjan's algorithm, compiled for large graphs: :mod:`._transducer_kernels`)."""
+    from tilesolve.constructive._transducer_kernels import KERNELS
+
+    indptr, order = _out_edges(src, n)
+    return KERNELS.pick(n + src.size).scc_labels(indptr, _i64(dst[order]), n)
 
 
 def simplify(t: Transducer) -> np.ndarray:
     """Indices of the transitions of ``t`` that lie on a cycle: both ends in one strongly
-    connected component (Jeandel-Rao's simplification; networkx finds the components).
+    connected component (Jeandel-Rao's simplification).
 
     Examples
     --------
@@ -258,17 +268,8 @@ def simplify(t: Transducer) -> np.ndarray:
     >>> simplify(tile_transducer(ts)).tolist()
     [0]
     """
-    import networkx as nx
-
-    idx = np.flatnonzero(_trim(t.src, t.dst, t.n_states))
-    if idx.size == 0:
-        return idx
-    g = nx.DiGraph()
-    g.add_edges_from(zip(t.src[idx].tolist(), t.dst[idx].tolist()))
-    label = np.full(t.n_states, -1, np.int64)
-    for c, comp in enumerate(nx.strongly_connected_components(g)):
-        label[list(comp)] = c
-    return idx[label[t.src[idx]] == label[t.dst[idx]]]
+    label = _components(t.src, t.dst, t.n_states)
+    return np.flatnonzero(label[t.src] == label[t.dst])
 
 
 def _is_stable(cls: np.ndarray, src: np.ndarray, label: np.ndarray, dst: np.ndarray, n_labels: int) -> bool:
@@ -283,7 +284,16 @@ def _is_stable(cls: np.ndarray, src: np.ndarray, label: np.ndarray, dst: np.ndar
     return bool(np.array_equal(n_state, n_class[cls]))
 
 
-def minimize(t: Transducer) -> np.ndarray:
+def _refine(cls: np.ndarray, sig: np.ndarray) -> np.ndarray:
+    """Classes of the pairs ``(cls, sig)``, numbered in their lexicographic order (as
+    ``numpy.unique(..., axis=0)`` numbers them, by two sorts of integers instead of one of
+    rows): ``sig`` replaced by its rank, each pair is one mixed-radix key."""
+    ranks, rank = np.unique(sig, return_inverse=True)
+    _, new = np.unique(cls * np.int64(ranks.size) + rank.ravel(), return_inverse=True)
+    return new.astype(np.int64).ravel()
+
+
+def minimize(t: Transducer, *, deadline: Deadline = NO_LIMIT) -> np.ndarray:
     """The coarsest forward bisimulation of ``t`` (Jeandel-Rao §3): ``(n_states,)`` class of
     each state, numbered ``0 .. m-1``. States with the same future (for every transition of one,
     a transition of the other with the same input and output into an equivalent state) share
@@ -292,7 +302,8 @@ def minimize(t: Transducer) -> np.ndarray:
     Partition refinement: each round splits classes by a 64-bit signature of the set of
     ``(label, class of target)`` of each state; the final partition is checked exactly (a
     signature collision would merge unequal states) and refined again with fresh
-    multipliers if the check fails.
+    multipliers if the check fails. ``deadline`` is checked before every round
+    (:class:`~tilesolve.deadline.TimeLimitReached`).
 
     Examples
     --------
@@ -311,6 +322,7 @@ def minimize(t: Transducer) -> np.ndarray:
         cls = np.zeros(n, np.int64)
         n_cls = 1
         while True:
+            deadline.check(f"minimising {t.n_transitions:,} transitions ({n_cls:,} classes of {n:,} states)")
             pairs = _unique_rows(np.stack([t.src, label, cls[t.dst]], axis=1), [n, nv * nv, n_cls])
             with np.errstate(over="ignore"):
                 x = (pairs[:, 1] * mult[0] + pairs[:, 2] + 1) * mult[1]
@@ -321,12 +333,12 @@ def minimize(t: Transducer) -> np.ndarray:
                 starts = np.flatnonzero(np.r_[True, pairs[1:, 0] != pairs[:-1, 0]])
                 with np.errstate(over="ignore"):
                     sig[pairs[starts, 0]] = np.add.reduceat(x, starts)
-            _, new = np.unique(np.stack([cls, sig], axis=1), axis=0, return_inverse=True)
-            cls = new.astype(np.int64).ravel()
+            cls = _refine(cls, sig)
             m = int(cls.max()) + 1
             if m == n_cls:
                 break
             n_cls = m
+        deadline.check(f"minimising {t.n_transitions:,} transitions (checking {n_cls:,} classes)")
         if _is_stable(cls, t.src, label, t.dst, nv * nv):
             return cls
         salt += 1
@@ -334,33 +346,51 @@ def minimize(t: Transducer) -> np.ndarray:
 
 def periodic_cycle(t: Transducer) -> np.ndarray | None:
     """Indices of the transitions of a cycle of ``t`` each of which writes what it reads, in
-    order along the cycle, or ``None``. Each strongly connected part of those transitions
-    gives a shortest cycle through its least state (breadth-first search); the shortest of
-    these is returned."""
-    import networkx as nx
+    order along the cycle, or ``None``. A loop if there is one; else each strongly connected
+    part of those transitions gives a shortest cycle through its least state (one breadth-first
+    search from all of these states at once, each staying in its part), and the shortest of
+    these is returned (ties: the least start state).
 
+    Examples
+    --------
+    >>> t = Transducer(3, *(np.array(a) for a in ([0, 1, 2, 1], [1, 2, 0, 0], [0, 0, 0, 1], [0, 0, 0, 0])))
+    >>> periodic_cycle(t).tolist()  # 0 -> 1 -> 2 -> 0; the shortcut 1 -> 0 reads 1, writes 0
+    [0, 1, 2]
+    """
     same = np.flatnonzero(t.north == t.south)
-    if same.size == 0:
-        return None
     loops = same[t.src[same] == t.dst[same]]
     if loops.size:
         return loops[:1]
-    g = nx.DiGraph()
-    for e in same.tolist():
-        g.add_edge(int(t.src[e]), int(t.dst[e]), index=e)
-    best = None
-    for comp in nx.strongly_connected_components(g):
-        if len(comp) < 2:
-            continue
-        start = min(comp)
-        sub = g.subgraph(comp)
-        paths = nx.single_source_shortest_path(sub, start)  # one breadth-first search
-        last = min(sub.predecessors(start), key=lambda u: (len(paths[u]), u))
-        nodes = paths[last] + [start]
-        cycle = np.array([g.edges[a, b]["index"] for a, b in zip(nodes[:-1], nodes[1:])], np.int64)
-        if best is None or cycle.size < best.size:
-            best = cycle
-    return best
+    n = t.n_states
+    label = _components(t.src[same], t.dst[same], n)
+    same = same[label[t.src[same]] == label[t.dst[same]]]  # the transitions inside the parts
+    if same.size == 0:
+        return None
+    src, dst = t.src[same], t.dst[same]
+    start = np.full(n, n, np.int64)
+    np.minimum.at(start, label[src], src)  # the least state of each part, by the part's label
+    sources = np.unique(start[label[src]])
+    indptr, order = _out_edges(src, n)
+    dist = np.full(n, -1, np.int64)
+    parent = np.full(n, -1, np.int64)  # the edge (into ``same``) that first reached each state
+    dist[sources] = 0
+    frontier, d = sources, 0
+    while frontier.size:
+        lo, count = indptr[frontier], indptr[frontier + 1] - indptr[frontier]
+        at = np.repeat(lo - np.cumsum(count) + count, count) + np.arange(int(count.sum()), dtype=np.int64)
+        e = order[at]
+        e = e[dist[dst[e]] == -1]
+        frontier, first = np.unique(dst[e], return_index=True)
+        d += 1
+        dist[frontier], parent[frontier] = d, e[first]
+    closing = np.flatnonzero(dst == start[label[dst]])  # edges back into a part's least state
+    best = closing[np.lexsort((src[closing], dst[closing], dist[src[closing]]))[0]]
+    path = [int(best)]
+    x = int(src[best])
+    while dist[x] > 0:
+        path.append(int(parent[x]))
+        x = int(src[parent[x]])
+    return same[np.asarray(path[::-1], np.int64)]
 
 
 @dataclass(frozen=True, eq=False)
@@ -396,12 +426,13 @@ def _level(k: int, full: Transducer, upper: np.ndarray, tile: np.ndarray, minimi
            deadline: Deadline) -> Level:
     deadline.check(f"simplifying T_{k} ({full.n_transitions:,} transitions)")
     keep = simplify(full)
+    deadline.check(f"simplifying T_{k} ({keep.size:,} of {full.n_transitions:,} transitions on cycles)")
     src, dst, _ = _renumber(full.src[keep], full.dst[keep])
     n = int(max(src.max(initial=-1), dst.max(initial=-1))) + 1
     full = Transducer(n, src, dst, full.north[keep], full.south[keep])
     upper, tile = upper[keep], tile[keep]
     deadline.check(f"minimising T_{k} ({full.n_transitions:,} transitions)")
-    cls = minimize(full) if minimise else np.arange(n, dtype=np.int64)
+    cls = minimize(full, deadline=deadline) if minimise else np.arange(n, dtype=np.int64)
     m = int(cls.max(initial=-1)) + 1
     nv = int(max(full.north.max(initial=0), full.south.max(initial=0))) + 1
     q = _unique_rows(np.stack([cls[full.src], cls[full.dst], full.north, full.south], axis=1), [m, m, nv, nv])
@@ -413,13 +444,14 @@ def build_level(tileset: WangTileSet, previous: Level | None, *, minimise: bool 
                 max_transitions: int = DEFAULT_MAX_TRANSITIONS, deadline: Deadline = NO_LIMIT) -> Level:
     """``T_1`` (``previous=None``) or ``T_{k+1}`` from ``T_k``: compose with ``T``, simplify, and
     minimise (or not: ``minimise=False`` keeps every state, for cross-checks). ``deadline`` is
-    checked between the steps (:class:`~tilesolve.deadline.TimeLimitReached`)."""
+    checked between the steps and within them (:class:`~tilesolve.deadline.TimeLimitReached`): no
+    step runs longer than one sort of the level's transitions without a look at it."""
     base = tile_transducer(tileset)
     if previous is None:
         return _level(1, base, np.full(base.n_transitions, -1, np.int64), np.arange(base.n_transitions,
                                                                                     dtype=np.int64), minimise,
                       deadline)
-    comp, i, j = compose(previous.quotient, base, max_transitions=max_transitions)
+    comp, i, j = compose(previous.quotient, base, max_transitions=max_transitions, deadline=deadline)
     return _level(previous.k + 1, comp, i, j, minimise, deadline)
 
 
@@ -546,13 +578,15 @@ def decide(tileset: WangTileSet, *, max_k: int = 30, deadline: Deadline = NO_LIM
             return stop("undecided", f"k limit {max_k} reached")
 
 
-def strip_width(tileset: WangTileSet, k: int, *, max_transitions: int = DEFAULT_MAX_TRANSITIONS) -> int | None:
+def strip_width(tileset: WangTileSet, k: int, *, max_transitions: int = DEFAULT_MAX_TRANSITIONS,
+                deadline: Deadline = NO_LIMIT) -> int | None:
     """The least ``w`` such that no ``k x w`` rectangle can be tiled, or ``None`` when
     rectangles of height ``k`` and every width can (the full ``T^k`` has a cycle).
 
     The full ``T^k`` is built minimised but not simplified (forward bisimulation keeps the
     set of finite label sequences from each state, so the longest path); ``w`` is its
-    longest path plus one. Raises :class:`InvalidProblem` past ``max_transitions``.
+    longest path plus one. Raises :class:`InvalidProblem` past ``max_transitions`` and
+    :class:`~tilesolve.deadline.TimeLimitReached` when ``deadline`` passes.
 
     Examples
     --------
@@ -566,7 +600,7 @@ def strip_width(tileset: WangTileSet, k: int, *, max_transitions: int = DEFAULT_
     base = tile_transducer(tileset)
 
     def quotient(t: Transducer) -> Transducer:
-        cls = minimize(t)
+        cls = minimize(t, deadline=deadline)
         m = int(cls.max(initial=-1)) + 1
         nv = int(max(t.north.max(initial=0), t.south.max(initial=0))) + 1
         q = _unique_rows(np.stack([cls[t.src], cls[t.dst], t.north, t.south], axis=1), [m, m, nv, nv])
@@ -576,7 +610,7 @@ def strip_width(tileset: WangTileSet, k: int, *, max_transitions: int = DEFAULT_
     for _ in range(int(k) - 1):
         if t.is_empty():
             return 1
-        t = quotient(compose(t, base, max_transitions=max_transitions)[0])
+        t = quotient(compose(t, base, max_transitions=max_transitions, deadline=deadline)[0])
     if t.is_empty():
         return 1
     g = nx.DiGraph()
@@ -628,7 +662,7 @@ def transducer_report(problem, run, *, refute) -> tuple[str, object]:
     (str, AperiodicReport)
         The verdict and the report.
     """
-    from tilesolve.model.aperiodic import AperiodicReport, Certificate
+    from tilesolve.model.aperiodic import AperiodicReport, Certificate, rectangle_name
 
     ts = problem.tileset
     max_k = int(run.option("max_k", problem.max_period or problem.max_square))
@@ -644,14 +678,14 @@ def transducer_report(problem, run, *, refute) -> tuple[str, object]:
             f"Jeandel-Rao): it tiles the plane periodically, so it is not aperiodic."), literature=literature)
     if v.verdict == "empty":
         try:
-            w = strip_width(ts, v.k)
-        except InvalidProblem as exc:  # the full T^k is over the size limit: no rectangle to certify
+            w = strip_width(ts, v.k, deadline=run.deadline)
+        except (InvalidProblem, TimeLimitReached) as exc:  # over the size or time limit: no rectangle to certify
             return "undecided", AperiodicReport(conclusion=(
                 f"T_{v.k} is empty (Jeandel-Rao): no strip of height {v.k} can be tiled; the rectangle to "
                 f"certify it could not be computed ({exc})."), literature=literature)
         if w is None:
             raise InternalError(f"T_{v.k} is empty but the full T^{v.k} has a cycle")
-        name = f"square {v.k}x{w}"
+        name = rectangle_name(v.k, w)
         sat = refute(name, run)
         if sat.status == "tiles":
             raise InternalError(f"the transducer says no {v.k}x{w} rectangle can be tiled, SAT tiled one")

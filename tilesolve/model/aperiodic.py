@@ -29,8 +29,8 @@ from tilesolve.errors import InvalidProblem
 from tilesolve.model.board import Board, WangTileSet
 from tilesolve.model.solution import Status
 
-__all__ = ["Lattice", "AperiodicProblem", "Certificate", "AperiodicReport", "square_board", "leg_colours",
-           "MAX_CLAUSES", "MAX_LATTICES", "STATUSES", "VERDICTS", "estimate_refusal"]
+__all__ = ["Lattice", "AperiodicProblem", "Certificate", "AperiodicReport", "square_board", "rectangle_name",
+           "leg_colours", "MAX_CLAUSES", "MAX_LATTICES", "STATUSES", "VERDICTS", "estimate_refusal"]
 
 #: Largest CNF (clauses, estimated before building) a board may need: about 5 GB of clauses.
 MAX_CLAUSES = 50_000_000
@@ -190,7 +190,7 @@ class Certificate:
     Attributes
     ----------
     board : str
-        ``"square 12x12"``, ``"torus 3x4"``, ``"torus 3x4 shear 1"``.
+        ``"square 12x12"``, ``"rectangle 8x26"``, ``"torus 3x4"``, ``"torus 3x4 shear 1"``.
     status : str
         ``"tiles"`` (``tiling`` is a witness, verified independently), ``"refuted"`` (no tiling:
         ``evidence`` holds the checked proof's digests) or ``"undecided"`` (``evidence["why"]``).
@@ -225,12 +225,24 @@ class Certificate:
         return parse_board_name(self.board)
 
 
+def rectangle_name(rows: int, cols: int) -> str:
+    """The board name of the free ``rows`` x ``cols`` rectangle: ``"square NxN"`` when its sides
+    are equal, else ``"rectangle RxC"``.
+
+    >>> rectangle_name(5, 5), rectangle_name(8, 26)
+    ('square 5x5', 'rectangle 8x26')
+    """
+    return f"{'square' if int(rows) == int(cols) else 'rectangle'} {int(rows)}x{int(cols)}"
+
+
 def parse_board_name(name: str) -> tuple[int, int, int]:
-    """``(rows, cols, shear)`` of ``"square RxC"`` / ``"torus RxC [shear S]"`` (shear -1: a square)."""
+    """``(rows, cols, shear)`` of ``"square RxC"`` / ``"rectangle RxC"`` / ``"torus RxC [shear S]"``
+    (shear -1: a free rectangle; reports written before :func:`rectangle_name` called every
+    rectangle a square, so ``"square RxC"`` is read with any sides)."""
     parts = str(name).split()
     try:
         rows, cols = (int(v) for v in parts[1].split("x"))
-        if parts[0] == "square" and len(parts) == 2:
+        if parts[0] in ("square", "rectangle") and len(parts) == 2:
             return rows, cols, -1
         if parts[0] == "torus" and len(parts) == 2:
             return rows, cols, 0
@@ -238,7 +250,8 @@ def parse_board_name(name: str) -> tuple[int, int, int]:
             return rows, cols, int(parts[3])
     except (IndexError, ValueError):
         pass
-    raise InvalidProblem(f"not a board name: {name!r} (expected 'square RxC' or 'torus RxC [shear S]')")
+    raise InvalidProblem(f"not a board name: {name!r} (expected 'square RxC', 'rectangle RxC' or 'torus RxC "
+                         "[shear S]')")
 
 
 def board_of(name: str) -> Board:
