@@ -105,3 +105,39 @@ def test_a_transducer_refutation_of_a_rectangle_is_named_a_rectangle(tmp_path):
     assert (cert["board"], cert["status"]) == ("rectangle 8x26", "refuted")
     p = run("aperiodic", "verify", "t.json", "--proof-dir", "proofs", cwd=tmp_path)
     assert p.returncode == 0 and "rectangle 8x26: " in p.stdout and p.stdout.splitlines()[-1].startswith("ok: ")
+
+
+def _diagonal_in(fmt: str) -> tuple[str, str]:
+    """The DIAGONAL set written in a text format of ``wang count``: ``(file name, text)``."""
+    tiles = DIAGONAL["tiles"]
+    if fmt == "nswe":
+        return "d.tiles", "".join(f"{n} {s} {w} {e}\n" for n, e, s, w in tiles)
+    if fmt == "tilesat":
+        return "d.txt", "3 3 5 5\n" + "".join(f"{n + 1} {e + 1} {s + 1} {w + 1}\n" for n, e, s, w in tiles)
+    return "d.py", "tiles = [" + ", ".join(f"({e}, {n}, {w}, {s})" for n, e, s, w in tiles) + "]\n"
+
+
+@pytest.mark.parametrize("how", ["json", "--tiles json", "nswe", "tilesat", "rtlb", "--tiles --format rtlb"])
+def test_check_reads_every_tile_set_format_wang_count_reads(tmp_path, how):
+    fmt = how.split()[-1]
+    name, text = ("d.json", json.dumps(DIAGONAL)) if fmt == "json" else _diagonal_in(fmt)
+    (tmp_path / name).write_text(text)
+    args = [name] if how == fmt else ["--tiles", name] + (["--format", fmt] if "--format" in how else [])
+    p = run("aperiodic", "check", *args, "--max-square", "2", "--workers", "1", "--seed", "1", "-o", "r.json",
+            cwd=tmp_path)
+    assert p.returncode == 0, p.stderr
+    doc = json.loads((tmp_path / "r.json").read_text())
+    assert doc["tileset"]["tiles"] == DIAGONAL["tiles"] and doc["largest_square"] == 2
+
+
+@pytest.mark.parametrize("args, msg", [
+    (["d.tiles", "--tiles", "d.tiles"], "give the tile-set file once: TILES or --tiles FILE"),
+    (["--builtin", "jeandel-rao", "--format", "nswe"], "--format describes a --tiles file"),
+    ([], "give a tile set: --tiles FILE or --builtin NAME"),
+    (["d.tiles", "--builtin", "jeandel-rao"], "give a tile set: --tiles FILE or --builtin NAME"),
+    (["d.tiles", "--format", "tilesat"], "d.tiles"),
+])
+def test_check_refuses_a_tile_set_given_twice_or_misdescribed(tmp_path, args, msg):
+    (tmp_path / "d.tiles").write_text(_diagonal_in("nswe")[1])
+    err = one_line_error(run("aperiodic", "check", *args, "--max-square", "2", "-o", "r.json", cwd=tmp_path))
+    assert msg in err and not (tmp_path / "r.json").exists(), err

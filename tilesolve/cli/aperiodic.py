@@ -2,9 +2,9 @@
 
 ::
 
-    tilesolve aperiodic check TILES.json | --builtin NAME --max-square N --max-period N [--shears]
-                              [--workers K] [--cluster ADDR] [--proof-dir DIR] [--time-limit S]
-                              [--cache FILE] [--seed S] -o report.json
+    tilesolve aperiodic check TILES | --tiles TILES [--format F] | --builtin NAME
+                              --max-square N --max-period N [--shears] [--workers K] [--cluster ADDR]
+                              [--proof-dir DIR] [--time-limit S] [--cache FILE] [--seed S] -o report.json
 """
 
 from __future__ import annotations
@@ -14,6 +14,7 @@ import click
 from tilesolve.cli import options as opt
 from tilesolve.cli.common import progress_wanted, say
 from tilesolve.cli.outputs import Outputs
+from tilesolve.cli.wang_count import load_tileset, tileset_options
 from tilesolve.errors import InvalidProblem
 
 __all__ = ["aperiodic"]
@@ -26,8 +27,8 @@ def aperiodic() -> None:
 
 
 @aperiodic.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.READER_HELP)
-@click.argument("tiles", required=False, type=click.Path(dir_okay=False), metavar="[TILES.json]")
-@click.option("--builtin", default=None, metavar="NAME", help="A built-in tile set (tilesolve tiles --builtin lists them).")
+@click.argument("tiles", required=False, type=click.Path(dir_okay=False), metavar="[TILES]")
+@tileset_options
 @click.option("--max-square", type=click.IntRange(0), default=0, show_default=True, metavar="N",
               help="Find the largest n <= N with a tiled n x n square (free boundary).")
 @click.option("--max-period", type=click.IntRange(0), default=0, show_default=True, metavar="N",
@@ -53,9 +54,12 @@ def aperiodic() -> None:
 @click.option("-o", "--output", type=click.Path(dir_okay=False, allow_dash=True), metavar="REPORT.json",
               help="Write the report JSON here ('-' for stdout).")
 @click.pass_context
-def check(ctx, tiles, builtin, method, max_square, max_period, shears, workers, cluster, proof_dir, cache, time_limit, seed,
-          output) -> None:
+def check(ctx, tiles, tiles_path, tiles_format, builtin, method, max_square, max_period, shears, workers, cluster,
+          proof_dir, cache, time_limit, seed, output) -> None:
     """Check a tile set's squares and periods; write a report of certificates.
+
+    The tile set is a file (TILES or --tiles, in any format of --format, as every Wang command
+    reads it) or a built-in set.
 
     A tiled square or torus is a witness (verified before it is written); a refuted one has a
     DRAT proof checked by tilesolve's checker; boards left by a time limit are "undecided".
@@ -74,26 +78,21 @@ def check(ctx, tiles, builtin, method, max_square, max_period, shears, workers, 
     from tilesolve.families import aperiodic as facade
     from tilesolve.family import write_solution
 
-    if (tiles is None) == (builtin is None):
-        raise InvalidProblem("give a tile-set file or --builtin NAME (one of them)")
+    if tiles is not None and tiles_path is not None:
+        raise InvalidProblem("give the tile-set file once: TILES or --tiles FILE")
     if max_square == 0 and max_period == 0:
         raise InvalidProblem("nothing to check: give --max-square N and/or --max-period N")
     if workers is not None and cluster is not None:
         raise InvalidProblem("--workers runs local processes and --cluster a Dask cluster: give one of them")
+    tileset, notes = load_tileset(tiles if tiles is not None else tiles_path, tiles_format, builtin)
+    for note in notes:
+        click.echo(f"tilesolve: warning: {note}", err=True)
     info = None
     if builtin is not None:
         from tilesolve.io.builtin_tilesets import load
 
-        tileset, info = load(builtin)
-        name = builtin
-    else:
-        from tilesolve.io.tileset_json import read_tileset
-
-        tileset, notes = read_tileset(tiles)
-        for note in notes:
-            click.echo(f"tilesolve: warning: {note}", err=True)
-        name = None
-    problem = facade.AperiodicProblem(tileset, max_square, max_period, shears, name, info)
+        info = load(builtin)[1]
+    problem = facade.AperiodicProblem(tileset, max_square, max_period, shears, builtin, info)
     outs = Outputs(output)
     if cache is None and output and output != "-":
         cache = output + ".cache.jsonl"

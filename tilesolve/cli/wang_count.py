@@ -24,7 +24,7 @@ tileset_options = opt.compose(
                  help="A tile-set file: tilesolve/wang-tileset JSON (tiles as [N, E, S, W]), 'n s w e' lines "
                       "(*.tiles), a TileSAT file, or (right, top, left, bottom) tuples; see --format."),
     click.option("--format", "tiles_format", type=click.Choice(TILESET_FORMATS), default=None,
-                 help="The --tiles file's format: json, nswe (n s w e lines), tilesat (header + N E S W, "
+                 help="The tile-set file's format: json, nswe (n s w e lines), tilesat (header + N E S W, "
                       "colours from 1), rtlb (right top left bottom). Default: by extension or content."),
     click.option("--builtin", metavar="NAME",
                  help="A built-in tile set instead of --tiles (`tilesolve tiles --builtin` lists them)."),
