@@ -103,6 +103,41 @@ def test_second_sources_agree():
     assert checked >= 5
 
 
+def test_first_sources_are_the_test_data_copies_of_the_cited_files():
+    """The meyerphi/tiling files the built-in sets cite are kept in tests/data/transducer: each
+    set is its cited file's tiles, in the file's order and colours."""
+    from pathlib import Path
+
+    from tilesolve.io.tileset_formats import read_tileset_file
+
+    copies = Path(__file__).resolve().parents[1] / "data" / "transducer"
+    checked = 0
+    for name in names():
+        ts, info = load(name)
+        src = info["sources"][0]
+        assert (src["repo"], src["order"]) == ("meyerphi/tiling", "n s w e") and src["path"].startswith("tilesets/")
+        copy, _ = read_tileset_file(copies / src["path"].removeprefix("tilesets/"), "nswe")
+        assert np.array_equal(copy.tiles, ts.tiles) and copy.n_colors == ts.n_colors, name
+        checked += 1
+    assert checked == len(names())
+
+
+def test_tiles_quoted_from_a_program_name_their_lines():
+    """A source file that holds more than the tiles (a program; its tiles are recorded) names
+    the lines that hold them, so the citation can be checked by eye: jeandel-rao once cited a
+    file of slabbe's that holds a polygon partition and no tile list."""
+    quoted = 0
+    for name in names():
+        for src in load(name)[1]["sources"]:
+            if src["path"].endswith(".py"):
+                first, last = map(int, src["lines"].split("-"))
+                assert src["tiles"] and 1 <= first <= last < first + len(src["tiles"]), (name, src["path"])
+                quoted += 1
+    assert quoted == 3
+    jr = load("jeandel-rao")[1]["sources"]
+    assert [s["path"] for s in jr[1:]] == ["slabbe/jeandel_rao.py", "slabbe/wang_tiles.py"]
+
+
 def test_unknown_name():
     with pytest.raises(InvalidProblem, match="no built-in tile set 'nope'"):
         load("nope")

@@ -12,7 +12,7 @@ that source's edge order) and what the literature says about the set:
 
 Where a second public source lists the same set, its tiles are kept too (``sources[i].tiles``,
 in that source's own order and labels, with ``turned`` degrees where that source draws the set
-rotated clockwise); the tests check that both transcriptions are the same tile set up to a
+rotated clockwise, and the ``lines`` of the file that hold them where it holds more); the tests check that both transcriptions are the same tile set up to a
 relabelling of the colours on each axis (an isomorphism of tile sets).
 
 Examples
@@ -62,7 +62,7 @@ def load(name: str) -> tuple[WangTileSet, dict[str, Any]]:
     -------
     (WangTileSet, dict)
         The info dict has ``name``, ``title``, ``verdict`` (one of :data:`VERDICTS`),
-        ``reference``, ``sources`` (a list of ``{"repo", "path", "commit", "order"[, "tiles"]}``),
+        ``reference``, ``sources`` (a list of ``{"repo", "path", "commit", "order"[, "tiles", "lines"]}``),
         ``n_tiles``, ``n_colors``, and where known ``period``, ``max_square`` and ``note``.
     """
     from tilesolve.io.tileset_json import tileset_from_data
