@@ -6,6 +6,7 @@ import os
 import re
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -112,8 +113,8 @@ def test_render_texture_aperiodic_gpu_and_cpu_write_the_same_picture(tmp_path):
 @pytest.mark.slow
 def test_render_texture_aperiodic_on_the_cpu_needs_no_gl(tmp_path):
     _example(tmp_path)
-    args = ["render", "texture", "--example", "ex.png", "--aperiodic", "kari-culik-13", "--tile", "16", "--size", "64x48",
-            "--seed", "2"]
+    args = ["render", "texture", "--example", "ex.png", "--aperiodic", "kari-culik-13", "--tile", "16",
+            "--size", "64x48", "--seed", "2"]
     proc = subprocess.run([SCRIPT, *args, "--cpu", "-o", "cpu.png"], cwd=tmp_path, capture_output=True, text=True,
                           env=NO_GL, timeout=300)
     assert proc.returncode == 0, proc.stderr
@@ -143,3 +144,18 @@ def test_render_texture_aperiodic_bad_input_one_line_exit_2(tmp_path, args, says
                    cwd=tmp_path)
         assert says in one_line_error(proc)
     assert snapshot(tmp_path) == before
+
+
+#: The commands that make the README's picture of a texture that never repeats.
+README_TEXTURE = ("render wall --size 384x384 --max-line 4 --seed 3 --cell 12 -o wall.png".split(),
+                  ("render texture --example wall.png --aperiodic jeandel-rao --seed 1 --tile 64 --size 576x288 "
+                   "-o aperiodic-texture.png").split())
+
+
+@pytest.mark.slow
+def test_the_readme_texture_is_what_its_commands_draw(tmp_path):
+    for args in README_TEXTURE:
+        proc = run(*args, cwd=tmp_path)
+        assert proc.returncode == 0, proc.stderr
+    shipped = Path(__file__).resolve().parents[2] / "examples" / "aperiodic-texture.png"
+    assert np.array_equal(np.asarray(Image.open(tmp_path / "aperiodic-texture.png")), np.asarray(Image.open(shipped)))

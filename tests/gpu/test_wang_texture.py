@@ -97,7 +97,10 @@ def test_matching_edges_show_one_diamond():
     # across an edge the texture goes on: the texels on either side are neighbouring pixels of the example
     for side, other in ((2, 0), (1, 3)):  # tile 0's S edge against an N edge, its E edge against a W edge
         k = next(k for k in range(len(tiles)) if tiles[k, other] == tiles[0, side])
-        mine, theirs = (at.block(0)[-1, mid], at.block(k)[0, mid]) if side == 2 else (at.block(0)[mid, -1], at.block(k)[mid, 0])
+        if side == 2:
+            mine, theirs = at.block(0)[-1, mid], at.block(k)[0, mid]
+        else:
+            mine, theirs = at.block(0)[mid, -1], at.block(k)[mid, 0]
         hits = [(r, q) for r in range(EXAMPLE.shape[0]) for q in range(EXAMPLE.shape[1])
                 if side == 2 and q + 16 <= EXAMPLE.shape[1] and np.array_equal(EXAMPLE[r, q:q + 16], mine[:, :3])
                 or side == 1 and r + 16 <= EXAMPLE.shape[0] and np.array_equal(EXAMPLE[r:r + 16, q], mine[:, :3])]

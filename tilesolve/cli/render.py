@@ -196,8 +196,8 @@ def _aperiodic_texture(ctx, example, name, cpu, size, tile, scale, origin, seed,
     else:
         from tilesolve.gpu.wang_texture import WangTextureMapper as Picture
     picture = Picture(name, at, seed=seed, origin=(x0, y0), tile_px=scale)
-    summary = f"texture {w}x{h} from {example}: the {len(tileset)} Wang tiles of {name} ({route} route) of {tile} px, " \
-              f"seed {seed}"
+    summary = (f"texture {w}x{h} from {example}: the {len(tileset)} Wang tiles of {name} ({route} route) "
+               f"of {tile} px, seed {seed}")
 
     def notes() -> list[str]:
         if not getattr(picture, "codes_in_shader", False):

@@ -12,14 +12,17 @@ the tile's diagonals, where they are blended with the feathered masks of the cor
 (:func:`tilesolve.gpu.texture.diamond_mask`; the notes' Cohen et al. cut a seam there instead).
 A texel of a tile's border away from its corners comes from its edge's diamond alone, and the
 tile across that edge shows the other half of the same diamond, so matching edges meet without a
-seam; near a corner two diamonds mix (the corner problem of Wang tiles, §2.7).
+seam; near a corner two diamonds mix (the corner problem of Wang tiles, §2.6).
 
 The tiling
 ----------
 The tile at cell ``(x, y)`` is the tile of a window of the set's constructive route
 (:mod:`tilesolve.families.aperiodic_window`, verified): the coding of a toral Z²-rotation by a
 Markov partition for Jeandel-Rao and U19 (Labbé, arXiv:1903.06137), balanced rows for the
-Kari and Kari-Culik sets. Since the set is aperiodic, the texture has no period.
+Kari and Kari-Culik sets. Since the set is aperiodic, the texture has no period. On the GPU
+the fragment shader codes the Markov sets' cells itself, by point-in-polygon in the partition
+(:class:`_MarkovCells`), and takes a cell it cannot decide in float32 from the CPU route; the
+Kari sets' cells are the CPU route's window, uploaded as an integer texture.
 
 The picture
 -----------
@@ -247,137 +250,146 @@ void main() {
 """
 
 
-#: One fragment per cell: the tile of the cell's point in the Markov partition (Labbé 2021), by
-#: its slab (a band of the fundamental domain between two vertex heights, where the polygon edges
-#: crossing it keep their order) and the interval of the slab's breakpoints that holds it.
+#: One fragment per cell: the tile of the polygon of the Markov partition (Labbé 2021) that holds
+#: the cell's point, by point-in-polygon: the point is inside a convex polygon when it is on the
+#: inner side of every edge; a point closer than u_tol to an edge of every polygon is undecided.
 _FRAGMENT_MARKOV = """
 #version 450
-uniform sampler2D u_rows;      // row r of the pass: (height above the slab's floor, x shift, slab or -1)
-uniform sampler2D u_cols;      // column c of the pass: x of the point, reduced modulo lx
-uniform sampler2D u_cuts;      // slab s, breakpoint k: (x at the slab's floor, slope dx/dy)
-uniform usampler2D u_labels;   // slab s, interval k: the tile
-uniform usampler2D u_nbreaks;  // slab s: breakpoints (the first at 0, the last at lx)
-uniform float u_lx;            // the fundamental domain's width
-uniform float u_tol;           // the float32 error bound: closer to a breakpoint is undecided
+uniform sampler2D u_rows;    // row r of the pass: (y of its points in the fundamental domain, x shift)
+uniform sampler2D u_cols;    // column c of the pass: x of its points modulo lx
+uniform sampler2D u_edges;   // polygon a, edge e: (nx, ny, c), the unit inner normal n and n . p on the edge
+uniform usampler2D u_atoms;  // polygon a: (edges, tile)
+uniform int u_atom_count;
+uniform float u_lx;          // the fundamental domain's width
+uniform float u_tol;         // the float32 error bound of a distance to an edge
 out uint f_tile;
 void main() {
     ivec2 c = ivec2(gl_FragCoord.xy);
-    precise vec4 row = texelFetch(u_rows, ivec2(c.y, 0), 0);
-    int s = int(row.z);
-    if (s < 0) { f_tile = FLAG; return; }
+    vec4 row = texelFetch(u_rows, ivec2(c.y, 0), 0);
     precise float x = texelFetch(u_cols, ivec2(c.x, 0), 0).r + row.y;
     if (x >= u_lx) x -= u_lx;
-    int nb = int(texelFetch(u_nbreaks, ivec2(s, 0), 0).r);
-    vec2 cut = texelFetch(u_cuts, ivec2(0, s), 0).xy;
-    precise float lo = cut.x + cut.y * row.x;
-    cut = texelFetch(u_cuts, ivec2(1, s), 0).xy;
-    precise float hi = cut.x + cut.y * row.x;
-    int k = 1;
-    while (k < nb - 1 && x >= hi) {
-        k += 1;
-        lo = hi;
-        cut = texelFetch(u_cuts, ivec2(k, s), 0).xy;
-        hi = cut.x + cut.y * row.x;
+    uint tile = FLAG;
+    for (int a = 0; a < u_atom_count; a++) {
+        uvec2 atom = texelFetch(u_atoms, ivec2(a, 0), 0).xy;
+        precise float least = u_tol + 1.0;
+        for (int e = 0; e < int(atom.x); e++) {
+            vec4 edge = texelFetch(u_edges, ivec2(e, a), 0);
+            precise float d = edge.x * x + edge.y * row.x - edge.z;
+            least = min(least, d);
+        }
+        if (least > u_tol) { tile = atom.y; break; }
     }
-    f_tile = (x - lo < u_tol || hi - x < u_tol) ? FLAG : texelFetch(u_labels, ivec2(k - 1, s), 0).r;
+    f_tile = tile;
 }
 """
 
 
 class _MarkovCells:
-    """The cells of a pass coded by the shader :data:`_FRAGMENT_MARKOV` from the partition of
-    :func:`tilesolve.constructive.markov.partition` and the orbit start of
-    :func:`~tilesolve.constructive.markov.start_point`.
+    """The cells of a pass coded by the shader :data:`_FRAGMENT_MARKOV` from the polygons of
+    :func:`tilesolve.constructive.markov.polygon_arrays` (convex, counter-clockwise, with
+    their tiles, the lattice ``<(lx, 0), (sx, ly)>`` and the rotation ``(hx, hy)``).
 
-    Cell ``(X, Y)`` codes the point ``x0 + (X hx, Y hy)`` modulo the lattice ``<(lx, 0), (sx, ly)>``:
-    with ``l = floor((y0 + Y hy) / ly)`` its height is ``yp = y0 + Y hy - l ly`` and its abscissa
-    ``(x0 + X hx) - l sx`` modulo ``lx``. float32 cannot reduce coordinates of up to ``2**62``,
-    so the CPU reduces them per row (``yp``, the slab holding it, ``-l sx mod lx``) and per
-    column (``x0 + X hx mod lx``), exactly at the first row and column of every block of
-    :data:`~tilesolve.constructive.markov.BLOCK` and in float64 steps inside it, as
-    :func:`~tilesolve.constructive.markov.orbit_window` does; a row within the float64 error
-    bound of a slab boundary is left undecided. The shader adds the two, reduces once, and
-    finds the breakpoints around the point in float32; a cell within :attr:`tolerance` of one is
-    left undecided (:data:`FLAG`), and the mapper takes it from the CPU route's window.
+    Cell ``(X, Y)`` codes the point ``x0 + (X hx, Y hy)`` of the torus. float32 cannot reduce
+    coordinates of up to ``2**62``, so the CPU reduces them: a row's height ``y`` in the
+    fundamental domain and the shift ``-l sx`` its ``l`` wraps around the torus give its points,
+    a column's ``x0 + X hx`` modulo ``lx`` its abscissa, from the exact anchors of
+    :func:`~tilesolve.constructive.markov.cell_point` at the first row and column of every
+    block of :data:`~tilesolve.constructive.markov.BLOCK` cells and float64 steps inside it.
+    The shader adds abscissa and shift, reduces once, and finds the polygon of which the point
+    is farther than :attr:`tolerance` inside every edge. A cell with none is :data:`FLAG`
+    (undecided), and the mapper takes it from the CPU route's window. A point reduced a lattice
+    step off (a wrap decided wrongly near the domain's border) lies outside the domain, so in no
+    polygon: undecided too.
     """
 
     def __init__(self, mapper: "WangTextureMapper", name: str, seed: int) -> None:
-        from tilesolve.constructive.markov import float_tolerance, partition, start_point
+        from tilesolve.constructive.markov import float_tolerance, partition, polygon_arrays
 
-        self.part = p = partition(name)
-        self.start = start_point(name, seed)
-        self.tol64 = float_tolerance(p)
-        self.lx, self.ly, self.sx, self.hx, self.hy = (float(getattr(p, f)) for f in ("lx", "ly", "sx", "hx", "hy"))
-        # float32 error of |x - breakpoint| (u = 2**-24, values below L, slopes below M): the
-        # stored column and shift and x's two roundings give (2 e64 + 7 u L); a breakpoint
-        # x0 + slope dy adds (M e64 + u L (3 + 3 M)); times 4 for safety.
-        big_l, big_m, u = max(self.lx, self.ly), p.max_slope, 2.0 ** -24
-        self.tolerance = 4 * ((2 + big_m) * self.tol64 + (10 + 3 * big_m) * big_l * u)
-        self.mapper = mapper
-        cuts = np.stack([p.x0, p.slope], axis=2).astype(np.float32)
-        self._cuts = mapper.ctx.texture((cuts.shape[1], cuts.shape[0]), 2, cuts.tobytes(), dtype="f4")
-        self._cuts.filter = (mapper.ctx.NEAREST, mapper.ctx.NEAREST)
-        self._labels = mapper._int_texture(p.labels, 1)
-        self._nbreaks = mapper._int_texture(p.nbreaks[None, :], 1)
+        self.name, self.seed, self.mapper, self.ctx = name, seed, mapper, mapper.ctx
+        arrays = polygon_arrays(name)
+        # The lattice and rotation in float64 (polygon_arrays has them in float32): the CPU reduces with them.
+        part = partition(name)
+        self.lx, self.ly, self.sx, self.hx, self.hy = (float(getattr(part, f)) for f in ("lx", "ly", "sx", "hx", "hy"))
+        vertices, counts = arrays["vertices"].astype(np.float64), arrays["counts"]
+        d = np.roll(vertices, -1, axis=1) - vertices
+        normal = np.stack([-d[..., 1], d[..., 0]], axis=2)  # inner side of a counter-clockwise edge
+        length = np.hypot(normal[..., 0], normal[..., 1])
+        normal /= np.where(length > 0, length, 1.0)[..., None]
+        last = counts - 1  # the edge from the last vertex back to the first (the padding repeats the last)
+        d_last = vertices[:, 0] - vertices[np.arange(len(counts)), last]
+        n_last = np.stack([-d_last[:, 1], d_last[:, 0]], axis=1)
+        normal[np.arange(len(counts)), last] = n_last / np.hypot(n_last[:, 0], n_last[:, 1])[:, None]
+        edges = np.zeros(vertices.shape[:2] + (4,), np.float32)
+        edges[..., :2] = normal
+        edges[..., 2] = (normal * vertices).sum(axis=2)
+        # Error of a distance n . p - c in float32 (u = 2**-24, coordinates below L): the point's
+        # x from two stored values and two roundings (7 u L), its y (u L), the float64 reductions
+        # (e64 each), the vertices rounded to float32 (2 u L), the normal and c stored and the
+        # products and sums (6 u L); times 4 for safety.
+        big_l, u = max(self.lx, self.ly), 2.0 ** -24
+        self.tolerance = 4 * (3 * float_tolerance(part) + 16 * u * big_l)
+        self._edges = self._float_texture(edges, 4)
+        self._atoms = mapper._int_texture(np.stack([counts, arrays["tiles"]], axis=1)[None, :, :], 2)
         prog, _ = self.program = mapper._vertex_array(_FRAGMENT_MARKOV.replace("FLAG", f"{FLAG}u"))
-        for uniform, unit in (("u_rows", 0), ("u_cols", 1), ("u_cuts", 2), ("u_labels", 3), ("u_nbreaks", 4)):
+        for uniform, unit in (("u_rows", 0), ("u_cols", 1), ("u_edges", 2), ("u_atoms", 3)):
             prog[uniform].value = unit
         prog["u_lx"].value = self.lx
+        prog["u_atom_count"].value = len(counts)
 
     def _float_texture(self, a: np.ndarray, components: int):
+        """A float32 texture read with ``texelFetch``."""
         a = np.ascontiguousarray(a, dtype=np.float32)
-        tex = self.mapper.ctx.texture((a.shape[1], a.shape[0]), components, a.tobytes(), dtype="f4")
-        tex.filter = (self.mapper.ctx.NEAREST, self.mapper.ctx.NEAREST)
+        tex = self.ctx.texture((a.shape[1], a.shape[0]), components, a.tobytes(), dtype="f4")
+        tex.filter = (self.ctx.NEAREST, self.ctx.NEAREST)
         return tex
 
-    def rows(self, y: int, n: int) -> np.ndarray:
-        """``(n, 4)`` float64 per row ``y .. y + n - 1``: height above its slab's floor, the x
-        shift ``-l sx mod lx``, the slab (``-1``: undecided), 0."""
+    def _anchor(self, x: int, y: int) -> tuple[float, float]:
+        from tilesolve.constructive.markov import cell_point
+
+        return cell_point(self.name, self.seed, x, y)
+
+    def rows(self, x: int, y: int, n: int) -> np.ndarray:
+        """``(n, 4)`` float64 per row ``y .. y + n - 1`` (``x`` the first column): the height of its
+        points in the fundamental domain and the shift of their abscissae (modulo ``lx``) from
+        those of row ``y``."""
         from tilesolve.constructive.markov import BLOCK
 
-        p, out = self.part, np.zeros((n, 4))
+        out = np.zeros((n, 4))
+        ax, _ = self._anchor(x, y)
         for b in range(0, n, BLOCK):
             m = min(BLOCK, n - b)
-            yb = self.start[1] + (y + b) * p.hy
-            ell = (yb / p.ly).floor()
-            shift = -ell * p.sx
-            yr = float(yb - ell * p.ly) + np.arange(m) * self.hy
-            lr = np.floor(yr / self.ly)
-            yp = yr - lr * self.ly
-            xs = float(shift - (shift / p.lx).floor() * p.lx) - lr * self.sx
-            slab = np.searchsorted(p.ybounds, yp, side="right") - 1
-            near = np.abs(yp[:, None] - p.ybounds[None, :]).min(axis=1) < self.tol64
-            slab[near | (slab < 0) | (slab >= len(p.ylo))] = -1
-            out[b:b + m, 0] = yp - p.ylo[np.maximum(slab, 0)]
-            out[b:b + m, 1] = xs - np.floor(xs / self.lx) * self.lx
-            out[b:b + m, 2] = slab
+            bx, by = self._anchor(x, y + b)
+            yr = by + np.arange(m) * self.hy
+            wraps = np.floor(yr / self.ly)
+            out[b:b + m, 0] = yr - wraps * self.ly
+            shift = (bx - ax) - wraps * self.sx
+            out[b:b + m, 1] = shift - np.floor(shift / self.lx) * self.lx
         return out
 
-    def cols(self, x: int, n: int) -> np.ndarray:
-        """``(n,)`` float64 per column ``x .. x + n - 1``: ``x0 + X hx mod lx``."""
+    def cols(self, x: int, y: int, n: int) -> np.ndarray:
+        """``(n,)`` float64 per column ``x .. x + n - 1``: the abscissa of its point in row ``y``."""
         from tilesolve.constructive.markov import BLOCK
 
-        p, out = self.part, np.zeros(n)
+        out = np.zeros(n)
         for b in range(0, n, BLOCK):
             m = min(BLOCK, n - b)
-            xb = self.start[0] + (x + b) * p.hx
-            t = float(xb - (xb / p.lx).floor() * p.lx) + np.arange(m) * self.hx
+            t = self._anchor(x + b, y)[0] + np.arange(m) * self.hx
             out[b:b + m] = t - np.floor(t / self.lx) * self.lx
         return out
 
     def code(self, x: int, y: int, cols: int, rows: int) -> np.ndarray:
         """``(rows, cols)`` uint32 tiles of the cells ``x .. x + cols - 1`` by ``y .. y + rows - 1``
         (absolute), row 0 the top row, :data:`FLAG` where the shader cannot decide."""
-        ctx = self.mapper.ctx
-        row_tex = self._float_texture(self.rows(y, rows)[None, :, :], 4)
-        col_tex = self._float_texture(self.cols(x, cols)[None, :], 1)
+        ctx = self.ctx
+        row_tex = self._float_texture(self.rows(x, y, rows)[None, :, :], 4)
+        col_tex = self._float_texture(self.cols(x, y, cols)[None, :], 1)
         target = ctx.texture((cols, rows), 1, dtype="u4")
         fbo = ctx.framebuffer(color_attachments=[target])
         try:
             prog, vao = self.program
             prog["u_tol"].value = self.tolerance
             fbo.use()
-            for unit, tex in enumerate((row_tex, col_tex, self._cuts, self._labels, self._nbreaks)):
+            for unit, tex in enumerate((row_tex, col_tex, self._edges, self._atoms)):
                 tex.use(unit)
             vao.render(mode=ctx.TRIANGLE_STRIP)
             return np.frombuffer(fbo.read(components=1, dtype="u4"), dtype=np.uint32).reshape(rows, cols)[::-1]
