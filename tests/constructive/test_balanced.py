@@ -198,7 +198,10 @@ def test_bands(name, monkeypatch):
     w, seed = Window(-11, -7, 23, 17), 9
     whole = B.balanced_window(name, w, seed)
     monkeypatch.setattr(B, "_BAND_CELLS", 50)
-    assert np.array_equal(B.balanced_window(name, w, seed), whole)
+    for mode in ("plain", "compiled"):  # compiled: bands on threads
+        monkeypatch.setattr(K.KERNELS, "mode", mode)
+        monkeypatch.setattr(B, "_cores", lambda: 3)
+        assert np.array_equal(B.balanced_window(name, w, seed), whole)
 
 
 @pytest.mark.parametrize("name", NAMES)
@@ -218,12 +221,16 @@ def test_y_down_window_is_flipped():
 
 
 def test_kernel_reports_cells_without_tile():
-    """A corrupted floor grid gives 255 and a count, never a silent tile."""
+    """Floors that give no digit, or a transition with no tile, are counted, never silent."""
     G = np.array([[0, 1, 5], [0, 2, 4]], np.int32)
     out = np.zeros((1, 2), np.uint8)
-    lut = np.zeros((4, 3, 3, 4), np.uint8)
-    assert K.tiles_kernel(G, np.array([1]), np.array([[2, 1]]), np.array([0]), lut, out) == 1
-    assert out.tolist() == [[0, 255]]
+    lut = np.zeros(256, np.uint8)
+    rows = (np.array([1]), np.array([[2, 1]]), np.array([0]))
+    assert K.tiles_kernel(G, *rows, lut, out) == 1  # a = 4 is no digit
+    G[0, 2] = 2  # both cells read 1, write 2, carry 1 in: key 16 + 8 + 1
+    assert K.tiles_kernel(G, *rows, lut, out) == 0 and out.tolist() == [[0, 0]]
+    lut[25] = 255
+    assert K.tiles_kernel(G, *rows, lut, out) == 1 and out.tolist() == [[255, 255]]
 
 
 def test_bad_input():

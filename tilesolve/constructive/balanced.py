@@ -59,6 +59,8 @@ array([[13, 11, 10, 13, 11, 10, 13, 11],
 from __future__ import annotations
 
 import math
+import os
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
@@ -230,16 +232,15 @@ def balanced_window_exact(name: str, window: Window, seed: int) -> np.ndarray:
 
 # --------------------------------------------------------------------------- the fast path
 def _lut(m: Machine) -> tuple[np.ndarray, int]:
-    """``lut[2 kind + above, a, b, s - smin]``: the tile of a transition in a row of ``kind``
-    whose row above has kind ``above`` (255 where none), and ``smin``."""
+    """``lut[64 (2 kind + above) + 16 a + 4 b + s - smin]``: the tile of a transition in a row
+    of ``kind`` whose row above has kind ``above`` (255 where none), and ``smin``."""
     smin = min(min(m.carries(0)), min(m.carries(1)))
-    span = max(max(m.carries(0)), max(m.carries(1))) - smin + 1
-    lut = np.full((4, 3, 3, span), 255, np.uint8)
+    lut = np.full((4, 4, 4, 4), 255, np.uint8)
     for i, (kind, primed, a, b, s) in enumerate(m.tiles):
         for above in (0, 1):
             if int(m.primed_colour is not None and above == 0 and a == 0) == primed:
                 lut[2 * kind + above, a, b, s - smin] = i
-    return lut, smin
+    return lut.ravel(), smin
 
 
 def balanced_window(name: str, window: Window, seed: int) -> np.ndarray:
@@ -288,57 +289,102 @@ def _window(name: str, window: Window, seed: int, bits: int) -> np.ndarray:
     start = _start(m, seed)
     lut, smin = _lut(m)
     h, w = window.height, window.width
-    j0 = window.x0
     kern = _k.KERNELS.pick(h * w)
     out = np.empty((h, w), np.uint8)
     band = max(1, _BAND_CELLS // (w + 1))
-
     # Line i is the row y = y0 + h - i: i = 0 is the row above the window (its kind only),
     # lines 1..h the window's rows, line h + 1 the row below (its digits are row h's S edges).
-    P, Q = _row_value(m, start, window.y0 + h)
-    above = int(P > Q)
-    P, Q = (P * m.steps[above][0], Q * m.steps[above][1])
-    pending = None  # the last line of the previous band, the first of this one
-    for top in range(0, h, band):
-        rows = min(band, h - top)
-        lines = [] if pending is None else [pending]
-        while len(lines) < rows + 1:
-            lines.append(_line(m, P, Q, j0, w, bits))
-            kind = lines[-1][0]
-            P, Q = P * m.steps[kind][0], Q * m.steps[kind][1]
-        pending = lines[-1]
-        phi = np.array([ln[4] for ln in lines], np.int64)
-        off = np.array([ln[5] for ln in lines], np.int64)
-        xt = np.array([ln[6] for ln in lines], np.int64)
+    lines = _Lines(m, start, window.y0 + h, window.x0, w, bits)
+    zero = -window.x0  # the column of j = 0, whose floors the rounding cannot decide (exact integers)
+    above = next(lines)[3]
+
+    def run(top: int, band_lines: list, above: int) -> int:
+        rows = len(band_lines) - 1
+        phi, off, xt, kinds, F = (np.array(v, np.int64) if i < 4 else v for i, v in enumerate(zip(*band_lines)))
         G = np.empty((rows + 1, w + 1), np.int32)
-        if kern.floors_kernel(phi, off, xt, bits, CHUNK, G):
-            for i, c in zip(*np.nonzero(G < 0)):
-                _, Pi, Qi, Ri = lines[i][:4]
-                G[i, c] = (Ri + int(c) * Pi) // Qi
-        kinds = [ln[0] for ln in lines]
-        code = np.empty(rows, np.int64)
-        s0 = np.empty(rows, np.int64)
-        pr = np.empty((rows, 2), np.int64)
-        for i in range(rows):
-            kind = kinds[i]
-            p, r = m.steps[kind]
-            code[i] = 2 * kind + (above if i == 0 else kinds[i - 1])
-            s0[i] = p * lines[i][7] - r * lines[i + 1][7] - smin
-            pr[i] = p, r
-        above = kinds[rows - 1]
-        if kern.tiles_kernel(G, s0, pr, code, lut, out[top:top + rows]):
-            raise InternalError(f"{name}: a cell of window {window.describe()} has no tile (seed {seed})")
+        where = np.empty(64, np.int64)
+        n = kern.floors_kernel(phi, off, xt, bits, CHUNK, zero, G, where)
+        if n > where.size:
+            where = np.empty(n, np.int64)
+            kern.floors_kernel(phi, off, xt, bits, CHUNK, zero, G, where)
+        if 0 <= zero <= w:  # j = 0: floor(0 x) = 0
+            G[:, zero] = [-f for f in F]
+        for k in where[:n].tolist():
+            i, c = divmod(k, w + 1)
+            P, Q = _row_value(m, start, window.y0 + h - 1 - top - i)
+            G[i, c] = (window.x0 + c) * P // Q - F[i]
+        pr = np.array(m.steps, np.int64)[kinds[:-1]]
+        code = 2 * kinds[:-1] + np.concatenate(([above], kinds[:-2]))
+        s0 = np.array([p * F[i] - r * F[i + 1] - smin for i, (p, r) in enumerate(pr.tolist())], np.int64)
+        return kern.tiles_kernel(G, s0, pr, code, lut, out[top:top + rows])
+
+    bad = 0
+    threads = min(_cores(), -(-h // band)) if kern is not _k.KERNELS.plain() else 1
+    with ThreadPoolExecutor(threads) as pool:
+        jobs = []
+        first = next(lines)
+        for top in range(0, h, band):
+            band_lines = [first] + [next(lines) for _ in range(min(band, h - top))]
+            jobs.append(pool.submit(run, top, band_lines, above))
+            above, first = band_lines[-2][3], band_lines[-1]
+        bad = sum(job.result() for job in jobs)
+    if bad:
+        raise InternalError(f"{name}: {bad} cells of window {window.describe()} have no tile (seed {seed})")
     return out if window.y_up else out[::-1].copy()
 
 
-def _line(m: Machine, P: int, Q: int, j0: int, w: int, bits: int) -> tuple:
-    """One line's numbers: ``(kind, P, Q, R, phi, off, xt, F)`` with ``F = floor(j0 x)``,
-    ``R = j0 P - F Q``, ``phi[q]``/``off[q]`` the fixed-point fraction and the floor (less
-    ``F``) at the start of column chunk ``q``, and ``xt = floor(2**bits x)``."""
-    F, R = divmod(j0 * P, Q)
-    phi, off = [], []
-    for c in range(0, w + 1, CHUNK):
-        o, rq = divmod(R + c * P, Q)
-        phi.append((rq << bits) // Q)
-        off.append(o)
-    return int(P > Q), P, Q, R, phi, off, (P << bits) // Q, F
+def _cores() -> int:
+    """The cores this process may run on."""
+    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
+
+
+class _Lines:
+    """The lines ``y, y - 1, ...`` of the orbit as the fast path reads them: per line
+    ``(phi, off, xt, kind, F)`` with ``F = floor(j0 x)``, ``phi[q]`` and ``off[q]`` the
+    fixed-point fraction ``floor(2**bits frac(j x))`` and ``floor(j x) - F`` at the start
+    ``j = j0 + q CHUNK`` of column chunk ``q``, ``xt = floor(2**bits x)`` and ``kind = x > 1``.
+
+    Every number is kept exactly as an integer and a remainder over the line's denominator
+    ``Q`` (``x 2**bits = xt + E / Q``, ``j x = F + R / Q``, ``frac(j x) 2**bits = phi + Eb /
+    Q``), so that a step ``x -> (p / r) x`` is a few multiplications by small integers and no
+    division (:func:`_scale`).
+    """
+
+    def __init__(self, m: Machine, start: tuple[int, int], y: int, j0: int, w: int, bits: int):
+        P, Q = _row_value(m, start, y)
+        self.m, self.bits, self.Q = m, bits, Q
+        self.xt, self.E = divmod(P << bits, Q)
+        self.chunks = []
+        for c in range(0, w + 1, CHUNK):
+            F, R = divmod((j0 + c) * P, Q)
+            self.chunks.append([F, R, *divmod(R << bits, Q)])
+
+    def __iter__(self):
+        return self
+
+    def __next__(self) -> tuple:
+        one = 1 << self.bits
+        kind = int(self.xt > one or (self.xt == one and self.E > 0))
+        F0 = self.chunks[0][0]
+        line = ([ch[2] for ch in self.chunks], [ch[0] - F0 for ch in self.chunks], self.xt, kind, F0)
+        p, r = self.m.steps[kind]
+        Q, rQ = self.Q, r * self.Q
+        self.xt, self.E = _scale(p * self.xt, self.E, Q, rQ, p, r)
+        for ch in self.chunks:
+            F, R, phi, Eb = ch
+            a, b = divmod(p * F, r)
+            F2, ch[1] = _scale(p * F, R, Q, rQ, p, r)
+            # frac(j x') = frac((b + p frac(j x)) / r): in units of 2**-bits, less the carry F2 - a
+            ch[0] = F2
+            ch[2], ch[3] = _scale((b - (F2 - a) * r << self.bits) + p * phi, Eb, Q, rQ, p, r)
+        self.Q = rQ
+        return line
+
+
+def _scale(u: int, e: int, Q: int, rQ: int, p: int, r: int) -> tuple[int, int]:
+    """``(u + p e / Q) / r`` as ``n + e' / (r Q)`` with ``0 <= e' < r Q``, given ``0 <= e < Q``."""
+    a, b = divmod(u, r)
+    N = b * Q + p * e  # < (r - 1 + p) Q <= 2 r Q for the steps of these machines
+    if N >= rQ:
+        return a + 1, N - rQ
+    return a, N
