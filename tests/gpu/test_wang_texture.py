@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from tilesolve.constructive.markov import markov_window
+from tilesolve.constructive.markov import BLOCK, markov_window
 from tilesolve.errors import InvalidProblem
 from tilesolve.families.aperiodic_window import tiling
 from tilesolve.gpu.wang_texture import WangAtlas, WangTexture, WangTextureMapper
@@ -63,6 +63,17 @@ def test_the_shader_codes_the_markov_partition(atlases, name, origin):
     assert np.array_equal(got[decided], want[decided])
     assert np.array_equal(m.cell_tiles(0, 0, 120, 80), want)
     assert m.decided == decided.sum() and m.undecided == (~decided).sum()
+
+
+@pytest.mark.parametrize("name", ["jeandel-rao", "labbe-u19"])
+def test_the_shader_codes_passes_longer_than_a_block(atlases, name):
+    """Rows and columns of more than BLOCK cells: their points come from several exact anchors."""
+    m = WangTextureMapper(name, atlases[name], seed=5)
+    for x, y, cols, rows in ((-(2**40), 7, BLOCK + 100, 2), (3, 2**50, 2, BLOCK + 100)):
+        got = m._markov.code(x, y, cols, rows)
+        decided = got != 255
+        assert decided.mean() > 0.99
+        assert np.array_equal(got[decided], markov_window(name, Window(x, y, cols, rows), 5)[decided])
 
 
 def test_cells_the_shader_cannot_decide_come_from_the_cpu_route(atlases):

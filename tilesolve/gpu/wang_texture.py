@@ -253,13 +253,14 @@ void main() {
 #: One fragment per cell: the tile of the polygon of the Markov partition (Labbé 2021) that holds
 #: the cell's point, by point-in-polygon: the point is inside a convex polygon when it is on the
 #: inner side of every edge; a point closer than u_tol to an edge of every polygon is undecided.
+#: Only the polygons that meet the row's band (between two vertex heights) are tried.
 _FRAGMENT_MARKOV = """
 #version 450
-uniform sampler2D u_rows;    // row r of the pass: (y of its points in the fundamental domain, x shift)
+uniform sampler2D u_rows;    // row r of the pass: (y of its points in the fundamental domain, x shift, band)
 uniform sampler2D u_cols;    // column c of the pass: x of its points modulo lx
-uniform sampler2D u_edges;   // polygon a, edge e: (nx, ny, c), the unit inner normal n and n . p on the edge
-uniform usampler2D u_atoms;  // polygon a: (edges, tile)
-uniform int u_atom_count;
+uniform vec4 u_edges[EDGES]; // polygon a, edge e at a * SIDES + e: (nx, ny, c), the unit inner normal n, n . p on the edge
+uniform uvec2 u_atoms[ATOMS];// polygon a: (edges, tile)
+uniform int u_band[BANDS * (ATOMS + 1)];  // band b: its polygon count at b * (ATOMS + 1), then the polygons
 uniform float u_lx;          // the fundamental domain's width
 uniform float u_tol;         // the float32 error bound of a distance to an edge
 out uint f_tile;
@@ -269,15 +270,16 @@ void main() {
     precise float x = texelFetch(u_cols, ivec2(c.x, 0), 0).r + row.y;
     if (x >= u_lx) x -= u_lx;
     uint tile = FLAG;
-    for (int a = 0; a < u_atom_count; a++) {
-        uvec2 atom = texelFetch(u_atoms, ivec2(a, 0), 0).xy;
+    int band = int(row.z) * (ATOMS + 1);
+    for (int i = 1; i <= u_band[band]; i++) {
+        int a = u_band[band + i];
         precise float least = u_tol + 1.0;
-        for (int e = 0; e < int(atom.x); e++) {
-            vec4 edge = texelFetch(u_edges, ivec2(e, a), 0);
+        for (int e = 0; e < int(u_atoms[a].x); e++) {
+            vec4 edge = u_edges[a * SIDES + e];
             precise float d = edge.x * x + edge.y * row.x - edge.z;
             least = min(least, d);
         }
-        if (least > u_tol) { tile = atom.y; break; }
+        if (least > u_tol) { tile = u_atoms[a].y; break; }
     }
     f_tile = tile;
 }
@@ -311,14 +313,13 @@ class _MarkovCells:
         part = partition(name)
         self.lx, self.ly, self.sx, self.hx, self.hy = (float(getattr(part, f)) for f in ("lx", "ly", "sx", "hx", "hy"))
         vertices, counts = arrays["vertices"].astype(np.float64), arrays["counts"]
-        d = np.roll(vertices, -1, axis=1) - vertices
-        normal = np.stack([-d[..., 1], d[..., 0]], axis=2)  # inner side of a counter-clockwise edge
+        atoms, sides = vertices.shape[:2]
+        e = np.arange(sides)[None, :]
+        after = np.where(e + 1 < counts[:, None], e + 1, 0)  # the padding (the last vertex again) is never read
+        d = np.take_along_axis(vertices, after[..., None], axis=1) - vertices
+        normal = np.stack([-d[..., 1], d[..., 0]], axis=2)  # the inner side of a counter-clockwise edge
         length = np.hypot(normal[..., 0], normal[..., 1])
         normal /= np.where(length > 0, length, 1.0)[..., None]
-        last = counts - 1  # the edge from the last vertex back to the first (the padding repeats the last)
-        d_last = vertices[:, 0] - vertices[np.arange(len(counts)), last]
-        n_last = np.stack([-d_last[:, 1], d_last[:, 0]], axis=1)
-        normal[np.arange(len(counts)), last] = n_last / np.hypot(n_last[:, 0], n_last[:, 1])[:, None]
         edges = np.zeros(vertices.shape[:2] + (4,), np.float32)
         edges[..., :2] = normal
         edges[..., 2] = (normal * vertices).sum(axis=2)
@@ -328,13 +329,21 @@ class _MarkovCells:
         # products and sums (6 u L); times 4 for safety.
         big_l, u = max(self.lx, self.ly), 2.0 ** -24
         self.tolerance = 4 * (3 * float_tolerance(part) + 16 * u * big_l)
-        self._edges = self._float_texture(edges, 4)
-        self._atoms = mapper._int_texture(np.stack([counts, arrays["tiles"]], axis=1)[None, :, :], 2)
-        prog, _ = self.program = mapper._vertex_array(_FRAGMENT_MARKOV.replace("FLAG", f"{FLAG}u"))
-        for uniform, unit in (("u_rows", 0), ("u_cols", 1), ("u_edges", 2), ("u_atoms", 3)):
-            prog[uniform].value = unit
+        # Bands between consecutive vertex heights, each with the polygons that meet it.
+        ys = vertices[..., 1]
+        self.heights = np.unique(ys)
+        band = np.zeros((len(self.heights) - 1, atoms + 1), np.int32)
+        for b, (y0, y1) in enumerate(zip(self.heights[:-1], self.heights[1:])):
+            meets = np.nonzero((ys.min(axis=1) < y1) & (ys.max(axis=1) > y0))[0]
+            band[b, 0], band[b, 1:1 + len(meets)] = len(meets), meets
+        source = (_FRAGMENT_MARKOV.replace("FLAG", f"{FLAG}u").replace("EDGES", str(atoms * sides))
+                  .replace("ATOMS", str(atoms)).replace("SIDES", str(sides)).replace("BANDS", str(len(band))))
+        prog, _ = self.program = mapper._vertex_array(source)
+        prog["u_rows"].value, prog["u_cols"].value = 0, 1
+        prog["u_edges"].write(edges.tobytes())
+        prog["u_atoms"].write(np.stack([counts, arrays["tiles"]], axis=1).astype(np.uint32).tobytes())
+        prog["u_band"].write(band.tobytes())
         prog["u_lx"].value = self.lx
-        prog["u_atom_count"].value = len(counts)
 
     def _float_texture(self, a: np.ndarray, components: int):
         """A float32 texture read with ``texelFetch``."""
@@ -364,6 +373,8 @@ class _MarkovCells:
             out[b:b + m, 0] = yr - wraps * self.ly
             shift = (bx - ax) - wraps * self.sx
             out[b:b + m, 1] = shift - np.floor(shift / self.lx) * self.lx
+        # the band of each row (any band is sound: a point is decided only inside a polygon by the margin)
+        out[:, 2] = np.clip(np.searchsorted(self.heights, out[:, 0], side="right") - 1, 0, len(self.heights) - 2)
         return out
 
     def cols(self, x: int, y: int, n: int) -> np.ndarray:
@@ -389,8 +400,8 @@ class _MarkovCells:
             prog, vao = self.program
             prog["u_tol"].value = self.tolerance
             fbo.use()
-            for unit, tex in enumerate((row_tex, col_tex, self._edges, self._atoms)):
-                tex.use(unit)
+            row_tex.use(0)
+            col_tex.use(1)
             vao.render(mode=ctx.TRIANGLE_STRIP)
             return np.frombuffer(fbo.read(components=1, dtype="u4"), dtype=np.uint32).reshape(rows, cols)[::-1]
         finally:
