@@ -27,7 +27,7 @@ WINDOWS = [
     (Window(-9, -3000, 15, 5), 6),
 ]
 #: Windows at the rows farthest from the seed's row (a few seconds each).
-FAR = [(Window(-7, B.MAX_ROW - 4, 12, 4), 7), (Window(2**62 - 20, -B.MAX_ROW + 1, 12, 4), 8)]
+FAR = [(Window(-7, B.MAX_EXACT_ROW - 4, 12, 4), 7), (Window(2**62 - 20, -B.MAX_EXACT_ROW + 1, 12, 4), 8)]
 
 
 def tiles_of(name):
@@ -112,7 +112,7 @@ def test_rows_run_down_the_orbit(name):
         assert north == digits(x, w.x0, w.width) and south == digits(below, w.x0, w.width)
 
 
-@pytest.mark.parametrize("y", [-B.MAX_ROW + 1, -77777, 54321, B.MAX_ROW])
+@pytest.mark.parametrize("y", [-B.MAX_EXACT_ROW + 1, -77777, 54321, B.MAX_EXACT_ROW])
 def test_closed_form_far_rows(y):
     """x(y) stays in (2/J, 2] and follows f far from the seed row, both ways (exact integer
     comparisons: a Fraction of a million bits costs a slow gcd)."""
@@ -233,12 +233,60 @@ def test_kernel_reports_cells_without_tile():
     assert K.tiles_kernel(G, *rows, lut, out) == 1 and out.tolist() == [[255, 255]]
 
 
+def test_row_bounds_hold_the_row():
+    """The closed form's bounds hold the exact x(y) 2**S, a few units apart."""
+    for name in NAMES:
+        m = B.machine(name)
+        start = B._start(m, 5)
+        for y in (-3001, -64, -1, 0, 1, 63, 2500):
+            P, Q = B._row_value(m, start, y)
+            for S in (64, 256):
+                X = B._row_bounds(m, start, y, S)
+                if X is not None:
+                    assert X.lo * Q <= P << S <= X.hi * Q and X.hi - X.lo <= 4
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_far_rows(name):
+    """Rows near +-2**62, beyond exact arithmetic: windows tile, agree where they overlap, and
+    x(y) stepped down by f stays within the closed form's bounds."""
+    for y0 in (-(2**62) + 1, 2**40, 2**62 - 30):
+        a = B.balanced_window(name, Window(-(2**61), y0, 40, 12), 6)
+        b = B.balanced_window(name, Window(-(2**61) + 10, y0 + 5, 40, 12), 6)
+        assert violations(name, a) == 0 and violations(name, b) == 0
+        assert np.array_equal(a[:7, 10:], b[5:, :30])
+    m = B.machine(name)
+    start = B._start(m, 6)
+    lines = B._Lines(m, start, 2**61, 0, 1, B.BITS)
+    for _ in range(300):
+        X = next(lines)[-1]
+    far = B._row_bounds(m, start, 2**61 - 299, B.PREC)
+    assert X.lo <= far.hi and far.lo <= X.hi
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_sharper_bounds_and_exact_rows(name, monkeypatch):
+    """With bounds of 64 bits most lines need sharper bounds, and without sharper ones exact
+    rationals: the windows are still the reference's."""
+    monkeypatch.setattr(B, "PREC", 64)
+    for sharper in ((1024, 4096), ()):
+        monkeypatch.setattr(B, "_SHARPER", sharper)
+        for window, seed in WINDOWS[:4]:
+            assert np.array_equal(B.balanced_window(name, window, seed), B.balanced_window_exact(name, window, seed))
+
+
+def test_undecided_far_row_is_refused(monkeypatch):
+    """Beyond exact arithmetic a floor the sharpest bounds cannot decide is refused, not guessed."""
+    monkeypatch.setattr(B, "PREC", 60)
+    monkeypatch.setattr(B, "_SHARPER", ())
+    with pytest.raises(InvalidProblem, match="undecided"):
+        B.balanced_window("kari-14", Window(2**60, 2**50, 30, 30), 1)
+
+
 def test_bad_input():
     with pytest.raises(InvalidProblem, match="no balanced-sequence route"):
         B.balanced_window("jeandel-rao", Window(0, 0, 2, 2), 1)
     with pytest.raises(InvalidProblem, match="within"):
-        B.balanced_window("kari-14", Window(0, B.MAX_ROW, 2, 2), 1)
-    with pytest.raises(InvalidProblem, match="within"):
-        B.balanced_window_exact("kari-14", Window(0, -B.MAX_ROW, 2, 2), 1)
+        B.balanced_window_exact("kari-14", Window(0, -B.MAX_EXACT_ROW, 2, 2), 1)
     with pytest.raises(InvalidProblem, match="seed"):
         B.balanced_window("kari-14", Window(0, 0, 2, 2), -1)

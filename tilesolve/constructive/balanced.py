@@ -31,9 +31,14 @@ bi-infinite orbit, in closed form:
     row ``y`` carries ``x(y) = x0 2**-y J**-m``, ``m`` the one integer that puts it in ``I``.
 
 Any window is therefore cut from one tiling of the plane fixed by ``x0`` (drawn from the seed):
-windows of a seed agree where they overlap, at any origin. Arithmetic is exact: ``x0`` is a
-rational, ``x(y)`` a rational of about ``1.6 |y|`` bits, and every floor is an integer
-division. Rows are refused beyond ``|y| > MAX_ROW`` (the cost of a row grows with ``|y|``).
+windows of a seed agree where they overlap, at any origin. ``x0`` is a rational and ``x(y)`` a
+rational of about ``1.6 |y|`` bits. Every floor is decided exactly: the fast path
+(:func:`balanced_window`) bounds ``x(y) 2**PREC`` between two integers (from the closed form,
+then by ``f`` row by row) and decides a floor from the bounds where they agree, from sharper
+bounds or exact rationals (rows ``|y| <= MAX_EXACT_ROW``) where they do not. Beyond
+``MAX_EXACT_ROW`` no floor that matters falls on an integer (``x(y)`` has a denominator above
+``2**600000``), so sharper bounds decide it; a floor still undecided at 4096 bits is refused
+rather than guessed (an ``InvalidProblem`` naming the row).
 
 The tiles as transitions
 ------------------------
@@ -60,6 +65,7 @@ from __future__ import annotations
 
 import math
 import os
+from decimal import ROUND_CEILING, Decimal, localcontext
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
@@ -70,12 +76,19 @@ from tilesolve.constructive import _balanced_kernels as _k
 from tilesolve.errors import InternalError, InvalidProblem
 from tilesolve.model.window import Window
 
-__all__ = ["NAMES", "MAX_ROW", "Machine", "machine", "tile_colours", "balanced_window", "balanced_window_exact"]
+__all__ = ["NAMES", "MAX_EXACT_ROW", "Machine", "machine", "tile_colours", "balanced_window", "balanced_window_exact"]
 
 #: The built-in tile sets this route draws.
 NAMES = ("kari-14", "kari-culik-13")
-#: Rows ``y`` with ``|y| <= MAX_ROW`` are drawn: ``x(y)`` has about ``1.6 |y|`` bits.
-MAX_ROW = 1 << 20
+#: Rows whose ``x(y)`` (about ``1.6 |y|`` bits) exact arithmetic reaches: the fast path's last
+#: resort and the reference :func:`balanced_window_exact`.
+MAX_EXACT_ROW = 1 << 20
+#: Bits of the lines' bounds: ``x 2**PREC`` within a few units (a few more a row), so that
+#: ``floor(j x 2**BITS)`` is decided unless ``j x`` lies within about ``2**(63 + 25 - PREC)``
+#: of a boundary.
+PREC = 256
+#: Sharper bounds, tried in turn where a floor is undecided.
+_SHARPER = (1024, 4096)
 #: Fixed-point bits of the fast path: ``floor(phi + c x)`` is read from ``phi`` and ``x`` to
 #: ``BITS`` bits, decided exactly wherever the rounding could change it.
 BITS = 47
@@ -190,11 +203,123 @@ def _row_value(m: Machine, start: tuple[int, int], y: int) -> tuple[int, int]:
     return p, q
 
 
-def _check_rows(window: Window) -> None:
+def _check_exact_rows(window: Window) -> None:
     lo, hi = window.y0 - 1, window.y0 + window.height
-    if max(abs(lo), abs(hi)) > MAX_ROW:
-        raise InvalidProblem(f"window {window.describe()}: the balanced-sequence route draws rows y within "
-                             f"+-{MAX_ROW:,} (row y holds a rational of about 1.6 |y| bits)")
+    if max(abs(lo), abs(hi)) > MAX_EXACT_ROW:
+        raise InvalidProblem(f"window {window.describe()}: exact arithmetic draws rows y within "
+                             f"+-{MAX_EXACT_ROW:,} (row y holds a rational of about 1.6 |y| bits)")
+
+
+class _X:
+    """``x(y)`` as the fast path knows it: ``lo <= x 2**S <= hi``, or (``S`` None) ``x = lo /
+    hi`` exactly."""
+
+    __slots__ = ("lo", "hi", "S")
+
+    def __init__(self, lo: int, hi: int, S: int | None):
+        self.lo, self.hi, self.S = lo, hi, S
+
+    def floor(self, j: int, k: int) -> int | None:
+        """``floor(j x 2**k)`` (``k <= S``), or None where the bounds do not decide it."""
+        if self.S is None:
+            return (j * self.lo << k) // self.hi
+        a, b = (j * self.lo, j * self.hi) if j >= 0 else (j * self.hi, j * self.lo)
+        sh = self.S - k
+        f = a >> sh
+        return f if f == b >> sh else None
+
+    def kind(self) -> int | None:
+        """``int(x > 1)``, or None where the bounds do not decide it."""
+        if self.S is None:
+            return int(self.lo > self.hi)
+        one = 1 << self.S
+        return 1 if self.lo > one else 0 if self.hi <= one else None
+
+    def step(self, p: int, r: int) -> "_X":
+        """``x p / r`` (bounds at :data:`PREC` bits after an exact ``x``)."""
+        if self.S is None:
+            lo = (self.lo * p << PREC) // (self.hi * r)
+            return _X(lo, lo + 1, PREC)
+        return _X(self.lo * p // r, -(-self.hi * p // r), self.S)
+
+
+def _sharpen(m: Machine, start: tuple[int, int], y: int, X: _X) -> _X:
+    """``x(y)`` known better than ``X``: bounds at the next of :data:`_SHARPER`, else exact
+    (rows within :data:`MAX_EXACT_ROW`)."""
+    for S in _SHARPER:
+        if X.S is not None and S > X.S:
+            sharper = _row_bounds(m, start, y, S)
+            if sharper is not None:
+                return sharper
+    if X.S is not None and abs(y) <= MAX_EXACT_ROW:
+        return _X(*_row_value(m, start, y), None)
+    raise InvalidProblem(f"row y = {y}: a floor of x(y) is undecided at {X.S} bits and the row is "
+                         f"beyond +-{MAX_EXACT_ROW:,}, where exact arithmetic stops; try another seed")
+
+
+def _decide(m: Machine, start: tuple[int, int], y: int, X: _X, ask) -> tuple[int, _X]:
+    """``ask(X)`` for ``x(y)``, sharpening ``X`` until it answers; returns the answer and the ``X``."""
+    while (v := ask(X)) is None:
+        X = _sharpen(m, start, y, X)
+    return v, X
+
+
+def _row_bounds(m: Machine, start: tuple[int, int], y: int, S: int) -> _X | None:
+    """Bounds of ``x(y) 2**S`` from the closed form at any row, or None where ``S`` bits cannot
+    tell which ``J**-m`` puts ``x(y)`` in ``(2/J, 2]``."""
+    u, v = start
+    J = m.jump
+    with localcontext() as ctx:  # the least e with x0 2**-y J**-e <= 2, to within one
+        ctx.prec = 60
+        ln2 = Decimal(2).ln()
+        e = ((Decimal(u) / Decimal(v)).ln() / ln2 - y - 1) / (Decimal(J).ln() / ln2)
+        e = int(e.to_integral_value(rounding=ROUND_CEILING))
+    two = 2 << S
+    while True:
+        lo_p, lo_e, hi_p, hi_e = _pow_bounds(J, abs(e), S + 16)
+        if e >= 0:  # x 2**S = u 2**(S - y) / (v J**e)
+            X = _X(_fdiv(u, v * hi_p, S - y - hi_e), -_fdiv(-u, v * lo_p, S - y - lo_e), S)
+        else:  # x 2**S = u J**-e 2**(S - y) / v
+            X = _X(_fdiv(u * lo_p, v, S - y + lo_e), -_fdiv(-u * hi_p, v, S - y + hi_e), S)
+        if X.lo > two:
+            e += 1
+        elif X.hi <= two and J * X.hi <= two:
+            e -= 1
+        elif X.hi <= two and J * X.lo > two:
+            return X
+        else:
+            return None
+
+
+def _fdiv(a: int, b: int, k: int) -> int:
+    """``floor(a 2**k / b)``, ``b > 0``."""
+    return (a << k) // b if k >= 0 else a // (b << -k)
+
+
+def _pow_bounds(J: int, n: int, S: int) -> tuple[int, int, int, int]:
+    """``(lo, le, hi, he)`` with ``lo 2**le <= J**n <= hi 2**he``, mantissas of ``S`` bits
+    (square and multiply, each product rounded down for ``lo``, up for ``hi``)."""
+    lo = hi = 1
+    le = he = 0
+    blo = bhi = J
+    ble = bhe = 0
+    while True:
+        if n & 1:
+            lo, le = _round(lo * blo, le + ble, S, False)
+            hi, he = _round(hi * bhi, he + bhe, S, True)
+        n >>= 1
+        if not n:
+            return lo, le, hi, he
+        blo, ble = _round(blo * blo, 2 * ble, S, False)
+        bhi, bhe = _round(bhi * bhi, 2 * bhe, S, True)
+
+
+def _round(a: int, e: int, S: int, up: bool) -> tuple[int, int]:
+    """``a 2**e`` to ``S`` bits of mantissa, rounded down or up."""
+    sh = a.bit_length() - S
+    if sh <= 0:
+        return a, e
+    return (-(-a >> sh) if up else a >> sh), e + sh
 
 
 # --------------------------------------------------------------------------- the reference
@@ -212,7 +337,7 @@ def balanced_window_exact(name: str, window: Window, seed: int) -> np.ndarray:
     """
     m = machine(name)
     window = Window.of(window)
-    _check_rows(window)
+    _check_exact_rows(window)
     start = _start(m, seed)
     out = np.empty(window.shape, np.uint8)
     for row in range(window.height):
@@ -251,7 +376,7 @@ def balanced_window(name: str, window: Window, seed: int) -> np.ndarray:
     name : str
         ``"kari-14"`` or ``"kari-culik-13"`` (:data:`NAMES`).
     window : Window or (x0, y0, width, height)
-        The cells; rows ``y`` within ``+-MAX_ROW``, columns anywhere.
+        The cells, anywhere (coordinates within ``+-2**62``).
     seed : int
         Chooses ``x0`` (hence the tiling of the plane); the same seed gives the same tiling.
 
@@ -264,18 +389,21 @@ def balanced_window(name: str, window: Window, seed: int) -> np.ndarray:
     Raises
     ------
     InvalidProblem
-        An unknown name, a negative seed, or rows beyond ``MAX_ROW``.
+        An unknown name, a negative seed, or (about ``2**-3900`` of the seeds at a row beyond
+        :data:`MAX_EXACT_ROW`) a floor that 4096 bits cannot decide.
 
     Notes
     -----
-    Row by row downwards: ``x`` of the next row is ``f(x)``, exact, and
-    ``G[c] = floor(j x) - floor(x0 x)`` of the window's columns ``j = x0 + c`` is read in
-    int64 fixed point from ``floor(2**BITS frac(x0 x))`` and ``floor(2**BITS x)``, restarted
-    exactly every :data:`CHUNK` columns. The rounding error of ``phi + c x`` is below
+    Row by row downwards: bounds of ``x 2**PREC`` for the row above the window from the closed
+    form, then ``x -> f(x)`` on the bounds, each row's kind and its first floors decided from
+    them (sharper bounds, or exact rationals, where they do not agree). ``G[c] = floor(j x) -
+    floor(x0 x)`` of the window's columns ``j = x0 + c`` is read in int64 fixed point from
+    ``floor(2**BITS frac(j x))`` and ``floor(2**BITS x)``, restarted every :data:`CHUNK`
+    columns. The rounding error of ``phi + c x`` is below
     ``c + 1`` units, so a floor is decided unless the low bits lie within ``c + 1`` of the
     next unit; those few (about ``c / 2**BITS`` of the cells) are computed with exact
     integers. The digits and carries are differences of ``G`` of two rows, and a table gives
-    the tile. ``O(1)`` big-integer operations a row, ``O(width)`` machine words.
+    the tile. A few operations on integers of ``PREC`` bits a row, ``O(width)`` machine words.
     """
     return _window(name, window, seed, BITS)
 
@@ -285,7 +413,6 @@ def _window(name: str, window: Window, seed: int, bits: int) -> np.ndarray:
     exact fix-ups happen often)."""
     m = machine(name)
     window = Window.of(window)
-    _check_rows(window)
     start = _start(m, seed)
     lut, smin = _lut(m)
     h, w = window.height, window.width
@@ -300,7 +427,7 @@ def _window(name: str, window: Window, seed: int, bits: int) -> np.ndarray:
 
     def run(top: int, band_lines: list, above: int) -> int:
         rows = len(band_lines) - 1
-        phi, off, xt, kinds, F = (np.array(v, np.int64) if i < 4 else v for i, v in enumerate(zip(*band_lines)))
+        phi, off, xt, kinds, F, X = (np.array(v, np.int64) if i < 4 else v for i, v in enumerate(zip(*band_lines)))
         G = np.empty((rows + 1, w + 1), np.int32)
         where = np.empty(64, np.int64)
         n = kern.floors_kernel(phi, off, xt, bits, CHUNK, zero, G, where)
@@ -311,8 +438,8 @@ def _window(name: str, window: Window, seed: int, bits: int) -> np.ndarray:
             G[:, zero] = [-f for f in F]
         for k in where[:n].tolist():
             i, c = divmod(k, w + 1)
-            P, Q = _row_value(m, start, window.y0 + h - 1 - top - i)
-            G[i, c] = (window.x0 + c) * P // Q - F[i]
+            j = window.x0 + c
+            G[i, c] = _decide(m, start, window.y0 + h - 1 - top - i, X[i], lambda X: X.floor(j, 0))[0] - F[i]
         pr = np.array(m.steps, np.int64)[kinds[:-1]]
         code = 2 * kinds[:-1] + np.concatenate(([above], kinds[:-2]))
         s0 = np.array([p * F[i] - r * F[i + 1] - smin for i, (p, r) in enumerate(pr.tolist())], np.int64)
@@ -340,51 +467,33 @@ def _cores() -> int:
 
 class _Lines:
     """The lines ``y, y - 1, ...`` of the orbit as the fast path reads them: per line
-    ``(phi, off, xt, kind, F)`` with ``F = floor(j0 x)``, ``phi[q]`` and ``off[q]`` the
+    ``(phi, off, xt, kind, F, X)`` with ``F = floor(j0 x)``, ``phi[q]`` and ``off[q]`` the
     fixed-point fraction ``floor(2**bits frac(j x))`` and ``floor(j x) - F`` at the start
-    ``j = j0 + q CHUNK`` of column chunk ``q``, ``xt = floor(2**bits x)`` and ``kind = x > 1``.
-
-    Every number is kept exactly as an integer and a remainder over the line's denominator
-    ``Q`` (``x 2**bits = xt + E / Q``, ``j x = F + R / Q``, ``frac(j x) 2**bits = phi + Eb /
-    Q``), so that a step ``x -> (p / r) x`` is a few multiplications by small integers and no
-    division (:func:`_scale`).
+    ``j = j0 + q CHUNK`` of column chunk ``q``, ``xt = floor(2**bits x)``, ``kind = x > 1``
+    and ``X`` the line's :class:`_X`. Each is decided exactly (:func:`_decide`).
     """
 
     def __init__(self, m: Machine, start: tuple[int, int], y: int, j0: int, w: int, bits: int):
-        P, Q = _row_value(m, start, y)
-        self.m, self.bits, self.Q = m, bits, Q
-        self.xt, self.E = divmod(P << bits, Q)
-        self.chunks = []
-        for c in range(0, w + 1, CHUNK):
-            F, R = divmod((j0 + c) * P, Q)
-            self.chunks.append([F, R, *divmod(R << bits, Q)])
+        self.m, self.start, self.y, self.bits = m, start, y, bits
+        self.js = range(j0, j0 + w + 1, CHUNK)
+        self.X = _row_bounds(m, start, y, PREC) or _sharpen(m, start, y, _X(0, 0, PREC))
 
     def __iter__(self):
         return self
 
     def __next__(self) -> tuple:
-        one = 1 << self.bits
-        kind = int(self.xt > one or (self.xt == one and self.E > 0))
-        F0 = self.chunks[0][0]
-        line = ([ch[2] for ch in self.chunks], [ch[0] - F0 for ch in self.chunks], self.xt, kind, F0)
-        p, r = self.m.steps[kind]
-        Q, rQ = self.Q, r * self.Q
-        self.xt, self.E = _scale(p * self.xt, self.E, Q, rQ, p, r)
-        for ch in self.chunks:
-            F, R, phi, Eb = ch
-            a, b = divmod(p * F, r)
-            F2, ch[1] = _scale(p * F, R, Q, rQ, p, r)
-            # frac(j x') = frac((b + p frac(j x)) / r): in units of 2**-bits, less the carry F2 - a
-            ch[0] = F2
-            ch[2], ch[3] = _scale((b - (F2 - a) * r << self.bits) + p * phi, Eb, Q, rQ, p, r)
-        self.Q = rQ
+        bits = self.bits
+        (kind, xt, Z), X = _decide(self.m, self.start, self.y, self.X, self._ask)
+        F = Z[0] >> bits
+        mask = (1 << bits) - 1
+        line = ([z & mask for z in Z], [(z >> bits) - F for z in Z], xt, kind, F, X)
+        self.X = X.step(*self.m.steps[kind])
+        self.y -= 1
         return line
 
+    def _ask(self, X: _X):
+        kind, xt = X.kind(), X.floor(1, self.bits)
+        Z = [X.floor(j, self.bits) for j in self.js]
+        return None if kind is None or xt is None or None in Z else (kind, xt, Z)
 
-def _scale(u: int, e: int, Q: int, rQ: int, p: int, r: int) -> tuple[int, int]:
-    """``(u + p e / Q) / r`` as ``n + e' / (r Q)`` with ``0 <= e' < r Q``, given ``0 <= e < Q``."""
-    a, b = divmod(u, r)
-    N = b * Q + p * e  # < (r - 1 + p) Q <= 2 r Q for the steps of these machines
-    if N >= rQ:
-        return a + 1, N - rQ
-    return a, N
+
