@@ -89,4 +89,4 @@ def tiles_kernel(G, s0, pr, code, lut, out):
     return bad
 
 
-KERNELS = Kernels(globals(), threshold=1 << 16)
+KERNELS = Kernels(globals(), threshold=1 << 17)

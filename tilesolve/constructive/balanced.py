@@ -22,8 +22,8 @@ the row below it carries ``f(f(x))``: the rows of a tiling run **downwards** thr
 
     ``f(x) = 2 x``  for ``x <= 1``,     ``f(x) = 2 x / J``  for ``x > 1``,
 
-with ``J = 3`` for Kari's set (``q = 2/3``; Kari writes ``[1/2, 1]`` and ``(1, 2]``) and
-``J = 6`` for Culik's (``q = 1/3``; Culik writes ``[1/3, 1)`` and ``[1, 2]``). On
+with ``J = 3`` for Kari's set (``q = 2/3``) and ``J = 6`` for Culik's (``q = 1/3``); the
+papers differ on the side of the boundary point, here ``x = 1`` multiplies by 2. On
 ``I = (2/J, 2]`` the map ``f`` is a bijection of ``I`` (in ``log x`` it is the rotation by
 ``log 2`` of a circle of length ``log(2 J / 2) = log J``), so every ``x0`` in ``I`` has a
 bi-infinite orbit, in closed form:
@@ -65,9 +65,9 @@ from __future__ import annotations
 
 import math
 import os
-from decimal import ROUND_CEILING, Decimal, localcontext
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
+from decimal import ROUND_CEILING, Decimal, localcontext
 
 import numpy as np
 
@@ -83,9 +83,9 @@ NAMES = ("kari-14", "kari-culik-13")
 #: Rows whose ``x(y)`` (about ``1.6 |y|`` bits) exact arithmetic reaches: the fast path's last
 #: resort and the reference :func:`balanced_window_exact`.
 MAX_EXACT_ROW = 1 << 20
-#: Bits of the lines' bounds: ``x 2**PREC`` within a few units (a few more a row), so that
-#: ``floor(j x 2**BITS)`` is decided unless ``j x`` lies within about ``2**(63 + 25 - PREC)``
-#: of a boundary.
+#: Bits of the lines' bounds: ``x 2**PREC`` within a few units (two more a row), so that
+#: ``floor(j x 2**BITS)``, ``|j| < 2**63``, is decided unless ``j x`` lies within about
+#: ``2**(88 - PREC)`` of a multiple of ``2**-BITS``.
 PREC = 256
 #: Sharper bounds, tried in turn where a floor is undecided.
 _SHARPER = (1024, 4096)
@@ -398,12 +398,13 @@ def balanced_window(name: str, window: Window, seed: int) -> np.ndarray:
     form, then ``x -> f(x)`` on the bounds, each row's kind and its first floors decided from
     them (sharper bounds, or exact rationals, where they do not agree). ``G[c] = floor(j x) -
     floor(x0 x)`` of the window's columns ``j = x0 + c`` is read in int64 fixed point from
-    ``floor(2**BITS frac(j x))`` and ``floor(2**BITS x)``, restarted every :data:`CHUNK`
-    columns. The rounding error of ``phi + c x`` is below
-    ``c + 1`` units, so a floor is decided unless the low bits lie within ``c + 1`` of the
-    next unit; those few (about ``c / 2**BITS`` of the cells) are computed with exact
-    integers. The digits and carries are differences of ``G`` of two rows, and a table gives
-    the tile. A few operations on integers of ``PREC`` bits a row, ``O(width)`` machine words.
+    ``phi = floor(2**BITS frac(j x))`` and ``floor(2**BITS x)``, restarted every
+    :data:`CHUNK` columns. The rounding error of ``phi + c x`` is below ``c + 1`` units, so a
+    floor is decided unless the low bits lie within ``c + 1`` of the next unit; those few
+    cells (about ``c / 2**BITS`` of them, and the column ``j = 0``) are decided from the
+    line's bounds. The digits and carries are differences of ``G`` of two rows, and a table
+    gives the tile. A few operations on integers of ``PREC`` bits a row, ``O(width)`` machine
+    words; bands of rows run on threads.
     """
     return _window(name, window, seed, BITS)
 
@@ -445,7 +446,6 @@ def _window(name: str, window: Window, seed: int, bits: int) -> np.ndarray:
         s0 = np.array([p * F[i] - r * F[i + 1] - smin for i, (p, r) in enumerate(pr.tolist())], np.int64)
         return kern.tiles_kernel(G, s0, pr, code, lut, out[top:top + rows])
 
-    bad = 0
     threads = min(_cores(), -(-h // band)) if kern is not _k.KERNELS.plain() else 1
     with ThreadPoolExecutor(threads) as pool:
         jobs = []
@@ -456,7 +456,7 @@ def _window(name: str, window: Window, seed: int, bits: int) -> np.ndarray:
             above, first = band_lines[-2][3], band_lines[-1]
         bad = sum(job.result() for job in jobs)
     if bad:
-        raise InternalError(f"{name}: {bad} cells of window {window.describe()} have no tile (seed {seed})")
+        raise InternalError(f"{name}: {bad} rows of window {window.describe()} have a cell with no tile (seed {seed})")
     return out if window.y_up else out[::-1].copy()
 
 
