@@ -12,6 +12,7 @@ from __future__ import annotations
 import click
 
 from tilesolve.cli import options as opt
+from tilesolve.cli.aperiodic_census import census
 from tilesolve.cli.common import progress_wanted, say
 from tilesolve.cli.outputs import Outputs
 from tilesolve.cli.wang_count import load_tileset, tileset_options
@@ -150,3 +151,6 @@ def verify_report(ctx, report, proof_dir, workers, max_cnf) -> None:
     for line in result.lines[1:] + result.lines[:1]:
         click.echo(line)
     ctx.exit(result.exit_code)
+
+
+aperiodic.add_command(census)

@@ -348,26 +348,34 @@ def sweep(tileset: WangTileSet, names: Sequence[str], run: RunOptions, *, cache:
             bar.set(len(result))
 
         try:
-            if not todo:
-                pass
-            elif run.cluster is not None:
-                interrupted = _on_dask(task, len(todo), run, take, show)
-            elif (run.workers or 2) > 1 and len(todo) > 1:
-                interrupted = _on_pool(task, len(todo), min(run.workers or 2, len(todo)), run, take, show)
-            else:
-                for i in range(len(todo)):
-                    if run.deadline.expired():
-                        break
-                    show()
-                    if take(i, task(seed=i)):
-                        interrupted = True
-                        break
+            interrupted = dispatch(task, len(todo), run, take, show)
         except KeyboardInterrupt:
             interrupted = True
     why = "interrupted (Ctrl-C) before it was decided" if interrupted else \
         f"time limit of {run.deadline.time_limit:.3g} s reached before it was decided" \
         if run.deadline.time_limit is not None else "not decided"
     return [result.get(n) or Certificate(n, "undecided", None, "sat", {"why": why}) for n in names], interrupted
+
+
+def dispatch(task, n_jobs: int, run: RunOptions, take, show) -> bool:
+    """Run jobs ``task(seed=i)``, ``0 <= i < n_jobs``: as Dask futures on ``run.cluster``, on
+    ``run.workers`` local processes (default 2), or here (one worker, or one job), until
+    ``run.deadline`` passes. ``take(i, result)`` receives each result in this process as its job
+    ends (True: stop), ``show()`` is called as they come. Returns True when stopped by ``take``
+    or Ctrl-C (the period sweep; the census of :mod:`tilesolve.engine.census`)."""
+    if n_jobs == 0:
+        return False
+    if run.cluster is not None:
+        return _on_dask(task, n_jobs, run, take, show)
+    if (run.workers or 2) > 1 and n_jobs > 1:
+        return _on_pool(task, n_jobs, min(run.workers or 2, n_jobs), run, take, show)
+    for i in range(n_jobs):
+        if run.deadline.expired():
+            break
+        show()
+        if take(i, task(seed=i)):
+            return True
+    return False
 
 
 def _on_pool(task, n_jobs: int, n_workers: int, run: RunOptions, take, show) -> bool:
