@@ -10,7 +10,7 @@ import pytest
 from tilesolve.constructive.markov import BLOCK, markov_window
 from tilesolve.errors import InvalidProblem
 from tilesolve.families.aperiodic_window import tiling
-from tilesolve.gpu.wang_texture import WangAtlas, WangTexture, WangTextureMapper
+from tilesolve.gpu.wang_texture import SINGLE_CELLS, WangAtlas, WangTexture, WangTextureMapper
 from tilesolve.io.builtin_tilesets import load
 from tilesolve.model.window import Window
 
@@ -76,13 +76,16 @@ def test_the_shader_codes_passes_longer_than_a_block(atlases, name):
         assert np.array_equal(got[decided], markov_window(name, Window(x, y, cols, rows), 5)[decided])
 
 
-def test_cells_the_shader_cannot_decide_come_from_the_cpu_route(atlases):
+@pytest.mark.parametrize("tile_px,tolerance,few", [(2, 0.02, False), (8, 0.003, True)])
+def test_cells_the_shader_cannot_decide_come_from_the_cpu_route(atlases, tile_px, tolerance, few):
+    """As if the shader's arithmetic were coarser: many undecided cells (the pass's window from
+    the CPU route) or a few (one cell at a time); the picture stays the CPU's."""
     name, origin = "jeandel-rao", (-500, 77)
-    m = WangTextureMapper(name, atlases[name], seed=4, origin=origin, tile_px=2)
-    m._markov.tolerance = 0.02  # as if float32 were this coarse: about a fifth of the cells undecided
+    m = WangTextureMapper(name, atlases[name], seed=4, origin=origin, tile_px=tile_px)
+    m._markov.tolerance = tolerance
     img = m.image(160, 90)
-    assert m.undecided > 0.1 * m.decided
-    assert np.array_equal(img, WangTexture(name, atlases[name], seed=4, origin=origin, tile_px=2).image(160, 90))
+    assert (0 < m.undecided <= SINGLE_CELLS) if few else (m.undecided > 0.1 * m.decided)
+    assert np.array_equal(img, WangTexture(name, atlases[name], seed=4, origin=origin, tile_px=tile_px).image(160, 90))
 
 
 @pytest.mark.parametrize("name", ["jeandel-rao", "kari-culik-13"])

@@ -21,8 +21,9 @@ The tile at cell ``(x, y)`` is the tile of a window of the set's constructive ro
 Markov partition for Jeandel-Rao and U19 (Labbé, arXiv:1903.06137), balanced rows for the
 Kari and Kari-Culik sets. Since the set is aperiodic, the texture has no period. On the GPU
 the fragment shader codes the Markov sets' cells itself, by point-in-polygon in the partition
-(:class:`_MarkovCells`), and takes a cell it cannot decide in float32 from the CPU route; the
-Kari sets' cells are the CPU route's window, uploaded as an integer texture.
+in double precision (:class:`_MarkovCells`), and takes a cell it cannot decide within its error
+bound from the CPU route; the Kari sets' cells are the CPU route's window, uploaded as an
+integer texture.
 
 The picture
 -----------
@@ -51,6 +52,13 @@ from tilesolve.gpu.texture import DIV_GLSL, MAX_ATLAS, PassRenderer, diamond_mas
 
 __all__ = ["WangAtlas", "check_tile", "check_aperiodic", "texel_of_pixel", "window_tiles", "WangTexture",
            "WangTextureMapper"]
+
+#: Most undecided cells of a GPU pass taken from the CPU route one by one (about 8 ms each);
+#: more, and the pass's whole window is (about 0.2 us a cell).
+SINGLE_CELLS = 32
+
+#: Pixels of one band of the CPU picture.
+BAND_PIXELS = 1 << 22
 
 #: Feather of the diamonds' blend across the diagonals, as a fraction of the tile side (each side).
 FEATHER = 0.1
@@ -212,9 +220,11 @@ class WangTexture(_Picture):
         return self.atlas.image[block_row * t + (t - 1 - self.texel[y % s])[:, None],
                                 block_col * t + self.texel[x % s][None, :]]
 
-    def bands(self, width: int, height: int, band_h: int = 1 << 10):
-        """The ``width x height`` picture as ``(rows, width, 4)`` uint8 bands from the top."""
+    def bands(self, width: int, height: int):
+        """The ``width x height`` picture as ``(rows, width, 4)`` uint8 bands from the top, of
+        about :data:`BAND_PIXELS` pixels each (the gather's index arrays take 16 bytes a pixel)."""
         w, h = check_int(width, "width", 1), check_int(height, "height", 1)
+        band_h = max(1, BAND_PIXELS // w)
         for top in range(0, h, band_h):
             bh = min(band_h, h - top)
             yield self.pixels(0, h - top - bh, w, bh)
@@ -251,32 +261,35 @@ void main() {
 
 
 #: One fragment per cell: the tile of the polygon of the Markov partition (Labbé 2021) that holds
-#: the cell's point, by point-in-polygon: the point is inside a convex polygon when it is on the
-#: inner side of every edge; a point closer than u_tol to an edge of every polygon is undecided.
-#: Only the polygons that meet the row's band (between two vertex heights) are tried.
+#: the cell's point, by point-in-polygon in double precision (core in OpenGL 4.0): the point is
+#: inside a convex polygon when it is on the inner side of every edge; a point closer than u_tol
+#: to an edge of every polygon is undecided. Only the polygons that meet the row's band (between
+#: two vertex heights) are tried.
 _FRAGMENT_MARKOV = """
 #version 450
-uniform sampler2D u_rows;    // row r of the pass: (y of its points in the fundamental domain, x shift, band)
-uniform sampler2D u_cols;    // column c of the pass: x of its points modulo lx
-uniform vec4 u_edges[EDGES]; // polygon a, edge e at a * SIDES + e: (nx, ny, c), the unit inner normal n, n . p on the edge
-uniform uvec2 u_atoms[ATOMS];// polygon a: (edges, tile)
+uniform usampler2D u_rows;    // row r of the pass: its points' y in the fundamental domain, x shift (2 x 2 words)
+uniform usampler2D u_cols;    // column c of the pass: its points' x modulo lx (2 words)
+uniform usampler2D u_band_of; // row r: its band
+uniform dvec3 u_edges[EDGES]; // polygon a, edge e at a * SIDES + e: (nx, ny, c), unit inner normal n, n . p on the edge
+uniform uvec2 u_atoms[ATOMS]; // polygon a: (edges, tile)
 uniform int u_band[BANDS * (ATOMS + 1)];  // band b: its polygon count at b * (ATOMS + 1), then the polygons
-uniform float u_lx;          // the fundamental domain's width
-uniform float u_tol;         // the float32 error bound of a distance to an edge
+uniform double u_lx;          // the fundamental domain's width
+uniform double u_tol;         // the error bound of a distance to an edge
 out uint f_tile;
 void main() {
     ivec2 c = ivec2(gl_FragCoord.xy);
-    vec4 row = texelFetch(u_rows, ivec2(c.y, 0), 0);
-    precise float x = texelFetch(u_cols, ivec2(c.x, 0), 0).r + row.y;
+    uvec4 row = texelFetch(u_rows, ivec2(c.y, 0), 0);
+    double y = packDouble2x32(row.xy);
+    precise double x = packDouble2x32(texelFetch(u_cols, ivec2(c.x, 0), 0).xy) + packDouble2x32(row.zw);
     if (x >= u_lx) x -= u_lx;
     uint tile = FLAG;
-    int band = int(row.z) * (ATOMS + 1);
+    int band = int(texelFetch(u_band_of, ivec2(c.y, 0), 0).r) * (ATOMS + 1);
     for (int i = 1; i <= u_band[band]; i++) {
         int a = u_band[band + i];
-        precise float least = u_tol + 1.0;
+        precise double least = u_tol + 1.0;
         for (int e = 0; e < int(u_atoms[a].x); e++) {
-            vec4 edge = u_edges[a * SIDES + e];
-            precise float d = edge.x * x + edge.y * row.x - edge.z;
+            dvec3 edge = u_edges[a * SIDES + e];
+            precise double d = edge.x * x + edge.y * y - edge.z;
             least = min(least, d);
         }
         if (least > u_tol) { tile = u_atoms[a].y; break; }
@@ -288,10 +301,12 @@ void main() {
 
 class _MarkovCells:
     """The cells of a pass coded by the shader :data:`_FRAGMENT_MARKOV` from the polygons of
-    :func:`tilesolve.constructive.markov.polygon_arrays` (convex, counter-clockwise, with
-    their tiles, the lattice ``<(lx, 0), (sx, ly)>`` and the rotation ``(hx, hy)``).
+    :func:`tilesolve.constructive.markov.partition` (convex, counter-clockwise, each with its
+    tile; the lattice ``<(lx, 0), (sx, ly)>``; the rotation ``(hx, hy)``), their vertices rounded
+    from ``Q(φ)`` to float64 (:func:`~tilesolve.constructive.markov.polygon_arrays` has them in
+    float32, which would leave a cell in about 10**4 undecided instead of one in about 10**8).
 
-    Cell ``(X, Y)`` codes the point ``x0 + (X hx, Y hy)`` of the torus. float32 cannot reduce
+    Cell ``(X, Y)`` codes the point ``x0 + (X hx, Y hy)`` of the torus. The shader cannot reduce
     coordinates of up to ``2**62``, so the CPU reduces them: a row's height ``y`` in the
     fundamental domain and the shift ``-l sx`` its ``l`` wraps around the torus give its points,
     a column's ``x0 + X hx`` modulo ``lx`` its abscissa, from the exact anchors of
@@ -299,36 +314,33 @@ class _MarkovCells:
     block of :data:`~tilesolve.constructive.markov.BLOCK` cells and float64 steps inside it.
     The shader adds abscissa and shift, reduces once, and finds the polygon of which the point
     is farther than :attr:`tolerance` inside every edge. A cell with none is :data:`FLAG`
-    (undecided), and the mapper takes it from the CPU route's window. A point reduced a lattice
-    step off (a wrap decided wrongly near the domain's border) lies outside the domain, so in no
+    (undecided), and the mapper takes it from the CPU route. A point reduced a lattice step off
+    (a wrap decided wrongly near the domain's border) lies outside the domain, so in no
     polygon: undecided too.
     """
 
     def __init__(self, mapper: "WangTextureMapper", name: str, seed: int) -> None:
-        from tilesolve.constructive.markov import float_tolerance, partition, polygon_arrays
+        from tilesolve.constructive.markov import float_tolerance, partition
 
         self.name, self.seed, self.mapper, self.ctx = name, seed, mapper, mapper.ctx
-        arrays = polygon_arrays(name)
-        # The lattice and rotation in float64 (polygon_arrays has them in float32): the CPU reduces with them.
         part = partition(name)
         self.lx, self.ly, self.sx, self.hx, self.hy = (float(getattr(part, f)) for f in ("lx", "ly", "sx", "hx", "hy"))
-        vertices, counts = arrays["vertices"].astype(np.float64), arrays["counts"]
-        atoms, sides = vertices.shape[:2]
+        counts = np.array([len(vs) for _, vs, _ in part.atoms])
+        atoms, sides = len(counts), int(counts.max())
+        vertices = np.array([[[float(x), float(y)] for x, y in vs + (vs[-1],) * (sides - len(vs))]
+                             for _, vs, _ in part.atoms])
         e = np.arange(sides)[None, :]
         after = np.where(e + 1 < counts[:, None], e + 1, 0)  # the padding (the last vertex again) is never read
         d = np.take_along_axis(vertices, after[..., None], axis=1) - vertices
         normal = np.stack([-d[..., 1], d[..., 0]], axis=2)  # the inner side of a counter-clockwise edge
         length = np.hypot(normal[..., 0], normal[..., 1])
         normal /= np.where(length > 0, length, 1.0)[..., None]
-        edges = np.zeros(vertices.shape[:2] + (4,), np.float32)
-        edges[..., :2] = normal
-        edges[..., 2] = (normal * vertices).sum(axis=2)
-        # Error of a distance n . p - c in float32 (u = 2**-24, coordinates below L): the point's
-        # x from two stored values and two roundings (7 u L), its y (u L), the float64 reductions
-        # (e64 each), the vertices rounded to float32 (2 u L), the normal and c stored and the
-        # products and sums (6 u L); times 4 for safety.
-        big_l, u = max(self.lx, self.ly), 2.0 ** -24
-        self.tolerance = 4 * (3 * float_tolerance(part) + 16 * u * big_l)
+        edges = np.concatenate([normal, (normal * vertices).sum(axis=2)[..., None]], axis=2)
+        # Error of a distance n . p - c (u = 2**-53, coordinates below L): the point's x from two
+        # float64 reductions and y from one (e64 each, MARKOV's float64 bound for a block) and two
+        # roundings (2 u L), the vertices rounded (u L), the normal and c computed (4 u L), the
+        # products and sums in the shader (4 u L); times 4 for safety.
+        self.tolerance = 4 * (3 * float_tolerance(part) + 11 * 2.0 ** -53 * max(self.lx, self.ly))
         # Bands between consecutive vertex heights, each with the polygons that meet it.
         ys = vertices[..., 1]
         self.heights = np.unique(ys)
@@ -339,18 +351,11 @@ class _MarkovCells:
         source = (_FRAGMENT_MARKOV.replace("FLAG", f"{FLAG}u").replace("EDGES", str(atoms * sides))
                   .replace("ATOMS", str(atoms)).replace("SIDES", str(sides)).replace("BANDS", str(len(band))))
         prog, _ = self.program = mapper._vertex_array(source)
-        prog["u_rows"].value, prog["u_cols"].value = 0, 1
-        prog["u_edges"].write(edges.tobytes())
-        prog["u_atoms"].write(np.stack([counts, arrays["tiles"]], axis=1).astype(np.uint32).tobytes())
+        prog["u_rows"].value, prog["u_cols"].value, prog["u_band_of"].value = 0, 1, 2
+        prog["u_edges"].write(np.ascontiguousarray(edges, dtype=np.float64).tobytes())
+        prog["u_atoms"].write(np.stack([counts, [tile for tile, _, _ in part.atoms]], axis=1).astype(np.uint32).tobytes())
         prog["u_band"].write(band.tobytes())
-        prog["u_lx"].value = self.lx
-
-    def _float_texture(self, a: np.ndarray, components: int):
-        """A float32 texture read with ``texelFetch``."""
-        a = np.ascontiguousarray(a, dtype=np.float32)
-        tex = self.ctx.texture((a.shape[1], a.shape[0]), components, a.tobytes(), dtype="f4")
-        tex.filter = (self.ctx.NEAREST, self.ctx.NEAREST)
-        return tex
+        prog["u_lx"].write(np.float64(self.lx).tobytes())
 
     def _anchor(self, x: int, y: int) -> tuple[float, float]:
         from tilesolve.constructive.markov import cell_point
@@ -358,12 +363,12 @@ class _MarkovCells:
         return cell_point(self.name, self.seed, x, y)
 
     def rows(self, x: int, y: int, n: int) -> np.ndarray:
-        """``(n, 4)`` float64 per row ``y .. y + n - 1`` (``x`` the first column): the height of its
+        """``(n, 2)`` float64 per row ``y .. y + n - 1`` (``x`` the first column): the height of its
         points in the fundamental domain and the shift of their abscissae (modulo ``lx``) from
         those of row ``y``."""
         from tilesolve.constructive.markov import BLOCK
 
-        out = np.zeros((n, 4))
+        out = np.zeros((n, 2))
         ax, _ = self._anchor(x, y)
         for b in range(0, n, BLOCK):
             m = min(BLOCK, n - b)
@@ -373,8 +378,6 @@ class _MarkovCells:
             out[b:b + m, 0] = yr - wraps * self.ly
             shift = (bx - ax) - wraps * self.sx
             out[b:b + m, 1] = shift - np.floor(shift / self.lx) * self.lx
-        # the band of each row (any band is sound: a point is decided only inside a polygon by the margin)
-        out[:, 2] = np.clip(np.searchsorted(self.heights, out[:, 0], side="right") - 1, 0, len(self.heights) - 2)
         return out
 
     def cols(self, x: int, y: int, n: int) -> np.ndarray:
@@ -391,21 +394,25 @@ class _MarkovCells:
     def code(self, x: int, y: int, cols: int, rows: int) -> np.ndarray:
         """``(rows, cols)`` uint32 tiles of the cells ``x .. x + cols - 1`` by ``y .. y + rows - 1``
         (absolute), row 0 the top row, :data:`FLAG` where the shader cannot decide."""
-        ctx = self.ctx
-        row_tex = self._float_texture(self.rows(x, y, rows)[None, :, :], 4)
-        col_tex = self._float_texture(self.cols(x, y, cols)[None, :], 1)
+        ctx, mapper = self.ctx, self.mapper
+        row = self.rows(x, y, rows)
+        # the band of each row (any band is sound: a point is decided only inside a polygon by the margin)
+        band = np.clip(np.searchsorted(self.heights, row[:, 0], side="right") - 1, 0, len(self.heights) - 2)
+        textures = [mapper._int_texture(row.view(np.uint32)[None, :, :], 4),  # doubles as pairs of words
+                    mapper._int_texture(self.cols(x, y, cols).view(np.uint32).reshape(1, cols, 2), 2),
+                    mapper._int_texture(band[None, :], 1)]
         target = ctx.texture((cols, rows), 1, dtype="u4")
         fbo = ctx.framebuffer(color_attachments=[target])
         try:
             prog, vao = self.program
-            prog["u_tol"].value = self.tolerance
+            prog["u_tol"].write(np.float64(self.tolerance).tobytes())
             fbo.use()
-            row_tex.use(0)
-            col_tex.use(1)
+            for unit, tex in enumerate(textures):
+                tex.use(unit)
             vao.render(mode=ctx.TRIANGLE_STRIP)
-            return np.frombuffer(fbo.read(components=1, dtype="u4"), dtype=np.uint32).reshape(rows, cols)[::-1]
+            return np.frombuffer(fbo.read(components=1, dtype="u4"), dtype=np.uint32).reshape(rows, cols)[::-1].copy()
         finally:
-            for obj in (fbo, target, row_tex, col_tex):
+            for obj in [fbo, target, *textures]:
                 obj.release()
 
 
@@ -449,10 +456,14 @@ class WangTextureMapper(_Picture, PassRenderer):
             return self.window(c0, r0, cols, rows)
         tiles = self._markov.code(self.x0 + c0, self.y0 + r0, cols, rows)
         flagged = tiles == FLAG
-        if flagged.any():
-            self.undecided += int(flagged.sum())
+        n = int(flagged.sum())
+        if n > SINGLE_CELLS:
             tiles = np.where(flagged, self.window(c0, r0, cols, rows), tiles)
-        self.decided += int(tiles.size - flagged.sum())
+        else:
+            for r, c in zip(*np.nonzero(flagged)):
+                tiles[r, c] = self.window(c0 + int(c), r0 + rows - 1 - int(r), 1, 1)[0, 0]
+        self.undecided += n
+        self.decided += tiles.size - n
         return tiles
 
     def _pass(self, fbo, offset, scratch) -> None:
