@@ -19,7 +19,8 @@ COMMANDS = [("dappled", "solve"), ("dappled", "count"), ("dappled", "crosscheck"
             ("brick", "wall"), ("brick", "count"), ("brick", "crosscheck"), ("wang", "solve"), ("wall",), ("pack",),
             ("pack", "count"), ("tiles",), ("verify",), ("draw",), ("export", "dimacs"), ("demo",), ("backends",),
             ("render",), ("render", "texture"), ("render", "wall"), ("gpu",), ("gpu", "info"),
-            ("tiling",), ("aperiodic", "check"), ("aperiodic", "verify"), ("wall-lines",), ("studio",),
+            ("tiling",), ("aperiodic", "check"), ("aperiodic", "verify"), ("aperiodic", "tiling"),
+            ("wall-lines",), ("studio",),
             ("wang", "count"), ("crosscheck", "wall"), ("crosscheck", "tiling")]
 
 

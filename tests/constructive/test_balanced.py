@@ -193,15 +193,19 @@ def test_exact_fixups(name, monkeypatch):
 
 
 @pytest.mark.parametrize("name", NAMES)
-def test_bands(name, monkeypatch):
-    """Bands of a few rows give the same window as one band."""
+def test_bands_and_blocks(name, monkeypatch):
+    """Jobs of a few rows, and of a few columns, give the same window as one job."""
     w, seed = Window(-11, -7, 23, 17), 9
     whole = B.balanced_window(name, w, seed)
-    monkeypatch.setattr(B, "_BAND_CELLS", 50)
-    for mode in ("plain", "compiled"):  # compiled: bands on threads
-        monkeypatch.setattr(K.KERNELS, "mode", mode)
-        monkeypatch.setattr(B, "_cores", lambda: 3)
-        assert np.array_equal(B.balanced_window(name, w, seed), whole)
+    assert np.array_equal(whole, B.balanced_window_exact(name, w, seed))
+    monkeypatch.setattr(B, "_cores", lambda: 3)
+    for chunk, block, cells in ((B.CHUNK, B._BLOCK_CHUNKS, 50), (2, 3, 50), (3, 1, 10**6)):
+        monkeypatch.setattr(B, "CHUNK", chunk)
+        monkeypatch.setattr(B, "_BLOCK_CHUNKS", block)
+        monkeypatch.setattr(B, "_BAND_CELLS", cells)
+        for mode in ("plain", "compiled"):  # compiled: jobs on threads
+            monkeypatch.setattr(K.KERNELS, "mode", mode)
+            assert np.array_equal(B.balanced_window(name, w, seed), whole)
 
 
 @pytest.mark.parametrize("name", NAMES)

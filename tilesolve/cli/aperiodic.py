@@ -13,6 +13,7 @@ import click
 
 from tilesolve.cli import options as opt
 from tilesolve.cli.aperiodic_census import census
+from tilesolve.cli.aperiodic_tiling import tiling
 from tilesolve.cli.common import progress_wanted, say
 from tilesolve.cli.outputs import Outputs
 from tilesolve.cli.wang_count import load_tileset, tileset_options
@@ -153,4 +154,5 @@ def verify_report(ctx, report, proof_dir, workers, max_cnf) -> None:
     ctx.exit(result.exit_code)
 
 
+aperiodic.add_command(tiling)
 aperiodic.add_command(census)

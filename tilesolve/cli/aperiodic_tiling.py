@@ -11,8 +11,9 @@ from __future__ import annotations
 import click
 
 from tilesolve.cli import options as opt
-from tilesolve.cli.common import progress_wanted, say
+from tilesolve.cli.common import progress_wanted
 from tilesolve.cli.outputs import Outputs
+from tilesolve.cli.window_outputs import check_svg_size, finish_window
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.units import big
 
@@ -56,7 +57,6 @@ def tiling(ctx, builtin, region, seed, output, png, svg) -> None:
       tilesolve verify jr.json
     """
     from tilesolve.families import aperiodic_window as facade
-    from tilesolve.family import draw_solution, write_solution
     from tilesolve.model.window import parse_region
 
     outs = Outputs(output, png, svg)
@@ -65,26 +65,7 @@ def tiling(ctx, builtin, region, seed, output, png, svg) -> None:
     if not outs and problem.n_cells > MAX_PRINTED_TILES:
         raise InvalidProblem(f"a {cols}x{rows} window has {big(problem.n_cells)} tiles, too many to print (at most "
                              f"{MAX_PRINTED_TILES:,}): write it with -o T.json or --png T.png")
-    if svg:
-        from tilesolve.io.svg_packing import MAX_SVG_TILES
-
-        if problem.n_cells > MAX_SVG_TILES:
-            raise InvalidProblem(f"a {cols}x{rows} window is too large for SVG (at most {MAX_SVG_TILES:,} tiles); "
-                                 "use --png")
+    check_svg_size(problem, svg)
     progress = progress_wanted()
     sol = facade.solve(problem, seed=seed, progress=progress)
-    with outs.commit(sol), progress.task(f"writing a window of {big(problem.n_cells)} tiles", unit=None):
-        if output:
-            write_solution(output, problem, sol)
-        if png:
-            draw_solution(png, problem, sol, fmt="png")
-        if svg:
-            draw_solution(svg, problem, sol, fmt="svg")
-    if not outs:
-        width = len(str(len(problem.tileset) - 1))
-        for row in sol.tiling.tolist():
-            click.echo(" ".join(f"{v:{width}d}" for v in row))
-    say(f"{sol.status.value}: {problem.describe()} by {sol.method}, seed {sol.seed}, in {sol.time_s:.2f} s")
-    if outs.files:
-        say(f"  wrote {', '.join(outs.files)}")
-    ctx.exit(sol.status.exit_code)
+    finish_window(ctx, problem, sol, outs, progress, output, png, svg)

@@ -11,8 +11,9 @@ from __future__ import annotations
 import click
 
 from tilesolve.cli import options as opt
-from tilesolve.cli.common import progress_wanted, say
+from tilesolve.cli.common import progress_wanted
 from tilesolve.cli.outputs import Outputs
+from tilesolve.cli.window_outputs import check_svg_size, finish_window
 from tilesolve.errors import InvalidProblem
 from tilesolve.model.window import parse_region
 
@@ -63,34 +64,13 @@ def tiling(ctx, kind, method, variant, colors, region, hash_, algorithm, seed, o
       tilesolve verify t.json
     """
     from tilesolve.families import stochastic as facade
-    from tilesolve.family import draw_solution, write_solution
     from tilesolve.model.stochastic import StochasticProblem
 
     if indices and not svg:
         raise InvalidProblem("--indices labels the SVG tiles: add --svg FILE")
     outs = Outputs(output, png, svg)
     problem = StochasticProblem(kind, colors, parse_region(region), variant, hash_, algorithm)
-    if svg:
-        from tilesolve.io.svg_packing import MAX_SVG_TILES
-
-        if problem.n_cells > MAX_SVG_TILES:
-            rows, cols = problem.shape
-            raise InvalidProblem(f"a {cols}x{rows} window is too large for SVG (at most {MAX_SVG_TILES:,} tiles); "
-                                 "use --png")
+    check_svg_size(problem, svg)
     progress = progress_wanted()
     sol = facade.solve(problem, method=method, seed=seed, progress=progress)
-    with outs.commit(sol), progress.task(f"writing a window of {problem.n_cells:,} tiles", unit=None):
-        if output:
-            write_solution(output, problem, sol)
-        if png:
-            draw_solution(png, problem, sol, fmt="png")
-        if svg:
-            draw_solution(svg, problem, sol, fmt="svg", indices=indices)
-    if not outs:
-        width = len(str(int(sol.tiling.max())))
-        for row in sol.tiling.tolist():
-            click.echo(" ".join(f"{v:{width}d}" for v in row))
-    say(f"{sol.status.value}: {problem.describe()} by {sol.method}, seed {sol.seed}, in {sol.time_s:.2f} s")
-    if outs.files:
-        say(f"  wrote {', '.join(outs.files)}")
-    ctx.exit(sol.status.exit_code)
+    finish_window(ctx, problem, sol, outs, progress, output, png, svg, indices=indices)

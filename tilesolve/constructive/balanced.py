@@ -95,8 +95,11 @@ BITS = 47
 #: Columns per exact restart of the fast path, so that ``phi + c x`` stays below ``2**63``
 #: (``x <= 2``: ``CHUNK * 2**(BITS + 1) + 2**BITS < 2**63``).
 CHUNK = 1 << 14
-#: ``G`` values (the floors of one band) per band of rows.
+#: Column chunks of one job: a job builds a block of at most ``CHUNK * _BLOCK_CHUNKS`` columns.
+_BLOCK_CHUNKS = 4
+#: ``G`` values (the floors of one job) per job, and its most rows: they size its rows.
 _BAND_CELLS = 1 << 20
+_BAND_ROWS = 1 << 12
 
 
 @dataclass(frozen=True)
@@ -419,40 +422,51 @@ def _window(name: str, window: Window, seed: int, bits: int) -> np.ndarray:
     h, w = window.height, window.width
     kern = _k.KERNELS.pick(h * w)
     out = np.empty((h, w), np.uint8)
-    band = max(1, _BAND_CELLS // (w + 1))
+    block = CHUNK * _BLOCK_CHUNKS  # columns of one job
+    band = max(1, min(_BAND_ROWS, _BAND_CELLS // (min(w, block) + 1)))  # rows of one job
     # Line i is the row y = y0 + h - i: i = 0 is the row above the window (its kind only),
     # lines 1..h the window's rows, line h + 1 the row below (its digits are row h's S edges).
     lines = _Lines(m, start, window.y0 + h, window.x0, w, bits)
-    zero = -window.x0  # the column of j = 0, whose floors the rounding cannot decide (exact integers)
     above = next(lines)[3]
 
-    def run(top: int, band_lines: list, above: int) -> int:
-        rows = len(band_lines) - 1
-        phi, off, xt, kinds, F, X = (np.array(v, np.int64) if i < 4 else v for i, v in enumerate(zip(*band_lines)))
-        G = np.empty((rows + 1, w + 1), np.int32)
+    def run(top: int, c0: int, band_lines: list, above: int) -> int:
+        """The rows ``top ..`` of the band, columns ``c0 .. c0 + width - 1``; returns the rows
+        with a cell that has no tile."""
+        rows, width = len(band_lines) - 1, min(block, w - c0)
+        q0, nq = c0 // CHUNK, -(-(width + 1) // CHUNK)
+        phi = np.array([ln[0][q0:q0 + nq] for ln in band_lines], np.int64)
+        off = np.array([ln[1][q0:q0 + nq] for ln in band_lines], np.int64)
+        F = [ln[4] + ln[1][q0] for ln in band_lines]  # floor(j x) at the block's first column
+        off -= off[:, :1]
+        xt = np.array([ln[2] for ln in band_lines], np.int64)
+        kinds = np.array([ln[3] for ln in band_lines], np.int64)
+        zero = -(window.x0 + c0)  # the column of j = 0: floor(0 x) = 0 exactly, no rounding decides it
+        G = np.empty((rows + 1, width + 1), np.int32)
         where = np.empty(64, np.int64)
         n = kern.floors_kernel(phi, off, xt, bits, CHUNK, zero, G, where)
         if n > where.size:
             where = np.empty(n, np.int64)
             kern.floors_kernel(phi, off, xt, bits, CHUNK, zero, G, where)
-        if 0 <= zero <= w:  # j = 0: floor(0 x) = 0
+        if 0 <= zero <= width:
             G[:, zero] = [-f for f in F]
         for k in where[:n].tolist():
-            i, c = divmod(k, w + 1)
-            j = window.x0 + c
-            G[i, c] = _decide(m, start, window.y0 + h - 1 - top - i, X[i], lambda X: X.floor(j, 0))[0] - F[i]
+            i, c = divmod(k, width + 1)
+            j = window.x0 + c0 + c
+            y = window.y0 + h - 1 - top - i
+            G[i, c] = _decide(m, start, y, band_lines[i][5], lambda X: X.floor(j, 0))[0] - F[i]
         pr = np.array(m.steps, np.int64)[kinds[:-1]]
         code = 2 * kinds[:-1] + np.concatenate(([above], kinds[:-2]))
         s0 = np.array([p * F[i] - r * F[i + 1] - smin for i, (p, r) in enumerate(pr.tolist())], np.int64)
-        return kern.tiles_kernel(G, s0, pr, code, lut, out[top:top + rows])
+        return kern.tiles_kernel(G, s0, pr, code, lut, out[top:top + rows, c0:c0 + width])
 
-    threads = min(_cores(), -(-h // band)) if kern is not _k.KERNELS.plain() else 1
+    blocks = range(0, w, block)
+    threads = min(_cores(), -(-h // band) * len(blocks)) if kern is not _k.KERNELS.plain() else 1
     with ThreadPoolExecutor(threads) as pool:
         jobs = []
         first = next(lines)
         for top in range(0, h, band):
             band_lines = [first] + [next(lines) for _ in range(min(band, h - top))]
-            jobs.append(pool.submit(run, top, band_lines, above))
+            jobs += [pool.submit(run, top, c0, band_lines, above) for c0 in blocks]
             above, first = band_lines[-2][3], band_lines[-1]
         bad = sum(job.result() for job in jobs)
     if bad:

@@ -45,13 +45,14 @@ import functools
 from tilesolve.errors import InvalidProblem
 from tilesolve.family import Codec, Demo, Family, Field, Form, RunOptions, register
 from tilesolve.family import solve as _solve
+from tilesolve.families.aperiodic_window import tiling
 from tilesolve.io.aperiodic_json import APERIODIC_REPORT, VERSIONS, report_from_dict, report_to_dict
 from tilesolve.model.aperiodic import AperiodicProblem, AperiodicReport, Certificate
 from tilesolve.model.solution import Solution, Status
 from tilesolve.verify.aperiodic import aperiodic_violations, witness_violations
 
 __all__ = ["AperiodicProblem", "AperiodicReport", "Certificate", "solve", "sat", "transducer", "build_report",
-           "refutations", "witness", "FAMILY"]
+           "refutations", "witness", "tiling", "FAMILY"]
 
 
 def build_report(problem: AperiodicProblem, squares, largest: int | None, periods) -> AperiodicReport:

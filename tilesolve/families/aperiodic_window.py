@@ -64,27 +64,27 @@ def _kernel(route: str):
     return kernel.NAMES, kernel.balanced_window
 
 
-def _route(method: str):
-    """The route that tiles a window with the ``method`` kernel."""
-
-    def route(problem: AperiodicWindowProblem, run: RunOptions) -> Solution:
-        names, window_of = _kernel(method)
-        if problem.name not in names:
-            raise MethodNotApplicable(f"the {method!r} route tiles {', '.join(names)}, not {problem.name}; "
-                                      f"{problem.name} is tiled by {route_of(problem.name)!r}")
-        t0 = time.perf_counter()
-        grid = window_of(problem.name, problem.window, run.seed)
-        return Solution(Status.SAT, grid, method=method, seed=run.seed, time_s=time.perf_counter() - t0,
-                        stats={"tiles": problem.n_cells}, window=problem.window)
-
-    route.__name__ = method
-    return route
+def _tile(problem: AperiodicWindowProblem, run: RunOptions, route: str) -> Solution:
+    """The window tiled by the kernel of ``route``, which must name the problem's set."""
+    names, window_of = _kernel(route)
+    if problem.name not in names:
+        raise MethodNotApplicable(f"the {route!r} route tiles {', '.join(names)}, not {problem.name}; "
+                                  f"{problem.name} is tiled by {route_of(problem.name)!r}")
+    t0 = time.perf_counter()
+    grid = window_of(problem.name, problem.window, run.seed)
+    return Solution(Status.SAT, grid, method=route, seed=run.seed, time_s=time.perf_counter() - t0,
+                    stats={"tiles": problem.n_cells}, window=problem.window)
 
 
-markov = _route("markov")
-markov.__doc__ = """A window coded by a Markov partition of the torus (Labbé 2021): Jeandel-Rao and U19."""
-balanced = _route("balanced")
-balanced.__doc__ = """A window of balanced rows (Kari 1996, Culik 1996): the Kari and Kari-Culik sets."""
+def markov(problem: AperiodicWindowProblem, run: RunOptions) -> Solution:
+    """A window coded by a Markov partition of the torus (Labbé 2021): Jeandel-Rao and U19."""
+    return _tile(problem, run, "markov")
+
+
+def balanced(problem: AperiodicWindowProblem, run: RunOptions) -> Solution:
+    """A window of balanced rows (Kari 1996, Culik 1996): the Kari and Kari-Culik sets."""
+    return _tile(problem, run, "balanced")
+
 
 #: Routes by name.
 SOLVERS = {"markov": markov, "balanced": balanced}

@@ -90,9 +90,17 @@ def load_document(path: str | os.PathLike, formats: Mapping[str, Iterable[int]])
     return check_document(read_json(path), path, formats=formats)
 
 
-def check_document(doc: Any, source: Any, formats: Mapping[str, Iterable[int]]) -> dict:
+def check_document(doc: Any, source: Any, formats: Mapping[str, Iterable[int]], *,
+                   fields: Iterable[str] | None = None, required: Iterable[str] = ()) -> dict:
     """Check the ``format``/``version`` header of an already-parsed document against
-    ``formats`` (format name -> versions read)."""
+    ``formats`` (format name -> versions read); with ``fields``, refuse a field not among them,
+    and refuse a document without one of the ``required`` fields.
+
+    >>> check_document({"format": "f", "version": 1, "x": 0}, "d.json", {"f": {1}}, fields={"format", "version"})
+    Traceback (most recent call last):
+    ...
+    tilesolve.errors.InvalidProblem: d.json: unknown field 'x'
+    """
     if not isinstance(doc, dict):
         raise InvalidProblem(f"{source}: not a tilesolve file (expected a JSON object with a 'format' field)")
     fmt = doc.get("format")
@@ -109,6 +117,12 @@ def check_document(doc: Any, source: Any, formats: Mapping[str, Iterable[int]]) 
             f"{source}: {fmt} version {version} is not supported (this tilesolve reads version {known}); "
             "upgrade tilesolve?"
         )
+    extra = sorted(set(doc) - set(fields)) if fields is not None else []
+    if extra:
+        raise InvalidProblem(f"{source}: unknown field{'s' if len(extra) > 1 else ''} {', '.join(map(repr, extra))}")
+    for key in required:
+        if key not in doc:
+            raise InvalidProblem(f"{source}: missing field {key!r}")
     return doc
 
 

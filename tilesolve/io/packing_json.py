@@ -78,13 +78,7 @@ def packing_from_dict(doc: dict, source: Any = "<document>") -> tuple[PackingPro
     >>> p.kind, s.status.value, s.tiling.shape
     ('wang', 'sat', (4, 4))
     """
-    check_document(doc, source, {PACKING: VERSIONS})
-    extra = sorted(set(doc) - _KEYS)
-    if extra:
-        raise InvalidProblem(f"{source}: unknown field{'s' if len(extra) > 1 else ''} {', '.join(map(repr, extra))}")
-    for key in ("kind", "colors"):
-        if key not in doc:
-            raise InvalidProblem(f"{source}: missing field '{key}'")
+    check_document(doc, source, {PACKING: VERSIONS}, fields=_KEYS, required=("kind", "colors"))
     kind = doc["kind"]
     colors = _int(doc, "colors", source)
     colors_v = _int(doc, "colors_v", source)

@@ -134,10 +134,7 @@ def stochastic_from_dict(doc: dict, source: Any = "<document>") -> tuple[Stochas
     >>> stochastic_from_dict(v1)[0].window == p.window
     True
     """
-    version = check_document(doc, source, {STOCHASTIC_TILING: VERSIONS})["version"]
-    extra = sorted(set(doc) - _KEYS)
-    if extra:
-        raise InvalidProblem(f"{source}: unknown field{'s' if len(extra) > 1 else ''} {', '.join(map(repr, extra))}")
+    version = check_document(doc, source, {STOCHASTIC_TILING: VERSIONS}, fields=_KEYS)["version"]
     kind = _str(_field(doc, "kind", source), "kind", source)
     colors = _int(_field(doc, "colors", source), "colors", source)
     variant = _str(doc.get("set", "complete"), "set", source)

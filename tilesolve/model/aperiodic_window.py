@@ -27,7 +27,7 @@ from dataclasses import dataclass
 
 from tilesolve.errors import InvalidProblem
 from tilesolve.model.board import WangTileSet
-from tilesolve.model.window import Window
+from tilesolve.model.window import OnWindow, Window
 
 __all__ = ["AperiodicWindowProblem", "MAX_WINDOW_TILES", "BYTES_PER_TILE"]
 
@@ -39,7 +39,7 @@ MAX_WINDOW_TILES = 1 << 27
 
 
 @dataclass(frozen=True, eq=False)
-class AperiodicWindowProblem:
+class AperiodicWindowProblem(OnWindow):
     """One window of a tiling of the plane by a built-in aperiodic Wang tile set.
 
     Parameters
@@ -78,15 +78,6 @@ class AperiodicWindowProblem:
                                  f"{BYTES_PER_TILE * n / 2**30:,.1f} GiB to build and check; tilesolve builds at "
                                  f"most {MAX_WINDOW_TILES:,} tiles at once: ask for smaller windows")
         object.__setattr__(self, "window", window)
-
-    @property
-    def shape(self) -> tuple[int, int]:
-        """``(rows, cols)`` of the window's grid: ``(height, width)``."""
-        return self.window.shape
-
-    @property
-    def n_cells(self) -> int:
-        return self.window.width * self.window.height
 
     def describe(self) -> str:
         return f"window {self.window.describe()} of the {self.name} set ({len(self.tileset)} Wang tiles)"

@@ -34,7 +34,7 @@ import numpy as np
 
 from tilesolve.errors import InvalidProblem
 from tilesolve.model.tiles import KINDS, VARIANTS, TileSet
-from tilesolve.model.window import Window
+from tilesolve.model.window import OnWindow, Window
 
 __all__ = ["StochasticProblem", "HASHES", "WANG_DIRECT", "MAX_WINDOW_TILES", "MAX_SET_TILES", "LATTICE"]
 
@@ -67,7 +67,7 @@ def _gib(n_bytes: int) -> str:
 
 
 @dataclass(frozen=True)
-class StochasticProblem:
+class StochasticProblem(OnWindow):
     """One window of a stochastic Wang or corner tiling (class notes ch. 3).
 
     Parameters
@@ -142,15 +142,6 @@ class StochasticProblem:
     def tiles(self) -> TileSet:
         """The tile set the window is tiled with."""
         return TileSet(self.kind, self.colors, variant=self.variant)
-
-    @property
-    def shape(self) -> tuple[int, int]:
-        """``(rows, cols)`` of the window's grid: ``(height, width)``."""
-        return self.window.shape
-
-    @property
-    def n_cells(self) -> int:
-        return self.window.width * self.window.height
 
     def describe(self) -> str:
         return f"stochastic {self.kind} tiling, window {self.window.describe()}, {self.tiles.describe()}"

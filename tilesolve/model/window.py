@@ -28,7 +28,7 @@ from typing import Any, Mapping
 
 from tilesolve.errors import InvalidProblem
 
-__all__ = ["Window", "parse_region", "MAX_COORDINATE"]
+__all__ = ["Window", "OnWindow", "parse_region", "MAX_COORDINATE"]
 
 #: Coordinates of a window stay within +-2**62, so ``x0 + width`` never leaves int64.
 MAX_COORDINATE = 1 << 62
@@ -133,6 +133,21 @@ class Window:
         if missing:
             raise InvalidProblem(f"window has no {missing[0]!r}")
         return cls(d["x0"], d["y0"], d["width"], d["height"], d.get("y_up", True))
+
+
+class OnWindow:
+    """The grid of a problem whose answer is a window of the plane (its ``window`` attribute)."""
+
+    window: Window
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        """``(rows, cols)`` of the window's grid: ``(height, width)``."""
+        return self.window.shape
+
+    @property
+    def n_cells(self) -> int:
+        return self.window.width * self.window.height
 
 
 def parse_region(text: str) -> Window:
