@@ -13,16 +13,13 @@ built on one thread and on every core this process may use. In the same run, two
   exact reference (the closed form per row, every floor an integer division), on sides 10^2
   and 10^3; its tiles are compared with the window's.
 
-Prints wall and CPU seconds (best of ``--repeat``), tiles per second, the peak traced memory
-of one call (tracemalloc: the output, 1 byte a tile, and the scratch), and the ratios
-baseline / window of the wall times.
+Columns: wall and CPU seconds of the best of ``--repeat`` calls, millions of tiles a second,
+tracemalloc's peak over one call (the uint8 output plus the scratch of the running jobs), and
+each baseline's wall time over the window's.
 
-Usage::
-
-    python benchmarks/bench_balanced.py            # sides 100, 1000, 10000
-    python benchmarks/bench_balanced.py --quick    # sides 100, 1000
-
-Goal (issue 20): a 10^4 x 10^4 window in <= 1 s in process.
+Run from the repository root: ``python benchmarks/bench_balanced.py`` (all sides) or with
+``--quick`` (sides 100 and 1000 only). The goal of issue 20: a 10^4 x 10^4 window in at most
+1 s in process.
 """
 
 from __future__ import annotations
