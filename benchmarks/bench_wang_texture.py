@@ -9,6 +9,10 @@ Rows, each beside the CPU path of the same picture measured in the same run:
 * ``picture``: :meth:`WangTextureMapper.image` against :meth:`WangTexture.image` in process
   (the atlas built once), best of ``--repeat``: the tiles of the picture's cells (the shader's
   Markov coding, or the route's window uploaded) and every pixel read back.
+* ``frames``: :data:`FRAMES` frames of the picture drawn by the GPU path, each frame the whole
+  pass (the Markov cells coded or the window uploaded, then every pixel), against the same
+  frames of the corner-tile texture (:class:`~tilesolve.gpu.texture.TextureMapper`, C = 3, the
+  same tile size; ratio corner time / Wang time).
 * ``cells``: the Markov coding of the picture's cells alone: the shader
   (:class:`~tilesolve.gpu.wang_texture._MarkovCells`, read back) against
   :func:`tilesolve.constructive.markov.markov_window`.
@@ -18,7 +22,7 @@ Peak memory: the command's peak RSS; in process, the peak traced by tracemalloc 
 
 Two scales: 32 px a tile (the README command: 25 x 19 cells) and 1 px a tile (one cell a
 pixel: 480,000 cells, where coding the cells is the work). The ratio is CPU time / GPU time of
-the wall clock (> 1: the GPU path is faster).
+the wall clock (> 1: the GPU path is faster), except on the frame rows.
 
 Usage::
 
@@ -41,6 +45,7 @@ from _measure import best, child, peak_mib  # noqa: E402 - benchmarks/ is on sys
 
 SEED = 1
 TILE = 32
+FRAMES = 10
 
 
 def example(folder: Path) -> Path:
@@ -51,6 +56,13 @@ def example(folder: Path) -> Path:
     path = folder / "ex.png"
     Image.fromarray(img).resize((256, 256), Image.BICUBIC).save(path)
     return path
+
+
+def frames(fbo, draw) -> None:
+    """Draw :data:`FRAMES` frames and read the last back (every frame is then finished)."""
+    for _ in range(FRAMES):
+        draw()
+    fbo.read(components=4)
 
 
 def main() -> None:
@@ -91,6 +103,13 @@ def main() -> None:
         from tilesolve.model.window import Window
 
         image = read_example(ex)
+        # baseline of the frame rows: the corner-tile texture (class notes §5.4) of the same size and tile
+        from tilesolve.gpu.texture import Atlas, TextureMapper
+
+        mapper = TextureMapper(Atlas.from_example(image, 3, tile=TILE, seed=SEED), seed=SEED)
+        fbo, draw = mapper.frame(w, h)
+        corner, cpu_s, _ = best(lambda: frames(fbo, draw), args.repeat)
+        rows.append(("corner C=3", TILE, "frames", f"gpu, {FRAMES} frames", corner, cpu_s, "-", FRAMES * w * h, 1.0, "-"))
         for name in args.sets.split(","):
             at = WangAtlas.from_example(image, load(name)[0].tiles, tile=TILE, seed=SEED)
             for scale in (TILE, 1):
@@ -103,6 +122,10 @@ def main() -> None:
                 mg, mc = (f"{peak_mib(lambda: p.image(w, h)):.0f} traced" for p in (gpu, cpu))
                 rows.append((name, scale, "picture", "gpu", tg, cg, mg, w * h, tc / tg, same))
                 rows.append((name, scale, "picture", "cpu", tc, cc, mc, w * h, 1.0, same))
+                fbo, draw = gpu.frame(w, h)
+                tg, cg, _ = best(lambda: frames(fbo, draw), args.repeat)
+                rows.append((name, scale, "frames", f"gpu, {FRAMES} frames", tg, cg, "-", FRAMES * w * h, corner / tg,
+                             "-"))
                 if name in NAMES:
                     cols, nrows = -(-w // scale), -(-h // scale)
                     tg, cg, g = best(lambda: gpu._markov.code(0, 0, cols, nrows), args.repeat)
@@ -120,7 +143,7 @@ def main() -> None:
     print("throughput: pixels a second (command, picture) or cells a second (cells); cpu s: the process's CPU time, "
           "llvmpipe's threads included")
     print(f"{'set':<15}{'px/tile':>8}  {'what':<9}{'implementation':<19}{'wall s':>8}{'cpu s':>8}{'peak MiB':>14}"
-          f"{'M/s':>8}{'cpu/gpu':>9}  pictures")
+          f"{'M/s':>8}{'ratio':>9}  pictures")
     for name, scale, what, how, wall, cpu_s, mem, items, ratio, same in rows:
         print(f"{name:<15}{scale:>8}  {what:<9}{how:<19}{wall:>8.3f}{cpu_s:>8.3f}{mem:>14}{items / wall / 1e6:>8.2f}"
               f"{ratio:>8.2f}x  {same}")

@@ -200,8 +200,8 @@ def _aperiodic_texture(ctx, example, name, cpu, size, tile, scale, origin, seed,
                f"of {tile} px, seed {seed}")
 
     def notes() -> list[str]:
-        if not getattr(picture, "codes_in_shader", False):
-            return []
+        if not getattr(picture, "codes_in_shader", False) or not picture.decided + picture.undecided:
+            return []  # the CPU route's windows, or no picture drawn (--benchmark alone)
         return [f"cells coded by the shader: {picture.decided:,}; left to the CPU route (near a polygon edge): "
                 f"{picture.undecided:,}"]
 
