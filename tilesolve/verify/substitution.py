@@ -1,0 +1,251 @@
+"""Independent checks of substitution patches: Penrose P3/P2 and rep-tiles (class notes Part II
+§8.1, §8.3). Written from the definitions; shares no code with the generators.
+
+Penrose patches (:func:`penrose_violations`)
+    1. *Shapes.* Every tile is a thin or thick rhomb of edge 1 (P3) or a kite or dart with
+       long edges ``phi`` and short edges 1 (P2), counter-clockwise from its marked vertex
+       (P3: the thin rhomb's marked obtuse, the thick's marked acute vertex; P2: the kite's
+       head, the dart's tip). Coordinates are exact integers in ``Z[zeta5]``; lengths and
+       angles are classified from their float values, which lie within 1e-6 of a multiple of
+       36 degrees and of 1 or ``phi`` (exact values of the classes differ by more than 0.3).
+    2. *Edges.* Every edge (exact endpoints) belongs to at most two tiles, which run it in
+       opposite directions (same direction = two tiles on one side: an overlap).
+    3. *Matching rules* across every shared edge (Penrose's arrows): every edge carries an
+       arrow of a class; both tiles must give the same class and the same direction. P3: the
+       two edges at the marked vertex carry double arrows (away from it on the thick rhomb,
+       towards it on the thin), the other two single arrows towards the vertex opposite it.
+       P2: long edges arrows from the head (kite) or towards the tip (dart), short edges towards
+       the tail (kite) or away from the reflex vertex (dart).
+    4. *No overlap and no gap around a vertex.* The tile angles at a vertex sum to at most
+       360 degrees, and to exactly 360 at an interior vertex (all its edges shared).
+    5. *One piece without holes.* ``V - E + F = 1`` (a hole lowers it).
+
+Rep-tile patches (:func:`reptile_violations`)
+    1. Every tile is congruent to the prototile (its edge vectors are the prototile's under a
+       symmetry of the lattice, from some starting corner), counter-clockwise.
+    2. Cut every edge into unit lattice steps: an inner step is run by exactly two tiles in
+       opposite directions, and the steps run once are exactly the boundary of ``2^n P``. Then the
+       tiles' indicator functions sum to the region's (the sum jumps only across the region's
+       boundary): no gap and no overlap.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from tilesolve.verify.dappled import Violation
+
+__all__ = ["penrose_violations", "reptile_violations", "PROTOTILE_OUTLINES"]
+
+_PHI = (1 + 5**0.5) / 2
+_TOL = 1e-6
+
+#: Per Penrose kind and type: the edge lengths (1 or phi) and the interior angles in units of
+#: 36 degrees at vertices 0..3.
+_SHAPES = {
+    ("p3", 0): ((1, 1, 1, 1), (4, 1, 4, 1)),       # thin rhomb from its marked obtuse vertex
+    ("p3", 1): ((1, 1, 1, 1), (2, 3, 2, 3)),       # thick rhomb from its marked acute vertex
+    ("p2", 0): ((_PHI, 1, 1, _PHI), (2, 2, 4, 2)),  # kite from its head
+    ("p2", 1): ((_PHI, 1, 1, _PHI), (2, 1, 6, 1)),  # dart from its tip
+}
+_NAMES = {("p3", 0): "thin rhomb", ("p3", 1): "thick rhomb", ("p2", 0): "kite", ("p2", 1): "dart"}
+
+#: The rep-tiles' corners, counter-clockwise, in lattice coordinates (square: x, y; triangle:
+#: a, b of a + b exp(i pi / 3)).
+PROTOTILE_OUTLINES = {
+    "chair": ("square", ((0, 0), (2, 0), (2, 1), (1, 1), (1, 2), (0, 2))),
+    "l-tetromino": ("square", ((0, 0), (3, 0), (3, 1), (1, 1), (1, 2), (0, 2))),
+    "p-pentomino": ("square", ((0, 0), (2, 0), (2, 2), (1, 2), (1, 3), (0, 3))),
+    "sphinx": ("triangle", ((0, 0), (3, 0), (2, 1), (1, 1), (0, 2))),
+}
+
+
+def _xy5(v: np.ndarray) -> np.ndarray:
+    ang = 2 * np.pi * np.arange(4) / 5
+    v = v.astype(np.float64)
+    return np.stack([v @ np.cos(ang), v @ np.sin(ang)], axis=-1)
+
+
+def _keys(rows: np.ndarray) -> np.ndarray:
+    """Integer labels, equal exactly for equal rows."""
+    rows = np.ascontiguousarray(rows, dtype=np.int64)
+    flat = rows.view(np.dtype((np.void, 8 * rows.shape[1]))).ravel()
+    _, inv = np.unique(flat, return_inverse=True)
+    return inv.ravel()
+
+
+def _too_many(out: list, cap: int = 20) -> bool:
+    return len(out) >= cap
+
+
+def penrose_violations(kind: str, types, vertices) -> list[Violation]:
+    """Every way ``(types, vertices)`` fails to be a Penrose patch of ``kind`` (``"p3"`` or
+    ``"p2"``) with its matching rules (the module docstring's checks 1-5); ``[]`` when valid."""
+    types = np.asarray(types)
+    v = np.asarray(vertices)
+    out: list[Violation] = []
+    n = len(types)
+    if v.shape != (n, 4, 4) or not np.issubdtype(v.dtype, np.integer):
+        return [Violation("shape", f"expected {n} tiles of 4 vertices with 4 integer coordinates, got {list(v.shape)}")]
+    if n == 0:
+        return [Violation("count", "the patch has no tiles")]
+    if not np.isin(types, (0, 1)).all():
+        return [Violation("tile", "a tile type is not 0 or 1")]
+    # 1. shapes
+    xy = _xy5(v)
+    e = np.roll(xy, -1, axis=1) - xy
+    length = np.hypot(e[..., 0], e[..., 1])
+    direction = np.arctan2(e[..., 1], e[..., 0]) / (np.pi / 5)
+    d = np.rint(direction).astype(np.int64) % 10
+    off_grid = np.abs(direction - np.rint(direction)) > _TOL
+    angle = (np.roll(d, 1, axis=1) + 5 - d) % 10  # interior angle at vertex i: from edge i to reversed edge i-1
+    for t in (0, 1):
+        lengths, angles = _SHAPES[(kind, t)]
+        sel = types == t
+        bad = (np.abs(length[sel] - np.array(lengths)) > _TOL).any(axis=1) | off_grid[sel].any(axis=1) | \
+            (angle[sel] != np.array(angles)).any(axis=1)
+        for i in np.flatnonzero(sel)[bad][:20]:
+            out.append(Violation("tile", f"tile {i} is no {_NAMES[(kind, t)]} counter-clockwise from its marked vertex"))
+    if out:
+        return out
+    # 2. edges: each (tile, side) runs from vertex s to s+1
+    ends = np.concatenate([v, np.roll(v, -1, axis=1)], axis=2).reshape(-1, 8)
+    rev = np.concatenate([ends[:, 4:], ends[:, :4]], axis=1)
+    forward = _keys(np.concatenate([ends, rev]))
+    a, b = forward[: 4 * n], forward[4 * n:]
+    undirected = np.minimum(a, b)
+    counts = np.bincount(undirected)
+    for u in np.flatnonzero(counts > 2)[:20]:
+        out.append(Violation("overlap", f"an edge is shared by {counts[u]} tiles (tiles "
+                                        f"{sorted(set((np.flatnonzero(undirected == u) // 4).tolist()))})"))
+    same_dir = np.bincount(a)
+    for u in np.flatnonzero(same_dir > 1)[:20]:
+        out.append(Violation("overlap", f"tiles {(np.flatnonzero(a == u) // 4).tolist()} run one edge the same way "
+                                        "(they lie on the same side of it)"))
+    if out:
+        return out
+    # 3. matching rules: class (0 single / 1 double, or 0 short / 1 long) and arrow sense
+    side = np.tile(np.arange(4), n)
+    t4 = np.repeat(types, 4)
+    near = (side == 0) | (side == 3)                  # the edges at the marked vertex
+    # whether the canonical arrow (near: away from vertex 0; far: towards vertex 2) points along the side's run
+    canonical = np.where(near, side == 0, side == 1)
+    if kind == "p3":
+        sense = np.where(near & (t4 == 0), ~canonical, canonical)  # thin rhomb's double arrows point in
+    else:
+        sense = np.where(t4 == 1, ~canonical, canonical)           # the dart's arrows are the kite's reversed
+    cls = near.astype(np.int64)
+    shared = counts[undirected] == 2
+    order = np.argsort(undirected[shared], kind="stable")
+    idx = np.flatnonzero(shared)[order]
+    first, second = idx[0::2], idx[1::2]
+    # the two tiles run the edge in opposite directions: equal arrows means opposite senses
+    bad = (cls[first] != cls[second]) | (sense[first] == sense[second])
+    for i, j in zip(first[bad][:20], second[bad][:20]):
+        out.append(Violation("matching", f"tiles {i // 4} and {j // 4} break the matching rule on their shared edge"))
+    if out:
+        return out
+    # 4. angles around vertices
+    vkeys = _keys(v.reshape(-1, 4))
+    total = np.bincount(vkeys, weights=angle.ravel()).astype(np.int64)
+    for u in np.flatnonzero(total > 10)[:20]:
+        out.append(Violation("overlap", f"the tiles at vertex {v.reshape(-1, 4)[np.flatnonzero(vkeys == u)[0]].tolist()}"
+                                        f" fill {36 * total[u]} degrees"))
+    open_edge = ~shared
+    start_vertex = vkeys.reshape(n, 4)
+    end_vertex = np.roll(start_vertex, -1, axis=1)
+    on_boundary = np.zeros(len(total), bool)
+    on_boundary[start_vertex.ravel()[open_edge]] = True
+    on_boundary[end_vertex.ravel()[open_edge]] = True
+    for u in np.flatnonzero(~on_boundary & (total != 10))[:20]:
+        out.append(Violation("gap", f"the tiles around interior vertex {v.reshape(-1, 4)[np.flatnonzero(vkeys == u)[0]].tolist()}"
+                                    f" fill {36 * total[u]} degrees, not 360"))
+    # 5. one piece, no holes
+    chi = len(total) - np.unique(undirected).size + n
+    if chi != 1:
+        out.append(Violation("gap", f"the patch is not one piece without holes (V - E + F = {chi})"))
+    return out
+
+
+def _lattice_xy(grid: str, p: np.ndarray) -> np.ndarray:
+    p = p.astype(np.float64)
+    if grid == "square":
+        return p
+    return np.stack([p[..., 0] + 0.5 * p[..., 1], p[..., 1] * (3**0.5 / 2)], axis=-1)
+
+
+def _symmetries(grid: str) -> list[np.ndarray]:
+    """The lattice's point group as integer matrices (8 on the square grid, 12 on the triangle grid)."""
+    if grid == "square":
+        gens = [np.array([[0, -1], [1, 0]]), np.array([[-1, 0], [0, 1]])]
+    else:
+        gens = [np.array([[0, -1], [1, 1]]), np.array([[0, 1], [1, 0]])]
+    found = {tuple(np.eye(2, dtype=np.int64).ravel())}
+    frontier = [np.eye(2, dtype=np.int64)]
+    while frontier:
+        m = frontier.pop()
+        for g in gens:
+            p = g @ m
+            if tuple(p.ravel()) not in found:
+                found.add(tuple(p.ravel()))
+                frontier.append(p)
+    return [np.array(k).reshape(2, 2) for k in sorted(found)]
+
+
+def _unit_steps(poly: np.ndarray) -> np.ndarray:
+    """The polygon's edges cut into unit lattice steps: rows ``(x0, y0, x1, y1)``."""
+    rows = []
+    for a, b in zip(poly, np.roll(poly, -1, axis=0)):
+        d = b - a
+        g = int(np.gcd(abs(int(d[0])), abs(int(d[1]))))
+        step = d // g
+        for i in range(g):
+            rows.append((*(a + i * step), *(a + (i + 1) * step)))
+    return np.array(rows, dtype=np.int64)
+
+
+def reptile_violations(kind: str, steps: int, vertices) -> list[Violation]:
+    """Every way ``vertices`` (tiles ``(n, m, 2)``) fails to tile ``2^steps P`` with copies of
+    the rep-tile ``kind`` (the module docstring's checks 1-2); ``[]`` when valid."""
+    grid, corners = PROTOTILE_OUTLINES[kind]
+    proto = np.array(corners, dtype=np.int64)
+    v = np.asarray(vertices)
+    m = len(proto)
+    if v.ndim != 3 or v.shape[1:] != (m, 2) or not np.issubdtype(v.dtype, np.integer):
+        return [Violation("shape", f"expected tiles of {m} corners with 2 integer coordinates, got {list(v.shape)}")]
+    out: list[Violation] = []
+    # 1. congruence: the edge vectors, from some corner, are g (prototile edge vectors)
+    pe = np.roll(proto, -1, axis=0) - proto
+    allowed = set()
+    for g in _symmetries(grid):
+        ge = pe @ g.T
+        if np.linalg.det(g) < 0:  # a mirror reverses the order: walk the image backwards
+            ge = -ge[::-1]
+        for s in range(m):
+            allowed.add(tuple(np.roll(ge, -s, axis=0).ravel()))
+    te = (np.roll(v, -1, axis=1) - v).reshape(len(v), -1)
+    for i, row in enumerate(map(tuple, te.tolist())):
+        if row not in allowed:
+            out.append(Violation("tile", f"tile {i} is no counter-clockwise copy of the {kind}"))
+            if _too_many(out):
+                break
+    if out:
+        return out
+    # 2. unit steps: inner ones twice in opposite directions, the rest exactly the region's boundary
+    steps_all = np.concatenate([_unit_steps(t) for t in v]) if len(v) else np.zeros((0, 4), np.int64)
+    region = _unit_steps(proto * (2**steps))
+    fwd = {}
+    for row in map(tuple, steps_all.tolist()):
+        fwd[row] = fwd.get(row, 0) + 1
+    for row, c in fwd.items():
+        if c > 1:
+            out.append(Violation("overlap", f"two tiles run the step {row[:2]} -> {row[2:]} the same way"))
+            if _too_many(out):
+                return out
+    once = {row for row in fwd if (row[2], row[3], row[0], row[1]) not in fwd}
+    expected = set(map(tuple, region.tolist()))
+    for row in sorted(once - expected)[:20]:
+        out.append(Violation("gap", f"the step {row[:2]} -> {row[2:]} borders a gap or an overlap inside the patch"))
+    for row in sorted(expected - once)[:20]:
+        out.append(Violation("gap", f"the region's boundary step {row[:2]} -> {row[2:]} is not a tile's"))
+    return out
