@@ -76,3 +76,21 @@ def test_census_on_a_dask_cluster_and_local_workers_agree(tmp_path):
     pool = census(3, 2, RunOptions(seed=0, workers=2), tmp_path / "p.jsonl")
     assert dask.complete and pool.complete
     assert [(r["set"], r["class"]) for r in dask.records] == [(r["set"], r["class"]) for r in pool.records]
+
+
+@pytest.mark.slow
+def test_census_agrees_with_the_transfer_matrix_counts(tmp_path):
+    """An independent route: the transfer-matrix counter finds tilings of each periodic set's
+    torus and of each finite set's largest square, and none of the square above it."""
+    from tilesolve.constructive.wang_count import count_grid
+
+    result = census(3, 2, RunOptions(seed=0, workers=1), tmp_path / "c.jsonl", max_square=6, max_period=6)
+    assert result.complete
+    for rec in result.records:
+        ts = WangTileSet(np.asarray(rec["tiles"]), 2)
+        if rec["class"] == "periodic":
+            rows, cols = np.asarray(rec["tiling"]).shape
+            assert count_grid(ts, rows, cols, wrap_rows=True, wrap_cols=True) > 0, rec["set"]
+        else:
+            n = rec["largest_square"]
+            assert count_grid(ts, n, n) > 0 and count_grid(ts, n + 1, n + 1) == 0, rec["set"]

@@ -12,7 +12,8 @@ Classes (:func:`classify`), every one with a certificate checked here
     * ``finite``: the largest tiled square ``n x n`` (a witness, verified likewise) and the
       ``(n + 1) x (n + 1)`` square refuted by SAT with a checked DRAT proof
       (:func:`tilesolve.engine.aperiodic.square_scan`), so the set tiles no plane (Extension
-      Theorem); searched when the transducer finds ``T_k`` empty;
+      Theorem); searched when the transducer finds ``T_k`` empty, up to the larger side of the
+      ``k x w`` rectangle it rules out (:func:`~tilesolve.constructive.transducer.strip_width`);
     * ``undecided``: neither within the bounds (or a time limit).
 
     Jeandel and Rao proved that no set of at most 10 tiles is aperiodic, so with bounds large
@@ -74,7 +75,7 @@ def classify(numbers, k: int, max_square: int, max_period: int, deadline: Deadli
         ``torus`` (board name) and ``tiling``; for ``finite`` ``largest_square``, ``tiling``
         (its witness) and ``refutation`` (board, proof evidence).
     """
-    from tilesolve.constructive.transducer import decide
+    from tilesolve.constructive.transducer import decide, strip_width
     from tilesolve.deadline import TimeLimitReached
     from tilesolve.engine.aperiodic import square_scan
     from tilesolve.engine.certificates import writing_proofs
@@ -110,13 +111,19 @@ def classify(numbers, k: int, max_square: int, max_period: int, deadline: Deadli
         return done("undecided", f"transducer: {v.reason}; no torus of height at most {v.k}")
     run = RunOptions(seed=0, deadline=deadline, solver=solver)
     try:
+        # no k x w rectangle is tiled: the square scan need not look past the larger side
+        w = strip_width(ts, v.k, deadline=deadline)
+        side = int(max_square) if w is None else min(int(max_square), max(v.k, w))
         with writing_proofs(proof_dir):
-            certs, largest = square_scan(ts, int(max_square), run)
-    except TimeLimitReached as exc:
+            certs, largest = square_scan(ts, side, run)
+    except (TimeLimitReached, InvalidProblem) as exc:
         return done("undecided", f"T_{v.k} is empty, the squares undecided ({exc})")
     if largest is None:
         return done("undecided", f"T_{v.k} is empty, the squares undecided ({certs[-1].evidence.get('why')})")
-    if largest >= int(max_square):
+    if largest >= side:
+        if side < int(max_square):
+            raise InternalError(f"census set {numbers}: the transducer rules out a {side}x{side} square "
+                                f"(T_{v.k} is empty), SAT tiled one")
         return done("undecided", f"T_{v.k} is empty but every square up to {largest}x{largest} is tiled")
     by_side = {c.board: c for c in certs}
     witness = by_side.get(f"square {largest}x{largest}")
