@@ -65,6 +65,7 @@ from __future__ import annotations
 
 import math
 import os
+import threading
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from decimal import ROUND_CEILING, Decimal, localcontext
@@ -428,6 +429,7 @@ def _window(name: str, window: Window, seed: int, bits: int) -> np.ndarray:
     # lines 1..h the window's rows, line h + 1 the row below (its digits are row h's S edges).
     lines = _Lines(m, start, window.y0 + h, window.x0, w, bits)
     above = next(lines)[3]
+    scratch = threading.local()
 
     def run(top: int, c0: int, band_lines: list, above: int) -> int:
         """The rows ``top ..`` of the band, columns ``c0 .. c0 + width - 1``; returns the rows
@@ -441,7 +443,10 @@ def _window(name: str, window: Window, seed: int, bits: int) -> np.ndarray:
         xt = np.array([ln[2] for ln in band_lines], np.int64)
         kinds = np.array([ln[3] for ln in band_lines], np.int64)
         zero = -(window.x0 + c0)  # the column of j = 0: floor(0 x) = 0 exactly, no rounding decides it
-        G = np.empty((rows + 1, width + 1), np.int32)
+        size = (rows + 1) * (width + 1)
+        if getattr(scratch, "G", np.empty(0)).size < size:  # one buffer a thread: no page faults a job
+            scratch.G = np.empty(size, np.int32)
+        G = scratch.G[:size].reshape(rows + 1, width + 1)
         where = np.empty(64, np.int64)
         n = kern.floors_kernel(phi, off, xt, bits, CHUNK, zero, G, where)
         if n > where.size:
