@@ -232,31 +232,30 @@ def pentagrid(window, seed: int | None = None, gamma=None) -> tuple[np.ndarray, 
     box = ((x0 - m - c[0]) / 2.5, (x0 + w + m - c[0]) / 2.5, (y0 - m - c[1]) / 2.5, (y0 + h + m - c[1]) / 2.5)
     types, verts = [], []
     scale = max(1.0, abs(x0), abs(y0), abs(x0 + w), abs(y0 + h))
+    unit = np.vstack([np.eye(4, dtype=np.int64), -np.ones((1, 4), dtype=np.int64)])  # zeta^i in the basis
     for j in range(5):
         for k in range(j + 1, 5):
             r, s = _pair_intersections(j, k, gamma, box)
             mat = np.linalg.inv(np.stack([e[j], e[k]]))
             z = np.stack([r - gamma[j], s - gamma[k]], axis=1) @ mat.T
             x = z @ e.T + gamma
-            kk = np.ceil(x).astype(np.int64)
-            frac = np.abs(x - np.rint(x))
-            frac[:, [j, k]] = 1.0
-            if frac.size and frac.min() < TOLERANCE * scale:
+            x[:, j], x[:, k] = r - 0.5, s - 0.5  # so that K_j = r, K_k = s
+            ceil = np.ceil(x)
+            if ceil.size and np.minimum(ceil - x, x - (ceil - 1)).min() < TOLERANCE * scale:
                 raise InvalidProblem("the pentagrid of this seed has three lines through one point in the window "
                                      "(a singular grid); choose another seed")
-            kk[:, j], kk[:, k] = r, s
-            index = kk.sum(axis=1)
-            uj, uk = np.eye(5, dtype=np.int64)[j], np.eye(5, dtype=np.int64)[k]
-            quad = np.stack([kk, kk + uj, kk + uj + uk, kk + uk], axis=1)  # (n, 4, 5)
-            # the marked vertex: K (index 2) or K + e_j + e_k (index 1), the vertex of index 2 or 3
-            # at the rhomb's acute (thick) or obtuse (thin) ends
-            flip = index == 1
-            quad[flip] = quad[flip][:, [2, 3, 0, 1]]
-            red = quad[..., :4] - quad[..., 4:5]
-            xy = zeta_xy(red)
-            keep = _in_window(xy, window)
-            verts.append(_ccw(red[keep]))
-            types.append(np.full(int(keep.sum()), 1 if (k - j) in (1, 4) else 0, dtype=np.int8))
+            centre = ceil @ e + (e[j] + e[k]) / 2
+            keep = (centre[:, 0] >= x0) & (centre[:, 0] < x0 + w) & (centre[:, 1] >= y0) & (centre[:, 1] < y0 + h)
+            kk = ceil[keep].astype(np.int64)
+            # the marked vertex is the one of index 2 or 3 at the rhomb's acute (thick) or obtuse (thin)
+            # ends: K when sum K = 2, K + zeta^j + zeta^k when sum K = 1
+            flip = kk.sum(axis=1) == 1
+            corners = np.stack([0 * unit[j], unit[j], unit[j] + unit[k], unit[k]])
+            order = [0, 1, 2, 3] if (k - j) in (1, 2) else [0, 3, 2, 1]  # counter-clockwise
+            table = np.stack([corners[order], np.roll(corners, -2, axis=0)[order]])
+            base = kk[:, :4] - kk[:, 4:5]
+            verts.append(base[:, None, :] + table[flip.astype(np.intp)])
+            types.append(np.full(len(kk), 1 if (k - j) in (1, 4) else 0, dtype=np.int8))
     return np.concatenate(types), np.concatenate(verts)
 
 
