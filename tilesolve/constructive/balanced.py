@@ -332,7 +332,8 @@ def balanced_window_exact(name: str, window: Window, seed: int) -> np.ndarray:
 
     Each row's ``x(y) = P / Q`` comes from the closed form on its own (no iteration of ``f``),
     each digit and carry from its definition (``floor(j x) = j P // Q``), each tile from a
-    search of :attr:`Machine.tiles`.
+    search of :attr:`Machine.tiles`. Rows within ``+-MAX_EXACT_ROW`` (an ``InvalidProblem``
+    beyond).
 
     >>> from tilesolve.model.window import Window
     >>> w = Window(-3, -2, 5, 4)
