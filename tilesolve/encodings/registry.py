@@ -129,6 +129,31 @@ def _tiles(problem, options, deadline):
         raise InvalidProblem(f"encoding wang-tiles-cnf: {exc}") from None
 
 
+def _shapes_tile(problem, options, deadline):
+    from tilesolve.encodings.shapes import encode_tiling
+    from tilesolve.model.shapes import ShapesProblem
+
+    _need(problem, ShapesProblem, "shapes-tile-cnf", "polyform tiling problems")
+    if problem.question != "tile":
+        raise InvalidProblem("encoding shapes-tile-cnf encodes tiling questions, not classifications")
+    return encode_tiling(problem)
+
+
+def _shapes_corona(problem, options, deadline):
+    from tilesolve.encodings.shapes import encode_coronas
+    from tilesolve.model.shapes import ShapesProblem
+
+    _need(problem, ShapesProblem, "shapes-corona-cnf", "polyform classifications")
+    levels, blocked = options["levels"], options["blocked"]
+    if isinstance(levels, bool) or not isinstance(levels, int) or not 1 <= levels <= 8:
+        raise InvalidProblem(f"encoding shapes-corona-cnf: levels must be an integer in 1..8, got {levels!r}")
+    try:
+        return encode_coronas(problem, levels, blocked)
+    except (KeyError, TypeError, ValueError):
+        raise InvalidProblem("encoding shapes-corona-cnf: 'blocked' names a tile that is no placement of its "
+                             "level") from None
+
+
 #: Every named encoding, by name.
 ENCODINGS: dict[str, NamedEncoding] = {e.name: e for e in (
     NamedEncoding("dappled-cnf", 1, "dappled problems (tilesolve.encodings.dappled.encode_cnf)",
@@ -140,6 +165,10 @@ ENCODINGS: dict[str, NamedEncoding] = {e.name: e for e in (
                   {"anchor_tile": None, "amo_tiles": True}, _packing),
     NamedEncoding("wang-tiles-cnf", 1, "Wang tile sets on free boards (tilesolve.encodings.wang_tiles.encode_tiles)",
                   {}, _tiles),
+    NamedEncoding("shapes-tile-cnf", 1, "polyform tilings of regions and tori (tilesolve.encodings.shapes."
+                  "encode_tiling)", {}, _shapes_tile),
+    NamedEncoding("shapes-corona-cnf", 1, "coronas around a polyform (tilesolve.encodings.shapes.encode_coronas)",
+                  {"levels": 1, "blocked": []}, _shapes_corona),
 )}
 
 

@@ -1,0 +1,321 @@
+"""CNF encodings of polyform questions (class notes Part II §3; Kaplan, "Heesch numbers of
+unmarked polyforms", Contributions to Discrete Mathematics 17(2), 2022).
+
+Placements
+    A placement is a congruent copy of a shape on the grid: an image under the point group
+    (:meth:`tilesolve.model.shapes.Grid.images`) translated by a grid translation. Variable
+    ``i + 1`` says placement ``i`` is used.
+
+Tilings of a region or a torus (:func:`encode_tiling`)
+    Every cell of the region (or of the torus ``Z^2 / L``, cells reduced modulo the periods)
+    is covered by exactly one used placement: one clause "at least one" and an at-most-one
+    (pairwise up to :data:`PAIRWISE_MAX` placements, else PySAT's sequential counter) per cell.
+    A placement that would cover a torus cell twice is left out.
+
+Coronas (:func:`encode_coronas`)
+    Level 0 is the shape ``S`` itself. ``x[j, p]`` puts placement ``p`` in corona ``j``
+    (1 <= j <= k) and ``y[j, c]`` says a tile of corona ``j`` covers cell ``c``. Two used
+    placements never share a cell; a corona-``j`` tile touches (shares a corner with) a tile of
+    corona ``j - 1`` and no tile of a lower corona, so the levels are the distances from ``S``
+    in the touching graph; every cell touching ``S`` or a tile of corona ``j - 1`` is covered
+    by a tile of corona ``<= j``. So the tiles of coronas ``0..j`` cover a neighbourhood of
+    those of coronas ``0..j-1``: the patch has ``k`` coronas. ``blocked`` holes (a set of
+    uncovered cells and the tiles around it, found in an earlier model) add a clause "one of
+    these tiles is absent or one of these cells is covered" (the ``H_c`` variant: no holes).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from tilesolve.encodings import ClauseSet, cardinality
+from tilesolve.model.shapes import Grid, ShapesProblem
+
+__all__ = ["PAIRWISE_MAX", "TilingEncoding", "CoronaEncoding", "encode_tiling", "encode_coronas", "torus_reducer",
+           "orientations", "placements_at"]
+
+#: Cells covered by at most this many placements get a pairwise at-most-one.
+PAIRWISE_MAX = 8
+
+
+def orientations(problem: ShapesProblem) -> list[list[tuple[tuple[int, int], ...]]]:
+    """Per shape, its distinct images under the allowed part of the point group."""
+    g = problem.geometry
+    return [g.images(s.cells, problem.reflections) for s in problem.shapes]
+
+
+def torus_reducer(g: Grid, lattice):
+    """``(reduce, cells)``: ``reduce(cell)`` is the representative of a cell modulo
+    ``period * L``, and ``cells`` lists the representatives.
+
+    ``L``'s Hermite form has periods ``(A, 0)`` and ``(B, D)`` with ``0 <= B < A``; a cell's
+    translation part is reduced to ``[0, A) x [0, D)``.
+    """
+    (a, b), (c, d) = lattice
+    dd, u, w = _egcd(b, d)
+    bb = u * a + w * c
+    aa = abs(a * d - b * c) // dd
+    bb %= aa
+    p = g.period
+
+    def reduce(cell):
+        i, sx = divmod(cell[0], p)
+        j, sy = divmod(cell[1], p)
+        k = j // dd
+        i, j = i - k * bb, j - k * dd
+        return (i % aa * p + sx, j * p + sy)
+
+    types = [(0, 0)] if p == 1 else [(1, 1), (2, 2)]
+    return reduce, [(p * i + t[0], p * j + t[1]) for i in range(aa) for j in range(dd) for t in types]
+
+
+def _egcd(x: int, y: int) -> tuple[int, int, int]:
+    """``(g, u, w)`` with ``u*x + w*y = g = gcd(x, y) > 0``."""
+    if y == 0:
+        return (abs(x), (1 if x >= 0 else -1), 0)
+    g, u, w = _egcd(y, x % y)
+    return g, w, u - (x // y) * w
+
+
+def placements_at(g: Grid, images, cells) -> dict:
+    """Placements of each image (``[(shape, image cells), ...]``) that cover one of ``cells``:
+    ``{sorted cells: shape}``."""
+    out: dict = {}
+    for shape, img in images:
+        for h in cells:
+            for c in img:
+                if g.cell_type(h) != g.cell_type(c):
+                    continue
+                dx, dy = h[0] - c[0], h[1] - c[1]
+                out.setdefault(tuple(sorted((x + dx, y + dy) for x, y in img)), shape)
+    return out
+
+
+def _exactly_one(cs: ClauseSet, lits: list[int], top: int, label: str) -> int:
+    """Clauses "exactly one of ``lits``"; returns the new top variable."""
+    cs.add_lists([lits], f"{label}: at least one")
+    return _at_most_one(cs, lits, top, label)
+
+
+def _at_most_one(cs: ClauseSet, lits: list[int], top: int, label: str) -> int:
+    if len(lits) <= PAIRWISE_MAX:
+        cs.add_lists([[-a, -b] for i, a in enumerate(lits) for b in lits[i + 1:]], f"{label}: at most one")
+        return top
+    clauses = cardinality("atmost", lits, 1, top_id=top, encoding=1)  # sequential counter
+    cs.add_lists(clauses, f"{label}: at most one", grid_only=False)
+    return max([top] + [abs(v) for cl in clauses for v in cl])
+
+
+@dataclass
+class TilingEncoding:
+    """Exact cover of a region or torus by placements (:func:`encode_tiling`).
+
+    ``tiling`` arrays (what :meth:`decode` gives) hold one row ``(piece, shape, x, y)`` per cell
+    of every piece, in plane coordinates (on a torus: the piece as placed, unreduced).
+    """
+
+    problem: ShapesProblem
+    placements: list = field(default_factory=list)  # [(shape, cells)]
+    hard: ClauseSet = field(default_factory=ClauseSet)
+    n_vars: int = 0
+    restricted: bool = False
+
+    def projection(self) -> np.ndarray:
+        return np.arange(1, len(self.placements) + 1)
+
+    def decode(self, model) -> np.ndarray:
+        rows = []
+        used = [v for v in model if 0 < v <= len(self.placements)]
+        for piece, v in enumerate(used):
+            shape, cells = self.placements[v - 1]
+            rows += [(piece, shape, x, y) for x, y in cells]
+        return np.asarray(rows, dtype=np.int64).reshape(-1, 4)
+
+    def literals(self, tiling) -> list[int]:
+        key = {}
+        t = np.asarray(tiling, dtype=np.int64).reshape(-1, 4)
+        for piece in np.unique(t[:, 0]):
+            rows = t[t[:, 0] == piece]
+            key[(int(rows[0, 1]), self._key(rows[:, 2:].tolist()))] = True
+        return [(i + 1) if (s, self._key(c)) in key else -(i + 1) for i, (s, c) in enumerate(self.placements)]
+
+    def _key(self, cells) -> tuple:
+        if self.problem.lattice is None:
+            return tuple(sorted(map(tuple, cells)))
+        reduce, _ = torus_reducer(self.problem.geometry, self.problem.lattice)
+        return tuple(sorted(reduce(tuple(c)) for c in cells))
+
+    def header(self) -> list[str]:
+        return [f"tilesolve polyform tiling: {self.problem.describe()}",
+                f"variables 1..{len(self.placements)}: placements (congruent copies) of the shapes",
+                "per cell: at least one placement covers it, and at most one"]
+
+
+def encode_tiling(problem: ShapesProblem) -> TilingEncoding:
+    """The exact-cover CNF of a ``tile`` problem.
+
+    Examples
+    --------
+    >>> from tilesolve.model.shapes import parse_ascii
+    >>> p = ShapesProblem("tile", (parse_ascii("##", "omino"),), region=((0, 0), (1, 0), (0, 1), (1, 1)))
+    >>> enc = encode_tiling(p)
+    >>> len(enc.placements), len(enc.hard)
+    (4, 8)
+    """
+    g = problem.geometry
+    images = [(s, img) for s, imgs in enumerate(orientations(problem)) for img in imgs]
+    if problem.region is not None:
+        region = set(problem.region)
+        cells = sorted(region)
+        found = placements_at(g, images, cells)
+        places = [(s, c) for c, s in found.items() if set(c) <= region]
+        index = {c: i for i, c in enumerate(cells)}
+
+        def cover(cells_):
+            return [index[c] for c in cells_]
+    else:
+        reduce, reps = torus_reducer(g, problem.lattice)
+        found = placements_at(g, images, reps)
+        seen, places = set(), []
+        for c, s in found.items():
+            red = tuple(sorted(reduce(x) for x in c))
+            if len(set(red)) == len(red) and (s, red) not in seen:
+                seen.add((s, red))
+                places.append((s, c))
+        index = {c: i for i, c in enumerate(reps)}
+        cells = reps
+
+        def cover(cells_):
+            return [index[reduce(c)] for c in cells_]
+    enc = TilingEncoding(problem, places)
+    by_cell: list[list[int]] = [[] for _ in cells]
+    for i, (_, c) in enumerate(places):
+        for j in cover(c):
+            by_cell[j].append(i + 1)
+    top = len(places)
+    for lits in by_cell:
+        top = _exactly_one(enc.hard, lits, top, "cells")
+    enc.n_vars = max(top, 1)
+    return enc
+
+
+@dataclass
+class CoronaEncoding:
+    """``k`` coronas around one shape (:func:`encode_coronas`)."""
+
+    grid: Grid
+    shape: tuple
+    levels: int
+    candidates: list = field(default_factory=list)   # per level: [cells]
+    var: dict = field(default_factory=dict)           # (level, index) -> variable
+    cellvar: dict = field(default_factory=dict)       # (level, cell) -> variable
+    hard: ClauseSet = field(default_factory=ClauseSet)
+    n_vars: int = 0
+    restricted: bool = False
+
+    def projection(self) -> np.ndarray:
+        return np.asarray(sorted(self.var.values()), dtype=np.int64)
+
+    def decode(self, model) -> np.ndarray:
+        """Rows ``(piece, level, x, y)``: piece 0 is the shape (level 0)."""
+        true = {v for v in model if v > 0}
+        rows = [(0, 0, x, y) for x, y in self.shape]
+        piece = 1
+        for (level, i), v in sorted(self.var.items()):
+            if v in true:
+                rows += [(piece, level, x, y) for x, y in self.candidates[level - 1][i]]
+                piece += 1
+        return np.asarray(rows, dtype=np.int64).reshape(-1, 4)
+
+    def literals(self, tiling) -> list[int]:
+        t = np.asarray(tiling, dtype=np.int64).reshape(-1, 4)
+        used = set()
+        for piece in np.unique(t[:, 0]):
+            rows = t[t[:, 0] == piece]
+            used.add((int(rows[0, 1]), tuple(sorted(map(tuple, rows[:, 2:].tolist())))))
+        return [v if (lv, self.candidates[lv - 1][i]) in used else -v for (lv, i), v in sorted(self.var.items())]
+
+    def header(self) -> list[str]:
+        return [f"tilesolve coronas: {self.levels} corona(s) around a {self.grid.name} polyform of {len(self.shape)} "
+                "cells", "x[j, p]: placement p is a tile of corona j; y[j, c]: a corona-j tile covers cell c"]
+
+
+def _halo(g: Grid, cells) -> set:
+    s = set(cells)
+    return {n for c in s for n in g.touching(c)} - s
+
+
+def encode_coronas(problem: ShapesProblem, levels: int, blocked=()) -> CoronaEncoding:
+    """The CNF "the shape has ``levels`` coronas" (module docstring), with ``blocked`` holes:
+    pairs ``(tiles, cells)``, tiles as ``(level, sorted cells)``.
+
+    Examples
+    --------
+    >>> from tilesolve.model.shapes import parse_ascii
+    >>> p = ShapesProblem("classify", (parse_ascii("#", "omino"),))
+    >>> enc = encode_coronas(p, 1)
+    >>> [len(c) for c in enc.candidates]
+    [8]
+    """
+    g = problem.geometry
+    shape = problem.shapes[0].cells
+    S = set(shape)
+    halo_s = _halo(g, S)
+    images = [(0, img) for img in g.images(shape, problem.reflections)]
+    enc = CoronaEncoding(g, shape, levels)
+    frontier = halo_s
+    for level in range(1, levels + 1):
+        found = placements_at(g, images, sorted(frontier))
+        cands = [c for c in found if not S & set(c) and (level == 1 or not halo_s & set(c))]
+        enc.candidates.append(sorted(cands))
+        frontier = set().union(*(_halo(g, c) for c in cands)) - S if cands else set()
+    top = 0
+    for level, cands in enumerate(enc.candidates, 1):
+        for i in range(len(cands)):
+            top += 1
+            enc.var[(level, i)] = top
+    covering: dict = {}
+    for (level, i), v in enc.var.items():
+        for c in enc.candidates[level - 1][i]:
+            covering.setdefault((level, c), []).append(v)
+    for key in sorted(covering):
+        top += 1
+        enc.cellvar[key] = top
+    cs = enc.hard
+    # y[j, c] <-> some corona-j tile covers c
+    cs.add_lists([[-y] + covering[key] for key, y in sorted(enc.cellvar.items())], "cell of a corona: some tile")
+    cs.add_lists([[-v, enc.cellvar[(level, c)]] for (level, i), v in sorted(enc.var.items())
+                  for c in enc.candidates[level - 1][i]], "tile covers its cells")
+    by_cell: dict = {}
+    for (level, c), lits in covering.items():
+        by_cell.setdefault(c, []).extend(lits)
+    for c in sorted(by_cell):
+        top = _at_most_one(cs, by_cell[c], top, "tiles disjoint")
+
+    def covered_up_to(c, level):
+        return [enc.cellvar[(j, c)] for j in range(1, level + 1) if (j, c) in enc.cellvar]
+
+    cs.add_lists([covered_up_to(c, 1) for c in sorted(halo_s)], "the shape is surrounded by corona 1")
+    adjacency, lower, surround = [], [], []
+    for (level, i), v in sorted(enc.var.items()):
+        halo = sorted(_halo(g, enc.candidates[level - 1][i]) - S)
+        if level >= 2:
+            adjacency.append([-v] + [enc.cellvar[(level - 1, c)] for c in halo if (level - 1, c) in enc.cellvar])
+            lower += [[-v, -enc.cellvar[(j, c)]] for j in range(1, level - 1) for c in halo if (j, c) in enc.cellvar]
+        if level < levels:
+            surround += [[-v] + covered_up_to(c, level + 1) for c in halo]
+    cs.add_lists(adjacency, "a corona-j tile touches corona j-1")
+    cs.add_lists(lower, "a corona-j tile touches no lower corona")
+    cs.add_lists(surround, "corona j+1 surrounds corona j")
+    blocks = []
+    for tiles, cells in blocked:
+        index = {(lv, c): i for lv, cands in enumerate(enc.candidates, 1) for i, c in enumerate(cands)}
+        clause = [-enc.var[(lv, index[(lv, tuple(map(tuple, c)))])] for lv, c in tiles]
+        clause += [y for c in cells for y in covered_up_to(tuple(c), levels)]
+        blocks.append(clause)
+    if blocks:
+        cs.add_lists(blocks, "no hole (H_c): these tiles absent or the hole's cells covered")
+    enc.n_vars = max(top, 1)
+    return enc
