@@ -75,9 +75,10 @@ def render() -> None:
 
 
 @render.command("texture", context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP,
-                short_help="Tile-based texture mapping with corner tiles (class notes §5.3-5.4).")
+                short_help="Tile-based texture mapping: corner tiles (class notes §5.3-5.4) or aperiodic Wang sets.")
 @click.option("--example", required=True, type=click.Path(dir_okay=True), metavar="IMG",
-              help="The example texture (any image Pillow reads), at least one tile in each direction.")
+              help="The example texture (any image Pillow reads), at least one tile in each direction (with "
+                   "--aperiodic 1.2 tiles: a diamond and its feather).")
 @click.option("--colors", type=click.IntRange(2, 8), default=3, show_default=True, metavar="C",
               help="Corner colours: the atlas packs the C^4 corner tiles in a C^2 x C^2 tile packing.")
 @click.option("--aperiodic", default=None, metavar="NAME",
@@ -88,9 +89,11 @@ def render() -> None:
               help="With --aperiodic: draw on the CPU (no OpenGL needed); the same pixels as the GPU.")
 @click.option("--size", required=True, metavar="WxH", help="Picture size in pixels (any size: rendered in passes).")
 @click.option("--tile", type=click.IntRange(8, 1024), default=64, show_default=True, metavar="PX",
-              help="Side of an atlas tile in texels (even; the atlas, C^2 tiles a side, at most 16384 px).")
+              help="Side of an atlas tile in texels (even; the atlas, C^2 tiles a side or the square root of the "
+                   "aperiodic set's tiles, at most 16384 px).")
 @click.option("--scale", type=click.IntRange(1, 4096), default=None, metavar="PX",
-              help="Pixels per tile side in the picture (default: --tile); smaller values use the atlas's mipmaps.")
+              help="Pixels per tile side in the picture (default: --tile); smaller values use the atlas's mipmaps "
+                   "(--aperiodic: the nearest texel).")
 @_ORIGIN
 @_SEED
 @click.option("--hash", "hash_", type=click.Choice(["long", "table"]), default="long", show_default=True,
