@@ -32,9 +32,10 @@ from tilesolve.model.window import OnWindow, Window
 __all__ = ["AperiodicWindowProblem", "MAX_WINDOW_TILES", "BYTES_PER_TILE"]
 
 #: Peak memory of building, checking and writing a window, per tile (measured: ``tilesolve
-#: aperiodic tiling --builtin jeandel-rao --region 0,0,4000x4000 -o t.json --png t.png``).
-BYTES_PER_TILE = 24
-#: Most tiles in one window (a 11,585 x 11,585 square): about 3 GiB at :data:`BYTES_PER_TILE`.
+#: aperiodic tiling --builtin jeandel-rao --region 0,0,10000x10000 -o t.json --png t.png``, 0.8 GiB).
+BYTES_PER_TILE = 8
+#: Most tiles in one window (a 11,585 x 11,585 square): its file (4/3 bytes a tile) stays within
+#: the default input limit of ``tilesolve verify`` (256 MiB) and its PNG within the pixel limit.
 MAX_WINDOW_TILES = 1 << 27
 
 
