@@ -66,12 +66,23 @@ def _xy5(v: np.ndarray) -> np.ndarray:
     return np.stack([v @ np.cos(ang), v @ np.sin(ang)], axis=-1)
 
 
+def _labels(x: np.ndarray) -> np.ndarray:
+    """Labels 0..k-1 of integers, equal exactly for equal values."""
+    return np.unique(x, return_inverse=True)[1].ravel()
+
+
 def _keys(rows: np.ndarray) -> np.ndarray:
-    """Integer labels, equal exactly for equal rows."""
+    """Integer labels, equal exactly for equal rows: the rows packed into one int64 in mixed
+    radix when their ranges allow, else compared as bytes."""
     rows = np.ascontiguousarray(rows, dtype=np.int64)
-    flat = rows.view(np.dtype((np.void, 8 * rows.shape[1]))).ravel()
-    _, inv = np.unique(flat, return_inverse=True)
-    return inv.ravel()
+    lo = rows.min(axis=0)
+    span = (rows.max(axis=0) - lo + 1).astype(object)
+    if int(np.prod(span)) < 2**62:
+        packed = np.zeros(len(rows), dtype=np.int64)
+        for col in range(rows.shape[1]):
+            packed = packed * int(span[col]) + (rows[:, col] - lo[col])
+        return _labels(packed)
+    return _labels(rows.view(np.dtype((np.void, 8 * rows.shape[1]))).ravel())
 
 
 def _too_many(out: list, cap: int = 20) -> bool:
@@ -108,12 +119,13 @@ def penrose_violations(kind: str, types, vertices) -> list[Violation]:
             out.append(Violation("tile", f"tile {i} is no {_NAMES[(kind, t)]} counter-clockwise from its marked vertex"))
     if out:
         return out
-    # 2. edges: each (tile, side) runs from vertex s to s+1
-    ends = np.concatenate([v, np.roll(v, -1, axis=1)], axis=2).reshape(-1, 8)
-    rev = np.concatenate([ends[:, 4:], ends[:, :4]], axis=1)
-    forward = _keys(np.concatenate([ends, rev]))
-    a, b = forward[: 4 * n], forward[4 * n:]
-    undirected = np.minimum(a, b)
+    # 2. edges: each (tile, side) runs from vertex s to s+1; vertices and edges by exact labels
+    vkeys = _keys(v.reshape(-1, 4))
+    n_vertices = int(vkeys.max()) + 1
+    start = vkeys.reshape(n, 4)
+    end = np.roll(start, -1, axis=1)
+    a = _labels((start * n_vertices + end).ravel())
+    undirected = _labels((np.minimum(start, end) * n_vertices + np.maximum(start, end)).ravel())
     counts = np.bincount(undirected)
     for u in np.flatnonzero(counts > 2)[:20]:
         out.append(Violation("overlap", f"an edge is shared by {counts[u]} tiles (tiles "
@@ -146,17 +158,14 @@ def penrose_violations(kind: str, types, vertices) -> list[Violation]:
     if out:
         return out
     # 4. angles around vertices
-    vkeys = _keys(v.reshape(-1, 4))
     total = np.bincount(vkeys, weights=angle.ravel()).astype(np.int64)
     for u in np.flatnonzero(total > 10)[:20]:
         out.append(Violation("overlap", f"the tiles at vertex {v.reshape(-1, 4)[np.flatnonzero(vkeys == u)[0]].tolist()}"
                                         f" fill {36 * total[u]} degrees"))
     open_edge = ~shared
-    start_vertex = vkeys.reshape(n, 4)
-    end_vertex = np.roll(start_vertex, -1, axis=1)
     on_boundary = np.zeros(len(total), bool)
-    on_boundary[start_vertex.ravel()[open_edge]] = True
-    on_boundary[end_vertex.ravel()[open_edge]] = True
+    on_boundary[start.ravel()[open_edge]] = True
+    on_boundary[end.ravel()[open_edge]] = True
     for u in np.flatnonzero(~on_boundary & (total != 10))[:20]:
         out.append(Violation("gap", f"the tiles around interior vertex {v.reshape(-1, 4)[np.flatnonzero(vkeys == u)[0]].tolist()}"
                                     f" fill {36 * total[u]} degrees, not 360"))
