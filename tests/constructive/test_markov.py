@@ -247,10 +247,9 @@ def test_origins_beyond_the_window_lattice_are_refused():
 
 # --------------------------------------------------------------------------- the GPU tables
 @pytest.mark.parametrize("name", NAMES)
-def test_polygon_arrays_and_cell_point_code_like_the_window(name):
-    arrays = markov.polygon_arrays(name)
-    (lx, _), (sx, ly) = arrays["lattice"].astype(float)
-    hx, hy = arrays["rotation"].astype(float)
+def test_cell_point_codes_like_the_window(name):
+    part = markov.partition(name)
+    lx, sx, ly, hx, hy = (float(v) for v in (part.lx, part.sx, part.ly, part.hx, part.hy))
     window = Window(2**40 + 3, -(2**45), 16, 12)
     grid = markov_window(name, window, 11)
     ax, ay = markov.cell_point(name, 11, window.x0, window.y0)
@@ -263,8 +262,8 @@ def test_polygon_arrays_and_cell_point_code_like_the_window(name):
             py, px = py - ell * ly, px - ell * sx
             px -= math.floor(px / lx) * lx
             clear = []
-            for vs, n, tile in zip(arrays["vertices"].astype(float), arrays["counts"], arrays["tiles"]):
-                vs = vs[:n]
+            for tile, atom, _ in part.atoms:
+                vs = np.array([[float(x), float(y)] for x, y in atom])
                 d = np.roll(vs, -1, axis=0) - vs
                 cross = d[:, 0] * (py - vs[:, 1]) - d[:, 1] * (px - vs[:, 0])
                 if (cross > 1e-5).all():

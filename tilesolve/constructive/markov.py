@@ -63,7 +63,7 @@ from tilesolve.errors import InternalError, InvalidProblem
 from tilesolve.model.window import Window
 
 __all__ = ["NAMES", "QPhi", "markov_window", "orbit_window", "start_point", "partition",
-           "float_tolerance", "polygon_arrays", "cell_point", "BLOCK", "PERTURBATION"]
+           "float_tolerance", "cell_point", "BLOCK", "PERTURBATION"]
 
 #: The partitions shipped, by the name of their built-in tile set.
 NAMES = ("jeandel-rao", "labbe-u19")
@@ -456,42 +456,10 @@ def orbit_window(name: str, window: Window, start: tuple[Any, Any]) -> np.ndarra
 
 
 
-def polygon_arrays(name: str) -> dict[str, np.ndarray]:
-    """The partition ``name`` as flat float32 arrays, for a look-up on a GPU.
-
-    Returns
-    -------
-    dict
-        ``vertices`` ``(atoms, k, 2)`` float32, each polygon's vertices counter-clockwise, padded
-        with its last vertex to the most vertices ``k``; ``counts`` ``(atoms,)`` int32, the
-        vertices of each; ``tiles`` ``(atoms,)`` uint8, each polygon's tile (the built-in tile
-        set's index); ``lattice`` ``(2, 2)`` float32, the rows ``(lx, 0)`` and ``(sx, ly)``;
-        ``rotation`` ``(2,)`` float32, ``(hx, hy)``: one column moves a point by ``(hx, 0)``,
-        one row by ``(0, hy)``.
-
-    A float32 point within about ``1e-6`` of an edge may fall in the neighbouring polygon; a
-    look-up that must agree with :func:`markov_window` anchors each block of cells at
-    :func:`cell_point` and leaves such points to the CPU.
-
-    >>> a = polygon_arrays("jeandel-rao")
-    >>> a["vertices"].shape, a["tiles"].shape, a["lattice"].tolist()[1]
-    ((24, 4, 2), (24,), [1.0, 4.6180338859558105])
-    """
-    part = partition(name)
-    k = max(len(vs) for _, vs, _ in part.atoms)
-    vertices = np.array([[[float(x), float(y)] for x, y in vs + (vs[-1],) * (k - len(vs))]
-                         for _, vs, _ in part.atoms], np.float32)
-    return {"vertices": vertices,
-            "counts": np.array([len(vs) for _, vs, _ in part.atoms], np.int32),
-            "tiles": np.array([tile for tile, _, _ in part.atoms], np.uint8),
-            "lattice": np.array([[float(part.lx), 0.0], [float(part.sx), float(part.ly)]], np.float32),
-            "rotation": np.array([float(part.hx), float(part.hy)], np.float32)}
-
-
 def cell_point(name: str, seed: int, x: int, y: int) -> tuple[float, float]:
     """The point of cell ``(x, y)``'s orbit in the fundamental domain, reduced exactly and then
     rounded to float64: the anchor from which cell ``(x + c, y + r)`` lies at
-    ``+ (c hx, r hy)`` modulo the lattice (:func:`polygon_arrays`).
+    ``+ (c hx, r hy)`` modulo the lattice of :func:`partition`.
 
     >>> px, py = cell_point("labbe-u19", 3, 2**62, -5)
     >>> 0 <= px < 1 and 0 <= py < 1

@@ -303,8 +303,8 @@ class _MarkovCells:
     """The cells of a pass coded by the shader :data:`_FRAGMENT_MARKOV` from the polygons of
     :func:`tilesolve.constructive.markov.partition` (convex, counter-clockwise, each with its
     tile; the lattice ``<(lx, 0), (sx, ly)>``; the rotation ``(hx, hy)``), their vertices rounded
-    from ``Q(φ)`` to float64 (:func:`~tilesolve.constructive.markov.polygon_arrays` has them in
-    float32, which would leave a cell in about 10**4 undecided instead of one in about 10**8).
+    from ``Q(φ)`` to float64 (float32 would leave a cell in about 10**4 undecided instead of one
+    in about 10**8).
 
     Cell ``(X, Y)`` codes the point ``x0 + (X hx, Y hy)`` of the torus. The shader cannot reduce
     coordinates of up to ``2**62``, so the CPU reduces them: a row's height ``y`` in the
