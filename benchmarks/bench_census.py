@@ -66,7 +66,11 @@ def main() -> None:
     ap.add_argument("--colors", type=int, default=3)
     ap.add_argument("--workers", type=int, nargs="+", default=[1, 2, 4])
     a = ap.parse_args()
+    import logging
+
     import distributed
+
+    logging.getLogger("distributed").setLevel(logging.ERROR)  # the nannies' shutdown notes
 
     size = ["--tiles", str(a.tiles), "--colors", str(a.colors)]
     rows = []

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 
+import pytest
 from clitools import one_line_error, run
 
 
@@ -47,3 +48,16 @@ def test_census_bad_input(tmp_path):
     assert "more than" in one_line_error(run("aperiodic", "census", "--tiles", "8", "--colors", "4", "-o", "x.jsonl",
                                              cwd=tmp_path))
     assert not (tmp_path / "x.jsonl").exists()
+
+
+@pytest.mark.slow
+def test_census_stopped_by_its_time_limit_resumes_to_the_end(tmp_path):
+    p = run("aperiodic", "census", "--tiles", "3", "--colors", "3", "--time-limit", "1", "-o", "c.jsonl", cwd=tmp_path)
+    assert p.returncode == 3, p.stderr
+    first = p.stdout.splitlines()[0]
+    assert first.startswith("census of 461 sets") and not first.endswith("0 undecided, 0 not reached"), first
+    p = run("aperiodic", "census", "--tiles", "3", "--colors", "3", "--resume", "-o", "c.jsonl", cwd=tmp_path)
+    assert p.returncode == 0, p.stderr
+    resumed = int(p.stderr.split(" record(s) resumed")[0].split()[-1])
+    assert resumed < 461
+    assert p.stdout.splitlines()[0].endswith("263 finite, 198 periodic, 0 undecided, 0 not reached"), p.stdout
