@@ -86,6 +86,26 @@ class TileEncoding:
         t = g[self.labels[:, 0], self.labels[:, 1]]
         return (1 + np.arange(self.n_cells) * self.n_tiles + t).tolist()
 
+    def part(self, cells) -> ClauseSet:
+        """The clauses whose variables all belong to ``cells`` (a boolean mask over the board's
+        cells), in this formula's variables: the formula of the sub-board on those cells, and
+        the units that forbid a tile with no possible neighbour across a leg leaving them.
+
+        A subset of this formula, so a DRAT proof of it whose lemmas are all RUP refutes this
+        formula too (a refutation of a band of a torus refutes the torus).
+
+        Examples
+        --------
+        >>> enc = encode_tiles(Board.rect(3, 1), WangTileSet([[0, 0, 0, 0]], 1))
+        >>> len(enc.part([True, True, False])), len(enc.hard)
+        (4, 7)
+        """
+        mask = np.asarray(cells, dtype=bool)
+        out = ClauseSet()
+        for b in self.clauses.blocks:  # encode_tiles builds rectangular blocks only
+            out.add_array(b.lits[mask[(np.abs(b.lits) - 1) // self.n_tiles].all(axis=1)], b.label)
+        return out
+
     def header(self) -> list[str]:
         return [f"tilesolve Wang tile selection: {self.n_cells} cells, {self.n_tiles} tiles",
                 f"variable 1 + cell*{self.n_tiles} + tile: tile at cell (cells in board order, tiles sorted)"]

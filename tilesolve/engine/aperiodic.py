@@ -57,6 +57,12 @@ __all__ = ["decide", "square_scan", "sweep", "tileset_digest", "read_cache", "ca
 GUIDE_SIDE = 30
 #: Squares at most this large are solved with the full formula directly.
 DIRECT_SIDE = 40
+#: A cylinder searched for a torus witness is this many times the torus's height (plus 2 rows).
+CYLINDER_LAPS = 6
+#: CaDiCaL's settings for a search whose answer is a witness: no inprocessing (variable
+#: elimination, subsumption, probing, vivification), which a satisfiable tiling formula pays
+#: for and seldom uses (JR 100x100: 6.4 s instead of 18 s wall, the same conflicts).
+SEARCH_OPTIONS = {"elim": 0, "subsume": 0, "probe": 0, "vivify": 0}
 #: The SAT solver (CaDiCaL logs DRAT proofs).
 DEFAULT_SOLVER = "cadical153"
 
@@ -114,8 +120,98 @@ def decide(tileset: WangTileSet, name: str, run: RunOptions, *, allowed=None) ->
         enc = board_encoding(tileset, name, allowed=allowed, deadline=run.deadline)
     except TimeLimitReached as exc:
         return Certificate(name, "undecided", None, "sat", {"why": str(exc)}, round(time.perf_counter() - t0, 6))
+    rows, cols, shear = parse_board_name(name)
+    if allowed is None and shear >= 0:
+        cert = _by_bands(tileset, name, enc, run, t0)
+        if cert is not None:
+            return cert
     sol = sat_route(enc, run, solver=run.solver or DEFAULT_SOLVER, t0=t0)
     return _certificate(name, sol, "sat guided" if allowed is not None else "sat")
+
+
+def _bands(labels: np.ndarray, rows: int, cols: int) -> list[tuple[int, np.ndarray, str]]:
+    """The bands of a ``rows x cols`` torus, smallest first: ``(cells, mask, what)`` for the
+    first ``h`` columns (``h <= cols / 2``; they wrap top to bottom) and the first ``h`` rows
+    (``h <= rows / 2``; they wrap side to side, with the shear)."""
+    out = [(h * rows, labels[:, 1] < h, f"its first {h} column(s)") for h in range(1, cols // 2 + 1)]
+    out += [(h * cols, labels[:, 0] < h, f"its first {h} row(s)") for h in range(1, rows // 2 + 1)]
+    return sorted(out, key=lambda b: b[0])
+
+
+def _by_bands(tileset: WangTileSet, name: str, enc, run: RunOptions, t0: float) -> Certificate | None:
+    """A torus refuted through one of its bands (:func:`_bands`), smallest first, or a witness
+    read off a cylinder (:func:`_cylinder_witness`); ``None`` when neither settles it.
+
+    A band's clauses are a subset of the torus's formula (:meth:`TileEncoding.part`), so the
+    band's DRAT proof is checked against the torus's whole formula and, once it passes, is the
+    torus's certificate like any other (the named encoding's CNF, re-derivable). Jeandel-Rao's
+    tori fall to bands a few cells wide: no horizontally periodic strip of height ``p <= 24``
+    is wider than 10 columns (benchmarks/bench_aperiodic_sat.py).
+    """
+    from tilesolve.engine.certificates import unsat_solution
+    from tilesolve.engine.sat import solve_cnf
+
+    rows, cols, shear = parse_board_name(name)
+    solver = run.solver or DEFAULT_SOLVER
+    for _, mask, what in _bands(enc.labels, rows, cols):
+        if run.deadline.expired():
+            return None
+        r = solve_cnf(enc.part(mask), solver=solver, with_proof=True, seed=run.seed, deadline=run.deadline)
+        if r.status is Status.UNSAT:
+            stats = {"clauses": len(enc.hard), "variables": enc.n_vars, "band": what}
+            sol = unsat_solution(enc.hard, r, method="sat", seed=run.seed, t0=t0, stats=stats,
+                                 deadline=run.deadline, encoding=getattr(enc, "named", None))
+            if sol.status is Status.UNSAT:
+                return _certificate(name, sol.replace(reason=f"{sol.reason}; the proof refutes {what}"), "sat")
+            return None  # a proof that does not carry over: the whole torus decides
+        if r.status is not Status.SAT:
+            return None
+    if shear == 0:
+        return _cylinder_witness(tileset, name, run, t0)
+    return None
+
+
+def _search_options(solver: str) -> dict | None:
+    """:data:`SEARCH_OPTIONS` for CaDiCaL, none for other solvers."""
+    from tilesolve.engine.sat import canonical_solver_name
+
+    return SEARCH_OPTIONS if canonical_solver_name(solver).startswith("cadical") else None
+
+
+def _stacked(grid: np.ndarray, legs: np.ndarray, rows: int) -> np.ndarray | None:
+    """A ``rows x cols`` torus tiling cut from ``grid``, a tiling of a cylinder whose columns
+    wrap: rows ``r1 + 1 .. r2`` whose top colours are the bottom colours of row ``r2``
+    (``r2 - r1`` dividing ``rows``) make a torus, stacked ``rows / (r2 - r1)`` times; else ``None``."""
+    seen: dict[bytes, list[int]] = {}
+    for r in range(grid.shape[0]):
+        key = legs[grid[r], 3].tobytes()  # the row's bottom colours
+        for r1 in seen.get(key, []):
+            if rows % (r - r1) == 0:
+                return np.tile(grid[r1 + 1:r + 1], (rows // (r - r1), 1))
+        seen.setdefault(key, []).append(r)
+    return None
+
+
+def _cylinder_witness(tileset: WangTileSet, name: str, run: RunOptions, t0: float) -> Certificate | None:
+    """A witness for the torus ``name`` (``p x q``, no shear) read off a tiled cylinder of ``q``
+    columns (they wrap) and :data:`CYLINDER_LAPS` ``p + 2`` rows: a tall cylinder is easier to
+    tile than the torus, and two of its rows with the same bottom colours, a divisor of ``p``
+    apart, bound a block that tiles the torus (:func:`_stacked`; the family's verifier checks
+    it like any witness). ``None`` when the cylinder gives none."""
+    from tilesolve.encodings.wang_tiles import encode_tiles
+    from tilesolve.engine.sat import solve_cnf
+    from tilesolve.model.board import Board
+
+    p, q, _ = parse_board_name(name)
+    height = CYLINDER_LAPS * p + 2
+    enc = encode_tiles(Board.grid(np.ones((height, q), bool), wrap_cols="plain"), tileset, deadline=run.deadline)
+    solver = run.solver or DEFAULT_SOLVER
+    r = solve_cnf(enc.hard, solver=solver, deadline=run.deadline, options=_search_options(solver))
+    grid = _stacked(enc.decode(r.model), np.asarray(tileset.legs), p) if r.status is Status.SAT else None
+    if grid is None:
+        return None
+    return Certificate(name, "tiles", grid, "sat cylinder", {"solver": r.solver, "cylinder": f"{height} x {q}"},
+                       round(time.perf_counter() - t0, 6))
 
 
 def _guide(grid: np.ndarray, m: int) -> tuple[np.ndarray, np.ndarray]:

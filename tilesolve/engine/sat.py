@@ -49,7 +49,7 @@ import gc
 import threading
 import time
 from itertools import repeat
-from typing import Callable, Iterable, Iterator, Sequence
+from typing import Callable, Iterable, Iterator, Mapping, Sequence
 
 import numpy as np
 
@@ -279,6 +279,9 @@ class SatSession:
     deadline : Deadline, optional
         Loading stops when it passes; :meth:`solve` then answers ``unknown`` at once
         (:attr:`stopped` says why).
+    options : mapping of str to int, optional
+        The solver's own settings, set before the formula is loaded (CaDiCaL's options, e.g.
+        ``{"elim": 0}``); a solver without settings refuses them.
 
     Examples
     --------
@@ -289,7 +292,7 @@ class SatSession:
     """
 
     def __init__(self, formula, solver: str = DEFAULT_SAT_SOLVER, with_proof: bool = False, seed: int | None = None,
-                 deadline: Deadline | None = None):
+                 deadline: Deadline | None = None, options: Mapping[str, int] | None = None):
         from pysat.solvers import Solver
 
         self.name = canonical_solver_name(solver)
@@ -316,6 +319,8 @@ class SatSession:
             option = _SEED_OPTION.get(self.name)
             if option is not None:
                 self._s.configure({option: int(seed)})
+        if options:
+            self._s.configure(dict(options))
         self.n_clauses = 0
         self.empty_clause = False
         #: Why loading stopped early (the deadline passed), else None.
@@ -473,10 +478,12 @@ def solve_cnf(
     seed: int | None = None,
     phases: Sequence[int] | None = None,
     deadline: Deadline = NO_LIMIT,
+    options: Mapping[str, int] | None = None,
 ) -> Result:
     """Decide a CNF formula once (loading included in ``runtime``) within the run's ``deadline``.
 
-    ``phases`` (e.g. a target tiling) take precedence over the seed's random phases.
+    ``phases`` (e.g. a target tiling) take precedence over the seed's random phases;
+    ``options`` are the solver's own settings (CaDiCaL's, e.g. ``{"elim": 0}``).
 
     Examples
     --------
@@ -487,7 +494,8 @@ def solve_cnf(
     """
     t0 = time.perf_counter()
     try:
-        session = SatSession(formula, solver=solver, with_proof=with_proof, seed=seed, deadline=deadline)
+        session = SatSession(formula, solver=solver, with_proof=with_proof, seed=seed, deadline=deadline,
+                             options=options)
     except KeyboardInterrupt:
         return Result(Status.UNKNOWN, None, time.perf_counter() - t0, None, {}, solver=canonical_solver_name(solver),
                       reason="interrupted (Ctrl-C) while loading the formula")

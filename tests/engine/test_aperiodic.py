@@ -1,0 +1,48 @@
+"""The SAT route's tori: refutations through a band (checked against the whole torus) and
+witnesses read off a tall cylinder."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from tilesolve.engine.aperiodic import _stacked, board_problem, decide
+from tilesolve.engine.certificates import recheck_unsat, writing_proofs
+from tilesolve.io.builtin_tilesets import load
+from tilesolve.model.aperiodic import board_of, leg_colours
+from tilesolve.model.board import BoardProblem, WangTileSet
+from tilesolve.model.run import RunOptions
+from tilesolve.verify.board import board_violations
+
+#: N = i, S = i + 1 (mod 3), E = W = 0: columns that repeat every 3 rows, so the torus p x q is
+#: tiled exactly when 3 divides p.
+STAIRS = WangTileSet([[i, 0, (i + 1) % 3, 0] for i in range(3)], 3)
+
+
+def test_a_jeandel_rao_torus_is_refuted_through_a_band_with_a_proof_of_the_whole_torus(tmp_path):
+    ws, _ = load("jeandel-rao")
+    name = "torus 3x6"
+    with writing_proofs(tmp_path):
+        cert = decide(ws, name, RunOptions(seed=1))
+    assert cert.status == "refuted" and "the proof refutes its first" in cert.evidence["reason"]
+    check = recheck_unsat(board_problem(ws, name), cert.evidence, tmp_path)
+    assert check.ok, check.lines
+
+
+def test_a_torus_witness_is_read_off_a_cylinder():
+    cert = decide(STAIRS, "torus 6x2", RunOptions(seed=1))
+    assert cert.status == "tiles" and cert.method == "sat cylinder" and cert.tiling.shape == (6, 2)
+    assert not board_violations(BoardProblem(board_of("torus 6x2"), STAIRS), leg_colours(STAIRS, cert.tiling))
+
+
+def test_a_torus_no_cylinder_block_fits_is_decided_whole():
+    cert = decide(STAIRS, "torus 4x2", RunOptions(seed=1))
+    assert cert.status == "refuted"
+
+
+def test_stacked_takes_a_block_whose_height_divides_the_torus():
+    legs = STAIRS.legs
+    grid = np.array([[0], [1], [2], [0], [1], [2], [0]])  # bottom colours 1, 2, 0, 1, 2, 0, 1
+    assert _stacked(grid, legs, 4) is None
+    block = _stacked(grid, legs, 6)
+    assert block.tolist() == [[1], [2], [0], [1], [2], [0]]
+    assert not board_violations(BoardProblem(board_of("torus 6x1"), STAIRS), leg_colours(STAIRS, block))
