@@ -51,3 +51,61 @@ def test_the_same_seed_gives_the_same_window():
 def test_demos_build():
     for demo in FAMILY.demos:
         assert solve(demo.make(), method=demo.method, seed=1).status.value == "sat"
+
+
+@pytest.mark.parametrize("values", [{}, {"kind": "p2", "patch": "steps", "steps": 4},
+                                    {"kind": "sphinx", "patch": "steps", "steps": 2},
+                                    {"x0": -1000, "y0": 50, "size": "12x8"}])
+def test_the_form_and_its_command_pose_the_same_problem(tmp_path, values):
+    import json
+
+    from clitools import run
+
+    from tilesolve.families.substitution import FORM
+
+    full = {f.name: f.default for f in FORM.fields} | values
+    problem, _ = FORM.build(full)
+    words, files = FORM.command(full)
+    assert files == {}
+    proc = run(*words, "--seed", "6", "-o", "s.json", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    doc = json.loads((tmp_path / "s.json").read_text())
+    ours = solve(problem, seed=6).tiling
+    assert doc["kind"] == problem.kind and (doc["steps"], doc["region"]) == (
+        problem.steps, list(problem.region) if problem.region else None)
+    assert len(doc["types"]) == ours.n_tiles
+
+
+def test_the_form_refuses_a_rep_tile_window():
+    from tilesolve.errors import InvalidProblem
+    from tilesolve.families.substitution import FORM
+
+    with pytest.raises(InvalidProblem, match="grown by steps"):
+        FORM.build({f.name: f.default for f in FORM.fields} | {"kind": "chair"})
+
+
+@pytest.mark.slow
+def test_the_studio_solves_the_family_and_its_command_reproduces_it(tmp_path):
+    import json
+    import os
+    import subprocess
+    import sys
+    import time
+
+    from starlette.testclient import TestClient
+
+    from tilesolve.studio.app import create_app
+
+    with TestClient(create_app(warm=False), headers={"origin": "http://testserver"}) as client:
+        job = client.post("/api/solve", json={"family": "substitution", "values": {"seed": 3}}).json()["id"]
+        t0 = time.perf_counter()
+        while (state := client.get(f"/api/jobs/{job}?wait=2").json())["state"] == "running":
+            assert time.perf_counter() - t0 < 300
+    res = state["result"]
+    assert res["status"] == "sat" and res["verdict"][0].startswith("ok: solution.json is a valid tiling")
+    assert res["picture"]["format"] == "svg" and "<polygon" in res["picture"]["data"]  # about 1,200 tiles
+    exe = os.path.join(os.path.dirname(sys.executable), "tilesolve")
+    run = subprocess.run(["bash", "-c", res["command"].replace("tilesolve ", exe + " ", 1)], cwd=tmp_path,
+                         capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    assert json.loads((tmp_path / "solution.json").read_text())["vertices"] == json.loads(res["json"])["vertices"]

@@ -4,7 +4,8 @@
 
     tilesolve penrose --kind p3|p2 [--method auto|substitution|pentagrid] (--region X0,Y0,WxH | --steps N)
                       [--seed S] [-o T.json] [--svg T.svg] [--png T.png]
-    tilesolve reptile --tile chair|sphinx|l-tetromino|p-pentomino --steps N [-o T.json] [--svg T.svg] [--png T.png]
+    tilesolve reptile --tile chair|sphinx|l-tetromino|p-pentomino --steps N [--seed S] [-o T.json] [--svg T.svg]
+                      [--png T.png]
 """
 
 from __future__ import annotations
@@ -105,9 +106,13 @@ def penrose(ctx, kind, method, region, steps, seed, output, svg, png) -> None:
 @click.option("--tile", type=click.Choice(["chair", "sphinx", "l-tetromino", "p-pentomino"]), default="chair",
               show_default=True, help="The rep-tile (each is the union of four half-size copies of itself).")
 @click.option("--steps", type=int, required=True, metavar="N", help="Substitution steps (4^N tiles).")
+@click.option("--method", type=click.Choice(["auto", "substitution"]), default="auto", show_default=True,
+              help="The one route: the rep-tile's rule applied N times.")
+@click.option("--seed", type=click.IntRange(0, opt.MAX_SEED), default=None, metavar="N",
+              help="Recorded in the file; a rep-tile patch does not depend on it.")
 @_outputs
 @click.pass_context
-def reptile(ctx, tile, steps, output, svg, png) -> None:
+def reptile(ctx, tile, steps, method, seed, output, svg, png) -> None:
     """Substitution tilings by rep-tiles, with exact integer coordinates.
 
     The rule (four copies of the tile that make the doubled tile) is found by an exact cover,
@@ -121,4 +126,4 @@ def reptile(ctx, tile, steps, output, svg, png) -> None:
     """
     from tilesolve.model.substitution import SubstitutionProblem
 
-    _run(ctx, SubstitutionProblem(tile, steps=steps), "substitution", None, output, svg, png)
+    _run(ctx, SubstitutionProblem(tile, steps=steps), method, seed, output, svg, png)

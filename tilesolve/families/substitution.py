@@ -38,11 +38,11 @@ from typing import Any
 import numpy as np
 
 from tilesolve.errors import InvalidProblem, MethodNotApplicable
-from tilesolve.family import Codec, Demo, Family, RunOptions, register
+from tilesolve.family import Codec, Demo, Family, Field, Form, RunOptions, form_size, register
 from tilesolve.family import solve as _solve
 from tilesolve.io.substitution_json import PATCH_FORMAT, VERSIONS
 from tilesolve.model.solution import Solution, Status
-from tilesolve.model.substitution import PENROSE, Patch, SubstitutionProblem
+from tilesolve.model.substitution import KINDS, PENROSE, Patch, SubstitutionProblem
 from tilesolve.progress import Progress
 from tilesolve.verify.dappled import Violation
 
@@ -162,6 +162,41 @@ DEMOS = (
     Demo("sphinx", "the sphinx rep-tile after 3 substitutions", lambda: SubstitutionProblem("sphinx", steps=3)),
 )
 
+def _form_build(values) -> tuple[SubstitutionProblem, dict]:
+    """A Penrose window (``patch`` = window) or a patch grown by steps."""
+    if values["patch"] == "window":
+        rows, cols = form_size(values["size"])
+        return SubstitutionProblem(values["kind"], region=(values["x0"], values["y0"], cols, rows)), {}
+    return SubstitutionProblem(values["kind"], steps=values["steps"]), {}
+
+
+def _form_command(values) -> tuple[list[str], dict[str, str]]:
+    problem, _ = _form_build(values)
+    if problem.kind not in PENROSE:
+        return ["reptile", "--tile", problem.kind, "--steps", str(problem.steps)], {}
+    if problem.region is not None:
+        x0, y0, w, h = problem.region
+        return ["penrose", "--kind", problem.kind, f"--region={x0},{y0},{w}x{h}"], {}
+    return ["penrose", "--kind", problem.kind, "--steps", str(problem.steps)], {}
+
+
+FORM = Form(
+    fields=(
+        Field("kind", "choice", "tiling", "p3", "Penrose rhombs (p3), kites and darts (p2), or a rep-tile",
+              choices=KINDS, option="--kind"),
+        Field("patch", "choice", "patch", "window", "a window of the plane (Penrose) or a patch grown by steps",
+              choices=("window", "steps")),
+        Field("x0", "int", "window x0", -20, "left edge (units: the rhomb edge)", low=-10**8, high=10**8,
+              option="--region"),
+        Field("y0", "int", "window y0", -12, "bottom edge (y grows upwards)", low=-10**8, high=10**8,
+              option="--region"),
+        Field("size", "size", "window (WxH)", "40x24", "W by H units", high=10**6, option="--region"),
+        Field("steps", "int", "steps", 5, "substitution steps (patch = steps)", low=0, high=12, option="--steps"),
+    ),
+    build=_form_build,
+    command=_form_command,
+)
+
 FAMILY = register(Family(
     name="substitution",
     title="substitution tilings: Penrose P3/P2 (substitution or de Bruijn's pentagrid) and rep-tiles "
@@ -174,6 +209,7 @@ FAMILY = register(Family(
     draw=_draw,
     demos=DEMOS,
     commands=("tilesolve.cli.penrose:penrose", "tilesolve.cli.penrose:reptile"),
+    form=FORM,
     route_help={
         "substitution": "deflation of Robinson triangles from a sun (Penrose), or the rep-tile's rule (§8.1, §8.3)",
         "pentagrid": "de Bruijn's pentagrid: any window of a Penrose tiling, random access by seed",

@@ -80,6 +80,11 @@ class Patch:
         """Number of tiles."""
         return len(self.types)
 
+    @property
+    def size(self) -> int:
+        """Number of tiles (what a picture's size depends on, as a grid's ``size``)."""
+        return len(self.types)
+
     def xy(self) -> np.ndarray:
         """Cartesian coordinates ``(n, m, 2)`` of the vertices (floats, for drawing)."""
         v = np.asarray(self.vertices, dtype=np.float64)
