@@ -63,6 +63,12 @@ def test_census_classifies_every_set_and_resumes(tmp_path):
     assert again.resumed == 8 and again.complete
     assert [(r["set"], r["class"]) for r in again.records] == [(r["set"], r["class"]) for r in full.records]
     assert len(out.read_text().splitlines()) == 37
+    # the kept proofs are what a resumed refutation rests on: without them the finite sets are decided again
+    import shutil
+
+    shutil.rmtree(str(out) + ".proofs")
+    third = census(3, 2, RunOptions(seed=0, workers=1), out, max_square=8, max_period=8, resume=True)
+    assert third.resumed == 29 and third.complete and third.counts() == full.counts()
     with pytest.raises(InvalidProblem, match="not a census of these sets"):
         census(2, 2, RunOptions(seed=0, workers=1), out, resume=True)
 

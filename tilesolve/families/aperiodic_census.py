@@ -22,10 +22,12 @@ Classes (:func:`classify`), every one with a certificate checked here
 The census file
     A header line (:data:`CENSUS_FORMAT`, the sets and bounds), then one JSON record a set,
     appended as jobs end: a census stopped by Ctrl-C, a time limit or a lost worker resumes from
-    it (:func:`census` with ``resume``). A record is a claim, not evidence: a resumed record is
-    kept only when its witnesses pass the verifier again and its refutation names its checked
-    proof's digests (the proofs themselves are kept only with ``proof_dir``); the others, and
-    undecided ones, are classified again.
+    it (:func:`census` with ``resume``). The DRAT proof of every refutation is kept beside it
+    (``CENSUS.proofs/``, :func:`tilesolve.engine.aperiodic.cache_proof_dir`). A record is a
+    claim, not evidence: a resumed record is kept only when its witnesses pass the verifier
+    again and its refutation's kept proof refutes the CNF re-derived from the set and the board
+    (:func:`tilesolve.engine.certificates.recheck_unsat`); the others, and undecided ones, are
+    classified again.
 
 Examples
 --------
@@ -58,14 +60,16 @@ CLASSES = ("finite", "periodic", "undecided")
 
 
 def classify(numbers, k: int, max_square: int, max_period: int, deadline: Deadline, solver: str | None = None,
-             proof_dir: str | None = None) -> dict:
+             proof_dir: str | None = None, store: str | None = None) -> dict:
     """The census record of one set (tile numbers over ``k`` colours per axis).
 
     The transducer (:func:`tilesolve.constructive.transducer.decide`, up to
-    ``max(max_square, max_period)`` rows) points the way: a periodic cycle is a torus witness; an empty ``T_k`` sends the
-    squares to SAT (:func:`tilesolve.engine.aperiodic.square_scan` up to ``max_square``), whose
-    refutation comes with a checked proof. Every witness is checked by the family's verifier
-    before it is recorded (a failure is an :class:`~tilesolve.errors.InternalError`).
+    ``max(max_square, max_period)`` rows) points the way: a periodic cycle is a torus witness; an
+    empty ``T_k`` sends the squares to SAT (:func:`tilesolve.engine.aperiodic.square_scan` up to
+    ``max_square``), whose refutation comes with a checked proof (written to ``proof_dir`` with
+    its CNF, and to ``store`` alone, where a resumed census re-checks it). Every witness is
+    checked by the family's verifier before it is recorded (a failure is an
+    :class:`~tilesolve.errors.InternalError`).
 
     Returns
     -------
@@ -114,7 +118,7 @@ def classify(numbers, k: int, max_square: int, max_period: int, deadline: Deadli
         # no k x w rectangle is tiled: the square scan need not look past the larger side
         w = strip_width(ts, v.k, deadline=deadline)
         side = int(max_square) if w is None else min(int(max_square), max(v.k, w))
-        with writing_proofs(proof_dir):
+        with writing_proofs(proof_dir), writing_proofs(store, cnf=False):
             certs, largest = square_scan(ts, side, run)
     except (TimeLimitReached, InvalidProblem) as exc:
         return done("undecided", f"T_{v.k} is empty, the squares undecided ({exc})")
@@ -138,9 +142,9 @@ def classify(numbers, k: int, max_square: int, max_period: int, deadline: Deadli
 
 
 def _classify_all(k: int, max_square: int, max_period: int, deadline: Deadline, solver: str | None,
-                  proof_dir: str | None, sets: list) -> list[dict]:
+                  proof_dir: str | None, store: str, sets: list) -> list[dict]:
     """One job of a census (in a worker process): the records of its sets."""
-    return [classify(s, k, max_square, max_period, deadline, solver, proof_dir) for s in sets]
+    return [classify(s, k, max_square, max_period, deadline, solver, proof_dir, store) for s in sets]
 
 
 @dataclass
@@ -191,10 +195,14 @@ def _header(n_tiles: int, k: int, max_square: int, max_period: int, n_sets: int)
             "max_period": max_period, "sets": n_sets}
 
 
-def _resumed(path: str, header: dict, k: int, max_square: int, max_period: int) -> dict[tuple, dict]:
+def _resumed(path: str, header: dict, k: int, max_square: int, max_period: int, deadline: Deadline
+             ) -> dict[tuple, dict]:
     """The records of an earlier run of the same census in ``path`` that still hold: a witness
-    re-verified, a refutation with its checked proof's digests. A file of another census is
-    refused; a line cut short or not confirmed is dropped (its set is classified again)."""
+    re-verified, a refutation's kept proof re-checked against the re-derived CNF. A file of
+    another census is refused; a line cut short or not confirmed is dropped (its set is
+    classified again)."""
+    from tilesolve.engine.aperiodic import board_problem, cache_proof_dir
+    from tilesolve.engine.certificates import recheck_unsat
     from tilesolve.inputs import read_input
     from tilesolve.model.aperiodic import AperiodicProblem, Certificate
     from tilesolve.model.board import WangTileSet
@@ -224,8 +232,9 @@ def _resumed(path: str, header: dict, k: int, max_square: int, max_period: int) 
                 ref = rec["refutation"]
                 ok = (not witness_violations(problem, Certificate(f"square {n}x{n}", "tiles",
                                                                   np.asarray(rec["tiling"])))
-                      and ref["board"] == f"square {n + 1}x{n + 1}" and bool(ref["cnf_sha256"])
-                      and bool(ref["drat_sha256"]) and ref["checker"] == "tilesolve.verify.drat")
+                      and ref["board"] == f"square {n + 1}x{n + 1}"
+                      and recheck_unsat(board_problem(ts, ref["board"]), ref, cache_proof_dir(path),
+                                        deadline=deadline).ok)
             else:
                 ok = cls == "undecided"
         except (ValueError, KeyError, TypeError, IndexError, InvalidProblem):
@@ -262,6 +271,7 @@ def census(n_tiles: int, k: int, run: RunOptions, out: str | os.PathLike, *, max
     -------
     CensusResult
     """
+    from tilesolve.engine.aperiodic import cache_proof_dir
     from tilesolve.io.atomic import write_text_atomic
 
     t0 = time.perf_counter()
@@ -274,13 +284,13 @@ def census(n_tiles: int, k: int, run: RunOptions, out: str | os.PathLike, *, max
     out = os.fspath(out)
     done: dict[tuple, dict] = {}
     if resume and os.path.exists(out):
-        done = {key: rec for key, rec in _resumed(out, header, k, max_square, max_period).items()
+        done = {key: rec for key, rec in _resumed(out, header, k, max_square, max_period, run.deadline).items()
                 if rec["class"] != "undecided"}
     write_text_atomic(out, "".join(json.dumps(x, separators=(",", ":")) + "\n"
                                    for x in [header, *done.values()]))
     todo = [s.tolist() for s in sets if tuple(s.tolist()) not in done]
     job = functools.partial(_classify_all, k, max_square, max_period, run.deadline, run.solver,
-                            None if proof_dir is None else os.fspath(proof_dir))
+                            None if proof_dir is None else os.fspath(proof_dir), cache_proof_dir(out))
     records = dict(done)
     with run.progress.task("census", total=len(sets), unit="set") as bar, open(out, "a", encoding="utf-8") as fh:
         def show() -> None:
