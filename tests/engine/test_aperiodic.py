@@ -4,7 +4,9 @@ witnesses read off a tall cylinder."""
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
+from tilesolve.engine import aperiodic
 from tilesolve.engine.aperiodic import _stacked, board_problem, decide
 from tilesolve.engine.certificates import recheck_unsat, writing_proofs
 from tilesolve.io.builtin_tilesets import load
@@ -18,7 +20,13 @@ from tilesolve.verify.board import board_violations
 STAIRS = WangTileSet([[i, 0, (i + 1) % 3, 0] for i in range(3)], 3)
 
 
-def test_a_jeandel_rao_torus_is_refuted_through_a_band_with_a_proof_of_the_whole_torus(tmp_path):
+@pytest.fixture
+def small_bands(monkeypatch):
+    """Bands and cylinders for tori of any size (small ones are solved whole by default)."""
+    monkeypatch.setattr(aperiodic, "BAND_MIN_CELLS", 1)
+
+
+def test_a_jeandel_rao_torus_is_refuted_through_a_band_with_a_proof_of_the_whole_torus(tmp_path, small_bands):
     ws, _ = load("jeandel-rao")
     name = "torus 3x6"
     with writing_proofs(tmp_path):
@@ -28,13 +36,13 @@ def test_a_jeandel_rao_torus_is_refuted_through_a_band_with_a_proof_of_the_whole
     assert check.ok, check.lines
 
 
-def test_a_torus_witness_is_read_off_a_cylinder():
+def test_a_torus_witness_is_read_off_a_cylinder(small_bands):
     cert = decide(STAIRS, "torus 6x2", RunOptions(seed=1))
     assert cert.status == "tiles" and cert.method == "sat cylinder" and cert.tiling.shape == (6, 2)
     assert not board_violations(BoardProblem(board_of("torus 6x2"), STAIRS), leg_colours(STAIRS, cert.tiling))
 
 
-def test_a_torus_no_cylinder_block_fits_is_decided_whole():
+def test_a_torus_no_cylinder_block_fits_is_decided_whole(small_bands):
     cert = decide(STAIRS, "torus 4x2", RunOptions(seed=1))
     assert cert.status == "refuted"
 
@@ -46,3 +54,9 @@ def test_stacked_takes_a_block_whose_height_divides_the_torus():
     block = _stacked(grid, legs, 6)
     assert block.tolist() == [[1], [2], [0], [1], [2], [0]]
     assert not board_violations(BoardProblem(board_of("torus 6x1"), STAIRS), leg_colours(STAIRS, block))
+
+
+def test_small_tori_are_solved_whole():
+    ws, _ = load("jeandel-rao")
+    cert = decide(ws, "torus 3x6", RunOptions(seed=1))
+    assert cert.status == "refuted" and "the proof refutes" not in cert.evidence["reason"]
