@@ -25,7 +25,8 @@ __all__ = ["aperiodic"]
 @click.group(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP,
              short_help="Aperiodicity checks of Wang tile sets: squares, tori, lattice periods, certified.")
 def aperiodic() -> None:
-    """Aperiodicity checks of Wang tile sets (class notes Part II §8.2), every answer a certificate."""
+    """Aperiodicity checks of Wang tile sets (class notes Part II §8.2), every answer a certificate;
+    windows of tilings by the built-in aperiodic sets (aperiodic tiling)."""
 
 
 @aperiodic.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.READER_HELP)
