@@ -36,6 +36,12 @@ sharing its leg ``CP`` make the half-kite ``(A, B, C)`` (legs ``phi``); every ot
 triangle is a half-dart; mirror halves joined along their axis make kites and darts. It is the
 inverse of one half-step of the P3 substitution, so every P3 patch gives the P2 patch of the
 same region (tiles whose other half lies outside are dropped).
+
+The two routes agree (tests/constructive/test_penrose.py): on one window both patches pass the
+same independent verifier with the same arrows, and show the same eight vertex configurations
+and the same set of first coronas (a tile with its four edge neighbours, up to translation;
+70 of them in P3). They are not the same tiling: a sun is the pentagrid's singular limit
+``gamma -> 0``, and a regular grid near it was not found to reproduce it tile for tile.
 """
 
 from __future__ import annotations
