@@ -39,8 +39,9 @@ GRIDS = {"p3": "zeta5", "p2": "zeta5", "chair": "square", "l-tetromino": "square
 TILE_NAMES = {"p3": ("thin", "thick"), "p2": ("kite", "dart")}
 #: Most tiles in one patch: generating, verifying and writing take about 1 KB a tile at peak.
 MAX_TILES = 4_000_000
-#: Window coordinates stay within this bound (the pentagrid's floors keep 1e-6 of precision).
-MAX_COORDINATE = 10**8
+#: Window coordinates stay within this bound: the pentagrid decides its floors in float64 with a
+#: margin of 1e-14 of the coordinates (:data:`tilesolve.constructive.penrose.TOLERANCE`).
+MAX_COORDINATE = 10**6
 
 _PHI = (1 + 5**0.5) / 2
 _PHI2 = _PHI**2
