@@ -42,7 +42,7 @@ SHAPES_SAT_SOLVER = "cadical153"
 #: Torus tilings tried per torus before the next torus (tilings that are not isohedral).
 TILINGS_PER_TORUS = 20
 #: The largest tiling CNF built (an estimate of its literals, checked before building).
-MAX_LITERALS = 30_000_000
+MAX_LITERALS = 10_000_000
 
 
 def check_size(problem: ShapesProblem) -> None:

@@ -258,7 +258,9 @@ def enclosed(g: Grid, cells: set) -> list[tuple[tuple[int, int], ...]]:
     ys = [c[1] for c in cells]
     m = 2 * g.period + 2
     p = g.period
-    lo_x, hi_x, lo_y, hi_y = (min(xs) - m) // p * p, max(xs) + m, (min(ys) - m) // p * p, max(ys) + m
+    # whole translation cells, so that the cells of the box around the patch are edge-connected
+    lo_x, hi_x = (min(xs) - m) // p * p, (max(xs) + m) // p * p + p - 1
+    lo_y, hi_y = (min(ys) - m) // p * p, (max(ys) + m) // p * p + p - 1
 
     def inside(c):
         return lo_x <= c[0] <= hi_x and lo_y <= c[1] <= hi_y
@@ -281,7 +283,7 @@ def enclosed(g: Grid, cells: set) -> list[tuple[tuple[int, int], ...]]:
             while todo:
                 d = todo.pop()
                 for n in g.neighbours(d):
-                    if n not in cells and n not in comp:
+                    if inside(n) and n not in cells and n not in comp:
                         comp.add(n)
                         todo.append(n)
             done |= comp

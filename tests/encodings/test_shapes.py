@@ -1,0 +1,58 @@
+"""The polyform CNFs: exact cover of regions and tori, coronas."""
+
+from __future__ import annotations
+
+import pytest
+from pysat.solvers import Solver
+
+from tilesolve.encodings.shapes import encode_coronas, encode_tiling, torus_reducer
+from tilesolve.model.shapes import GRIDS, ShapesProblem, parse_ascii, parse_cells
+
+
+def _sat(enc) -> bool:
+    with Solver(name="cadical153", bootstrap_with=enc.hard.to_lists()) as s:
+        return s.solve()
+
+
+@pytest.mark.parametrize("lattice", [((3, 0), (0, 4)), ((2, 1), (-1, 3)), ((6, 0), (1, 1))])
+@pytest.mark.parametrize("grid", ["omino", "hex", "iamond"])
+def test_the_torus_reducer_has_one_representative_per_class(grid, lattice):
+    g = GRIDS[grid]
+    reduce, reps = torus_reducer(g, lattice)
+    (a, b), (c, d) = lattice
+    assert len(reps) == abs(a * d - b * c) * (2 if grid == "iamond" else 1)
+    assert sorted(map(reduce, reps)) == sorted(reps)
+    p = g.period
+    for cell in reps:
+        for k, l in ((1, 0), (0, 1), (2, -3)):
+            moved = (cell[0] + p * (k * a + l * c), cell[1] + p * (k * b + l * d))
+            assert reduce(moved) == cell
+
+
+def test_dominoes_on_a_rectangle_and_a_decoded_tiling():
+    p = ShapesProblem("tile", (parse_ascii("##", "omino"),), region=tuple((x, y) for x in range(3) for y in range(2)))
+    enc = encode_tiling(p)
+    with Solver(name="cadical153", bootstrap_with=enc.hard.to_lists()) as s:
+        assert s.solve()
+        t = enc.decode(s.get_model())
+    assert t.shape == (6, 4) and len(set(t[:, 0].tolist())) == 3
+    assert all(v > 0 for v in enc.literals(t) if abs(v) in {abs(x) for x in enc.literals(t) if x > 0})
+
+
+def test_an_odd_region_has_no_domino_tiling():
+    p = ShapesProblem("tile", (parse_ascii("##", "omino"),), region=tuple((x, 0) for x in range(3)))
+    assert not _sat(encode_tiling(p))
+
+
+def test_a_placement_that_overlaps_itself_on_a_small_torus_is_left_out():
+    p = ShapesProblem("tile", (parse_ascii("###", "omino"),), lattice=((2, 0), (0, 3)))
+    enc = encode_tiling(p)
+    assert all(len({c[1] for c in cells}) == 3 for _, cells in enc.placements)  # only the vertical bar fits
+    assert _sat(enc)
+
+
+def test_coronas_of_a_square_exist_and_of_a_non_tiler_stop():
+    square = ShapesProblem("classify", (parse_ascii("#", "omino"),))
+    assert _sat(encode_coronas(square, 2))
+    hexes = ShapesProblem("classify", (parse_cells("0,0 0,1 0,2 0,3 1,-1 1,3", "hex"),))
+    assert _sat(encode_coronas(hexes, 1)) and not _sat(encode_coronas(hexes, 2))
