@@ -166,7 +166,7 @@ def penrose_violations(kind: str, types, vertices) -> list[Violation]:
         out.append(Violation("gap", f"the tiles around interior vertex {v.reshape(-1, 4)[np.flatnonzero(vkeys == u)[0]].tolist()}"
                                     f" fill {36 * total[u]} degrees, not 360"))
     # 5. one piece, no holes
-    chi = len(total) - np.unique(undirected).size + n
+    chi = len(total) - len(counts) + n  # labels are 0..V-1 and 0..E-1
     if chi != 1:
         out.append(Violation("gap", f"the patch is not one piece without holes (V - E + F = {chi})"))
     return out
