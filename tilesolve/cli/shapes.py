@@ -2,7 +2,7 @@
 
 ::
 
-    tilesolve shapes tile --grid omino --shape '##/##/#.' --region 5x2 -o t.json --svg t.svg
+    tilesolve shapes tile --grid omino --shape 'XX/XX/X.' --region 5x2 -o t.json --svg t.svg
     tilesolve shapes heesch --grid hex --shape 0,0/0,1/0,2/1,-1/1,2/2,-2 -o h.json --svg h.svg
     tilesolve shapes census --grid hex --size 6 -o census.json
     tilesolve shapes list --grid omino --size 5
@@ -23,7 +23,7 @@ _GRIDS = click.Choice(["omino", "hex", "iamond"])
 
 SHAPE_HELP = """\b
 Shapes (--shape, repeatable):
-  '##/#.'            ASCII art, rows top first, '/' between rows ('#' a cell, '.' none)
+  'XX/X.'            ASCII art, rows top first, '/' between rows ('X' or '#' a cell, '.' none)
   '0,0 1,0 0,1'      cell coordinates x,y (spaces or ';' between cells)
 Cells: omino (x, y) unit squares; hex axial (q, r) (each row drawn half a cell right of the
 row below); iamond 3x the triangle's centroid in axial coordinates (up (3a+1, 3b+1), down
@@ -90,7 +90,7 @@ def shapes() -> None:
 
     \b
     Examples:
-      tilesolve shapes tile --grid omino --shape '##/##/#.' --region 5x2 -o t.json --svg t.svg
+      tilesolve shapes tile --grid omino --shape 'XX/XX/X.' --region 5x2 -o t.json --svg t.svg
       tilesolve shapes heesch --grid hex --shape '0,0 0,1 0,2 0,3 1,-1 1,3' -o h.json --svg h.svg
       tilesolve shapes list --grid omino --size 6   # prints 35
     """
@@ -116,9 +116,9 @@ def tile(ctx, grid_name, shape, shape_file, region, mask, torus, no_reflections,
 
     \b
     Examples:
-      tilesolve shapes tile --grid omino --shape '##/##/#.' --region 5x2 -o t.json --svg t.svg
-      tilesolve shapes tile --grid omino --shape '###/.#.' --region 4x4 -o t4.json   # unsat
-      tilesolve shapes tile --grid hex --shape '##' --torus 4x3 --png h.png
+      tilesolve shapes tile --grid omino --shape 'XX/XX/X.' --region 5x2 -o t.json --svg t.svg
+      tilesolve shapes tile --grid omino --shape 'XXX/.X.' --region 4x3 -o t4.json   # unsat
+      tilesolve shapes tile --grid hex --shape 'XX' --torus 4x3 --png h.png
       tilesolve verify t.json
     """
     from tilesolve.families import shapes as facade
@@ -194,7 +194,7 @@ def heesch(ctx, grid_name, shape, shape_file, max_level, max_copies, holes, no_r
     \b
     Examples:
       tilesolve shapes heesch --grid hex --shape '0,0 0,1 0,2 0,3 1,-1 1,3' -o h.json --svg h.svg
-      tilesolve shapes heesch --grid omino --shape '##/#.' --png l.png
+      tilesolve shapes heesch --grid omino --shape 'XX/X.' --png l.png
       tilesolve verify h.json
     """
     from tilesolve.families import shapes as facade

@@ -1,0 +1,87 @@
+"""``tilesolve shapes`` through the console script: answers, files, verify, pictures, bad input."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+from clitools import one_line_error, run
+
+
+def test_list_counts_free_polyforms(tmp_path):
+    assert run("shapes", "list", "--grid", "omino", "--size", "6", cwd=tmp_path).stdout.split() == ["35"]
+    assert run("shapes", "list", "--grid", "hex", "--size", "6", "--no-holes", cwd=tmp_path).stdout.split() == ["81"]
+    assert run("shapes", "list", "--grid", "iamond", "--size", "6", cwd=tmp_path).stdout.split() == ["12"]
+
+
+def test_tile_writes_a_verified_tiling_and_pictures(tmp_path):
+    p = run("shapes", "tile", "--grid", "omino", "--shape", "##/##/#.", "--region", "5x2", "-o", "t.json",
+            "--svg", "t.svg", "--png", "t.png", "--seed", "1", cwd=tmp_path)
+    assert p.returncode == 0, p.stderr
+    assert (tmp_path / "t.svg").read_text().startswith("<svg") and (tmp_path / "t.png").read_bytes()[:4] == b"\x89PNG"
+    v = run("verify", "t.json", cwd=tmp_path)
+    assert v.returncode == 0 and "valid tiling" in v.stdout
+
+
+def test_an_unsat_tiling_is_re_checked_by_verify(tmp_path):
+    p = run("shapes", "tile", "--shape", "###/.#.", "--region", "4x3", "-o", "t.json", "--proof-dir", "pd",
+            cwd=tmp_path)
+    assert p.returncode == 1
+    v = run("verify", "t.json", "--proof-dir", "pd", cwd=tmp_path)
+    assert v.returncode == 0 and "unsat re-checked" in v.stdout
+
+
+def test_heesch_report_and_its_refutation_are_re_checked(tmp_path):
+    p = run("shapes", "heesch", "--grid", "hex", "--shape", "0,0 0,1 0,2 0,3 1,-1 1,3", "-o", "h.json", "--svg",
+            "h.svg", "--proof-dir", "pd", cwd=tmp_path)
+    assert p.returncode == 0 and "Heesch number H_c = 1" in p.stderr
+    doc = json.loads((tmp_path / "h.json").read_text())
+    assert doc["report"]["verdict"] == "non-tiler" and doc["report"]["heesch"] == 1
+    v = run("verify", "h.json", "--proof-dir", "pd", cwd=tmp_path)
+    assert v.returncode == 0 and "1 refutation(s) re-checked" in v.stdout
+    doc["report"]["heesch"] = 2
+    (tmp_path / "bad.json").write_text(json.dumps(doc))
+    assert run("verify", "bad.json", cwd=tmp_path).returncode == 1
+
+
+def test_census_prints_its_table_and_total(tmp_path):
+    p = run("shapes", "census", "--grid", "omino", "--size", "4", "--workers", "1", "-o", "c.json", cwd=tmp_path)
+    assert p.returncode == 0 and p.stdout.strip().splitlines()[-1] == "5 shapes"
+    assert len(json.loads((tmp_path / "c.json").read_text())["shapes"]) == 5
+
+
+@pytest.mark.parametrize("args, message", [
+    (["tile", "--shape", "##"], "exactly one of --region"),
+    (["tile", "--shape", "#.#", "--region", "3x3"], "edge-connected"),
+    (["tile", "--shape", "##", "--region", "3by3"], "WxH"),
+    (["tile", "--shape", "#" * 19 + "/#", "--torus", "140x140"], "about .* literals"),
+    (["tile", "--region", "2x2"], "at least one shape"),
+    (["heesch", "--shape", "##", "--shape", "#"], "one shape"),
+    (["list", "--grid", "omino", "--size", "12"], "sizes 1..11"),
+])
+def test_bad_input_is_one_line_exit_2(tmp_path, args, message):
+    import re
+
+    line = one_line_error(run("shapes", *args, "-o", "x.json", cwd=tmp_path) if args[0] != "list"
+                          else run("shapes", *args, cwd=tmp_path))
+    assert re.search(message, line), line
+    assert not (tmp_path / "x.json").exists()
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("command", [("shapes",), ("shapes", "tile"), ("shapes", "heesch"), ("shapes", "list"),
+                                     ("shapes", "census")])
+def test_help_examples_run(tmp_path, command):
+    import re
+    import shlex
+
+    shown = [ln.strip() for ln in run(*command, "--help", cwd=tmp_path).stdout.splitlines()
+             if ln.strip().startswith("tilesolve ")]
+    assert shown
+    for line in shown:
+        cmd, _, comment = line.partition("#")
+        proc = run(*shlex.split(cmd)[1:], cwd=tmp_path)
+        assert proc.returncode == (1 if "unsat" in comment else 0), (line, proc.stderr[-800:])
+        promised = re.match(r"\s*prints\s+(.+)$", comment)
+        if promised:
+            assert proc.stdout.strip().splitlines()[-1] == promised.group(1).strip(), line
