@@ -72,9 +72,11 @@ DEFAULT_SOLVER = "cadical153"
 
 
 def tileset_digest(tileset: WangTileSet) -> str:
-    """SHA-256 of the tiles (as leg colours W, N, E, S, in the set's order, which the CNF
-    follows) and colour count: the cache key of a tile set."""
-    data = json.dumps({"colours": int(tileset.n_colors), "tiles": tileset.legs.tolist()}, separators=(",", ":"))
+    """SHA-256 of the tiles (in the set's order, which the CNF follows) and colour count: the
+    cache key of a tile set. The tiles' colours are hashed in the order W, N, E, S, the key's
+    order since caches were first written, so that those caches stay valid."""
+    wnes = tileset.tiles[:, [3, 0, 1, 2]]
+    data = json.dumps({"colours": int(tileset.n_colors), "tiles": wnes.tolist()}, separators=(",", ":"))
     return hashlib.sha256(data.encode()).hexdigest()
 
 
