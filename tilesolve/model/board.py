@@ -51,7 +51,7 @@ import numpy as np
 from tilesolve.errors import InvalidProblem
 
 __all__ = [
-    "N", "E", "S", "W", "LEG_NAMES", "MAX_BOARD_CELLS", "MAX_BRICK_COLORS", "GRID_KINDS",
+    "N", "E", "S", "W", "LEG_NAMES", "PAPER_LEGS", "MAX_BOARD_CELLS", "MAX_BRICK_COLORS", "GRID_KINDS",
     "GridSpec", "Board", "grid_kind", "kind_mask", "described_board", "WangTileSet", "BoardProblem",
     "parse_board_spec", "parse_mask_text",
     "colour_rows", "random_boundary",
@@ -59,6 +59,10 @@ __all__ = [
 
 N, E, S, W = 0, 1, 2, 3
 LEG_NAMES = ("N", "E", "S", "W")
+#: The brick paper's legs l1..l4 (W, N, E, S) as leg numbers: the order in which the board
+#: encodings number edges and list clauses, which recorded CNF digests fix.
+PAPER_LEGS = np.array([W, N, E, S])
+PAPER_LEGS.setflags(write=False)
 #: Largest board any route accepts.
 MAX_BOARD_CELLS = 1 << 26
 #: Most colours for brick tiles: building W_B enumerates all K^4 colourings (64 bytes each
@@ -74,6 +78,7 @@ GRID_KINDS: dict[str, tuple[str | None, str | None]] = {
 _FULL_KINDS = frozenset({"rect", "torus", "cylinder", "mobius", "klein"})
 
 _DELTA = {N: (-1, 0), E: (0, 1), S: (1, 0), W: (0, -1)}
+_PAPER_RANK = np.argsort(PAPER_LEGS)  # where each leg N, E, S, W comes among l1..l4
 _WRAPS = (None, "plain", "twist")
 
 
@@ -230,10 +235,16 @@ class Board:
         return out
 
     def leg_edges(self) -> tuple[np.ndarray, int]:
-        """Number every edge: ``(edge_of_leg (n, 4), n_edges)``; joined legs share an edge."""
+        """Number every edge: ``(edge_of_leg (n, 4), n_edges)``; joined legs share an edge.
+
+        Edges are numbered in order of cell, then of the paper's legs l1..l4 (W, N, E, S), each
+        from the first of its legs in that order: the numbering of the board encodings'
+        variables, which the CNF digests of recorded refutations fix.
+        """
         n = self.n_cells
         eid = np.full((n, 4), -1, dtype=np.int64)
-        nc, nl = self.nbr_cell, self.nbr_leg
+        nc, nl = self.nbr_cell[:, PAPER_LEGS], self.nbr_leg[:, PAPER_LEGS]  # columns l1..l4
+        nl = np.where(nc >= 0, _PAPER_RANK[nl % 4], nl)
         a = np.arange(n)[:, None].repeat(4, 1)
         k = np.arange(4)[None, :].repeat(n, 0)
         own = (nc < 0) | (nc * 4 + nl > a * 4 + k) | ((nc == a) & (nl == k))
@@ -241,7 +252,7 @@ class Board:
         eid.ravel()[ids] = np.arange(ids.size)
         other = ~own
         eid[other] = eid[nc[other], nl[other]]
-        return eid, int(ids.size)
+        return eid[:, _PAPER_RANK], int(ids.size)
 
     def index_of(self) -> dict[tuple[int, int], int]:
         """``{(row, col): cell index}``."""
