@@ -502,7 +502,7 @@ class Board:
         while len(occ) < n_cells and tries < 200 * n_cells:
             tries += 1
             r, c = frontier[int(rng.integers(len(frontier)))]
-            dr, dc = _DELTA[int(rng.integers(4))]
+            dr, dc = _DELTA[int(PAPER_LEGS[rng.integers(4)])]  # drawn as seeds always drew them
             cand = (r + dr, c + dc)
             if cand in occ or abs(cand[0]) > span or abs(cand[1]) > span:
                 continue
