@@ -5,7 +5,7 @@ Combinatorics, 2021), §2-3; class notes Part II §8.2 for Wang's procedure this
 part. meyerphi/tiling implements the same search (without minimisation) in C++; its test sets
 are this module's test data.
 
-A Wang tile ``(W, N, E, S)`` is a transition from state ``W`` to state ``E`` that reads ``N``
+A Wang tile ``(N, E, S, W)`` is a transition from state ``W`` to state ``E`` that reads ``N``
 and writes ``S``: the tile set is a transducer ``T`` whose states are the horizontal (W/E)
 colours (Jeandel and Rao read the bottom colour and write the top one; the direction only
 decides which way rows are stacked). A bi-infinite path of ``T`` is a bi-infinite row of tiles; its input word is the row's
