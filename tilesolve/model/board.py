@@ -242,17 +242,17 @@ class Board:
         variables, which the CNF digests of recorded refutations fix.
         """
         n = self.n_cells
+        nc, nl = self.nbr_cell, self.nbr_leg
+        here = np.arange(n, dtype=np.int64)[:, None] * 4 + _PAPER_RANK  # each leg's place in that order
+        own = (nc < 0) | (nc * 4 + _PAPER_RANK[nl & 3] >= here)  # the first of its legs (or self-joined)
+        first = own[:, PAPER_LEGS]
+        count = int(np.count_nonzero(first))
         eid = np.full((n, 4), -1, dtype=np.int64)
-        nc, nl = self.nbr_cell[:, PAPER_LEGS], self.nbr_leg[:, PAPER_LEGS]  # columns l1..l4
-        nl = np.where(nc >= 0, _PAPER_RANK[nl % 4], nl)
-        a = np.arange(n)[:, None].repeat(4, 1)
-        k = np.arange(4)[None, :].repeat(n, 0)
-        own = (nc < 0) | (nc * 4 + nl > a * 4 + k) | ((nc == a) & (nl == k))
-        ids = np.flatnonzero(own.ravel())
-        eid.ravel()[ids] = np.arange(ids.size)
+        eid[first] = np.arange(count, dtype=np.int64)  # numbered in the paper's order ...
+        eid = eid[:, _PAPER_RANK]  # ... then in the columns N, E, S, W
         other = ~own
         eid[other] = eid[nc[other], nl[other]]
-        return eid[:, _PAPER_RANK], int(ids.size)
+        return eid, count
 
     def index_of(self) -> dict[tuple[int, int], int]:
         """``{(row, col): cell index}``."""
