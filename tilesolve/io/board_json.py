@@ -205,8 +205,8 @@ def _leg_seam(version: int, *, tiles=None, edges=None) -> tuple:
         tiles = (tiles[:, _OLD_COLUMN] if old else tiles).astype(np.int64)
     if edges is not None:
         edges = np.array(edges, dtype=np.int64).reshape(-1, 4)
-        for legs, on in ((edges[:, 1], np.ones(len(edges), bool)), (edges[:, 3], edges[:, 2] >= 0)):
-            move = on & (legs >= 0) & (legs < 4) & old
+        for legs, on in ((edges[:, 1], True), (edges[:, 3], edges[:, 2] >= 0)) if old else ():
+            move = on & (legs >= 0) & (legs < 4)
             legs[move] = _LEG_OF_OLD[legs[move]]
     return tiles, edges
 
