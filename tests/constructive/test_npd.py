@@ -63,7 +63,7 @@ def test_a_window_of_the_repeating_wall_is_cut_from_the_period():
     assert np.array_equal(win.tiling.reshape(10, 30, 4), expect)
     # the default period is the rectangle itself, which then tiles the plane
     r = solve(wall_problem(9, 6, 2), "npd", seed=1).tiling.reshape(6, 9, 4)
-    assert (r[:, -1, 2] == r[:, 0, 0]).all() and (r[-1, :, 3] == r[0, :, 1]).all()
+    assert (r[:, -1, 1] == r[:, 0, 3]).all() and (r[-1, :, 2] == r[0, :, 0]).all()  # E = W, S = N
 
 
 @pytest.mark.parametrize(("rows", "cols", "n"), [(3, 3, 1), (3, 3, 2), (5, 5, 1), (4, 5, 1)])
@@ -89,7 +89,7 @@ def test_algorithm_1_on_random_dapplings():
             continue
         nc = int(rng.integers(3, 6))
         t = npd_legs(d, nc, seed=done)
-        assert np.array_equal(t[..., 0] == t[..., 2], d == 0)  # W_H exactly where the dappling says so
+        assert np.array_equal(t[..., 3] == t[..., 1], d == 0)  # W_H exactly where the dappling says so
         p = BoardProblem(Board.torus(cols, rows), WangTileSet.brick(nc))
         assert board_violations(p, t.reshape(-1, 4)) == []
         done += 1

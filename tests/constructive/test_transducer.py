@@ -169,7 +169,7 @@ def test_compose_is_stacking():
     assert np.array_equal(t.south[i], t.north[j])
     assert np.array_equal(c.north, t.north[i]) and np.array_equal(c.south, t.south[j])
     pairs = {(int(a), int(b)) for a, b in zip(i, j)}
-    want = {(a, b) for a in range(len(ts)) for b in range(len(ts)) if ts.legs[a][3] == ts.legs[b][1]}
+    want = {(a, b) for a in range(len(ts)) for b in range(len(ts)) if ts.tiles[a][2] == ts.tiles[b][0]}
     # merged transitions keep one column each: every kept pair stacks, every stack is represented
     assert pairs <= want
     assert len({(int(c.src[e]), int(c.dst[e]), int(c.north[e]), int(c.south[e])) for e in range(c.n_transitions)}) \

@@ -80,9 +80,9 @@ def test_a_horizontal_cell_by_hand():
     """Horizontal tiles (W = E = 1 of 3 colours: the line at 1/2); the inner cell has N at 3/4
     and S at 1/4, the rows above and below N at 1/4 and S at 3/4 (004 Fig. 5, 7)."""
     legs = np.zeros((3, 3, 4), dtype=np.int8)
-    legs[..., 0] = legs[..., 2] = 1
-    legs[..., 1], legs[..., 3] = 0, 2
-    legs[1, :, 1], legs[1, :, 3] = 2, 0
+    legs[..., 3] = legs[..., 1] = 1  # W = E
+    legs[..., 0], legs[..., 2] = 0, 2  # N, S
+    legs[1, :, 0], legs[1, :, 2] = 2, 0
     m = wall_maps(legs, 3, 10, origin=(10, 20))
     # pixel (u, v) = (0.35, 0.15): top-left region, the brick around the NW vertex (10, 21),
     # spanning x -0.25..0.75 and y -0.5..0.5 around the cell

@@ -52,7 +52,7 @@ def test_window_lines_are_counted_once_and_whole():
     padded = wall_window(x0 - n, y0 - n, w + 2 * n, h + 2 * n, colors=3, max_line=n, seed=3)
     big_pad = 3 * n
     big = wall_window(x0 - big_pad, y0 - big_pad, w + 2 * big_pad, h + 2 * big_pad, colors=3, max_line=n, seed=3)
-    hor = big[..., 0] == big[..., 2]
+    hor = big[..., 3] == big[..., 1]  # W = E
     want_h, want_v = [], []
     for mask, out in ((hor, want_h), (~hor.T, want_v)):
         line, start, length = runs(mask)

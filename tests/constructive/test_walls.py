@@ -45,16 +45,16 @@ def pin(enc, legs) -> list[int]:
 
 
 def block_legs(outer, inner) -> np.ndarray:
-    """(W, N, E, S) legs of the 2x2 block, rows top first, from its 8 outer and 4 inner colours."""
+    """(N, E, S, W) legs of the 2x2 block, rows top first, from its 8 outer and 4 inner colours."""
     vt0, vt2, hl0, hl2, vb0, vb2, hr0, hr2 = outer
     vt1, hl1, vb1, hr1 = inner
-    return np.array([[[vt0, hl2, vt1, hl1], [vt1, hr2, vt2, hr1]],
-                     [[vb0, hl1, vb1, hl0], [vb1, hr1, vb2, hr0]]])
+    return np.array([[[hl2, vt1, hl1, vt0], [hr2, vt2, hr1, vt1]],
+                     [[hl1, vb1, hl0, vb0], [hr1, vb2, hr0, vb1]]])
 
 
 def is_brick_block(legs: np.ndarray) -> bool:
     """Every cell is a horizontal (W = E, N != S) or vertical (N = S, W != E) tile (eq. 1-2)."""
-    w, n, e, s = (legs[..., k] for k in range(4))
+    n, e, s, w = (legs[..., k] for k in range(4))
     return bool((((w == e) & (n != s)) | ((n == s) & (w != e))).all())
 
 
@@ -84,9 +84,9 @@ def test_appendix_b_fills_every_boundary_of_a_2x2_block_and_sat_agrees():
     enc = encode_wang(BoardProblem(board, WangTileSet.brick(nc)))
     bl = board.boundary_legs
     edge_of = enc.edge_of_leg
-    # boundary leg -> SOURCES name (board labels: row 0 = top; legs W, N, E, S)
-    name = {(0, 0): "VT0", (0, 1): "HL2", (1, 1): "HR2", (1, 2): "VT2",
-            (2, 0): "VB0", (2, 3): "HL0", (3, 2): "VB2", (3, 3): "HR0"}
+    # boundary leg -> SOURCES name (board labels: row 0 = top; legs N, E, S, W)
+    name = {(0, 3): "VT0", (0, 0): "HL2", (1, 0): "HR2", (1, 1): "VT2",
+            (2, 3): "VB0", (2, 2): "HL0", (3, 1): "VB2", (3, 2): "HR0"}
     order = [SOURCES.index(name[(int(a), int(k))]) for a, k in bl]
     raws = _raws_for(nc)
     with Solver(name="cd15", bootstrap_with=list(enc.clauses)) as sat:
@@ -248,7 +248,7 @@ def test_appendix_b_helpers_sit_in_their_own_slot():
 
 
 def test_line_lengths_counts_runs_by_hand():
-    h_tile, v_tile = [0, 1, 0, 2], [0, 1, 2, 1]  # (W, N, E, S): W = E horizontal; N = S vertical
+    h_tile, v_tile = [1, 0, 2, 0], [1, 2, 1, 0]  # (N, E, S, W): W = E horizontal; N = S vertical
     legs = np.array([[h_tile, h_tile, v_tile, h_tile],
                      [v_tile, h_tile, v_tile, v_tile],
                      [v_tile, v_tile, v_tile, h_tile]])

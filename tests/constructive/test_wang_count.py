@@ -76,7 +76,7 @@ def test_auto_falls_back_to_enumeration():
 
 
 def brute_force_board(problem) -> int:
-    """Brute force on any board through its joins (legs W, N, E, S)."""
+    """Brute force on any board through its joins (legs N, E, S, W: a tile's columns)."""
     b, t = problem.board, problem.tileset.tiles.tolist()
     total = 0
     for pick in itertools.product(range(len(t)), repeat=b.n_cells):

@@ -48,7 +48,7 @@ def test_a_torus_no_cylinder_block_fits_is_decided_whole(small_bands):
 
 
 def test_stacked_takes_a_block_whose_height_divides_the_torus():
-    legs = STAIRS.legs
+    legs = STAIRS.tiles
     grid = np.array([[0], [1], [2], [0], [1], [2], [0]])  # bottom colours 1, 2, 0, 1, 2, 0, 1
     assert _stacked(grid, legs, 4) is None
     block = _stacked(grid, legs, 6)

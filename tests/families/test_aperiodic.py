@@ -35,7 +35,7 @@ LONELY = WangTileSet([[0, 1, 0, 0]], 2)
 def _brute_tiles(board: Board, ws: WangTileSet) -> bool:
     n = board.n_cells
     for choice in itertools.product(range(len(ws)), repeat=n):
-        if not board_violations(BoardProblem(board, ws), ws.legs[list(choice)]):
+        if not board_violations(BoardProblem(board, ws), ws.tiles[list(choice)]):
             return True
     return False
 

@@ -47,7 +47,7 @@ def test_the_cnf_check_catches_a_line_too_long_and_a_broken_tile():
     # the same window under a limit of 1: its lines of 2..4 bricks falsify line clauses
     assert cw.cnf_falsified(cw.window_problem(legs, WangTileSet.brick(3), max_line=1), legs)[1] > 0
     broken = legs.copy()
-    broken[2, 2, 1] = (broken[2, 2, 1] + 1) % 3  # N leg no longer the S leg of the cell above
+    broken[2, 2, 0] = (broken[2, 2, 0] + 1) % 3  # N leg no longer the S leg of the cell above
     problem = cw.window_problem(legs, WangTileSet.brick(3), max_line=4)
     assert cw.cnf_falsified(problem, broken)[1] > 0
 

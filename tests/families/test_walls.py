@@ -21,7 +21,7 @@ def test_walls_from_dappling_verify(rows, cols, p, q, k, seed):
     assert sol.status.value == "sat"
     assert board_violations(prob, sol.tiling) == []
     t = sol.tiling
-    h = t[:, 0] == t[:, 2]
+    h = t[:, 3] == t[:, 1]  # W = E
     assert line_runs(prob.board.nbr_cell, prob.board.nbr_leg, h, "H", p + 2).max(initial=0) <= p
     assert line_runs(prob.board.nbr_cell, prob.board.nbr_leg, ~h, "V", q + 2).max(initial=0) <= q
 
@@ -29,7 +29,7 @@ def test_walls_from_dappling_verify(rows, cols, p, q, k, seed):
 def test_wall_keeps_the_dappled_classes():
     g = np.array([[0, 0, 1], [1, 0, 1], [0, 1, 1]])
     t = wall_from_dappled(g, 3, seed=2)
-    assert np.array_equal((t[:, 0] != t[:, 2]).reshape(3, 3).astype(int), g)
+    assert np.array_equal((t[:, 3] != t[:, 1]).reshape(3, 3).astype(int), g)  # W != E: vertical
     with pytest.raises(InvalidProblem):
         wall_from_dappled(g, 2)
     with pytest.raises(InvalidProblem):
@@ -41,10 +41,9 @@ def test_long_line_is_caught_in_a_wall():
     t = np.array(sol.tiling)
     # make the whole first row horizontal: W = E everywhere (joins stay consistent)
     row = np.arange(8)
-    t[row, 0] = t[row, 2] = 0
-    t[row[1:], 0] = 0
-    t[row, 1] = 1
-    t[row, 3] = 2
+    t[row, 3] = t[row, 1] = 0  # W = E (legs N, E, S, W)
+    t[row, 0] = 1
+    t[row, 2] = 2
     kinds = {v.kind for v in board_violations(prob, t)}
     assert "line" in kinds
 

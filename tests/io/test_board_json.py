@@ -24,7 +24,7 @@ from clitools import run
 #: Files written by tilesolve before version 3 (versions 1 and 2, legs W, N, E, S), with the
 #: DRAT proofs of the unsat ones and the tile set they were solved for.
 OLD = Path(__file__).parents[1] / "data" / "board_solution"
-#: Where a leg of the board model (W, N, E, S) stands in N, E, S, W, written out by hand.
+#: Where a leg of a version 1 or 2 file (W, N, E, S) stands in N, E, S, W, written out by hand.
 NESW_INDEX = {0: 3, 1: 0, 2: 1, 3: 2}
 
 
@@ -125,7 +125,7 @@ def test_version_3_reads_with_base64_and_numpy_alone(tmp_path):
     mask = np.unpackbits(np.frombuffer(base64.b64decode(doc["mask"]["data"]), np.uint8), count=24).reshape(4, 6)
     assert mask.sum() == 23 and mask[1, 1] == 0
     tiles = np.frombuffer(base64.b64decode(doc["tiles"]["data"]), "<u1").reshape(doc["tiles"]["shape"])
-    assert np.array_equal(tiles, s.tiling[:, [1, 2, 3, 0]])  # N, E, S, W of the legs W, N, E, S
+    assert np.array_equal(tiles, s.tiling)  # the tiling's rows as they are: legs N, E, S, W
     beta = np.frombuffer(base64.b64decode(doc["boundary"]["data"]), "<i1")
     assert np.array_equal(beta, p.boundary)
 
@@ -147,8 +147,9 @@ def test_reads_a_version_1_file_written_by_hand(tmp_path):
     q, t = read_board_solution(path)
     b = Board.rect(2, 1)
     assert np.array_equal(q.board.nbr_cell, b.nbr_cell) and np.array_equal(q.board.nbr_leg, b.nbr_leg)
-    # boundary legs renumbered by cell, then N, E, S, W: W of cell 0 (was 0) is now 2, N of cell 1 stays 3
-    assert q.boundary.tolist() == [-1, -1, 1, 0, -1, -1] and t.tiling.tolist() == doc["tiles"]
+    # boundary legs renumbered by cell, then N, E, S, W: W of cell 0 (was 0) is now 2, N of cell 1 stays 3;
+    # the tiling's legs are N, E, S, W in memory
+    assert q.boundary.tolist() == [-1, -1, 1, 0, -1, -1] and t.tiling.tolist() == [[0, 2, 1, 1], [0, 2, 2, 2]]
     # the same file in version 3: tiles and leg numbers in N, E, S, W; boundary legs numbered alike
     v3 = _as_version_3(doc)
     assert v3["tiles"] == [[0, 2, 1, 1], [0, 2, 2, 2]] and v3["edges"][:3] == [[0, 3, -1, 2], [0, 0, -1, 0], [0, 1, 1, 3]]
@@ -156,7 +157,7 @@ def test_reads_a_version_1_file_written_by_hand(tmp_path):
     path.write_text(json.dumps(v3))
     q3, t3 = read_board_solution(path)
     assert np.array_equal(q3.board.nbr_cell, b.nbr_cell) and np.array_equal(q3.board.nbr_leg, b.nbr_leg)
-    assert q3.boundary.tolist() == q.boundary.tolist() and t3.tiling.tolist() == doc["tiles"]
+    assert q3.boundary.tolist() == q.boundary.tolist() and t3.tiling.tolist() == v3["tiles"]
 
 
 def _as_version_3(doc: dict) -> dict:
@@ -377,8 +378,10 @@ def test_files_of_versions_1_and_2_still_read_and_verify(tmp_path, name):
     doc = json.loads((OLD / name).read_text())
     assert doc["version"] == int(name[1]) and doc["leg_order"] == ["W", "N", "E", "S"]
     if isinstance(doc["tileset"], list):  # written as legs W, N, E, S; read as tiles N, E, S, W
-        assert q.tileset.legs.tolist() == doc["tileset"] and q.tileset.tiles.tolist() == [
-            [n, e, s, w] for w, n, e, s in doc["tileset"]]
+        assert q.tileset.tiles.tolist() == [[n, e, s, w] for w, n, e, s in doc["tileset"]]
+    if doc.get("tiles") is not None:  # each cell's legs W, N, E, S in the file: N, E, S, W in memory
+        written = jsonio.decode_array(doc["tiles"], "tiles", name)
+        assert np.array_equal(t.tiling, written[:, [1, 2, 3, 0]])
     # written again, as version 3, it reads to the same problem and tiling
     write_board_solution(tmp_path / "v3.json", q, t)
     _same(q, t, *read_board_solution(tmp_path / "v3.json"))

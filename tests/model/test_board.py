@@ -6,8 +6,8 @@ import pytest
 
 from tilesolve.errors import InvalidProblem
 from tilesolve.model.board import (
-    E, N, S, W, Board, BoardProblem, GridSpec, WangTileSet, parse_board_spec, parse_mask_text,
-    wang_from_nesw, wang_to_nesw,
+    E, LEG_NAMES, N, PAPER_LEGS, S, W, Board, BoardProblem, GridSpec, WangTileSet, parse_board_spec,
+    parse_mask_text,
 )
 from tilesolve.io.mask import read_board_spec, read_mask
 
@@ -118,8 +118,24 @@ def test_brick_tiles_def9_and_three_boundary():
         WangTileSet([], 3)
     with pytest.raises(InvalidProblem, match="outside C"):
         WangTileSet([[0, 1, 2, 3]], 3)
-    assert np.array_equal(wang_to_nesw(wang_from_nesw([[1, 2, 3, 4]])), [[1, 2, 3, 4]])
-    assert wang_from_nesw([[1, 2, 3, 4]]).tolist() == [[4, 1, 2, 3]]
+    # W_B is listed in lexicographic order of the paper's legs l1..l4 = W, N, E, S
+    paper = WangTileSet.brick(3).tiles[:, PAPER_LEGS]
+    assert np.array_equal(paper, np.unique(paper, axis=0))
+
+
+def test_legs_are_numbered_n_e_s_w_as_tiles_are():
+    """Leg k of a cell is column k of its tile (N, E, S, W); the paper's l1..l4 are W, N, E, S."""
+    assert (N, E, S, W) == (0, 1, 2, 3) and LEG_NAMES == ("N", "E", "S", "W")
+    assert PAPER_LEGS.tolist() == [W, N, E, S]
+    b = Board.rect(3, 3)
+    centre = b.index_of()[(1, 1)]
+    across = {N: (0, 1), E: (1, 2), S: (2, 1), W: (1, 0)}
+    for k, (r, c) in across.items():
+        assert b.nbr_cell[centre, k] == b.index_of()[(r, c)] and b.nbr_leg[centre, k] == (k + 2) % 4
+    # boundary legs by cell, then leg N, E, S, W: the corner (0, 0) has N = 0 and W = 1
+    assert b.nbr_leg[0, N] == 0 and b.nbr_leg[0, W] == 1 and b.nbr_cell[0, E] == 1
+    ts = WangTileSet([[2, 0, 1, 0]], 3)
+    assert ts.contains([[2, 0, 1, 0]]).all() and not ts.contains([[0, 2, 0, 1]]).any()
 
 
 def test_problem_validation():
@@ -146,7 +162,7 @@ def _literal_grid(mask, wrap_rows, wrap_cols):
     index = {rc: i for i, rc in enumerate(cells)}
     nc = np.full((len(cells), 4), -1)
     for i, (r, c) in enumerate(cells):
-        for k, (dr, dc) in enumerate([(0, -1), (-1, 0), (0, 1), (1, 0)]):
+        for k, (dr, dc) in enumerate([(-1, 0), (0, 1), (1, 0), (0, -1)]):  # across N, E, S, W
             r2, c2 = r + dr, c + dc
             if not 0 <= c2 < Wd and wrap_cols:
                 r2, c2 = (H - 1 - r2 if wrap_cols == "twist" else r2), c2 % Wd

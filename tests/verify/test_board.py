@@ -61,8 +61,8 @@ def test_shape_colour_and_generic_tiles():
     assert board_violations(p, np.zeros((3, 4), int))[0].kind == "shape"
     assert board_violations(p, np.full((2, 4), 7))[0].kind == "colour"
     q = BoardProblem(b, WangTileSet([[1, 0, 1, 0], [0, 0, 0, 0]], 2))  # N, E, S, W
-    assert board_violations(q, [[0, 1, 0, 1], [0, 1, 0, 1]]) == []
-    v = board_violations(q, [[0, 1, 0, 1], [0, 1, 1, 1]])
+    assert board_violations(q, [[1, 0, 1, 0], [1, 0, 1, 0]]) == []  # rows are tiles: legs N, E, S, W
+    v = board_violations(q, [[1, 0, 1, 0], [1, 1, 1, 0]])
     assert [x.kind for x in v] == ["tile"] and (v[0].row, v[0].col) == (0, 1)
 
 
@@ -70,17 +70,17 @@ def test_line_limits_are_checked():
     b = Board.rect(4, 1)
     p = BoardProblem(b, WangTileSet.brick(3), max_h=2)
     # four horizontal tiles in a row: colours W=E=0 everywhere, N != S
-    t = np.array([[0, 1, 0, 2]] * 4)
+    t = np.array([[1, 0, 2, 0]] * 4)
     v = board_violations(p, t)
     assert [x.kind for x in v] == ["line", "line"] and [x.col for x in v] == [2, 3]
     t2 = t.copy()
-    t2[2] = [0, 1, 1, 1]
-    t2[3, W] = 1
-    t2[3] = [1, 1, 1, 2]
+    t2[2] = [1, 1, 1, 0]
+    t2[3] = [1, 1, 2, 1]
+    assert t2[3, W] == t2[2, E] == 1
     assert not any(x.kind == "line" for x in board_violations(p, t2))
     # on a torus a full row is a run with no end
     tor = BoardProblem(Board.torus(3, 2), WangTileSet.brick(3), max_h=5)
-    tt = np.tile([0, 1, 0, 2], (6, 1))
+    tt = np.tile([1, 0, 2, 0], (6, 1))
     assert any(x.kind == "line" for x in board_violations(tor, tt))
 
 
@@ -126,17 +126,17 @@ def test_a_listing_that_differs_everywhere_is_reported_within_bounds():
 
 
 def test_tiles_of_sets_with_very_many_colours_are_matched_exactly():
-    k = 1 << 20  # (W, N, E, S) keys would overflow int64: rows are matched another way
+    k = 1 << 20  # (N, E, S, W) keys would overflow int64: rows are matched another way
     ts = WangTileSet([[k - 1, 0, 5, 0], [8, 9, k - 1, 7]], k)  # N, E, S, W
     p = BoardProblem(Board.rect(1, 1), ts)
-    assert board_violations(p, [[0, k - 1, 0, 5]]) == []
-    v = board_violations(p, [[0, k - 1, 0, 6]])
+    assert board_violations(p, [[k - 1, 0, 5, 0]]) == []
+    v = board_violations(p, [[k - 1, 0, 6, 0]])
     assert [x.kind for x in v] == ["tile"]
 
 
 def test_a_line_limit_beyond_the_board_is_cheap_and_still_catches_endless_lines():
     tor = BoardProblem(Board.torus(3, 2), WangTileSet.brick(3), max_h=10**12)
-    tt = np.tile([0, 1, 0, 2], (6, 1))  # every row one horizontal line round the torus
+    tt = np.tile([1, 0, 2, 0], (6, 1))  # every row one horizontal line round the torus
     assert sum(x.kind == "line" for x in board_violations(tor, tt)) == 6
     rect = BoardProblem(Board.rect(4, 1), WangTileSet.brick(3), max_h=10**12)
-    assert board_violations(rect, np.array([[0, 1, 0, 2]] * 4)) == []
+    assert board_violations(rect, np.array([[1, 0, 2, 0]] * 4)) == []

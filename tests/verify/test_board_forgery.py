@@ -14,7 +14,6 @@ import json
 import subprocess
 import sys
 
-import numpy as np
 import pytest
 
 from clitools import ENV, SCRIPT, one_line_error, run
@@ -93,8 +92,8 @@ def test_a_missing_or_extra_cell_is_a_violation(files):
 
 @pytest.mark.fast_cases(1)
 @pytest.mark.parametrize("forge, expected", [
-    # the first edge (leg W of cell [0, 0] on the wall, boundary leg 1 after N's 0) dropped
-    (lambda e: e[1:], "the file does not list the edge where leg W of cell [0, 0] meets the wall (boundary leg 1)"),
+    # the first edge (leg N of cell [0, 0] on the wall, boundary leg 0) dropped
+    (lambda e: e[1:], "the file does not list the edge where leg N of cell [0, 0] meets the wall (boundary leg 0)"),
     # listed twice
     (lambda e: e + [e[3]], "is listed twice"),
     # a join to another cell
@@ -134,11 +133,7 @@ def test_a_compact_file_that_lists_its_board_is_held_to_it(files):
     b = Board.rect(70, 70)
     cells = b.labels.copy()
     cells[4899] = [0, 0]
-    edges = b.edge_array()  # legs W, N, E, S; the file numbers them N, E, S, W (0 = N, ..., 3 = W)
-    nesw = np.array([3, 0, 1, 2])
-    edges[:, 1] = nesw[edges[:, 1]]
-    joined = edges[:, 2] >= 0  # a wall edge's last number is its boundary leg's
-    edges[joined, 3] = nesw[edges[joined, 3]]
+    edges = b.edge_array()  # legs N, E, S, W (0 = N, ..., 3 = W), as the file numbers them
     doc["cells"], doc["edges"] = encode_array(cells), encode_array(edges)
     lines = _violations(_verify_forged(folder, doc))
     assert lines == ["(row 69, col 69) cell 4899 is listed at [0, 0]; the board has it at [69, 69]"]

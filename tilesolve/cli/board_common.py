@@ -89,14 +89,12 @@ def board_text(problem, tiling) -> str:
 
     >>> from tilesolve.model.board import Board, BoardProblem, WangTileSet
     >>> p = BoardProblem(Board.rect(2, 1), WangTileSet.brick(3), None)
-    >>> print(board_text(p, [[0, 1, 0, 2], [0, 1, 2, 1]]), end="")  # legs W, N, E, S
+    >>> print(board_text(p, [[1, 0, 2, 0], [1, 2, 1, 0]]), end="")
     1020 1210
     """
     import numpy as np
 
-    from tilesolve.model.board import wang_to_nesw
-
-    t = wang_to_nesw(tiling)
+    t = np.asarray(tiling, dtype=np.int64).reshape(-1, 4)
     lab = problem.board.labels
     if problem.n_colors <= 10:
         cells = np.char.add(np.char.add(t[:, 0].astype(str), t[:, 1].astype(str)),

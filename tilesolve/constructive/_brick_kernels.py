@@ -22,8 +22,10 @@ EXACT, NOT, ANY, EMPTY = 0, 1, 2, 3
 @kernel()
 def four_cycle_at(nc, a, out):
     """A chordless 4-cycle a-b-d-c through cell ``a`` using two consecutive legs of ``a``
-    (a 2x2 block: four corners). Writes the cells to ``out``; False when there is none."""
-    for k in range(4):
+    (a 2x2 block: four corners). Writes the cells to ``out``; False when there is none.
+    The legs are tried from W round to S (W and N first)."""
+    for j in range(4):
+        k = (j + 3) % 4
         b = nc[a, k]
         c = nc[a, (k + 1) % 4]
         if b < 0 or c < 0 or b == a or c == a or b == c:
@@ -101,7 +103,7 @@ def components(nc, nl):
     parent_leg = np.full(n, -1, np.int64)
     stack = np.empty(n, np.int64)
     nxt = np.zeros(n, np.int64)
-    pref = np.array([2, 3, 0, 1])
+    pref = np.array([1, 2, 3, 0])  # E, S, W, N
     starts = np.zeros(n + 1, np.int64)
     hq = np.zeros(n, np.bool_)
     legs = np.zeros(n, np.int64)
@@ -139,7 +141,7 @@ def dfs_tree(nc, nl, sources, allowed):
     order = np.empty(n, np.int64)
     stack = np.empty(n, np.int64)
     nxt = np.zeros(n, np.int64)
-    pref = np.array([2, 3, 0, 1])
+    pref = np.array([1, 2, 3, 0])  # E, S, W, N
     m = 0
     for s in sources:
         seen[s] = True
@@ -268,8 +270,8 @@ def choose_tile(kinds, vals, C, r, first_mode, out):
     """Fill ``out`` with a brick tile meeting the four conditions; False when none exists."""
     for t in range(2):
         mode = first_mode if t == 0 else 1 - first_mode
-        ep, eq = (0, 2) if mode == 0 else (1, 3)
-        up, uq = (1, 3) if mode == 0 else (0, 2)
+        ep, eq = (3, 1) if mode == 0 else (0, 2)  # the equal pair: W, E (W_H) or N, S (W_V)
+        up, uq = (0, 2) if mode == 0 else (3, 1)
         x = _pick_common(kinds[ep], vals[ep], kinds[eq], vals[eq], C, r)
         if x < 0:
             continue

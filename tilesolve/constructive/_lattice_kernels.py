@@ -327,11 +327,11 @@ def wall_kernel(x0, y0, w, h, nc, p, fixed, bh, bv, bo, opt, nopt, out):
                         continue
                     c = i - x0
                     if dj == 0 and di == 0:
-                        out[r, c, 0], out[r, c, 1], out[r, c, 2], out[r, c, 3] = o[4], hl1, vb1, o[2]
+                        out[r, c, 0], out[r, c, 1], out[r, c, 2], out[r, c, 3] = hl1, vb1, o[2], o[4]
                     elif dj == 0:
-                        out[r, c, 0], out[r, c, 1], out[r, c, 2], out[r, c, 3] = vb1, hr1, o[5], o[6]
+                        out[r, c, 0], out[r, c, 1], out[r, c, 2], out[r, c, 3] = hr1, o[5], o[6], vb1
                     elif di == 0:
-                        out[r, c, 0], out[r, c, 1], out[r, c, 2], out[r, c, 3] = o[0], o[3], vt1, hl1
+                        out[r, c, 0], out[r, c, 1], out[r, c, 2], out[r, c, 3] = o[3], vt1, hl1, o[0]
                     else:
-                        out[r, c, 0], out[r, c, 1], out[r, c, 2], out[r, c, 3] = vt1, o[7], o[1], hr1
+                        out[r, c, 0], out[r, c, 1], out[r, c, 2], out[r, c, 3] = o[7], o[1], hr1, vt1
     return out

@@ -42,11 +42,11 @@ def map_band(legs, nc, ppc, x0, y0, kind, n_colours, mortar, mortar_px, distance
     q = 1.0 / (nc + 1)
     for r in range(rows):
         for c in range(cols):
-            w_ = (legs[r + 1, c + 1, 0] + 1.0) * q
-            n_ = (legs[r + 1, c + 1, 1] + 1.0) * q
-            e_ = (legs[r + 1, c + 1, 2] + 1.0) * q
-            s_ = (legs[r + 1, c + 1, 3] + 1.0) * q
-            hor = legs[r + 1, c + 1, 0] == legs[r + 1, c + 1, 2]
+            n_ = (legs[r + 1, c + 1, 0] + 1.0) * q
+            e_ = (legs[r + 1, c + 1, 1] + 1.0) * q
+            s_ = (legs[r + 1, c + 1, 2] + 1.0) * q
+            w_ = (legs[r + 1, c + 1, 3] + 1.0) * q
+            hor = legs[r + 1, c + 1, 3] == legs[r + 1, c + 1, 1]
             for py in range(ppc):
                 vv = (py + 0.5) / ppc
                 for px in range(ppc):
@@ -62,10 +62,10 @@ def map_band(legs, nc, ppc, x0, y0, kind, n_colours, mortar, mortar_px, distance
                     ai = r + da  # the brick around halo vertex (ai + 1, bi + 1)
                     bi = c + db
                     # its edges relative to the pixel's own cell, as in wall_maps
-                    lft = (db - 1) + (legs[ai + 1, bi, 1] + 1.0) * q
-                    rgt = db + (legs[ai + 1, bi + 1, 1] + 1.0) * q
-                    tp = (da - 1) + (legs[ai, bi, 2] + 1.0) * q
-                    bot = da + (legs[ai + 1, bi, 2] + 1.0) * q
+                    lft = (db - 1) + (legs[ai + 1, bi, 0] + 1.0) * q
+                    rgt = db + (legs[ai + 1, bi + 1, 0] + 1.0) * q
+                    tp = (da - 1) + (legs[ai, bi, 1] + 1.0) * q
+                    bot = da + (legs[ai + 1, bi, 1] + 1.0) * q
                     x = uu
                     y = vv
                     d = min(min(x - lft, rgt - x), min(y - tp, bot - y))

@@ -309,7 +309,7 @@ def wall_from_dappled(classes, n_colors: int = 3, *, seed=None) -> np.ndarray:
     Returns
     -------
     numpy.ndarray
-        ``(rows * cols, 4)`` leg colours (W, N, E, S) of :meth:`Board.rect` cells.
+        ``(rows * cols, 4)`` leg colours (N, E, S, W) of :meth:`Board.rect` cells.
 
     Examples
     --------
@@ -345,4 +345,4 @@ def wall_from_dappled(classes, n_colors: int = 3, *, seed=None) -> np.ndarray:
         step = rng.integers(1, n_colors, size=cols)
         cur = np.where(~h[r], cur, (cur + step) % n_colors)
         south[r] = cur
-    return np.stack([west.ravel(), north.ravel(), east.ravel(), south.ravel()], axis=1)
+    return np.stack([north.ravel(), east.ravel(), south.ravel(), west.ravel()], axis=1)

@@ -116,7 +116,7 @@ def npd_legs(classes, colors: int, *, seed=None) -> np.ndarray:
     Returns
     -------
     numpy.ndarray
-        ``(rows, cols, 4)`` int8 leg colours ``(W, N, E, S)``, row 0 at the top; the E legs of
+        ``(rows, cols, 4)`` int8 leg colours ``(N, E, S, W)``, row 0 at the top; the E legs of
         the last column equal the W legs of the first and the S legs of the last row the N legs
         of the first (the wall repeats), and a cell is W_H exactly where ``classes`` is 0.
 
@@ -124,7 +124,7 @@ def npd_legs(classes, colors: int, *, seed=None) -> np.ndarray:
     --------
     >>> d = [[0, 1, 0, 1], [1, 0, 1, 0], [0, 1, 0, 1], [1, 0, 1, 0]]
     >>> t = npd_legs(d, 3, seed=1)
-    >>> bool((t[:, -1, 2] == t[:, 0, 0]).all() and (t[-1, :, 3] == t[0, :, 1]).all())
+    >>> bool((t[:, -1, 1] == t[:, 0, 3]).all() and (t[-1, :, 2] == t[0, :, 0]).all())
     True
     """
     g = np.asarray(classes)
@@ -142,10 +142,10 @@ def npd_legs(classes, colors: int, *, seed=None) -> np.ndarray:
     v = _cycle_edges(vert, nc, rng)  # v[r, c] = W leg of cell (r, c); v[r, cols] = v[r, 0]
     h = _cycle_edges(~vert.T, nc, rng)  # h[c, r] = N leg of cell (r, c), going down the column
     out = np.empty((rows, cols, 4), dtype=np.int8)
-    out[..., 0] = v[:, :-1]
-    out[..., 2] = v[:, 1:]
-    out[..., 1] = h[:, :-1].T
-    out[..., 3] = h[:, 1:].T
+    out[..., 0] = h[:, :-1].T
+    out[..., 1] = v[:, 1:]
+    out[..., 2] = h[:, 1:].T
+    out[..., 3] = v[:, :-1]
     return out
 
 

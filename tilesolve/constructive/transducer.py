@@ -5,7 +5,7 @@ Combinatorics, 2021), §2-3; class notes Part II §8.2 for Wang's procedure this
 part. meyerphi/tiling implements the same search (without minimisation) in C++; its test sets
 are this module's test data.
 
-A Wang tile ``(W, N, E, S)`` is a transition from state ``W`` to state ``E`` that reads ``N``
+A Wang tile ``(N, E, S, W)`` is a transition from state ``W`` to state ``E`` that reads ``N``
 and writes ``S``: the tile set is a transducer ``T`` whose states are the horizontal (W/E)
 colours (Jeandel and Rao read the bottom colour and write the top one; the direction only
 decides which way rows are stacked). A bi-infinite path of ``T`` is a bi-infinite row of tiles; its input word is the row's
@@ -142,8 +142,8 @@ def tile_transducer(tileset: WangTileSet) -> Transducer:
     >>> t.n_states, t.src.tolist(), t.dst.tolist(), t.north.tolist(), t.south.tolist()
     (2, [1, 0], [1, 0], [0, 0], [0, 0])
     """
-    t = _i64(tileset.legs)  # W, N, E, S
-    return Transducer(int(tileset.n_colors), _i64(t[:, 0]), _i64(t[:, 2]), _i64(t[:, 1]), _i64(t[:, 3]))
+    t = _i64(tileset.tiles)  # N, E, S, W
+    return Transducer(int(tileset.n_colors), _i64(t[:, 3]), _i64(t[:, 1]), _i64(t[:, 0]), _i64(t[:, 2]))
 
 
 def _row_keys(rows: np.ndarray, sizes) -> np.ndarray | None:
@@ -621,10 +621,10 @@ def strip_width(tileset: WangTileSet, k: int, *, max_transitions: int = DEFAULT_
 
 
 def torus_tiling(tileset: WangTileSet, torus) -> np.ndarray:
-    """Leg colours ``(k * p, 4)`` (W, N, E, S, cells in row-major order) of the ``(k, p)`` tile
+    """Leg colours ``(k * p, 4)`` (N, E, S, W, cells in row-major order) of the ``(k, p)`` tile
     indices ``torus``: the tiling of ``Board.torus(p, k)`` for the board verifier."""
     idx = np.asarray(torus, dtype=np.int64)
-    return np.asarray(tileset.legs, dtype=np.int64)[idx.ravel()]
+    return np.asarray(tileset.tiles, dtype=np.int64)[idx.ravel()]
 
 
 #: How the conclusions of the transducer's reports without a certificate begin (an undecided

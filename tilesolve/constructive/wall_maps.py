@@ -30,7 +30,7 @@ Examples
 --------
 >>> import numpy as np
 >>> legs = np.zeros((3, 3, 4), dtype=np.int8)   # halo around one cell: all horizontal tiles ...
->>> legs[..., 1], legs[..., 3] = 0, 2            # ... with N at 1/4 and S at 3/4 of the cell
+>>> legs[..., 0], legs[..., 2] = 0, 2            # ... with N at 1/4 and S at 3/4 of the cell
 >>> m = wall_maps(legs, 3, 4, origin=(10, 20))
 >>> m.vx.shape, sorted(set(zip(m.vx.ravel().tolist(), m.vy.ravel().tolist())))
 ((4, 4), [(10, 20), (10, 21), (11, 20), (11, 21)])
@@ -85,7 +85,7 @@ def wall_maps(legs, colors: int, ppc: int, *, origin: tuple[int, int] = (0, 0)) 
     Parameters
     ----------
     legs : array-like of int, shape (rows + 2, cols + 2, 4)
-        Leg colours (W, N, E, S) of a brick wall window and the ring of cells around it, row
+        Leg colours (N, E, S, W) of a brick wall window and the ring of cells around it, row
         0 at the top (e.g. :func:`tilesolve.constructive.walls.wall_window` of the window
         grown by one cell on every side).
     colors : int
@@ -110,8 +110,8 @@ def wall_maps(legs, colors: int, ppc: int, *, origin: tuple[int, int] = (0, 0)) 
     rows, cols = t.shape[0] - 2, t.shape[1] - 2
     inner = t[1:-1, 1:-1]
     p = _positions(inner, colors)
-    pw, pn, pe, ps = (p[..., k][:, None, :, None] for k in range(4))
-    hor = (inner[..., 0] == inner[..., 2])[:, None, :, None]
+    pn, pe, ps, pw = (p[..., k][:, None, :, None] for k in range(4))
+    hor = (inner[..., 3] == inner[..., 1])[:, None, :, None]
     s = (np.arange(ppc, dtype=np.float64) + 0.5) / ppc
     uu, vv = s[None, None, None, :], s[None, :, None, None]
     # Which corner region of its cell each pixel is in (module docstring; 004 Fig. 7).
@@ -123,7 +123,7 @@ def wall_maps(legs, colors: int, ppc: int, *, origin: tuple[int, int] = (0, 0)) 
     # The pixel's brick is the one around halo vertex (ai + 1, bi + 1) (module docstring).
     da, db = (~top).astype(np.int64), (~left).astype(np.int64)
     ai, bi = r + da, c + db
-    pn_all, pe_all = _positions(t[..., 1], colors), _positions(t[..., 2], colors)
+    pn_all, pe_all = _positions(t[..., 0], colors), _positions(t[..., 1], colors)
     # Its edges relative to the pixel's own cell (translation-invariant arithmetic: a cell's
     # pixels are the same in every window and every band).
     lft = (db - 1) + pn_all[ai + 1, bi]

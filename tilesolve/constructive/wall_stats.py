@@ -20,7 +20,7 @@ Three ways to count, one per kind of output, so that every line is counted once 
   cells on each side and a line is counted when its first cell (westmost, or topmost) lies in
   the window proper (``margin=m``); it is then whole inside the padded window.
 
-Arrays are leg colours ``(rows, cols, 4)`` in tilesolve's order (W, N, E, S), row 0 at the top.
+Arrays are leg colours ``(rows, cols, 4)`` in tilesolve's order (N, E, S, W), row 0 at the top.
 """
 
 from __future__ import annotations
@@ -84,7 +84,7 @@ def wall_lines(legs, *, cyclic: bool = False, margin: int = 0) -> tuple[np.ndarr
     Parameters
     ----------
     legs : array-like
-        ``(rows, cols, 4)`` leg colours (W, N, E, S).
+        ``(rows, cols, 4)`` leg colours (N, E, S, W).
     cyclic : bool
         One period of a repeating wall: lines wrap around the seams.
     margin : int
@@ -99,7 +99,7 @@ def wall_lines(legs, *, cyclic: bool = False, margin: int = 0) -> tuple[np.ndarr
 
     Examples
     --------
-    >>> t = np.array([[[0, 1, 0, 2], [0, 1, 1, 1]], [[1, 2, 1, 0], [1, 1, 2, 1]]])
+    >>> t = np.array([[[1, 0, 2, 0], [1, 1, 1, 0]], [[2, 1, 0, 1], [1, 2, 1, 1]]])
     >>> [a.tolist() for a in wall_lines(t)]
     [[1, 1], [2]]
     """
@@ -108,7 +108,7 @@ def wall_lines(legs, *, cyclic: bool = False, margin: int = 0) -> tuple[np.ndarr
         raise InvalidProblem(f"a wall is a (rows, cols, 4) array of leg colours, got shape {t.shape}")
     if cyclic and margin:
         raise InvalidProblem("a period of a repeating wall has no margin")
-    hor = t[..., 0] == t[..., 2]
+    hor = t[..., 3] == t[..., 1]  # W = E
     out = []
     for mask in (hor, ~hor.T):  # horizontal lines along rows; vertical lines down columns (rows of the transpose)
         line, start, length = runs(mask, cyclic=cyclic)

@@ -7,7 +7,7 @@ Cell ``(i, j)`` (``i`` east, ``j`` north) has a bottom edge ``H[i, j]``, a top e
 ``H[i, j+1] = H[i, j]`` and ``V[i+1, j] != V[i, j]`` (eq. 1), a *horizontal* tile
 ``H[i, j+1] != H[i, j]`` and ``V[i+1, j] = V[i, j]`` (eq. 2): ``2 nc**2 (nc - 1)`` tiles
 over ``nc`` colours (36 for ``nc = 3``), no crosses and no extra bricks. In tilesolve's board
-leg order (W, N, E, S) = ``(V[i, j], H[i, j+1], V[i+1, j], H[i, j])`` this is exactly the set
+leg order (N, E, S, W) = ``(H[i, j+1], V[i+1, j], H[i, j], V[i, j])`` this is exactly the set
 ``W_B`` of brick Wang tiles (:meth:`tilesolve.model.board.WangTileSet.brick`, Def. 9 of the
 brick paper): horizontal tiles are ``W_H`` (``c1 = c3``), vertical tiles ``W_V``
 (``c2 = c4``), and a line of ``k`` bricks is a run of ``k`` horizontal tiles along a row or of
@@ -61,7 +61,7 @@ import numpy as np
 from tilesolve.constructive._lattice_kernels import d1, d2, wall_kernel
 from tilesolve.constructive.hashes import LATTICE_BOUND, FnvXorshift, check_int, check_window
 from tilesolve.errors import InvalidProblem
-from tilesolve.model.board import WangTileSet, wang_to_nesw
+from tilesolve.model.board import WangTileSet
 
 __all__ = [
     "APPENDIX_B",
@@ -151,7 +151,7 @@ def dappling_period(max_line) -> int:
 
 
 def brick_tile_set(colors: int = 3) -> WangTileSet:
-    """The wall tiles of §3.1 (eq. 1 and 2) as a :class:`WangTileSet` in leg order (W, N, E, S).
+    """The wall tiles of §3.1 (eq. 1 and 2) as a :class:`WangTileSet` in leg order (N, E, S, W).
 
     Built from the paper's definition; it equals :meth:`WangTileSet.brick` (Def. 9 of the
     brick paper) and has ``2 nc**2 (nc - 1)`` tiles.
@@ -168,8 +168,8 @@ def brick_tile_set(colors: int = 3) -> WangTileSet:
     vertical = (htop == hbot) & (v1 != v0)  # eq. 1
     horizontal = (htop != hbot) & (v1 == v0)  # eq. 2
     keep = vertical | horizontal
-    tiles = np.stack([v0[keep], htop[keep], v1[keep], hbot[keep]], axis=1)
-    return WangTileSet(wang_to_nesw(tiles), nc, is_brick=True)
+    tiles = np.stack([htop[keep], v1[keep], hbot[keep], v0[keep]], axis=1)
+    return WangTileSet(tiles, nc, is_brick=True)
 
 
 # ------------------------------------------------------------------------------------ scalar form
@@ -251,7 +251,7 @@ class _ScalarWall:
         return self.v(i, j)
 
     def tile(self, i, j):
-        """Leg colours ``(W, N, E, S)`` of cell ``(i, j)``."""
+        """Leg colours ``(N, E, S, W)`` of cell ``(i, j)``."""
         bi, bj = i - i % 2, j - j % 2
         o = [self.v1(bi, bj + 1), self.v1(bi + 2, bj + 1), self.h1(bi, bj), self.h1(bi, bj + 2),
              self.v1(bi, bj), self.v1(bi + 2, bj), self.h1(bi + 1, bj), self.h1(bi + 1, bj + 2)]
@@ -275,8 +275,8 @@ class _ScalarWall:
         vt1, hl1, vb1, hr1 = (source(int(s)) for s in _OPT[case, option])
         di, dj = i - bi, j - bj
         if dj == 0:
-            return (o[_VB0], hl1, vb1, o[_HL0]) if di == 0 else (vb1, hr1, o[_VB2], o[_HR0])
-        return (o[_VT0], o[_HL2], vt1, hl1) if di == 0 else (vt1, o[_HR2], o[_VT2], hr1)
+            return (hl1, vb1, o[_HL0], o[_VB0]) if di == 0 else (hr1, o[_VB2], o[_HR0], vb1)
+        return (o[_HL2], vt1, hl1, o[_VT0]) if di == 0 else (o[_HR2], o[_VT2], hr1, vt1)
 
 
 _STRIP_CELLS = 1 << 16
@@ -301,8 +301,8 @@ def wall_window(x0, y0, w, h, *, colors: int = 3, max_line: int | None = None, s
     Returns
     -------
     numpy.ndarray
-        ``(h, w, 4)`` int8 leg colours ``(W, N, E, S)``, row 0 at the top: ``out[r, c]`` is
-        cell ``(x0 + c, y0 + h - 1 - r)``, i.e. ``(V[i, j], H[i, j+1], V[i+1, j], H[i, j])``.
+        ``(h, w, 4)`` int8 leg colours ``(N, E, S, W)``, row 0 at the top: ``out[r, c]`` is
+        cell ``(x0 + c, y0 + h - 1 - r)``, i.e. ``(H[i, j+1], V[i+1, j], H[i, j], V[i, j])``.
         The same cell has the same tile in every window (random access).
 
     Examples
@@ -328,7 +328,7 @@ def wall_window(x0, y0, w, h, *, colors: int = 3, max_line: int | None = None, s
 
 def wall_tile_scalar(i, j, *, colors: int = 3, max_line: int | None = None,
                      seed: int = 0) -> tuple[int, int, int, int]:
-    """Leg colours ``(W, N, E, S)`` of cell ``(i, j)``: the same procedure, one cell, plain Python.
+    """Leg colours ``(N, E, S, W)`` of cell ``(i, j)``: the same procedure, one cell, plain Python.
 
     A straight transcription of §4.2-4.3 (what a shader does per pixel); :func:`wall_window`
     is its compiled, window-at-a-time form and agrees with it bit for bit.
@@ -343,7 +343,7 @@ def wall_tile_scalar(i, j, *, colors: int = 3, max_line: int | None = None,
 def orientation(legs) -> np.ndarray:
     """``True`` where a tile is horizontal (``W = E``, eq. 2), ``False`` where vertical (eq. 1)."""
     t = np.asarray(legs)
-    return t[..., 0] == t[..., 2]
+    return t[..., 3] == t[..., 1]
 
 
 def line_lengths(legs) -> tuple[np.ndarray, np.ndarray]:

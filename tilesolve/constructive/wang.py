@@ -122,7 +122,7 @@ def theorem7_solve(problem: BoardProblem, run: RunOptions, core=None, *,
                 reached[o2] = True
                 parent_leg[o2] = p2[o2]
                 order = np.concatenate([order, o2])
-    tiles = ts.legs
+    tiles = ts.tiles
     for a in order[::-1]:
         a = int(a)
         pl = int(parent_leg[a])

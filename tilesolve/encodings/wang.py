@@ -8,7 +8,7 @@ Cells, for any tile set ``W``: one selector per (cell, tile) with "some tile" pe
 "tile t at cell a implies the colour of each leg" (the support encoding of a table
 constraint; no at-most-one is needed since the legs' colours pin the tile). For brick
 Wang tiles (Def. 9) a smaller exact encoding: two auxiliary variables per cell,
-``h(a) <-> c1 = c3`` and ``v(a) <-> c2 = c4``, and ``h(a) xor v(a)``. Line limits (dappled
+``h(a) <-> W = E`` and ``v(a) <-> N = S`` (c1 = c3, c2 = c4), and ``h(a) xor v(a)``. Line limits (dappled
 paper §4) forbid ``max_h + 1`` consecutive ``h`` cells along a row (out of the E leg into
 the W leg of the next) and ``max_v + 1`` consecutive ``v`` cells down a column.
 
@@ -24,7 +24,7 @@ import numpy as np
 
 from tilesolve.deadline import Deadline
 from tilesolve.encodings import ClauseSet
-from tilesolve.model.board import BoardProblem
+from tilesolve.model.board import PAPER_LEGS, E, N, S, W, BoardProblem
 
 __all__ = ["WangEncoding", "encode_wang", "build_cpsat_wang", "line_windows"]
 
@@ -82,7 +82,7 @@ class WangEncoding:
         return [
             f"tilesolve board tiling: {self.n_edges} edges, {self.n_colors} colours",
             f"variables 1..{self.n_edges * self.n_colors}: x(edge, colour) = 1 + edge*{self.n_colors} + colour "
-            "(edge numbers: tilesolve.model.board.Board.leg_edges; legs W, N, E, S)",
+            "(edge numbers: tilesolve.model.board.Board.leg_edges; legs N, E, S, W)",
             f"variables above {self.n_edges * self.n_colors}: tile selectors and line-length auxiliaries",
         ]
 
@@ -110,7 +110,7 @@ def line_windows(nbr_cell: np.ndarray, nbr_leg: np.ndarray, axis: str, length: i
     >>> line_windows(t.nbr_cell, t.nbr_leg, "H", 10**9).tolist()
     [[0, 1, 2, 0], [1, 2, 0, 1], [2, 0, 1, 2]]
     """
-    out_leg, in_leg = (2, 0) if axis == "H" else (3, 1)
+    out_leg, in_leg = (E, W) if axis == "H" else (S, N)
     n = nbr_cell.shape[0]
     nxt = np.where((nbr_cell[:, out_leg] >= 0) & (nbr_leg[:, out_leg] == in_leg), nbr_cell[:, out_leg], -1)
     cols = [np.arange(n, dtype=np.int64)]
@@ -161,8 +161,9 @@ def encode_wang(problem: BoardProblem, *, deadline: Deadline | None = None) -> W
         cs.add_array(b, "edge has a colour" if i == 0 else "edge has at most one colour")
     top = ne * k
     x = lambda e, c: 1 + e * k + c  # noqa: E731
-    # boundary constraints
-    wa, wl = np.nonzero(board.nbr_cell < 0)
+    # boundary constraints, by cell, then by leg l1..l4 (the clause order of recorded CNFs)
+    wa, wl = np.nonzero(board.nbr_cell[:, PAPER_LEGS] < 0)
+    wl = PAPER_LEGS[wl]
     beta = problem.boundary[board.nbr_leg[wa, wl]]
     fixed = beta >= 0
     cs.add_array(x(eid[wa[fixed], wl[fixed]], beta[fixed])[:, None], "boundary colours")
@@ -171,7 +172,7 @@ def encode_wang(problem: BoardProblem, *, deadline: Deadline | None = None) -> W
         h_var = top + 1 + np.arange(n, dtype=np.int64)
         v_var = top + 1 + n + np.arange(n, dtype=np.int64)
         top += 2 * n
-        for aux, (p, q) in ((h_var, (0, 2)), (v_var, (1, 3))):
+        for aux, (p, q) in ((h_var, (W, E)), (v_var, (N, S))):
             ep, eq = eid[:, p], eid[:, q]
             for c in range(k):
                 # x(ep,c) & x(eq,c) -> aux ; aux & x(ep,c) -> x(eq,c)
@@ -184,12 +185,12 @@ def encode_wang(problem: BoardProblem, *, deadline: Deadline | None = None) -> W
                 win = line_windows(board.nbr_cell, board.nbr_leg, axis, lim + 1)
                 cs.add_array(-aux[win], f"no {axis} line longer than {lim}")
     else:
-        tiles = problem.tileset.legs
+        tiles = problem.tileset.tiles
         m = tiles.shape[0]
         y = top + 1 + np.arange(n, dtype=np.int64)[:, None] * m + np.arange(m)[None, :]
         top += n * m
         cs.add_array(y, "cell has a tile")
-        for leg in range(4):
+        for leg in PAPER_LEGS:
             cs.add_array(
                 np.stack([-y.ravel(), x(np.repeat(eid[:, leg], m), np.tile(tiles[:, leg], n))], axis=1),
                 "tile fixes its leg colours",
@@ -267,7 +268,7 @@ def build_cpsat_wang(problem: BoardProblem, *, deadline: Deadline | None = None)
         col = int(problem.boundary[board.nbr_leg[a, leg]])
         if col >= 0:
             m.add(ints[eid[a, leg]] == col)
-    table = [tuple(int(v) for v in t) for t in problem.tileset.legs]
+    table = [tuple(int(v) for v in t) for t in problem.tileset.tiles]
     for a in range(board.n_cells):
         check(a, board.n_cells, "cells")
         m.add_allowed_assignments([ints[int(e)] for e in eid[a]], table)

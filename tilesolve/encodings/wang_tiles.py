@@ -30,7 +30,7 @@ import numpy as np
 
 from tilesolve.deadline import Deadline
 from tilesolve.encodings import ClauseSet
-from tilesolve.model.board import Board, WangTileSet
+from tilesolve.model.board import LEG_NAMES, PAPER_LEGS, E, N, S, W, Board, WangTileSet
 
 __all__ = ["TileEncoding", "encode_tiles"]
 
@@ -133,7 +133,7 @@ def encode_tiles(board: Board, tileset: WangTileSet, *, allowed: tuple[np.ndarra
     >>> enc.n_vars, len(enc.hard)
     (8, 40)
     """
-    tiles = tileset.legs
+    tiles = tileset.tiles
     m = int(tiles.shape[0])
     n = board.n_cells
     nc, nl = board.nbr_cell, board.nbr_leg
@@ -147,7 +147,7 @@ def encode_tiles(board: Board, tileset: WangTileSet, *, allowed: tuple[np.ndarra
     if i.size:
         cs.add_array(np.stack([-(y0 + i[None, :]), -(y0 + j[None, :])], axis=2).reshape(-1, 2),
                      "cell has at most one tile")
-    for k in range(4):
+    for k in PAPER_LEGS:  # l1..l4: the clause order of recorded CNFs
         a = np.flatnonzero(joined[:, k])
         if a.size == 0:
             continue
@@ -156,12 +156,12 @@ def encode_tiles(board: Board, tileset: WangTileSet, *, allowed: tuple[np.ndarra
         compat = tiles[:, k][:, None] == tiles[:, kb][None, :]  # [t, u]
         if allowed is not None:
             east, south = allowed
-            pair = {2: east, 3: south, 0: east.T, 1: south.T}[k]
+            pair = {E: east, S: south, W: east.T, N: south.T}[k]
             compat = compat & np.asarray(pair, dtype=bool)
         for t in range(m):
             us = np.flatnonzero(compat[t])
             lits = np.concatenate([-(y0[a] + t), y0[b] + us[None, :]], axis=1)
-            cs.add_array(lits, f"tile {t} has a matching neighbour across leg {'WNES'[k]}")
+            cs.add_array(lits, f"tile {t} has a matching neighbour across leg {LEG_NAMES[k]}")
         if deadline is not None:
             deadline.check(f"encoding ({len(cs):,} clauses built)")
     return TileEncoding(cs, n, m, board.labels, restricted=allowed is not None)

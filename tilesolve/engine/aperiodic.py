@@ -72,9 +72,11 @@ DEFAULT_SOLVER = "cadical153"
 
 
 def tileset_digest(tileset: WangTileSet) -> str:
-    """SHA-256 of the tiles (as leg colours W, N, E, S, in the set's order, which the CNF
-    follows) and colour count: the cache key of a tile set."""
-    data = json.dumps({"colours": int(tileset.n_colors), "tiles": tileset.legs.tolist()}, separators=(",", ":"))
+    """SHA-256 of the tiles (in the set's order, which the CNF follows) and colour count: the
+    cache key of a tile set. The tiles' colours are hashed in the order W, N, E, S, the key's
+    order since caches were first written, so that those caches stay valid."""
+    wnes = tileset.tiles[:, [3, 0, 1, 2]]
+    data = json.dumps({"colours": int(tileset.n_colors), "tiles": wnes.tolist()}, separators=(",", ":"))
     return hashlib.sha256(data.encode()).hexdigest()
 
 
@@ -182,13 +184,14 @@ def _search_options(solver: str) -> dict | None:
     return SEARCH_OPTIONS if canonical_solver_name(solver).startswith("cadical") else None
 
 
-def _stacked(grid: np.ndarray, legs: np.ndarray, rows: int) -> np.ndarray | None:
+def _stacked(grid: np.ndarray, tiles: np.ndarray, rows: int) -> np.ndarray | None:
     """A ``rows x cols`` torus tiling cut from ``grid``, a tiling of a cylinder whose columns
     wrap: rows ``r1 + 1 .. r2`` whose top colours are the bottom colours of row ``r2``
-    (``r2 - r1`` dividing ``rows``) make a torus, stacked ``rows / (r2 - r1)`` times; else ``None``."""
+    (``r2 - r1`` dividing ``rows``) make a torus, stacked ``rows / (r2 - r1)`` times; else ``None``.
+    ``tiles`` are the set's tiles (N, E, S, W) that ``grid`` indexes."""
     seen: dict[bytes, list[int]] = {}
     for r in range(grid.shape[0]):
-        key = legs[grid[r], 3].tobytes()  # the row's bottom colours
+        key = tiles[grid[r], 2].tobytes()  # the row's bottom (S) colours
         for r1 in seen.get(key, []):
             if rows % (r - r1) == 0:
                 return np.tile(grid[r1 + 1:r + 1], (rows // (r - r1), 1))
@@ -211,7 +214,7 @@ def _cylinder_witness(tileset: WangTileSet, name: str, run: RunOptions, t0: floa
     enc = encode_tiles(Board.grid(np.ones((height, q), bool), wrap_cols="plain"), tileset, deadline=run.deadline)
     solver = run.solver or DEFAULT_SOLVER
     r = solve_cnf(enc.hard, solver=solver, deadline=run.deadline, options=_search_options(solver))
-    grid = _stacked(enc.decode(r.model), np.asarray(tileset.legs), p) if r.status is Status.SAT else None
+    grid = _stacked(enc.decode(r.model), np.asarray(tileset.tiles), p) if r.status is Status.SAT else None
     if grid is None:
         return None
     return Certificate(name, "tiles", grid, "sat cylinder", {"solver": r.solver, "cylinder": f"{height} x {q}"},

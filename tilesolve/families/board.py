@@ -153,8 +153,8 @@ def solve(problem: BoardProblem, *, method: str | Any = "auto", seed: int | None
     -------
     Solution
         ``tiling`` is an ``(n_cells, 4)`` array of leg colours in the board model's leg order
-        W, N, E, S (the columns of ``Board.nbr_cell``); files and printed text give each cell's
-        tile N, E, S, W (``tilesolve.model.board.wang_to_nesw``).
+        N, E, S, W (the columns of ``Board.nbr_cell``): each row is the cell's tile, as files
+        and printed text give it.
     """
     if not isinstance(problem, BoardProblem):
         raise InvalidProblem(f"expected a BoardProblem, got {type(problem).__name__}")
@@ -346,8 +346,8 @@ def _form_holes(values):
     return keep
 
 
-#: Grid steps (row, col) out of the legs W, N, E, S.
-_LEG_STEP = np.array([[0, -1], [-1, 0], [0, 1], [1, 0]])
+#: Grid steps (row, col) out of the legs N, E, S, W.
+_LEG_STEP = np.array([[-1, 0], [0, 1], [1, 0], [0, -1]])
 
 
 def _form_boundary(values, board):

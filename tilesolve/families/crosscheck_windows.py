@@ -38,7 +38,7 @@ from __future__ import annotations
 import numpy as np
 
 from tilesolve.errors import InvalidProblem
-from tilesolve.model.board import Board, BoardProblem, WangTileSet, wang_from_nesw
+from tilesolve.model.board import Board, BoardProblem, WangTileSet
 from tilesolve.model.solution import CrosscheckReport, Status
 from tilesolve.model.stochastic import StochasticProblem
 
@@ -48,7 +48,7 @@ __all__ = ["crosscheck_wall_window", "crosscheck_tiling_window", "random_wall_wi
 
 def window_problem(legs, tileset: WangTileSet, *, max_line: int | None = None) -> BoardProblem:
     """The board problem of a window: a ``rows x cols`` rectangle whose boundary legs carry the
-    window's own outer colours (``legs``: ``(rows, cols, 4)`` W, N, E, S)."""
+    window's own outer colours (``legs``: ``(rows, cols, 4)`` N, E, S, W)."""
     t = np.asarray(legs, dtype=np.int64)
     rows, cols = t.shape[:2]
     board = Board.rect(cols, rows)
@@ -71,11 +71,11 @@ def cnf_falsified(problem: BoardProblem, legs) -> tuple[int, int]:
     vals[enc.var(np.arange(enc.n_edges), colour)] = True
     missing = 0
     if problem.tileset.is_brick:
-        vals[enc.h_var] = t[:, 0] == t[:, 2]
-        vals[enc.v_var] = t[:, 1] == t[:, 3]
+        vals[enc.h_var] = t[:, 3] == t[:, 1]
+        vals[enc.v_var] = t[:, 0] == t[:, 2]
     else:
         k = enc.n_colors
-        tiles = problem.tileset.legs.astype(np.int64)
+        tiles = problem.tileset.tiles.astype(np.int64)
         codes = ((tiles[:, 0] * k + tiles[:, 1]) * k + tiles[:, 2]) * k + tiles[:, 3]
         order = np.argsort(codes)
         mine = ((t[:, 0] * k + t[:, 1]) * k + t[:, 2]) * k + t[:, 3]
@@ -129,7 +129,7 @@ def crosscheck_wall_window(window: tuple[int, int, int, int], *, colors: int = 3
 
 
 def _wang_images(problem: StochasticProblem, grid) -> tuple[np.ndarray, WangTileSet]:
-    """The window's legs ``(rows, cols, 4)`` (W, N, E, S) and the set, as Wang tiles (§2.9)."""
+    """The window's legs ``(rows, cols, 4)`` (N, E, S, W) and the set, as Wang tiles (§2.9)."""
     from tilesolve.model.tiles import TileSet, corner_to_wang
 
     ts = problem.tiles
@@ -139,8 +139,7 @@ def _wang_images(problem: StochasticProblem, grid) -> tuple[np.ndarray, WangTile
     else:
         c = problem.colors
         wang, images, indices = TileSet("wang", c * c), corner_to_wang(g, colors=c), ts.wang_images()
-    nesw = np.stack(wang.colors_of(images.ravel()), axis=1)
-    legs = wang_from_nesw(nesw).reshape(g.shape + (4,))
+    legs = np.stack(wang.colors_of(images.ravel()), axis=1).reshape(g.shape + (4,))
     tiles = WangTileSet(np.stack(wang.colors_of(indices), axis=1), max(wang.colors, wang.cv))
     return legs, tiles
 

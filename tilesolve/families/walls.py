@@ -149,7 +149,7 @@ def procedural_route(problem: BoardProblem, run: RunOptions) -> Solution:
     Returns
     -------
     Solution
-        ``sat`` with the ``(rows * cols, 4)`` int8 leg colours (W, N, E, S) of the board's
+        ``sat`` with the ``(rows * cols, 4)`` int8 leg colours (N, E, S, W) of the board's
         cells, row-major; its ``window`` is the window of the plane
         (:class:`~tilesolve.model.window.Window`, y growing upwards), and a note names it too.
 
@@ -197,7 +197,7 @@ def write_procedural_wall(path, region: tuple[int, int, int, int], *, colors: in
     Returns
     -------
     Solution
-        ``sat``, method ``procedural``, the window's legs ``(w * h, 4)`` (W, N, E, S), its
+        ``sat``, method ``procedural``, the window's legs ``(w * h, 4)`` (N, E, S, W), its
         ``window`` and ``time_s`` (generation and check, as :func:`tilesolve.family.solve`
         times a route and its verification).
 
@@ -326,7 +326,7 @@ def npd_route(problem: BoardProblem, run: RunOptions) -> Solution:
     Returns
     -------
     Solution
-        ``sat``: ``(n_cells, 4)`` leg colours (W, N, E, S) in the board's cell order, method
+        ``sat``: ``(n_cells, 4)`` leg colours (N, E, S, W) in the board's cell order, method
         ``"npd"``, ``solver`` the dappling's solver, ``window`` the window of the plane the
         period repeats over (:class:`~tilesolve.model.window.Window`, y growing upwards), notes
         naming the period and the dappling's route. On a torus an ``unsat`` dappling gives

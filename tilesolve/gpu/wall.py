@@ -7,7 +7,7 @@ written out for the GPU: the FNV-1a/xorshift64* hashes of 004 §4.2 on 64-bit in
 (``GL_ARB_gpu_shader_int64``; the paper fell back to float hashes for lack of integers, §5.2),
 the multiply-shift reductions (``umulExtended``), procedural dappling (§4.3) and the 2x2 block
 solver of App. B (its table, :data:`~tilesolve.constructive.walls.APPENDIX_B`, compiled into the
-shader). Every cell's leg colours ``(W, N, E, S)`` equal
+shader). Every cell's leg colours ``(N, E, S, W)`` equal
 :func:`~tilesolve.constructive.walls.wall_window` bit for bit, anywhere on the 63-bit lattice:
 coordinates are the picture's origin (64-bit, from the CPU) plus small non-negative offsets,
 so every modulo the shader takes is of a non-negative 32-bit number.
@@ -128,7 +128,7 @@ uint v1(int i, int j) {   // v'(i, j), even i
     return reduce(r, u_nc);
 }
 
-// Leg colours (W, N, E, S) of local cell (i, j): the 2x2 block, its App. B case and filling.
+// Leg colours (N, E, S, W) of local cell (i, j): the 2x2 block, its App. B case and filling.
 uvec4 wall_tile(int i, int j) {
     int bi = i & ~1, bj = j & ~1;
     uint o[8] = uint[8](v1(bi, bj + 1), v1(bi + 2, bj + 1), h1(bi, bj), h1(bi, bj + 2),
@@ -143,12 +143,12 @@ uvec4 wall_tile(int i, int j) {
         a = s.z < 8 ? o[s.z] : d2(raw(1, bi + 1, bj), o[4], o[5]);                 // vb1
         b = east ? (s.w < 8 ? o[s.w] : d2(raw(0, bi + 1, bj + 1), o[6], o[7]))      // hr1
                  : (s.y < 8 ? o[s.y] : d2(raw(0, bi, bj + 1), o[3], o[2]));         // hl1
-        return east ? uvec4(a, b, o[5], o[6]) : uvec4(o[4], b, a, o[2]);
+        return east ? uvec4(b, o[5], o[6], a) : uvec4(b, a, o[2], o[4]);
     }
     a = s.x < 8 ? o[s.x] : d2(raw(1, bi + 1, bj + 1), o[0], o[1]);                  // vt1
     b = east ? (s.w < 8 ? o[s.w] : d2(raw(0, bi + 1, bj + 1), o[6], o[7]))          // hr1
              : (s.y < 8 ? o[s.y] : d2(raw(0, bi, bj + 1), o[3], o[2]));             // hl1
-    return east ? uvec4(a, o[7], o[1], b) : uvec4(o[0], o[3], a, b);
+    return east ? uvec4(o[7], o[1], b, a) : uvec4(o[3], a, b, o[0]);
 }
 """
 
@@ -169,7 +169,7 @@ void main() {
     ivec2 c = ivec2(gl_FragCoord.xy) + u_first;
     uvec4 ur = wall_tile(c.x, c.y), ll = wall_tile(c.x - 1, c.y - 1);
     f_legs = ur;
-    f_point = uvec2(ll.y | (ur.w << 8) | (ur.x << 16) | (ll.z << 24), raw(3, c.x, c.y));
+    f_point = uvec2(ll.x | (ur.z << 8) | (ur.w << 16) | (ll.y << 24), raw(3, c.x, c.y));
 }
 """
 
@@ -209,15 +209,15 @@ void main() {
     uvec4 t = legs(c);
     float k = float(u_nc + 1u);
     vec4 pos = (vec4(t) + 1.0) / k;   // where each leg's brick edge crosses its side
-    bool horizontal = t.x == t.z;
+    bool horizontal = t.w == t.y;
     float ft = 1.0 - f.y;            // from the top of the cell, as the legs' positions count
     bool upper, right;
     if (horizontal) {
-        upper = ft < pos.x;
-        right = f.x >= (upper ? pos.y : pos.w);
+        upper = ft < pos.w;
+        right = f.x >= (upper ? pos.x : pos.z);
     } else {
-        right = f.x >= pos.y;
-        upper = ft < (right ? pos.z : pos.x);
+        right = f.x >= pos.x;
+        upper = ft < (right ? pos.y : pos.w);
     }
     ivec2 corner = ivec2(right ? 1 : 0, upper ? 1 : 0);   // the brick's lattice point: c + corner
     // Edges at the point (I, J): H[I-1, J], H[I, J], V[I, J], V[I, J-1]; its colour hash.
@@ -226,10 +226,10 @@ void main() {
     uvec4 u = legs(c + 2 * corner - 1);                    // the cell diagonally across the point
     if (corner.x == corner.y) {   // this cell and its neighbour are LL and UR
         uvec4 ll = corner.x == 1 ? t : u, ur = corner.x == 1 ? u : t;
-        hl = ll.y; hr = ur.w; vt = ur.x; vb = ll.z;
+        hl = ll.x; hr = ur.z; vt = ur.w; vb = ll.y;
     } else {                      // UL and LR
         uvec4 ul = corner.x == 1 ? t : u, lr = corner.x == 1 ? u : t;
-        hl = ul.w; hr = lr.y; vt = ul.z; vb = lr.x;
+        hl = ul.z; hr = lr.x; vt = ul.y; vb = lr.w;
     }
     shade = raw(3, c.x + corner.x, c.y + corner.y);
 #else
@@ -354,7 +354,7 @@ class WallRenderer:
         return w, h
 
     def cell_legs(self, cols: int, rows: int) -> np.ndarray:
-        """``(rows, cols, 4)`` int8 legs ``(W, N, E, S)`` of the picture's cells, row 0 at the top
+        """``(rows, cols, 4)`` int8 legs ``(N, E, S, W)`` of the picture's cells, row 0 at the top
         (the first pass alone; :func:`~tilesolve.constructive.walls.wall_window`'s layout)."""
         w, h = self._check_pass(cols, rows)
         tex = self.ctx.texture((w, h), 4, dtype="u1")

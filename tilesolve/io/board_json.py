@@ -112,9 +112,9 @@ leg) or an encoded array; tilesolve writes plain lists, with ``cells`` and
 ``edges`` listed, for boards of at most :data:`COMPACT_MIN_CELLS` cells, and encoded arrays
 (grid boards as their grid and mask alone) for larger ones.
 
-The board model keeps the brick paper's legs W, N, E, S (:mod:`tilesolve.model.board`); a
-file's leg order is converted to it and back at one place, :func:`_leg_seam` (and an older
-file's boundary-leg numbers at :func:`_boundary_seam`).
+The board model numbers its legs as version 3 does, N, E, S, W (:mod:`tilesolve.model.board`),
+so version 3 is written and read as it stands; an older file's leg order is converted when read
+at one place, :func:`_leg_seam` (and its boundary-leg numbers at :func:`_boundary_seam`).
 """
 
 from __future__ import annotations
@@ -134,8 +134,8 @@ from tilesolve.io.jsonio import (
     solution_from_provenance,
 )
 from tilesolve.model.board import (
-    GRID_KINDS, LEG_NAMES, MAX_BOARD_CELLS, MAX_BRICK_COLORS, Board, BoardProblem, GridSpec, WangTileSet,
-    described_board, grid_kind, wang_to_nesw,
+    GRID_KINDS, LEG_NAMES, MAX_BOARD_CELLS, MAX_BRICK_COLORS, E, N, S, W, Board, BoardProblem, GridSpec,
+    WangTileSet, described_board, grid_kind,
 )
 from tilesolve.model.solution import Solution
 from tilesolve.model.window import Window
@@ -150,7 +150,7 @@ VERSIONS = frozenset({1, 2, 3})
 #: The version this module writes.
 VERSION = 3
 #: The leg order of each version's tiles and edges.
-LEG_ORDERS = {1: LEG_NAMES, 2: LEG_NAMES, 3: ("N", "E", "S", "W")}
+LEG_ORDERS = {1: ("W", "N", "E", "S"), 2: ("W", "N", "E", "S"), 3: LEG_NAMES}
 #: Boards with more cells than this are written with encoded arrays.
 COMPACT_MIN_CELLS = 4096
 #: Cells of tiles :func:`write_rect_solution` encodes at a time (a multiple of 6: whole base64 pieces).
@@ -168,9 +168,10 @@ _KEYS = frozenset({
     "edges", "boundary", "tiles", "window", "status", "method", "solver", "seed", "time_s", "reason", "notes",
     "stats", "created_by", "comment",
 })
-#: Where each leg of the board model (W, N, E, S) stands in the order N, E, S, W, and back.
-_NESW_OF_LEG = np.array([3, 0, 1, 2])
-_LEG_OF_NESW = np.array([1, 2, 3, 0])
+#: The board model's leg of each leg 0..3 of a version 1 or 2 file (W, N, E, S), and the file's
+#: column of each of the model's legs (N, E, S, W).
+_LEG_OF_OLD = np.array([W, N, E, S])
+_OLD_COLUMN = np.argsort(_LEG_OF_OLD)
 
 
 @dataclass(frozen=True, eq=False)
@@ -186,32 +187,27 @@ class ListedBoardProblem(BoardProblem):
     listed_edges: np.ndarray | None = None
 
 
-def _leg_seam(version: int, *, tiles=None, edges=None, to_file: bool) -> tuple:
-    """The one seam between a file's leg order (:data:`LEG_ORDERS`) and the board model's
-    legs W, N, E, S: each cell's ``tiles`` (colours per leg) and the leg numbers of ``edges``
-    (``[a, ka, b, kb]``; ``kb`` numbers a boundary leg where ``b = -1`` and is left alone),
-    into the file (``to_file``) or out of it. Leg numbers outside 0..3 are left as read, for
-    the board's checks to name. Returns ``(tiles, edges)`` as ``(n, 4)`` integer arrays (or
-    ``None`` where not given).
+def _leg_seam(version: int, *, tiles=None, edges=None) -> tuple:
+    """The one seam between a file's leg order (:data:`LEG_ORDERS`) and the board model's legs
+    N, E, S, W: each cell's ``tiles`` (colours per leg) and the leg numbers of ``edges``
+    (``[a, ka, b, kb]``; ``kb`` numbers a boundary leg where ``b = -1`` and is left alone), out
+    of a file of ``version``. Version 3 is in the model's order; versions 1 and 2 list the legs
+    W, N, E, S. Leg numbers outside 0..3 are left as read, for the board's checks to name.
+    Returns ``(tiles, edges)`` as ``(n, 4)`` integer arrays (or ``None`` where not given).
 
-    >>> tiles, edges = _leg_seam(3, tiles=[[0, 1, 2, 3]], edges=[[0, 2, 1, 0], [0, 0, -1, 0]], to_file=True)
+    >>> tiles, edges = _leg_seam(2, tiles=[[3, 0, 1, 2]], edges=[[0, 2, 1, 0], [0, 0, -1, 0]])
     >>> tiles.tolist(), edges.tolist()
-    ([[1, 2, 3, 0]], [[0, 1, 1, 3], [0, 3, -1, 0]])
+    ([[0, 1, 2, 3]], [[0, 1, 1, 3], [0, 3, -1, 0]])
     """
-    if LEG_ORDERS[version] == LEG_NAMES:
-        as_rows = lambda a: None if a is None else np.asarray(a, dtype=np.int64).reshape(-1, 4)  # noqa: E731
-        return as_rows(tiles), as_rows(edges)
-    if tiles is not None and to_file:
-        tiles = wang_to_nesw(tiles)
-    elif tiles is not None:  # a file's integer array: its columns reordered while narrow, then widened once
-        tiles = np.asarray(tiles).reshape(-1, 4)[:, _NESW_OF_LEG].astype(np.int64)
+    old = version < 3
+    if tiles is not None:  # a file's integer array: its columns reordered while narrow, then widened once
+        tiles = np.asarray(tiles).reshape(-1, 4)
+        tiles = (tiles[:, _OLD_COLUMN] if old else tiles).astype(np.int64)
     if edges is not None:
-        perm = _NESW_OF_LEG if to_file else _LEG_OF_NESW
-        e = np.asarray(edges, dtype=np.int64).reshape(-1, 4).copy()
-        for legs, on in ((e[:, 1], np.ones(len(e), bool)), (e[:, 3], e[:, 2] >= 0)):
+        edges = np.array(edges, dtype=np.int64).reshape(-1, 4)
+        for legs, on in ((edges[:, 1], True), (edges[:, 3], edges[:, 2] >= 0)) if old else ():
             move = on & (legs >= 0) & (legs < 4)
-            legs[move] = perm[legs[move]]
-        edges = e
+            legs[move] = _LEG_OF_OLD[legs[move]]
     return tiles, edges
 
 
@@ -224,8 +220,9 @@ def _boundary_seam(version: int, board: Board, boundary: np.ndarray, listed):
     """
     if version >= 3 or board.grid_spec is None:
         return boundary, listed
-    a, k = np.nonzero(board.nbr_cell < 0)  # in order of cell, then of leg W, N, E, S
-    new = board.nbr_leg[a, k]  # the model's number of the file's boundary leg 0, 1, ...
+    a, k = np.nonzero(board.nbr_cell < 0)
+    old = np.argsort(a * 4 + _OLD_COLUMN[k], kind="stable")  # in order of cell, then of leg W, N, E, S
+    new = board.nbr_leg[a[old], k[old]]  # the model's number of the file's boundary leg 0, 1, ...
     if boundary.shape == new.shape:  # another length is BoardProblem's to name
         moved = np.empty_like(boundary)
         moved[new] = boundary
@@ -281,11 +278,10 @@ def board_solution_to_dict(problem: BoardProblem, solution: Solution, *, compact
         spec = b.grid_spec
         doc["grid"] = _grid_fields(spec)
         doc["mask"] = None if b.n_cells == spec.rows * spec.cols else array(b.mask_of().astype(np.uint8))
-    tiles, edges = _leg_seam(VERSION, to_file=True, tiles=solution.tiling,
-                             edges=b.edge_array() if not compact or b.grid_spec is None else None)
-    if edges is not None:
+    tiles = None if solution.tiling is None else np.asarray(solution.tiling, dtype=np.int64).reshape(-1, 4)
+    if not compact or b.grid_spec is None:
         doc["cells"] = array(b.labels)
-        doc["edges"] = array(edges)
+        doc["edges"] = array(b.edge_array())
     if compact:
         doc["boundary"] = encode_array(problem.boundary)
         doc["tiles"] = None if tiles is None else encode_array(tiles)
@@ -340,8 +336,8 @@ def _tileset(doc: dict, source: Any, version: int) -> WangTileSet:
     if not 1 <= colors <= MAX_LIST_COLORS:
         raise InvalidProblem(f"{source}: 'colors' is {colors}; a list of tiles has 1 to {MAX_LIST_COLORS} colours here")
     tiles = decode_array(ts, "tileset", source)
-    if LEG_ORDERS[version] == LEG_NAMES and tiles.ndim == 2 and tiles.shape[1] == 4:
-        tiles = wang_to_nesw(tiles)  # versions 1 and 2 list the legs W, N, E, S
+    if version < 3 and tiles.ndim == 2 and tiles.shape[1] == 4:
+        tiles = tiles[:, _OLD_COLUMN]  # versions 1 and 2 list the legs W, N, E, S
     try:
         return WangTileSet(tiles, colors)
     except InvalidProblem as exc:
@@ -427,7 +423,7 @@ def _boundary(doc: dict, source: Any, version: int, board: Board) -> np.ndarray:
 
 def board_solution_from_dict(doc: dict, source: Any = "<document>") -> tuple[BoardProblem, Solution]:
     """Rebuild ``(problem, solution)`` from a version 1, 2 or 3 document, in the board model's
-    legs W, N, E, S (:func:`_leg_seam`); the tiles are read as written (the verifier judges
+    legs N, E, S, W (:func:`_leg_seam`); the tiles are read as written (the verifier judges
     them).
 
     The board is rebuilt from the file's description. Where the file also lists its cells
@@ -453,7 +449,7 @@ def board_solution_from_dict(doc: dict, source: Any = "<document>") -> tuple[Boa
             raise InvalidProblem(f"{source}: a board solution lists 'cells' and 'edges' together")
         edges = _array(doc, "edges", source, version, 2, 4)
         listed = (_array(doc, "cells", source, version, 2, 2),
-                  _leg_seam(version, edges=edges, to_file=False)[1])
+                  _leg_seam(version, edges=edges)[1])
         if listed[0].shape[0] > MAX_BOARD_CELLS:
             raise InvalidProblem(f"{source}: 'cells' lists {listed[0].shape[0]:,} cells; tilesolve's boards have at "
                                  f"most {MAX_BOARD_CELLS:,}")
@@ -477,7 +473,7 @@ def board_solution_from_dict(doc: dict, source: Any = "<document>") -> tuple[Boa
     if doc.get("tiles") is not None:
         tiling = _array(doc, "tiles", source, version, 2)
         if tiling.ndim == 2 and tiling.shape[1] == 4:  # another shape is left for the verifier to name
-            tiling = _leg_seam(version, tiles=tiling, to_file=False)[0]
+            tiling = _leg_seam(version, tiles=tiling)[0]
     solution = solution_from_provenance(doc, source, tiling, what="tiles")
     if doc.get("window") is not None:
         if version < 3:
@@ -517,7 +513,7 @@ def write_rect_solution(path: str | os.PathLike, legs, tileset: WangTileSet, sol
     path : str or os.PathLike
         Written atomically (``"-"``: standard output).
     legs : numpy.ndarray
-        ``(rows, cols, 4)`` leg colours (W, N, E, S) of each cell, row 0 at the top.
+        ``(rows, cols, 4)`` leg colours (N, E, S, W) of each cell, row 0 at the top.
     tileset, solution, max_h, max_v
         As :class:`~tilesolve.model.board.BoardProblem` and
         :func:`board_solution_to_dict` take them (``solution.tiling`` is not read).
@@ -526,7 +522,7 @@ def write_rect_solution(path: str | os.PathLike, legs, tileset: WangTileSet, sol
     --------
     >>> import io, json
     >>> from tilesolve.model.solution import Status
-    >>> legs = np.array([[[0, 1, 0, 2], [0, 1, 2, 1]]])
+    >>> legs = np.array([[[1, 0, 2, 0], [1, 2, 1, 0]]])
     >>> out = io.StringIO()
     >>> from contextlib import redirect_stdout
     >>> with redirect_stdout(out):
@@ -549,11 +545,10 @@ def write_rect_solution(path: str | os.PathLike, legs, tileset: WangTileSet, sol
     name = encoded_dtype(int(flat.min()), int(flat.max()))
     doc["tiles"] = {"dtype": name, "shape": [n, 4], "data": _PIECES}
     head, tail = dumps(doc).split(json.dumps(_PIECES))
-    order = _leg_seam(VERSION, tiles=np.arange(4), to_file=True)[0][0]  # the seam's columns, taken in place
     with atomic_write(path, "w") as f:
         f.write(head + '"')
         for i in range(0, n, STREAM_CELLS):
-            f.write(encoded_text(flat[i:i + STREAM_CELLS][:, order], name))
+            f.write(encoded_text(flat[i:i + STREAM_CELLS], name))
         f.write('"' + tail)
 
 

@@ -243,11 +243,9 @@ def _save(path, img: Image.Image) -> None:
 
 def write_board_png(path: str | os.PathLike, problem, tiling, **kwargs) -> None:
     """PNG of a board tiling: each cell's legs as N, E, S, W triangles at its ``[row, col]`` label."""
-    from tilesolve.model.board import wang_to_nesw
-
     lab = np.asarray(problem.board.labels)
     shape = tuple(int(v) + 1 for v in lab.max(axis=0))
-    _save(path, edge_image(wang_to_nesw(tiling), lab, shape, "wang", **kwargs))
+    _save(path, edge_image(np.asarray(tiling, dtype=np.int64).reshape(-1, 4), lab, shape, "wang", **kwargs))
 
 
 def write_packing_png(path: str | os.PathLike, grid, kind: str, colors: int, *, colors_v: int | None = None,

@@ -22,7 +22,7 @@ import os
 import numpy as np
 
 from tilesolve.io.svg import MAX_SVG_CELLS, tile_colour
-from tilesolve.model.board import BoardProblem
+from tilesolve.model.board import E, S, BoardProblem
 from tilesolve.model.window import Window
 
 __all__ = ["board_drawing", "write_board_svg", "brick_ids"]
@@ -44,7 +44,7 @@ def brick_ids(problem: BoardProblem, tiling) -> np.ndarray:
     lab = b.labels
     TL, TR, BL, BR = 0, 1, 2, 3
     for a in range(n):
-        for k, pairs, dr, dc in ((2, ((TR, TL), (BR, BL)), 0, 1), (3, ((BL, TL), (BR, TR)), 1, 0)):
+        for k, pairs, dr, dc in ((E, ((TR, TL), (BR, BL)), 0, 1), (S, ((BL, TL), (BR, TR)), 1, 0)):
             w = int(b.nbr_cell[a, k])
             if w < 0 or b.nbr_leg[a, k] != (k + 2) % 4:
                 continue
@@ -89,8 +89,8 @@ def board_drawing(problem: BoardProblem, tiling, *, title: str | None = None, no
         for a in range(b.n_cells):
             y0 = m + b.labels[a, 0] * cell
             x0 = m + b.labels[a, 1] * cell
-            w_, n_, e_, s_ = (pos(int(c)) for c in t[a])
-            if t[a, 0] == t[a, 2]:  # W_H: horizontal line at w_
+            n_, e_, s_, w_ = (pos(int(c)) for c in t[a])
+            if t[a, 3] == t[a, 1]:  # W_H (W = E): horizontal line at w_
                 rects = [(0, 0, n_, w_), (n_, 0, cell - n_, w_), (0, w_, s_, cell - w_), (s_, w_, cell - s_, cell - w_)]
                 segs = [((0, w_), (cell, w_)), ((n_, 0), (n_, w_)), ((s_, w_), (s_, cell))]
             else:  # W_V: vertical line at n_
@@ -107,8 +107,8 @@ def board_drawing(problem: BoardProblem, tiling, *, title: str | None = None, no
             y0 = m + b.labels[a, 0] * cell
             x0 = m + b.labels[a, 1] * cell
             cx, cy = x0 + cell / 2, y0 + cell / 2
-            corners = [(x0, y0 + cell), (x0, y0), (x0 + cell, y0), (x0 + cell, y0 + cell)]
-            for leg in range(4):  # W: bottom-left..top-left, N: top-left..top-right, ...
+            corners = [(x0, y0), (x0 + cell, y0), (x0 + cell, y0 + cell), (x0, y0 + cell)]
+            for leg in range(4):  # N: top-left..top-right, E: top-right..bottom-right, ...
                 p1, p2 = corners[leg], corners[(leg + 1) % 4]
                 g.add(d.polygon([p1, p2, (cx, cy)], fill=tile_colour(int(t[a, leg]))))
     _identifications(d, problem, rows, cols, cell, m)
@@ -129,16 +129,16 @@ def _identifications(d, problem, rows, cols, cell, m) -> None:
     """Arrows on sides joined across the picture (plain: same way; twisted: opposite)."""
     b = problem.board
     lab = b.labels
-    for k, side in ((2, "cols"), (3, "rows")):
+    for k, side in ((E, "cols"), (S, "rows")):
         a = np.flatnonzero(b.nbr_cell[:, k] >= 0)
         w = b.nbr_cell[a, k]
         dr = lab[w, 0] - lab[a, 0]
         dc = lab[w, 1] - lab[a, 1]
-        seam = (dr != (1 if k == 3 else 0)) | (dc != (1 if k == 2 else 0))
+        seam = (dr != (1 if k == S else 0)) | (dc != (1 if k == E else 0))
         if not seam.any():
             continue
         aa, ww = a[seam], w[seam]
-        if k == 2:
+        if k == E:
             twisted = bool((lab[ww, 0] != lab[aa, 0]).any())
             x1, x2 = m - 10, m + cols * cell + 10
             _arrow(d, x1, m, x1, m + rows * cell, "#D55E00")

@@ -26,7 +26,7 @@ from typing import Any, ClassVar, Mapping, NamedTuple
 import numpy as np
 
 from tilesolve.errors import InvalidProblem
-from tilesolve.model.board import Board, WangTileSet
+from tilesolve.model.board import E, N, S, W, Board, WangTileSet
 from tilesolve.model.solution import Status
 
 __all__ = ["Lattice", "AperiodicProblem", "Certificate", "AperiodicReport", "square_board", "rectangle_name",
@@ -75,8 +75,8 @@ class Lattice(NamedTuple):
         east = np.where(c < q - 1, r * q + c + 1, ((r + s) % p) * q)
         south = ((r + 1) % p) * q + c
         a = np.arange(p * q, dtype=np.int64)
-        edges = np.concatenate([np.stack([a, np.full_like(a, 2), east, np.zeros_like(a)], axis=1),
-                                np.stack([a, np.full_like(a, 3), south, np.ones_like(a)], axis=1)])
+        edges = np.concatenate([np.stack([a, np.full_like(a, E), east, np.full_like(a, W)], axis=1),
+                                np.stack([a, np.full_like(a, S), south, np.full_like(a, N)], axis=1)])
         return Board.from_edges(np.stack([r, c], axis=1), edges, kind="sheared torus")
 
 
@@ -86,10 +86,10 @@ def square_board(rows: int, cols: int | None = None) -> Board:
 
 
 def leg_colours(tileset: WangTileSet, tiling) -> np.ndarray:
-    """``(rows * cols, 4)`` leg colours (W, N, E, S) of a grid of tile indices, row-major:
+    """``(rows * cols, 4)`` leg colours (N, E, S, W) of a grid of tile indices, row-major:
     the form :func:`tilesolve.verify.board.board_violations` checks."""
     t = np.asarray(tiling, dtype=np.int64)
-    return tileset.legs[t.ravel()]
+    return tileset.tiles[t.ravel()]
 
 
 @dataclass(frozen=True, eq=False)

@@ -10,26 +10,27 @@ Conventions
 Cells carry ``[row, col]`` labels (row 0 at the top) and are numbered ``0 .. n-1`` in
 row-major order of their labels.
 
-A Wang tile is public in one edge order everywhere, **N, E, S, W** (class notes §2.7): the
-rows of :class:`WangTileSet`, tile-set files, board-solution files (version 3), reports and
-the CLI's text. Inside the board model every cell has four *legs*, numbered as the brick
-paper numbers them,
+A Wang tile has one edge order everywhere, **N, E, S, W** (class notes §2.7): the rows of
+:class:`WangTileSet`, tile-set files, board-solution files (version 3), reports, the CLI's
+text, and inside the board model. Every cell has four *legs*, numbered in that order,
 
-    l1 = W (0), l2 = N (1), l3 = E (2), l4 = S (3)
+    N (0), E (1), S (2), W (3)
 
-going round the cell, so l1/l3 and l2/l4 are opposite, as Def. 9 assumes. The kernels, the
-encodings and the verifier read the legs; a board tiling (``Solution.tiling`` of the board
-family) is the ``(n, 4)`` array of each cell's leg colours in this order, as the columns of
-:attr:`Board.nbr_cell` are. The two orders meet at one seam: :func:`wang_from_nesw` and
-:func:`wang_to_nesw` (:attr:`WangTileSet.legs` is its tiles through it; the board files'
-reader and writer and the CLI's text convert with them). Colours are ``0 .. n_colors-1``
-(the paper's ``C = {1..m}`` shifted by one).
+going round the cell, so legs ``k`` and ``(k + 2) % 4`` are opposite. The brick paper
+numbers the same legs l1 = W, l2 = N, l3 = E, l4 = S, so its l1..l4 are legs 3, 0, 1, 2
+here; Def. 9's pairs l1/l3 and l2/l4 are the pairs W/E (legs 3, 1) and N/S (legs 0, 2). The
+kernels, the encodings and the verifier read the legs; a board tiling (``Solution.tiling`` of
+the board family) is the ``(n, 4)`` array of each cell's leg colours in this order, as the
+columns of :attr:`Board.nbr_cell` are, so a row of it is the cell's tile as
+:class:`WangTileSet` lists it. Colours are ``0 .. n_colors-1`` (the paper's ``C = {1..m}``
+shifted by one). Board-solution files of versions 1 and 2 list the legs W, N, E, S; their
+reader converts them (:mod:`tilesolve.io.board_json`).
 
 A board is stored as two ``(n, 4)`` int64 arrays: ``nbr_cell[a, k]`` is the cell joined to
 leg ``k`` of cell ``a`` and ``nbr_leg[a, k]`` the leg of that cell it meets, or
 ``nbr_cell[a, k] = -1`` for the wall and then ``nbr_leg[a, k]`` is the number of that
-*boundary leg* (``0 .. n_boundary-1``; the builders number them in order of cell, then of leg
-in the public order N, E, S, W, so a boundary given as a list reads as the tiles do).
+*boundary leg* (``0 .. n_boundary-1``; the builders number them in order of cell, then of leg,
+so a boundary given as a list reads as the tiles do).
 
 Boards cut from a grid (rectangles, tori, cylinders, Möbius strips, Klein bottles, rings,
 masks, and their restrictions) also carry their :class:`GridSpec`: the grid's size and how
@@ -42,7 +43,7 @@ in-memory text only.
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import NamedTuple
 
 import numpy as np
@@ -50,14 +51,18 @@ import numpy as np
 from tilesolve.errors import InvalidProblem
 
 __all__ = [
-    "W", "N", "E", "S", "LEG_NAMES", "MAX_BOARD_CELLS", "MAX_BRICK_COLORS", "GRID_KINDS",
+    "N", "E", "S", "W", "LEG_NAMES", "PAPER_LEGS", "MAX_BOARD_CELLS", "MAX_BRICK_COLORS", "GRID_KINDS",
     "GridSpec", "Board", "grid_kind", "kind_mask", "described_board", "WangTileSet", "BoardProblem",
     "parse_board_spec", "parse_mask_text",
-    "colour_rows", "wang_from_nesw", "wang_to_nesw", "random_boundary",
+    "colour_rows", "random_boundary",
 ]
 
-W, N, E, S = 0, 1, 2, 3
-LEG_NAMES = ("W", "N", "E", "S")
+N, E, S, W = 0, 1, 2, 3
+LEG_NAMES = ("N", "E", "S", "W")
+#: The brick paper's legs l1..l4 (W, N, E, S) as leg numbers: the order in which the board
+#: encodings number edges and list clauses, which recorded CNF digests fix.
+PAPER_LEGS = np.array([W, N, E, S])
+PAPER_LEGS.setflags(write=False)
 #: Largest board any route accepts.
 MAX_BOARD_CELLS = 1 << 26
 #: Most colours for brick tiles: building W_B enumerates all K^4 colourings (64 bytes each
@@ -72,9 +77,8 @@ GRID_KINDS: dict[str, tuple[str | None, str | None]] = {
 }
 _FULL_KINDS = frozenset({"rect", "torus", "cylinder", "mobius", "klein"})
 
-_DELTA = {W: (0, -1), N: (-1, 0), E: (0, 1), S: (1, 0)}
-#: Where each leg (W, N, E, S) comes in the public order N, E, S, W.
-_NESW_RANK = np.array([3, 0, 1, 2])
+_DELTA = {N: (-1, 0), E: (0, 1), S: (1, 0), W: (0, -1)}
+_PAPER_RANK = np.argsort(PAPER_LEGS)  # where each leg N, E, S, W comes among l1..l4
 _WRAPS = (None, "plain", "twist")
 
 
@@ -114,8 +118,8 @@ class Board:
     >>> b = Board.rect(3, 2)
     >>> b.n_cells, b.n_boundary, b.n_edges
     (6, 10, 17)
-    >>> int(b.nbr_cell[0, E]), int(b.nbr_leg[0, E])
-    (1, 0)
+    >>> int(b.nbr_cell[0, E]), int(b.nbr_leg[0, E])  # cell 1's W leg
+    (1, 3)
     """
 
     labels: np.ndarray
@@ -231,18 +235,24 @@ class Board:
         return out
 
     def leg_edges(self) -> tuple[np.ndarray, int]:
-        """Number every edge: ``(edge_of_leg (n, 4), n_edges)``; joined legs share an edge."""
+        """Number every edge: ``(edge_of_leg (n, 4), n_edges)``; joined legs share an edge.
+
+        Edges are numbered in order of cell, then of the paper's legs l1..l4 (W, N, E, S), each
+        from the first of its legs in that order: the numbering of the board encodings'
+        variables, which the CNF digests of recorded refutations fix.
+        """
         n = self.n_cells
-        eid = np.full((n, 4), -1, dtype=np.int64)
         nc, nl = self.nbr_cell, self.nbr_leg
-        a = np.arange(n)[:, None].repeat(4, 1)
-        k = np.arange(4)[None, :].repeat(n, 0)
-        own = (nc < 0) | (nc * 4 + nl > a * 4 + k) | ((nc == a) & (nl == k))
-        ids = np.flatnonzero(own.ravel())
-        eid.ravel()[ids] = np.arange(ids.size)
+        here = np.arange(n, dtype=np.int64)[:, None] * 4 + _PAPER_RANK  # each leg's place in that order
+        own = (nc < 0) | (nc * 4 + _PAPER_RANK[nl & 3] >= here)  # the first of its legs (or self-joined)
+        first = own[:, PAPER_LEGS]
+        count = int(np.count_nonzero(first))
+        eid = np.full((n, 4), -1, dtype=np.int64)
+        eid[first] = np.arange(count, dtype=np.int64)  # numbered in the paper's order ...
+        eid = eid[:, _PAPER_RANK]  # ... then in the columns N, E, S, W
         other = ~own
         eid[other] = eid[nc[other], nl[other]]
-        return eid, int(ids.size)
+        return eid, count
 
     def index_of(self) -> dict[tuple[int, int], int]:
         """``{(row, col): cell index}``."""
@@ -309,7 +319,7 @@ class Board:
         nl = self.nbr_leg[keep_arr].copy()
         nc2 = new[nc]  # -1 maps via new[-1] = -1 (wall stays wall)
         wall = nc2 < 0
-        nl[wall] = _boundary_numbers(wall)
+        nl[wall] = np.arange(np.count_nonzero(wall), dtype=np.int64)  # by cell, then leg
         # a restriction of a valid board is valid; a grid board stays one (its mask shrinks)
         return Board._built(self.labels[keep_arr], nc2, nl, self.kind if keep_arr.all() else f"{self.kind}|U",
                             self.grid_spec)
@@ -417,7 +427,7 @@ class Board:
                 nc[:, k] = seen[m]
         nl = np.where(nc >= 0, (np.arange(4, dtype=np.int64) + 2) % 4, np.int64(-1))
         wall = nc < 0
-        nl[wall] = _boundary_numbers(wall)
+        nl[wall] = np.arange(np.count_nonzero(wall), dtype=np.int64)  # by cell, then leg
         for name, arr in (("nbr_cell", nc), ("nbr_leg", nl)):
             arr.setflags(write=False)
             object.__setattr__(self, name, arr)
@@ -492,7 +502,7 @@ class Board:
         while len(occ) < n_cells and tries < 200 * n_cells:
             tries += 1
             r, c = frontier[int(rng.integers(len(frontier)))]
-            dr, dc = _DELTA[int(rng.integers(4))]
+            dr, dc = _DELTA[int(PAPER_LEGS[rng.integers(4)])]  # drawn as seeds always drew them
             cand = (r + dr, c + dc)
             if cand in occ or abs(cand[0]) > span or abs(cand[1]) > span:
                 continue
@@ -594,19 +604,6 @@ def _padded(grid: np.ndarray, spec: GridSpec, wall) -> np.ndarray:
         pad[0, 1:-1] = inner[-1, flip]
         pad[-1, 1:-1] = inner[0, flip]
     return pad
-
-
-def _boundary_numbers(wall: np.ndarray) -> np.ndarray:
-    """The numbers of the wall legs ``wall`` (``(n, 4)`` booleans), in the row-major order of
-    its true entries: ``0, 1, ...`` in order of cell, then of leg in the public order N, E, S, W.
-
-    >>> _boundary_numbers(np.array([[True, True, False, True]])).tolist()  # W, N and S of one cell
-    [2, 0, 1]
-    """
-    a, k = np.nonzero(wall)
-    out = np.empty(a.size, dtype=np.int64)
-    out[np.argsort(a * 4 + _NESW_RANK[k], kind="stable")] = np.arange(a.size, dtype=np.int64)
-    return out
 
 
 def _check_dims(rows: int, cols: int) -> None:
@@ -759,28 +756,15 @@ def colour_rows(tiles) -> np.ndarray:
     return t.astype(np.int64).reshape(-1, 4)
 
 
-def wang_from_nesw(tiles) -> np.ndarray:
-    """Tiles given as (N, E, S, W) as the colours of the board legs l1..l4 = (W, N, E, S)
-    (:func:`colour_rows` checks them): the one seam into the board model's order."""
-    return colour_rows(tiles)[:, [3, 0, 1, 2]]
-
-
-def wang_to_nesw(legs) -> np.ndarray:
-    """Leg colours (W, N, E, S) as tiles in the public order (N, E, S, W): the one seam out of
-    the board model's order."""
-    t = np.asarray(legs, dtype=np.int64).reshape(-1, 4)
-    return t[:, [1, 2, 3, 0]]
-
-
 @dataclass(frozen=True, eq=False)
 class WangTileSet:
     """A set of Wang tiles ``W ⊂ C^4`` (Def. 2), each given by the colours of its edges in
     the public order N, E, S, W.
 
     The tiles keep the order they are given in, so a tile's index means the same tile to the
-    user and in every output (a tile given twice is kept where it first comes). :attr:`legs`
-    holds the same tiles as the colours of the board legs l1..l4 = W, N, E, S (Def. 9), the
-    order the kernels, encodings and verifiers read.
+    user and in every output (a tile given twice is kept where it first comes). A tile's
+    colours are those of the board legs N, E, S, W (legs 0..3), the order the kernels,
+    encodings and verifiers read.
 
     Parameters
     ----------
@@ -797,14 +781,13 @@ class WangTileSet:
     >>> len(wb), wb.is_brick, wb.three_boundary()
     (36, True, True)
     >>> ts = WangTileSet([[2, 0, 0, 1], [0, 1, 1, 0], [2, 0, 0, 1]], 3)  # N, E, S, W; a repeat
-    >>> ts.tiles.tolist(), ts.legs.tolist()
-    ([[2, 0, 0, 1], [0, 1, 1, 0]], [[1, 2, 0, 0], [0, 0, 1, 1]])
+    >>> ts.tiles.tolist()
+    [[2, 0, 0, 1], [0, 1, 1, 0]]
     """
 
     tiles: np.ndarray
     n_colors: int
     is_brick: bool = False
-    legs: np.ndarray = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         k = int(self.n_colors)
@@ -826,25 +809,23 @@ class WangTileSet:
         first = np.unique(t, axis=0, return_index=True)[1]
         if first.size < t.shape[0]:
             t = t[np.sort(first)]
-        legs = wang_from_nesw(t)
-        for name, arr in (("tiles", t), ("legs", legs)):
-            arr.setflags(write=False)
-            object.__setattr__(self, name, arr)
+        t.setflags(write=False)
+        object.__setattr__(self, "tiles", t)
         object.__setattr__(self, "n_colors", k)
 
     @classmethod
     def brick(cls, n_colors: int = 3) -> "WangTileSet":
         """The brick Wang tiles W_B (Def. 9): ``(c1 = c3 and c2 != c4) or (c1 != c3 and c2 = c4)``
-        on the legs l1..l4 = W, N, E, S, in lexicographic order of the legs."""
+        on the paper's legs l1..l4 = W, N, E, S, listed in lexicographic order of l1..l4."""
         k = int(n_colors)
         if k < 3:
             raise InvalidProblem(f"brick Wang tiles need #C >= 3 colours (Def. 9), got {k}")
         if k > MAX_BRICK_COLORS:
             raise InvalidProblem(f"brick Wang tiles with {k} colours: tilesolve builds W_B for up to "
                                  f"{MAX_BRICK_COLORS} colours")
-        g = np.stack(np.meshgrid(*[np.arange(k)] * 4, indexing="ij"), axis=-1).reshape(-1, 4)
-        ok = ((g[:, 0] == g[:, 2]) & (g[:, 1] != g[:, 3])) | ((g[:, 0] != g[:, 2]) & (g[:, 1] == g[:, 3]))
-        return cls(wang_to_nesw(g[ok]), k, is_brick=True)
+        w, n, e, s = (a.ravel() for a in np.meshgrid(*[np.arange(k)] * 4, indexing="ij"))
+        ok = ((w == e) & (n != s)) | ((w != e) & (n == s))
+        return cls(np.stack([n[ok], e[ok], s[ok], w[ok]], axis=1), k, is_brick=True)
 
     @classmethod
     def from_tileset(cls, tileset) -> "WangTileSet":
@@ -859,13 +840,13 @@ class WangTileSet:
         return int(self.tiles.shape[0])
 
     def contains(self, colours) -> np.ndarray:
-        """Boolean per row of leg colours ``colours`` ((m, 4) array, W, N, E, S): is it a tile
+        """Boolean per row of leg colours ``colours`` ((m, 4) array, N, E, S, W): is it a tile
         of the set?"""
         c = np.asarray(colours, dtype=np.int64).reshape(-1, 4)
         k = self.n_colors
         inrange = ((c >= 0) & (c < k)).all(axis=1)
         key = lambda a: ((a[:, 0] * k + a[:, 1]) * k + a[:, 2]) * k + a[:, 3]  # noqa: E731
-        return inrange & np.isin(key(np.where(c >= 0, c, 0)), key(self.legs))
+        return inrange & np.isin(key(np.where(c >= 0, c, 0)), key(self.tiles))
 
     def three_boundary(self) -> bool:
         """Def. 6: every projection forgetting one place is onto ``C^3``."""

@@ -45,7 +45,7 @@ class Solution:
     tiling : numpy.ndarray or None
         The family's tiling, ``None`` unless ``status.has_tiling``: a grid ``tiling[row, col]``
         (row 0 at the top) of tiles (dappled) or tile indices (packings, eq. 2.1 / 2.5), or
-        the ``(n_cells, 4)`` leg colours of a board tiling (legs l1..l4 = W, N, E, S). The
+        the ``(n_cells, 4)`` leg colours of a board tiling (legs N, E, S, W: each row a tile). The
         family's verifier (``Family.verify``) says what it must satisfy.
     report : object or None
         An answer that is not a tiling, with its own words: a report of certificates (the

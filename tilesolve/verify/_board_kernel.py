@@ -24,15 +24,15 @@ _COMPILED = None
 
 
 def grid_clean(t, present, rows, cols, k, brick, known, beta, max_h, max_v):
-    """True when the tiling ``t`` (``(n, 4)`` integers, legs W, N, E, S) passes every check.
+    """True when the tiling ``t`` (``(n, 4)`` integers, legs N, E, S, W) passes every check.
 
     The cells are the board's, numbered in row-major order of the ``rows x cols`` grid's cells
     ``present`` (a ``(rows, cols)`` 0/1 array, not read where every cell is: ``n = rows *
-    cols``). A cell's W, N, E, S legs meet the E, S, W, N legs of the cells
-    at ``(r, c-1)``, ``(r-1, c)``, ``(r, c+1)``, ``(r+1, c)``, or the wall where there is none;
+    cols``). A cell's N, E, S, W legs meet the S, W, N, E legs of the cells
+    at ``(r-1, c)``, ``(r, c+1)``, ``(r+1, c)``, ``(r, c-1)``, or the wall where there is none;
     the wall legs are numbered in order of cell, then of leg N, E, S, W, and ``beta`` gives each
     its colour (``-1``: free). Colours are ``0..k-1``; tiles are brick tiles (``brick``: exactly
-    one of W = E, N = S) or those whose key ``((W k + N) k + E) k + S`` is ``known``. ``max_h``
+    one of W = E, N = S) or those whose key ``((N k + E) k + S) k + W`` is ``known``. ``max_h``
     / ``max_v`` (0: none) bound the runs of W = E cells along a row and of N = S cells down a
     column. Each cell is read once; the checks of a row are or-ed without branches and looked
     at once the row is done.
@@ -48,10 +48,10 @@ def grid_clean(t, present, rows, cols, k, brick, known, beta, max_h, max_v):
             hrun = 0
             for c in range(cols):
                 i = r * cols + c
-                w = np.int64(t[i, 0])
-                nn = np.int64(t[i, 1])
-                e = np.int64(t[i, 2])
-                s = np.int64(t[i, 3])
+                nn = np.int64(t[i, 0])
+                e = np.int64(t[i, 1])
+                s = np.int64(t[i, 2])
+                w = np.int64(t[i, 3])
                 if (w < 0) | (w >= k) | (nn < 0) | (nn >= k) | (e < 0) | (e >= k) | (s < 0) | (s >= k):
                     return False  # before a colour is used as an index
                 h = w == e
@@ -59,11 +59,11 @@ def grid_clean(t, present, rows, cols, k, brick, known, beta, max_h, max_v):
                 if brick:
                     bad |= h == v
                 else:
-                    bad |= not known[((w * k + nn) * k + e) * k + s]
+                    bad |= not known[((nn * k + e) * k + s) * k + w]
                 if c > 0:
-                    bad |= t[i - 1, 2] != w
+                    bad |= t[i - 1, 1] != w
                 if r > 0:
-                    bad |= t[i - cols, 3] != nn
+                    bad |= t[i - cols, 2] != nn
                 hrun = (hrun + 1) * h
                 run = (vrun[c] + 1) * v
                 vrun[c] = run
@@ -74,7 +74,7 @@ def grid_clean(t, present, rows, cols, k, brick, known, beta, max_h, max_v):
         for r in range(rows):
             for c in range(0, cols, 1 if r == 0 or r == rows - 1 else max(cols - 1, 1)):
                 i = r * cols + c
-                for leg, out in ((1, r == 0), (2, c == cols - 1), (3, r == rows - 1), (0, c == 0)):
+                for leg, out in ((0, r == 0), (1, c == cols - 1), (2, r == rows - 1), (3, c == 0)):
                     if out:
                         if wall >= beta.shape[0]:
                             return False
@@ -101,10 +101,10 @@ def grid_clean(t, present, rows, cols, k, brick, known, beta, max_h, max_v):
             down = np.int64(present[r + 1, c]) if r + 1 < rows else np.int64(0)
             left = np.int64(present[r, c - 1]) if c > 0 else np.int64(0)
             right = np.int64(present[r, c + 1]) if c + 1 < cols else np.int64(0)
-            w = np.int64(t[i, 0])
-            nn = np.int64(t[i, 1])
-            e = np.int64(t[i, 2])
-            s = np.int64(t[i, 3])
+            nn = np.int64(t[i, 0])
+            e = np.int64(t[i, 1])
+            s = np.int64(t[i, 2])
+            w = np.int64(t[i, 3])
             if (w < 0) | (w >= k) | (nn < 0) | (nn >= k) | (e < 0) | (e >= k) | (s < 0) | (s >= k):
                 return False
             h = w == e
@@ -112,11 +112,11 @@ def grid_clean(t, present, rows, cols, k, brick, known, beta, max_h, max_v):
             if brick:
                 bad |= h == v
             else:
-                bad |= not known[((w * k + nn) * k + e) * k + s]
+                bad |= not known[((nn * k + e) * k + s) * k + w]
             if up:  # cells are numbered in row-major order: the cell above is the last one seen in
-                bad |= t[above[c], 3] != nn  # its column, the cell to the left the one before
+                bad |= t[above[c], 2] != nn  # its column, the cell to the left the one before
             if left:
-                bad |= t[i - 1, 2] != w
+                bad |= t[i - 1, 1] != w
             above[c] = i
             hrun = (hrun + 1) * h if left else np.int64(h)
             run = (vrun[c] + 1) * v if up else np.int64(v)

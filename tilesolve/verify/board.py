@@ -6,8 +6,8 @@ paper (brick walls without long lines), with numpy only. It reads the board's pl
 arrays and never imports the encodings or the constructive algorithms.
 
 A tiling of a board is an ``(n_cells, 4)`` integer array: the colour of each cell's legs
-in the board model's order W, N, E, S (see :mod:`tilesolve.model.board`); messages name
-each colour by its side, ``N=1 E=0 S=2 W=0``, so they read the same in any order.
+in the board model's order N, E, S, W (see :mod:`tilesolve.model.board`), so each row is the
+cell's tile; messages name each colour by its side, ``N=1 E=0 S=2 W=0``.
 
 A tiling of a board cut from a grid (:attr:`Board.grid_spec`: rectangles, boards with holes,
 rings, cylinders, tori, Möbius strips, Klein bottles and their restrictions) is first checked
@@ -30,9 +30,7 @@ from tilesolve.verify.dappled import Violation
 
 __all__ = ["board_violations", "is_valid_board_tiling", "line_runs", "listing_violations", "MAX_LISTED"]
 
-_LEGS = ("W", "N", "E", "S")
-#: Where each leg W, N, E, S stands in the order N, E, S, W of the boundary legs' numbers.
-_NESW_RANK = np.array([3, 0, 1, 2])
+_LEGS = ("N", "E", "S", "W")
 #: Differences between a listed board and its description reported one by one, per kind
 #: (cells, edges); one more violation counts the rest.
 MAX_LISTED = 1000
@@ -48,7 +46,7 @@ def line_runs(nbr_cell: np.ndarray, nbr_leg: np.ndarray, member: np.ndarray, axi
     ``axis="H"``: a run goes from a cell out of its E leg into the W leg of the next;
     ``"V"``: out of the S leg into the N leg. Runs on a closed loop are capped.
     """
-    into, out_of = (0, 2) if axis == "H" else (1, 3)
+    into, out_of = (3, 1) if axis == "H" else (0, 2)  # (W, E) or (N, S)
     pred = nbr_cell[:, into]
     ok = (pred >= 0) & (nbr_leg[:, into] == out_of)
     pred_safe = np.where(ok, pred, 0)
@@ -75,7 +73,7 @@ def board_violations(problem, tiling) -> list[Violation]:
     --------
     >>> from tilesolve.model.board import Board, BoardProblem, WangTileSet
     >>> p = BoardProblem(Board.rect(1, 1), WangTileSet.brick(3), [1, 0, 1, 0])  # boundary N, E, S, W
-    >>> [v.kind for v in board_violations(p, [[0, 1, 0, 1]])]  # legs W, N, E, S
+    >>> [v.kind for v in board_violations(p, [[1, 0, 1, 0]])]  # legs N, E, S, W
     ['cross']
     """
     n = problem.board.n_cells
@@ -117,8 +115,8 @@ def _violations(problem, t: np.ndarray) -> list[Violation]:
         return out
     # (1) tiles in W
     if problem.tileset.is_brick:
-        h = t[:, 0] == t[:, 2]
-        v = t[:, 1] == t[:, 3]
+        h = t[:, 3] == t[:, 1]  # W = E
+        v = t[:, 0] == t[:, 2]  # N = S
         for a in np.flatnonzero(h & v):
             r, c = _where(labels, a)
             out.append(Violation("cross", f"tile {_nesw(t[a])} is a cross (W = E and N = S), not a brick tile", r, c))
@@ -126,7 +124,7 @@ def _violations(problem, t: np.ndarray) -> list[Violation]:
             r, c = _where(labels, a)
             out.append(Violation("tile", f"tile {_nesw(t[a])} has no straight line (W != E and N != S)", r, c))
     else:
-        ok = _rows_in(t, np.asarray(problem.tileset.legs, dtype=np.int64), k)
+        ok = _rows_in(t, np.asarray(problem.tileset.tiles, dtype=np.int64), k)
         for a in np.flatnonzero(~ok):
             r, c = _where(labels, a)
             out.append(Violation("tile", f"tile {_nesw(t[a])} is not in the tile set", r, c))
@@ -157,8 +155,8 @@ def _violations(problem, t: np.ndarray) -> list[Violation]:
             f"boundary leg {int(nl[a, leg])} ({_LEGS[leg]}) has colour {int(t[a, leg])}, required {int(req[i])}", r, c,
         ))
     # line lengths (dappled paper §4)
-    for axis, lim, member in (("H", getattr(problem, "max_h", None), t[:, 0] == t[:, 2]),
-                              ("V", getattr(problem, "max_v", None), t[:, 1] == t[:, 3])):
+    for axis, lim, member in (("H", getattr(problem, "max_h", None), t[:, 3] == t[:, 1]),
+                              ("V", getattr(problem, "max_v", None), t[:, 0] == t[:, 2])):
         if lim is None:
             continue
         # no run off a loop is longer than the board: capping at n + 1 bounds the work, and a
@@ -190,7 +188,7 @@ def _compiled_clean(problem, t: np.ndarray, kernel=None) -> bool | None:
     full = board.n_cells == rows * cols
     known = np.zeros(0 if brick else k**4, bool)
     if not brick:
-        legs = np.asarray(problem.tileset.legs, dtype=np.int64)
+        legs = np.asarray(problem.tileset.tiles, dtype=np.int64)
         known[((legs[:, 0] * k + legs[:, 1]) * k + legs[:, 2]) * k + legs[:, 3]] = True
     present = np.zeros((0, 0), np.uint8) if full else board.mask_of().view(np.uint8)
     return bool(kernel(np.ascontiguousarray(t), present,
@@ -204,8 +202,8 @@ def _grid_clean(problem, t: np.ndarray) -> bool:
     the ``(rows, cols)`` grid of one small integer per leg.
 
     The joins are re-derived here from the grid's definition (:class:`~tilesolve.model.board.GridSpec`;
-    the board-solution format, version 2): the legs W, N, E, S of the cell at ``(r, c)`` meet
-    the E, S, W, N legs of the cells at ``(r, c-1)``, ``(r-1, c)``, ``(r, c+1)``, ``(r+1, c)``,
+    the board-solution format): the legs N, E, S, W of the cell at ``(r, c)`` meet the S, W, N, E
+    legs of the cells at ``(r-1, c)``, ``(r, c+1)``, ``(r+1, c)``, ``(r, c-1)``,
     across identified sides (``"twist"``: row ``r`` meets row ``rows-1-r``, column ``c`` meets
     ``cols-1-c``); a leg with no cell there meets the wall. The wall legs found so must be as
     many as the problem's boundary colours, each a wall leg of the board's join arrays too.
@@ -229,7 +227,7 @@ def _grid_clean(problem, t: np.ndarray) -> bool:
         grid = np.zeros(rows * cols, word)
         grid[present.ravel()] = words
         g = grid.view(leg).reshape(rows, cols, 4)
-    w, nn, e, s = (g[..., leg] for leg in range(4))
+    nn, e, s, w = (g[..., leg] for leg in range(4))
 
     def held(bad: np.ndarray, *where) -> bool:
         """Whether ``bad`` is false wherever the cells at the indices ``where`` are all present."""
@@ -243,7 +241,7 @@ def _grid_clean(problem, t: np.ndarray) -> bool:
     if problem.tileset.is_brick:
         if not held(h == v, everywhere):
             return False
-    elif not _grid_tiles_in(g, present, np.asarray(problem.tileset.legs, dtype=np.int64), k):
+    elif not _grid_tiles_in(g, present, np.asarray(problem.tileset.tiles, dtype=np.int64), k):
         return False
     # joined legs agree: E with the W of the next column, S with the N of the next row, and
     # across the identified sides
@@ -271,7 +269,7 @@ def _grid_clean(problem, t: np.ndarray) -> bool:
 
 
 def _grid_tiles_in(g: np.ndarray, present, table: np.ndarray, k: int) -> bool:
-    """Whether every present cell of the grid ``g`` (legs W, N, E, S) holds a tile of ``table``."""
+    """Whether every present cell of the grid ``g`` (legs N, E, S, W) holds a tile of ``table``."""
     n_keys = k**4
     if n_keys <= 4 * g.shape[0] * g.shape[1] + (1 << 16):  # a table of every key
         known = np.zeros(n_keys, bool)
@@ -293,8 +291,8 @@ def _grid_boundary_holds(problem, t: np.ndarray, present, rows: int, cols: int, 
     fixed = bool((beta >= 0).any())
     if present is None:  # every cell: the wall legs are the sides not identified
         r, c = np.arange(rows), np.arange(cols)
-        sides = [(None if wrap_cols else r * cols, 0), (None if wrap_rows else c, 1),
-                 (None if wrap_cols else r * cols + cols - 1, 2), (None if wrap_rows else (rows - 1) * cols + c, 3)]
+        sides = [(None if wrap_rows else c, 0), (None if wrap_cols else r * cols + cols - 1, 1),
+                 (None if wrap_rows else (rows - 1) * cols + c, 2), (None if wrap_cols else r * cols, 3)]
         walls = [(cells, leg) for cells, leg in sides if cells is not None]
     else:
         there = np.zeros((rows + 2, cols + 2), bool)  # the cells present, padded as the grid's sides meet
@@ -309,7 +307,7 @@ def _grid_boundary_holds(problem, t: np.ndarray, present, rows: int, cols: int, 
         if fixed:
             cell[present.ravel()] = np.arange(int(np.count_nonzero(present)))  # cells in row-major order
         walls = []
-        for leg, (dr, dc) in enumerate(((0, -1), (-1, 0), (0, 1), (1, 0))):  # the cell across W, N, E, S
+        for leg, (dr, dc) in enumerate(((-1, 0), (0, 1), (1, 0), (0, -1))):  # the cell across N, E, S, W
             spots = np.flatnonzero(present & ~there[1 + dr:rows + 1 + dr, 1 + dc:cols + 1 + dc])
             walls.append((cell[spots] if fixed else spots, leg))
     if sum(cells.size for cells, _ in walls) != beta.size:
@@ -320,7 +318,7 @@ def _grid_boundary_holds(problem, t: np.ndarray, present, rows: int, cols: int, 
     cells = np.concatenate([c for c, _ in walls]).astype(np.int64)
     legs = np.concatenate([np.full(c.size, leg) for c, leg in walls])
     number = np.empty(cells.size, np.int64)
-    number[np.argsort(cells * 4 + _NESW_RANK[legs], kind="stable")] = np.arange(cells.size)
+    number[np.argsort(cells * 4 + legs, kind="stable")] = np.arange(cells.size)
     req = beta[number]
     return not ((req >= 0) & (t[cells, legs] != req)).any()
 
@@ -366,8 +364,8 @@ def _rows_in(rows: np.ndarray, table: np.ndarray, k: int) -> np.ndarray:
 
 
 def _nesw(legs: np.ndarray) -> str:
-    """A cell's leg colours (W, N, E, S) as the tile a user reads, ``N=1 E=0 S=2 W=0``."""
-    w, n, e, s = (int(v) for v in legs)
+    """A cell's leg colours (N, E, S, W) as the tile a user reads, ``N=1 E=0 S=2 W=0``."""
+    n, e, s, w = (int(v) for v in legs)
     return f"N={n} E={e} S={s} W={w}"
 
 
