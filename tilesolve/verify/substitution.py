@@ -20,6 +20,11 @@ Penrose patches (:func:`penrose_violations`)
        360 degrees, and to exactly 360 at an interior vertex (all its edges shared).
     5. *One piece without holes.* ``V - E + F = 1`` (a hole lowers it).
 
+    Checks 2-5 make the patch a disk laid flat around every edge and vertex; a disk that
+    winds over itself far from any shared edge (two sheets) is not excluded by them. The
+    generators' patches are windows or suns of unit tiles, where that cannot arise; a file
+    from elsewhere is checked locally only.
+
 Rep-tile patches (:func:`reptile_violations`)
     1. Every tile is congruent to the prototile (its edge vectors are the prototile's under a
        symmetry of the lattice, from some starting corner), counter-clockwise.
