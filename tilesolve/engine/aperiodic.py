@@ -26,6 +26,14 @@ Periods (:func:`sweep`)
     evidence, and a line whose witness or proof does not hold is decided again. A time limit or
     Ctrl-C leaves the rest undecided (never refuted).
 
+    A torus of at least :data:`BAND_MIN_CELLS` cells is first tried through its *bands*, its
+    first ``h`` columns or rows (:func:`_by_bands`): a band's clauses are a subset of the
+    torus's formula, so a band's DRAT proof, checked against the whole torus's CNF, refutes the
+    torus (Jeandel-Rao 24x24 falls to its first 10 columns: 19 s CPU, where the whole formula
+    was not refuted in 300 s). Then a witness is sought on a tall cylinder
+    (:func:`_cylinder_witness`; periodic-10-30's 30x30 torus in 22 s CPU, where the torus
+    itself was not tiled in 200 s); else the whole torus decides.
+
 Every refutation's CNF is the named encoding ``wang-tiles-cnf`` of the tile set on the board
 its name stands for (:func:`board_problem`), recorded in the certificate, so that anyone can
 re-derive it.
@@ -61,6 +69,10 @@ DIRECT_SIDE = 40
 #: solved whole (smaller ones are solved whole faster: JR 16x16 2.9 s by bands, 2.2 s whole;
 #: 20x20 7.5 s and 16 s CPU).
 BAND_MIN_CELLS = 300
+#: The widest band tried. Jeandel-Rao's tori with p, q <= 24 need bands at most 10 wide; a
+#: wide band of a periodic set can be slow to tile (periodic-10-30: 30 rows by 13 columns,
+#: 50 s CPU, where bands up to 12 take 2.3 s together).
+BAND_MAX = 12
 #: A cylinder searched for a torus witness is this many times the torus's height (plus 2 rows).
 CYLINDER_LAPS = 6
 #: CaDiCaL's settings for a search whose answer is a witness: no inprocessing (variable
@@ -137,10 +149,10 @@ def decide(tileset: WangTileSet, name: str, run: RunOptions, *, allowed=None) ->
 
 def _bands(labels: np.ndarray, rows: int, cols: int) -> list[tuple[int, np.ndarray, str]]:
     """The bands of a ``rows x cols`` torus, smallest first: ``(cells, mask, what)`` for the
-    first ``h`` columns (``h <= cols / 2``; they wrap top to bottom) and the first ``h`` rows
-    (``h <= rows / 2``; they wrap side to side, with the shear)."""
-    out = [(h * rows, labels[:, 1] < h, f"its first {h} column(s)") for h in range(1, cols // 2 + 1)]
-    out += [(h * cols, labels[:, 0] < h, f"its first {h} row(s)") for h in range(1, rows // 2 + 1)]
+    first ``h`` columns (``h <= cols / 2``, :data:`BAND_MAX`; they wrap top to bottom) and the
+    first ``h`` rows (``h <= rows / 2``, :data:`BAND_MAX`; they wrap side to side, with the shear)."""
+    out = [(h * rows, labels[:, 1] < h, f"its first {h} column(s)") for h in range(1, min(cols // 2, BAND_MAX) + 1)]
+    out += [(h * cols, labels[:, 0] < h, f"its first {h} row(s)") for h in range(1, min(rows // 2, BAND_MAX) + 1)]
     return sorted(out, key=lambda b: b[0])
 
 
