@@ -5,9 +5,11 @@ refused with one line (exit 2) and no file written."""
 from __future__ import annotations
 
 import json
+from pathlib import Path
 
 import numpy as np
 import pytest
+from PIL import Image
 
 from clitools import one_line_error, run, snapshot
 from tilesolve.io.jsonio import decode_array
@@ -100,3 +102,11 @@ def test_bad_input_is_one_line_and_writes_nothing(tmp_path, args, message):
     line = one_line_error(run("aperiodic", "tiling", *args, cwd=tmp_path))
     assert message in line, line
     assert snapshot(tmp_path) == {}
+
+
+def test_the_readme_window_is_what_its_command_draws(tmp_path):
+    proc = run("aperiodic", "tiling", "--builtin", "jeandel-rao", "--region", "-20,-10,40x24", "--seed", "1",
+               "-o", "jr-window.json", "--png", "jr-window.png", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    shipped = Path(__file__).resolve().parents[2] / "examples" / "jr-window.png"
+    assert np.array_equal(np.asarray(Image.open(tmp_path / "jr-window.png")), np.asarray(Image.open(shipped)))
