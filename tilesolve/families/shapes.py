@@ -192,7 +192,7 @@ def _draw(problem: ShapesProblem, sol: Solution, path, fmt: str, *, title: str |
 
 DEMOS = (
     Demo("shapes-pentomino-torus", "the P pentomino tiles a 5-cell torus (a lattice tiling)",
-         lambda: ShapesProblem("tile", (parse_ascii("##\n##\n#.", "omino"),), lattice=((5, 0), (1, 1)))),
+         lambda: ShapesProblem("tile", (parse_ascii("##\n##\n#.", "omino"),), lattice=((5, 0), (2, 1)))),
     Demo("shapes-heesch-hex", "a 6-hex that does not tile, with Heesch number 1: its corona",
          lambda: ShapesProblem("classify", (parse_cells("0,0 0,1 0,2 0,3 1,-1 1,3", "hex"),))),
 )
