@@ -47,7 +47,7 @@ def mismatches(name: str, grid: np.ndarray) -> int:
 # --------------------------------------------------------------------------- the data
 def test_jeandel_rao_labels_are_slabbes_tiles():
     doc, tiles = tileset("jeandel-rao")
-    src = next(s for s in doc["about"]["sources"] if s["path"] == "slabbe/arXiv_1903_06137.py")
+    src = next(s for s in doc["about"]["sources"] if s["path"] == "slabbe/jeandel_rao.py")
     assert src["order"] == "right top left bottom"
     tile_of = markov_doc("jeandel-rao")["tile_of_label"]
     assert sorted(tile_of) == list(range(11))

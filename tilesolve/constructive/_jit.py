@@ -23,6 +23,7 @@ arithmetic whose result does not depend on the path (tests compare them on rando
 
 from __future__ import annotations
 
+import os
 import sys
 import threading
 import types
@@ -30,7 +31,7 @@ from typing import Callable
 
 import numpy as np
 
-__all__ = ["kernel", "Kernels", "u32", "seed_state", "rand32"]
+__all__ = ["kernel", "Kernels", "u32", "seed_state", "rand32", "cores"]
 
 _MODES = ("auto", "plain", "compiled")
 
@@ -145,3 +146,9 @@ def rand32(state):
     x ^= (x << np.uint64(17)) & np.uint64(0xFFFFFFFFFFFFFFFF)
     state[0] = x
     return np.int64(x >> np.uint64(32))
+
+
+def cores() -> int:
+    """The cores this process may run on (its CPU affinity where the system tells it): how many
+    threads a kernel that splits its work into bands may use."""
+    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1

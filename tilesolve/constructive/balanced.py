@@ -64,7 +64,6 @@ array([[13, 11, 10, 13, 11, 10, 13, 11],
 from __future__ import annotations
 
 import math
-import os
 import threading
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
@@ -74,6 +73,7 @@ import numpy as np
 
 from tilesolve._random import rng_from_seed
 from tilesolve.constructive import _balanced_kernels as _k
+from tilesolve.constructive._jit import cores as _cores
 from tilesolve.errors import InternalError, InvalidProblem
 from tilesolve.model.window import Window
 
@@ -478,11 +478,6 @@ def _window(name: str, window: Window, seed: int, bits: int) -> np.ndarray:
     if bad:
         raise InternalError(f"{name}: {bad} rows of window {window.describe()} have a cell with no tile (seed {seed})")
     return out if window.y_up else out[::-1].copy()
-
-
-def _cores() -> int:
-    """The cores this process may run on."""
-    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count() or 1
 
 
 class _Lines:

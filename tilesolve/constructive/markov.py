@@ -49,7 +49,6 @@ from __future__ import annotations
 import functools
 import json
 import math
-import os
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from fractions import Fraction
@@ -59,6 +58,7 @@ from typing import Any
 import numpy as np
 
 from tilesolve._random import rng_from_seed
+from tilesolve.constructive._jit import cores as _cores
 from tilesolve.errors import InternalError, InvalidProblem
 from tilesolve.model.window import Window
 
@@ -471,14 +471,6 @@ def cell_point(name: str, seed: int, x: int, y: int) -> tuple[float, float]:
 
 #: Rows of one task of the thread pool.
 _BAND = 256
-
-
-def _cores() -> int:
-    """The cores this process may run on."""
-    try:
-        return len(os.sched_getaffinity(0))
-    except AttributeError:  # not on Linux
-        return os.cpu_count() or 1
 
 
 def _wrap(a, lx: float):
