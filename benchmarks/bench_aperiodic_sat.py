@@ -9,7 +9,9 @@ Tori (every p x q, 1 <= p, q <= ``--max-period``)
     proof checked, one process (the route before bands); ``bands``:
     :func:`tilesolve.engine.aperiodic.sweep` on ``--workers`` processes, each torus refuted
     through its smallest refuted band, the band's proof checked against the whole torus's CNF.
-    The two baselines share one budget of ``--cap`` seconds each and say how far they got.
+    The two baselines have ``--cap`` seconds each and say how far they got; they go from the
+    smallest torus up, so a capped baseline's rate (tori per second) is that of the small tori
+    and its ratio flatters it.
 Squares (a witness for each n in ``--sizes``)
     ``plain`` (capped) beside :func:`tilesolve.engine.aperiodic.square_scan` (the route is
     unchanged by bands: a square has no band to refute it).
