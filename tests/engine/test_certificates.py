@@ -165,6 +165,8 @@ PINNED = {
     "wang-board-cnf": (2, "e9b9278995d9e734bd7b78fd37990f18f0b5c9be34a52d4af5d8932a40ee93e2"),
     "packing-cnf": (1, "65f997450a660d5c665c6e3c1084b1b5a16c82e86c866830002fe818d2bc3e29"),
     "wang-tiles-cnf": (1, "b2d5e77873f3807a1c4bb149c95c6d1e8375b2cedd411f8401d0ea1a37186e83"),
+    "shapes-tile-cnf": (1, "12eb0ba6e239fd971c3af177b264cd335ab799a1173606ad52d6fb07ca5636d7"),
+    "shapes-corona-cnf": (1, "1439edb3bc8682ad35f186202313348ff26f1c0ecb16ac2f90dd582cad4907ee"),
 }
 
 
@@ -174,6 +176,7 @@ def test_every_named_encoding_is_deterministic_and_pinned_to_its_version():
     from tilesolve.model.board import Board, BoardProblem
     from tilesolve.model.dappled import DappledProblem
     from tilesolve.model.packing import PackingProblem
+    from tilesolve.model.shapes import ShapesProblem, parse_ascii, parse_cells
     from tilesolve.verify.drat import dimacs_bytes
 
     problems = {
@@ -181,6 +184,8 @@ def test_every_named_encoding_is_deterministic_and_pinned_to_its_version():
         "wang-board-cnf": BoardProblem(Board.mobius(4, 3), WangTileSet.brick(3), max_h=2),
         "packing-cnf": PackingProblem("corner", 2, fixed=((0, 0, 3),)),
         "wang-tiles-cnf": board_problem(WangTileSet(DIAGONAL, 3), "torus 3x2 shear 1"),
+        "shapes-tile-cnf": ShapesProblem("tile", (parse_ascii("##\n##\n#.", "omino"),), lattice=((5, 0), (2, 1))),
+        "shapes-corona-cnf": ShapesProblem("classify", (parse_cells("0,0 0,1 0,2 0,3 1,-1 1,3", "hex"),)),
     }
     assert set(problems) == set(ENCODINGS) == set(PINNED)
     for name, problem in problems.items():

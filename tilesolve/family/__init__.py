@@ -51,7 +51,7 @@ Examples
 >>> s.status.value, s.seed
 ('sat', 3)
 >>> sorted(f.name for f in families())[:4]
-['aperiodic', 'board', 'dappled', 'packing']
+['aperiodic', 'aperiodic-window', 'board', 'dappled']
 """
 
 from tilesolve.family.contract import Codec, Demo, Family, Route
