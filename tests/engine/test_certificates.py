@@ -292,7 +292,7 @@ def test_transducer_emptiness_certificate_is_rederived(tmp_path):
                "--proof-dir", "proofs", cwd=tmp_path)
     assert proc.returncode == 0, proc.stderr
     doc = json.loads((tmp_path / "t.json").read_text())
-    assert [(c["board"], c["method"]) for c in doc["squares"]] == [("square 1x2", "sat+transducer")]
+    assert [(c["board"], c["method"]) for c in doc["squares"]] == [("rectangle 1x2", "sat+transducer")]
     proc = run("aperiodic", "verify", "t.json", "--proof-dir", "proofs", cwd=tmp_path)
     assert proc.returncode == 0 and "1 refutation(s) re-checked" in _lines_end_with_one_verdict(proc.stdout)
     _write(tmp_path, "u.json", dict(doc, status="unsat"))  # a report relabelled as an unsat answer

@@ -157,7 +157,7 @@ def report_from_dict(doc: dict, source: Any = "<document>") -> tuple[AperiodicPr
     stated = None
     if doc["version"] >= 2:
         stated = doc.get("verdict")
-        if stated not in VERDICTS:
+        if not isinstance(stated, str) or stated not in VERDICTS:
             raise _fail(source, "verdict", f"must be one of {', '.join(VERDICTS)}, got {str(stated)[:60]!r}")
     report = AperiodicReport(certs["squares"], certs["periods"], _int(doc, "largest_square", source, optional=True),
                              doc.get("conclusion") or "", doc.get("literature"), stated)
