@@ -69,9 +69,10 @@ def test_a_report_whose_words_are_not_its_certificates_is_false(tmp_path):
         (tmp_path / "bad.json").write_text(json.dumps(dict(doc, **{key: value})))
         p = run("verify", "bad.json", cwd=tmp_path)
         assert p.returncode == 1 and said in p.stdout and not p.stdout.startswith("ok:"), p.stdout
-    (tmp_path / "bad.json").write_text(json.dumps(dict(doc, verdict="aperiodic")))  # not a word a report says
-    assert "'verdict' must be one of periodic, finite, open, undecided" in one_line_error(
-        run("verify", "bad.json", cwd=tmp_path))
+    for verdict in ("aperiodic", [], {"a": 1}, 3):  # not a word a report says
+        (tmp_path / "bad.json").write_text(json.dumps(dict(doc, verdict=verdict)))
+        assert "'verdict' must be one of periodic, finite, open, undecided" in one_line_error(
+            run("verify", "bad.json", cwd=tmp_path))
 
 
 @pytest.mark.slow
