@@ -265,27 +265,25 @@ def enclosed(g: Grid, cells: set) -> list[tuple[tuple[int, int], ...]]:
     def inside(c):
         return lo_x <= c[0] <= hi_x and lo_y <= c[1] <= hi_y
 
-    start = (lo_x + p // 2, lo_y + p // 2)
-    outside, todo = {start}, [start]
-    while todo:
-        c = todo.pop()
-        for n in g.neighbours(c):
-            if inside(n) and n not in cells and n not in outside:
-                outside.add(n)
-                todo.append(n)
+    def flood(c) -> set:
+        """The cells outside ``cells`` and inside the box edge-connected to ``c``."""
+        comp, todo = {c}, [c]
+        while todo:
+            d = todo.pop()
+            for n in g.neighbours(d):
+                if inside(n) and n not in cells and n not in comp:
+                    comp.add(n)
+                    todo.append(n)
+        return comp
+
+    outside = flood((lo_x + p // 2, lo_y + p // 2))
     holes, done = [], set()
     for x in range(lo_x, hi_x + 1):
         for y in range(lo_y, hi_y + 1):
             c = (x, y)
             if not g.is_cell(c) or c in cells or c in outside or c in done:
                 continue
-            comp, todo = {c}, [c]
-            while todo:
-                d = todo.pop()
-                for n in g.neighbours(d):
-                    if inside(n) and n not in cells and n not in comp:
-                        comp.add(n)
-                        todo.append(n)
+            comp = flood(c)
             done |= comp
             holes.append(tuple(sorted(comp)))
     return holes
