@@ -61,3 +61,24 @@ def test_census_stopped_by_its_time_limit_resumes_to_the_end(tmp_path):
     resumed = int(p.stderr.split(" record(s) resumed")[0].split()[-1])
     assert resumed < 461
     assert p.stdout.splitlines()[0].endswith("263 finite, 198 periodic, 0 undecided, 0 not reached"), p.stdout
+
+
+@pytest.mark.slow
+def test_ctrl_c_keeps_the_records_and_says_so(tmp_path):
+    import signal
+    import subprocess
+    import time
+
+    from clitools import ENV, SCRIPT
+
+    proc = subprocess.Popen([SCRIPT, "aperiodic", "census", "--tiles", "4", "--colors", "3", "-o", "c.jsonl"],
+                            cwd=tmp_path, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, env=ENV)
+    while not (tmp_path / "c.jsonl").exists() or not (tmp_path / "c.jsonl").read_text().count("\n"):
+        assert proc.poll() is None, proc.stderr.read()
+        time.sleep(0.05)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=300)
+    assert proc.returncode == 130 and "Traceback" not in err
+    assert err.strip().splitlines()[-1] == ("tilesolve: interrupted: the records decided so far are kept in c.jsonl; "
+                                            "--resume continues")
+    assert (tmp_path / "c.jsonl").read_text().count("\n") >= 1

@@ -12,6 +12,7 @@ import click
 
 from tilesolve.cli import options as opt
 from tilesolve.cli.common import progress_wanted, say
+from tilesolve.cli.outputs import interruption
 from tilesolve.errors import InvalidProblem
 
 __all__ = ["census"]
@@ -65,8 +66,13 @@ def census(ctx, n_tiles, colours, max_square, max_period, workers, cluster, resu
         raise InvalidProblem("--workers runs local processes and --cluster a Dask cluster: give one of them")
     run = RunOptions(seed=0, deadline=run_deadline(time_limit), progress=progress_wanted(), workers=workers,
                      cluster=cluster)
-    result = run_census(n_tiles, colours, run, output, max_square=max_square, max_period=max_period, resume=resume,
-                        proof_dir=proof_dir)
+    try:
+        result = run_census(n_tiles, colours, run, output, max_square=max_square, max_period=max_period,
+                            resume=resume, proof_dir=proof_dir)
+    except KeyboardInterrupt:  # caught outside the census's own check for it
+        _kept(ctx, output)
+    if result.interrupted:
+        _kept(ctx, output)
     counts = result.counts()
     click.echo(f"census of {result.n_sets} sets of {n_tiles} tiles over at most {colours} colours per axis (up to "
                f"symmetry; squares up to {max_square}, transducers up to {max(max_square, max_period)} rows): "
@@ -75,6 +81,13 @@ def census(ctx, n_tiles, colours, max_square, max_period, workers, cluster, resu
         click.echo(f"undecided: {rec['tiles']} ({rec['why']})")
     say(f"  {result.resumed} record(s) resumed from {output} (certificates re-checked); {result.seconds:.2f} s")
     say(f"  wrote {output}")
-    if result.interrupted:
-        raise KeyboardInterrupt
     ctx.exit(0 if result.complete else 3)
+
+
+def _kept(ctx, output) -> None:
+    """End an interrupted census (exit 130, or 143 for SIGTERM). The census file is appended to
+    as sets are decided, so its records are kept for --resume: not the generic "no file was
+    written"."""
+    code, what = interruption()
+    click.echo(f"tilesolve: {what}: the records decided so far are kept in {output}; --resume continues", err=True)
+    ctx.exit(code)
