@@ -85,3 +85,22 @@ def test_help_examples_run(tmp_path, command):
         promised = re.match(r"\s*prints\s+(.+)$", comment)
         if promised:
             assert proc.stdout.strip().splitlines()[-1] == promised.group(1).strip(), line
+
+
+@pytest.mark.slow
+def test_ctrl_c_stops_a_census_with_exit_130_and_no_file(tmp_path):
+    import signal
+    import subprocess
+    import time
+
+    from clitools import ENV, SCRIPT
+
+    # The 363 holeless 8-ominoes take minutes: the signal lands while shapes are classified.
+    proc = subprocess.Popen([SCRIPT, "shapes", "census", "--grid", "omino", "--size", "8", "-o", "c.json"],
+                            cwd=tmp_path, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, env=ENV)
+    time.sleep(3)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=300)
+    assert proc.returncode == 130 and "Traceback" not in err
+    assert err.strip().splitlines()[-1] == "tilesolve: interrupted (no file was written)"
+    assert not (tmp_path / "c.json").exists()

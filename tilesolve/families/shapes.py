@@ -131,7 +131,8 @@ def census(grid_name: str, size: int, *, holes: bool = False, max_level: int = 3
             task.advance()
             return False
 
-        dispatch(functools.partial(_census_job, grid_name, cells, options), len(shapes), run, take, lambda: None)
+        if dispatch(functools.partial(_census_job, grid_name, cells, options), len(shapes), run, take, lambda: None):
+            raise KeyboardInterrupt  # take never stops the census: dispatch stopped for Ctrl-C
     return [rows[i] for i in sorted(rows)], len(shapes)
 
 
