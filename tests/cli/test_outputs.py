@@ -225,3 +225,92 @@ def test_a_symbolic_link_is_followed_not_replaced(tmp_path):
     (tmp_path / "link.txt").symlink_to("real.txt")
     atomic.write_text_atomic(tmp_path / "link.txt", "new")
     assert (tmp_path / "link.txt").is_symlink() and (tmp_path / "real.txt").read_text() == "new"
+
+
+# ----------------------------------------------------------------------------- suffixes (issue 22)
+def _output_options() -> list[tuple[str, str, tuple[str, ...]]]:
+    """``(command, option, formats)`` of every option of every command whose type is an output
+    file (:class:`tilesolve.cli.outputs.OutputFile`), found by walking the command tree."""
+    import click
+
+    from tilesolve.cli.group import main_group
+    from tilesolve.cli.outputs import OutputFile
+
+    found = []
+
+    def walk(cmd, path):
+        if isinstance(cmd, click.Group):
+            ctx = click.Context(cmd)
+            for name in cmd.list_commands(ctx):
+                walk(cmd.get_command(ctx, name), [*path, name])
+            return
+        for p in cmd.params:
+            if isinstance(p.type, OutputFile):
+                found.append((" ".join(path), p.opts[0], p.type.formats))
+
+    walk(main_group, [])
+    return found
+
+
+OUTPUT_OPTIONS = _output_options()
+_WRITERS = {"-o", "--output", "--svg", "--png", "--dimacs", "--atlas"}
+
+
+def test_every_output_option_is_an_output_file():
+    """Each command's every option that names a written file checks its suffix."""
+    import click
+
+    from tilesolve.cli.group import main_group
+
+    checked = {(c, o) for c, o, _ in OUTPUT_OPTIONS}
+    missing = []
+
+    def walk(cmd, path):
+        if isinstance(cmd, click.Group):
+            ctx = click.Context(cmd)
+            for name in cmd.list_commands(ctx):
+                walk(cmd.get_command(ctx, name), [*path, name])
+            return
+        for p in cmd.params:
+            if isinstance(p, click.Option) and _WRITERS & set(p.opts) and (" ".join(path), p.opts[0]) not in checked:
+                missing.append((" ".join(path), p.opts))
+
+    walk(main_group, [])
+    assert not missing
+    assert len(OUTPUT_OPTIONS) >= 30 and {"draw", "tiles", "wall", "wall-lines", "render texture"} <= {
+        c for c, _, _ in OUTPUT_OPTIONS}
+
+
+@pytest.mark.fast_cases(3)
+@pytest.mark.parametrize("command,option,formats", OUTPUT_OPTIONS, ids=[f"{c} {o}" for c, o, _ in OUTPUT_OPTIONS])
+def test_every_output_option_refuses_another_format(tmp_path, command, option, formats):
+    """``--svg c3.png``, ``--png x.svg``, ``-o x.txt``: one line, exit 2, no file, through the script."""
+    wrong = next(s for s in ("png", "svg", "txt") if s not in formats)
+    err = one_line_error(run(*command.split(), option, f"out.{wrong}", cwd=tmp_path))
+    assert f"cannot write out.{wrong}: " in err and " or ".join(f".{f}" for f in formats) in err
+    assert snapshot(tmp_path) == {}
+
+
+@pytest.mark.parametrize("args,bad", [
+    (["tiles", "--kind", "wang", "--colors", "3", "--svg", "c3.png"], "c3.png"),
+    (["wall-lines", "--max-line", "2", "--size", "8x8", "--samples", "1", "--png", "lines.svg"], "lines.svg"),
+    (["wall", "--region", "0,0,8x8", "--max-line", "2", "--png", "x.jpg"], "x.jpg"),
+    (["wall-lines", "--max-line", "2", "--size", "8x8", "--samples", "1", "-o", "lines.txt"], "lines.txt"),
+    (["draw", "t.json", "-o", "t.jpg"], "t.jpg"),
+])
+def test_whole_commands_refuse_a_suffix_of_another_format(tmp_path, args, bad):
+    """The commands of issue 22, complete: refused as draw refuses them, before any work."""
+    (tmp_path / "t.json").write_text("{}")
+    before = snapshot(tmp_path)
+    err = one_line_error(run(*args, cwd=tmp_path))
+    assert err.startswith(f"tilesolve: error: cannot write {bad}: ") and "the name's suffix is the format" in err
+    assert snapshot(tmp_path) == before
+
+
+@pytest.mark.parametrize("args,name", [
+    (["tiles", "--kind", "wang", "--colors", "2", "--svg", "T.SVG"], "T.SVG"),
+    (["wall-lines", "--max-line", "2", "--size", "6x6", "--samples", "1", "-o", "t.csv"], "t.csv"),
+])
+def test_suffixes_of_the_format_are_written(tmp_path, args, name):
+    assert run(*args, cwd=tmp_path).returncode == 0
+    assert (tmp_path / name).stat().st_size > 0

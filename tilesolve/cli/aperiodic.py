@@ -15,7 +15,7 @@ from tilesolve.cli import options as opt
 from tilesolve.cli.aperiodic_census import census
 from tilesolve.cli.aperiodic_tiling import tiling
 from tilesolve.cli.common import progress_wanted, say
-from tilesolve.cli.outputs import Outputs
+from tilesolve.cli.outputs import OutputFile, Outputs
 from tilesolve.cli.wang_count import load_tileset, tileset_options
 from tilesolve.errors import InvalidProblem
 
@@ -54,7 +54,7 @@ def aperiodic() -> None:
                    "again [default: REPORT.cache.jsonl next to -o].")
 @opt.time_limit_opt
 @opt.seed_opt
-@click.option("-o", "--output", type=click.Path(dir_okay=False, allow_dash=True), metavar="REPORT.json",
+@click.option("-o", "--output", type=OutputFile("json"), metavar="REPORT.json",
               help="Write the report JSON here ('-' for stdout).")
 @click.pass_context
 def check(ctx, tiles, tiles_path, tiles_format, builtin, method, max_square, max_period, shears, workers, cluster,

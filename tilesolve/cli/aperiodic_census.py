@@ -12,7 +12,7 @@ import click
 
 from tilesolve.cli import options as opt
 from tilesolve.cli.common import progress_wanted, say
-from tilesolve.cli.outputs import interruption
+from tilesolve.cli.outputs import OutputFile, interruption
 from tilesolve.errors import InvalidProblem
 
 __all__ = ["census"]
@@ -38,7 +38,7 @@ __all__ = ["census"]
 @click.option("--proof-dir", type=click.Path(file_okay=False), default=None, metavar="DIR",
               help="Write the CNF and checked DRAT proof of every refutation to DIR.")
 @opt.time_limit_opt
-@click.option("-o", "--output", type=click.Path(dir_okay=False), required=True, metavar="CENSUS.jsonl",
+@click.option("-o", "--output", type=OutputFile("jsonl", allow_dash=False), required=True, metavar="CENSUS.jsonl",
               help="The census file: a header line, then one JSON record a set, appended as sets are classified.")
 @click.pass_context
 def census(ctx, n_tiles, colours, max_square, max_period, workers, cluster, resume, proof_dir, time_limit,

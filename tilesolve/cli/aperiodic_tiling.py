@@ -12,7 +12,7 @@ import click
 
 from tilesolve.cli import options as opt
 from tilesolve.cli.common import progress_wanted
-from tilesolve.cli.outputs import Outputs
+from tilesolve.cli.outputs import OutputFile, Outputs
 from tilesolve.cli.window_outputs import check_svg_size, finish_window
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.units import big
@@ -32,11 +32,11 @@ MAX_PRINTED_TILES = 1 << 16
               help="The window: W columns by H rows whose bottom-left cell is (X0, Y0); y points up, coordinates "
                    "may be negative.")
 @opt.seed_opt
-@click.option("-o", "--output", type=click.Path(dir_okay=False, allow_dash=True), metavar="T.json",
+@click.option("-o", "--output", type=OutputFile("json"), metavar="T.json",
               help="Write the window JSON here ('-' for stdout). Without outputs the grid is printed.")
-@click.option("--png", type=click.Path(dir_okay=False), metavar="T.png",
+@click.option("--png", type=OutputFile("png", allow_dash=False), metavar="T.png",
               help="Also draw the window as PNG (written band by band, any size).")
-@click.option("--svg", type=click.Path(dir_okay=False, allow_dash=True), metavar="T.svg",
+@click.option("--svg", type=OutputFile("svg"), metavar="T.svg",
               help="Also draw the window as SVG (at most 65,536 tiles; '-' for stdout).")
 @click.pass_context
 def tiling(ctx, builtin, region, seed, output, png, svg) -> None:

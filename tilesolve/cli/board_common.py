@@ -8,6 +8,7 @@ import click
 
 from tilesolve.cli import options as opt
 from tilesolve.cli.common import big, human_bytes, progress_wanted, say
+from tilesolve.cli.outputs import OutputFile
 from tilesolve.errors import InvalidProblem
 from tilesolve.model.board import MAX_BRICK_COLORS
 
@@ -37,7 +38,7 @@ boundary_opt = click.option(
 )
 method_opt = click.option("--method", type=click.Choice(_method_choices()), default="auto", show_default=True,
                           help="auto: the linear algorithm (§4) where it applies, SAT otherwise.")
-svg_opt = click.option("--svg", type=click.Path(dir_okay=False, allow_dash=True), metavar="OUT.svg",
+svg_opt = click.option("--svg", type=OutputFile("svg"), metavar="OUT.svg",
                        help="Also draw the tiling as SVG ('-' for stdout).")
 colors_opt = click.option("--colors", type=int, default=3, show_default=True, metavar="K",
                           help="Number of colours #C (edge positions), at least 3.")

@@ -6,14 +6,15 @@ import click
 
 from tilesolve.cli import options as opt
 from tilesolve.cli.common import check_writable, say
-from tilesolve.errors import InvalidProblem
+from tilesolve.cli.outputs import OutputFile, check_suffix
 
 __all__ = ["draw"]
 
 
 @click.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.READER_HELP)
 @click.argument("file", type=click.Path(dir_okay=False))
-@click.option("-o", "--output", required=True, type=click.Path(dir_okay=False), metavar="OUT.svg|OUT.png",
+@click.option("-o", "--output", required=True, type=OutputFile("svg", "png", allow_dash=False),
+              metavar="OUT.svg|OUT.png",
               help="The picture; its suffix (.svg or .png) chooses the format.")
 @opt.repeat_opt
 @opt.grid_opt
@@ -37,9 +38,7 @@ def draw(ctx, file: str, output: str, repeat: int, grid) -> None:
     """
     from tilesolve.family import draw_solution, read_document
 
-    fmt = output.rsplit(".", 1)[-1].lower() if "." in output else ""
-    if fmt not in ("svg", "png"):
-        raise InvalidProblem(f"{output}: pictures are .svg or .png files")
+    fmt = check_suffix(output, ("svg", "png"))
     check_writable(output)
     fam, codec, doc = read_document(file)
     problem, sol = codec.read(doc, file)

@@ -10,6 +10,7 @@ import click
 
 from tilesolve.cli import options as opt
 from tilesolve.cli.common import build_problem, check_writable, say
+from tilesolve.cli.outputs import OutputFile
 from tilesolve.errors import InvalidProblem
 
 __all__ = ["export", "dimacs"]
@@ -24,7 +25,7 @@ def export() -> None:
 @click.argument("file", required=False, type=click.Path(dir_okay=False))
 @opt.problem_options()
 @click.option(
-    "-o", "--output", required=True, type=click.Path(dir_okay=False), metavar="OUT.cnf|OUT.wcnf",
+    "-o", "--output", required=True, type=OutputFile("cnf", "wcnf", allow_dash=False), metavar="OUT.cnf|OUT.wcnf",
     help="Output file; .wcnf (weighted MaxSAT) for closest-tiling problems, else .cnf.",
 )
 @opt.max_cnf_option("Refuse a problem whose CNF is estimated (before encoding) to exceed SIZE of DIMACS "

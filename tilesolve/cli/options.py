@@ -12,6 +12,8 @@ from typing import Callable
 
 import click
 
+from tilesolve.cli.outputs import OutputFile
+
 
 CONTEXT_SETTINGS = {"help_option_names": ["-h", "--help"], "max_content_width": 100}
 
@@ -179,14 +181,14 @@ initial_opt = click.option(
 output_opt = click.option(
     "-o",
     "--output",
-    type=click.Path(dir_okay=False, allow_dash=True),
+    type=OutputFile("json"),
     metavar="OUT.json",
     help="Write the solution JSON here ('-' for stdout). With no output option the tiling is printed as text.",
 )
-svg_opt = click.option("--svg", type=click.Path(dir_okay=False, allow_dash=True), metavar="OUT.svg",
+svg_opt = click.option("--svg", type=OutputFile("svg"), metavar="OUT.svg",
                        help="Also draw the tiling as SVG ('-' for stdout).")
 png_opt = click.option(
-    "--png", type=click.Path(dir_okay=False, allow_dash=True), metavar="OUT.png",
+    "--png", type=OutputFile("png"), metavar="OUT.png",
     help="Also draw the tiling as PNG, for large grids ('-' for stdout).",
 )
 repeat_opt = click.option(

@@ -9,6 +9,10 @@ the library's writers inside :meth:`Outputs.commit`, which stages every file and
 them together when the block ends cleanly: a failure of any write leaves no file of this run
 (:func:`tilesolve.io.atomic.commit_together`).
 
+Every output option names its format by its suffix (``--svg t.svg``, ``--png t.png``,
+``-o t.json``): its click type :class:`OutputFile` refuses a name whose suffix is another
+format's, while the options are read (:func:`check_suffix`, the one check every command uses).
+
 Interruptions (README, "Exit codes"): Ctrl-C exits 130 and SIGTERM exits 143, writing
 nothing and leaving existing files as they were. The engine turns Ctrl-C inside a solver
 into an ``unknown`` result whose reason starts with ``"interrupted"``;
@@ -23,12 +27,14 @@ import contextlib
 import os
 import signal
 from pathlib import Path
-from typing import Iterator
+from typing import Iterator, Sequence
+
+import click
 
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.atomic import commit_together, probe_writable
 
-__all__ = ["Outputs", "check_target", "sigterm_as_interrupt", "interruption"]
+__all__ = ["Outputs", "OutputFile", "check_suffix", "check_target", "sigterm_as_interrupt", "interruption"]
 
 _state = {"terminated": False, "pid": 0}
 
@@ -52,6 +58,46 @@ def check_target(path: str) -> None:
         if p.exists():
             raise InvalidProblem(f"cannot write {path}: {why}") from None
         raise InvalidProblem(f"cannot write {path}: cannot create a file in {parent} ({why})") from None
+
+
+def check_suffix(path: str, formats: Sequence[str], option: str = "the output") -> str:
+    """The format of the output ``path`` among ``formats`` (``"svg"``, ``"png"``, ``"json"``...),
+    read from its suffix; ``-`` (standard output) is the first format.
+
+    Raises
+    ------
+    InvalidProblem
+        The suffix names none of ``formats``.
+
+    Examples
+    --------
+    >>> check_suffix("T.PNG", ("svg", "png"))
+    'png'
+    >>> check_suffix("c3.png", ("svg",), "--svg")
+    Traceback (most recent call last):
+    tilesolve.errors.InvalidProblem: cannot write c3.png: --svg writes .svg files (the name's suffix is the format)
+    """
+    if path == "-":
+        return formats[0]
+    fmt = os.path.splitext(path)[1].lower().lstrip(".")
+    if fmt in formats:
+        return fmt
+    names = " or ".join(f".{f}" for f in formats)
+    raise InvalidProblem(f"cannot write {path}: {option} writes {names} files (the name's suffix is the format)")
+
+
+class OutputFile(click.Path):
+    """The click type of an output option: a file (not a directory) whose suffix is one of
+    ``formats`` (:func:`check_suffix`); ``-`` (standard output) where ``allow_dash``."""
+
+    def __init__(self, *formats: str, allow_dash: bool = True) -> None:
+        super().__init__(dir_okay=False, allow_dash=allow_dash)
+        self.formats = formats
+
+    def convert(self, value, param, ctx):  # noqa: D102 - click API
+        value = super().convert(value, param, ctx)
+        check_suffix(os.fsdecode(value), self.formats, "/".join(param.opts) if param is not None else "the output")
+        return value
 
 
 def _same(a: str, b: str) -> bool:

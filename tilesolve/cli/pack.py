@@ -14,7 +14,7 @@ import click
 
 from tilesolve.cli import options as opt
 from tilesolve.cli.common import check_colors, progress_wanted, say
-from tilesolve.cli.outputs import Outputs
+from tilesolve.cli.outputs import OutputFile, Outputs
 from tilesolve.errors import InvalidProblem
 
 __all__ = ["pack"]
@@ -79,12 +79,12 @@ def _parse_fix(items) -> tuple[tuple[int, int, int], ...]:
 @click.option("--cluster", default=None, metavar="ADDRESS",
               help="Run the seed portfolio on this Dask scheduler (e.g. tcp://host:8786) instead of local "
                    "processes; needs pip install \"tilesolve[cluster]\".")
-@click.option("-o", "--output", type=click.Path(dir_okay=False, allow_dash=True), metavar="PACK.json",
+@click.option("-o", "--output", type=OutputFile("json"), metavar="PACK.json",
               help="Write the packing JSON here ('-' for stdout). Without -o or --svg the grid is printed.")
-@click.option("--svg", type=click.Path(dir_okay=False, allow_dash=True), metavar="PACK.svg",
+@click.option("--svg", type=OutputFile("svg"), metavar="PACK.svg",
               help="Also draw the packing as SVG ('-' for stdout).")
 @click.option("--indices", is_flag=True, help="Write tile indices on the SVG tiles (needs --svg).")
-@click.option("--dimacs", type=click.Path(dir_okay=False, allow_dash=True), metavar="PACK.cnf",
+@click.option("--dimacs", type=OutputFile("cnf"), metavar="PACK.cnf",
               help="Write the SAT encoding as DIMACS CNF instead of solving (a hard benchmark for C >= 4); "
                    "takes no solving or drawing options.")
 @click.pass_context

@@ -14,18 +14,18 @@ import click
 
 from tilesolve.cli import options as opt
 from tilesolve.cli.common import say
-from tilesolve.cli.outputs import Outputs
+from tilesolve.cli.outputs import OutputFile, Outputs
 from tilesolve.errors import InvalidProblem
 from tilesolve.model.window import parse_region
 
 __all__ = ["penrose", "reptile"]
 
 _OUTPUTS = (
-    click.option("-o", "--output", type=click.Path(dir_okay=False, allow_dash=True), metavar="T.json",
+    click.option("-o", "--output", type=OutputFile("json"), metavar="T.json",
                  help="Write the patch JSON here ('-' for stdout); `tilesolve verify T.json` re-checks it."),
-    click.option("--svg", type=click.Path(dir_okay=False, allow_dash=True), metavar="T.svg",
+    click.option("--svg", type=OutputFile("svg"), metavar="T.svg",
                  help="Draw the patch as SVG (at most 200,000 tiles)."),
-    click.option("--png", type=click.Path(dir_okay=False), metavar="T.png", help="Draw the patch as PNG."),
+    click.option("--png", type=OutputFile("png", allow_dash=False), metavar="T.png", help="Draw the patch as PNG."),
 )
 
 

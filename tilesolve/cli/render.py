@@ -16,7 +16,7 @@ import click
 
 from tilesolve.cli import options as opt
 from tilesolve.cli.common import progress_wanted, say
-from tilesolve.cli.outputs import Outputs
+from tilesolve.cli.outputs import OutputFile, Outputs
 from tilesolve.errors import InvalidProblem
 
 __all__ = ["render", "gpu"]
@@ -32,7 +32,7 @@ _BENCH = click.option("--benchmark", type=click.IntRange(1, 100_000), default=No
 _PER_FRAGMENT = click.option("--per-fragment", is_flag=True,
                              help="Evaluate the tiling hash in every fragment (one pass) instead of once per "
                                   "tile in a first pass; the same picture.")
-_OUTPUT = click.option("-o", "--output", type=click.Path(dir_okay=False), metavar="OUT.png",
+_OUTPUT = click.option("-o", "--output", type=OutputFile("png", allow_dash=False), metavar="OUT.png",
                        help="Write the picture here (PNG; rendered in passes when larger than the viewport).")
 
 
@@ -99,7 +99,8 @@ def render() -> None:
 @click.option("--hash", "hash_", type=click.Choice(["long", "table"]), default="long", show_default=True,
               help="Lattice hash of the direct stochastic tiling (§3.4): long period or one permutation table.")
 @_PER_FRAGMENT
-@click.option("--atlas", type=click.Path(dir_okay=False), metavar="ATLAS.png", help="Also write the packed atlas.")
+@click.option("--atlas", type=OutputFile("png", allow_dash=False), metavar="ATLAS.png",
+              help="Also write the packed atlas.")
 @_OUTPUT
 @_BENCH
 @click.pass_context

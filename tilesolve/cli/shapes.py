@@ -14,7 +14,7 @@ import click
 
 from tilesolve.cli import options as opt
 from tilesolve.cli.common import progress_wanted, say
-from tilesolve.cli.outputs import Outputs
+from tilesolve.cli.outputs import OutputFile, Outputs
 from tilesolve.errors import InvalidProblem
 
 __all__ = ["shapes"]
@@ -72,11 +72,11 @@ _answer_options = opt.compose(
     opt.seed_opt,
     opt.time_limit_opt,
     opt.proof_dir_opt,
-    click.option("-o", "--output", type=click.Path(dir_okay=False, allow_dash=True), metavar="OUT.json",
+    click.option("-o", "--output", type=OutputFile("json"), metavar="OUT.json",
                  help="Write the answer JSON here."),
-    click.option("--svg", type=click.Path(dir_okay=False, allow_dash=True), metavar="OUT.svg",
+    click.option("--svg", type=OutputFile("svg"), metavar="OUT.svg",
                  help="Draw the tiling (a torus tiling over 3x3 periods) or the corona patch."),
-    click.option("--png", type=click.Path(dir_okay=False), metavar="OUT.png", help="The same picture as PNG."),
+    click.option("--png", type=OutputFile("png", allow_dash=False), metavar="OUT.png", help="The same picture as PNG."),
 )
 
 
@@ -245,7 +245,7 @@ def list_cmd(grid_name, size, holes, show) -> None:
               help="Local worker processes [default: 2].")
 @click.option("--cluster", default=None, metavar="ADDRESS", help="A Dask scheduler (tcp://host:8786) instead.")
 @opt.time_limit_opt
-@click.option("-o", "--output", type=click.Path(dir_okay=False, allow_dash=True), metavar="CENSUS.json",
+@click.option("-o", "--output", type=OutputFile("json"), metavar="CENSUS.json",
               help="Write every shape's classification and time here.")
 @click.pass_context
 def census_cmd(ctx, grid_name, size, holes, max_level, max_copies, workers, cluster, time_limit, output) -> None:

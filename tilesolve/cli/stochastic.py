@@ -12,7 +12,7 @@ import click
 
 from tilesolve.cli import options as opt
 from tilesolve.cli.common import progress_wanted
-from tilesolve.cli.outputs import Outputs
+from tilesolve.cli.outputs import OutputFile, Outputs
 from tilesolve.cli.window_outputs import check_svg_size, finish_window
 from tilesolve.errors import InvalidProblem
 from tilesolve.model.window import parse_region
@@ -42,10 +42,10 @@ __all__ = ["tiling"]
               help="direct, complete Wang set: hashes at the edges (§3.3.2.3) or two hashes at the corners "
                    "(§3.3.2.1).")
 @opt.seed_opt
-@click.option("-o", "--output", type=click.Path(dir_okay=False, allow_dash=True), metavar="T.json",
+@click.option("-o", "--output", type=OutputFile("json"), metavar="T.json",
               help="Write the tiling JSON here ('-' for stdout). Without outputs the grid is printed.")
-@click.option("--png", type=click.Path(dir_okay=False), metavar="T.png", help="Also draw the window as PNG.")
-@click.option("--svg", type=click.Path(dir_okay=False, allow_dash=True), metavar="T.svg",
+@click.option("--png", type=OutputFile("png", allow_dash=False), metavar="T.png", help="Also draw the window as PNG.")
+@click.option("--svg", type=OutputFile("svg"), metavar="T.svg",
               help="Also draw the window as SVG (at most 65,536 tiles; '-' for stdout).")
 @click.option("--indices", is_flag=True, help="Write tile numbers on the SVG tiles (needs --svg).")
 @click.pass_context

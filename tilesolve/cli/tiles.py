@@ -17,7 +17,7 @@ import click
 
 from tilesolve.cli import options as opt
 from tilesolve.cli.common import check_colors, say
-from tilesolve.cli.outputs import Outputs
+from tilesolve.cli.outputs import OutputFile, Outputs
 
 __all__ = ["tiles"]
 
@@ -32,11 +32,11 @@ __all__ = ["tiles"]
               help="complete: all C^4 tiles (notes §2.7); compact: two tiles per (N, W) edge colours, 2C^2 "
                    "Wang tiles (§3.2.1), or per (NE, NW, SW) corner colours, 2C^3 corner tiles (§3.2.2); "
                    "sums: the C^3 Wang tiles whose edges are sums of corner colours (§3.3.2.2).")
-@click.option("--svg", type=click.Path(dir_okay=False, allow_dash=True), metavar="OUT.svg",
+@click.option("--svg", type=OutputFile("svg"), metavar="OUT.svg",
               help="Also draw the set: one tile per index, in index order, labelled ('-' for stdout).")
-@click.option("--png", type=click.Path(dir_okay=False), metavar="OUT.png",
+@click.option("--png", type=OutputFile("png", allow_dash=False), metavar="OUT.png",
               help="Also draw the set as PNG (large sets), tiles in index order.")
-@click.option("-o", "--output", type=click.Path(dir_okay=False, allow_dash=True), metavar="OUT.json",
+@click.option("-o", "--output", type=OutputFile("json"), metavar="OUT.json",
               help="Write a Wang set as a tilesolve/wang-tileset file (tiles as [N, E, S, W]) for wang solve --tiles.")
 @click.option("--builtin", is_flag=False, flag_value="", default=None, metavar="[NAME]",
               help="Alone: list the built-in Wang tile sets (name, tiles, colours, literature verdict). With "

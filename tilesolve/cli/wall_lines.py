@@ -17,7 +17,7 @@ import click
 
 from tilesolve.cli import options as opt
 from tilesolve.cli.common import say
-from tilesolve.cli.outputs import Outputs
+from tilesolve.cli.outputs import OutputFile, Outputs
 from tilesolve.errors import InvalidProblem
 
 __all__ = ["wall_lines"]
@@ -91,11 +91,11 @@ def _panels(hists, methods, limits):
 @click.option("--seed", type=click.IntRange(0, opt.MAX_SEED), default=0, show_default=True, metavar="S",
               help="First seed; the same seed gives the same table.")
 @click.option("--colors", type=int, default=3, show_default=True, metavar="C", help="Edge colours (>= 3).")
-@click.option("-o", "--output", type=click.Path(dir_okay=False, allow_dash=True), metavar="TABLE.json|.csv",
+@click.option("-o", "--output", type=OutputFile("json", "csv"), metavar="TABLE.json|.csv",
               help="Write the table as JSON, or CSV when the name ends in .csv ('-': JSON on stdout).")
-@click.option("--svg", type=click.Path(dir_okay=False, allow_dash=True), metavar="H.svg",
+@click.option("--svg", type=OutputFile("svg"), metavar="H.svg",
               help="Draw the histograms as SVG ('-' for stdout).")
-@click.option("--png", type=click.Path(dir_okay=False), metavar="H.png", help="Draw the histograms as PNG.")
+@click.option("--png", type=OutputFile("png", allow_dash=False), metavar="H.png", help="Draw the histograms as PNG.")
 @click.pass_context
 def wall_lines(ctx, methods, limits, size, samples, seed, colors, output, svg, png) -> None:
     """Histograms of the line lengths of brick walls (004 §5, Fig. 22).
