@@ -116,6 +116,66 @@ def test_the_two_routes_show_the_same_first_coronas(kind):
     assert a == b and len(a) > 50
 
 
+def inside(types, v, window):
+    """The tiles whose centre lies in ``window``."""
+    x0, y0, w, h = window
+    c = P.zeta_xy(v).mean(axis=1)
+    keep = (c[:, 0] >= x0) & (c[:, 0] < x0 + w) & (c[:, 1] >= y0) & (c[:, 1] < y0 + h)
+    return types[keep], v[keep]
+
+
+def same_region(a, b, window):
+    """The P3 patches ``a`` and ``b`` (b covering ``window``) coincide tile for tile in ``window``, as
+    rhombs and as the kites and darts of p2_from_p3 (away from the window's edge, where P2 drops
+    halves)."""
+    sa, sb = tiles_of(*inside(*a, window)), tiles_of(*inside(*b, window))
+    x0, y0, w, h = window
+    inner = (x0 + 3, y0 + 3, w - 6, h - 6)
+    ka, kb = (tiles_of(*inside(*P.p2_from_p3(*p), inner)) for p in (a, b))
+    return sa == sb and len(sa) > 100, ka == kb and len(ka) > 50
+
+
+@pytest.mark.parametrize("window", [(-8, -8, 16, 16), (-20, -15, 40, 30), (-26, -24, 50, 47)])
+def test_a_substitution_patch_is_a_pentagrid_window_tile_for_tile(window):
+    """The sun that covers a window, moved by pentagrid_of's shift, is the pentagrid of the
+    offsets pentagrid_of reads from it: the same rhombs with the same markings, and the same
+    kites and darts (the module docstring's correspondence)."""
+    types, v = P.p3_substitution(window=window)
+    gamma, shift = P.pentagrid_of(types, v)
+    assert abs(gamma.sum()) < 1e-12 and shift in range(5)
+    moved = v + np.array([shift, 0, 0, 0])
+    x0, y0, w, h = window
+    grid = P.pentagrid((x0 + shift - 2, y0 - 2, w + 4, h + 4), gamma=gamma)
+    here = (x0 + shift, y0, w, h)
+    assert same_region((types, moved), grid, here) == (True, True)
+    assert not same_region((types, v), grid, here)[0]  # unmoved, it is not
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3, 4])
+def test_deflation_acts_on_the_pentagrid_offsets(seed):
+    """de Bruijn: a pentagrid window deflated once (unit edges again) is the pentagrid of the offsets
+    -gamma / phi on the phi-times larger window, tile for tile, rhombs and kites and darts; and
+    pentagrid_of reads offsets back from the deflated patch that draw it too."""
+    window = (-12, -10, 24, 20)
+    gamma = P.pentagrid_offsets(seed)
+    deflated = P.deflate_rhombs(*P.pentagrid(window, gamma=gamma))
+    big = (-16, -13, 32, 26)  # inside phi times the window, away from its edge
+    assert same_region(deflated, P.pentagrid(big, gamma=-gamma / PHI), big) == (True, True)
+    read, shift = P.pentagrid_of(*deflated)
+    assert shift == 0 and same_region(deflated, P.pentagrid(big, gamma=read), big) == (True, True)
+    other = P.pentagrid(big, gamma=P.pentagrid_offsets(seed + 100))
+    assert same_region(deflated, other, big) == (False, False)
+
+
+def test_pentagrid_of_refuses_a_patch_no_pentagrid_draws():
+    types, v = P.pentagrid((-10, -10, 20, 20), seed=1)
+    with pytest.raises(InvalidProblem, match="pentagrid"):
+        P.pentagrid_of(types, np.concatenate([v, v + np.array([1, 0, 0, 0])]))  # all five index classes
+    far = P.pentagrid((30, -10, 20, 20), seed=2)[1]  # another tiling's vertices beside these
+    with pytest.raises(InvalidProblem, match="no regular pentagrid"):
+        P.pentagrid_of(types, np.concatenate([v, far]))
+
+
 def test_tile_ratios_tend_to_the_golden_ratio():
     errors = []
     for steps in (3, 5, 7, 9):

@@ -37,11 +37,23 @@ triangle is a half-dart; mirror halves joined along their axis make kites and da
 inverse of one half-step of the P3 substitution, so every P3 patch gives the P2 patch of the
 same region (tiles whose other half lies outside are dropped).
 
-The two routes agree (tests/constructive/test_penrose.py): on one window both patches pass the
-same independent verifier with the same arrows, and show the same eight vertex configurations
-and the same set of first coronas (a tile with its four edge neighbours, up to translation;
-70 of them in P3). They are not the same tiling: a sun is the pentagrid's singular limit
-``gamma -> 0``, and a regular grid near it was not found to reproduce it tile for tile.
+The two routes agree tile for tile (de Bruijn 1981; tests/constructive/test_penrose.py). A vertex
+of the pentagrid tiling is ``sum K_i zeta^i`` for ``K`` in ``Z^5`` of index ``t = sum K_i`` in 1..4;
+writing ``x^*`` for the conjugate ``zeta -> zeta^2`` (``K^* = sum K_i zeta^(2i)``), ``K`` is a
+vertex exactly when ``K^* - Gamma`` lies in the pentagon ``W_t = {sum l_i zeta^(2i) : 0 <= l_i <= 1,
+sum l_i = t}``, where ``Gamma = sum gamma_j zeta^(2j)``: the tiling depends on the offsets only
+through ``Gamma`` (Part I, §1: the pattern is determined by one complex number). Hence:
+
+* *Substitution to pentagrid* (:func:`pentagrid_of`). A point of ``Z[zeta]`` has one lift ``K``
+  of index 1..4 unless its index class ``sum a_i mod 5`` is 0. A sun's vertices miss one class;
+  moved by ``s`` edges along x (``s`` the shift that sends the missing class to 0), every vertex
+  constrains ``Gamma`` to a translated pentagon, and any ``Gamma`` inside all of them (the centre
+  of their intersection) gives offsets whose pentagrid is the moved patch, tile for tile, with the
+  same markings.
+* *Deflation acts on the offsets* (the theme of Part II): the pentagrid of ``gamma``, deflated once
+  (:func:`deflate_rhombs`) and scaled back by ``phi``, is the pentagrid of ``-gamma / phi``.
+
+P2 follows from P3 by the correspondence above, so the kites and darts agree as well.
 """
 
 from __future__ import annotations
@@ -51,7 +63,7 @@ import numpy as np
 from tilesolve.errors import InvalidProblem
 
 __all__ = ["TOLERANCE", "zeta_xy", "sun", "deflate", "rhombs", "p3_substitution", "pentagrid_offsets",
-           "pentagrid", "p2_from_p3", "window_steps"]
+           "pentagrid", "pentagrid_of", "deflate_rhombs", "p2_from_p3", "window_steps"]
 
 #: An intersection is refused when a third grid line passes within this fraction of the
 #: coordinates' size: the floats of an intersection's five values carry a rounding error of a few
@@ -266,6 +278,60 @@ def pentagrid(window, seed: int | None = None, gamma=None) -> tuple[np.ndarray, 
             verts.append(base[:, None, :] + table[flip.astype(np.intp)])
             types.append(np.full(len(kk), 1 if (k - j) in (1, 4) else 0, dtype=np.int8))
     return np.concatenate(types), np.concatenate(verts)
+
+
+def _window_planes() -> tuple[np.ndarray, np.ndarray]:
+    """The pentagons ``W_t = {sum lambda_j zeta^(2j) : 0 <= lambda_j <= 1, sum lambda_j = t}``,
+    ``t = 1..4``, as half-planes ``Re(q conj(n_m)) <= h[t - 1, m]`` on the ten normals ``n_m = exp(i pi m / 5)``."""
+    corners = np.array([c for c in np.ndindex(*(2,) * 5)])
+    image = corners @ np.exp(4j * np.pi * np.arange(5) / 5)
+    normals = np.exp(1j * np.pi * np.arange(10) / 5)
+    support = (image[:, None] * np.conj(normals)).real
+    return normals, np.stack([support[corners.sum(axis=1) == t].max(axis=0) for t in (1, 2, 3, 4)])
+
+
+def pentagrid_of(types, v) -> tuple[np.ndarray, int]:
+    """Offsets ``gamma`` and a shift ``s`` such that the P3 patch ``(types, v)`` moved by ``s`` rhomb
+    edges along x is, tile for tile, the pentagrid of ``gamma`` on the same region (the module
+    docstring's correspondence).
+
+    Raises
+    ------
+    InvalidProblem
+        No open set of offsets draws the patch (it is no patch of a Penrose tiling, or not one
+        of a regular pentagrid).
+    """
+    points = np.unique(np.asarray(v, dtype=np.int64).reshape(-1, 4), axis=0)
+    classes = np.unique(points.sum(axis=1) % 5)
+    free = [s for s in range(5) if not np.isin(-s % 5, classes)]
+    if not free:
+        raise InvalidProblem("the patch's vertices show all five index classes: no pentagrid draws it")
+    s = free[0]
+    moved = points + np.array([s, 0, 0, 0])
+    index = (moved.sum(axis=1) - 1) % 5 + 1  # sum K_i of the lift K = (a_0..a_3, 0) + c (1, 1, 1, 1, 1)
+    star = moved @ np.exp(4j * np.pi * np.arange(4) / 5)  # sum K_i zeta^(2i): the lift's internal point
+    normals, h = _window_planes()
+    # star - Gamma in W_index for every vertex: Re(Gamma conj(n)) >= Re(star conj(n)) - h[index]
+    low = ((star[:, None] * np.conj(normals)).real - h[index - 1]).max(axis=0)
+    corners = []  # the intersection's corners: where two boundary lines meet inside every half-plane
+    for a in range(10):
+        for b in range(a + 1, 10):
+            if a + 5 != b:
+                m = np.array([[normals[a].real, normals[a].imag], [normals[b].real, normals[b].imag]])
+                corners.append(complex(*np.linalg.solve(m, [low[a], low[b]])))
+    corners = np.array(corners)
+    inside = corners[((corners[:, None] * np.conj(normals)).real >= low - 1e-12).all(axis=1)]
+    gamma_star = inside.mean() if len(inside) else 0j
+    if not len(inside) or ((gamma_star * np.conj(normals)).real - low).min() <= 1e-9:
+        raise InvalidProblem("no regular pentagrid draws this patch")
+    return 0.4 * (gamma_star * np.exp(-4j * np.pi * np.arange(5) / 5)).real, s
+
+
+def deflate_rhombs(types, v) -> tuple[np.ndarray, np.ndarray]:
+    """One substitution step of a P3 patch, scaled back to unit edges: rhombs cut into Robinson
+    triangles, deflated, rejoined, and every coordinate multiplied by ``phi``."""
+    t, v = rhombs(*deflate(*_split(types, v)))
+    return t, _times_phi(v)
 
 
 def _split(types, v):
