@@ -1,0 +1,154 @@
+"""Isohedral tilings for design (class notes Part II §7): the ``isohedral`` family.
+
+A problem (:class:`~tilesolve.model.isohedral.IsohedralProblem`) names one of the 93 isohedral
+types, its tiling-vertex parameters, one edge shape per edge class (J free, U mirror-symmetric,
+S symmetric by a half-turn, I straight) and a region; the answer is an
+:class:`~tilesolve.model.isohedral.IsohedralTiling` (the prototile, the translational unit, the
+coloured tiles that meet the region), checked by the independent verifier
+:mod:`tilesolve.verify.isohedral` (the type's template, congruence, a tiling of the torus by
+area and edge matching, the drawing's cover and colours).
+
+Route
+-----
+``template``
+    The type's template at the parameters, the prototile from its edges, the region filled
+    lattice cell by lattice cell (:mod:`tilesolve.constructive.isohedral`).
+
+For a studio: :func:`draw` gives the SVG text of a drawing in one call.
+
+Examples
+--------
+>>> from tilesolve.model.isohedral import EdgeShape, IsohedralProblem
+>>> s = solve(IsohedralProblem(41, edges=(EdgeShape.parse("bezier:0.3,0.2/0.7,-0.2"),) * 2, region=(0, 0, 6, 4)))
+>>> s.status.value, s.method, s.tiling.n_tiles
+('sat', 'template', 48)
+>>> draw("IH16", region=(0, 0, 3, 2)).startswith("<svg")
+True
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Any, Sequence
+
+from tilesolve.errors import InvalidProblem
+from tilesolve.family import Codec, Demo, Family, RunOptions, register
+from tilesolve.family import solve as _solve
+from tilesolve.io.isohedral_json import TILING_FORMAT, VERSIONS
+from tilesolve.model.isohedral import EdgeShape, IsohedralProblem, IsohedralTiling, parse_type
+from tilesolve.model.solution import Solution, Status
+from tilesolve.progress import Progress
+
+__all__ = ["FAMILY", "SOLVERS", "solve", "template", "draw", "problem"]
+
+
+def template(problem: IsohedralProblem, run: RunOptions) -> Solution:
+    """The tiling from the type's template (:func:`tilesolve.constructive.isohedral.layout`)."""
+    from tilesolve.constructive.isohedral import layout
+
+    t0 = time.perf_counter()
+    tiling = layout(problem)
+    return Solution(Status.SAT, tiling, method="template", time_s=time.perf_counter() - t0,
+                    stats={"tiles": tiling.n_tiles, "aspects": int(len(tiling.aspects)),
+                           "outline_points": int(len(tiling.outline))})
+
+
+#: Routes by name.
+SOLVERS = {"template": template}
+
+
+def _verify(problem: IsohedralProblem, tiling) -> list:
+    from tilesolve.verify.dappled import Violation
+    from tilesolve.verify.isohedral import tiling_violations
+
+    if not isinstance(tiling, IsohedralTiling):
+        return [Violation("shape", "the answer is no isohedral tiling")]
+    return tiling_violations(problem, tiling)
+
+
+def solve(problem: IsohedralProblem, *, method: str | Any = "auto", seed: int | None = None,
+          time_limit: float | None = None, progress: Progress | bool = False) -> Solution:
+    """Draw the tiling and verify it (:func:`tilesolve.family.solve` with this family's route).
+
+    The tiling does not depend on the seed; none is recorded (``seed=0`` is passed down).
+    """
+    if not isinstance(problem, IsohedralProblem):
+        raise InvalidProblem(f"expected an IsohedralProblem, got {type(problem).__name__}")
+    return _solve(problem, method, seed=0 if seed is None else seed, time_limit=time_limit, progress=progress)
+
+
+def problem(type: int | str, params: Sequence[float] | None = None,
+            edges: Sequence[str | EdgeShape] | dict | None = None,
+            region: Sequence[float] = (0.0, 0.0, 8.0, 6.0), scale: float = 40.0) -> IsohedralProblem:
+    """An :class:`IsohedralProblem` from plain values: ``edges`` as shapes or their text
+    (``"bezier:0.3,0.2/0.7,-0.2"``), a list (one per edge class) or a dict class -> shape
+    (the others straight)."""
+    number = parse_type(type)
+    from tilesolve.model.isohedral import STRAIGHT, isohedral_type
+
+    n = len(isohedral_type(number).edge_kinds)
+    if isinstance(edges, dict):
+        bad = [k for k in edges if not isinstance(k, int) or not 0 <= k < n]
+        if bad:
+            raise InvalidProblem(f"edge class {bad[0]!r} does not exist: IH{number:02d} has classes 0..{n - 1}")
+        edges = [edges.get(k, STRAIGHT) for k in range(n)]
+    shapes = None if edges is None else tuple(e if isinstance(e, EdgeShape) else EdgeShape.parse(e) for e in edges)
+    return IsohedralProblem(number, None if params is None else tuple(params), shapes, tuple(region), scale)
+
+
+def draw(type: int | str, params: Sequence[float] | None = None, edges: Sequence[str | EdgeShape] | dict | None = None,
+         region: Sequence[float] = (0.0, 0.0, 8.0, 6.0), scale: float = 40.0) -> str:
+    """The SVG text of a verified drawing (the studio's call): see :func:`problem` for the arguments.
+
+    Raises
+    ------
+    InvalidProblem
+        An unknown type, wrong parameters, an edge shape that breaks its constraint, or a tile
+        that crosses itself (one line each).
+    """
+    from tilesolve.io.isohedral_json import svg_text
+
+    p = problem(type, params, edges, region, scale)
+    return svg_text(p, solve(p).tiling)
+
+
+def _read(doc: dict, source: str):
+    from tilesolve.io.isohedral_json import tiling_from_dict
+
+    return tiling_from_dict(doc, source)
+
+
+def _write(problem: IsohedralProblem, sol: Solution) -> dict:
+    from tilesolve.io.isohedral_json import tiling_to_dict
+
+    return tiling_to_dict(problem, sol)
+
+
+def _draw(problem: IsohedralProblem, sol: Solution, path, fmt: str, **_ignored) -> None:
+    """SVG (the prototile in ``<defs>``, a ``<use>`` per tile) or PNG (Pillow)."""
+    from tilesolve.io.isohedral_json import write_png, write_svg
+
+    if not isinstance(sol.tiling, IsohedralTiling):
+        raise InvalidProblem("nothing drawn: the solution holds no isohedral tiling")
+    (write_png if fmt == "png" else write_svg)(path, problem, sol.tiling)
+
+
+DEMOS = (
+    Demo("isohedral-ih41", "an IH41 tiling (translations only) with Bézier edges",
+         lambda: problem(41, edges=["bezier:0.3,0.25/0.6,-0.2", "bezier:0.35,-0.2/0.7,0.2"], region=(0, 0, 8, 6))),
+)
+
+FAMILY = register(Family(
+    name="isohedral",
+    title="isohedral tilings for design: the 93 types IH1..IH93 with edge shapes J, U, S, I "
+          "(class notes Part II §7)",
+    problem_type=IsohedralProblem,
+    routes=SOLVERS,
+    auto=lambda problem: "template",
+    verify=_verify,
+    codecs=(Codec(TILING_FORMAT, VERSIONS, _read, _write),),
+    draw=_draw,
+    demos=DEMOS,
+    commands=("tilesolve.cli.isohedral:isohedral",),
+    route_help={"template": "the type's template (tiling vertices, aspects, translations) and the edge shapes (§7.3-7.4)"},
+))
