@@ -228,28 +228,30 @@ def test_a_symbolic_link_is_followed_not_replaced(tmp_path):
 
 
 # ----------------------------------------------------------------------------- suffixes (issue 22)
-def _output_options() -> list[tuple[str, str, tuple[str, ...]]]:
-    """``(command, option, formats)`` of every option of every command whose type is an output
-    file (:class:`tilesolve.cli.outputs.OutputFile`), found by walking the command tree."""
+def _commands():
+    """``(command words, click command)`` of every command, found by walking the command tree."""
     import click
 
     from tilesolve.cli.group import main_group
-    from tilesolve.cli.outputs import OutputFile
-
-    found = []
 
     def walk(cmd, path):
         if isinstance(cmd, click.Group):
             ctx = click.Context(cmd)
             for name in cmd.list_commands(ctx):
-                walk(cmd.get_command(ctx, name), [*path, name])
-            return
-        for p in cmd.params:
-            if isinstance(p.type, OutputFile):
-                found.append((" ".join(path), p.opts[0], p.type.formats))
+                yield from walk(cmd.get_command(ctx, name), [*path, name])
+        else:
+            yield " ".join(path), cmd
 
-    walk(main_group, [])
-    return found
+    return list(walk(main_group, []))
+
+
+def _output_options() -> list[tuple[str, str, tuple[str, ...]]]:
+    """``(command, option, formats)`` of every option whose type is an output file
+    (:class:`tilesolve.cli.outputs.OutputFile`)."""
+    from tilesolve.cli.outputs import OutputFile
+
+    return [(path, p.opts[0], p.type.formats) for path, cmd in _commands() for p in cmd.params
+            if isinstance(p.type, OutputFile)]
 
 
 OUTPUT_OPTIONS = _output_options()
@@ -260,22 +262,9 @@ def test_every_output_option_is_an_output_file():
     """Each command's every option that names a written file checks its suffix."""
     import click
 
-    from tilesolve.cli.group import main_group
-
     checked = {(c, o) for c, o, _ in OUTPUT_OPTIONS}
-    missing = []
-
-    def walk(cmd, path):
-        if isinstance(cmd, click.Group):
-            ctx = click.Context(cmd)
-            for name in cmd.list_commands(ctx):
-                walk(cmd.get_command(ctx, name), [*path, name])
-            return
-        for p in cmd.params:
-            if isinstance(p, click.Option) and _WRITERS & set(p.opts) and (" ".join(path), p.opts[0]) not in checked:
-                missing.append((" ".join(path), p.opts))
-
-    walk(main_group, [])
+    missing = [(path, p.opts) for path, cmd in _commands() for p in cmd.params
+               if isinstance(p, click.Option) and _WRITERS & set(p.opts) and (path, p.opts[0]) not in checked]
     assert not missing
     assert len(OUTPUT_OPTIONS) >= 30 and {"draw", "tiles", "wall", "wall-lines", "render texture"} <= {
         c for c, _, _ in OUTPUT_OPTIONS}

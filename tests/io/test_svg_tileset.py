@@ -184,7 +184,7 @@ def test_cli_writes_a_parseable_svg(tmp_path, kind, variant, c):
     assert root.tag == f"{SVG}svg"
     ts = TileSet(kind, c, variant=variant)
     assert len(root.findall(f".//{SVG}polygon")) == 4 * ts.n_tiles
-    assert len(root.findall(f".//{SVG}rect")) == ts.n_tiles
+    assert len(root.findall(f".//{SVG}rect")) == ts.n_tiles + 1  # and the background
     labels = [t.text for t in root.iter(f"{SVG}text")][1:]  # the first text is the title
     assert labels == [str(i) for i in ts.indices.tolist()]
     assert [p.name for p in tmp_path.iterdir()] == ["t.svg"]  # no temporary file left

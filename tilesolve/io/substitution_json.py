@@ -38,7 +38,7 @@ from tilesolve.io.jsonio import (
     provenance_to_dict,
     solution_from_provenance,
 )
-from tilesolve.io.svg import PALETTE
+from tilesolve.io.svg import PALETTE, titled_canvas
 from tilesolve.model.solution import Solution
 from tilesolve.model.substitution import GRIDS, Patch, SubstitutionProblem
 
@@ -115,22 +115,17 @@ def _frame(xy: np.ndarray, px: int) -> tuple[float, np.ndarray, np.ndarray]:
 
 def write_patch_svg(path, patch: Patch, *, title: str | None = None, px: int = 800) -> None:
     """An SVG of the patch, ``px`` on its longer side (svgwrite), y up, under an optional title."""
-    import svgwrite
-
     if patch.n_tiles > MAX_SVG_TILES:
         raise InvalidProblem(f"a patch of {patch.n_tiles:,} tiles is too large for SVG (at most "
                              f"{MAX_SVG_TILES:,}); draw it as PNG")
     xy = patch.xy()
     scale, lo, hi = _frame(xy, px)
-    top = 24 if title else 0
-    w, h = (hi - lo) * scale + 4
-    dwg = svgwrite.Drawing(size=(f"{w:.0f}", f"{h + top:.0f}"), profile="tiny", debug=False)
-    if title:
-        dwg.add(dwg.text(title, insert=(4, 16), font_size=12, font_family="sans-serif"))
+    w, h = (hi - lo) * scale
+    dwg, (ox, oy) = titled_canvas(float(w), float(h), title)
     colours = _colours(patch)
     stroke = max(0.3, min(1.0, scale / 20))
     for t, poly in zip(patch.types.tolist(), xy):
-        pts = [(float((x - lo[0]) * scale + 2), float((hi[1] - y) * scale + 2 + top)) for x, y in poly]
+        pts = [(float((x - lo[0]) * scale + ox), float((hi[1] - y) * scale + oy)) for x, y in poly]
         dwg.add(dwg.polygon(pts, fill=colours[t % len(colours)], stroke="#333333", stroke_width=stroke))
     with atomic_write(path) as f:
         f.write(dwg.tostring())

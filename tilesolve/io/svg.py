@@ -18,6 +18,7 @@ True
 from __future__ import annotations
 
 import colorsys
+import math
 import os
 import textwrap
 from typing import TYPE_CHECKING, Iterable, Sequence
@@ -30,7 +31,8 @@ from tilesolve.io.atomic import atomic_write
 if TYPE_CHECKING:  # svgwrite is imported by the functions that draw, not by importing this module
     import svgwrite
 
-__all__ = ["PALETTE", "FREE_COLOUR", "MAX_SVG_CELLS", "tile_colour", "check_svg_size", "tiling_drawing", "svg_string", "write_svg"]
+__all__ = ["PALETTE", "FREE_COLOUR", "MAX_SVG_CELLS", "BACKGROUND", "CAPTION_COLOUR", "tile_colour", "text_width",
+           "canvas", "add_caption", "caption_box", "titled_canvas", "check_svg_size", "tiling_drawing", "svg_string", "write_svg"]
 
 #: Okabe & Ito's colour-blind-safe palette, reordered so that two tiles get blue/orange.
 PALETTE: tuple[str, ...] = (
@@ -48,10 +50,25 @@ FREE_COLOUR = "#F4F4F4"
 #: Largest tiling (cells, before repetition) drawn as SVG; bigger ones belong in a PNG.
 MAX_SVG_CELLS = 250_000
 
+#: Opaque background of every picture (SVG and PNG), so that captions read on any page.
+BACKGROUND = "#FFFFFF"
+#: Colour of captions and legends.
+CAPTION_COLOUR = "#222222"
+
 _TARGET_PX = 720  # longest side of the picture, before the legend
 _MAX_CELL_PX = 28
 _FONT_PX = 12
-_CHAR_PX = 6.8  # average advance of a 12 px sans-serif character, for layout estimates
+_LINE_PX = 16
+#: Advance of the printable ASCII characters (32..126) in DejaVu Sans, the widest common
+#: sans-serif font, in hundredths of an em, rounded up; other characters count 1 em, bold text
+#: 1.27 times as much (DejaVu Sans Bold's widest ratio). Widths estimated from it do not fall
+#: short with the fonts a viewer substitutes for ``sans-serif``.
+_ADVANCE = (
+    32, 41, 46, 84, 64, 96, 78, 28, 40, 40, 50, 84, 32, 37, 32, 34, 64, 64, 64, 64, 64, 64, 64, 64, 64, 64, 34, 34,
+    84, 84, 84, 54, 100, 69, 69, 70, 78, 64, 58, 78, 76, 30, 30, 66, 56, 87, 75, 79, 61, 79, 70, 64, 62, 74, 69, 99,
+    69, 62, 69, 40, 34, 40, 84, 50, 50, 62, 64, 55, 64, 62, 36, 64, 64, 28, 28, 58, 28, 98, 64, 62, 64, 64, 42, 53,
+    40, 64, 60, 82, 60, 60, 53, 64, 34, 64, 84,
+)
 
 
 def tile_colour(tile: int) -> str:
@@ -66,6 +83,57 @@ def tile_colour(tile: int) -> str:
     light = (0.45, 0.62, 0.33)[k % 3]
     r, g, b = colorsys.hls_to_rgb(hue, light, 0.65)
     return "#{:02X}{:02X}{:02X}".format(round(r * 255), round(g * 255), round(b * 255))
+
+
+def text_width(text: str, font_px: float, *, bold: bool = False) -> float:
+    """A width no sans-serif rendering of ``text`` at ``font_px`` exceeds (px; see :data:`_ADVANCE`).
+
+    >>> text_width("tile 10", 12)
+    38.16
+    """
+    ems = sum(_ADVANCE[ord(c) - 32] if 32 <= ord(c) < 127 else 100 for c in text) / 100
+    return round(ems * font_px * (1.27 if bold else 1.0), 2)
+
+
+def canvas(width: float, height: float, *, x: float = 0.0, y: float = 0.0, profile: str = "full") -> svgwrite.Drawing:
+    """A drawing whose view box is ``(x, y, width, height)``, ``width x height`` px, on an
+    opaque :data:`BACKGROUND` (the first shape), so that it reads on a dark page too."""
+    import svgwrite
+
+    dwg = svgwrite.Drawing(size=(f"{width:g}", f"{height:g}"), profile=profile, debug=False)
+    dwg.viewbox(x, y, width, height)
+    dwg.add(dwg.rect((x, y), (width, height), fill=BACKGROUND))
+    return dwg
+
+
+def add_caption(dwg: svgwrite.Drawing, lines: Sequence[str], x: float, y: float, *, font_px: float = _FONT_PX,
+                line_px: float = _LINE_PX) -> float:
+    """Write ``lines`` at ``(x, y)`` (the first line's top), one under the other in
+    :data:`CAPTION_COLOUR`; returns the height they take (``len(lines) * line_px``)."""
+    if lines:
+        g = dwg.add(dwg.g(font_family="sans-serif", font_size=font_px, fill=CAPTION_COLOUR))
+        for i, line in enumerate(lines):
+            g.add(dwg.text(line, insert=(x, y + i * line_px + font_px)))
+    return len(lines) * line_px
+
+
+def caption_box(lines: Sequence[str], font_px: float = _FONT_PX, line_px: float = _LINE_PX) -> tuple[float, float]:
+    """``(width, height)`` that :func:`add_caption` needs for ``lines``."""
+    return max((text_width(s, font_px) for s in lines), default=0.0), len(lines) * line_px
+
+
+def titled_canvas(width: float, height: float, title: str | None,
+                  margin: float = 8.0) -> tuple[svgwrite.Drawing, tuple[float, float]]:
+    """``(drawing, (x, y))``: a canvas (:func:`canvas`) for a ``width x height`` picture under
+    its ``title``, widened to the title's width where the title is wider; the picture goes at
+    ``(x, y)`` (centred), with ``margin`` px all round."""
+    lines = [title] if title else []
+    text_w, text_h = caption_box(lines)
+    head = text_h + 6 if lines else 0.0
+    total_w = max(width, text_w) + 2 * margin
+    dwg = canvas(math.ceil(total_w), math.ceil(height + head + 2 * margin))
+    add_caption(dwg, lines, margin, margin - 2)
+    return dwg, ((total_w - width) / 2, margin + head)
 
 
 def check_svg_size(rows: int, cols: int) -> None:
@@ -175,20 +243,18 @@ def tiling_drawing(
     if repeat > 1:
         lines.append(f"shown {repeat}x{repeat} (dashed lines: seams)")
     lines.extend(notes)
-    swatch, item_w = 14.0, 64.0
-    text_w = max((len(s) for s in lines), default=0) * _CHAR_PX
-    width = max(pic_w, text_w, 4 * item_w) if legend else pic_w
-    per_row = max(1, int(width // item_w))
     shown_tiles = list(range(n_tiles)) + ([-1] if (t < 0).any() else [])
+    labels = ["free" if tile < 0 else f"tile {tile}" for tile in shown_tiles]
+    swatch = 14.0
+    item_w = swatch + 5 + max(text_width(s, _FONT_PX) for s in labels) + 8
+    text_w, text_h = caption_box(lines)
+    width = max(pic_w, text_w, min(4, len(labels)) * item_w) if legend else pic_w
+    per_row = max(1, int(width // item_w))
     swatch_rows = -(-len(shown_tiles) // per_row)
-    legend_h = (swatch_rows * 20 + len(lines) * 16 + 12) if legend else 0
+    legend_h = (swatch_rows * 20 + text_h + 8) if legend else 0
     total_w, total_h = width + 2 * margin, pic_h + legend_h + 2 * margin
 
-    import svgwrite
-
-    dwg = svgwrite.Drawing(size=(f"{total_w:g}", f"{total_h:g}"), profile="full", debug=False)
-    dwg.viewbox(0, 0, total_w, total_h)
-    dwg.add(dwg.rect((0, 0), (total_w, total_h), fill="white"))
+    dwg = canvas(total_w, total_h)
     if title:
         dwg.set_desc(title=title)
 
@@ -229,17 +295,13 @@ def tiling_drawing(
 
     if legend:
         y = margin + pic_h + 14
-        leg = dwg.g(font_family="sans-serif", font_size=_FONT_PX, fill="#222222")
-        for k, tile in enumerate(shown_tiles):
+        leg = dwg.add(dwg.g(font_family="sans-serif", font_size=_FONT_PX, fill=CAPTION_COLOUR))
+        for k, (tile, label) in enumerate(zip(shown_tiles, labels)):
             x = margin + (k % per_row) * item_w
             yy = y + (k // per_row) * 20
             leg.add(dwg.rect((x, yy), (swatch, swatch), fill=tile_colour(tile), stroke="#555555", stroke_width=0.5))
-            leg.add(dwg.text("free" if tile < 0 else f"tile {tile}", insert=(x + swatch + 5, yy + 11.5)))
-        y += swatch_rows * 20 + 12
-        for line in lines:
-            leg.add(dwg.text(line, insert=(margin, y)))
-            y += 16
-        dwg.add(leg)
+            leg.add(dwg.text(label, insert=(x + swatch + 5, yy + 11.5)))
+        add_caption(dwg, lines, margin, y + swatch_rows * 20 - 4)
     return dwg
 
 

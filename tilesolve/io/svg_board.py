@@ -17,11 +17,12 @@
 
 from __future__ import annotations
 
+import math
 import os
 
 import numpy as np
 
-from tilesolve.io.svg import MAX_SVG_CELLS, tile_colour
+from tilesolve.io.svg import MAX_SVG_CELLS, add_caption, canvas, caption_box, tile_colour
 from tilesolve.model.board import E, S, BoardProblem
 from tilesolve.model.window import Window
 
@@ -60,8 +61,6 @@ def brick_ids(problem: BoardProblem, tiling) -> np.ndarray:
 def board_drawing(problem: BoardProblem, tiling, *, title: str | None = None, notes=(), window: Window | None = None):
     """An :class:`svgwrite.Drawing` of ``tiling`` on ``problem.board``; ``window``, where the
     tiling lies in the plane, adds its coordinates to the legend."""
-    import svgwrite
-
     b = problem.board
     t = np.asarray(tiling, dtype=np.int64)
     if b.n_cells > MAX_SVG_CELLS:
@@ -73,8 +72,9 @@ def board_drawing(problem: BoardProblem, tiling, *, title: str | None = None, no
     cell = max(2.0, min(40.0, _PX / max(rows, cols)))
     m = 24.0
     legend = ([title] if title else []) + ([window.caption()] if window is not None else []) + list(notes)
-    W, H = cols * cell + 2 * m, rows * cell + 2 * m + 16 * len(legend)
-    d = svgwrite.Drawing(size=(f"{W:.0f}px", f"{H:.0f}px"), viewBox=f"0 0 {W:.1f} {H:.1f}")
+    text_w, text_h = caption_box(legend)
+    W, H = max(cols * cell, text_w) + 2 * m, rows * cell + 2 * m + text_h
+    d = canvas(math.ceil(W), math.ceil(H))
     pat = d.pattern(id="holes", size=(6, 6), patternUnits="userSpaceOnUse")
     pat.add(d.rect((0, 0), (6, 6), fill="#FFFFFF"))
     pat.add(d.line((0, 6), (6, 0), stroke="#BBBBBB", stroke_width=1))
@@ -112,8 +112,7 @@ def board_drawing(problem: BoardProblem, tiling, *, title: str | None = None, no
                 p1, p2 = corners[leg], corners[(leg + 1) % 4]
                 g.add(d.polygon([p1, p2, (cx, cy)], fill=tile_colour(int(t[a, leg]))))
     _identifications(d, problem, rows, cols, cell, m)
-    for i, line in enumerate(legend):
-        d.add(d.text(line, insert=(m, rows * cell + 2 * m + 12 + 16 * i), font_size=12, font_family="sans-serif"))
+    add_caption(d, legend, m, rows * cell + 2 * m - 2)
     return d
 
 

@@ -21,7 +21,7 @@ import svgwrite
 
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.atomic import atomic_write
-from tilesolve.io.svg import tile_colour
+from tilesolve.io.svg import tile_colour, titled_canvas
 from tilesolve.model.tiles import TileSet
 
 __all__ = ["NOTES_COLOURS", "MAX_SVG_TILES", "colour_of", "packing_drawing", "packing_svg_string", "write_packing_svg"]
@@ -49,13 +49,11 @@ def packing_drawing(grid, kind: str, colors: int, *, colors_v: int | None = None
     ts = TileSet(kind, colors, colors_v)
     a, b, c, d = ts.colors_of(g)
     px = cell or max(6.0, min(48.0, 720.0 / max(rows, cols)))
-    head = 24 if title else 0
-    dwg = svgwrite.Drawing(size=(f"{cols * px:.0f}px", f"{rows * px + head:.0f}px"), profile="full")
-    dwg.viewbox(0, -head, cols * px, rows * px + head)
-    if title:
-        dwg.add(dwg.text(title, insert=(2, -8), font_size=13, font_family="sans-serif"))
-    body = dwg.add(dwg.g(stroke="none"))
-    lines = dwg.g(stroke="#222", stroke_width=max(0.4, px / 40), fill="none")
+    dwg, (ox, oy) = titled_canvas(cols * px, rows * px, title)
+    body = dwg.add(dwg.g(stroke="none", transform=f"translate({ox:g},{oy:g})"))
+    lines = dwg.g(stroke="#222", stroke_width=max(0.4, px / 40), fill="none", transform=f"translate({ox:g},{oy:g})")
+    labels = dwg.g(font_size=px * 0.32, text_anchor="middle", font_family="sans-serif", fill="#000",
+                   font_weight="bold", transform=f"translate({ox:g},{oy:g})")
     for r in range(rows):
         for q in range(cols):
             x0, y0 = q * px, r * px
@@ -70,9 +68,10 @@ def packing_drawing(grid, kind: str, colors: int, *, colors_v: int | None = None
                 body.add(dwg.polygon(pts, fill=colour_of(int(col))))
             lines.add(dwg.rect((x0, y0), (px, px)))
             if indices:
-                dwg.add(dwg.text(str(int(g[r, q])), insert=(xm, ym + px * 0.12), font_size=px * 0.32,
-                                 text_anchor="middle", font_family="sans-serif", fill="#000", font_weight="bold"))
+                labels.add(dwg.text(str(int(g[r, q])), insert=(xm, ym + px * 0.12)))
     dwg.add(lines)
+    if indices:
+        dwg.add(labels)
     return dwg
 
 

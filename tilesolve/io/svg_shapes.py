@@ -14,7 +14,7 @@ import numpy as np
 
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.atomic import atomic_write
-from tilesolve.io.svg import tile_colour
+from tilesolve.io.svg import tile_colour, titled_canvas
 from tilesolve.model.shapes import Grid
 
 __all__ = ["MAX_PICTURE_CELLS", "periodic_rows", "shapes_svg_string", "write_shapes_picture"]
@@ -63,21 +63,15 @@ def _frame(cells):
 def shapes_svg_string(g: Grid, rows, *, colour_by: str = "piece", title: str | None = None) -> str:
     """The SVG text of the pieces ``rows``; ``colour_by`` ``"piece"`` or ``"label"`` (the
     corona level, or the shape)."""
-    import svgwrite
-
     rows = _checked(rows)
     cells, outline = _polygons(g, rows)
     lo, hi = _frame(cells)
-    m = 8.0
-    top = 24.0 if title else 0.0
-    w, h = (hi - lo) * _PX + 2 * m
+    w, h = (hi - lo) * _PX
+    dwg, (ox, oy) = titled_canvas(float(w), float(h), title)
 
     def xy(p):
-        return [(float((x - lo[0]) * _PX + m), float((hi[1] - y) * _PX + m + top)) for x, y in p]
+        return [(float((x - lo[0]) * _PX + ox), float((hi[1] - y) * _PX + oy)) for x, y in p]
 
-    dwg = svgwrite.Drawing(size=(f"{w:.1f}", f"{h + top:.1f}"), profile="full")
-    if title:
-        dwg.add(dwg.text(title, insert=(m, 16), font_size=12, font_family="sans-serif"))
     for piece, label, poly in cells:
         colour = tile_colour(piece if colour_by == "piece" else label)
         dwg.add(dwg.polygon(xy(poly), fill=colour, stroke=colour, stroke_width=0.5))

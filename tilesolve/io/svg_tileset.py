@@ -22,6 +22,7 @@ import svgwrite
 
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.atomic import atomic_write
+from tilesolve.io.svg import titled_canvas
 from tilesolve.io.svg_packing import colour_of
 from tilesolve.model.tiles import TileSet
 
@@ -71,15 +72,11 @@ def tileset_drawing(tiles: TileSet, *, columns: int | None = None, cell: float =
     gap = cell / 5
     label_h = cell * 0.4 if labels else 0.0
     step_x, step_y = cell + gap, cell + label_h + gap
-    head = 24.0 if title else 0.0
-    width, height = columns * step_x + gap, rows * step_y + gap + head
-    dwg = svgwrite.Drawing(size=(f"{width:.0f}px", f"{height:.0f}px"), profile="full")
-    dwg.viewbox(0, -head, width, height)
-    if title:
-        dwg.add(dwg.text(title, insert=(gap, -8), font_size=13, font_family="sans-serif"))
-    body = dwg.add(dwg.g(stroke="none"))
-    lines = dwg.g(stroke="#222", stroke_width=max(0.4, cell / 40), fill="none")
-    text = dwg.g(font_size=cell * 0.3, text_anchor="middle", font_family="sans-serif", fill="#000")
+    dwg, (ox, oy) = titled_canvas(columns * step_x - gap, rows * step_y - gap, title or None)
+    move = f"translate({ox - gap:g},{oy - gap:g})"
+    body = dwg.add(dwg.g(stroke="none", transform=move))
+    lines = dwg.g(stroke="#222", stroke_width=max(0.4, cell / 40), fill="none", transform=move)
+    text = dwg.g(font_size=cell * 0.3, text_anchor="middle", font_family="sans-serif", fill="#000", transform=move)
     for k, (index, colours) in enumerate(zip(tiles.indices.tolist(), tiles.table().tolist())):
         x0 = gap + (k % columns) * step_x
         y0 = gap + (k // columns) * step_y
