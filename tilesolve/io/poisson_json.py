@@ -1,0 +1,198 @@
+"""Poisson disk tile sets and windows as files (class notes §4.3).
+
+``tilesolve/poisson-tiles`` (version 1), a tile set::
+
+    {
+      "format": "tilesolve/poisson-tiles", "version": 1,
+      "colors": 2, "points": 64, "rho": 0.75, "lloyd": 0,   # the problem (C, N, rho, Lloyd steps)
+      "distance": 0.1007...,      # 2 rho r_max(N), for people: readers recompute it
+      "method": "dart", "seed": 1, "stats": {"short": 12},
+      "tiles": {"corner": [[[x, y], ...], ...],   # by colour
+                "hedge": [...],                   # by west * C + east
+                "vedge": [...],                   # by south * C + north
+                "interior": [...]}                # by eq. 2.5 (NE, SE, SW, NW)
+    }
+
+``tilesolve/poisson-window`` (version 1), the points of a window::
+
+    {
+      "format": "tilesolve/poisson-window", "version": 1,
+      "colors": 2, "points": 64, "rho": 0.75, "lloyd": 0,   # the set the tiling used
+      "window": {"x0": 0, "y0": 0, "width": 8, "height": 8, "y_up": true},
+      "tiling": "direct", "set": "complete", "hash": "long", "seed": 1,
+      "distance": 0.1007...,
+      "local": [[x, y], ...]      # points relative to (x0, y0): x0 + x, y0 + y in the plane
+    }
+
+Coordinates are tile units, y north. Writes are deterministic (no timings): the same seed
+gives the same bytes. :func:`write_points` also writes a window as CSV (``x,y`` header) or NPY
+(an ``(n, 2)`` float64 array) of plane coordinates, for windows within ``+-2**31`` where
+float64 keeps them to 1e-6 of a tile; the JSON form keeps any window exact.
+"""
+
+from __future__ import annotations
+
+import io
+import json
+import math
+import os
+from typing import Any
+
+import numpy as np
+
+from tilesolve.errors import InvalidProblem
+from tilesolve.io.atomic import write_bytes_atomic, write_text_atomic
+from tilesolve.io.jsonio import check_document
+from tilesolve.model.poisson import (
+    KINDS,
+    MAX_WINDOW_POINTS,
+    PoissonTilesProblem,
+    PoissonTileSet,
+    PoissonWindow,
+    PoissonWindowProblem,
+)
+from tilesolve.model.solution import Solution, Status
+from tilesolve.model.window import Window
+
+__all__ = ["TILES_FORMAT", "WINDOW_FORMAT", "VERSIONS", "tiles_to_dict", "tiles_from_dict", "window_to_dict",
+           "window_from_dict", "dump", "write_points", "POINT_FORMATS", "FLOAT_RANGE"]
+
+TILES_FORMAT = "tilesolve/poisson-tiles"
+WINDOW_FORMAT = "tilesolve/poisson-window"
+VERSIONS = frozenset({1})
+#: Output formats of a window's points, by file suffix.
+POINT_FORMATS = ("json", "csv", "npy")
+#: CSV and NPY hold plane coordinates: windows within this bound only.
+FLOAT_RANGE = 1 << 31
+
+_PROBLEM = ("colors", "points", "rho", "lloyd")
+_TILES_KEYS = {"format", "version", *_PROBLEM, "distance", "method", "seed", "stats", "tiles"}
+_WINDOW_KEYS = {"format", "version", *_PROBLEM, "window", "tiling", "set", "hash", "seed", "distance", "local"}
+
+
+def _problem(p: PoissonTilesProblem) -> dict:
+    return {"colors": p.colors, "points": p.points, "rho": p.rho, "lloyd": p.lloyd, "distance": p.distance}
+
+
+def tiles_to_dict(problem: PoissonTilesProblem, solution: Solution) -> dict:
+    """The document of a built set (``solution.tiling`` is the :class:`PoissonTileSet`)."""
+    ts = solution.tiling
+    return {"format": TILES_FORMAT, "version": 1, **_problem(problem), "method": solution.method,
+            "seed": solution.seed, "stats": {k: v for k, v in solution.stats.items() if k == "short"},
+            "tiles": {k: [a.tolist() for a in ts.tiles[k]] for k in KINDS}}
+
+
+def _points(value: Any, what: str, source: str, limit: int) -> np.ndarray:
+    if not isinstance(value, list) or len(value) > limit:
+        raise InvalidProblem(f"{source}: {what!r} must be a list of at most {limit:,} [x, y] points")
+    for p in value:
+        if not (isinstance(p, list) and len(p) == 2 and all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                                                             and math.isfinite(v) for v in p)):
+            raise InvalidProblem(f"{source}: {what!r} holds {p!r}, not an [x, y] pair of numbers")
+    return np.array(value, dtype=np.float64).reshape(-1, 2)
+
+
+def _read_problem(doc: dict, source: str) -> PoissonTilesProblem:
+    for key in _PROBLEM:
+        if key not in doc:
+            raise InvalidProblem(f"{source}: missing field {key!r}")
+    try:
+        return PoissonTilesProblem(doc["colors"], doc["points"], doc["rho"], doc["lloyd"])
+    except InvalidProblem as exc:
+        raise InvalidProblem(f"{source}: {exc}") from None
+
+
+def _seed(doc: dict, source: str):
+    seed = doc.get("seed")
+    if seed is not None and (isinstance(seed, bool) or not isinstance(seed, int) or not 0 <= seed < 2**63):
+        raise InvalidProblem(f"{source}: 'seed' must be an integer from 0 to 2**63 - 1, got {seed!r}")
+    return seed
+
+
+def tiles_from_dict(doc: dict, source: str = "<document>") -> tuple[PoissonTilesProblem, Solution]:
+    """Read :func:`tiles_to_dict`'s document; one-line errors naming ``source`` and the field."""
+    check_document(doc, source, {TILES_FORMAT: VERSIONS}, fields=_TILES_KEYS, required=("tiles",))
+    problem = _read_problem(doc, source)
+    tiles = doc["tiles"]
+    if not isinstance(tiles, dict) or set(tiles) != set(KINDS):
+        raise InvalidProblem(f"{source}: 'tiles' must have the fields {', '.join(KINDS)}")
+    c, n = problem.colors, problem.points
+    want = {"corner": c, "hedge": c * c, "vedge": c * c, "interior": c**4}
+    arrays = {}
+    for kind in KINDS:
+        if not isinstance(tiles[kind], list) or len(tiles[kind]) != want[kind]:
+            raise InvalidProblem(f"{source}: a set over {c} colours has {want[kind]} {kind} tiles")
+        arrays[kind] = [_points(t, f"tiles.{kind}[{i}]", source, 4 * n + 16) for i, t in enumerate(tiles[kind])]
+    stats = doc.get("stats", {})
+    if not isinstance(stats, dict):
+        raise InvalidProblem(f"{source}: 'stats' must be an object")
+    seed = _seed(doc, source)
+    ts = PoissonTileSet(problem, arrays, seed=seed, stats=dict(stats))
+    method = doc.get("method", "dart")
+    return problem, Solution(Status.SAT, ts, method=method if isinstance(method, str) else "dart", seed=seed,
+                             stats=dict(stats))
+
+
+def window_to_dict(problem: PoissonWindowProblem, solution: Solution) -> dict:
+    """The document of a window (``solution.tiling`` is the :class:`PoissonWindow`)."""
+    w = solution.tiling
+    return {"format": WINDOW_FORMAT, "version": 1, **_problem(problem.tileset.problem),
+            "window": problem.window.to_dict(), "tiling": problem.tiling, "set": problem.variant,
+            "hash": problem.hash, "seed": solution.seed, "local": w.local}
+
+
+def window_from_dict(doc: dict, source: str = "<document>") -> tuple[PoissonTilesProblem, Solution]:
+    """Read :func:`window_to_dict`'s document: the set's problem, and the window as the answer
+    (checked against the problem's distance by :func:`tilesolve.verify.poisson.point_violations`)."""
+    check_document(doc, source, {WINDOW_FORMAT: VERSIONS}, fields=_WINDOW_KEYS, required=("window", "local"))
+    problem = _read_problem(doc, source)
+    window = Window.from_dict(doc["window"])
+    local = _points(doc["local"], "local", source, MAX_WINDOW_POINTS)
+    seed = _seed(doc, source)
+    return problem, Solution(Status.SAT, PoissonWindow(window, local, problem.distance),
+                             method=str(doc.get("tiling", "direct")), seed=seed, window=window)
+
+
+def _line(rows) -> str:
+    return "[" + ", ".join(f"[{x!r}, {y!r}]" for x, y in rows) + "]"
+
+
+def dump(doc: dict) -> str:
+    """JSON text: a tile's points on one line, a window's one point a line (floats written to
+    round-trip exactly)."""
+    head = {k: v for k, v in doc.items() if k not in ("tiles", "local")}
+    text = json.dumps(head, indent=2)[:-2]
+    if "tiles" in doc:
+        kinds = [f'    "{k}": [\n' + ",\n".join("      " + _line(t) for t in doc["tiles"][k]) + "\n    ]"
+                 for k in KINDS]
+        text += ',\n  "tiles": {\n' + ",\n".join(kinds) + "\n  }"
+    if "local" in doc:
+        rows = np.asarray(doc["local"]).tolist()
+        text += ',\n  "local": [' + ",".join(f"\n    [{x!r}, {y!r}]" for x, y in rows) + ("\n  ]" if rows else "]")
+    return text + "\n}\n"
+
+
+def write_points(path: str | os.PathLike, problem: PoissonWindowProblem, solution: Solution) -> None:
+    """Write a window's points; the format follows the suffix: ``.json`` (:func:`window_to_dict`),
+    ``.csv`` or ``.npy`` (plane coordinates, windows within :data:`FLOAT_RANGE` only)."""
+    suffix = os.fspath(path).rsplit(".", 1)[-1].lower()
+    if suffix not in POINT_FORMATS:
+        raise InvalidProblem(f"cannot tell the format of {os.fspath(path)!r}: use .json, .csv or .npy")
+    w = solution.tiling
+    if suffix == "json":
+        write_text_atomic(path, dump(window_to_dict(problem, solution)))
+        return
+    win = w.window
+    if max(abs(win.x0), abs(win.y0), abs(win.x0 + win.width), abs(win.y0 + win.height)) > FLOAT_RANGE:
+        raise InvalidProblem(f"the window lies beyond +-2**31, where {suffix.upper()} plane coordinates lose "
+                             "precision: write .json (points relative to the window's corner)")
+    pts = w.absolute()
+    if suffix == "npy":
+        buf = io.BytesIO()
+        np.save(buf, pts)
+        write_bytes_atomic(path, buf.getvalue())
+    else:
+        buf = io.StringIO()
+        buf.write("x,y\n")
+        np.savetxt(buf, pts, fmt="%.17g", delimiter=",")
+        write_text_atomic(path, buf.getvalue())

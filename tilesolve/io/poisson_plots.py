@@ -1,0 +1,146 @@
+"""Pictures of Poisson disk windows and of their spectra (class notes §4.2.2, §4.3).
+
+* :func:`write_points_picture`: the points of a window as dots (SVG with svgwrite, PNG with
+  Pillow), faint tile borders, a caption with the window and the relative radius.
+* :func:`write_spectrum_plot`: radially averaged power and anisotropy (Ulichney 1987) of
+  several point sets against frequency, one line each, as SVG or PNG.
+
+>>> import numpy as np
+>>> from tilesolve.model.window import Window
+>>> text = points_svg(np.array([[0.5, 0.5]]), Window(0, 0, 1, 1), 0.1, "one point")
+>>> text.startswith("<svg") and "one point" in text
+True
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Sequence
+
+import numpy as np
+
+from tilesolve.errors import InvalidProblem
+from tilesolve.io.atomic import atomic_write
+from tilesolve.model.window import Window
+
+__all__ = ["points_svg", "write_points_picture", "write_spectrum_plot", "MAX_PICTURE_POINTS"]
+
+#: Most points a picture draws (an SVG of more is too slow to open).
+MAX_PICTURE_POINTS = 200_000
+_SERIES = ("#0072B2", "#D55E00", "#009E73", "#CC79A7")
+
+
+def _check(n: int) -> None:
+    if n > MAX_PICTURE_POINTS:
+        raise InvalidProblem(f"a picture draws at most {MAX_PICTURE_POINTS:,} points, the window has {n:,}: "
+                             "draw a smaller window")
+
+
+def points_svg(local: np.ndarray, window: Window, distance: float, caption: str, *, px: float | None = None) -> str:
+    """SVG text of the points, tile units scaled to ``px`` pixels (about 640 pixels wide)."""
+    import svgwrite
+
+    _check(len(local))
+    px = px or max(4.0, 640.0 / max(window.width, window.height))
+    w, h = window.width * px, window.height * px
+    dwg = svgwrite.Drawing(size=(f"{w:.0f}", f"{h + 24:.0f}"), profile="full", debug=False)
+    dwg.add(dwg.rect((0, 0), (w, h + 24), fill="white"))
+    grid = dwg.g(stroke="#cccccc", stroke_width=0.5)
+    for i in range(window.width + 1):
+        grid.add(dwg.line((i * px, 0), (i * px, h)))
+    for j in range(window.height + 1):
+        grid.add(dwg.line((0, j * px), (w, j * px)))
+    dwg.add(grid)
+    dots = dwg.g(fill="#0072B2")
+    r = max(0.6, distance * px / 4)
+    for x, y in local:
+        dots.add(dwg.circle((round(x * px, 2), round(h - y * px, 2)), round(r, 2)))
+    dwg.add(dots)
+    dwg.add(dwg.text(caption, insert=(4, h + 17), font_size="12px", font_family="sans-serif", fill="#333333"))
+    return dwg.tostring()
+
+
+def write_points_picture(path: str | os.PathLike, local: np.ndarray, window: Window, distance: float,
+                         caption: str, fmt: str) -> None:
+    """The window's points as ``fmt`` (``"svg"`` or ``"png"``); y grows upwards in the picture."""
+    if fmt == "svg":
+        text = points_svg(local, window, distance, caption)
+        with atomic_write(path) as f:
+            f.write(text)
+        return
+    from PIL import Image, ImageDraw
+
+    _check(len(local))
+    px = max(4.0, 1024.0 / max(window.width, window.height))
+    w, h = int(window.width * px), int(window.height * px)
+    img = Image.new("RGB", (w, h + 20), "white")
+    draw = ImageDraw.Draw(img)
+    for i in range(window.width + 1):
+        draw.line([(i * px, 0), (i * px, h)], fill=(220, 220, 220))
+    for j in range(window.height + 1):
+        draw.line([(0, j * px), (w, j * px)], fill=(220, 220, 220))
+    r = max(1.0, distance * px / 4)
+    for x, y in local:
+        cx, cy = x * px, h - y * px
+        draw.ellipse([cx - r, cy - r, cx + r, cy + r], fill=(0, 114, 178))
+    draw.text((4, h + 4), caption, fill=(51, 51, 51))
+    with atomic_write(path, "wb", encoding=None) as f:
+        img.save(f, format="PNG")
+
+
+def _layout(series, key: int, lo: float | None, hi: float | None):
+    ys = np.concatenate([np.asarray(s[key]) for s in series])
+    ys = ys[np.isfinite(ys)]
+    return (lo if lo is not None else float(ys.min())), (hi if hi is not None else float(ys.max()) * 1.05)
+
+
+def write_spectrum_plot(path: str | os.PathLike, series: Sequence[tuple[str, np.ndarray, np.ndarray, np.ndarray]],
+                        title: str, fmt: str) -> None:
+    """Two panels (radial power, anisotropy in dB) of ``series``: ``(label, frequency, power,
+    anisotropy)`` each; as ``fmt`` (``"svg"`` or ``"png"``)."""
+    W, H, M = 720, 260, 50
+    panels = [("radial power", 1, 0.0, None), ("anisotropy (dB)", 2, -10.0, 10.0)]
+    fmax = max(float(np.max(s[1])) for s in series)
+    lines, texts, axes = [], [(M, 20, title)], []
+    for p, (name, key, lo, hi) in enumerate(panels):
+        lo, hi = _layout(series, key + 1, lo, hi)
+        top = 40 + p * (H + 40)
+        axes.append((M, top, W - 20, top + H))
+        texts += [(M + 4, top + 14, name), (M - 46, top + 10, f"{hi:.3g}"), (M - 46, top + H, f"{lo:.3g}")]
+        for k, s in enumerate(series):
+            f, y = np.asarray(s[1]), np.clip(np.asarray(s[key + 1]), lo, hi)
+            xs = M + f / fmax * (W - 20 - M)
+            ys = top + H - (y - lo) / (hi - lo or 1) * H
+            lines.append((_SERIES[k % len(_SERIES)], list(zip(xs.tolist(), ys.tolist()))))
+            if p == 0:
+                texts.append((W - 260, top + 16 + 14 * k, f"— {s[0]}", _SERIES[k % len(_SERIES)]))
+    bottom = 40 + 2 * (H + 40)
+    texts.append((M, bottom - 16, f"frequency (cycles per tile side), 0 .. {fmax:.3g}"))
+    if fmt == "svg":
+        import svgwrite
+
+        dwg = svgwrite.Drawing(size=(W, bottom), profile="full", debug=False)
+        dwg.add(dwg.rect((0, 0), (W, bottom), fill="white"))
+        for x0, y0, x1, y1 in axes:
+            dwg.add(dwg.rect((x0, y0), (x1 - x0, y1 - y0), fill="none", stroke="#999999"))
+        for colour, pts in lines:
+            dwg.add(dwg.polyline([(round(x, 2), round(y, 2)) for x, y in pts], fill="none", stroke=colour,
+                                 stroke_width=1.2))
+        for t in texts:
+            dwg.add(dwg.text(t[2], insert=(t[0], t[1]), font_size="12px", font_family="sans-serif",
+                             fill=t[3] if len(t) > 3 else "#333333"))
+        with atomic_write(path) as fh:
+            fh.write(dwg.tostring())
+        return
+    from PIL import Image, ImageColor, ImageDraw
+
+    img = Image.new("RGB", (W, bottom), "white")
+    draw = ImageDraw.Draw(img)
+    for x0, y0, x1, y1 in axes:
+        draw.rectangle([x0, y0, x1, y1], outline=(153, 153, 153))
+    for colour, pts in lines:
+        draw.line(pts, fill=ImageColor.getrgb(colour), width=1)
+    for t in texts:
+        draw.text((t[0], t[1] - 11), t[2].replace("—", "-"), fill=ImageColor.getrgb(t[3]) if len(t) > 3 else (51, 51, 51))
+    with atomic_write(path, "wb", encoding=None) as fh:
+        img.save(fh, format="PNG")

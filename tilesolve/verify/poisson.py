@@ -1,0 +1,174 @@
+"""Independent checks and measures of Poisson disk distributions (class notes §4.2, §4.3).
+
+Written from the definitions, sharing no code with the builder
+(:mod:`tilesolve.constructive.poisson`):
+
+* :func:`point_violations`: a point set is a Poisson disk distribution at distance ``d`` when
+  no two points are closer than ``d`` (§4.2.1); a KD-tree (``scipy.spatial.cKDTree``) finds
+  every closer pair in any window. Points must also lie in their window.
+* :func:`tileset_violations`: every tile's points lie in its modified region (§4.3, figure
+  4.3(b); :mod:`tilesolve.model.poisson`), and the tiles of *every* 2 x 2 block of cells are a
+  Poisson disk distribution: any two points closer than ``d < 1/2`` lie in a common 2 x 2
+  block, so checking all ``C^9`` colourings of its 3 x 3 lattice points checks every tiling.
+  Sets with more than ``max_blocks`` colourings are checked on that many random ones.
+* :func:`relative_radius` (eq. 4.2-4.3) and :func:`radial_spectrum` (the periodogram, its
+  radial average and anisotropy, Ulichney 1987; §4.2.2).
+
+>>> import numpy as np
+>>> pts = np.array([[0.1, 0.1], [0.3, 0.1], [0.35, 0.12]])
+>>> [v.message for v in point_violations(pts, 0.1, 1, 1)]
+['points 1 and 2 are 0.05385 apart, closer than 0.1']
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from tilesolve.model.poisson import PoissonTileSet, r_max
+from tilesolve.verify.dappled import Violation
+
+__all__ = ["point_violations", "tileset_violations", "min_distance", "relative_radius", "radial_spectrum"]
+
+#: Violations listed at most (the count is always given).
+MAX_LISTED = 20
+
+
+def _close_pairs(points: np.ndarray, distance: float) -> np.ndarray:
+    from scipy.spatial import cKDTree
+
+    if len(points) < 2:
+        return np.zeros((0, 2), np.int64)
+    pairs = cKDTree(points).query_pairs(np.nextafter(distance, 0), output_type="ndarray")
+    return pairs[np.lexsort((pairs[:, 1], pairs[:, 0]))]
+
+
+def point_violations(points, distance: float, width: float, height: float) -> list[Violation]:
+    """Every way ``points`` (relative to the window's bottom-left corner) fail to be a Poisson
+    disk distribution at ``distance`` inside the ``width x height`` window."""
+    pts = np.asarray(points, dtype=np.float64)
+    if pts.ndim != 2 or (len(pts) and pts.shape[1] != 2):
+        return [Violation("shape", f"points must be an (n, 2) array, got shape {pts.shape}")]
+    pts = pts.reshape(-1, 2)
+    if not np.isfinite(pts).all():
+        return [Violation("shape", "points must be finite numbers")]
+    out = []
+    outside = np.flatnonzero((pts[:, 0] < 0) | (pts[:, 0] >= width) | (pts[:, 1] < 0) | (pts[:, 1] >= height))
+    out += [Violation("window", f"point {i} at ({pts[i, 0]:.6g}, {pts[i, 1]:.6g}) lies outside the window")
+            for i in outside[:MAX_LISTED]]
+    pairs = _close_pairs(pts, distance)
+    for i, j in pairs[:MAX_LISTED]:
+        gap = float(np.hypot(*(pts[i] - pts[j])))
+        out.append(Violation("distance", f"points {i} and {j} are {gap:.4g} apart, closer than {distance:.6g}"))
+    if len(pairs) > MAX_LISTED:
+        out.append(Violation("distance", f"{len(pairs):,} pairs in all are closer than {distance:.6g}"))
+    return out
+
+
+def min_distance(points) -> float:
+    """The least distance between two of ``points`` (``inf`` for fewer than two)."""
+    from scipy.spatial import cKDTree
+
+    pts = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+    if len(pts) < 2:
+        return math.inf
+    d, _ = cKDTree(pts).query(pts, k=2)
+    return float(d[:, 1].min())
+
+
+def relative_radius(points, area: float) -> float:
+    """``rho = r / r_max`` (eq. 4.3) of ``points`` over ``area``: half the least distance over
+    the largest radius of that many points a unit area (eq. 4.2, scaled to the area)."""
+    n = len(points)
+    if n < 2:
+        return 0.0
+    return (min_distance(points) / 2) / (r_max(n / area))
+
+
+def _regions(ts: PoissonTileSet):
+    """``kind -> (x0, x1, y0, y1, [excluded boxes])`` of the modified regions (§4.3)."""
+    d, a = ts.problem.distance, ts.problem.corner_half
+    corners = [(-a, a, -a, a), (1 - a, 1 + a, -a, a), (1 - a, 1 + a, 1 - a, 1 + a), (-a, a, 1 - a, 1 + a)]
+    return {"corner": (-a, a, -a, a, []), "hedge": (a, 1 - a, -d, d, []), "vedge": (-d, d, a, 1 - a, []),
+            "interior": (d, 1 - d, d, 1 - d, corners)}
+
+
+def _block(ts: PoissonTileSet, colors: np.ndarray) -> np.ndarray:
+    """The points of the 2 x 2 cells ``[0, 2)^2`` whose lattice ``(i, j)`` has colour ``colors[j, i]``."""
+    c, t = ts.problem.colors, ts.tiles
+    parts = []
+    for j in range(3):
+        for i in range(3):
+            parts.append(t["corner"][colors[j, i]] + (i, j))
+            if i < 2:
+                parts.append(t["hedge"][colors[j, i] * c + colors[j, i + 1]] + (i, j))
+            if j < 2:
+                parts.append(t["vedge"][colors[j, i] * c + colors[j + 1, i]] + (i, j))
+            if i < 2 and j < 2:
+                ne, se, sw, nw = colors[j + 1, i + 1], colors[j, i + 1], colors[j, i], colors[j + 1, i]
+                parts.append(t["interior"][((ne * c + se) * c + sw) * c + nw] + (i, j))
+    return np.concatenate(parts)
+
+
+def tileset_violations(ts: PoissonTileSet, *, max_blocks: int = 4096, seed: int = 0) -> list[Violation]:
+    """Every way the tile set fails: a point outside its region, or two points of some tiling
+    closer than the set's distance (see the module docstring)."""
+    if not isinstance(ts, PoissonTileSet):
+        return [Violation("shape", "the answer is no Poisson tile set")]
+    out = []
+    for kind, (x0, x1, y0, y1, holes) in _regions(ts).items():
+        for k, pts in enumerate(ts.tiles[kind]):
+            bad = (pts[:, 0] < x0) | (pts[:, 0] >= x1) | (pts[:, 1] < y0) | (pts[:, 1] >= y1)
+            for hx0, hx1, hy0, hy1 in holes:
+                bad |= (pts[:, 0] >= hx0) & (pts[:, 0] < hx1) & (pts[:, 1] >= hy0) & (pts[:, 1] < hy1)
+            if not np.isfinite(pts).all() or bad.any():
+                out.append(Violation("region", f"{kind} tile {k}: {int(bad.sum())} points outside its region"))
+    if out:
+        return out[:MAX_LISTED]
+    c = ts.problem.colors
+    n_blocks = c**9
+    if n_blocks <= max_blocks:
+        colourings = (np.arange(n_blocks)[:, None] // c ** np.arange(9)[None, :]) % c
+    else:
+        colourings = np.random.default_rng(seed).integers(c, size=(max_blocks, 9))
+    for col in colourings:
+        pts = _block(ts, col.reshape(3, 3))
+        pairs = _close_pairs(pts, ts.problem.distance)
+        if len(pairs):
+            i, j = pairs[0]
+            gap = float(np.hypot(*(pts[i] - pts[j])))
+            out.append(Violation("distance", f"lattice colours {col.tolist()}: two points {gap:.4g} apart, closer "
+                                             f"than {ts.problem.distance:.6g}"))
+            if len(out) >= MAX_LISTED:
+                break
+    return out
+
+
+def radial_spectrum(points, side: float, *, k_max: int = 64) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Radially averaged power spectrum and anisotropy of ``points`` in ``[0, side)^2`` (§4.2.2).
+
+    The periodogram ``P(k) = |sum_j exp(-2 pi i k . x_j / side)|^2 / n`` over integer ``k``
+    with ``|k_x|, |k_y| <= k_max``, averaged over annuli of width 1.
+
+    Returns
+    -------
+    (frequency, power, anisotropy)
+        ``frequency`` in cycles per unit length, ``power`` the annulus mean (1 for white noise),
+        ``anisotropy`` ``10 log10(var / mean^2)`` in dB (about 0 dB for isotropic noise).
+    """
+    pts = np.asarray(points, dtype=np.float64).reshape(-1, 2)
+    n = len(pts)
+    k = np.arange(-k_max, k_max + 1)
+    ex = np.exp(-2j * np.pi * np.outer(pts[:, 0] / side, k))
+    ey = np.exp(-2j * np.pi * np.outer(pts[:, 1] / side, k))
+    power = np.abs(ex.T @ ey) ** 2 / max(n, 1)
+    kx, ky = np.meshgrid(k, k, indexing="ij")
+    ring = np.rint(np.hypot(kx, ky)).astype(np.int64).ravel()
+    p = power.ravel()
+    keep = (ring >= 1) & (ring <= k_max)
+    counts = np.bincount(ring[keep], minlength=k_max + 1)[1:]
+    mean = np.bincount(ring[keep], p[keep], minlength=k_max + 1)[1:] / counts
+    sq = np.bincount(ring[keep], p[keep] ** 2, minlength=k_max + 1)[1:] / counts
+    var = np.maximum(sq - mean**2, 1e-300) * counts / np.maximum(counts - 1, 1)
+    return np.arange(1, k_max + 1) / side, mean, 10 * np.log10(var / np.maximum(mean, 1e-300) ** 2)
