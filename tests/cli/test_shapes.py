@@ -44,6 +44,24 @@ def test_heesch_report_and_its_refutation_are_re_checked(tmp_path):
     assert run("verify", "bad.json", cwd=tmp_path).returncode == 1
 
 
+@pytest.mark.slow
+def test_heesch_with_holes_in_the_outer_corona(tmp_path):
+    # a 7-omino with H_c = 0 and H_h = 1 (heesch-sat's -hh reports the same pair)
+    shape = "1,-2 1,-1 0,0 1,0 2,0 3,0 1,1"
+    hc = run("shapes", "heesch", "--shape", shape, "-o", "hc.json", cwd=tmp_path)
+    assert hc.returncode == 0 and "Heesch number H_c = 0" in hc.stderr, hc.stderr
+    hh = run("shapes", "heesch", "--shape", shape, "--holes", "-o", "hh.json", "--proof-dir", "pd", cwd=tmp_path)
+    assert hh.returncode == 0 and "Heesch number H_h = 1" in hh.stderr, hh.stderr
+    doc = json.loads((tmp_path / "hh.json").read_text())
+    assert doc["report"]["heesch"] == 1 and doc["report"]["holes"] is True
+    v = run("verify", "hh.json", "--proof-dir", "pd", cwd=tmp_path)
+    assert v.returncode == 0 and "1 refutation(s) re-checked" in v.stdout, v.stdout
+    doc["report"]["holes"] = False  # the H_h patch has a hole: as an H_c patch it is refused
+    (tmp_path / "bad.json").write_text(json.dumps(doc))
+    bad = run("verify", "bad.json", cwd=tmp_path)
+    assert bad.returncode == 1 and "hole" in bad.stdout + bad.stderr
+
+
 def test_census_prints_its_table_and_total(tmp_path):
     p = run("shapes", "census", "--grid", "omino", "--size", "4", "--workers", "1", "-o", "c.json", cwd=tmp_path)
     assert p.returncode == 0 and p.stdout.strip().splitlines()[-1] == "5 shapes"
@@ -56,6 +74,7 @@ def test_census_prints_its_table_and_total(tmp_path):
     (["tile", "--shape", "##", "--region", "3by3"], "WxH"),
     (["tile", "--shape", "#" * 19 + "/#", "--torus", "140x140"], "about .* literals"),
     (["tile", "--region", "2x2"], "at least one shape"),
+    (["tile", "--shape", "X-/XX", "--region", "2x2"], "one of '#', 'X', 'x', '\\*', 'o' .* got '-' in row 1"),
     (["heesch", "--shape", "##", "--shape", "#"], "one shape"),
     (["list", "--grid", "omino", "--size", "12"], "sizes 1..11"),
 ])

@@ -23,7 +23,8 @@ _GRIDS = click.Choice(["omino", "hex", "iamond"])
 
 SHAPE_HELP = """\b
 Shapes (--shape, repeatable):
-  'XX/X.'            ASCII art, rows top first, '/' between rows ('X' or '#' a cell, '.' none)
+  'XX/X.'            ASCII art, rows top first, '/' between rows ('X', 'x', '#', '*' or 'o' a
+                     cell, '.' none)
   '0,0 1,0 0,1'      cell coordinates x,y (spaces or ';' between cells)
 Cells: omino (x, y) unit squares; hex axial (q, r) (each row drawn half a cell right of the
 row below); iamond 3x the triangle's centroid in axial coordinates (up (3a+1, 3b+1), down
@@ -104,7 +105,7 @@ def shapes() -> None:
 @click.option("--region", default=None, metavar="WxH",
               help="Tile the W x H parallelogram of translation cells (a rectangle of squares).")
 @click.option("--mask", type=click.Path(dir_okay=False), default=None, metavar="FILE",
-              help="Tile the region drawn as ASCII art in FILE (cells '#').")
+              help="Tile the region drawn as ASCII art in FILE (a cell 'X' or '#', none '.').")
 @click.option("--torus", default=None, metavar="WxH", help="Tile the torus with periods (W, 0) and (0, H).")
 @_answer_options
 @click.pass_context

@@ -331,7 +331,8 @@ def parse_ascii(text: str, grid_name: str) -> Polyform:
                 else:
                     cells.append((col, -row))
             elif ch not in ". ":
-                raise InvalidProblem(f"ASCII art uses '#' for cells and '.' for others, got {ch!r} in row {row + 1}")
+                raise InvalidProblem(f"ASCII art marks a cell with one of '#', 'X', 'x', '*', 'o' and no cell with "
+                                     f"'.' or a space, got {ch!r} in row {row + 1}")
     return Polyform(grid_name, tuple(cells))
 
 
