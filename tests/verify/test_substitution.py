@@ -91,3 +91,44 @@ def test_rep_tile_corruptions():
     s = R.tiles("sphinx", 2)
     assert reptile_violations("sphinx", 2, s) == []
     assert kinds(reptile_violations("sphinx", 2, np.concatenate([s, s[:1]]))) == {"overlap"}
+
+
+def second_sheet(inner: float, outer: float, x: float = 0):
+    """A disk of radius 10 of a pentagrid tiling and, over it, the ring ``inner < r < outer`` around
+    ``(x, 0)`` of the same tiling moved by 5 along x: the two sheets share no vertex (a vertex ``p`` of both would
+    put two points ``5`` apart in the pentagon ``p* - Gamma`` must lie in), so no edge either."""
+    t, v = P.pentagrid((-30, -30, 60, 60), seed=1)
+    c = P.zeta_xy(v).mean(axis=1)
+    disk = np.hypot(c[:, 0], c[:, 1]) < 10
+    r = np.hypot(c[:, 0] + 5 - x, c[:, 1])
+    ring = (r > inner) & (r < outer)
+    return np.concatenate([t[disk], t[ring]]), np.concatenate([v[disk], v[ring] + np.array([5, 0, 0, 0])])
+
+
+def test_a_second_sheet_far_from_any_shared_edge_is_an_overlap():
+    """A disk with a ring lying over it, no edge or vertex in common: V - E + F = 1 + 0, every edge and
+    vertex locally flat, so checks 1-5 passed this file (the verifier before check 6 called it valid).
+    Check 6 finds the boundary in three curves and the points where the sheets lie over each other."""
+    types, v = second_sheet(5, 14)
+    assert penrose_violations("p3", types[:386], v[:386]) == []  # the disk alone
+    out = penrose_violations("p3", types, v)
+    assert kinds(out) == {"gap", "overlap"}
+    assert any("3 separate curves" in x.message for x in out)
+    assert any("lie over one point" in x.message for x in out)
+
+
+def test_sheets_whose_boundaries_cross_are_an_overlap():
+    types, v = second_sheet(3, 9, x=4)  # the ring's outer edge crosses the disk's
+    out = penrose_violations("p3", types, v)
+    assert out and all("cross or touch" in x.message or "separate curves" in x.message for x in out), out[:3]
+    assert any("cross or touch" in x.message for x in out)
+
+
+@pytest.mark.parametrize("kind", ["p3", "p2"])
+def test_windows_cut_at_a_vertex_stay_one_sheet(kind):
+    """Windows whose edge leaves tiles joined at a single vertex pass check 6 (several seeds)."""
+    for seed in range(1, 6):
+        patch = P.pentagrid((-7, -5, 14, 10), seed=seed)
+        if kind == "p2":
+            patch = P.p2_from_p3(*patch)
+        assert penrose_violations(kind, *patch) == []

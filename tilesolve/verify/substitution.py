@@ -18,12 +18,22 @@ Penrose patches (:func:`penrose_violations`)
        the tail (kite) or away from the reflex vertex (dart).
     4. *No overlap and no gap around a vertex.* The tile angles at a vertex sum to at most
        360 degrees, and to exactly 360 at an interior vertex (all its edges shared).
-    5. *One piece without holes.* ``V - E + F = 1`` (a hole lowers it).
+    5. *No holes.* ``V - E + F = 1`` (a hole lowers it).
+    6. *One sheet, one piece.* The edges that only one tile runs (the boundary) meet only at
+       common endpoints (none within 1e-3 of another elsewhere, none lying along another); the
+       boundary is connected; and a point just inside each boundary edge (1e-4 from its
+       midpoint) lies in exactly one tile (a spatial grid finds the tiles near it).
 
-    Checks 2-5 make the patch a disk laid flat around every edge and vertex; a disk that
-    winds over itself far from any shared edge (two sheets) is not excluded by them. The
-    generators' patches are windows or suns of unit tiles, where that cannot arise; a file
-    from elsewhere is checked locally only.
+    Why that excludes every overlap, even far from any shared edge: by checks 2 and 4 the tiles
+    cover a point ``x`` (off the edges) ``w(x)`` times, where ``w`` is the winding number of the
+    boundary around ``x`` (the tiles' boundaries sum to the boundary: inner edges cancel). ``w``
+    is constant on each face of the boundary, which is a plane graph by check 6, and drops by
+    exactly 1 across each boundary edge, from its tile's side. A face of largest ``w`` lies on
+    the tile's side of each of its edges, so the point just inside such an edge lies in ``w``
+    tiles: check 6 makes ``w <= 1``, no overlap. The patch is then a plane region whose boundary
+    is connected, so one piece, and without holes by check 5: a disk (joined at single
+    vertices, perhaps, where a window's edge cuts it). Checks 1-5 alone let a second sheet lie
+    over the first with no edge or vertex in common (tests/verify/test_substitution.py).
 
 Rep-tile patches (:func:`reptile_violations`)
     1. Every tile is congruent to the prototile (its edge vectors are the prototile's under a
@@ -170,10 +180,96 @@ def penrose_violations(kind: str, types, vertices) -> list[Violation]:
     for u in np.flatnonzero(~on_boundary & (total != 10))[:20]:
         out.append(Violation("gap", f"the tiles around interior vertex {v.reshape(-1, 4)[np.flatnonzero(vkeys == u)[0]].tolist()}"
                                     f" fill {36 * total[u]} degrees, not 360"))
-    # 5. one piece, no holes
+    # 5. no holes
     chi = len(total) - len(counts) + n  # labels are 0..V-1 and 0..E-1
     if chi != 1:
         out.append(Violation("gap", f"the patch is not one piece without holes (V - E + F = {chi})"))
+    return out or _one_sheet(xy, start.ravel(), end.ravel(), np.flatnonzero(open_edge))
+
+
+def _near(a: np.ndarray, b: np.ndarray, size: float) -> tuple[np.ndarray, np.ndarray]:
+    """Pairs ``(i, j)`` of points ``a[i]``, ``b[j]`` in the same or adjacent cells of a grid of
+    squares of side ``size`` (every pair closer than ``size``, and some farther)."""
+    ca, cb = np.floor(a / size).astype(np.int64), np.floor(b / size).astype(np.int64)
+    lo = np.minimum(ca.min(axis=0), cb.min(axis=0)) - 1
+    rows = int(max(ca[:, 1].max(), cb[:, 1].max()) - lo[1]) + 3
+    key_b = (cb[:, 0] - lo[0]) * rows + (cb[:, 1] - lo[1])
+    order = np.argsort(key_b, kind="stable")
+    sorted_b = key_b[order]
+    ia, ib = [], []
+    for dx in (-1, 0, 1):
+        for dy in (-1, 0, 1):
+            key = (ca[:, 0] + dx - lo[0]) * rows + (ca[:, 1] + dy - lo[1])
+            first, last = np.searchsorted(sorted_b, key), np.searchsorted(sorted_b, key, side="right")
+            count = last - first
+            ia.append(np.repeat(np.arange(len(a)), count))
+            ib.append(order[np.repeat(first, count) + np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count)])
+    return np.concatenate(ia), np.concatenate(ib)
+
+
+def _cross(u: np.ndarray, v: np.ndarray) -> np.ndarray:
+    return u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0]
+
+
+def _to_segment(x: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Distance from points ``x`` to segments ``ab`` (row by row)."""
+    d = b - a
+    t = np.clip(np.sum((x - a) * d, axis=1) / np.sum(d * d, axis=1), 0, 1)
+    return np.hypot(*(a + t[:, None] * d - x).T)
+
+
+def _one_sheet(xy: np.ndarray, start: np.ndarray, end: np.ndarray, boundary: np.ndarray) -> list[Violation]:
+    """Check 6 of the module docstring: ``boundary`` indexes the (tile, side) pairs, ``tile * 4 +
+    side``, that only one tile runs; ``start`` and ``end`` are their vertex labels."""
+    out: list[Violation] = []
+    corners = xy.reshape(-1, 2)
+    p, q = corners[boundary], corners[(boundary // 4) * 4 + (boundary + 1) % 4]
+    s, e = start[boundary], end[boundary]
+    # the boundary is connected (union-find over its vertices)
+    parent = {int(v): int(v) for v in np.concatenate([s, e])}
+
+    def root(v):
+        while parent[v] != v:
+            parent[v] = parent[parent[v]]
+            v = parent[v]
+        return v
+
+    for a, b in zip(s.tolist(), e.tolist()):
+        parent[root(a)] = root(b)
+    pieces = len({root(v) for v in parent})
+    if pieces > 1:
+        out.append(Violation("gap", f"the patch's boundary is {pieces} separate curves (several pieces, or a hole)"))
+    # boundary edges meet only at common endpoints
+    i, j = _near((p + q) / 2, (p + q) / 2, 2.0)
+    keep = i < j
+    i, j = i[keep], j[keep]
+    shared = (s[i] == s[j]) | (s[i] == e[j]) | (e[i] == s[j]) | (e[i] == e[j])
+    ends = [(p[i], s[i], p[j], q[j], s[j], e[j]), (q[i], e[i], p[j], q[j], s[j], e[j]),
+            (p[j], s[j], p[i], q[i], s[i], e[i]), (q[j], e[j], p[i], q[i], s[i], e[i])]
+    # each endpoint's distance to the other edge; a common endpoint's (0) does not count
+    gaps = [_to_segment(x, a, b) for x, _, a, b, _, _ in ends]
+    far = np.minimum.reduce([np.where((lab == la) | (lab == lb), np.inf, g) for g, (_, lab, _, _, la, lb) in zip(gaps, ends)])
+    cross = (_cross(q[i] - p[i], p[j] - p[i]) * _cross(q[i] - p[i], q[j] - p[i]) < 0) & \
+        (_cross(q[j] - p[j], p[i] - p[j]) * _cross(q[j] - p[j], q[i] - p[j]) < 0)
+    touch = (far < 1e-3) | (cross & ~shared)
+    for a, b in zip(i[touch][:20], j[touch][:20]):
+        out.append(Violation("overlap", f"boundary edges of tiles {boundary[a] // 4} and {boundary[b] // 4} cross or "
+                                        "touch away from a common vertex (the patch lies over itself)"))
+    if touch.any():
+        return out
+    # just inside each boundary edge, exactly one tile
+    d = q - p
+    probe = (p + q) / 2 + 1e-4 * np.stack([-d[:, 1], d[:, 0]], axis=1) / np.hypot(d[:, 0], d[:, 1])[:, None]
+    k, t = _near(probe, xy.mean(axis=1), 2.0)
+    rel = xy[t] - probe[k][:, None, :]
+    side = _cross(rel, np.roll(rel, -1, axis=1))  # >= 0 on all sides of a triangle: inside (closed)
+    diag = _cross(rel[:, 0], rel[:, 2])
+    inside = ((side[:, 0] >= -1e-9) & (side[:, 1] >= -1e-9) & (-diag >= -1e-9)) | \
+        ((diag >= -1e-9) & (side[:, 2] >= -1e-9) & (side[:, 3] >= -1e-9))
+    covered = np.bincount(k[inside], minlength=len(probe))
+    for a in np.flatnonzero(covered != 1)[:20]:
+        out.append(Violation("overlap", f"tiles {sorted(set(t[(k == a) & inside].tolist()))} lie over one point "
+                                        f"near {np.round(probe[a], 3).tolist()} (the patch lies over itself)"))
     return out
 
 
