@@ -161,8 +161,55 @@ def test_fixed_cells_are_kept(client):
     fixed = [[-1] * 8 for _ in range(6)]
     fixed[2][3], fixed[4][5] = 1, 0
     state = solve(client, {"family": "dappled", "values": {"size": "8x6", "fixed": fixed, "seed": 2}})
-    cells = state["result"]["cells"]
-    assert cells[2][3] == 1 and cells[4][5] == 0
+    cells = unpack(state["result"]["cells"])
+    assert cells.shape == (6, 8) and cells[2, 3] == 1 and cells[4, 5] == 0
+
+
+def unpack(packed):
+    """A grid packed by the worker (``tilesolve.studio.worker.packed_cells``) as an array."""
+    data = np.frombuffer(base64.b64decode(packed["data"]), dtype={"int8": "<i1", "int16": "<i2", "int32": "<i4"}[packed["dtype"]])
+    return data.reshape(packed["rows"], packed["cols"])
+
+
+@pytest.mark.parametrize("grid, dtype", [([[0, -1], [5, 127]], "int8"), ([[300, -1]], "int16"), ([[-70000]], "int32")])
+def test_grids_are_packed_in_the_narrowest_type(grid, dtype):
+    from tilesolve.studio.worker import packed_cells
+
+    packed = packed_cells(np.array(grid))
+    assert packed["dtype"] == dtype and unpack(packed).tolist() == grid
+
+
+def test_the_command_keeps_the_time_limit_where_the_cli_takes_one(client):
+    r = client.post("/api/check", json={"family": "dappled", "values": {"seed": 3}, "time_limit": 2.5})
+    assert r.status_code == 200 and "--time-limit 2.5 --seed 3" in r.json()["command"]
+    r = client.post("/api/check", json={"family": "stochastic", "values": {"seed": 3}, "time_limit": 2.5})
+    assert r.status_code == 200 and "--time-limit" not in r.json()["command"]
+
+
+def test_each_form_knows_whether_its_command_takes_a_time_limit():
+    import click
+
+    from tilesolve.cli.group import main_group
+
+    for fam in family.families():
+        if fam.form is None:
+            continue
+        words, _ = fam.form.command(fam.form.values({"seed": 1}))
+        ctx = main_group.make_context("tilesolve", list(words), resilient_parsing=True)
+        cmd = main_group
+        for word in words:
+            if not isinstance(cmd, click.Group) or word.startswith("-"):
+                break
+            cmd = cmd.get_command(ctx, word)
+        takes = any("--time-limit" in p.opts for p in cmd.params)
+        assert fam.form.time_limit == takes, fam.name
+
+
+def test_the_palette_is_the_pictures(client):
+    from tilesolve.io.svg import FREE_COLOUR, tile_colour
+
+    palette = client.get("/api/families").json()["palette"]
+    assert palette["tiles"][:12] == [tile_colour(k) for k in range(12)] and palette["free"] == FREE_COLOUR
 
 
 def test_closest_tiling_of_a_painted_target(client):

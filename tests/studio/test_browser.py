@@ -8,22 +8,23 @@ error on the page. Screenshots of every family's view go to ``tests/artifacts/st
 
 from __future__ import annotations
 
+import json
 import os
 import subprocess
-import sys
 import threading
 import time
 from pathlib import Path
 
+import numpy as np
 import pytest
 import uvicorn
 from playwright import sync_api as playwright
 
+from tests.clitools import ENV, SCRIPT
 from tilesolve.studio.app import create_app
 
 CHROMIUM = "/usr/bin/chromium"
 ARTIFACTS = Path(__file__).resolve().parents[1] / "artifacts" / "studio"
-EXE = os.path.join(os.path.dirname(sys.executable), "tilesolve")
 #: Every test here drives Chromium: slow.
 pytestmark = pytest.mark.slow
 
@@ -79,6 +80,18 @@ def solve(page, timeout=60_000):
     return page.evaluate("studio.result")
 
 
+def paint(page, grid: str, brush: str, r: int, c: int, cols: int) -> float:
+    """Paint cell ``(r, c)`` of the editor's ``grid`` (``cols`` wide) with ``brush``; its side in px."""
+    page.select_option("#grid-field", grid)
+    page.select_option("#brush", brush)
+    page.locator("#grid").scroll_into_view_if_needed()
+    box = page.locator("#grid").bounding_box()
+    px = box["width"] / cols
+    page.mouse.click(box["x"] + (c + 0.5) * px, box["y"] + (r + 0.5) * px)
+    page.wait_for_function("document.getElementById('describe').textContent.includes('1 fixed cells')")
+    return px
+
+
 @pytest.mark.parametrize("name", ["dappled", "board", "packing", "stochastic", "aperiodic"])
 def test_each_family_from_the_page_verifies(page, name, tmp_path):
     pick(page, name)
@@ -96,7 +109,7 @@ def test_each_family_from_the_page_verifies(page, name, tmp_path):
         page.click("#export-json")
     path = tmp_path / "solution.json"
     dl.value.save_as(path)
-    run = subprocess.run([EXE, "verify", str(path)], capture_output=True, text=True)
+    run = subprocess.run([SCRIPT, "verify", str(path)], capture_output=True, text=True)
     assert run.returncode == 0, run.stdout + run.stderr
     with page.expect_download() as dl:
         page.click("#export-png")
@@ -123,22 +136,22 @@ def test_fixing_a_cell_changes_the_solution(page):
     pick(page, "dappled")
     fill(page, "size", "8x6")
     page.fill("#seed", "1")
-    first = solve(page)["cells"]
+    solve(page)
+    first = page.evaluate("studio.cellRows()")
     r, c = 2, 3
     want = 1 - first[r][c]
-    page.select_option("#grid-field", "fixed")
-    page.select_option("#brush", str(want))
-    box = page.locator("#grid").bounding_box()
-    px = box["width"] / 8
-    page.mouse.click(box["x"] + (c + 0.5) * px, box["y"] + (r + 0.5) * px)
-    page.wait_for_function("document.getElementById('describe').textContent.includes('1 fixed cells')")
-    second = solve(page)["cells"]
+    paint(page, "fixed", str(want), r, c, 8)
+    solve(page)
+    second = page.evaluate("studio.cellRows()")
     assert second[r][c] == want
     assert "fixed.txt" in page.text_content("#command")
 
 
-def test_cancel_a_long_search(page):
+def test_cancel_a_long_search_clears_the_picture(page):
     pick(page, "packing")
+    page.fill("#seed", "1")
+    solve(page)
+    assert page.locator("#picture svg, #picture img").count() == 1
     page.select_option("#field-kind", "corner")
     fill(page, "colors", 4)
     page.select_option("#method", "sat")
@@ -150,15 +163,26 @@ def test_cancel_a_long_search(page):
     page.click("#cancel")
     page.wait_for_function("document.getElementById('status').textContent.startsWith('cancelled')", timeout=20_000)
     assert page.is_enabled("#solve")
+    # the previous picture, its verdict and exports are gone: nothing on screen belongs to another problem
+    assert page.locator("#picture *").count() == 0
+    assert page.text_content("#verdict") == "" and page.is_hidden("#exports")
+    assert page.evaluate("studio.result") is None
     fill(page, "colors", 2)
     page.select_option("#method", "auto")
     assert solve(page)["status"] == "sat"
 
 
-def test_bad_input_shows_the_error(page):
+def test_bad_input_shows_the_error_and_clears_the_description(page):
     pick(page, "dappled")
+    valid = page.text_content("#describe")
+    assert "H0=2" in valid
     fill(page, "cond", "H0=x")
     page.wait_for_function("document.getElementById('error').textContent.includes('cannot read condition')")
+    # the description no longer shows the last valid problem, and the field is marked
+    assert page.get_attribute("#describe", "data-state") == "invalid"
+    assert "H0=2" not in page.text_content("#describe") and "invalid" in page.text_content("#describe")
+    assert page.get_attribute("#field-cond", "aria-invalid") == "true"
+    assert page.get_attribute("#field-size", "aria-invalid") == "false"
     page.click("#solve")
     page.wait_for_function("document.getElementById('solve').disabled === false")
     assert "cannot read condition" in page.text_content("#error")
@@ -177,14 +201,17 @@ def test_speed_goals_are_measured(page):
         best = min((solve(page), page.evaluate("studio.timings.lastSolveMs"))[1] for _ in range(3))
         rows.append((f"{name} {values['size']}", best))
     pick(page, "board")
+    page.locator("#viewport").scroll_into_view_if_needed()
     page.wait_for_timeout(300)
     page.evaluate("studio.measurePan(300)")  # the first tiles arrive
     page.wait_for_timeout(1500)
     fps = page.evaluate("studio.measurePan(2000)")
     page.screenshot(path=str(ARTIFACTS / "board-view.png"), full_page=True)
     pick(page, "stochastic")
-    page.wait_for_function("[...document.querySelectorAll('#tiles img')].some(i => i.complete && i.naturalWidth)")
-    page.mouse.move(700, 400)
+    page.locator("#viewport").scroll_into_view_if_needed()
+    page.wait_for_function("studio.view.wanted && studio.view.missing === 0")
+    box = page.locator("#viewport").bounding_box()
+    page.mouse.move(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
     page.mouse.wheel(0, 400)  # zoom out
     page.wait_for_timeout(1500)
     page.screenshot(path=str(ARTIFACTS / "stochastic-view.png"), full_page=True)
@@ -193,3 +220,209 @@ def test_speed_goals_are_measured(page):
         print(f"  {what:<16} Solve -> picture {ms:7.1f} ms (best of 3)")
     print(f"  procedural wall pan redraw  {fps:7.1f} fps")
     assert fps > 0 and all(ms > 0 for _, ms in rows)
+
+
+# ----------------------------------------------------------------------------- issue 22's defects
+def hex_rgb(colour: str) -> list[int]:
+    return [int(colour[i:i + 2], 16) for i in (1, 3, 5)]
+
+
+def canvas_rgb(page, selector: str, x: float, y: float) -> list[int]:
+    """The colour of a canvas's pixel at CSS position ``(x, y)`` inside it."""
+    return page.evaluate("""([sel, x, y]) => { const cv = document.querySelector(sel);
+        const k = cv.width / cv.getBoundingClientRect().width;
+        return [...cv.getContext('2d').getImageData(Math.floor(x * k), Math.floor(y * k), 1, 1).data].slice(0, 3); }""",
+                         [selector, x, y])
+
+
+def test_the_page_opens_on_a_friendly_family(page):
+    assert page.input_value("#family") == "dappled"
+    assert "dappled" in page.text_content("#describe") or "|T|" in page.text_content("#describe")
+
+
+def test_editor_picture_and_files_share_one_palette(page):
+    from tilesolve.io.svg import tile_colour
+
+    pick(page, "dappled")
+    fill(page, "size", "8x6")
+    page.fill("#seed", "1")
+    solve(page)
+    px = paint(page, "fixed", "0", 0, 0, 8)
+    # a fixed tile 0 is drawn in tile 0's colour of the pictures (and the SVG/PNG writers)
+    assert canvas_rgb(page, "#grid", 0.5 * px, 0.5 * px) == hex_rgb(tile_colour(0))
+    res = solve(page)
+    fills = {f.upper() for f in page.eval_on_selector_all("#picture svg [fill]", "els => els.map(e => e.getAttribute('fill'))")}
+    assert {tile_colour(0).upper(), tile_colour(1).upper()} <= fills
+    assert canvas_rgb(page, "#grid", 0.5 * px, 0.5 * px) == hex_rgb(tile_colour(0))
+    # a colour-blind-safe preset recolours the editor and the picture alike, and the SVG export
+    page.select_option("#palette-preset", "viridis")
+    viridis0 = page.evaluate("studio.colours[0]")
+    assert canvas_rgb(page, "#grid", 0.5 * px, 0.5 * px) == hex_rgb(viridis0)
+    fills = {f.upper() for f in page.eval_on_selector_all("#picture svg [fill]", "els => els.map(e => e.getAttribute('fill'))")}
+    assert viridis0 in fills and tile_colour(0).upper() not in fills
+    with page.expect_download() as dl:
+        page.click("#export-svg")
+    assert viridis0 in Path(dl.value.path()).read_text().upper()
+    assert res["status"] == "sat"
+
+
+def test_a_large_board_is_drawn_as_bricks(page):
+    import base64
+    import io
+
+    from PIL import Image
+
+    from tilesolve.io.wall_png import brick_palette, MORTAR
+
+    pick(page, "board")
+    fill(page, "size", "100x100")
+    page.fill("#seed", "1")
+    res = solve(page)
+    assert res["status"] == "sat" and res["picture"]["format"] == "png"
+    img = Image.open(io.BytesIO(base64.b64decode(res["picture"]["data"]))).convert("RGB")
+    assert img.width >= 400  # at least 4 px a cell: bricks and mortar stay visible
+    pixels = np.asarray(img).reshape(-1, 3)
+    mortar = np.all(pixels == brick_palette()[MORTAR], axis=1).mean()
+    assert 0.05 < mortar < 0.5, mortar  # mortar lines between bricks, not triangles
+    ARTIFACTS.mkdir(parents=True, exist_ok=True)
+    page.screenshot(path=str(ARTIFACTS / "board-100.png"))
+
+
+def test_the_copied_command_keeps_the_time_limit_and_reproduces_the_status(page, tmp_path):
+    pick(page, "packing")
+    page.select_option("#field-kind", "corner")
+    fill(page, "colors", 4)
+    page.select_option("#method", "sat")
+    page.fill("#seed", "1")
+    page.fill("#time-limit", "1")
+    page.dispatch_event("#time-limit", "change")
+    res = solve(page)
+    assert res["status"] == "unknown"
+    page.context.grant_permissions(["clipboard-read", "clipboard-write"])
+    page.click("#copy-command")
+    command = page.evaluate("navigator.clipboard.readText()")
+    assert command == page.text_content("#command") and "--time-limit 1 " in command
+    env = dict(ENV, PATH=os.path.dirname(SCRIPT) + os.pathsep + ENV["PATH"])
+    run = subprocess.run(["bash", "-c", command], cwd=tmp_path, capture_output=True, text=True, env=env)
+    assert run.returncode == 3, run.stderr  # unknown, as on the page
+    assert json.loads((tmp_path / "solution.json").read_text())["status"] == "unknown"
+
+
+def test_a_2048_dappled_picture_shows_with_status_while_it_waits(page):
+    pick(page, "dappled")
+    fill(page, "size", "2048x2048")
+    page.fill("#seed", "1")
+    page.evaluate("""() => { window.seen = []; new MutationObserver(() => seen.push(document.getElementById('status').textContent))
+                            .observe(document.getElementById('status'), {childList: true, characterData: true, subtree: true}); }""")
+    res = solve(page, timeout=180_000)
+    assert res["status"] == "sat"
+    assert page.locator("#picture img, #picture canvas").count() == 1
+    seen = page.evaluate("seen")
+    assert any(s.startswith("solving") for s in seen) and "fetching the result…" in seen and "drawing the picture…" in seen
+    assert page.evaluate("studio.cells.rows * studio.cells.cols") == 2048 * 2048
+    print(f"\n2048x2048 dappled: Solve -> picture {page.evaluate('studio.timings.lastSolveMs'):.0f} ms "
+          f"(solve {res['time_s']:.2f} s, whole worker {res['solve_s']:.2f} s)")
+
+
+def view_settled(page) -> None:
+    page.wait_for_function("studio.view.wanted && studio.view.missing === 0 && studio.view.inflight === 0", timeout=60_000)
+
+
+def check_view_is_whole(page) -> None:
+    """Every visible tile drawn from its own picture, all at one scale, edge to edge, no gap."""
+    rects = page.evaluate("studio.view.rects")
+    widths = {w for _, _, w, _ in rects} | {h for _, _, _, h in rects}
+    assert max(widths) - min(widths) <= 1, widths
+    xs = sorted({x for x, _, _, _ in rects})
+    assert all(b - a in widths for a, b in zip(xs, xs[1:]))
+    blank = page.evaluate("""() => { const cv = document.getElementById('view-canvas');
+        const d = cv.getContext('2d').getImageData(0, 0, cv.width, cv.height).data; let n = 0;
+        for (let i = 0; i < d.length; i += 4) if (d[i + 3] < 255 || (d[i] === 238 && d[i + 1] === 240 && d[i + 2] === 243)) n++;
+        return n; }""")
+    assert blank == 0
+
+
+def test_the_infinite_view_shows_loading_and_is_whole_after_pan_and_zoom(page):
+    pick(page, "board")
+    page.locator("#viewport").scroll_into_view_if_needed()
+    page.evaluate("""() => { window.loadingSeen = 0; new MutationObserver(() => {
+        if (!document.getElementById('view-loading').hidden) loadingSeen++; })
+        .observe(document.getElementById('view-loading'), {attributes: true, childList: true, subtree: true}); }""")
+    view_settled(page)
+    check_view_is_whole(page)
+    box = page.locator("#viewport").bounding_box()
+    cx, cy = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+    page.mouse.move(cx, cy)
+    page.mouse.down()
+    page.mouse.move(cx - 333, cy - 171, steps=8)
+    page.mouse.up()
+    page.mouse.wheel(0, 700)  # zoom out past a level
+    assert page.is_visible("#view-loading") or page.evaluate("studio.view.missing") == 0
+    view_settled(page)
+    assert page.evaluate("studio.view.level") >= 1 and page.evaluate("loadingSeen") >= 1
+    check_view_is_whole(page)
+    page.mouse.wheel(0, -1200)  # and back in
+    view_settled(page)
+    check_view_is_whole(page)
+    assert page.is_hidden("#view-loading")
+
+
+def test_a_shared_link_reproduces_the_page(page, browser):
+    pick(page, "dappled")
+    fill(page, "size", "12x8")
+    fill(page, "cond", "H0=2,V0=3")
+    page.fill("#seed", "5")
+    first = solve(page)
+    link = page.url
+    assert "#s=" in link
+    ctx = browser.new_context(viewport={"width": 1400, "height": 1000})
+    other = ctx.new_page()
+    other.goto(link)
+    other.wait_for_selector("body[data-ready='1']")
+    other.wait_for_function("studio.result !== null", timeout=60_000)
+    assert other.input_value("#family") == "dappled" and other.input_value("#field-size") == "12x8"
+    assert other.text_content("#describe") == page.text_content("#describe")
+    assert other.evaluate("studio.cellRows()") == page.evaluate("studio.cellRows()")
+    assert other.evaluate("studio.result.picture.data") == first["picture"]["data"]
+    ctx.close()
+
+
+def test_every_preset_of_the_gallery_solves(page):
+    labels = page.eval_on_selector_all("#presets button", "bs => bs.map(b => b.dataset.preset)")
+    assert len(labels) >= 5
+    for label in labels:
+        page.click(f"#presets button[data-preset='{label}']")
+        page.wait_for_function("studio.result !== null && document.getElementById('solve').disabled === false "
+                               "&& studio.job === null", timeout=120_000)
+        res = page.evaluate("studio.result")
+        assert res["status"] == "sat", (label, res["status"])
+        assert page.locator("#picture svg, #picture img").count() == 1, label
+
+
+def test_the_picture_zooms_and_pans(page):
+    pick(page, "dappled")
+    solve(page)
+    before = page.evaluate("[studio.stage.z, studio.stage.x, studio.stage.y]")
+    box = page.locator("#stage").bounding_box()
+    page.mouse.move(box["x"] + box["width"] / 2, box["y"] + box["height"] / 2)
+    page.mouse.wheel(0, -400)
+    z = page.evaluate("studio.stage.z")
+    assert z > before[0] * 1.5
+    page.mouse.down()
+    page.mouse.move(box["x"] + box["width"] / 2 + 50, box["y"] + box["height"] / 2 + 30, steps=4)
+    page.mouse.up()
+    after = page.evaluate("[studio.stage.z, studio.stage.x, studio.stage.y]")
+    assert after[0] == z and after[1] != before[1]
+    page.dblclick("#stage")
+    assert page.evaluate("studio.stage.z") == pytest.approx(before[0])
+
+
+def test_painting_has_undo_and_redo(page):
+    pick(page, "dappled")
+    fill(page, "size", "8x6")
+    paint(page, "fixed", "1", 0, 0, 8)
+    page.click("#stage")
+    page.keyboard.press("Control+z")
+    page.wait_for_function("!document.getElementById('describe').textContent.includes('fixed cells')")
+    page.keyboard.press("Control+Shift+z")
+    page.wait_for_function("document.getElementById('describe').textContent.includes('1 fixed cells')")

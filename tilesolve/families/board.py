@@ -301,7 +301,7 @@ def _draw(problem: BoardProblem, sol: Solution, path, fmt: str, *, title: str | 
     if fmt == "png":
         from tilesolve.io.png import write_board_png
 
-        write_board_png(path, problem, sol.tiling)
+        write_board_png(path, problem, sol.tiling, window=sol.window)
         return
     from tilesolve.io.svg_board import write_board_svg
 

@@ -195,6 +195,7 @@ FORM = Form(
     ),
     build=_form_build,
     command=_form_command,
+    time_limit=False,  # the command runs to its end (no --time-limit)
 )
 
 FAMILY = register(Family(

@@ -79,6 +79,9 @@ class Form:
     cells : callable, optional
         ``cells(problem, solution) -> 2-D int array``: the solution per cell, in the values
         of the form's ``cells`` fields (clicking a cell of the picture fixes it to this value).
+    time_limit : bool
+        Whether :attr:`command`'s command takes ``--time-limit`` (the studio's copied command
+        keeps the page's time limit where it does).
     """
 
     fields: tuple[Field, ...]
@@ -86,6 +89,7 @@ class Form:
     command: Callable[[Mapping[str, Any]], tuple[list[str], dict[str, str]]]
     window: Callable[..., tuple[Any, str, Mapping[str, Any]]] | None = None
     cells: Callable[[Any, Solution], Any] | None = None
+    time_limit: bool = True
 
     def values(self, given: Mapping[str, Any]) -> dict[str, Any]:
         """``given`` checked against the fields (types, limits, choices), defaults filled in.

@@ -20,6 +20,7 @@ Examples
 from __future__ import annotations
 
 import io
+import itertools
 import os
 from typing import TYPE_CHECKING, Iterable
 
@@ -33,6 +34,7 @@ if TYPE_CHECKING:  # pillow is imported by the functions that draw, not by impor
     from PIL import Image
 
 __all__ = ["MAX_PNG_PIXELS", "tiling_image", "write_png", "edge_image", "cell_pixels", "write_packed_rows",
+           "caption_mask", "caption_rows", "captioned",
            "write_board_png", "write_packing_png", "write_tileset_png"]
 
 #: Largest picture written (pixels); pictures stream row by row, so this bounds time, not memory.
@@ -43,6 +45,79 @@ _GRID_RGB = (51, 51, 51)
 
 def _rgb(hex_colour: str) -> tuple[int, int, int]:
     return tuple(int(hex_colour[i : i + 2], 16) for i in (1, 3, 5))  # type: ignore[return-value]
+
+
+def caption_mask(lines, width: int, *, font_px: int = 12) -> np.ndarray:
+    """``(height, width)`` booleans, true where ink is: ``lines`` in Pillow's bundled font, in
+    black and white (the same pixels on every machine), each wrapped at word breaks (or inside
+    a word longer than a line) to fit ``width`` px with a 4 px margin; ``(0, width)`` for no lines.
+
+    >>> caption_mask([], 10).shape
+    (0, 10)
+    >>> m = caption_mask(["seed 0"], 60)
+    >>> m.shape[1], bool(m.any()), bool(m[:, :4].any() or m[:, -4:].any())
+    (60, True, False)
+    """
+    from PIL import Image, ImageDraw, ImageFont
+
+    lines = [s for s in lines if s]
+    if not lines or width < 16:
+        return np.zeros((0, width), dtype=bool)
+    font = ImageFont.load_default(size=font_px)
+    room = width - 8
+    wrapped: list[str] = []
+    for line in lines:
+        current = ""
+        for word in line.split(" "):
+            trial = f"{current} {word}" if current else word
+            if font.getlength(trial) <= room:
+                current = trial
+                continue
+            if current:
+                wrapped.append(current)
+            current = ""
+            for ch in word:  # a word wider than the picture: broken where it reaches the edge
+                if current and font.getlength(current + ch) > room:
+                    wrapped.append(current)
+                    current = ""
+                current += ch
+        wrapped.append(current)
+    step = font_px + 4
+    img = Image.new("L", (width, step * len(wrapped) + 8), 0)
+    draw = ImageDraw.Draw(img)
+    draw.fontmode = "1"  # no anti-aliasing: two colours, as a palette picture has them
+    for i, line in enumerate(wrapped):
+        draw.text((4, 4 + i * step), line, fill=255, font=font)
+    return np.asarray(img) > 127
+
+
+def caption_rows(mask: np.ndarray, background, ink) -> np.ndarray:
+    """The pixel rows of a caption: ``background`` where ``mask`` is false, ``ink`` where true
+    (palette indices, greys, or RGB triples)."""
+    bg, fg = np.asarray(background, dtype=np.uint8), np.asarray(ink, dtype=np.uint8)
+    return np.where(mask.reshape(mask.shape + (1,) * bg.ndim), fg, bg).astype(np.uint8)
+
+
+def captioned(img: Image.Image, lines) -> Image.Image:
+    """``img`` with ``lines`` written under it (:func:`caption_mask`) on white, in dark grey;
+    a palette image keeps its palette (its colours nearest white and dark grey are used)."""
+    from PIL import Image
+
+    mask = caption_mask(lines, img.width)
+    if not mask.size:
+        return img
+    if img.mode == "P":
+        pal = np.asarray(img.getpalette()[:768], dtype=np.int64).reshape(-1, 3)
+        bg = int(np.argmin(((pal - 255) ** 2).sum(axis=1)))
+        ink = int(np.argmin(((pal - np.array(_GRID_RGB)) ** 2).sum(axis=1)))
+    else:
+        img = img.convert("RGB")
+        bg, ink = (255, 255, 255), _GRID_RGB
+    rows = caption_rows(mask, bg, ink)
+    out = Image.fromarray(np.concatenate([np.asarray(img), rows]))
+    if img.mode == "P":
+        out.putpalette(img.getpalette())
+    return out
 
 
 def _tiling_layout(tiling, scale: int | None, repeat: int, grid: bool | None):
@@ -111,8 +186,9 @@ def tiling_image(tiling, *, scale: int | None = None, repeat: int = 1, grid: boo
 
 
 def write_png(path: str | os.PathLike, tiling, *, scale: int | None = None, repeat: int = 1,
-              grid: bool | None = None) -> None:
-    """Write the PNG picture of ``tiling`` (arguments of :func:`tiling_image`) atomically.
+              grid: bool | None = None, caption=()) -> None:
+    """Write the PNG picture of ``tiling`` (arguments of :func:`tiling_image`) atomically, with
+    the lines ``caption`` under it (:func:`caption_mask`; on the free cells' near-white).
 
     The picture is streamed row by row (pypng), so a huge grid costs one pixel row of memory
     besides the tiling itself, however many pixels the picture has.
@@ -121,9 +197,11 @@ def write_png(path: str | os.PathLike, tiling, *, scale: int | None = None, repe
 
     idx, repeat, scale, grid, palette = _tiling_layout(tiling, scale, repeat, grid)
     height, width = idx.shape[0] * repeat * scale, idx.shape[1] * repeat * scale
-    writer = png.Writer(width, height, palette=palette, bitdepth=8, compression=6)
+    below = caption_rows(caption_mask(caption, width), 0, 255)
+    writer = png.Writer(width, height + len(below), palette=palette, bitdepth=8, compression=6)
+    rows = itertools.chain(_pixel_rows(idx, repeat, scale, grid), below)
     with atomic_write(path, "wb") as f:
-        write_packed_rows(writer, f, (row.tobytes() for row in _pixel_rows(idx, repeat, scale, grid)))
+        write_packed_rows(writer, f, (row.tobytes() for row in rows))
 
 
 def _side_masks(scale: int, kind: str) -> np.ndarray:
@@ -235,22 +313,30 @@ def write_packed_rows(writer, f, rows: Iterable, *, strategy: int | None = None)
     png.write_chunk(f, b"IEND")
 
 
-def _save(path, img: Image.Image) -> None:
+def _save(path, img: Image.Image, caption=()) -> None:
     buf = io.BytesIO()
-    img.save(buf, format="PNG", optimize=False)
+    captioned(img, caption).save(buf, format="PNG", optimize=False)
     write_bytes_atomic(path, buf.getvalue())
 
 
-def write_board_png(path: str | os.PathLike, problem, tiling, **kwargs) -> None:
-    """PNG of a board tiling: each cell's legs as N, E, S, W triangles at its ``[row, col]`` label."""
+def write_board_png(path: str | os.PathLike, problem, tiling, *, window=None, **kwargs) -> None:
+    """PNG of a board tiling: bricks and mortar for a brick tile set, at any size
+    (:mod:`tilesolve.io.board_png`; ``window``, where the tiling lies in the plane, colours the
+    bricks by their position), else each cell's legs as N, E, S, W triangles at its ``[row, col]`` label."""
+    if problem.tileset.is_brick:
+        from tilesolve.io.board_png import brick_image
+
+        _save(path, brick_image(problem, tiling, window=window, **kwargs))
+        return
     lab = np.asarray(problem.board.labels)
     shape = tuple(int(v) + 1 for v in lab.max(axis=0))
     _save(path, edge_image(np.asarray(tiling, dtype=np.int64).reshape(-1, 4), lab, shape, "wang", **kwargs))
 
 
 def write_packing_png(path: str | os.PathLike, grid, kind: str, colors: int, *, colors_v: int | None = None,
-                      **kwargs) -> None:
-    """PNG of a packing (or any grid of tile indices, eq. 2.1 / 2.5), in the notes' colours (§2.7)."""
+                      caption=(), **kwargs) -> None:
+    """PNG of a packing (or any grid of tile indices, eq. 2.1 / 2.5), in the notes' colours (§2.7),
+    with the lines ``caption`` under it."""
     from tilesolve.io.svg_packing import colour_of
     from tilesolve.model.tiles import TileSet
 
@@ -258,7 +344,7 @@ def write_packing_png(path: str | os.PathLike, grid, kind: str, colors: int, *, 
     colours = np.stack(TileSet(kind, colors, colors_v).colors_of(g.ravel()), axis=1)
     rows, cols = g.shape
     positions = np.stack(np.divmod(np.arange(g.size), cols), axis=1)
-    _save(path, edge_image(colours, positions, (rows, cols), kind, palette=colour_of, **kwargs))
+    _save(path, edge_image(colours, positions, (rows, cols), kind, palette=colour_of, **kwargs), caption)
 
 
 def write_tileset_png(path: str | os.PathLike, tiles, **kwargs) -> None:

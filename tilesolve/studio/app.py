@@ -5,7 +5,7 @@ message>"}``):
 
 ``GET /``                           the page (``static/index.html``)
 ``GET /api/families``               every family with a form: name, title, methods, fields, view,
-                                    the picture formats it draws
+                                    the picture formats it draws; and the pictures' tile palette
 ``POST /api/check``                 ``{family, values}`` -> the problem's description, the
                                     painted grids' extents, the CLI command
 ``POST /api/solve``                 ``{family, values, method, time_limit}`` -> ``{id}`` (a job)
@@ -51,6 +51,7 @@ from starlette.staticfiles import StaticFiles
 
 from tilesolve import family
 from tilesolve.errors import InvalidProblem, TilesolveError
+from tilesolve.io.svg import FREE_COLOUR, tile_colour
 from tilesolve.studio import sizing, worker
 from tilesolve.studio.jobs import Jobs, TooBusy
 from tilesolve.studio.origin import OwnOrigin
@@ -71,6 +72,10 @@ POSING = 2
 LARGE_BODY = 1 << 20
 
 STATIC = os.path.join(os.path.dirname(__file__), "static")
+
+#: The tile colours of every picture (:func:`tilesolve.io.svg.tile_colour`, the SVG and PNG
+#: writers' palette) for the page's editor: ``tiles`` for tiles ``0 ..``, ``free`` for ``-1``.
+PALETTE = {"tiles": [tile_colour(k) for k in range(256)], "free": FREE_COLOUR}
 
 
 def _error(message: str, status: int = 400) -> JSONResponse:
@@ -163,17 +168,18 @@ async def index(request: Request) -> Response:
 
 @_guard
 async def families(request: Request) -> Response:
-    return JSONResponse({"families": [_family_json(f) for f in family.families() if f.form is not None]})
+    return JSONResponse({"families": [_family_json(f) for f in family.families() if f.form is not None],
+                         "palette": PALETTE})
 
 
 def _check(doc: dict) -> dict:
     """What ``POST /api/check`` answers for a request's JSON (bad input raises)."""
     fam, vals, problem, _ = worker.pose(doc.get("family"), doc.get("values"))
-    method, _ = worker.check_run(fam, doc.get("method", "auto"), doc.get("time_limit"))
+    method, time_limit = worker.check_run(fam, doc.get("method", "auto"), doc.get("time_limit"))
     sizing.refuse_oversized(fam, problem, method)
     grids = {f.name: list(f.extent(vals)) for f in fam.form.fields if f.kind == "cells"}
     return {"describe": problem.describe() if hasattr(problem, "describe") else fam.name, "cells": grids,
-            "seed": vals["seed"], "command": worker.command_line(fam, vals, doc.get("method", "auto"), vals["seed"])}
+            "seed": vals["seed"], "command": worker.command_line(fam, vals, method, vals["seed"], time_limit)}
 
 
 def _posed(data: bytearray) -> tuple[dict, dict]:

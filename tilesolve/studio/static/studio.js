@@ -1,12 +1,14 @@
 // tilesolve studio page: every form is built from the family's fields (GET /api/families),
-// no family is special-cased here.
+// no family is special-cased here. The tile colours come from the server (the palette of the SVG
+// and PNG writers, tilesolve/io/svg.py); a palette chosen here recolours the editor, the picture
+// and the exported pictures alike.
 "use strict";
 const $ = (id) => document.getElementById(id);
 const studio = window.studio = { timings: {}, families: [], fam: null, extents: {}, grids: {}, cells: null,
-                                 job: null, result: null };
-const PALETTE = ["#f4f1de", "#e07a5f", "#3d405b", "#81b29a", "#f2cc8f", "#6d597a", "#b56576", "#355070",
-                 "#eaac8b", "#43aa8b"];
-const VIEW_N = 32, CELL = 8;           // view tile: VIEW_N x VIEW_N cells, CELL css px per cell at zoom 1
+                                 job: null, result: null, palette: null, colours: null };
+const VIEW_N = 32, CELL = 8;           // view tiles: VIEW_N << level cells, CELL css px per cell at zoom 1
+const MAX_LEVEL = 2;                   // the server draws windows of at most 128 cells a side
+const SWATCHES = 8;
 
 async function api(path, body) {
   const opts = body === undefined ? {} : { method: "POST", headers: { "Content-Type": "application/json" },
@@ -18,6 +20,147 @@ async function api(path, body) {
 }
 
 function showError(msg) { $("error").textContent = msg ? "error: " + msg : ""; }
+
+// ------------------------------------------------------------------ palettes
+// Colour-blind-safe presets: Okabe & Ito (the pictures' own, from the server), Paul Tol's
+// "bright", and viridis sampled at eight points; tiles past a preset's list keep the server's colours.
+const PRESET_PALETTES = {
+  "Okabe–Ito (pictures' own)": null,
+  "Tol bright": ["#4477AA", "#EE6677", "#228833", "#CCBB44", "#66CCEE", "#AA3377", "#BBBBBB", "#222222"],
+  "viridis": ["#440154", "#46327E", "#365C8D", "#277F8E", "#1FA187", "#4AC16D", "#A0DA39", "#FDE725"],
+};
+
+function setPalette(list) {
+  const base = studio.palette.tiles;
+  studio.colours = base.map((c, k) => (list && k < list.length ? list[k] : c).toUpperCase());
+  drawSwatches(); drawGrid(); recolourPicture();
+}
+const tileColour = (k) => (k < 0 ? studio.palette.free : studio.colours[k % studio.colours.length]);
+const recoloured = () => studio.colours.some((c, k) => c !== studio.palette.tiles[k].toUpperCase());
+
+function drawSwatches() {
+  const box = $("swatches"); box.innerHTML = "";
+  for (let k = 0; k < SWATCHES; k++) {
+    const b = document.createElement("button"); b.type = "button"; b.textContent = k;
+    b.style.background = studio.colours[k]; b.title = `tile ${k}: ${studio.colours[k]}`;
+    b.addEventListener("click", () => {
+      const input = document.createElement("input"); input.type = "color"; input.value = studio.colours[k];
+      input.addEventListener("input", () => {
+        const list = studio.colours.slice(0, SWATCHES); list[k] = input.value; setPalette(list);
+      });
+      input.click();
+    });
+    box.appendChild(b);
+  }
+}
+
+function rgbOf(hex) { const v = parseInt(hex.slice(1), 16); return [v >> 16 & 255, v >> 8 & 255, v & 255]; }
+
+// The picture in the chosen palette: an SVG's fills are swapped; a PNG is redrawn on a canvas
+// with its pixels mapped colour for colour.
+function recolourPicture() {
+  const res = studio.result, pic = $("picture");
+  if (!res || !res.picture) return;
+  const map = new Map(studio.palette.tiles.map((c, k) => [c.toUpperCase(), studio.colours[k]]));
+  if (res.picture.format === "svg") {
+    const svg = pic.querySelector("svg");
+    if (!svg) return;
+    for (const el of svg.querySelectorAll("[fill]")) {
+      const orig = el.dataset.fill || el.getAttribute("fill").toUpperCase();
+      if (!map.has(orig)) continue;
+      el.dataset.fill = orig; el.setAttribute("fill", map.get(orig));
+    }
+    return;
+  }
+  const img = studio.pictureImage;
+  if (!img) return;
+  let target = pic.querySelector("img, canvas");
+  if (!recoloured()) { if (target !== img) { pic.replaceChildren(img); } return; }
+  const cv = document.createElement("canvas"); cv.width = img.naturalWidth; cv.height = img.naturalHeight;
+  const ctx = cv.getContext("2d"); ctx.drawImage(img, 0, 0);
+  const data = ctx.getImageData(0, 0, cv.width, cv.height), px = new Uint32Array(data.data.buffer);
+  const lut = new Map();
+  for (const [from, to] of map) {
+    const [r, g, b] = rgbOf(from), [r2, g2, b2] = rgbOf(to);
+    lut.set((255 << 24 | b << 16 | g << 8 | r) >>> 0, (255 << 24 | b2 << 16 | g2 << 8 | r2) >>> 0);
+  }
+  for (let i = 0; i < px.length; i++) { const v = lut.get(px[i]); if (v !== undefined) px[i] = v; }
+  ctx.putImageData(data, 0, 0);
+  cv.setAttribute("aria-label", img.alt);
+  pic.replaceChildren(cv);
+}
+
+// Exports of the picture in the chosen palette are made here; in the pictures' own palette
+// they are the server's files (the CLI's).
+async function exportPicture(fmt, ev) {
+  if (!recoloured() || !studio.result || !studio.result.picture || studio.result.picture.format !== fmt) return;
+  ev.preventDefault();
+  const pic = $("picture");
+  const blob = fmt === "svg" ? new Blob([pic.querySelector("svg").outerHTML], { type: "image/svg+xml" })
+                             : await new Promise((ok) => pic.querySelector("canvas").toBlob(ok, "image/png"));
+  const a = document.createElement("a"); a.href = URL.createObjectURL(blob);
+  a.download = `${studio.result.family}-${studio.result.seed}.${fmt}`; a.click();
+  setTimeout(() => URL.revokeObjectURL(a.href), 10000);
+}
+
+// ------------------------------------------------------------------ pan and zoom
+class PanZoom {
+  constructor(stage, content, { onChange = () => {}, maxZoom = 64 } = {}) {
+    Object.assign(this, { stage, content, onChange, maxZoom, z: 1, x: 0, y: 0 });
+    let drag = null;
+    stage.addEventListener("pointerdown", (e) => {
+      if (e.button !== 0 || e.target.closest("button")) return;
+      drag = { x: e.clientX, y: e.clientY }; stage.classList.add("dragging"); stage.setPointerCapture(e.pointerId);
+    });
+    stage.addEventListener("pointermove", (e) => {
+      if (!drag) return;
+      this.x += e.clientX - drag.x; this.y += e.clientY - drag.y; drag = { x: e.clientX, y: e.clientY }; this.apply();
+    });
+    const end = () => { drag = null; stage.classList.remove("dragging"); };
+    stage.addEventListener("pointerup", end); stage.addEventListener("pointercancel", end);
+    stage.addEventListener("wheel", (e) => {
+      e.preventDefault();
+      const r = stage.getBoundingClientRect();
+      this.zoomAt(Math.exp(-e.deltaY / 400), e.clientX - r.left, e.clientY - r.top);
+    }, { passive: false });
+    stage.addEventListener("dblclick", () => this.fit());
+    stage.addEventListener("keydown", (e) => {
+      const r = stage.getBoundingClientRect();
+      if (e.key === "+" || e.key === "=") this.zoomAt(1.25, r.width / 2, r.height / 2);
+      else if (e.key === "-") this.zoomAt(0.8, r.width / 2, r.height / 2);
+      else if (e.key === "0") this.fit();
+    });
+    for (const b of stage.querySelectorAll("[data-zoom]")) b.addEventListener("click", () => {
+      const r = stage.getBoundingClientRect(), k = b.dataset.zoom;
+      if (k === "fit") this.fit(); else this.zoomAt(k === "in" ? 1.25 : 0.8, r.width / 2, r.height / 2);
+    });
+  }
+  size() {                              // the picture's own size, in CSS px
+    const el = this.content.firstElementChild;
+    if (!el) return [0, 0];
+    if (el instanceof SVGSVGElement) {
+      const w = el.width.baseVal.value, h = el.height.baseVal.value;
+      if (w && h) return [w, h];
+      const vb = el.viewBox.baseVal; return vb ? [vb.width, vb.height] : [0, 0];
+    }
+    return [el.naturalWidth || el.width || 0, el.naturalHeight || el.height || 0];
+  }
+  fit() {
+    const [w, h] = this.size(), W = this.stage.clientWidth, H = this.stage.clientHeight;
+    if (!w || !h) return;
+    this.z = Math.min((W - 24) / w, (H - 24) / h, 8);
+    this.x = (W - w * this.z) / 2; this.y = (H - h * this.z) / 2; this.apply();
+  }
+  zoomAt(f, mx, my) {
+    const z = Math.min(this.maxZoom, Math.max(0.02, this.z * f));
+    this.x = mx - (mx - this.x) * z / this.z; this.y = my - (my - this.y) * z / this.z; this.z = z; this.apply();
+  }
+  apply() {
+    this.content.style.transform = `translate(${this.x}px, ${this.y}px) scale(${this.z})`;
+    this.content.style.imageRendering = this.z >= 1 ? "pixelated" : "auto";
+    this.onChange(this);
+  }
+}
 
 // ------------------------------------------------------------------ the form
 function buildForm() {
@@ -40,12 +183,13 @@ function buildForm() {
       input = document.createElement("input");
       input.type = (f.kind === "int" || f.kind === "float") ? "number" : "text";
       if (f.kind === "int") input.step = "1";
+      if (f.kind === "float") input.step = "any";
       if (f.low !== null && f.kind !== "text") input.min = f.low;
       if (f.high !== null && f.kind !== "text" && f.kind !== "size") input.max = f.high;
       input.value = f.default === null ? "" : f.default;
       input.placeholder = f.default === null ? "none" : "";
     }
-    input.name = f.name; input.id = "field-" + f.name; input.dataset.kind = f.kind;
+    input.name = f.name; input.id = "field-" + f.name; input.dataset.kind = f.kind; input.dataset.label = f.label;
     input.addEventListener("change", formChanged);
     label.appendChild(input);
     form.appendChild(label);
@@ -56,10 +200,9 @@ function buildForm() {
   }
   const gf = $("grid-field"); gf.innerHTML = "";
   for (const f of studio.fam.fields) if (f.kind === "cells") gf.add(new Option(f.label, f.name));
-  studio.grids = {}; studio.cells = null;
+  studio.grids = {}; studio.cells = null; undoStack.length = 0; redoStack.length = 0;
   $("editor").hidden = gf.options.length === 0;
   $("view-panel").hidden = !studio.fam.view;
-  formChanged();
 }
 
 function formValues() {
@@ -81,27 +224,42 @@ function request() {
   return r;
 }
 
+// The fields an error message names (by label) are marked; the description is cleared and
+// marked invalid, so that it never shows the last valid problem under an invalid form.
+function markInvalid(message) {
+  $("describe").textContent = "invalid problem: fix the marked field";
+  $("describe").dataset.state = "invalid";
+  for (const el of $("form").elements) {
+    const hit = message && (message.includes(el.dataset.label) || message.includes(el.name));
+    el.setAttribute("aria-invalid", hit ? "true" : "false");
+  }
+}
+
 let checkSeq = 0;
 async function formChanged() {
   const seq = ++checkSeq;
-  resetView();
+  resetView(); saveState(false);
   try {
     const doc = await api("/api/check", request());
     if (seq !== checkSeq) return;
     showError("");
-    $("describe").textContent = doc.describe;
+    for (const el of $("form").elements) el.setAttribute("aria-invalid", "false");
+    $("describe").textContent = doc.describe; $("describe").dataset.state = "ok";
     studio.extents = doc.cells;
     for (const [name, [rows, cols]] of Object.entries(doc.cells)) {
       const g = studio.grids[name];
       if (g && (g.length !== rows || g[0].length !== cols)) delete studio.grids[name];
     }
-    if (studio.cells && (!doc.cells[$("grid-field").value] ||
-        studio.cells.length !== doc.cells[$("grid-field").value][0])) studio.cells = null;
+    const ext = doc.cells[$("grid-field").value];
+    if (studio.cells && (!ext || studio.cells.rows !== ext[0] || studio.cells.cols !== ext[1])) studio.cells = null;
     drawGrid();
-  } catch (e) { if (seq === checkSeq) showError(e.message); }
+  } catch (e) { if (seq === checkSeq) { showError(e.message); markInvalid(e.message); } }
 }
 
 // ------------------------------------------------------------------ editing grids
+const undoStack = [], redoStack = [];       // painted grids before each stroke (undo), and undone ones (redo)
+const snapshot = () => JSON.stringify(studio.grids);
+
 function fillBrushes() {
   const name = $("grid-field").value, ext = studio.extents[name];
   const b = $("brush"), keep = b.value; b.innerHTML = "";
@@ -113,50 +271,80 @@ function fillBrushes() {
   if ([...b.options].some(o => o.value === keep)) b.value = keep;
 }
 
-function cellPx(rows, cols) { return Math.max(2, Math.min(24, Math.floor(384 / Math.max(rows, cols)))); }
+function cellPx(rows, cols) { return Math.max(1, Math.min(24, Math.floor(384 / Math.max(rows, cols)))); }
+const solutionCell = (r, c) => studio.cells.data[r * studio.cells.cols + c];
 
+// One pixel per cell on a small canvas, scaled up without smoothing: any size draws in milliseconds.
 function drawGrid() {
   fillBrushes();
   const name = $("grid-field").value, ext = studio.extents[name], cv = $("grid");
-  if (!ext) { cv.width = cv.height = 0; return; }
-  const [rows, cols] = ext, px = cellPx(rows, cols), g = studio.grids[name], ctx = cv.getContext("2d");
-  cv.width = cols * px; cv.height = rows * px;
-  for (let r = 0; r < rows; r++) for (let c = 0; c < cols; c++) {
-    const v = g ? g[r][c] : -1;
-    if (v >= 0) { ctx.globalAlpha = 1; ctx.fillStyle = PALETTE[v % PALETTE.length]; }
-    else if (studio.cells && studio.cells[r] && studio.cells[r][c] !== undefined) {
-      ctx.globalAlpha = 0.35; ctx.fillStyle = PALETTE[studio.cells[r][c] % PALETTE.length];
-    } else { ctx.globalAlpha = 1; ctx.fillStyle = "#fff"; }
-    ctx.fillRect(c * px, r * px, px, px);
-    if (v >= 0 && px >= 6) { ctx.strokeStyle = "#000"; ctx.globalAlpha = 1; ctx.strokeRect(c * px + .5, r * px + .5, px - 1, px - 1); }
-    const shown = v >= 0 ? v : (studio.cells && studio.cells[r] ? studio.cells[r][c] : undefined);
-    if (shown !== undefined && px >= 16 && ext[3] > 9) {   // many values: write the number
-      ctx.globalAlpha = v >= 0 ? 1 : 0.5; ctx.fillStyle = "#000"; ctx.font = `${Math.floor(px / 2.2)}px sans-serif`;
-      ctx.textAlign = "center"; ctx.textBaseline = "middle"; ctx.fillText(String(shown), (c + .5) * px, (r + .5) * px);
+  if (!ext || !studio.colours) { cv.width = cv.height = 0; return; }
+  const [rows, cols] = ext, px = cellPx(rows, cols), g = studio.grids[name];
+  const sol = studio.cells && studio.cells.rows === rows && studio.cells.cols === cols;
+  const small = document.createElement("canvas"); small.width = cols; small.height = rows;
+  const sctx = small.getContext("2d"), img = sctx.createImageData(cols, rows), d = img.data;
+  const rgb = studio.colours.map(rgbOf), free = [255, 255, 255];
+  for (let r = 0; r < rows; r++) {
+    const row = g ? g[r] : null;
+    for (let c = 0; c < cols; c++) {
+      const v = row ? row[c] : -1, i = 4 * (r * cols + c);
+      let col = free, a = 255;
+      if (v >= 0) col = rgb[v % rgb.length];
+      else if (sol) { const s = solutionCell(r, c); if (s >= 0) { col = rgb[s % rgb.length]; a = 90; } }
+      d[i] = col[0]; d[i + 1] = col[1]; d[i + 2] = col[2]; d[i + 3] = a;
     }
   }
-  ctx.globalAlpha = 1;
+  sctx.putImageData(img, 0, 0);
+  cv.width = cols * px; cv.height = rows * px;
+  const ctx = cv.getContext("2d");
+  ctx.fillStyle = "#fff"; ctx.fillRect(0, 0, cv.width, cv.height);
+  ctx.imageSmoothingEnabled = false; ctx.drawImage(small, 0, 0, cv.width, cv.height);
+  if (g && px >= 6) {                  // fixed cells outlined, so that any colour reads on white
+    ctx.strokeStyle = "#000"; ctx.lineWidth = 1;
+    for (let r = 0; r < rows; r++) for (let c = 0; c < cols; c++)
+      if (g[r][c] >= 0) ctx.strokeRect(c * px + .5, r * px + .5, px - 1, px - 1);
+  }
+  if (px >= 16 && ext[3] > 9) {        // many values: write the number
+    ctx.font = `${Math.floor(px / 2.2)}px sans-serif`; ctx.textAlign = "center"; ctx.textBaseline = "middle";
+    for (let r = 0; r < rows; r++) for (let c = 0; c < cols; c++) {
+      const v = g ? g[r][c] : -1, shown = v >= 0 ? v : (sol ? solutionCell(r, c) : undefined);
+      if (shown === undefined) continue;
+      ctx.globalAlpha = v >= 0 ? 1 : 0.5; ctx.fillStyle = "#000"; ctx.fillText(String(shown), (c + .5) * px, (r + .5) * px);
+    }
+    ctx.globalAlpha = 1;
+  }
 }
 
 function paintAt(ev) {
   const name = $("grid-field").value, ext = studio.extents[name];
   if (!ext) return;
   const [rows, cols] = ext, px = cellPx(rows, cols), rect = $("grid").getBoundingClientRect();
-  const c = Math.floor((ev.clientX - rect.left) / px), r = Math.floor((ev.clientY - rect.top) / px);
+  const k = $("grid").width / rect.width;          // the canvas may be shown narrower than it is
+  const c = Math.floor((ev.clientX - rect.left) * k / px), r = Math.floor((ev.clientY - rect.top) * k / px);
   if (r < 0 || c < 0 || r >= rows || c >= cols) return;
   if (!studio.grids[name]) studio.grids[name] = Array.from({ length: rows }, () => new Array(cols).fill(-1));
   const b = $("brush").value;
-  studio.grids[name][r][c] = b === "solution" ? (studio.cells ? studio.cells[r][c] : -1) : Number(b);
+  studio.grids[name][r][c] = b === "solution" ? (studio.cells ? solutionCell(r, c) : -1) : Number(b);
   drawGrid();
 }
 
+function restore(from, to) {
+  if (!from.length) return;
+  to.push(snapshot()); studio.grids = JSON.parse(from.pop()); formChanged();
+}
+const undo = () => restore(undoStack, redoStack), redo = () => restore(redoStack, undoStack);
+
 function setupEditor() {
   let down = false;
-  $("grid").addEventListener("mousedown", (e) => { down = true; paintAt(e); });
+  $("grid").addEventListener("mousedown", (e) => { undoStack.push(snapshot()); redoStack.length = 0; down = true; paintAt(e); });
   $("grid").addEventListener("mousemove", (e) => { if (down) paintAt(e); });
   window.addEventListener("mouseup", () => { if (down) { down = false; formChanged(); } });
   $("grid-field").addEventListener("change", drawGrid);
-  $("grid-clear").addEventListener("click", () => { delete studio.grids[$("grid-field").value]; formChanged(); });
+  $("grid-undo").addEventListener("click", undo);
+  $("grid-redo").addEventListener("click", redo);
+  $("grid-clear").addEventListener("click", () => {
+    undoStack.push(snapshot()); redoStack.length = 0; delete studio.grids[$("grid-field").value]; formChanged();
+  });
   $("grid-upload").addEventListener("change", async (e) => {
     const file = e.target.files[0], name = $("grid-field").value, ext = studio.extents[name];
     if (!file || !ext) return;
@@ -164,6 +352,7 @@ function setupEditor() {
     const cv = document.createElement("canvas"); cv.width = cols; cv.height = rows;
     const ctx = cv.getContext("2d"); ctx.drawImage(img, 0, 0, cols, rows);
     const px = ctx.getImageData(0, 0, cols, rows).data, levels = Math.min(hi - lo + 1, 10);
+    undoStack.push(snapshot()); redoStack.length = 0;
     studio.grids[name] = Array.from({ length: rows }, (_, r) => Array.from({ length: cols }, (_, c) => {
       const i = 4 * (r * cols + c), y = (0.299 * px[i] + 0.587 * px[i + 1] + 0.114 * px[i + 2]) / 256;
       return lo + Math.min(levels - 1, Math.floor(y * levels));
@@ -174,21 +363,35 @@ function setupEditor() {
 }
 
 // ------------------------------------------------------------------ solving
+function clearResult() {
+  studio.result = null; studio.pictureImage = null;
+  $("picture").innerHTML = ""; $("verdict").textContent = ""; $("window-caption").textContent = "";
+  $("exports").hidden = true; $("stage-empty").hidden = false; delete $("status").dataset.status;
+}
+
 async function solve() {
   studio.timings.click = performance.now();
-  showError(""); $("verdict").textContent = ""; $("exports").hidden = true;
+  showError("");
   $("solve").disabled = true; $("cancel").disabled = false; $("progress").hidden = false;
-  $("status").textContent = "solving…";
+  $("progress").removeAttribute("value");
+  $("status").textContent = "solving…"; delete $("status").dataset.status;
+  $("picture").style.opacity = .35;
   try {
     const { id } = await api("/api/solve", request());
     studio.job = id; studio.lastJob = id;
     await follow(id);
+    $("status").textContent = "fetching the result…";
     const job = await api(`/api/jobs/${id}`);
-    if (job.state === "done") showResult(job.result);
-    else if (job.state === "cancelled") $("status").textContent = `cancelled after ${job.elapsed_s.toFixed(1)} s`;
-    else { $("status").textContent = ""; showError(job.error); }
-  } catch (e) { $("status").textContent = ""; showError(e.message); }
-  finally { $("solve").disabled = false; $("cancel").disabled = true; $("progress").hidden = true; studio.job = null; }
+    if (job.state === "done") {
+      $("status").textContent = "drawing the picture…";
+      await showResult(job.result);
+    } else if (job.state === "cancelled") { clearResult(); $("status").textContent = `cancelled after ${job.elapsed_s.toFixed(1)} s`; }
+    else { clearResult(); $("status").textContent = ""; showError(job.error); }
+  } catch (e) { clearResult(); $("status").textContent = ""; showError(e.message); }
+  finally {
+    $("picture").style.opacity = 1;
+    $("solve").disabled = false; $("cancel").disabled = true; $("progress").hidden = true; studio.job = null;
+  }
 }
 
 // The solve's progress, streamed by the server (Server-Sent Events) until the job ends.
@@ -221,15 +424,30 @@ function showProgress(job) {
   else $("progress").removeAttribute("value");
 }
 
-function showResult(res) {
+// A packed grid (tilesolve/studio/worker.py, packed_cells) as {rows, cols, data: typed array}.
+function unpackCells(p) {
+  if (!p) return null;
+  const bytes = Uint8Array.from(atob(p.data), (ch) => ch.charCodeAt(0)).buffer;
+  const T = { int8: Int8Array, int16: Int16Array, int32: Int32Array }[p.dtype];
+  return { rows: p.rows, cols: p.cols, data: new T(bytes) };
+}
+studio.cellRows = () => studio.cells && Array.from({ length: studio.cells.rows },
+  (_, r) => Array.from(studio.cells.data.subarray(r * studio.cells.cols, (r + 1) * studio.cells.cols)));
+
+async function showResult(res) {
   studio.result = res;
-  const pic = $("picture"); pic.innerHTML = "";
-  const shown = () => { studio.timings.lastSolveMs = performance.now() - studio.timings.click; };
-  if (res.picture && res.picture.format === "svg") { pic.innerHTML = res.picture.data; shown(); }
+  const pic = $("picture");
+  $("stage-empty").hidden = true;
+  if (res.picture && res.picture.format === "svg") { pic.innerHTML = res.picture.data; studio.pictureImage = null; }
   else if (res.picture) {
-    const img = new Image(); img.onload = shown; img.alt = res.describe;
-    img.src = "data:image/png;base64," + res.picture.data; pic.appendChild(img);
-  } else shown();
+    const img = new Image(); img.alt = res.describe;
+    img.src = "data:image/png;base64," + res.picture.data;
+    await img.decode();
+    studio.pictureImage = img; pic.replaceChildren(img);
+  } else { pic.innerHTML = ""; studio.pictureImage = null; $("stage-empty").hidden = false; }
+  recolourPicture();
+  studio.stage.fit();
+  studio.timings.lastSolveMs = performance.now() - studio.timings.click;
   const obj = res.objective === null ? "" : `, distance ${res.objective}`;
   const run = `${res.method}, seed ${res.seed}, ${res.time_s.toFixed(3)} s`;
   // A report (an aperiodicity check) is shown in its own words: its verdict, not a solver status.
@@ -251,9 +469,10 @@ function showResult(res) {
   }
   $("command").textContent = res.command;
   $("exports").hidden = false;
-  studio.cells = res.cells;
+  studio.cells = unpackCells(res.cells);
   drawGrid();
-  if (res.cells && $("brush").querySelector("option[value=solution]")) $("brush").value = "solution";
+  if (studio.cells && $("brush").querySelector("option[value=solution]")) $("brush").value = "solution";
+  $("seed").value = res.seed; saveState(true);
 }
 
 // The coordinates of a solution's window of the plane, from its data (model/window.py).
@@ -267,11 +486,86 @@ async function cancel() {
   if (studio.job) { try { await api(`/api/jobs/${studio.job}/cancel`, {}); } catch (e) { showError(e.message); } }
 }
 
+// ------------------------------------------------------------------ shareable state
+// The page's problem lives in the address: family, values (painted grids too, while small), method,
+// seed, time limit, and "go" once solved; opening the address poses (and solves) it again.
+const MAX_STATE = 60000;
+function saveState(solved) {
+  if (!studio.fam || studio.applying) return;
+  const r = request(), state = { f: r.family, v: r.values, m: r.method };
+  if (r.time_limit !== undefined) state.t = r.time_limit;
+  if (solved) state.go = 1;
+  let text = JSON.stringify(state);
+  if (text.length > MAX_STATE) {
+    for (const f of studio.fam.fields) if (f.kind === "cells") delete state.v[f.name];
+    text = JSON.stringify(state);
+  }
+  window.history.replaceState(null, "", "#" + new URLSearchParams({ s: text }).toString());
+}
+
+function readState() {
+  try { const s = new URLSearchParams(location.hash.slice(1)).get("s"); return s ? JSON.parse(s) : null; }
+  catch (e) { return null; }
+}
+
+// Pose a problem on the page: {family, values, method, seed, time_limit}; solve it with go.
+async function applyState(st, go) {
+  const fam = studio.families.find(f => f.name === st.f);
+  if (!fam) { showError(`no family ${st.f} in this studio`); return; }
+  studio.applying = true;
+  try {
+    $("family").value = fam.name; pickFamily();
+    const v = st.v || {};
+    for (const f of fam.fields) {
+      if (!(f.name in v)) continue;
+      if (f.kind === "cells") { studio.grids[f.name] = v[f.name]; continue; }
+      const el = $("field-" + f.name);
+      if (f.kind === "bool") el.checked = !!v[f.name]; else el.value = v[f.name] === null ? "" : v[f.name];
+    }
+    $("seed").value = v.seed === undefined || v.seed === null ? "" : v.seed;
+    if (st.m) $("method").value = st.m;
+    $("time-limit").value = st.t === undefined ? "" : st.t;
+  } finally { studio.applying = false; }
+  await formChanged();
+  if (go) await solve();
+}
+
+// ------------------------------------------------------------------ gallery
+// One-click problems from the papers; a preset names its family and is shown where the family is.
+const PRESETS = [
+  { label: "Dappled 64×48", f: "dappled", v: { size: "64x48", seed: 1 } },
+  { label: "Wall of Fig. 22 (n = 4)", f: "board", v: { size: "48x32", max_h: 4, max_v: 4, seed: 1 } },
+  { label: "Corner packing C = 2", f: "packing", v: { kind: "corner", colors: 2, seed: 1 } },
+  { label: "Wang packing C = 3", f: "packing", v: { kind: "wang", colors: 3, seed: 1 } },
+  { label: "Jeandel–Rao window", f: "aperiodic-window", v: { seed: 1 } },
+  { label: "Jeandel–Rao report", f: "aperiodic", v: { seed: 1 } },
+  { label: "Texture (corner tiles)", f: "stochastic", v: { kind: "corner", size: "96x64", seed: 3 } },
+  { label: "Penrose rhombs", f: "substitution", v: { kind: "p3", seed: 1 } },
+  { label: "Pentomino tiling", f: "shapes", v: { seed: 1 } },
+];
+
+function buildGallery() {
+  const box = $("presets"); box.innerHTML = "";
+  for (const p of PRESETS) {
+    if (!studio.families.some(f => f.name === p.f)) continue;
+    const b = document.createElement("button"); b.type = "button"; b.textContent = p.label;
+    b.dataset.preset = p.label;
+    b.addEventListener("click", () => applyState(p, true));
+    box.appendChild(b);
+  }
+}
+
 // ------------------------------------------------------------------ infinite view
-const view = studio.view = { x: 0, y: 0, zoom: 1, tiles: new Map(), range: "", values: "" };
+// A canvas drawn from square tiles of the plane, VIEW_N << level cells each (coarser levels when
+// zoomed out); a tile not yet loaded shows the best loaded level over it, or a hatch, and the
+// loading sign counts what is on its way. Every tile is drawn at the same scale, edges rounded
+// to whole pixels, so no band differs and no gap opens.
+const view = studio.view = { x: 0, y: 0, zoom: 1, cache: new Map(), inflight: 0, values: "", gen: 0,
+                             missing: 0, rects: [], failed: 0 };
+const MAX_INFLIGHT = 4;
 
 function resetView() {
-  view.tiles.clear(); $("tiles").innerHTML = ""; view.range = "";
+  view.cache.clear(); view.gen++; view.inflight = 0; view.failed = 0;
   if (!studio.fam || !studio.fam.view) return;
   const values = Object.fromEntries(Object.entries(formValues()).filter(
     ([k]) => !studio.fam.fields.some(f => f.name === k && f.kind === "cells")));
@@ -280,52 +574,118 @@ function resetView() {
   requestAnimationFrame(drawView);
 }
 
-function drawView() {
-  if (!studio.fam || !studio.fam.view) return;
-  const vp = $("viewport"), w = vp.clientWidth, h = vp.clientHeight, T = VIEW_N * CELL;
-  $("tiles").style.transform = `scale(${view.zoom}) translate(${-view.x}px, ${-view.y}px)`;
-  const i0 = Math.floor(view.x / T), j0 = Math.floor(view.y / T);
-  const i1 = Math.floor((view.x + w / view.zoom) / T), j1 = Math.floor((view.y + h / view.zoom) / T);
-  if (i1 - i0 > 24 || j1 - j0 > 24) return;           // zoomed out too far: keep what is shown
-  const range = `${i0},${j0},${i1},${j1}`;
-  if (range === view.range) return;                   // the same tiles: the transform was enough
-  view.range = range;
-  for (let i = i0; i <= i1; i++) for (let j = j0; j <= j1; j++) {
-    const key = i + "," + j;
-    if (view.tiles.has(key)) continue;
-    const img = new Image(T, T);
-    img.style.left = i * T + "px"; img.style.top = j * T + "px"; img.style.width = img.style.height = T + "px";
-    img.onerror = () => { $("view-info").textContent = "a view tile failed: check the form"; };
-    img.src = `/api/view/${studio.fam.name}.png?x=${i * VIEW_N}&y=${-(j + 1) * VIEW_N}&n=${VIEW_N}` +
-              `&values=${view.values}`;
-    $("tiles").appendChild(img); view.tiles.set(key, img);
+function levelFor(zoom) {
+  const want = Math.ceil(Math.log2(160 / (VIEW_N * CELL * zoom)));
+  return Math.max(0, Math.min(MAX_LEVEL, want));
+}
+
+function tileAt(level, i, j) {
+  const key = `${level}:${i}:${j}`;
+  let t = view.cache.get(key);
+  if (!t) { t = { level, i, j, key, state: "wanted", tries: 0, img: null, used: 0 }; view.cache.set(key, t); }
+  return t;
+}
+
+function fetchTile(t) {
+  const n = VIEW_N << t.level, gen = view.gen, img = new Image();
+  t.state = "loading"; view.inflight++;
+  img.onload = () => { if (gen !== view.gen) return; t.img = img; t.state = "ready"; view.inflight--; pump(); drawView(); };
+  img.onerror = () => {
+    if (gen !== view.gen) return;
+    view.inflight--; t.tries++;
+    t.state = t.tries < 3 ? "wanted" : "failed";
+    if (t.state === "failed") { view.failed++; $("view-info").textContent = "a view tile failed: check the form"; }
+    setTimeout(() => { pump(); drawView(); }, 300 * t.tries);
+  };
+  img.src = `/api/view/${studio.fam.name}.png?x=${t.i * n}&y=${-(t.j + 1) * n}&n=${n}&values=${view.values}`;
+}
+
+function pump() {
+  for (const t of view.wanted || []) {
+    if (view.inflight >= MAX_INFLIGHT) break;
+    if (t.state === "wanted") fetchTile(t);
   }
-  if (view.tiles.size > 600) {                          // forget tiles far from the window
-    for (const [key, img] of view.tiles) {
-      const [i, j] = key.split(",").map(Number);
-      if (i < i0 - 4 || i > i1 + 4 || j < j0 - 4 || j > j1 + 4) { img.remove(); view.tiles.delete(key); }
+}
+
+function hatch(ctx) {
+  if (!view.pattern) {
+    const p = document.createElement("canvas"); p.width = p.height = 12;
+    const c = p.getContext("2d"); c.fillStyle = "#eef0f3"; c.fillRect(0, 0, 12, 12);
+    c.strokeStyle = "#cfd5dd"; c.lineWidth = 2; c.beginPath(); c.moveTo(0, 12); c.lineTo(12, 0); c.stroke();
+    view.pattern = ctx.createPattern(p, "repeat");
+  }
+  return view.pattern;
+}
+
+function drawView() {
+  if (!studio.fam || !studio.fam.view || $("view-panel").hidden) return;
+  const cv = $("view-canvas"), dpr = window.devicePixelRatio || 1;
+  const w = cv.clientWidth, h = cv.clientHeight;
+  if (cv.width !== Math.round(w * dpr) || cv.height !== Math.round(h * dpr)) { cv.width = Math.round(w * dpr); cv.height = Math.round(h * dpr); }
+  const ctx = cv.getContext("2d");
+  ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
+  ctx.clearRect(0, 0, w, h);
+  const level = levelFor(view.zoom), n = VIEW_N << level, T = n * CELL, z = view.zoom;
+  const i0 = Math.floor(view.x / T), j0 = Math.floor(view.y / T);
+  const i1 = Math.floor((view.x + w / z) / T), j1 = Math.floor((view.y + h / z) / T);
+  const sx = (bx) => Math.round((bx - view.x) * z), sy = (by) => Math.round((by - view.y) * z);
+  const wanted = []; let missing = 0; const rects = [], stamp = performance.now();
+  for (let j = j0; j <= j1; j++) for (let i = i0; i <= i1; i++) {
+    const t = tileAt(level, i, j); t.used = stamp; wanted.push(t);
+    const x0 = sx(i * T), x1 = sx((i + 1) * T), y0 = sy(j * T), y1 = sy((j + 1) * T);
+    rects.push([x0, y0, x1 - x0, y1 - y0]);
+    if (t.state === "ready") { ctx.imageSmoothingEnabled = (x1 - x0) < t.img.naturalWidth; ctx.drawImage(t.img, x0, y0, x1 - x0, y1 - y0); continue; }
+    missing++;
+    ctx.fillStyle = hatch(ctx); ctx.fillRect(x0, y0, x1 - x0, y1 - y0);
+    // the best loaded stand-in: the coarser tile that holds this one, or the finer ones inside it
+    for (let L = level + 1; L <= MAX_LEVEL; L++) {
+      const k = 1 << (L - level), p = view.cache.get(`${L}:${Math.floor(i / k)}:${Math.floor(j / k)}`);
+      if (p && p.state === "ready") {
+        const s = p.img.naturalWidth / k, ox = ((i % k) + k) % k, oy = ((j % k) + k) % k;
+        ctx.imageSmoothingEnabled = false;
+        ctx.drawImage(p.img, ox * s, oy * s, s, s, x0, y0, x1 - x0, y1 - y0); break;
+      }
+    }
+    if (level > 0) for (let a = 0; a < 2; a++) for (let b = 0; b < 2; b++) {
+      const c = view.cache.get(`${level - 1}:${2 * i + a}:${2 * j + b}`);
+      if (c && c.state === "ready") {
+        const cx0 = sx((2 * i + a) * T / 2), cy0 = sy((2 * j + b) * T / 2);
+        ctx.drawImage(c.img, cx0, cy0, sx((2 * i + a + 1) * T / 2) - cx0, sy((2 * j + b + 1) * T / 2) - cy0);
+      }
     }
   }
-  $("view-info").textContent = `cells x ${Math.floor(view.x / CELL)}, y ${-Math.floor(view.y / CELL)}, zoom ${view.zoom.toFixed(2)}`;
+  view.wanted = wanted; view.missing = missing; view.rects = rects; view.level = level;
+  pump();
+  $("view-loading").hidden = missing === 0;
+  $("view-loading").textContent = `loading ${missing} tile${missing === 1 ? "" : "s"}…`;
+  if (view.cache.size > 400) {         // forget the tiles least recently drawn
+    const old = [...view.cache.values()].filter(t => t.used !== stamp && t.state !== "loading").sort((a, b) => a.used - b.used);
+    for (const t of old.slice(0, view.cache.size - 300)) view.cache.delete(t.key);
+  }
+  if (!view.failed) $("view-info").textContent =
+    `cells x ${Math.floor(view.x / CELL)}, y ${-Math.floor(view.y / CELL)}, zoom ${view.zoom.toFixed(2)}, ` +
+    `${n}×${n}-cell tiles`;
 }
 
 function setupView() {
   const vp = $("viewport");
   let drag = null, pending = false;
   const redraw = () => { if (!pending) { pending = true; requestAnimationFrame(() => { pending = false; drawView(); }); } };
-  vp.addEventListener("mousedown", (e) => { drag = { x: e.clientX, y: e.clientY }; vp.style.cursor = "grabbing"; });
-  window.addEventListener("mousemove", (e) => {
+  vp.addEventListener("pointerdown", (e) => { drag = { x: e.clientX, y: e.clientY }; vp.style.cursor = "grabbing"; vp.setPointerCapture(e.pointerId); });
+  vp.addEventListener("pointermove", (e) => {
     if (!drag) return;
     view.x -= (e.clientX - drag.x) / view.zoom; view.y -= (e.clientY - drag.y) / view.zoom;
     drag = { x: e.clientX, y: e.clientY }; redraw();
   });
-  window.addEventListener("mouseup", () => { drag = null; vp.style.cursor = "grab"; });
+  const end = () => { drag = null; vp.style.cursor = "grab"; };
+  vp.addEventListener("pointerup", end); vp.addEventListener("pointercancel", end);
   vp.addEventListener("wheel", (e) => {
     e.preventDefault();
     const r = vp.getBoundingClientRect(), mx = e.clientX - r.left, my = e.clientY - r.top;
     const z = Math.min(8, Math.max(0.125, view.zoom * Math.exp(-e.deltaY / 500)));
     view.x += mx / view.zoom - mx / z; view.y += my / view.zoom - my / z; view.zoom = z; redraw();
   }, { passive: false });
+  window.addEventListener("resize", redraw);
 }
 
 // Pan for `ms` milliseconds, one step per animation frame; the redraw rate in frames per second.
@@ -339,27 +699,50 @@ studio.measurePan = (ms, dx = 6) => new Promise((done) => {
 });
 
 // ------------------------------------------------------------------ start
+function pickFamily() {
+  studio.fam = studio.families.find(f => f.name === $("family").value);
+  $("family-title").textContent = studio.fam.title;
+  clearResult(); $("status").textContent = "";
+  buildForm();
+}
+
+function shortcuts(e) {
+  const mod = e.ctrlKey || e.metaKey, typing = /^(INPUT|SELECT|TEXTAREA)$/.test(e.target.tagName);
+  if (mod && e.key === "Enter") { e.preventDefault(); if (!$("solve").disabled) solve(); }
+  else if (e.key === "Escape" && studio.job) cancel();
+  else if (mod && !typing && (e.key === "z" || e.key === "Z")) { e.preventDefault(); (e.shiftKey ? redo : undo)(); }
+  else if (mod && !typing && e.key === "y") { e.preventDefault(); redo(); }
+}
+
 async function start() {
-  const { families } = await api("/api/families");
-  studio.families = families;
-  for (const f of families) $("family").add(new Option(f.name, f.name));
-  const pick = () => {
-    studio.fam = families.find(f => f.name === $("family").value);
-    $("family-title").textContent = studio.fam.title;
-    $("picture").innerHTML = ""; $("verdict").textContent = ""; $("status").textContent = "";
-    $("exports").hidden = true; studio.result = null;
-    buildForm();
-  };
-  $("family").addEventListener("change", pick);
+  const { families, palette } = await api("/api/families");
+  studio.palette = palette;
+  // friendly families first: the pictures a newcomer reads at once
+  const order = ["dappled", "board", "stochastic", "substitution", "shapes", "packing"];
+  const rank = (f) => { const k = order.indexOf(f.name); return k < 0 ? order.length : k; };
+  studio.families = families.slice().sort((a, b) => rank(a) - rank(b));
+  for (const f of studio.families) $("family").add(new Option(f.name, f.name));
+  for (const name of Object.keys(PRESET_PALETTES)) $("palette-preset").add(new Option(name, name));
+  $("palette-preset").addEventListener("change", () => setPalette(PRESET_PALETTES[$("palette-preset").value]));
+  setPalette(null);
+  $("family").addEventListener("change", () => { pickFamily(); formChanged(); });
   $("method").addEventListener("change", formChanged);
   $("seed").addEventListener("change", formChanged);
+  $("time-limit").addEventListener("change", formChanged);
   $("solve").addEventListener("click", solve);
   $("cancel").addEventListener("click", cancel);
   $("copy-command").addEventListener("click", async () => {
-    try { await navigator.clipboard.writeText($("command").textContent); } catch (e) { /* the text is shown */ }
+    try { await navigator.clipboard.writeText($("command").textContent); $("copy-command").textContent = "Copied"; }
+    catch (e) { /* the text is shown */ }
+    setTimeout(() => { $("copy-command").textContent = "Copy as CLI command"; }, 1500);
   });
-  setupEditor(); setupView();
-  pick();
+  for (const f of ["svg", "png"]) $("export-" + f).addEventListener("click", (e) => exportPicture(f, e));
+  document.addEventListener("keydown", shortcuts);
+  studio.stage = new PanZoom($("stage"), $("picture"));
+  setupEditor(); setupView(); buildGallery();
+  const shared = readState();
+  if (shared) await applyState(shared, !!shared.go);
+  else { pickFamily(); await formChanged(); }
   document.body.dataset.ready = "1";
 }
 start().catch((e) => showError(e.message));

@@ -1,0 +1,103 @@
+"""PNG pictures of brick walls on boards: bricks and mortar at any size (brick paper, Def. 9).
+
+A brick Wang tile holds one junction of mortar lines: a W_H tile a horizontal line through the
+cell at the height of its W (= E) leg and two half vertical lines at its N and S legs, a W_V
+tile the converse (the geometry of :mod:`tilesolve.io.svg_board`: colour ``c`` of ``#C`` lies at
+``(c + 1) / (#C + 1)`` of the side). The junction is the top-left corner of exactly one brick,
+so every brick is the four corner regions that meet around it: the cell's bottom-right region,
+its right neighbour's bottom-left, the cell below's top-right and the one below-right's top-left.
+A brick is coloured by a hash of its corner cell's position in the plane (the window's
+coordinates when the tiling is a window of the plane), so neighbouring windows of one wall agree.
+No union-find: every pixel finds its brick from its cell and corner region, in numpy.
+
+Examples
+--------
+>>> from tilesolve.model.board import Board, BoardProblem, WangTileSet
+>>> from tilesolve.constructive.brick import solve_linear
+>>> p = BoardProblem(Board.rect(6, 4), WangTileSet.brick(3))
+>>> img = brick_image(p, solve_linear(p).tiling, scale=8)
+>>> img.size, img.mode
+((48, 32), 'P')
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from tilesolve.io.wall_png import MORTAR, N_BRICK_COLOURS, brick_palette
+from tilesolve.model.window import Window
+
+__all__ = ["brick_image", "brick_scale", "HOLE"]
+
+#: Palette index of holes (pixels of no cell).
+HOLE = N_BRICK_COLOURS
+_HOLE_RGB = (244, 244, 244)
+_TARGET_PX = 1024  # longest side of the picture
+
+
+def brick_scale(rows: int, cols: int) -> int:
+    """Pixels per cell of a ``rows x cols`` brick picture: the picture about 1,024 px wide,
+    each cell at least 4 px (a brick and its mortar stay visible) and at most 24."""
+    return int(min(24, max(4, _TARGET_PX // max(rows, cols, 1))))
+
+
+def _mix(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """A 64-bit mix of two integer coordinates (splitmix64's finaliser), as uint64."""
+    with np.errstate(over="ignore"):
+        h = x.astype(np.int64).astype(np.uint64) * np.uint64(0x9E3779B97F4A7C15)
+        h ^= y.astype(np.int64).astype(np.uint64) * np.uint64(0xC2B2AE3D27D4EB4F)
+        h ^= h >> np.uint64(31)
+        h *= np.uint64(0x94D049BB133111EB)
+        h ^= h >> np.uint64(29)
+    return h
+
+
+def brick_image(problem, tiling, *, window: Window | None = None, scale: int | None = None):
+    """A palette :class:`PIL.Image.Image` of a brick tiling of ``problem.board``.
+
+    Parameters
+    ----------
+    problem : BoardProblem
+        A board with a brick tile set (``problem.tileset.is_brick``).
+    tiling : array_like
+        ``(n_cells, 4)`` leg colours N, E, S, W.
+    window : Window, optional
+        Where the tiling lies in the plane: bricks are coloured by their plane position.
+    scale : int, optional
+        Pixels per cell (:func:`brick_scale` by default).
+    """
+    from PIL import Image
+
+    b = problem.board
+    t = np.asarray(tiling, dtype=np.int64).reshape(-1, 4)
+    lab = np.asarray(b.labels, dtype=np.int64)
+    rows, cols = int(lab[:, 0].max()) + 1, int(lab[:, 1].max()) + 1
+    s = brick_scale(rows, cols) if scale is None else int(scale)
+    k = problem.n_colors
+    pos = np.clip(np.rint((t + 1) / (k + 1) * s).astype(np.int64), 1, s - 1)  # (n, 4) N, E, S, W in pixels
+    n_, e_, s_, w_ = (pos[:, i, None, None] for i in range(4))
+    horizontal = (t[:, 3] == t[:, 1])[:, None, None]  # W_H: W = E
+    v = np.arange(s)[None, :, None]  # pixel row in the cell
+    u = np.arange(s)[None, None, :]  # pixel column
+    th = max(1, round(s / 10))
+    on = lambda coord, p: (coord >= p - th // 2) & (coord < p - th // 2 + th)  # noqa: E731 - a line's pixels
+    top = np.where(horizontal, v < w_, np.where(u < n_, v < w_, v < e_))
+    left = np.where(horizontal, np.where(v < w_, u < n_, u < s_), u < n_)
+    mortar = np.where(horizontal, on(v, w_) | np.where(v < w_, on(u, n_), on(u, s_)),
+                      on(u, n_) | np.where(u < n_, on(v, w_), on(v, e_)))
+    # the brick of a corner region has its top-left corner in the cell up (top) and left (left) of it
+    arow = lab[:, 0, None, None] - top
+    acol = lab[:, 1, None, None] - left
+    if window is not None:
+        x, y = window.x0 + acol, (window.y0 + window.height - 1 - arow if window.y_up else window.y0 + arow)
+    else:
+        x, y = acol, -arow
+    idx = (_mix(x, y) % np.uint64(N_BRICK_COLOURS)).astype(np.uint8)
+    idx[mortar] = MORTAR
+    pixels = np.full((rows, s, cols, s), HOLE, dtype=np.uint8)
+    pixels[lab[:, 0], :, lab[:, 1], :] = idx
+    img = Image.fromarray(pixels.reshape(rows * s, cols * s))
+    palette = brick_palette()
+    palette[HOLE] = _HOLE_RGB
+    img.putpalette([c for rgb in palette for c in rgb])
+    return img
