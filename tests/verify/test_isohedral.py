@@ -1,0 +1,103 @@
+"""The independent verifier of isohedral tilings (tilesolve.verify.isohedral): every one of the 93
+types draws and verifies, with straight and with curved edges; forged tilings are caught."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from tilesolve.constructive.isohedral import layout
+from tilesolve.model.isohedral import TYPES, EdgeShape, IsohedralProblem, isohedral_type
+from tilesolve.verify import isohedral as verifier
+from tilesolve.verify.isohedral import tiling_violations
+
+#: A shape of each kind that keeps its constraint (§7.3.1).
+SHAPES = {"J": "bezier:0.3,0.12/0.7,-0.08", "U": "bezier:0.3,0.12/0.7,0.12", "S": "bezier:0.3,0.12/0.7,-0.12",
+          "I": "line"}
+
+
+def curved(n: int, region=(-1.5, -1, 5, 4)) -> IsohedralProblem:
+    t = isohedral_type(n)
+    return IsohedralProblem(n, edges=tuple(EdgeShape.parse(SHAPES[k]) for k in t.edge_kinds), region=region)
+
+
+@pytest.mark.parametrize("n", TYPES, ids=lambda n: f"IH{n:02d}")
+def test_every_type_draws_and_verifies(n):
+    for problem in (IsohedralProblem(n, region=(0, 0, 4, 3)), curved(n)):
+        tiling = layout(problem)
+        assert tiling.n_tiles >= 4
+        assert tiling_violations(problem, tiling) == []
+
+
+def kinds(violations) -> set[str]:
+    return {v.kind for v in violations}
+
+
+@pytest.fixture(scope="module")
+def good():
+    problem = curved(28)
+    return problem, layout(problem)
+
+
+def test_a_moved_outline_point_breaks_the_template(good):
+    problem, tiling = good
+    outline = tiling.outline.copy()
+    outline[3] += 0.01
+    assert "template" in kinds(tiling_violations(problem, dataclasses.replace(tiling, outline=outline)))
+
+
+def test_other_edge_shapes_or_parameters_are_not_this_tiling(good):
+    problem, tiling = good
+    other = dataclasses.replace(problem, edges=(EdgeShape.parse("bezier:0.3,0.1/0.7,-0.1"),) + problem.edges[1:])
+    assert "template" in kinds(tiling_violations(other, tiling))
+    moved = dataclasses.replace(problem, params=(0.21, 0.5))
+    assert "template" in kinds(tiling_violations(moved, tiling))
+
+
+def test_forged_motions_are_caught(good):
+    problem, tiling = good
+    aspects = tiling.aspects.copy()
+    aspects[1, :, :2] *= 1.01  # not an isometry, not the table's
+    found = kinds(tiling_violations(problem, dataclasses.replace(tiling, aspects=aspects)))
+    assert {"template", "congruence"} <= found
+    trans = tiling.translations * 1.1
+    assert "template" in kinds(tiling_violations(problem, dataclasses.replace(tiling, translations=trans)))
+
+
+def test_a_crossing_tile_is_caught(good):
+    problem, tiling = good
+    outline = tiling.outline.copy()
+    outline[[2, 6]] = outline[[6, 2]]
+    assert "simple" in kinds(verifier._crossings(outline, 1e-9))
+
+
+def test_the_torus_check_finds_gaps_and_overlaps(good, monkeypatch):
+    # Past a template check that is told to pass: wrong translations leave chords unmatched
+    # and the areas wrong; a missing aspect leaves a gap.
+    problem, tiling = good
+    monkeypatch.setattr(verifier, "_template", lambda *a: [])
+    wide = dataclasses.replace(tiling, translations=tiling.translations * np.array([[1.25], [1.0]]))
+    assert "torus" in kinds(tiling_violations(problem, wide))
+    one = dataclasses.replace(tiling, aspects=tiling.aspects[:1].repeat(len(tiling.aspects), axis=0))
+    assert "torus" in kinds(tiling_violations(problem, one))
+
+
+def test_the_drawing_is_checked(good):
+    problem, tiling = good
+    placed, colours = tiling.placements, tiling.colours
+    drop = dataclasses.replace(tiling, placements=placed[5:], colours=colours[5:])
+    assert "drawing" in kinds(tiling_violations(problem, drop))
+    twice = dataclasses.replace(tiling, placements=np.vstack([placed, placed[:1]]), colours=np.append(colours, colours[0]))
+    assert "drawing" in kinds(tiling_violations(problem, twice))
+    far = placed.copy()
+    far[0, :2] += 1000
+    assert "drawing" in kinds(tiling_violations(problem, dataclasses.replace(tiling, placements=far)))
+    same = np.zeros_like(colours)
+    assert "colour" in kinds(tiling_violations(problem, dataclasses.replace(tiling, colours=same)))
+
+
+def test_another_types_tiling_is_refused(good):
+    problem, tiling = good
+    assert kinds(tiling_violations(IsohedralProblem(41), tiling)) == {"shape"}
