@@ -208,12 +208,12 @@ def png_bytes(problem: IsohedralProblem, tiling: IsohedralTiling) -> bytes:
     s = problem.scale
     img = Image.new("RGB", (wp, hp), "white")
     draw = ImageDraw.Draw(img)
-    T = tiling.translations
-    for (i, j, a), c in zip(tiling.placements.tolist(), tiling.colours.tolist()):
-        m = tiling.aspects[a]
-        xy = tiling.outline @ m[:, :2].T + m[:, 2] + i * T[0] + j * T[1]
-        px = np.stack([(xy[:, 0] - x0) * s, (y0 + h - xy[:, 1]) * s], axis=1)
-        draw.polygon([tuple(p) for p in px.tolist()], fill=COLOURS[c % len(COLOURS)], outline=STROKE)
+    placed = np.asarray(tiling.placements)
+    aspect_tiles = np.einsum("aij,nj->ani", tiling.aspects[:, :, :2], tiling.outline) + tiling.aspects[:, None, :, 2]
+    xy = aspect_tiles[placed[:, 2]] + (placed[:, :2] @ tiling.translations)[:, None, :]
+    px = np.stack([(xy[..., 0] - x0) * s, (y0 + h - xy[..., 1]) * s], axis=-1).reshape(len(placed), -1)
+    for flat, c in zip(px.tolist(), tiling.colours.tolist()):
+        draw.polygon(flat, fill=COLOURS[c % len(COLOURS)], outline=STROKE)
     buf = io.BytesIO()
     img.save(buf, format="PNG")
     return buf.getvalue()

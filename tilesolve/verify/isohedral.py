@@ -29,8 +29,6 @@ relative; symmetry of edge shapes within ``1e-9`` of the unit frame.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from tilesolve.model.isohedral import BEZIER_CHORDS, SYMMETRY_TOL, IsohedralProblem, IsohedralTiling, isohedral_type
@@ -281,23 +279,15 @@ def _drawing(problem: IsohedralProblem, tiling: IsohedralTiling, tiles: list[np.
     # Cover: each grid point of the region lies in some tile of the plane; that tile must be placed.
     g = (np.arange(_COVER_GRID) + 0.5 + 0.0137) / (_COVER_GRID + 0.03)
     pts = np.array([[x0 + u * w, y0 + v * h] for u in g for v in g])
-    inv = np.linalg.inv(T)
     covered = np.zeros(len(pts), bool)
     for a, p in enumerate(tiles):
-        lo, hi = boxes[a, :2], boxes[a, 2:]
-        box_uv = np.array([[lo[0], lo[1]], [lo[0], hi[1]], [hi[0], lo[1]], [hi[0], hi[1]]]) @ inv
-        pts_uv = pts @ inv
-        (i0, j0) = np.floor(pts_uv.min(axis=0) - box_uv.max(axis=0)).astype(int) - 1
-        (i1, j1) = np.ceil(pts_uv.max(axis=0) - box_uv.min(axis=0)).astype(int) + 1
-        cand = [(n, i, j) for i in range(i0, i1 + 1) for j in range(j0, j1 + 1) if (i, j, a) in where
-                for n in range(len(pts))]
-        if not cand:
+        cells = placed[placed[:, 2] == a, :2]
+        if not len(cells):
             continue
-        c = np.array(cand)
-        local = pts[c[:, 0]] - c[:, 1:2] * T[0] - c[:, 2:3] * T[1]
-        inbox = np.all((local >= lo) & (local <= hi), axis=1)
-        c, local = c[inbox], local[inbox]
-        covered[c[_inside(local, p), 0]] = True
+        n, c = np.divmod(np.arange(len(pts) * len(cells)), len(cells))
+        local = pts[n] - cells[c] @ T
+        inbox = np.all((local >= boxes[a, :2]) & (local <= boxes[a, 2:]), axis=1)
+        covered[n[inbox][_inside(local[inbox], p)]] = True
     if not covered.all():
         x, y = pts[np.argmin(covered)]
         out.append(Violation("drawing", f"the point ({x:.6g}, {y:.6g}) of the region lies in no placed tile"))
