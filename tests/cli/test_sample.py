@@ -1,0 +1,95 @@
+"""``tilesolve sample poisson-tiles``: through the console script."""
+
+from __future__ import annotations
+
+import json
+import shlex
+
+import numpy as np
+import pytest
+from clitools import one_line_error, run, snapshot
+
+
+@pytest.fixture(scope="module")
+def folder(tmp_path_factory):
+    d = tmp_path_factory.mktemp("poisson")
+    r = run("sample", "poisson-tiles", "build", "-C", "2", "-N", "24", "--rho", "0.7", "--seed", "1", "-o", "set.json",
+            cwd=d)
+    assert r.returncode == 0, r.stderr
+    return d
+
+
+def test_build_is_deterministic_and_verifies(folder):
+    r = run("sample", "poisson-tiles", "build", "-C", "2", "-N", "24", "--rho", "0.7", "--seed", "1", "-o", "again.json",
+            cwd=folder)
+    assert r.returncode == 0, r.stderr
+    assert (folder / "again.json").read_bytes() == (folder / "set.json").read_bytes()
+    doc = json.loads((folder / "set.json").read_text())
+    assert doc["format"] == "tilesolve/poisson-tiles" and doc["version"] == 1
+    v = run("verify", "set.json", cwd=folder)
+    assert v.returncode == 0 and "ok" in v.stdout + v.stderr
+
+
+def test_window_writes_points_pictures_and_verifies(folder):
+    r = run("sample", "poisson-tiles", "window", "set.json", "--region", "-3,4,5x4", "--seed", "2", "-o", "pts.csv",
+            "--svg", "pts.svg", "--png", "pts.png", cwd=folder)
+    assert r.returncode == 0, r.stderr
+    pts = np.loadtxt(folder / "pts.csv", delimiter=",", skiprows=1)
+    assert ((pts[:, 0] >= -3) & (pts[:, 0] < 2) & (pts[:, 1] >= 4) & (pts[:, 1] < 8)).all()
+    assert (folder / "pts.svg").read_text().startswith("<")
+    assert (folder / "pts.png").read_bytes()[:4] == b"\x89PNG"
+    r = run("sample", "poisson-tiles", "window", "set.json", "--region", "4611686018427387000,-9,3x3", "--tiling",
+            "scanline", "--seed", "5", "-o", "far.json", cwd=folder)
+    assert r.returncode == 0, r.stderr
+    assert run("verify", "far.json", cwd=folder).returncode == 0
+
+
+def test_verify_finds_points_too_close(folder):
+    run("sample", "poisson-tiles", "window", "set.json", "--region", "0,0,2x2", "--seed", "2", "-o", "w.json",
+        cwd=folder)
+    doc = json.loads((folder / "w.json").read_text())
+    x, y = doc["local"][0]
+    doc["local"].append([x + 1e-4, y])
+    (folder / "bad.json").write_text(json.dumps(doc))
+    r = run("verify", "bad.json", cwd=folder)
+    assert r.returncode == 1 and "closer than" in r.stdout + r.stderr
+
+
+@pytest.mark.parametrize("args", [
+    "build -C 2 -N 4 --rho 0.75 -o x.json",
+    "build -C 9 -N 64 -o x.json",
+    "build -C 2 -N 64 --rho 0.99 -o x.json",
+    "build -C 2 -N 64 -o x.txt",
+    "window missing.json --region 0,0,2x2 -o x.csv",
+    "window set.json --region 0,0,2 -o x.csv",
+    "window set.json --region 0,0,2x2 -o x.txt",
+    "window set.json --region 3000000000,0,2x2 -o x.csv",
+    "window set.json --region 0,0,2x2 --tiling direct --set compact -o x.csv",
+    "window pts.svg --region 0,0,2x2 -o x.csv",
+])
+def test_bad_input_is_one_line_and_writes_nothing(folder, args):
+    (folder / "pts.svg").write_text("<svg/>") if not (folder / "pts.svg").exists() else None
+    before = snapshot(folder)
+    one_line_error(run("sample", "poisson-tiles", *shlex.split(args), cwd=folder))
+    assert snapshot(folder) == before
+
+
+def test_spectrum_prints_the_table_and_plots(folder):
+    r = run("sample", "poisson-tiles", "spectrum", "set.json", "--size", "4", "--seed", "1", "--svg", "s.svg", "--png",
+            "s.png", cwd=folder)
+    assert r.returncode == 0, r.stderr
+    assert "corner tiles" in r.stdout and "dart throwing" in r.stdout
+    assert (folder / "s.svg").read_text().count("<polyline") == 4
+
+
+@pytest.mark.slow
+def test_help_examples_run_as_written_in_an_empty_folder(tmp_path):
+    for sub in ((), ("build",), ("window",), ("spectrum",)):
+        text = run("sample", "poisson-tiles", *sub, "--help", cwd=tmp_path).stdout
+        lines = [ln.strip() for ln in text.splitlines() if ln.strip().startswith("tilesolve ")]
+        assert lines
+        folder = tmp_path / ("-".join(sub) or "group")
+        folder.mkdir()
+        for line in lines:
+            r = run(*shlex.split(line)[1:], cwd=folder)
+            assert r.returncode == 0, (line, r.stderr)

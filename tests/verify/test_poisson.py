@@ -1,0 +1,70 @@
+"""The independent Poisson disk verifier catches what it must (class notes §4.2, §4.3)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from tilesolve.constructive.poisson import build_tiles
+from tilesolve.model.poisson import PoissonTilesProblem, PoissonTileSet
+from tilesolve.verify.poisson import point_violations, radial_spectrum, relative_radius, tileset_violations
+
+
+@pytest.fixture(scope="module")
+def ts():
+    return build_tiles(PoissonTilesProblem(2, 32, 0.7), seed=4)
+
+
+def _copy(ts, kind, k, pts):
+    tiles = {key: [a.copy() for a in arrs] for key, arrs in ts.tiles.items()}
+    tiles[kind][k] = pts
+    return PoissonTileSet(ts.problem, tiles)
+
+
+def test_a_point_next_to_the_corner_tile_across_a_seam_is_caught(ts):
+    d, a = ts.problem.distance, ts.problem.corner_half
+    corner = ts.tiles["corner"][1]
+    target = corner[np.argmax(corner[:, 0])]  # the corner point nearest the east strip
+    new = np.array([a + 1e-6, np.clip(target[1], -d + 1e-6, d - 1e-6)])
+    assert np.hypot(*(new - target)) < d  # the point lies in the strip, within d of the corner point
+    bad = _copy(ts, "hedge", 1 * 2 + 0, np.vstack([ts.tiles["hedge"][2], [new]]))  # west end colour 1
+    assert [v.kind for v in tileset_violations(bad)][:1] == ["distance"]
+
+
+def test_two_interior_points_too_close_are_caught(ts):
+    pts = ts.tiles["interior"][5]
+    bad = _copy(ts, "interior", 5, np.vstack([pts, pts[:1] + [ts.problem.distance / 3, 0]]))
+    assert [v.kind for v in tileset_violations(bad)][:1] == ["distance"]
+
+
+def test_a_point_outside_its_region_is_caught(ts):
+    bad = _copy(ts, "vedge", 0, np.vstack([ts.tiles["vedge"][0], [[0.5, 0.5]]]))
+    assert [v.kind for v in tileset_violations(bad)] == ["region"]
+
+
+def test_points_too_close_or_outside_the_window_are_listed():
+    pts = np.array([[0.1, 0.1], [0.15, 0.1], [2.5, 0.5], [0.9, 0.9]])
+    kinds = sorted(v.kind for v in point_violations(pts, 0.1, 2, 1))
+    assert kinds == ["distance", "window"]
+    assert point_violations(pts[[0, 3]], 0.1, 1, 1) == []
+    assert point_violations(np.array([[np.nan, 0.0]]), 0.1, 1, 1)[0].kind == "shape"
+
+
+def test_exactly_the_distance_apart_is_allowed():
+    assert point_violations(np.array([[0.0, 0.0], [0.25, 0.0]]), 0.25, 1, 1) == []
+
+
+def test_relative_radius_of_a_hexagonal_lattice_is_one():
+    a = 1 / 16
+    rows = [[(i + (j % 2) / 2) * a, j * a * np.sqrt(3) / 2] for j in range(18) for i in range(16)]
+    pts = np.array(rows)
+    area = 16 * a * 18 * a * np.sqrt(3) / 2
+    assert relative_radius(pts, area) == pytest.approx(1.0, rel=1e-9)
+
+
+def test_white_noise_has_a_flat_spectrum():
+    pts = np.random.default_rng(0).random((4000, 2)) * 4
+    f, p, aniso = radial_spectrum(pts, 4.0, k_max=32)
+    assert f[0] == 0.25 and len(p) == 32
+    assert 0.8 < float(p[8:].mean()) < 1.2
+    assert abs(float(aniso[8:].mean())) < 1.0
