@@ -14,6 +14,7 @@ from tilesolve.families import wall_render
 from tilesolve.constructive.walls import wall_window
 from tilesolve.errors import InternalError, InvalidProblem
 from tilesolve.families.wall_render import wall_map_pixels, write_wall_png
+from tilesolve.io.wall_png import DISTANCE_COLOURS, distance_legend
 
 from clitools import one_line_error, run, snapshot
 
@@ -33,9 +34,12 @@ def test_bands_make_the_picture_of_the_whole_window(tmp_path, monkeypatch, kind)
     rep = write_wall_png(tmp_path / "w.png", region, colors=4, max_line=3, seed=9, kind=kind, ppc=ppc)
     assert rep.bands == 6 and rep.size_px == (w * ppc, h * ppc) and rep.verified_cells == w * h
     got = pixels(tmp_path / "w.png")
-    assert np.array_equal(got, whole)
+    if kind == "distance":  # in colour, over its colour bar
+        whole = DISTANCE_COLOURS[whole]
+        assert np.array_equal(got[h * ppc:], distance_legend(w * ppc))
+    assert np.array_equal(got[:h * ppc], whole)
     with Image.open(tmp_path / "w.png") as img:
-        assert img.mode == {"id": "P", "distance": "L", "uv": "RGB"}[kind]
+        assert img.mode == {"id": "P", "distance": "RGB", "uv": "RGB"}[kind]
 
 
 def test_npd_pictures_repeat_the_period(tmp_path):
@@ -116,7 +120,9 @@ def test_cli_png_maps_json_verify_and_draw(tmp_path, monkeypatch):
     r = invoke("wall", "--region", "-12,30,20x15", "--max-line", "3", "--seed", "5", "-o", "w.json", "--png", "w.png",
                "--map", "uv", "--ppc", "6")
     assert r.exit_code == 0, r.output
-    assert pixels("w.png").shape == (90, 120, 3)
+    p = pixels("w.png")
+    assert p.shape[0] > 90 and p.shape[1:] == (120, 3)  # the picture, then its caption
+    assert (p[90:] == 255).all(axis=2).mean() > 0.8 and (p[90:] < 100).all(axis=2).any()
     assert json.loads(Path("w.json").read_text())["method"] == "procedural"
     v = invoke("verify", "w.json")
     assert v.exit_code == 0 and "ok:" in v.output
@@ -191,3 +197,34 @@ def test_ctrl_c_during_a_streamed_picture_leaves_no_file(tmp_path):
     assert proc.returncode == 130, err
     assert "interrupted" in err and "Traceback" not in err
     assert list(tmp_path.iterdir()) == []
+
+
+# ----------------------------------------------------------------------------- legible maps (issue 22)
+def test_a_distance_map_reads_at_full_size(tmp_path):
+    """A distance map of a large region: 8 px a cell by default (not 2: noise), in colour from
+    dark edges to light centres, over its colour bar and caption."""
+    err = run("wall", "--region", "0,0,200x150", "--max-line", "2", "--seed", "7", "--png", "d.png",
+              "--map", "distance", cwd=tmp_path)
+    assert err.returncode == 0, err.stderr
+    p = pixels(tmp_path / "d.png")
+    pic, below = p[:150 * 8], p[150 * 8:]
+    assert p.shape[1] == 200 * 8 and 30 < len(below) < 120
+    colours, counts = np.unique(pic.reshape(-1, 3), axis=0, return_counts=True)
+    assert len(colours) >= 4 and counts.max() < 0.5 * pic.shape[0] * pic.shape[1]  # no one colour dominates
+    luma = pic @ np.array([0.299, 0.587, 0.114])
+    assert luma.min() < 70 and luma.max() > 180  # dark by the mortar, light inside the bricks
+    bar = below[4:14, 4:-4]
+    assert np.array_equal(bar[0, 0], DISTANCE_COLOURS[0]) and np.array_equal(bar[0, -1], DISTANCE_COLOURS[255])
+    ink = (below[14:] < 100).all(axis=2)
+    assert ink.any() and ink.mean() < 0.3  # the lines that read the bar and name the wall
+
+
+def test_a_histogram_of_one_seed_says_seed(tmp_path):
+    proc = run("wall-lines", "--method", "procedural", "--max-line", "2", "--size", "8x8", "--samples", "1",
+               "--seed", "4", "--svg", "h.svg", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    text = (tmp_path / "h.svg").read_text()
+    assert "1 per generator, seed 4<" in text and "seeds" not in text
+    two = run("wall-lines", "--method", "procedural", "--max-line", "2", "--size", "8x8", "--samples", "2",
+              "--svg", "-", cwd=tmp_path)
+    assert "seeds 0..1<" in two.stdout

@@ -63,9 +63,11 @@ def _check_held(rows: int, cols: int, svg, streamed: bool) -> None:
 @opt.png_opt
 @click.option("--map", "map_kind", type=click.Choice(("id", "distance", "uv")), default=None,
               help="What --png shows: id, a colour per brick (default); distance, the distance to the brick's "
-                   "edges (grey); uv, the brick's Cartesian UV coordinates (red u, green v) (004 §3.2).")
+                   "edges (a colour map, with its colour bar); uv, the brick's Cartesian UV coordinates (red u, "
+                   "green v) (004 §3.2).")
 @click.option("--ppc", type=click.IntRange(1, 256), default=None, metavar="N",
-              help="--png pixels per cell  [default: about 1024 px on the longer side, 1 to 32]")
+              help="--png pixels per cell  [default: about 1024 px on the longer side, 1 to 32; at least 8 for "
+                   "the distance and uv maps]")
 @click.option("--verify/--no-verify", "check", default=True, show_default=True,
               help="Check every --png band with the board verifier (line limits included); -o is always "
                    "checked.")
@@ -124,7 +126,9 @@ def wall(ctx, region, max_line, colors, seed, method, period, output, svg, png, 
         def draw_streamed(path):
             return write_wall_png(path, (x0, y0, cols, rows), colors=colors, max_line=max_line, seed=seed,
                                   method=method, period=(pw, ph), kind=map_kind or "id", ppc=ppc, verify=check,
-                                  progress=progress_wanted())
+                                  progress=progress_wanted(),
+                                  caption=[f"{method} brick wall, lines <= {max_line}, seed {seed}"
+                                           + (f", period {pw}x{ph}" if method == "npd" else ""), window.caption()])
 
         draw = draw_streamed
     if held:

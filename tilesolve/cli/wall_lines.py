@@ -127,7 +127,8 @@ def wall_lines(ctx, methods, limits, size, samples, seed, colors, output, svg, p
     hists = [line_statistics(m, n, width=cols, height=rows_, samples=samples, seed=seed, colors=colors)
              for n in limits for m in methods]
     rows = _rows(hists)
-    title = f"line lengths of {cols}x{rows_} walls, {samples} per generator, seeds {seed}..{seed + samples - 1}"
+    seeds = f"seed {seed}" if samples == 1 else f"seeds {seed}..{seed + samples - 1}"
+    title = f"line lengths of {cols}x{rows_} walls, {samples} per generator, {seeds}"
     with outs.commit():
         if output:
             if output.lower().endswith(".csv"):

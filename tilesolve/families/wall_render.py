@@ -31,6 +31,7 @@ Examples
 
 from __future__ import annotations
 
+import math
 import time
 from dataclasses import dataclass
 from typing import Callable
@@ -41,7 +42,7 @@ from tilesolve.errors import InvalidProblem
 from tilesolve.families.walls import BandChecker, npd_problem
 from tilesolve.progress import Progress, as_progress
 
-__all__ = ["RenderReport", "write_wall_png", "wall_source", "wall_map_pixels", "default_ppc", "BAND_PIXELS", "BAND_CELLS", "MAX_RENDER_PIXELS"]
+__all__ = ["RenderReport", "write_wall_png", "wall_source", "wall_map_pixels", "default_ppc", "MAP_MIN_PPC", "BAND_PIXELS", "BAND_CELLS", "MAX_RENDER_PIXELS"]
 
 #: Pixels computed per band (1 to 3 bytes each, written as they are made).
 BAND_PIXELS = 1 << 22
@@ -61,6 +62,11 @@ class RenderReport:
     bands: int
     verified_cells: int
     time_s: float
+
+
+#: Fewest pixels per cell of a ``distance`` or ``uv`` map by default: at 1 or 2 pixels a cell,
+#: the values inside a brick read as noise.
+MAP_MIN_PPC = 8
 
 
 def default_ppc(w: int, h: int) -> int:
@@ -142,7 +148,7 @@ def wall_source(method: str, *, colors: int, max_line: int | None, seed: int,
 def write_wall_png(path, region: tuple[int, int, int, int], *, colors: int = 3, max_line: int | None = None,
                    seed: int = 0, method: str = "procedural", period: tuple[int, int] | None = None,
                    kind: str = "id", ppc: int | None = None, verify: bool = True,
-                   compression: int = 6, progress: Progress | bool = False) -> RenderReport:
+                   compression: int = 6, progress: Progress | bool = False, caption=()) -> RenderReport:
     """Draw the window ``region = (x0, y0, w, h)`` of an infinite wall as a PNG map, streamed.
 
     Parameters
@@ -160,7 +166,9 @@ def write_wall_png(path, region: tuple[int, int, int, int], *, colors: int = 3, 
     kind : {"id", "distance", "uv"}
         The map (module docstring).
     ppc : int, optional
-        Pixels per cell side (default :func:`default_ppc`).
+        Pixels per cell side (default :func:`default_ppc`; for the ``distance`` and ``uv`` maps,
+        whose values vary inside a cell, at least :data:`MAP_MIN_PPC` where the picture stays
+        within :data:`MAX_RENDER_PIXELS`).
     verify : bool
         Check every band with the board verifier (module docstring); a violation is an
         :class:`~tilesolve.errors.InternalError` and no file is written.
@@ -168,6 +176,8 @@ def write_wall_png(path, region: tuple[int, int, int, int], *, colors: int = 3, 
         zlib level of the PNG (0-9).
     progress : Progress or bool
         Where the bands drawn are counted (:func:`tilesolve.progress.as_progress`).
+    caption : sequence of str
+        Lines written under the picture.
 
     Returns
     -------
@@ -184,7 +194,11 @@ def write_wall_png(path, region: tuple[int, int, int, int], *, colors: int = 3, 
                              "address (|coordinates| < 2**62, one cell of margin for the bricks around it)")
     if kind not in MAP_KINDS:
         raise InvalidProblem(f"unknown wall map {kind!r}; choose one of {', '.join(MAP_KINDS)}")
-    ppc = default_ppc(w, h) if ppc is None else check_int(ppc, "pixels per cell", 1)
+    if ppc is None:
+        ppc = default_ppc(w, h)
+        if kind != "id":  # as many as MAP_MIN_PPC where the pixel limit allows
+            ppc = max(ppc, min(MAP_MIN_PPC, math.isqrt(MAX_RENDER_PIXELS // (w * h))))
+    ppc = check_int(ppc, "pixels per cell", 1)
     width, height = w * ppc, h * ppc
     if width * height > MAX_RENDER_PIXELS:
         raise InvalidProblem(f"a {width:,} x {height:,} px picture is larger than the {MAX_RENDER_PIXELS:,} px limit; "
@@ -209,5 +223,5 @@ def write_wall_png(path, region: tuple[int, int, int, int], *, colors: int = 3, 
             bar.advance()
 
     with as_progress(progress).task(f"PNG {width:,} x {height:,} px", total=n_bands, unit="band") as bar:
-        write_bands_png(path, width, height, bands(), kind, compression=compression)
+        write_bands_png(path, width, height, bands(), kind, compression=compression, caption=caption)
     return RenderReport((width, height), w * h, n_bands, state["verified"], time.perf_counter() - t0)
