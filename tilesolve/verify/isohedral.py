@@ -256,38 +256,57 @@ def _drawing(problem: IsohedralProblem, tiling: IsohedralTiling, tiles: list[np.
         return [Violation("drawing", f"a placement names an aspect outside 0..{t.n_aspects - 1}")]
     if len(placed) and (colours.min() < 0 or colours.max() >= t.n_colours):
         return [Violation("drawing", f"a colour lies outside 0..{t.n_colours - 1}")]
-    where = {tuple(r): k for k, r in enumerate(placed.tolist())}
-    if len(where) != len(placed):
+    lo = placed[:, :2].min(axis=0, initial=0) - 1
+    span = placed[:, :2].max(axis=0, initial=0) - lo + 2
+
+    def key(i, j, a):  # one integer per (i, j, aspect) near the placed ones
+        return ((i - lo[0]) * span[1] + (j - lo[1])) * t.n_aspects + a
+
+    keys = key(placed[:, 0], placed[:, 1], placed[:, 2])
+    order = np.argsort(keys, kind="stable")
+    if len(keys) and (np.diff(keys[order]) == 0).any():
         return [Violation("drawing", "a tile is placed twice")]
     out = []
     T = tiling.translations
     x0, y0, w, h = problem.region
     boxes = np.array([[p[:, 0].min(), p[:, 1].min(), p[:, 0].max(), p[:, 1].max()] for p in tiles])
-    for (i, j, a), k in where.items():
-        dx, dy = i * T[0] + j * T[1]
-        b = boxes[a]
-        if b[0] + dx > x0 + w or b[2] + dx < x0 or b[1] + dy > y0 + h or b[3] + dy < y0:
-            out.append(Violation("drawing", f"placed tile {k} lies outside the region"))
-            break
-    for (i, j, a), k in where.items():
-        for a2, b2, di, dj in links:
-            if a2 == a:
-                other = where.get((i + di, j + dj, b2))
-                if other is not None and colours[other] == colours[k]:
-                    out.append(Violation("colour", f"placed tiles {k} and {other} share an edge and a colour"))
-                    return out
+    b = boxes[placed[:, 2]] + np.tile(placed[:, :2] @ T, 2)
+    away = (b[:, 0] > x0 + w) | (b[:, 2] < x0) | (b[:, 1] > y0 + h) | (b[:, 3] < y0)
+    if away.any():
+        out.append(Violation("drawing", f"placed tile {int(np.argmax(away))} lies outside the region"))
+    for a, a2, di, dj in sorted(links):
+        mine = np.flatnonzero(placed[:, 2] == a)
+        want = key(placed[mine, 0] + di, placed[mine, 1] + dj, a2)
+        inside = (placed[mine, 0] + di >= lo[0]) & (placed[mine, 0] + di < lo[0] + span[0]) & \
+                 (placed[mine, 1] + dj >= lo[1]) & (placed[mine, 1] + dj < lo[1] + span[1])
+        pos = np.clip(np.searchsorted(keys[order], want), 0, max(len(keys) - 1, 0))
+        found = inside & (keys[order][pos] == want)
+        other = order[pos[found]]
+        clash = colours[mine[found]] == colours[other]
+        if clash.any():
+            k = int(np.argmax(clash))
+            out.append(Violation("colour", f"placed tiles {int(mine[found][k])} and {int(other[k])} share an edge "
+                                           "and a colour"))
+            return out
     # Cover: each grid point of the region lies in some tile of the plane; that tile must be placed.
     g = (np.arange(_COVER_GRID) + 0.5 + 0.0137) / (_COVER_GRID + 0.03)
     pts = np.array([[x0 + u * w, y0 + v * h] for u in g for v in g])
     covered = np.zeros(len(pts), bool)
+    inv = np.linalg.inv(T)
+    uv = pts @ inv
     for a, p in enumerate(tiles):
-        cells = placed[placed[:, 2] == a, :2]
-        if not len(cells):
-            continue
-        n, c = np.divmod(np.arange(len(pts) * len(cells)), len(cells))
-        local = pts[n] - cells[c] @ T
-        inbox = np.all((local >= boxes[a, :2]) & (local <= boxes[a, 2:]), axis=1)
-        covered[n[inbox][_inside(local[inbox], p)]] = True
+        box_uv = np.array([[boxes[a, u], boxes[a, v]] for u in (0, 2) for v in (1, 3)]) @ inv
+        first = np.floor(uv - box_uv.max(axis=0)).astype(np.int64) - 1  # the cells whose tile's box may hold a point
+        reach = np.ceil(box_uv.max(axis=0) - box_uv.min(axis=0)).astype(np.int64) + 3
+        di, dj = np.meshgrid(np.arange(reach[0]), np.arange(reach[1]), indexing="ij")
+        n = np.repeat(np.arange(len(pts)), di.size)
+        i, j = first[n, 0] + np.tile(di.ravel(), len(pts)), first[n, 1] + np.tile(dj.ravel(), len(pts))
+        ok = (i >= lo[0]) & (i < lo[0] + span[0]) & (j >= lo[1]) & (j < lo[1] + span[1])
+        want = key(i, j, a)
+        pos = np.clip(np.searchsorted(keys[order], want), 0, max(len(keys) - 1, 0))
+        ok &= keys[order][pos] == want
+        local = pts[n[ok]] - np.stack([i[ok], j[ok]], axis=1) @ T
+        covered[n[ok][_inside(local, p)]] = True
     if not covered.all():
         x, y = pts[np.argmin(covered)]
         out.append(Violation("drawing", f"the point ({x:.6g}, {y:.6g}) of the region lies in no placed tile"))
