@@ -7,7 +7,6 @@ import base64
 import json
 import os
 import subprocess
-import sys
 import threading
 import time
 
@@ -15,6 +14,7 @@ import numpy as np
 import pytest
 from starlette.testclient import TestClient
 
+from tests.clitools import SCRIPT
 from tilesolve import family  # noqa: E402
 from tilesolve.studio.app import MAX_BODY, create_app  # noqa: E402
 from tilesolve.studio import jobs as jobs_module  # noqa: E402
@@ -129,14 +129,13 @@ def test_sizes_are_refused_before_allocation(client):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("name", ["dappled", "board", "packing", "stochastic", "aperiodic"])
+@pytest.mark.parametrize("name", [f.name for f in family.families() if f.form is not None])
 def test_each_family_solves_verifies_and_exports(client, name):
     state = solve(client, {"family": name, "values": {"seed": 3}})
     assert state["state"] == "done", state
     res = state["result"]
     assert res["status"] == "sat" and res["seed"] == 3
-    what = "aperiodicity report" if name == "aperiodic" else "tiling"
-    assert res["verdict"][0].startswith(f"ok: solution.json is a valid {what}")
+    assert res["verdict"][0].startswith("ok: solution.json is a valid ")
     assert (res["report"] is not None) == (name == "aperiodic")
     assert family.verify_document(json.loads(res["json"])).ok
     assert res["picture"]["format"] in ("svg", "png")
@@ -359,10 +358,14 @@ def test_view_tiles_agree_where_windows_overlap(client):
      "method": "sat"},
     {"family": "stochastic", "values": {"kind": "wang", "set": "compact", "colors": 2, "x0": -3, "y0": 2,
                                         "seed": 9}},
+    {"family": "shapes", "values": {"grid": "hex", "shape": "XX", "size": "4x3", "seed": 2}, "time_limit": 60},
+    {"family": "shapes", "values": {"where": "region", "size": "5x2", "paint": [[-1] * 8] * 5 + [[0, 1, 1] + [0] * 5] * 2 +
+                                    [[0, 1, 0] + [0] * 5], "seed": 2}},
+    {"family": "aperiodic-window", "values": {"builtin": "kari-culik-13", "x0": -5, "y0": 7, "size": "12x6", "seed": 4}},
 ])
 def test_the_cli_command_reproduces_the_tiling(client, body, tmp_path):
     res = solve(client, body)["result"]
-    exe = os.path.join(os.path.dirname(sys.executable), "tilesolve")
+    exe = SCRIPT
     line = res["command"].replace("tilesolve ", exe + " ", 1) if "&&" not in res["command"] else \
         res["command"].replace("&& tilesolve ", f"&& {exe} ")
     run = subprocess.run(["bash", "-c", line], cwd=tmp_path, capture_output=True, text=True)
@@ -397,3 +400,10 @@ def test_a_report_without_a_witness_is_shown_without_a_picture(client):
                                       "their digests, but their proofs were NOT re-checked (give --proof-dir DIR)")
     doc = json.loads(res["json"])
     assert (doc["version"], doc["verdict"], doc["status"]) == (2, "open", "sat")
+
+
+def test_the_window_form_offers_every_set_with_a_constructive_route():
+    from tilesolve.families.aperiodic_window import _routes_by_set
+    from tilesolve.families.aperiodic_window_form import BUILTINS
+
+    assert set(BUILTINS) == set(_routes_by_set())

@@ -39,6 +39,7 @@ import time
 import numpy as np
 
 from tilesolve.errors import InvalidProblem, MethodNotApplicable
+from tilesolve.families.aperiodic_window_form import form
 from tilesolve.family import Codec, Family, RunOptions, register
 from tilesolve.family import solve as _solve
 from tilesolve.io.aperiodic_window_json import APERIODIC_WINDOW, VERSIONS, window_from_dict, window_to_dict
@@ -200,7 +201,8 @@ def _draw(problem: AperiodicWindowProblem, sol: Solution, path, fmt: str, *, tit
     if fmt == "png":
         from tilesolve.io.stochastic_png import write_window_png
 
-        write_window_png(path, numbers, "wang", colors)
+        write_window_png(path, numbers, "wang", colors,
+                         caption=[title or f"{problem.describe()} ({sol.method}, seed {sol.seed})"])
         return
     from tilesolve.io.svg_packing import MAX_SVG_TILES, write_packing_svg
 
@@ -221,6 +223,7 @@ FAMILY = register(Family(
     verify=window_violations,
     codecs=(Codec(APERIODIC_WINDOW, VERSIONS, window_from_dict, window_to_dict),),
     draw=_draw,
+    form=form(window_problem),
     route_help={
         "markov": "Jeandel-Rao and U19: the coding of a toral Z^2-rotation by a Markov partition (Labbé 2021)",
         "balanced": "Kari (14 tiles) and Kari-Culik (13 tiles): rows of balanced sequences (Kari, Culik 1996)",

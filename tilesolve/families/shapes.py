@@ -28,6 +28,7 @@ import time
 from dataclasses import dataclass
 
 from tilesolve.errors import InvalidProblem
+from tilesolve.families.shapes_form import FORM
 from tilesolve.family import Codec, Demo, Family, RunOptions, register, run_deadline
 from tilesolve.family import solve as _solve
 from tilesolve.io.shapes_json import SHAPES, VERSIONS
@@ -212,4 +213,5 @@ FAMILY = register(Family(
     commands=("tilesolve.cli.shapes:shapes",),
     route_help={"sat": "exact cover / coronas in CNF + PySAT (CaDiCaL 1.5.3), unsat with a checked DRAT proof"},
     refutations=refutations,
+    form=FORM,
 ))
