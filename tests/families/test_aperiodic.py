@@ -83,13 +83,27 @@ def test_lattices_and_names():
 def test_periodic_set_gives_a_verified_torus_witness():
     s = solve(AperiodicProblem(DIAGONAL, 4, 3, shears=True), seed=1, workers=1)
     rep = s.report
-    assert s.verdict == "periodic" and s.tiling is None
+    assert s.verdict == "periodic" and s.tiling is None and s.status.value == "sat"
     by = {c.board: c for c in rep.periods}
+    # the sweep stops at its first tiled torus: the rest are undecided and say why
+    tiled = [c for c in rep.periods if c.status == "tiles"]
+    assert len(tiled) == 1 and tiled[0].tiling is not None
+    stopped = [c for c in rep.periods if c.status == "undecided"]
+    assert stopped and all(f"stopped at the first tiled board, the {tiled[0].board}" in c.evidence["why"]
+                           for c in stopped)
+    refuted = [c for c in rep.periods if c.status == "refuted"]
+    assert by["torus 1x1"] in refuted and all(c.evidence["cnf_sha256"] and c.evidence["drat_sha256"] for c in refuted)
+    assert rep.largest_square == 4 and "not aperiodic" in rep.conclusion
+    assert not rep.complete and not aperiodic_violations(AperiodicProblem(DIAGONAL, 4, 3, True), rep)
+
+
+def test_a_sweep_told_not_to_stop_decides_every_torus():
+    names = [lat.name() for lat in AperiodicProblem(DIAGONAL, 0, 3, shears=True).lattices()]
+    certs, interrupted = sweep(DIAGONAL, names, RunOptions(seed=1, workers=1), stop_at_witness=False)
+    by = {c.board: c for c in certs}
+    assert not interrupted and all(c.status != "undecided" for c in certs)
     assert by["torus 3x1"].status == "refuted" and by["torus 3x1 shear 1"].status == "tiles"
     assert by["torus 3x3"].status == "tiles"
-    assert by["torus 1x1"].evidence["cnf_sha256"] and by["torus 1x1"].evidence["drat_sha256"]
-    assert rep.largest_square == 4 and "not aperiodic" in rep.conclusion
-    assert rep.complete and not aperiodic_violations(AperiodicProblem(DIAGONAL, 4, 3, True), rep)
 
 
 def test_finite_set_stops_with_a_checked_refutation():

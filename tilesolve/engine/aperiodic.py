@@ -126,10 +126,11 @@ def board_encoding(tileset: WangTileSet, name: str, *, allowed=None, deadline: D
     return encode_tiles(board_of(name), tileset, allowed=allowed, deadline=deadline)
 
 
-def decide(tileset: WangTileSet, name: str, run: RunOptions, *, allowed=None) -> Certificate:
+def decide(tileset: WangTileSet, name: str, run: RunOptions, *, allowed=None, bands: bool = True) -> Certificate:
     """Decide whether ``tileset`` tiles the board called ``name`` (``"square 5x5"``,
     ``"torus 3x4 shear 1"``) with the SAT route; ``allowed`` pairs make a guided
-    (restricted) search whose unsat is reported undecided."""
+    (restricted) search whose unsat is reported undecided. ``bands=False`` skips a torus's
+    bands (a sweep has tried them already) but still looks for its witness on a cylinder."""
     from tilesolve.deadline import TimeLimitReached
     from tilesolve.engine.routes import sat_route
 
@@ -140,7 +141,7 @@ def decide(tileset: WangTileSet, name: str, run: RunOptions, *, allowed=None) ->
         return Certificate(name, "undecided", None, "sat", {"why": str(exc)}, round(time.perf_counter() - t0, 6))
     rows, cols, shear = parse_board_name(name)
     if allowed is None and shear >= 0 and rows * cols >= BAND_MIN_CELLS:
-        cert = _by_bands(tileset, name, enc, run, t0)
+        cert = _by_bands(tileset, name, enc, run, t0, bands)
         if cert is not None:
             return cert
     sol = sat_route(enc, run, solver=run.solver or DEFAULT_SOLVER, t0=t0)
@@ -156,7 +157,7 @@ def _bands(labels: np.ndarray, rows: int, cols: int) -> list[tuple[int, np.ndarr
     return sorted(out, key=lambda b: b[0])
 
 
-def _by_bands(tileset: WangTileSet, name: str, enc, run: RunOptions, t0: float) -> Certificate | None:
+def _by_bands(tileset: WangTileSet, name: str, enc, run: RunOptions, t0: float, bands: bool) -> Certificate | None:
     """A torus refuted through one of its bands (:func:`_bands`), smallest first, or a witness
     read off a cylinder (:func:`_cylinder_witness`); ``None`` when neither settles it.
 
@@ -171,7 +172,7 @@ def _by_bands(tileset: WangTileSet, name: str, enc, run: RunOptions, t0: float) 
 
     rows, cols, shear = parse_board_name(name)
     solver = run.solver or DEFAULT_SOLVER
-    for _, mask, what in _bands(enc.labels, rows, cols):
+    for _, mask, what in _bands(enc.labels, rows, cols) if bands else ():
         if run.deadline.expired():
             return None
         r = solve_cnf(enc.part(mask), solver=solver, with_proof=True, seed=run.seed, deadline=run.deadline)
@@ -388,10 +389,11 @@ def _cells(name: str) -> int:
     return rows * cols
 
 
-def _job(tiles: list, n_colors: int, names: Sequence[str], cached: dict, deadline: Deadline, solver: str | None,
-         proof_dir: str | None, store: str | None, seed0: int, *, seed: int) -> Certificate:
+def _job(tiles: list, n_colors: int, names: Sequence[str], cached: dict, tried: frozenset, deadline: Deadline,
+         solver: str | None, proof_dir: str | None, store: str | None, seed0: int, *, seed: int) -> Certificate:
     """One lattice of a sweep (``seed`` is its index in ``names``), in a worker process: its
-    cached refutation re-checked (``cached``), else decided by SAT."""
+    cached refutation re-checked (``cached``), else decided by SAT (its bands skipped when it is
+    in ``tried``: the sweep's band stage tried them)."""
     from tilesolve.engine.certificates import writing_proofs
 
     tileset = WangTileSet(np.asarray(tiles, dtype=np.int64), n_colors)
@@ -403,16 +405,59 @@ def _job(tiles: list, n_colors: int, names: Sequence[str], cached: dict, deadlin
             return cert
     run = RunOptions(seed=seed0, deadline=deadline, solver=solver)  # the run's deadline, in this worker
     with writing_proofs(proof_dir), writing_proofs(store, cnf=False):
-        cert = decide(tileset, name, run)
+        cert = decide(tileset, name, run, bands=name not in tried)
     if rejected is None:
         return cert
-    return replace(cert, evidence={**cert.evidence, "cache_rejected": f"its cached refutation was not used: {rejected}"})
+    why = f"its cached refutation was not used: {rejected}"
+    return replace(cert, evidence={**cert.evidence, "cache_rejected": why})
+
+
+def _band_job(tiles: list, n_colors: int, specs: Sequence[tuple[str, int, int]], names: Sequence[str],
+              deadline: Deadline, solver: str | None, proof_dir: str | None, store: str | None, seed0: int, *,
+              seed: int) -> list[Certificate]:
+    """Band ``specs[seed]`` (``(axis, length, widest)``) of a sweep, in a worker process: the
+    narrowest refuted band (:func:`~tilesolve.engine.aperiodic_bands.refute_band`) and the
+    refutations of every torus of ``names`` it holds in (none when every band is tiled)."""
+    from tilesolve.engine.aperiodic_bands import band_refutation, covers, proof_dirs, refute_band
+
+    tileset = WangTileSet(np.asarray(tiles, dtype=np.int64), n_colors)
+    axis, length, widest = specs[seed]
+    band = refute_band(tileset, axis, length, widest, solver=solver or DEFAULT_SOLVER, seed=seed0, deadline=deadline)
+    out = []
+    for name in names if band is not None else ():
+        if covers(band, name) and not deadline.expired():
+            cert = band_refutation(tileset, name, band, deadline=deadline, proof_dirs=proof_dirs(proof_dir, store))
+            if cert is not None:
+                out.append(cert)
+    return out
+
+
+def _band_specs(names: Sequence[str], axis: str) -> list[tuple[str, int, int]]:
+    """The bands a sweep tries for ``names``: for every torus height (``axis`` "cols") or
+    unsheared torus width ("rows"), bands up to :data:`BAND_MAX` and narrower than the largest
+    torus that could hold them; the tallest first."""
+    widest: dict[int, int] = {}
+    for name in names:
+        rows, cols, shear = parse_board_name(name)
+        if axis == "cols":
+            widest[rows] = max(widest.get(rows, 0), cols - 1)
+        elif shear == 0:
+            widest[cols] = max(widest.get(cols, 0), rows - 1)
+    return [(axis, n, min(w, BAND_MAX)) for n, w in sorted(widest.items(), reverse=True) if w >= 1]
 
 
 def sweep(tileset: WangTileSet, names: Sequence[str], run: RunOptions, *, cache: str | os.PathLike | None = None,
           proof_dir: str | os.PathLike | None = None, label: str = "periods",
-          check_witness: Callable[[Certificate], bool] | None = None) -> tuple[list[Certificate], bool]:
+          check_witness: Callable[[Certificate], bool] | None = None,
+          stop_at_witness: bool = True) -> tuple[list[Certificate], bool]:
     """Decide every board in ``names``; returns ``(certificates in order, interrupted)``.
+
+    Bands first (:mod:`tilesolve.engine.aperiodic_bands`): for every torus height, the
+    narrowest refuted band of its first columns, solved and checked once, refutes every torus
+    of that height that holds it; then, for the unsheared tori left, every width's band of
+    first rows; the tori left are decided one by one (:func:`decide`). With ``stop_at_witness``
+    the sweep stops at the first tiled board (a periodic tiling decides the question); the
+    boards left are undecided and say so.
 
     ``run.workers`` local processes (default 2; 1 runs here), or ``run.cluster`` (a Dask
     scheduler address or client). Decided boards are appended to ``cache``, the proofs of its
@@ -441,21 +486,30 @@ def sweep(tileset: WangTileSet, names: Sequence[str], run: RunOptions, *, cache:
     # largest boards first: the long runs start early and the short ones fill the gaps at the end
     todo = sorted((n for n in names if n not in result), key=lambda n: -_cells(n))
     store = None if cache is None else cache_proof_dir(cache)
-    task = functools.partial(_job, tileset.tiles.tolist(), int(tileset.n_colors), tuple(todo), refutations,
-                             run.deadline, run.solver, None if proof_dir is None else os.fspath(proof_dir), store, run.seed)
+    common = (run.deadline, run.solver, None if proof_dir is None else os.fspath(proof_dir), store, run.seed)
+    tiles, n_colors = tileset.tiles.tolist(), int(tileset.n_colors)
     interrupted = False
+    stopped: list[str] = []  # the board whose witness stopped the sweep
     counts = {"tiles": 0, "refuted": 0, "undecided": 0}
     for c in result.values():
         counts[c.status] += 1
 
-    def take(i: int, cert: Certificate) -> bool:
-        if todo[i] in rejected:
-            cert = replace(cert, evidence={**cert.evidence, "cache_rejected": rejected[todo[i]]})
-        result[todo[i]] = cert
+    def take(name: str, cert: Certificate) -> bool:
+        if name in rejected:
+            cert = replace(cert, evidence={**cert.evidence, "cache_rejected": rejected[name]})
+        result[name] = cert
         counts[cert.status] += 1
         if cert.status != "undecided" and cache is not None and not cert.evidence.get("cached"):
             _append_cache(cache, digest, cert)
+        if cert.status == "tiles" and stop_at_witness:
+            stopped.append(name)
+            return True
         return cert.status == "undecided" and str(cert.evidence.get("why", "")).startswith("interrupted")
+
+    def take_band(_: int, certs: list[Certificate]) -> bool:
+        for cert in certs:
+            take(cert.board, cert)
+        return False
 
     with run.progress.task(label, total=len(names), unit="board") as bar:
         def show() -> None:  # boards decided or cached, of all
@@ -463,12 +517,31 @@ def sweep(tileset: WangTileSet, names: Sequence[str], run: RunOptions, *, cache:
             bar.set(len(result))
 
         try:
-            interrupted = dispatch(task, len(todo), run, take, show)
+            tried: set[str] = set()
+            fresh = [n for n in todo if n not in refutations]
+            for axis in ("cols", "rows") if not (stop_at_witness and counts["tiles"]) else ():
+                left = [n for n in fresh if n not in result]
+                specs = _band_specs(left, axis)
+                task = functools.partial(_band_job, tiles, n_colors, tuple(specs), tuple(left), *common)
+                if dispatch(task, len(specs), run, take_band, show):
+                    interrupted = True
+                    break
+                tried.update(n for n in left if parse_board_name(n)[2] == 0)
+            # the smallest first: with stop_at_witness, the first witness is a small one
+            left = sorted((n for n in todo if n not in result), key=_cells)
+            if not interrupted and not (stop_at_witness and counts["tiles"]):
+                task = functools.partial(_job, tiles, n_colors, tuple(left), refutations, frozenset(tried), *common)
+                interrupted = dispatch(task, len(left), run, lambda i, cert: take(left[i], cert), show)
         except KeyboardInterrupt:
             interrupted = True
-    why = "interrupted (Ctrl-C) before it was decided" if interrupted else \
-        f"time limit of {run.deadline.time_limit:.3g} s reached before it was decided" \
-        if run.deadline.time_limit is not None else "not decided"
+    if stopped or (stop_at_witness and counts["tiles"]):
+        interrupted = False
+        first = stopped[0] if stopped else next(n for n, c in result.items() if c.status == "tiles")
+        why = f"not decided: the sweep stopped at the first tiled board, the {first}, which shows the set periodic"
+    else:
+        why = "interrupted (Ctrl-C) before it was decided" if interrupted else \
+            f"time limit of {run.deadline.time_limit:.3g} s reached before it was decided" \
+            if run.deadline.time_limit is not None else "not decided"
     return [result.get(n) or Certificate(n, "undecided", None, "sat", {"why": why}) for n in names], interrupted
 
 

@@ -67,7 +67,8 @@ import numpy as np
 
 from tilesolve.verify import _drat_kernels as K
 
-__all__ = ["DratResult", "check_drat", "parse_drat", "dimacs_bytes", "cnf_sha256", "formula_arrays", "read_dimacs",
+__all__ = ["DratResult", "check_drat", "parse_drat", "proof_arrays", "dimacs_bytes", "cnf_sha256", "formula_arrays",
+           "read_dimacs",
            "check_proof_files",
            "COMPILE_FROM", "COLD_COMPILE_FROM", "PROOF_WEIGHT", "ENGINES"]
 
@@ -136,6 +137,10 @@ class DratResult:
         Lemmas checked (the ones the refutation uses, or all with ``lemmas="all"``).
     core : numpy.ndarray or None
         Indices of the formula clauses the refutation uses (backward engine, verified).
+    used : numpy.ndarray or None
+        Indices of the proof steps (lines, deletions counted) whose lemmas the refutation uses
+        and the check accepted (backward engine, verified): these lines, in order, and the empty
+        clause make a proof of their own (a *trimmed* proof, as drat-trim's core-first mode writes).
     trivial : bool
         The formula is refuted by unit propagation alone: no lemma is needed.
     engine : str
@@ -153,6 +158,7 @@ class DratResult:
     trivial: bool = False
     engine: str = "backward"
     time_s: float = 0.0
+    used: np.ndarray | None = field(default=None, repr=False, compare=False)
 
     @property
     def verified(self) -> bool:
@@ -336,7 +342,7 @@ def _numbers(text: bytes) -> np.ndarray:
         return np.fromstring(text, dtype=np.int64, sep=" ")
 
 
-def _proof_arrays(proof) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def proof_arrays(proof) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``(literals, sizes, is_deletion)`` of every proof line, read by numpy."""
     data, binary = _proof_data(proof)
     if binary:
@@ -388,7 +394,7 @@ def parse_drat(proof) -> list[tuple[bool, list[int]]]:
     >>> parse_drat(["1 2 0", "d 1 2 0", "0"])
     [(False, [1, 2]), (True, [1, 2]), (False, [])]
     """
-    lits, sizes, dels = _proof_arrays(proof)
+    lits, sizes, dels = proof_arrays(proof)
     flat = lits.tolist()
     out, i = [], 0
     for d, n in zip(dels.tolist(), sizes.tolist()):
@@ -772,7 +778,7 @@ def check_drat(
     if out_of_time():
         return stopped("reading the formula")
     try:
-        p_lits, p_sizes, p_del = _proof_arrays(proof)
+        p_lits, p_sizes, p_del = proof_arrays(proof)
     except (ValueError, UnicodeDecodeError, IndexError) as exc:
         return DratResult("failed", f"unreadable proof: {exc}", engine=engine, time_s=elapsed())
     if out_of_time():
@@ -839,9 +845,9 @@ def check_drat(
     stack = np.zeros(max(n_vars + 1, int(size.max(initial=0))) * 2 + 2, np.int64)
 
     def result(status: str, reason_: str, checked: int = 0, rats: int = 0, core_ids=None,
-               trivial: bool = False) -> DratResult:
+               trivial: bool = False, used=None) -> DratResult:
         return DratResult(status, reason_, n_lemmas, n_dels, rats, int(counts[2]), checked, core_ids, trivial,
-                          "backward", elapsed())
+                          "backward", elapsed(), used)
 
     # forward pass: until unit propagation refutes the formula
     refuted = 0
@@ -904,7 +910,8 @@ def check_drat(
     else:
         why = (f"DRAT proof checked: {checked} of {n_lemmas} lemma(s) used and checked "
                f"({int(out[3])} by RAT), resting on {core_ids.size} of {n_f} input clauses")
-    return result("verified", why, checked, int(out[3]), core_ids, trivial)
+    used = np.flatnonzero(core[n_f:n_f + confl_step + 1] & (is_del[:confl_step + 1] == 0))
+    return result("verified", why, checked, int(out[3]), core_ids, trivial, used)
 
 
 def _split(lits: np.ndarray, sizes: np.ndarray) -> list[list[int]]:
