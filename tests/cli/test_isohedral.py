@@ -63,6 +63,13 @@ def test_a_drawing_is_written_verified_and_the_same_twice(tmp_path):
         assert (tmp_path / f"t.{ext}").read_bytes() == (tmp_path / f"u.{ext}").read_bytes()
 
 
+def test_a_region_in_pixels(tmp_path):
+    proc = run("isohedral", "draw", "--type", "IH90", "--region", "-50,-25,300x200px", "--scale", "50", "--png", "p.png",
+               cwd=tmp_path)
+    assert proc.returncode == 0 and proc.stderr.startswith("sat: IH90 in the region -1,-0.5,6x4: "), proc.stderr
+    assert Image.open(tmp_path / "p.png").size == (300, 200)
+
+
 def test_verify_reports_a_forged_tiling(tmp_path):
     assert run("isohedral", "draw", "--type", "IH1", "-o", "t.json", cwd=tmp_path).returncode == 0
     doc = json.loads((tmp_path / "t.json").read_text())

@@ -24,13 +24,15 @@ __all__ = ["isohedral"]
 _NUMBER = r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?"
 
 
-def _region(text: str) -> tuple[float, float, float, float]:
-    """``X0,Y0,WxH`` or ``WxH`` (from 0,0), in the tiling's units; numbers may have decimals."""
-    m = re.fullmatch(rf"\s*(?:({_NUMBER})\s*,\s*({_NUMBER})\s*,\s*)?({_NUMBER})\s*[xX×]\s*({_NUMBER})\s*", text)
+def _region(text: str, scale: float) -> tuple[float, float, float, float]:
+    """``X0,Y0,WxH`` or ``WxH`` (from 0,0), in the tiling's units, or in pixels with a ``px`` suffix
+    (divided by ``scale``); numbers may have decimals."""
+    m = re.fullmatch(rf"\s*(?:({_NUMBER})\s*,\s*({_NUMBER})\s*,\s*)?({_NUMBER})\s*[xX×]\s*({_NUMBER})\s*(px)?\s*", text)
     if m is None:
         raise InvalidProblem(f"cannot read region {text!r}: expected WxH or X0,Y0,WxH in tile units, e.g. 12x8 "
-                             "or -2,-2,12x8")
-    x0, y0, w, h = (float(g) if g is not None else 0.0 for g in m.groups())
+                             "or -2,-2,12x8, or in pixels, e.g. 800x600px")
+    unit = scale if m.group(5) else 1.0
+    x0, y0, w, h = (float(g) / unit if g is not None else 0.0 for g in m.groups()[:4])
     return x0, y0, w, h
 
 
@@ -78,8 +80,9 @@ def isohedral() -> None:
                    "0,0 to 1,0: 'line', 'line:X,Y/X,Y/...' (a polyline) or 'bezier:X,Y/X,Y' (a cubic's two "
                    "control points; 3k-1 points chain k cubics). U edges must be symmetric in x = 0.5, S edges "
                    "by a half-turn about 0.5,0, I edges straight.")
-@click.option("--region", default="8x6", show_default=True, metavar="[X0,Y0,]WxH",
-              help="The rectangle drawn, in tile units (a tiling edge is about 1), y up.")
+@click.option("--region", default="8x6", show_default=True, metavar="[X0,Y0,]WxH[px]",
+              help="The rectangle drawn, in tile units (a tiling edge is about 1), y up; with 'px', in pixels "
+                   "(800x600px: an 800 by 600 picture).")
 @click.option("--scale", type=click.FloatRange(1, 1000), default=40.0, show_default=True, metavar="PX",
               help="Pixels per unit: the picture is W*PX by H*PX pixels.")
 @click.option("-o", "--output", type=OutputFile("json"), metavar="T.json",
@@ -100,12 +103,13 @@ def draw(ctx, type_, params, edges, region, scale, output, svg, png) -> None:
       tilesolve isohedral draw --type IH41 --edge 0=bezier:0.3,0.25/0.6,-0.2 --edge 1=bezier:0.35,-0.2/0.7,0.2 --region 12x8 -o t.json --svg t.svg --png t.png
       tilesolve isohedral draw --type IH28 --params 0.2,0.5 --edge 0=bezier:0.3,0.2/0.7,-0.2 --region 10x8 --png fish.png
       tilesolve isohedral draw --type IH16 --edge 1=line:0.3,0.15/0.6,-0.1 --region -2,-2,10x8 --scale 30 --svg ih16.svg
+      tilesolve isohedral draw --type IH90 --edge 0=bezier:0.3,0.3/0.7,-0.3 --region 800x600px --scale 50 --png ih90.png
       tilesolve verify t.json
     """
     from tilesolve.families import isohedral as facade
     from tilesolve.family import draw_solution, write_solution
 
-    problem = facade.problem(type_, _params(params), _edges(edges) or None, _region(region), scale)
+    problem = facade.problem(type_, _params(params), _edges(edges) or None, _region(region, scale), scale)
     outs = Outputs(output, png, svg)
     sol = facade.solve(problem)
     with outs.commit(sol):
