@@ -4,10 +4,13 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from tilesolve.constructive.poisson import build_tiles
 from tilesolve.model.poisson import PoissonTilesProblem, PoissonTileSet
-from tilesolve.verify.poisson import point_violations, radial_spectrum, relative_radius, tileset_violations
+from tilesolve.verify.poisson import _close_pairs as point_violations_pairs
+from tilesolve.verify.poisson import min_distance, point_violations, radial_spectrum, relative_radius, tileset_violations
 
 
 @pytest.fixture(scope="module")
@@ -68,3 +71,19 @@ def test_white_noise_has_a_flat_spectrum():
     assert f[0] == 0.25 and len(p) == 32
     assert 0.8 < float(p[8:].mean()) < 1.2
     assert abs(float(aniso[8:].mean())) < 1.0
+
+
+@settings(max_examples=150, deadline=None)
+@given(n=st.integers(0, 120), scale=st.floats(0.01, 10), d=st.floats(0.001, 2), seed=st.integers(0, 2**32 - 1),
+       dup=st.booleans())
+def test_the_grid_finds_a_close_pair_exactly_when_there_is_one(n, scale, d, seed, dup):
+    """Against the definition, pair by pair (numpy, all pairs)."""
+    pts = np.random.default_rng(seed).random((n, 2)) * scale
+    if dup and n:
+        pts = np.vstack([pts, np.repeat(pts[:1], 6, axis=0)])  # an overfull cell
+    gaps = np.hypot(*(pts[:, None, :] - pts[None, :, :]).transpose(2, 0, 1))
+    close = {(i, j) for i, j in zip(*np.nonzero(gaps < d)) if i < j}
+    found = {tuple(p) for p in point_violations_pairs(pts, d)}
+    assert found <= close and bool(found) == bool(close)
+    if len(pts) >= 2:
+        assert min_distance(pts) == pytest.approx(gaps[np.triu_indices(len(pts), 1)].min(), rel=1e-12, abs=1e-300)

@@ -172,25 +172,16 @@ def spectrum(ctx, tileset, size, seed, svg, png) -> None:
       tilesolve sample poisson-tiles build -C 2 -N 64 --rho 0.75 --seed 1 -o set.json
       tilesolve sample poisson-tiles spectrum set.json --size 8 --seed 2 --svg spectrum.svg --png spectrum.png
     """
-    import numpy as np
-
-    from tilesolve.constructive.poisson import dart_throwing, window_points
+    from tilesolve.families.poisson import spectra
     from tilesolve.io.poisson_plots import write_spectrum_plot
-    from tilesolve.model.window import Window
-    from tilesolve.verify.poisson import radial_spectrum, relative_radius
 
     outs = Outputs(svg, png)
     problem, ts = _load_set(tileset)
-    w = window_points(ts, Window(0, 0, size, size), seed=seed)
-    n = problem.points * size * size
-    darts = dart_throwing(2 * n, problem.distance / size, seed=seed, patience=100_000) * size
-    k_max = min(4 * size * int(np.sqrt(problem.points)), 256)
-    series = [("corner tiles", *radial_spectrum(w.local, size, k_max=k_max)),
-              ("dart throwing", *radial_spectrum(darts, size, k_max=k_max))]
-    area = size * size
+    rows = spectra(ts, size, seed=seed)
     click.echo(f"{'distribution':<16} {'points':>8} {'rho':>6} {'mean anisotropy dB':>19}")
-    for (name, f, p, a), pts in zip(series, (w.local, darts)):
-        click.echo(f"{name:<16} {len(pts):>8,} {relative_radius(pts, area):>6.3f} {float(np.mean(a)):>19.2f}")
+    for r in rows:
+        click.echo(f"{r['name']:<16} {r['points']:>8,} {r['rho']:>6.3f} {r['anisotropy_db']:>19.2f}")
+    series = [(r["name"], r["frequency"], r["power"], r["anisotropy"]) for r in rows]
     title = f"{problem.describe()}: {size}x{size} tiles"
     with outs.commit():
         for path, fmt in ((svg, "svg"), (png, "png")):

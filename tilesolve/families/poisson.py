@@ -46,7 +46,7 @@ from tilesolve.model.window import Window
 from tilesolve.progress import Progress
 from tilesolve.verify.dappled import Violation
 
-__all__ = ["FAMILY", "SOLVERS", "solve", "dart", "window", "poisson_violations", "auto_method"]
+__all__ = ["FAMILY", "SOLVERS", "solve", "dart", "window", "poisson_violations", "auto_method", "spectra"]
 
 
 def dart(problem: PoissonTilesProblem, run: RunOptions) -> Solution:
@@ -99,6 +99,29 @@ def poisson_violations(problem: PoissonProblem, answer: Any) -> list[Violation]:
             return [Violation("window", "the points are of another window")]
         return point_violations(answer.local, distance, answer.window.width, answer.window.height)
     return [Violation("shape", "the answer is neither a Poisson tile set nor a window of points")]
+
+
+def spectra(ts: PoissonTileSet, size: int, *, seed: int | None = None) -> list[dict]:
+    """The set's points on the ``size x size`` window at the origin beside plain dart throwing
+    (Cook 1986) at the same distance on a torus of that size: for each, ``name``, ``points``,
+    ``rho`` (eq. 4.3 at the measured density), and the radial ``frequency``, ``power`` and
+    ``anisotropy`` (dB) of :func:`tilesolve.verify.poisson.radial_spectrum`, with its mean
+    ``anisotropy_db``."""
+    import numpy as np
+
+    from tilesolve.constructive.poisson import dart_throwing, window_points
+    from tilesolve.verify.poisson import radial_spectrum, relative_radius
+
+    p = ts.problem
+    tiles = window_points(ts, Window(0, 0, size, size), seed=seed).local
+    darts = dart_throwing(2 * p.points * size * size, p.distance / size, seed=seed, patience=100_000) * size
+    k_max = min(4 * size * int(np.sqrt(p.points)), 256)
+    rows = []
+    for name, pts in (("corner tiles", tiles), ("dart throwing", darts)):
+        f, power, aniso = radial_spectrum(pts, size, k_max=k_max)
+        rows.append({"name": name, "points": len(pts), "rho": relative_radius(pts, size * size), "frequency": f,
+                     "power": power, "anisotropy": aniso, "anisotropy_db": float(np.mean(aniso))})
+    return rows
 
 
 def solve(problem: PoissonProblem, *, method: str | Any = "auto", seed: int | None = None,

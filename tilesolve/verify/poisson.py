@@ -4,8 +4,9 @@ Written from the definitions, sharing no code with the builder
 (:mod:`tilesolve.constructive.poisson`):
 
 * :func:`point_violations`: a point set is a Poisson disk distribution at distance ``d`` when
-  no two points are closer than ``d`` (§4.2.1); a KD-tree (``scipy.spatial.cKDTree``) finds
-  every closer pair in any window. Points must also lie in their window.
+  no two points are closer than ``d`` (§4.2.1); a grid of ``d x d`` cells (numpy only, the
+  verifiers' rule; it does what a KD-tree's range query would) finds every closer pair in any
+  window. Points must also lie in their window.
 * :func:`tileset_violations`: every tile's points lie in its modified region (§4.3, figure
   4.3(b); :mod:`tilesolve.model.poisson`), and the tiles of *every* 2 x 2 block of cells are a
   Poisson disk distribution: any two points closer than ``d < 1/2`` lie in a common 2 x 2
@@ -35,13 +36,56 @@ __all__ = ["point_violations", "tileset_violations", "min_distance", "relative_r
 MAX_LISTED = 20
 
 
-def _close_pairs(points: np.ndarray, distance: float) -> np.ndarray:
-    from scipy.spatial import cKDTree
+#: A d x d cell holds at most 4 points pairwise d apart (its four quarters hold one each).
+_CELL_MAX = 4
+#: Neighbouring cells a pair may span, each pair of cells once: itself, E, NW, N, NE.
+_OFFSETS = ((0, 0), (1, 0), (-1, 1), (0, 1), (1, 1))
 
-    if len(points) < 2:
+
+def _close_pairs(points: np.ndarray, distance: float) -> np.ndarray:
+    """Every pair ``(i, j)``, ``i < j``, of ``points`` closer than ``distance``, sorted.
+
+    A uniform grid of cells of side ``distance`` (numpy only, as verifiers are): a close pair
+    lies in one cell or in two neighbouring ones. A cell of more than four points holds a close
+    pair by the pigeonhole principle; there the first five points are compared, so that a
+    file of many equal points costs no more than a valid one.
+    """
+    n = len(points)
+    if n < 2:
         return np.zeros((0, 2), np.int64)
-    pairs = cKDTree(points).query_pairs(np.nextafter(distance, 0), output_type="ndarray")
-    return pairs[np.lexsort((pairs[:, 1], pairs[:, 0]))]
+    cell = np.floor((points - points.min(axis=0)) / distance).astype(np.int64)
+    rows = int(cell[:, 1].max()) + 3
+    key = (cell[:, 0] + 1) * rows + (cell[:, 1] + 1)
+    order = np.argsort(key, kind="stable")
+    skey = key[order]
+    start = np.flatnonzero(np.r_[True, skey[1:] != skey[:-1]])  # runs of one cell in the sorted keys
+    ukey, count = skey[start], np.diff(np.r_[start, n])
+    found = []
+    for c in np.flatnonzero(count > _CELL_MAX):  # pigeonhole: five points hold a close pair
+        members = order[start[c]:start[c] + _CELL_MAX + 1]
+        a, b = np.triu_indices(len(members), 1)
+        found.append(np.stack([members[a], members[b]], axis=1))
+    keep = np.repeat(count <= _CELL_MAX, count)  # points of cells that are not overfull, in key order
+    for dx, dy in _OFFSETS:
+        target = skey + dx * rows + dy
+        at = np.searchsorted(ukey, target)
+        at[at >= len(ukey)] = 0
+        hit = (ukey[at] == target) & keep & (count[at] <= _CELL_MAX)
+        src = np.flatnonzero(hit)
+        reps = count[at[src]]
+        i = np.repeat(src, reps)
+        j = start[np.repeat(at[src], reps)] + (np.arange(reps.sum()) - np.repeat(np.cumsum(reps) - reps, reps))
+        if (dx, dy) == (0, 0):
+            i, j = i[i < j], j[i < j]
+        pi, pj = order[i], order[j]
+        gap = np.hypot(*(points[pi] - points[pj]).T)
+        close = gap < distance
+        found.append(np.stack([pi[close], pj[close]], axis=1))
+    pairs = np.sort(np.concatenate(found), axis=1)
+    if len(pairs) == 0:
+        return pairs
+    gap = np.hypot(*(points[pairs[:, 0]] - points[pairs[:, 1]]).T)
+    return np.unique(pairs[gap < distance], axis=0).reshape(-1, 2)
 
 
 def point_violations(points, distance: float, width: float, height: float) -> list[Violation]:
@@ -68,13 +112,19 @@ def point_violations(points, distance: float, width: float, height: float) -> li
 
 def min_distance(points) -> float:
     """The least distance between two of ``points`` (``inf`` for fewer than two)."""
-    from scipy.spatial import cKDTree
-
     pts = np.asarray(points, dtype=np.float64).reshape(-1, 2)
     if len(pts) < 2:
         return math.inf
-    d, _ = cKDTree(pts).query(pts, k=2)
-    return float(d[:, 1].min())
+    reach = max(float(np.ptp(pts, axis=0).max()) / math.sqrt(len(pts)), 1e-300)  # about the mean spacing
+    while len(_close_pairs(pts, reach)) == 0:
+        reach *= 2
+    while True:  # shrink to the least gap found, until no pair is closer (then no cell is overfull)
+        pairs = _close_pairs(pts, reach)
+        if len(pairs) == 0:
+            return reach
+        reach = float(np.hypot(*(pts[pairs[:, 0]] - pts[pairs[:, 1]]).T).min())
+        if reach == 0.0:  # two equal points
+            return 0.0
 
 
 def relative_radius(points, area: float) -> float:
