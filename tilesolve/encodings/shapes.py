@@ -26,6 +26,7 @@ Coronas (:func:`encode_coronas`)
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -80,16 +81,23 @@ def _egcd(x: int, y: int) -> tuple[int, int, int]:
 
 
 def placements_at(g: Grid, images, cells) -> dict:
-    """Placements of each image (``[(shape, image cells), ...]``) that cover one of ``cells``:
-    ``{sorted cells: shape}``."""
+    """Placements of each image (``[(shape, image cells), ...]``, image cells sorted) that cover
+    one of ``cells``: ``{sorted cells: shape}``.
+
+    A translation keeps the cells' order, so each distinct translation of an image is built once,
+    already sorted."""
     out: dict = {}
+    types = [g.cell_type(h) for h in cells]
     for shape, img in images:
-        for h in cells:
-            for c in img:
-                if g.cell_type(h) != g.cell_type(c):
-                    continue
-                dx, dy = h[0] - c[0], h[1] - c[1]
-                out.setdefault(tuple(sorted((x + dx, y + dy) for x, y in img)), shape)
+        by_type: dict = {}
+        for c in img:
+            by_type.setdefault(g.cell_type(c), []).append(c)
+        shifts: dict = {}
+        for h, t in zip(cells, types):
+            for c in by_type.get(t, ()):
+                shifts[(h[0] - c[0], h[1] - c[1])] = None
+        for dx, dy in shifts:
+            out.setdefault(tuple((x + dx, y + dy) for x, y in img), shape)
     return out
 
 
@@ -242,9 +250,31 @@ class CoronaEncoding:
                 "cells", "x[j, p]: placement p is a tile of corona j; y[j, c]: a corona-j tile covers cell c"]
 
 
-def _halo(g: Grid, cells) -> set:
+@functools.lru_cache(maxsize=1 << 16)
+def _halo(g: Grid, cells: tuple) -> frozenset:
+    """The cells outside ``cells`` that share a corner with one of them (cached: a candidate
+    tile's halo is asked for at every level of every corona encoding)."""
     s = set(cells)
-    return {n for c in s for n in g.touching(c)} - s
+    return frozenset(n for c in s for n in g.touching(c)) - s
+
+
+@functools.lru_cache(maxsize=64)
+def _corona_candidates(g: Grid, shape: tuple, reflections: bool, levels: int) -> tuple:
+    """Per level ``1..levels``, the sorted placements that may be a tile of that corona: those
+    covering a cell of the previous level's halo, off the shape, and (above level 1) off the
+    shape's halo. Level ``j``'s list does not depend on ``levels``, so each is built once."""
+    S = set(shape)
+    halo_s = _halo(g, shape)
+    if levels == 1:
+        lower: tuple = ()
+        frontier = set(halo_s)
+    else:
+        lower = _corona_candidates(g, shape, reflections, levels - 1)
+        frontier = set().union(*(_halo(g, c) for c in lower[-1])) - S if lower[-1] else set()
+    images = [(0, img) for img in g.images(shape, reflections)]
+    found = placements_at(g, images, sorted(frontier))
+    cands = [c for c in found if not S & set(c) and (levels == 1 or not halo_s & set(c))]
+    return lower + (tuple(sorted(cands)),)
 
 
 def encode_coronas(problem: ShapesProblem, levels: int, blocked=()) -> CoronaEncoding:
@@ -262,15 +292,9 @@ def encode_coronas(problem: ShapesProblem, levels: int, blocked=()) -> CoronaEnc
     g = problem.geometry
     shape = problem.shapes[0].cells
     S = set(shape)
-    halo_s = _halo(g, S)
-    images = [(0, img) for img in g.images(shape, problem.reflections)]
+    halo_s = _halo(g, shape)
     enc = CoronaEncoding(g, shape, levels)
-    frontier = halo_s
-    for level in range(1, levels + 1):
-        found = placements_at(g, images, sorted(frontier))
-        cands = [c for c in found if not S & set(c) and (level == 1 or not halo_s & set(c))]
-        enc.candidates.append(sorted(cands))
-        frontier = set().union(*(_halo(g, c) for c in cands)) - S if cands else set()
+    enc.candidates = [list(c) for c in _corona_candidates(g, shape, problem.reflections, levels)]
     top = 0
     for level, cands in enumerate(enc.candidates, 1):
         for i in range(len(cands)):
