@@ -335,6 +335,10 @@ def test_view_tiles_agree_where_windows_overlap(client):
     ia, ib = (Image.open(io.BytesIO(r.content)).convert("RGB") for r in (a, b))
     w = ia.width // 8
     assert ia.crop((4 * w, 0, 8 * w, ia.height)).tobytes() == ib.crop((0, 0, 4 * w, ib.height)).tobytes()
+    for fam in family.families():  # a tile is its window's pixels only (no caption): the page draws them edge to edge
+        if fam.form is not None and fam.form.window is not None:
+            tile = Image.open(io.BytesIO(client.get(f"/api/view/{fam.name}.png?x=3&y=-9&n=16").content))
+            assert tile.width == tile.height and tile.width % 16 == 0, fam.name
     assert client.get(f"/api/view/stochastic.png?x=-1000&y=77&n=16&values={json.dumps({'seed': 1})}").status_code == 200
     unseeded = [client.get("/api/view/stochastic.png?x=0&y=0&n=8").content for _ in range(2)]
     assert unseeded[0] == unseeded[1]  # windows of a view without a seed share seed 0

@@ -335,6 +335,8 @@ def check_view_is_whole(page) -> None:
     assert max(widths) - min(widths) <= 1, widths
     xs = sorted({x for x, _, _, _ in rects})
     assert all(b - a in widths for a, b in zip(xs, xs[1:]))
+    # each tile is its window's pixels only, so drawn into its square it keeps the scale of its neighbours
+    assert page.evaluate("studio.view.wanted.every(t => t.img.naturalWidth === t.img.naturalHeight)")
     blank = page.evaluate("""() => { const cv = document.getElementById('view-canvas');
         const d = cv.getContext('2d').getImageData(0, 0, cv.width, cv.height).data; let n = 0;
         for (let i = 0; i < d.length; i += 4) if (d[i + 3] < 255 || (d[i] === 238 && d[i + 1] === 240 && d[i + 2] === 243)) n++;

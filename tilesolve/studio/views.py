@@ -18,6 +18,21 @@ __all__ = ["Views", "VIEW_CACHE"]
 VIEW_CACHE = 512
 
 
+def _square(data: bytes) -> bytes:
+    """A view tile's PNG without the caption a picture carries under its (square) window: the
+    page draws tiles edge to edge at one scale, so a tile is its window's pixels only."""
+    import io
+
+    from PIL import Image
+
+    with Image.open(io.BytesIO(data)) as img:
+        if img.height <= img.width:
+            return data
+        buf = io.BytesIO()
+        img.crop((0, 0, img.width, img.width)).save(buf, format="PNG")
+        return buf.getvalue()
+
+
 class Views:
     """The view tiles of one server: rendered on demand, the last :data:`VIEW_CACHE` kept."""
 
@@ -43,7 +58,7 @@ class Views:
         sol = family.solve(problem, method, seed=vals["seed"], options=options)
         if not sol.status.has_tiling:
             raise InvalidProblem(f"window ({x}, {y}): {sol.status.value}: {sol.reason or 'no tiling'}")
-        data = family.render(problem, sol, "png")
+        data = _square(family.render(problem, sol, "png"))
         with self._lock:
             self._cache[key] = data
             while len(self._cache) > VIEW_CACHE:
