@@ -32,8 +32,8 @@ Examples
 >>> from tilesolve.model.board import WangTileSet
 >>> ws = WangTileSet([[0, 1, 1, 1], [1, 1, 0, 1]], 2)   # N, E, S, W: a 2-row period
 >>> s = solve(AperiodicProblem(ws, 3, 2), seed=1, workers=1)
->>> s.report.largest_square, [c.status for c in s.report.periods]
-(3, ['refuted', 'refuted', 'tiles', 'tiles'])
+>>> s.report.largest_square, [c.status for c in s.report.periods]  # the sweep stops at a witness
+(3, ['refuted', 'refuted', 'tiles', 'undecided'])
 >>> s.verdict, s.status.value, s.tiling is None
 ('periodic', 'sat', True)
 """
@@ -222,17 +222,18 @@ def _draw(problem: AperiodicProblem, sol: Solution, path, fmt: str, *, title: st
         raise InvalidProblem("this report has no witness tiling to draw")
     board_problem = BoardProblem(board_of(cert.board), problem.tileset)
     legs = leg_colours(problem.tileset, cert.tiling)
-    if fmt == "png":
-        from tilesolve.io.png import write_board_png
-
-        write_board_png(path, board_problem, legs)
-        return
-    from tilesolve.io.svg_board import write_board_svg
-
     what = problem.name or f"{len(problem.tileset)} Wang tiles"
     legend = [f"witness: the {cert.board} tiled ({cert.method}" +
               (f", seed {sol.seed})" if sol.seed is not None else ")")]
-    write_board_svg(path, board_problem, legs, title=title or f"{what}: {cert.board}", notes=legend + list(notes))
+    title = title or f"{what}: {cert.board}"
+    if fmt == "png":
+        from tilesolve.io.png import write_board_png
+
+        write_board_png(path, board_problem, legs, caption=[title, *legend, *notes])
+        return
+    from tilesolve.io.svg_board import write_board_svg
+
+    write_board_svg(path, board_problem, legs, title=title, notes=legend + list(notes))
 
 
 def _jeandel_rao_demo() -> AperiodicProblem:
