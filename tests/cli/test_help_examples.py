@@ -1,66 +1,102 @@
-"""Every example printed by a command's --help runs as shown (through the console script),
-with the exit code and the number its comment promises. Input files the examples name are
-made first (partial.txt, target.txt, shape.png, shape.txt, tiles.json, c4.json)."""
+"""Every example that a ``--help`` prints runs as written, through the console script, in an
+empty folder, with the exit code and the number its comment promises.
+
+The rules (what a reader of the help may rely on):
+
+* An example is a line of a help text that starts with ``tilesolve ``. Its command ends where
+  its comment starts: at `` #`` (a space, then ``#``), or at a run of two or more spaces (the
+  top-level help's "Start with:" lines); a ``#`` inside a word (``mask:##/#.``) is no comment.
+* The examples of one help run in order in one empty folder: an earlier example may write a
+  file that a later one reads (``-o t.json``, then ``tilesolve verify t.json``); nothing else is
+  put there first.
+* Exit 1 is expected when the comment says ``unsat``, else 0; a comment that starts with a
+  number (``# prints 432``) promises the last line of stdout.
+
+:data:`COMMANDS` lists every command whose help shows examples; a slow test walks the help tree
+(``tilesolve --help`` and the command lists of every group) and checks the list is complete.
+"""
 
 from __future__ import annotations
 
 import re
 import shlex
-import shutil
 import subprocess
-from pathlib import Path
 
-import numpy as np
 import pytest
-from clitools import SCRIPT
+from clitools import ENV, SCRIPT
 
-ROOT = Path(__file__).resolve().parents[2]
-COMMANDS = [("dappled", "solve"), ("dappled", "count"), ("dappled", "crosscheck"), ("brick", "solve"),
-            ("brick", "wall"), ("brick", "count"), ("brick", "crosscheck"), ("wang", "solve"), ("wall",), ("pack",),
-            ("pack", "count"), ("tiles",), ("verify",), ("draw",), ("export", "dimacs"), ("demo",), ("backends",),
-            ("render",), ("render", "texture"), ("render", "wall"), ("gpu",), ("gpu", "info"),
-            ("tiling",), ("aperiodic", "check"), ("aperiodic", "verify"), ("aperiodic", "tiling"),
-            ("wall-lines",), ("studio",),
-            ("wang", "count"), ("crosscheck", "wall"), ("crosscheck", "tiling")]
-
-
-def run(args, cwd):
-    return subprocess.run([SCRIPT, *args], cwd=cwd, capture_output=True, text=True, timeout=1200)
+COMMANDS = [(), ("aperiodic", "census"), ("aperiodic", "check"), ("aperiodic", "tiling"), ("aperiodic", "verify"),
+            ("brick", "count"), ("brick", "crosscheck"), ("brick", "solve"), ("brick", "wall"),
+            ("wang", "count"), ("wang", "solve"), ("wall",), ("dappled", "count"), ("dappled", "crosscheck"),
+            ("dappled", "solve"), ("pack",), ("pack", "count"), ("tiles",), ("shapes",), ("shapes", "census"),
+            ("shapes", "heesch"), ("shapes", "list"), ("shapes", "tile"), ("tiling",), ("penrose",), ("reptile",),
+            ("verify",), ("draw",), ("export", "dimacs"), ("demo",), ("backends",), ("crosscheck", "tiling"),
+            ("crosscheck", "wall"), ("render",), ("render", "texture"), ("render", "wall"), ("gpu",), ("gpu", "info"),
+            ("wall-lines",), ("studio",), ("isohedral", "draw"), ("isohedral", "list")]
 
 
-def examples(command) -> list[str]:
-    text = run([*command, "--help"], cwd=ROOT).stdout
-    return [line.strip() for line in text.splitlines() if line.strip().startswith("tilesolve ")]
+def run(args: list[str], cwd) -> subprocess.CompletedProcess:
+    return subprocess.run([SCRIPT, *args], cwd=cwd, capture_output=True, text=True, timeout=1200, env=ENV,
+                          stdin=subprocess.DEVNULL)
 
 
-@pytest.fixture(scope="module")
-def folder(tmp_path_factory):
-    d = tmp_path_factory.mktemp("help")
-    (d / "partial.txt").write_text("\n".join(["0???????", "????????", "??1?????"] + ["????????"] * 5) + "\n")
-    (d / "target.txt").write_text("\n".join("".join(str((r + c) % 2) for c in range(12)) for r in range(8)) + "\n")
-    shutil.copy(ROOT / "examples" / "shape.txt", d / "shape.txt")
-    shutil.copy(ROOT / "examples" / "tiles.json", d / "tiles.json")
-    from PIL import Image
+def help_text(command: tuple[str, ...], cwd) -> str:
+    proc = run([*command, "--help"], cwd)
+    assert proc.returncode == 0, proc.stderr
+    return proc.stdout
 
-    alpha = np.zeros((10, 16), dtype=np.uint8)
-    alpha[1:9, 1:15] = 255
-    alpha[4:6, 5:9] = 0  # a hole
-    rgba = np.dstack([np.zeros((10, 16, 3), dtype=np.uint8), alpha])
-    Image.fromarray(rgba, "RGBA").save(d / "shape.png")
-    assert run(["pack", "--kind", "corner", "--colors", "4", "-o", "c4.json"], cwd=d).returncode == 0
-    return d
+
+def examples(text: str) -> list[tuple[str, str]]:
+    """``(command, comment)`` of every example in a help text (the module docstring's rules)."""
+    out = []
+    for line in text.splitlines():
+        line = line.strip()
+        if line.startswith("tilesolve "):
+            command, comment = re.split(r" #|  +", line + "  ", maxsplit=1)
+            out.append((command, comment.strip()))
+    return out
+
+
+def subcommands(text: str) -> list[str]:
+    """The commands a group's help lists (its sections "... commands:" and "Tools:")."""
+    found, listing = [], False
+    for line in text.splitlines():
+        if re.match(r"^\S.*:$", line):
+            listing = line.lower().endswith("commands:") or line == "Tools:"
+        elif listing and (m := re.match(r"^  (\S+)(\s{2,}|$)", line)):
+            found.append(m.group(1))
+    return found
+
+
+def test_examples_are_split_from_their_comments():
+    text = "  tilesolve demo     pictures of a few problems\n  tilesolve brick count --board 'mask:##/#.' # prints 7\n"
+    assert examples(text) == [("tilesolve demo", "pictures of a few problems"),
+                              ("tilesolve brick count --board 'mask:##/#.'", "prints 7")]
+    assert subcommands("Usage: x\n\nCommands:\n  a  one\n  b\n\nOptions:\n  -h  help\n") == ["a", "b"]
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("command", COMMANDS, ids=" ".join)
-def test_help_examples_run(folder, command):
-    shown = examples(command)
+def test_every_command_with_examples_is_listed(tmp_path):
+    shown, todo = set(), [()]
+    while todo:
+        command = todo.pop()
+        text = help_text(command, tmp_path)
+        if examples(text):
+            shown.add(command)
+        todo += [(*command, name) for name in subcommands(text)]
+    assert shown == set(COMMANDS)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("command", COMMANDS, ids=lambda c: " ".join(c) or "tilesolve")
+def test_help_examples_run_in_an_empty_folder(tmp_path, command):
+    shown = examples(help_text(command, tmp_path))
     assert shown, f"tilesolve {' '.join(command)} --help shows no example"
-    for line in shown:
-        cmd, _, comment = line.partition("#")
-        proc = run(shlex.split(cmd)[1:], cwd=folder)
+    assert not list(tmp_path.iterdir())
+    for line, comment in shown:
+        proc = run(shlex.split(line)[1:], tmp_path)
         assert proc.returncode == (1 if "unsat" in comment else 0), (line, proc.stdout[-1500:], proc.stderr[-1500:])
-        assert "Traceback" not in proc.stderr
-        promised = re.match(r"\s*(?:prints\s+)?([\d ]+?)\s*(\(|$)", comment)
+        assert "Traceback" not in proc.stderr, line
+        promised = re.match(r"(?:prints\s+)?([\d ]+?)\s*(\(|$)", comment)
         if promised and promised.group(1).strip():
             assert proc.stdout.strip().splitlines()[-1] == promised.group(1).strip(), line

@@ -56,7 +56,7 @@ def census(ctx, n_tiles, colours, max_square, max_period, workers, cluster, resu
     \b
     Examples:
       tilesolve aperiodic census --tiles 3 --colors 2 -o c.jsonl
-      tilesolve aperiodic census --tiles 4 --colors 3 --workers 2 -o c4.jsonl --resume
+      tilesolve aperiodic census --tiles 3 --colors 3 --workers 2 -o c3.jsonl --resume
     """
     from tilesolve.families.aperiodic_census import census as run_census
     from tilesolve.family import run_deadline

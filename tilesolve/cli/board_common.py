@@ -18,7 +18,8 @@ __all__ = ["BOARD_HELP", "board_opt", "boundary_opt", "method_opt", "svg_opt", "
 BOARD_HELP = (
     "\b\nBoards (SPEC): rect:WxH, torus:WxH, cylinder:WxH, mobius:WxH (Example 5: columns "
     "wrap with a twist), klein:WxH, ring:WxH, or mask:FILE (text: '#' = cell, '.' = hole; or "
-    "a PNG whose opaque pixels are cells).\n\b\nTiles and printed cells: colours N, E, S, W. Boundary "
+    "a PNG whose opaque pixels are cells), or mask:ROWS (the text itself, '/' between rows)."
+    "\n\b\nTiles and printed cells: colours N, E, S, W. Boundary "
     "legs are numbered by cell (row-major), then by leg N, E, S, W."
 )
 

@@ -55,7 +55,7 @@ def solve(ctx, board_spec, colors, boundary, seed, method, time_limit, max_h, ma
     Example:
       tilesolve brick solve --board rect:40x30 --colors 3 --seed 1 -o wall.json --svg wall.svg
       tilesolve brick solve --board mobius:30x12 --boundary free --method sat -o m.json
-      tilesolve brick solve --board mask:shape.png --colors 4 -o s.json
+      tilesolve brick solve --board 'mask:################/####...#########/###.....####..##/####...#########/################' --colors 4 -o s.json
 
     Without -o or --svg the tiling is printed as text: each cell's colours N E S W.
     """
@@ -157,7 +157,7 @@ def crosscheck(ctx, board_spec, colors, boundary, seed, time_limit, trials) -> N
 
     \b
     Example:
-      tilesolve brick crosscheck --board mask:shape.txt --trials 5
+      tilesolve brick crosscheck --board 'mask:##########/###..#####/##....####/###..#####/##########' --trials 5
     """
     from tilesolve.families import board as facade
 

@@ -42,7 +42,9 @@ def dimacs(file: str | None, output: str, max_cnf: int, **problem_kw) -> None:
     \b
     Example:
       tilesolve export dimacs --size 12x8 --cond H0=2,V1=2 -o t.cnf
-      tilesolve export dimacs --size 12x8 --cond H0=2,V1=2 --closest-to target.txt -o t.wcnf
+      tilesolve dappled solve --size 12x8 --cond H0=2,V1=3 -o target.json
+      tilesolve export dimacs --size 12x8 --cond H0=2,V1=2 --closest-to target.json -o t.wcnf
+      tilesolve pack --kind corner --colors 4 -o c4.json
       tilesolve export dimacs c4.json -o c4.cnf          # a packing (or board) file
     """
     from tilesolve.family import family_of, read_document

@@ -48,6 +48,7 @@ def wang_solve(ctx, tiles_path, tiles_format, builtin, board_spec, boundary, see
 
     \b
     Example:
+      tilesolve tiles --kind wang --colors 3 --set sums -o tiles.json
       tilesolve wang solve --tiles tiles.json --board torus:8x8 --boundary free -o t.json --svg t.svg
       tilesolve wang solve --builtin jeandel-rao --board rect:12x12 --boundary free --svg jr.svg
 

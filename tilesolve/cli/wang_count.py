@@ -67,6 +67,7 @@ def wang_count(ctx, tiles_path, tiles_format, builtin, board_spec, method, time_
     Examples:
       tilesolve wang count --builtin jeandel-rao --board rect:6x6        # prints 50638
       tilesolve wang count --builtin jeandel-rao --board torus:4x4       # prints 0 (no 4x4 period)
+      tilesolve tiles --kind wang --colors 3 --set sums -o tiles.json
       tilesolve wang count --tiles tiles.json --board cylinder:5x3       # prints 3486784401
       tilesolve wang count --builtin jeandel-rao --board mobius:3x2      # prints 16 (by enumeration)
     """

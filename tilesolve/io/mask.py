@@ -64,15 +64,22 @@ def read_mask(path: str | os.PathLike) -> np.ndarray:
 
 
 def read_board_spec(spec: str) -> Board:
-    """A board from a command-line spec: ``mask:FILE`` reads the mask file, anything else
-    (``rect:WxH``, ``torus:WxH``, ...) goes to :func:`tilesolve.model.board.parse_board_spec`.
+    """A board from a command-line spec: ``mask:FILE`` reads the mask file; ``mask:ROWS`` (only
+    ``#``, ``.`` and ``/``, and no such file) is the mask itself, rows top first separated by
+    ``/``; anything else (``rect:WxH``, ``torus:WxH``, ...) goes to
+    :func:`tilesolve.model.board.parse_board_spec`.
 
     Examples
     --------
     >>> read_board_spec("ring:4x3").describe()
     'ring board, 10 cells in 4x3, 20 boundary legs'
+    >>> int(read_board_spec("mask:###/#.#/###").mask_of().sum())
+    8
     """
     s = str(spec)
     if s.startswith("mask:"):
-        return Board.mask(read_mask(s[5:]))
+        rows = s[5:]
+        if rows and set(rows) <= set("#./") and not os.path.exists(rows):
+            return Board.mask(parse_mask_text(rows.replace("/", "\n"), "mask"))
+        return Board.mask(read_mask(rows))
     return parse_board_spec(s)
