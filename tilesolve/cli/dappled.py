@@ -100,7 +100,7 @@ def solve(ctx, method, seed, time_limit, initial, output, svg, png, repeat, grid
     Example:
       tilesolve dappled solve --size 12x8 --cond H0=2 --cond V1=3 -o t.json --svg t.svg
       tilesolve dappled solve --size 16x16 --cond H0=2,V0=2,H1=2,V1=2 --cyclic --svg t.svg --repeat 2
-      tilesolve dappled solve --size 8x8 --cond H0=2,V1=2 --fix partial.txt --count 1=30..34 -o t.json
+      tilesolve dappled solve --size 12x8 --cond H0=2 --cond V1=3 --fix t.json -o t2.json  # keeps t.json's cells
 
     The summary (status, method, time, notes, files) goes to stderr; without -o/--svg/--png
     the tiling itself is printed to stdout as a text grid (a digit per cell, top row first).
