@@ -62,6 +62,28 @@ def test_heesch_with_holes_in_the_outer_corona(tmp_path):
     assert bad.returncode == 1 and "hole" in bad.stdout + bad.stderr
 
 
+def test_census_resumes_from_its_file(tmp_path):
+    full = run("shapes", "census", "--grid", "omino", "--size", "5", "--workers", "1", "-o", "c.json", cwd=tmp_path)
+    assert full.returncode == 0
+    doc = json.loads((tmp_path / "c.json").read_text())
+    assert doc["total"] == 12 and len(doc["shapes"]) == 12
+    kept = doc["shapes"][:4] + doc["shapes"][9:]
+    doc["shapes"] = kept
+    (tmp_path / "c.json").write_text(json.dumps(doc))
+    again = run("shapes", "census", "--grid", "omino", "--size", "5", "--workers", "1", "-o", "c.json", "--resume",
+                cwd=tmp_path)
+    assert again.returncode == 0 and "7 shape(s) resumed from c.json" in again.stderr
+    assert again.stdout.splitlines()[:2] == full.stdout.splitlines()[:2]
+    resumed = json.loads((tmp_path / "c.json").read_text())["shapes"]
+    assert len(resumed) == 12 and resumed[:4] == kept[:4] and resumed[9:] == kept[4:]  # kept rows as they were
+    other = run("shapes", "census", "--grid", "omino", "--size", "5", "--max-level", "2", "-o", "c.json", "--resume",
+                cwd=tmp_path)
+    assert "its max_level is 3, this census has 2" in one_line_error(other)
+    (tmp_path / "stray.json").write_text(json.dumps({**doc, "shapes": [{**kept[0], "cells": [[0, 0]]}]}))
+    stray = run("shapes", "census", "--grid", "omino", "--size", "5", "-o", "stray.json", "--resume", cwd=tmp_path)
+    assert "are not a free omino polyform of size 5" in one_line_error(stray)
+
+
 def test_census_prints_its_table_and_total(tmp_path):
     p = run("shapes", "census", "--grid", "omino", "--size", "4", "--workers", "1", "-o", "c.json", cwd=tmp_path)
     assert p.returncode == 0 and p.stdout.strip().splitlines()[-1] == "5 shapes"

@@ -247,15 +247,20 @@ def list_cmd(grid_name, size, holes, show) -> None:
 @click.option("--cluster", default=None, metavar="ADDRESS", help="A Dask scheduler (tcp://host:8786) instead.")
 @opt.time_limit_opt
 @click.option("-o", "--output", type=OutputFile("json"), metavar="CENSUS.json",
-              help="Write every shape's classification and time here.")
+              help="Write every shape's classification and time here (also when the time limit stops the census).")
+@click.option("--resume", is_flag=True,
+              help="Keep the shapes already classified in -o (a census with the same options) and classify the "
+                   "others.")
 @click.pass_context
-def census_cmd(ctx, grid_name, size, holes, max_level, max_copies, workers, cluster, time_limit, output) -> None:
+def census_cmd(ctx, grid_name, size, holes, max_level, max_copies, workers, cluster, time_limit, output,
+               resume) -> None:
     """Classify every free polyform of a size (each report verified); a summary table, the
-    total on the last line.
+    total on the last line. A census stopped by --time-limit (exit 3) continues with --resume.
 
     \b
     Examples:
       tilesolve shapes census --grid omino --size 4 -o census4.json   # prints 5 shapes
+      tilesolve shapes census --grid omino --size 5 -o census5.json --resume   # prints 12 shapes
     """
     from collections import Counter
 
@@ -264,8 +269,13 @@ def census_cmd(ctx, grid_name, size, holes, max_level, max_copies, workers, clus
     from tilesolve.io.jsonio import dumps
 
     outs = Outputs(output)
+    options = {"grid": grid_name, "size": size, "holes": holes, "max_level": max_level, "max_copies": max_copies}
+    done = _resumed(output, options) if resume else []
     rows, n_shapes = facade.census(grid_name, size, holes=holes, max_level=max_level, max_copies=max_copies,
-                         workers=workers, cluster=cluster, time_limit=time_limit, progress=progress_wanted())
+                         workers=workers, cluster=cluster, time_limit=time_limit, progress=progress_wanted(),
+                         done=done)
+    if done:
+        say(f"  {len(done)} shape(s) resumed from {output}")
     bad = [r for r in rows if r.problems]
     kinds = Counter((r.verdict, r.heesch if r.verdict in ("non-tiler", "inconclusive") else r.copies) for r in rows)
     for (verdict, k), n in sorted(kinds.items(), key=lambda kv: (kv[0][0], kv[0][1] or 0)):
@@ -274,8 +284,7 @@ def census_cmd(ctx, grid_name, size, holes, max_level, max_copies, workers, clus
     total = sum(r.time_s for r in rows)
     click.echo(f"        {total:.2f} s of classification, {total / max(len(rows), 1) * 1000:.1f} ms per shape")
     if output:
-        doc = {"format": "tilesolve/shapes-census", "version": 1, "grid": grid_name, "size": size, "holes": holes,
-               "max_level": max_level, "max_copies": max_copies,
+        doc = {"format": "tilesolve/shapes-census", "version": 1, **options, "total": n_shapes,
                "shapes": [{"cells": [list(c) for c in r.cells], "verdict": r.verdict, "heesch": r.heesch,
                            "copies": r.copies, "time_s": round(r.time_s, 4), "violations": list(r.problems)}
                           for r in rows]}
@@ -286,3 +295,29 @@ def census_cmd(ctx, grid_name, size, holes, max_level, max_copies, workers, clus
         say(f"{len(bad)} report(s) failed verification: {bad[0].problems[0]}")
         ctx.exit(70)
     ctx.exit(0 if len(rows) == n_shapes else 3)
+
+
+def _resumed(output, options: dict) -> list:
+    """The rows of an earlier census in ``output`` (none when it does not exist yet), refused
+    when its options differ from ``options``."""
+    import json
+    import os
+
+    from tilesolve.families.shapes import CensusRow
+    from tilesolve.inputs import read_input_text
+
+    if not output or output == "-":
+        raise InvalidProblem("--resume continues the census in -o FILE: give -o")
+    if not os.path.exists(output):
+        return []
+    try:
+        doc = json.loads(read_input_text(output, "census "))
+        if doc.get("format") != "tilesolve/shapes-census":
+            raise ValueError("not a tilesolve/shapes-census file")
+        differ = [k for k, v in options.items() if doc.get(k) != v]
+        if differ:
+            raise ValueError(f"its {differ[0]} is {doc.get(differ[0])!r}, this census has {options[differ[0]]!r}")
+        return [CensusRow(tuple(tuple(c) for c in r["cells"]), r["verdict"], r["heesch"], r["copies"],
+                          float(r["time_s"]), tuple(r["violations"])) for r in doc["shapes"]]
+    except (ValueError, KeyError, TypeError) as exc:
+        raise InvalidProblem(f"cannot resume from {output}: {exc}") from None

@@ -90,15 +90,17 @@ class CensusRow:
     problems: tuple = ()
 
 
-def _census_job(grid_name: str, cells: list, options: dict, seed: int) -> CensusRow:
-    """Classify shape ``seed`` of ``cells`` (a worker's job) and verify its report."""
+def _census_job(grid_name: str, todo: list, options: dict, seed: int) -> CensusRow:
+    """Classify job ``seed`` of ``todo`` (``(index in the census, cells)``; a worker's job),
+    seeded by the shape's index in the census, and verify its report."""
     from tilesolve.engine.shapes import classify
     from tilesolve.model.shapes import Polyform
 
-    shape = Polyform(grid_name, cells[seed])
+    index, cells = todo[seed]
+    shape = Polyform(grid_name, cells)
     problem = ShapesProblem("classify", (shape,), **options)
     t0 = time.perf_counter()
-    sol = classify(problem, seed=seed)
+    sol = classify(problem, seed=index)
     bad = tuple(shapes_violations(problem, sol.report))
     r: ShapesReport = sol.report
     return CensusRow(shape.cells, r.verdict, r.heesch, r.copies, time.perf_counter() - t0, bad)
@@ -106,10 +108,14 @@ def _census_job(grid_name: str, cells: list, options: dict, seed: int) -> Census
 
 def census(grid_name: str, size: int, *, holes: bool = False, max_level: int = 3, max_copies: int = 2,
            workers: int | None = 1, cluster=None, time_limit: float | None = None,
-           progress=False) -> tuple[list[CensusRow], int]:
+           progress=False, done=()) -> tuple[list[CensusRow], int]:
     """Classify every free polyform of ``size`` cells on the grid (without ``holes``: the ones
     without holes), each report verified: ``(rows in the generator's order, shapes)`` (fewer
     rows than shapes when the time limit ran out).
+
+    ``done`` rows (an earlier run of the same census, same options) are kept as they are and
+    their shapes not classified again, so a census stopped by its time limit resumes; a row
+    whose cells are not a shape of this census is refused.
 
     Examples
     --------
@@ -121,18 +127,24 @@ def census(grid_name: str, size: int, *, holes: bool = False, max_level: int = 3
     from tilesolve.progress import as_progress
 
     shapes = polyforms(grid_name, size, holes=holes)
-    cells = [list(s.cells) for s in shapes]
+    index = {s.cells: i for i, s in enumerate(shapes)}
+    rows: dict[int, CensusRow] = {}
+    for row in done:
+        if tuple(map(tuple, row.cells)) not in index:
+            raise InvalidProblem(f"a resumed row's cells {list(row.cells)} are not a free {grid_name} polyform of "
+                                 f"size {size} of this census")
+        rows[index[tuple(map(tuple, row.cells))]] = row
+    todo = [(i, list(s.cells)) for i, s in enumerate(shapes) if i not in rows]
     options = {"max_level": max_level, "max_copies": max_copies, "holes": holes}
     run = RunOptions(seed=0, deadline=run_deadline(time_limit), workers=workers, cluster=cluster)
-    rows: dict[int, CensusRow] = {}
     bar = as_progress(progress)
-    with bar.task("shapes", total=len(shapes), unit="shape") as task:
-        def take(i, row):
-            rows[i] = row
+    with bar.task("shapes", total=len(todo), unit="shape") as task:
+        def take(j, row):
+            rows[todo[j][0]] = row
             task.advance()
             return False
 
-        if dispatch(functools.partial(_census_job, grid_name, cells, options), len(shapes), run, take, lambda: None):
+        if dispatch(functools.partial(_census_job, grid_name, todo, options), len(todo), run, take, lambda: None):
             raise KeyboardInterrupt  # take never stops the census: dispatch stopped for Ctrl-C
     return [rows[i] for i in sorted(rows)], len(shapes)
 
