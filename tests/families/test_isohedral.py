@@ -33,3 +33,21 @@ def test_edges_by_class_or_in_order():
 def test_solve_refuses_other_problems():
     with pytest.raises(InvalidProblem, match="expected an IsohedralProblem"):
         facade.solve("IH41")
+
+
+def test_the_forms_command_poses_the_forms_problem(tmp_path):
+    from clitools import run
+
+    from tilesolve.family import read_document
+
+    form = facade.FORM
+    values = form.values({"seed": 1, "type": "IH16", "params": "0.2", "edge0": "", "edge1": "line:0.5,0.1",
+                          "region": "6x4", "scale": 20})
+    built, _ = form.build(values)
+    words, files = form.command(values)
+    assert files == {} and form.time_limit is False
+    assert run(*words, "-o", "t.json", cwd=tmp_path).returncode == 0
+    fam, codec, doc = read_document(tmp_path / "t.json")
+    assert fam is facade.FAMILY and codec.read(doc, "t.json")[0] == built
+    with pytest.raises(InvalidProblem, match="edge class 1 does not exist"):
+        form.build(form.values({"seed": 1, "type": "IH10"}))  # IH10 has one edge class; the default fills two

@@ -32,10 +32,10 @@ import time
 from typing import Any, Sequence
 
 from tilesolve.errors import InvalidProblem
-from tilesolve.family import Codec, Demo, Family, RunOptions, register
+from tilesolve.family import Codec, Demo, Family, Field, Form, RunOptions, register
 from tilesolve.family import solve as _solve
 from tilesolve.io.isohedral_json import TILING_FORMAT, VERSIONS
-from tilesolve.model.isohedral import EdgeShape, IsohedralProblem, IsohedralTiling, parse_type
+from tilesolve.model.isohedral import TYPES, EdgeShape, IsohedralProblem, IsohedralTiling, parse_type
 from tilesolve.model.solution import Solution, Status
 from tilesolve.progress import Progress
 
@@ -138,6 +138,56 @@ DEMOS = (
          lambda: problem(41, edges=["bezier:0.3,0.25/0.6,-0.2", "bezier:0.35,-0.2/0.7,0.2"], region=(0, 0, 8, 6))),
 )
 
+#: Most edge classes of a type (IH04 has five).
+_FORM_EDGES = 5
+
+
+def _form_values(values) -> tuple[str, tuple[float, ...] | None, dict[int, str], tuple[float, float, float, float], float]:
+    """Type, parameters, edges by class, region and scale from the form's values."""
+    text = values["params"].strip()
+    try:
+        params = tuple(float(p) for p in text.split(",")) if text else None
+    except ValueError:
+        raise InvalidProblem(f"cannot read parameters {text!r}: expected numbers separated by commas") from None
+    edges = {k: values[f"edge{k}"].strip() for k in range(_FORM_EDGES) if values[f"edge{k}"].strip()}
+    w, h = (int(v) for v in values["region"].lower().split("x"))
+    return values["type"], params, edges, (0.0, 0.0, float(w), float(h)), values["scale"]
+
+
+def _form_build(values) -> tuple[IsohedralProblem, dict]:
+    """The drawing the form describes (edge classes left empty are straight)."""
+    return problem(*_form_values(values)), {}
+
+
+def _form_command(values) -> tuple[list[str], dict[str, str]]:
+    typ, params, edges, (_, _, w, h), scale = _form_values(values)
+    words = ["isohedral", "draw", "--type", typ]
+    if params is not None:
+        words += ["--params", ",".join(f"{p:.12g}" for p in params)]
+    for k, shape in sorted(edges.items()):
+        words += ["--edge", f"{k}={shape}"]
+    return words + ["--region", f"{w:g}x{h:g}", "--scale", f"{scale:g}"], {}
+
+
+FORM = Form(
+    fields=(
+        Field("type", "choice", "type", "IH41", "the isohedral type (tilesolve isohedral list)",
+              choices=tuple(f"IH{n:02d}" for n in TYPES), option="--type"),
+        Field("params", "text", "parameters", "", "tiling-vertex parameters, comma-separated (empty: the type's own)",
+              option="--params"),
+        *(Field(f"edge{k}", "text", f"edge class {k}", "bezier:0.3,0.2/0.7,-0.2" if k < 2 else "",
+                "line, line:X,Y/... or bezier:X,Y/X,Y (empty: straight); J free, U mirror-symmetric, "
+                "S half-turn-symmetric, I straight", option="--edge") for k in range(_FORM_EDGES)),
+        Field("region", "size", "region (WxH)", "10x8", "width by height in tile units", high=100_000,
+              option="--region"),
+        Field("scale", "float", "pixels per unit", 40.0, "the picture is W and H times this", low=1, high=1000,
+              option="--scale"),
+    ),
+    build=_form_build,
+    command=_form_command,
+    time_limit=False,
+)
+
 FAMILY = register(Family(
     name="isohedral",
     title="isohedral tilings for design: the 93 types IH1..IH93 with edge shapes J, U, S, I "
@@ -150,5 +200,6 @@ FAMILY = register(Family(
     draw=_draw,
     demos=DEMOS,
     commands=("tilesolve.cli.isohedral:isohedral",),
+    form=FORM,
     route_help={"template": "the type's template (tiling vertices, aspects, translations) and the edge shapes (§7.3-7.4)"},
 ))
