@@ -145,3 +145,18 @@ def test_ctrl_c_stops_a_census_with_exit_130_and_no_file(tmp_path):
     assert proc.returncode == 130 and "Traceback" not in err
     assert err.strip().splitlines()[-1] == "tilesolve: interrupted (no file was written)"
     assert not (tmp_path / "c.json").exists()
+
+
+@pytest.mark.slow
+def test_census_on_a_dask_cluster_matches_local_workers(tmp_path):
+    import distributed
+
+    args = ("shapes", "census", "--grid", "hex", "--size", "5")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0") as lc:
+        dask = run(*args, "--cluster", lc.scheduler_address, "-o", "d.json", cwd=tmp_path)
+    local = run(*args, "--workers", "1", "-o", "l.json", cwd=tmp_path)
+    assert dask.returncode == local.returncode == 0, dask.stderr
+    assert dask.stdout.splitlines()[-1] == "22 shapes"
+    rows = [json.loads((tmp_path / f).read_text())["shapes"] for f in ("d.json", "l.json")]
+    assert [(r["cells"], r["verdict"], r["copies"]) for r in rows[0]] == \
+        [(r["cells"], r["verdict"], r["copies"]) for r in rows[1]]
