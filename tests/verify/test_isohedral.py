@@ -101,3 +101,26 @@ def test_the_drawing_is_checked(good):
 def test_another_types_tiling_is_refused(good):
     problem, tiling = good
     assert kinds(tiling_violations(IsohedralProblem(41), tiling)) == {"shape"}
+
+
+def test_any_parameters_are_refused_in_one_line_or_draw_a_verified_tiling():
+    # Parameters far from the defaults: the generator refuses (a vanished edge, a tile that
+    # crosses itself, parallel translations) or its tiling verifies; never a tiling that fails.
+    from tilesolve.errors import InvalidProblem
+
+    rng = np.random.default_rng(4)
+    free = [n for n in TYPES if isohedral_type(n).n_params]
+    outcomes = set()
+    for n in rng.choice(free, 30, replace=False):
+        t = isohedral_type(int(n))
+        params = tuple(float(p) for p in np.asarray(t.default_params) + rng.uniform(-0.6, 0.6, t.n_params))
+        try:
+            problem = curved(int(n), region=(0, 0, 4, 3))
+            problem = dataclasses.replace(problem, params=params)
+            tiling = layout(problem)
+        except InvalidProblem:
+            outcomes.add("refused")
+            continue
+        assert tiling_violations(problem, tiling) == [], (n, params)
+        outcomes.add("verified")
+    assert outcomes == {"refused", "verified"}

@@ -18,9 +18,9 @@ its problem:
    and the tiles' areas sum to the fundamental domain's, ``|det(T1, T2)|``. Then the sum of the
    tiles' winding numbers is the same on both sides of every chord, hence constant, and equal to
    the area ratio, 1: no overlap and no gap, in the torus and so in the plane.
-4. *The drawing.* The placed tiles are distinct, each meets the region (its bounding box), a grid
-   of points of the region each lies in a placed tile, and two placed tiles that share a chord
-   have different colours (from the colours' range).
+4. *The drawing.* The placed tiles are distinct, each meets the region (its bounding box, within
+   the length tolerance), a grid of points of the region each lies in a placed tile, and two
+   placed tiles that share a chord have different colours (from the colours' range).
 
 Tolerances: lengths are compared within ``1e-7`` times the prototile's size (coordinates are
 floats computed from floats; the tables hold 12 significant digits); areas within ``1e-6``
@@ -243,11 +243,11 @@ def tiling_violations(problem: IsohedralProblem, tiling: IsohedralTiling) -> lis
             continue
         di, dj = chords.shift_to(s, found[0])
         links.add((int(chords.owner[s]), int(chords.owner[found[0]]), di, dj))
-    return out or _drawing(problem, tiling, tiles, links)
+    return out or _drawing(problem, tiling, tiles, links, tol)
 
 
 def _drawing(problem: IsohedralProblem, tiling: IsohedralTiling, tiles: list[np.ndarray],
-             links: set[tuple[int, int, int, int]]) -> list[Violation]:
+             links: set[tuple[int, int, int, int]], tol: float) -> list[Violation]:
     t = isohedral_type(problem.type)
     placed, colours = np.asarray(tiling.placements), np.asarray(tiling.colours)
     if placed.ndim != 2 or placed.shape[1] != 3 or colours.shape != (len(placed),):
@@ -271,7 +271,7 @@ def _drawing(problem: IsohedralProblem, tiling: IsohedralTiling, tiles: list[np.
     x0, y0, w, h = problem.region
     boxes = np.array([[p[:, 0].min(), p[:, 1].min(), p[:, 0].max(), p[:, 1].max()] for p in tiles])
     b = boxes[placed[:, 2]] + np.tile(placed[:, :2] @ T, 2)
-    away = (b[:, 0] > x0 + w) | (b[:, 2] < x0) | (b[:, 1] > y0 + h) | (b[:, 3] < y0)
+    away = (b[:, 0] > x0 + w + tol) | (b[:, 2] < x0 - tol) | (b[:, 1] > y0 + h + tol) | (b[:, 3] < y0 - tol)
     if away.any():
         out.append(Violation("drawing", f"placed tile {int(np.argmax(away))} lies outside the region"))
     for a, a2, di, dj in sorted(links):
