@@ -73,8 +73,9 @@ def test_dash_is_stdout(tmp_path, args, start):
 def test_two_outputs_cannot_share_stdout_or_a_file(tmp_path):
     base = ["dappled", "solve", "--size", "4x3", "--cond", "H0=2"]
     assert "standard output" in one_line_error(run(*base, "-o", "-", "--svg", "-", cwd=tmp_path))
-    assert "named twice" in one_line_error(run(*base, "--svg", "a.svg", "--png", "./a.svg", cwd=tmp_path))
-    assert os.listdir(tmp_path) == []
+    os.symlink("a.svg", tmp_path / "a.png")  # one file by two names, each with its format's suffix
+    assert "named twice" in one_line_error(run(*base, "--svg", "a.svg", "--png", "a.png", cwd=tmp_path))
+    assert os.listdir(tmp_path) == ["a.png"]
 
 
 # ----------------------------------------------------------------------------- all or nothing (defect 9)

@@ -1,4 +1,5 @@
-"""Streamed PNG rows (write_packed_rows) and the cell pictures of edge_image (cell_pixels)."""
+"""Streamed PNG rows (write_packed_rows), the cell pictures of edge_image (cell_pixels), and the
+captions under every command's PNG (issue 22)."""
 
 from __future__ import annotations
 
@@ -7,6 +8,8 @@ import io
 import numpy as np
 import png
 import pytest
+from clitools import run
+from PIL import Image
 
 from tilesolve.io.png import cell_pixels, edge_image, write_packed_rows
 
@@ -42,3 +45,54 @@ def test_cell_pixels_are_the_cells_of_edge_image(kind, scale):
     cells = cell_pixels(colours, kind, scale).reshape(2, 3, scale, scale).transpose(0, 2, 1, 3)
     assert np.array_equal(img, cells.reshape(2 * scale, 3 * scale))
     assert (cells[..., 0, :, 0] == 255).all() == (scale >= 8)
+
+
+# ----------------------------------------------------------------------------- captions (issue 22)
+def test_a_caption_goes_under_the_picture_and_nothing_else_moves(tmp_path):
+    from tilesolve.io.png import caption_mask, write_png
+
+    t = np.array([[0, 1, 1], [1, 0, 2]])
+    write_png(tmp_path / "plain.png", t, scale=40)
+    write_png(tmp_path / "caption.png", t, scale=40, caption=["a caption long enough to wrap in 120 px", "seed 3"])
+    plain, captioned = (np.asarray(Image.open(tmp_path / f).convert("RGB")) for f in ("plain.png", "caption.png"))
+    assert np.array_equal(captioned[:80], plain) and len(captioned) > 80 + 3 * 16  # wrapped: three lines or more
+    below = captioned[80:]
+    ink = (below < 100).all(axis=2)
+    assert ink.any() and ink.mean() < 0.3 and (below[~ink] > 200).all()  # dark text on near-white
+    assert not ink[:, :4].any() and not ink[:, -4:].any()  # inside its margins
+    assert caption_mask(["x" * 500], 120).shape[1] == 120  # a word wider than the picture breaks
+
+
+def _caption_band(path) -> np.ndarray:
+    rgb = np.asarray(Image.open(path).convert("RGB")).astype(int)
+    return rgb[-24:]
+
+
+@pytest.mark.fast_cases(2)
+@pytest.mark.parametrize("args,picture", [
+    (["dappled", "solve", "--size", "30x20", "--cond", "H0=2,V1=2", "--seed", "1", "--png", "p.png"], "p.png"),
+    (["tiles", "--kind", "wang", "--colors", "3", "--png", "p.png"], "p.png"),
+    (["tiling", "--kind", "corner", "--method", "direct", "--colors", "3", "--region", "0,0,20x10", "--seed", "1",
+      "--png", "p.png"], "p.png"),
+    (["penrose", "--kind", "p2", "--method", "substitution", "--steps", "3", "--png", "p.png"], "p.png"),
+    (["aperiodic", "tiling", "--builtin", "kari-culik-13", "--region", "0,0,12x8", "--seed", "1", "--png", "p.png"],
+     "p.png"),
+    (["shapes", "tile", "--grid", "omino", "--shape", "XX/XX/X.", "--region", "5x2", "--png", "p.png"], "p.png"),
+])
+def test_every_png_carries_its_caption(tmp_path, args, picture):
+    """The PNGs of the commands, like their SVGs, say what they show: lines of dark text on a
+    light band under the picture."""
+    proc = run(*args, cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    band = _caption_band(tmp_path / picture)
+    luma = band @ np.array([0.299, 0.587, 0.114])
+    assert (luma > 235).mean() > 0.7 and (luma < 110).mean() > 0.005, "no caption under the picture"
+
+
+def test_draw_gives_packings_and_boards_their_caption(tmp_path):
+    for make in (["pack", "--kind", "corner", "--colors", "3", "--seed", "1", "-o", "s.json"],
+                 ["brick", "solve", "--board", "torus:12x8", "--seed", "1", "-o", "s.json"]):
+        assert run(*make, cwd=tmp_path).returncode == 0
+        assert run("draw", "s.json", "-o", "s.png", cwd=tmp_path).returncode == 0
+        luma = _caption_band(tmp_path / "s.png") @ np.array([0.299, 0.587, 0.114])
+        assert (luma > 235).mean() > 0.7 and (luma < 110).mean() > 0.005, make[0]

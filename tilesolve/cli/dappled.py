@@ -131,19 +131,12 @@ def solve(ctx, method, seed, time_limit, initial, output, svg, png, repeat, grid
             write_solution(output, problem, sol)
             written.append(output)
         if sol.status.has_tiling:
-            legend = [f"{sol.status.value} by {sol.method}" + (f", seed {sol.seed}" if sol.seed is not None else "")]
-            if sol.objective is not None:
-                legend.append(f"distance to the target: {sol.objective}")
-            if svg:
-                from tilesolve.io.svg import write_svg
+            from tilesolve.family import draw_solution
 
-                write_svg(svg, sol.tiling, problem=problem, repeat=repeat, grid=grid, notes=legend)
-                written.append(svg)
-            if png:
-                from tilesolve.io.png import write_png
-
-                write_png(png, sol.tiling, repeat=repeat, grid=grid)
-                written.append(png)
+            for path, fmt in ((svg, "svg"), (png, "png")):
+                if path:  # the family's pictures: legend and caption
+                    draw_solution(path, problem, sol, fmt=fmt, repeat=repeat, grid=grid)
+                    written.append(path)
         elif svg or png:
             extra.append(f"no picture: status {sol.status.value}, no tiling")
     if not outs and sol.status.has_tiling:

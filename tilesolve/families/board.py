@@ -301,7 +301,8 @@ def _draw(problem: BoardProblem, sol: Solution, path, fmt: str, *, title: str | 
     if fmt == "png":
         from tilesolve.io.png import write_board_png
 
-        write_board_png(path, problem, sol.tiling, window=sol.window)
+        caption = [title or problem.board.describe()] + ([sol.window.caption()] if sol.window is not None else [])
+        write_board_png(path, problem, sol.tiling, window=sol.window, caption=caption + legend + list(notes))
         return
     from tilesolve.io.svg_board import write_board_svg
 

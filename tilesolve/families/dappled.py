@@ -319,17 +319,20 @@ def _write_solution(problem: DappledProblem, sol: Solution) -> dict:
 
 def _draw(problem: DappledProblem, sol: Solution, path, fmt: str, *, repeat: int = 1, grid=None,
           title: str | None = None, notes=()) -> None:
-    """SVG (legend, conditions, N x N repeat) or PNG (large grids) of a dappled tiling."""
-    if fmt == "png":
-        from tilesolve.io.png import write_png
-
-        write_png(path, sol.tiling, repeat=repeat, grid=grid)
-        return
-    from tilesolve.io.svg import write_svg
-
+    """SVG (legend, conditions, N x N repeat) or PNG (large grids, the same lines under it) of a
+    dappled tiling."""
     legend = [f"{sol.status.value} by {sol.method}" + (f", seed {sol.seed}" if sol.seed is not None else "")]
     if sol.objective is not None:
         legend.append(f"distance to the target: {sol.objective} cells")
+    if fmt == "png":
+        from tilesolve.io.png import write_png
+
+        caption = [title] if title else []
+        caption += [problem.describe(), *legend, *notes] + ([f"shown {repeat}x{repeat}"] if repeat > 1 else [])
+        write_png(path, sol.tiling, repeat=repeat, grid=grid, caption=caption)
+        return
+    from tilesolve.io.svg import write_svg
+
     write_svg(path, sol.tiling, problem=problem, repeat=repeat, grid=grid, title=title, notes=legend + list(notes))
 
 

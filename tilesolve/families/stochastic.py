@@ -155,7 +155,8 @@ def _draw(problem: StochasticProblem, sol: Solution, path, fmt: str, *, indices:
     if fmt == "png":
         from tilesolve.io.stochastic_png import write_window_png
 
-        write_window_png(path, sol.tiling, problem.kind, problem.colors)
+        write_window_png(path, sol.tiling, problem.kind, problem.colors,
+                         caption=[title or f"{problem.describe()} ({sol.method}, seed {sol.seed})"])
         return
     from tilesolve.io.svg_packing import MAX_SVG_TILES, write_packing_svg
 

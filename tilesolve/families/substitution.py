@@ -109,7 +109,7 @@ def patch_violations(problem: SubstitutionProblem, patch: Patch) -> list[Violati
     out = penrose_violations(problem.kind, patch.types, patch.vertices)
     if not out and problem.region is not None:
         x0, y0, w, h = problem.region
-        c = patch.xy().mean(axis=1)
+        c = patch.centres()
         outside = (c[:, 0] < x0) | (c[:, 0] >= x0 + w) | (c[:, 1] < y0) | (c[:, 1] >= y0 + h)
         out += [Violation("window", f"tile {i}'s centre lies outside the region") for i in outside.nonzero()[0][:20]]
     return out
@@ -143,15 +143,13 @@ def _write(problem: SubstitutionProblem, sol: Solution) -> dict:
 
 def _draw(problem: SubstitutionProblem, sol: Solution, path, fmt: str, *, title: str | None = None,
           **_ignored) -> None:
-    """SVG (svgwrite, one polygon a tile, a caption) or PNG (Pillow)."""
+    """SVG (svgwrite, one polygon a tile, a caption) or PNG (Pillow, the caption under it)."""
     from tilesolve.io.substitution_json import write_patch_png, write_patch_svg
 
     if not isinstance(sol.tiling, Patch):
         raise InvalidProblem("nothing drawn: the solution holds no patch")
-    if fmt == "png":
-        write_patch_png(path, sol.tiling)
-    else:
-        write_patch_svg(path, sol.tiling, title=title or f"{problem.describe()} ({sol.method}, seed {sol.seed})")
+    title = title or f"{problem.describe()} ({sol.method}, seed {sol.seed})"
+    (write_patch_png if fmt == "png" else write_patch_svg)(path, sol.tiling, title=title)
 
 
 DEMOS = (

@@ -319,18 +319,19 @@ def _save(path, img: Image.Image, caption=()) -> None:
     write_bytes_atomic(path, buf.getvalue())
 
 
-def write_board_png(path: str | os.PathLike, problem, tiling, *, window=None, **kwargs) -> None:
+def write_board_png(path: str | os.PathLike, problem, tiling, *, window=None, caption=(), **kwargs) -> None:
     """PNG of a board tiling: bricks and mortar for a brick tile set, at any size
     (:mod:`tilesolve.io.board_png`; ``window``, where the tiling lies in the plane, colours the
-    bricks by their position), else each cell's legs as N, E, S, W triangles at its ``[row, col]`` label."""
+    bricks by their position), else each cell's legs as N, E, S, W triangles at its ``[row, col]`` label;
+    the lines ``caption`` under it."""
     if problem.tileset.is_brick:
         from tilesolve.io.board_png import brick_image
 
-        _save(path, brick_image(problem, tiling, window=window, **kwargs))
+        _save(path, brick_image(problem, tiling, window=window, **kwargs), caption)
         return
     lab = np.asarray(problem.board.labels)
     shape = tuple(int(v) + 1 for v in lab.max(axis=0))
-    _save(path, edge_image(np.asarray(tiling, dtype=np.int64).reshape(-1, 4), lab, shape, "wang", **kwargs))
+    _save(path, edge_image(np.asarray(tiling, dtype=np.int64).reshape(-1, 4), lab, shape, "wang", **kwargs), caption)
 
 
 def write_packing_png(path: str | os.PathLike, grid, kind: str, colors: int, *, colors_v: int | None = None,
@@ -347,9 +348,10 @@ def write_packing_png(path: str | os.PathLike, grid, kind: str, colors: int, *, 
     _save(path, edge_image(colours, positions, (rows, cols), kind, palette=colour_of, **kwargs), caption)
 
 
-def write_tileset_png(path: str | os.PathLike, tiles, **kwargs) -> None:
+def write_tileset_png(path: str | os.PathLike, tiles, *, caption=None, **kwargs) -> None:
     """PNG sheet of a :class:`~tilesolve.model.tiles.TileSet`: its tiles in index order, row by
-    row, with a blank cell between neighbours (the notes' colours, §2.7)."""
+    row, with a blank cell between neighbours (the notes' colours, §2.7), under the lines
+    ``caption`` (default: ``tiles.describe()``, the SVG sheet's title)."""
     from tilesolve.io.svg_packing import colour_of
 
     colours = tiles.table()
@@ -358,4 +360,5 @@ def write_tileset_png(path: str | os.PathLike, tiles, **kwargs) -> None:
     k = np.arange(n)
     positions = np.stack([2 * (k // per_row), 2 * (k % per_row)], axis=1)
     shape = (2 * int(np.ceil(n / per_row)) - 1, 2 * per_row - 1)
-    _save(path, edge_image(colours, positions, shape, tiles.kind, palette=colour_of, **kwargs))
+    _save(path, edge_image(colours, positions, shape, tiles.kind, palette=colour_of, **kwargs),
+          [tiles.describe()] if caption is None else caption)

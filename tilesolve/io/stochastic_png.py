@@ -26,7 +26,7 @@ import numpy as np
 
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.atomic import atomic_write
-from tilesolve.io.png import MAX_PNG_PIXELS, cell_pixels, write_packed_rows
+from tilesolve.io.png import MAX_PNG_PIXELS, caption_mask, caption_rows, cell_pixels, write_packed_rows
 from tilesolve.io.svg_packing import colour_of
 from tilesolve.model.tiles import TileSet
 
@@ -43,8 +43,10 @@ STRATEGY = zlib.Z_RLE
 _TARGET_PX = 1024
 
 
-def write_window_png(path: str | os.PathLike, grid, kind: str, colors: int, *, scale: int | None = None) -> None:
-    """Write the PNG of ``grid`` (eq. 2.1 / 2.5 tile numbers, row 0 at the top) atomically.
+def write_window_png(path: str | os.PathLike, grid, kind: str, colors: int, *, scale: int | None = None,
+                     caption=()) -> None:
+    """Write the PNG of ``grid`` (eq. 2.1 / 2.5 tile numbers, row 0 at the top) atomically, with
+    the lines ``caption`` under it (:func:`tilesolve.io.png.caption_mask`).
 
     Parameters
     ----------
@@ -76,6 +78,8 @@ def write_window_png(path: str | os.PathLike, grid, kind: str, colors: int, *, s
     if ts.n_tiles * scale * scale <= TABLE_BYTES:
         by_row = np.ascontiguousarray(cell_pixels(ts.table(), kind, scale).transpose(1, 0, 2)).view(f"V{scale}")
 
+    below = caption_rows(caption_mask(caption, cols * scale), 0, 255)  # white, dark grey
+
     def pixel_rows():
         for r0 in range(0, rows, band):
             part = g[r0:r0 + band]
@@ -87,7 +91,8 @@ def write_window_png(path: str | os.PathLike, grid, kind: str, colors: int, *, s
                 colours = np.stack(ts.colors_of(part.ravel().astype(np.int64)), axis=1)
                 cells = cell_pixels(colours, kind, scale).reshape(part.shape + (scale, scale))
                 yield from cells.transpose(0, 2, 1, 3).reshape(-1, cols * scale)
+        yield from below
 
-    writer = png.Writer(cols * scale, rows * scale, palette=palette, bitdepth=8, compression=6)
+    writer = png.Writer(cols * scale, rows * scale + len(below), palette=palette, bitdepth=8, compression=6)
     with atomic_write(path, "wb") as f:
         write_packed_rows(writer, f, pixel_rows(), strategy=STRATEGY)

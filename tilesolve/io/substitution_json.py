@@ -131,9 +131,11 @@ def write_patch_svg(path, patch: Patch, *, title: str | None = None, px: int = 8
         f.write(dwg.tostring())
 
 
-def write_patch_png(path, patch: Patch, *, px: int = 1024) -> None:
-    """A PNG of the patch, ``px`` pixels on its longer side (Pillow), y up."""
+def write_patch_png(path, patch: Patch, *, px: int = 1024, title: str | None = None) -> None:
+    """A PNG of the patch, ``px`` pixels on its longer side (Pillow), y up, with an optional title under it."""
     from PIL import Image, ImageDraw
+
+    from tilesolve.io.png import captioned
 
     if not 16 <= px <= MAX_PNG_PX:
         raise InvalidProblem(f"the picture's size must be 16..{MAX_PNG_PX} pixels, got {px}")
@@ -148,5 +150,5 @@ def write_patch_png(path, patch: Patch, *, px: int = 1024) -> None:
     for t, poly in zip(patch.types.tolist(), px_xy.tolist()):
         draw.polygon([tuple(p) for p in poly], fill=colours[t % len(colours)], outline=outline)
     buf = io.BytesIO()
-    img.save(buf, format="PNG")
+    captioned(img, [title] if title else []).save(buf, format="PNG")
     write_bytes_atomic(path, buf.getvalue())

@@ -100,6 +100,8 @@ def write_shapes_picture(path: str | os.PathLike, fmt: str, g: Grid, rows, *, co
         return
     from PIL import Image, ImageDraw
 
+    from tilesolve.io.png import captioned
+
     rows = _checked(rows)
     cells, outline = _polygons(g, rows)
     lo, hi = _frame(cells)
@@ -117,4 +119,4 @@ def write_shapes_picture(path: str | os.PathLike, fmt: str, g: Grid, rows, *, co
     for seg in outline:
         d.line(xy(seg), fill="#222222", width=2)
     with atomic_write(path, "wb") as f:
-        img.save(f, format="PNG")
+        captioned(img, [title] if title else []).save(f, format="PNG")
