@@ -5,9 +5,10 @@ Penrose patches (:func:`penrose_violations`)
     1. *Shapes.* Every tile is a thin or thick rhomb of edge 1 (P3) or a kite or dart with
        long edges ``phi`` and short edges 1 (P2), counter-clockwise from its marked vertex
        (P3: the thin rhomb's marked obtuse, the thick's marked acute vertex; P2: the kite's
-       head, the dart's tip). Coordinates are exact integers in ``Z[zeta5]``; lengths and
-       angles are classified from their float values, which lie within 1e-6 of a multiple of
-       36 degrees and of 1 or ``phi`` (exact values of the classes differ by more than 0.3).
+       head, the dart's tip). Coordinates are exact integers in ``Z[zeta5]``, and so is the
+       check: every edge vector must be one of the ten unit vectors ``exp(i pi d / 5)`` or
+       ``phi`` times one (a table of the ring's elements with coordinates -2..2), and the
+       angles follow from the directions ``d``.
     2. *Edges.* Every edge (exact endpoints) belongs to at most two tiles, which run it in
        opposite directions (same direction = two tiles on one side: an overlap).
     3. *Matching rules* across every shared edge (Penrose's arrows): every edge carries an
@@ -53,7 +54,6 @@ from tilesolve.verify.dappled import Violation
 __all__ = ["penrose_violations", "reptile_violations", "PROTOTILE_OUTLINES"]
 
 _PHI = (1 + 5**0.5) / 2
-_TOL = 1e-6
 
 #: Per Penrose kind and type: the edge lengths (1 or phi) and the interior angles in units of
 #: 36 degrees at vertices 0..3.
@@ -63,6 +63,20 @@ _SHAPES = {
     ("p2", 0): ((_PHI, 1, 1, _PHI), (2, 2, 4, 2)),  # kite from its head
     ("p2", 1): ((_PHI, 1, 1, _PHI), (2, 1, 6, 1)),  # dart from its tip
 }
+def _edge_table() -> tuple[np.ndarray, np.ndarray]:
+    """Every ring element with coordinates in -2..2, by code ``sum (c_k + 2) 5^k``: its direction
+    in units of 36 degrees and its length class (0: length 1, 1: length phi), -1 for the others
+    (classified from floats with a margin of 1e-9: no two of these 625 values are that close)."""
+    c = np.array(list(np.ndindex(5, 5, 5, 5)))[:, ::-1] - 2
+    xy = _xy5(c)
+    length = np.hypot(xy[:, 0], xy[:, 1])
+    turns = np.arctan2(xy[:, 1], xy[:, 0]) / (np.pi / 5)
+    on_grid = np.abs(turns - np.rint(turns)) < 1e-9
+    size = np.where(on_grid & (np.abs(length - 1) < 1e-9), 0, np.where(on_grid & (np.abs(length - _PHI) < 1e-9), 1, -1))
+    direction = np.where(size >= 0, np.rint(turns).astype(np.int64) % 10, -1)
+    return direction, size
+
+
 _NAMES = {("p3", 0): "thin rhomb", ("p3", 1): "thick rhomb", ("p2", 0): "kite", ("p2", 1): "dart"}
 
 #: The rep-tiles' corners, counter-clockwise, in lattice coordinates (square: x, y; triangle:
@@ -79,6 +93,9 @@ def _xy5(v: np.ndarray) -> np.ndarray:
     ang = 2 * np.pi * np.arange(4) / 5
     v = v.astype(np.float64)
     return np.stack([v @ np.cos(ang), v @ np.sin(ang)], axis=-1)
+
+
+_EDGE_DIRECTION, _EDGE_LENGTH = _edge_table()
 
 
 def _labels(x: np.ndarray) -> np.ndarray:
@@ -113,37 +130,44 @@ def penrose_violations(kind: str, types, vertices) -> list[Violation]:
         return [Violation("count", "the patch has no tiles")]
     if not np.isin(types, (0, 1)).all():
         return [Violation("tile", "a tile type is not 0 or 1")]
-    # 1. shapes
-    xy = _xy5(v)
-    e = np.roll(xy, -1, axis=1) - xy
-    length = np.hypot(e[..., 0], e[..., 1])
-    direction = np.arctan2(e[..., 1], e[..., 0]) / (np.pi / 5)
-    d = np.rint(direction).astype(np.int64) % 10
-    off_grid = np.abs(direction - np.rint(direction)) > _TOL
+    # 1. shapes: every edge vector, exactly, by its small integer coordinates
+    e = np.roll(v, -1, axis=1) - v
+    small = (np.abs(e) <= 2).all(axis=2)
+    code = np.where(small, e[..., 0] + 5 * e[..., 1] + 25 * e[..., 2] + 125 * e[..., 3] + 312, 0)  # sum (e_k + 2) 5^k
+    d, size = _EDGE_DIRECTION[code], _EDGE_LENGTH[code]
+    d[~small], size[~small] = -1, -1
     angle = (np.roll(d, 1, axis=1) + 5 - d) % 10  # interior angle at vertex i: from edge i to reversed edge i-1
     for t in (0, 1):
         lengths, angles = _SHAPES[(kind, t)]
         sel = types == t
-        bad = (np.abs(length[sel] - np.array(lengths)) > _TOL).any(axis=1) | off_grid[sel].any(axis=1) | \
+        bad = (size[sel] != np.array([int(x != 1) for x in lengths])).any(axis=1) | (d[sel] < 0).any(axis=1) | \
             (angle[sel] != np.array(angles)).any(axis=1)
         for i in np.flatnonzero(sel)[bad][:20]:
             out.append(Violation("tile", f"tile {i} is no {_NAMES[(kind, t)]} counter-clockwise from its marked vertex"))
     if out:
         return out
-    # 2. edges: each (tile, side) runs from vertex s to s+1; vertices and edges by exact labels
+    # 2. edges: each (tile, side) runs from vertex s to s+1; vertices and edges by exact labels.
+    # One sort of the undirected edges groups each edge's runs; `first`, `second` pair an edge's two runs.
     vkeys = _keys(v.reshape(-1, 4))
     n_vertices = int(vkeys.max()) + 1
     start = vkeys.reshape(n, 4)
     end = np.roll(start, -1, axis=1)
-    a = _labels((start * n_vertices + end).ravel())
-    undirected = _labels((np.minimum(start, end) * n_vertices + np.maximum(start, end)).ravel())
-    counts = np.bincount(undirected)
+    key = (np.minimum(start, end) * n_vertices + np.maximum(start, end)).ravel()
+    order = np.argsort(key, kind="stable")
+    new_edge = np.concatenate([[True], key[order][1:] != key[order][:-1]])
+    undirected = np.empty(len(key), np.int64)
+    undirected[order] = np.cumsum(new_edge) - 1
+    counts = np.diff(np.append(np.flatnonzero(new_edge), len(key)))
     for u in np.flatnonzero(counts > 2)[:20]:
         out.append(Violation("overlap", f"an edge is shared by {counts[u]} tiles (tiles "
                                         f"{sorted(set((np.flatnonzero(undirected == u) // 4).tolist()))})"))
-    same_dir = np.bincount(a)
-    for u in np.flatnonzero(same_dir > 1)[:20]:
-        out.append(Violation("overlap", f"tiles {(np.flatnonzero(a == u) // 4).tolist()} run one edge the same way "
+    if out:
+        return out
+    twice = np.flatnonzero(new_edge)[counts == 2]
+    first, second = order[twice], order[twice + 1]
+    same_way = start.ravel()[first] == start.ravel()[second]
+    for i, j in zip(first[same_way][:20], second[same_way][:20]):
+        out.append(Violation("overlap", f"tiles {[i // 4, j // 4]} run one edge the same way "
                                         "(they lie on the same side of it)"))
     if out:
         return out
@@ -159,9 +183,6 @@ def penrose_violations(kind: str, types, vertices) -> list[Violation]:
         sense = np.where(t4 == 1, ~canonical, canonical)           # the dart's arrows are the kite's reversed
     cls = near.astype(np.int64)
     shared = counts[undirected] == 2
-    order = np.argsort(undirected[shared], kind="stable")
-    idx = np.flatnonzero(shared)[order]
-    first, second = idx[0::2], idx[1::2]
     # the two tiles run the edge in opposite directions: equal arrows means opposite senses
     bad = (cls[first] != cls[second]) | (sense[first] == sense[second])
     for i, j in zip(first[bad][:20], second[bad][:20]):
@@ -184,7 +205,7 @@ def penrose_violations(kind: str, types, vertices) -> list[Violation]:
     chi = len(total) - len(counts) + n  # labels are 0..V-1 and 0..E-1
     if chi != 1:
         out.append(Violation("gap", f"the patch is not one piece without holes (V - E + F = {chi})"))
-    return out or _one_sheet(xy, start.ravel(), end.ravel(), np.flatnonzero(open_edge))
+    return out or _one_sheet(v, start.ravel(), end.ravel(), np.flatnonzero(open_edge))
 
 
 def _near(a: np.ndarray, b: np.ndarray, size: float) -> tuple[np.ndarray, np.ndarray]:
@@ -194,16 +215,17 @@ def _near(a: np.ndarray, b: np.ndarray, size: float) -> tuple[np.ndarray, np.nda
     lo = np.minimum(ca.min(axis=0), cb.min(axis=0)) - 1
     rows = int(max(ca[:, 1].max(), cb[:, 1].max()) - lo[1]) + 3
     key_b = (cb[:, 0] - lo[0]) * rows + (cb[:, 1] - lo[1])
-    order = np.argsort(key_b, kind="stable")
+    shifts = [(dx, dy) for dx in (-1, 0, 1) for dy in (-1, 0, 1)]
+    keys_a = [(ca[:, 0] + dx - lo[0]) * rows + (ca[:, 1] + dy - lo[1]) for dx, dy in shifts]
+    near_a = np.flatnonzero(np.isin(key_b, np.concatenate(keys_a)))  # sort only the points of b near a's
+    order = near_a[np.argsort(key_b[near_a], kind="stable")]
     sorted_b = key_b[order]
     ia, ib = [], []
-    for dx in (-1, 0, 1):
-        for dy in (-1, 0, 1):
-            key = (ca[:, 0] + dx - lo[0]) * rows + (ca[:, 1] + dy - lo[1])
-            first, last = np.searchsorted(sorted_b, key), np.searchsorted(sorted_b, key, side="right")
-            count = last - first
-            ia.append(np.repeat(np.arange(len(a)), count))
-            ib.append(order[np.repeat(first, count) + np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count)])
+    for key in keys_a:
+        first, last = np.searchsorted(sorted_b, key), np.searchsorted(sorted_b, key, side="right")
+        count = last - first
+        ia.append(np.repeat(np.arange(len(a)), count))
+        ib.append(order[np.repeat(first, count) + np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count)])
     return np.concatenate(ia), np.concatenate(ib)
 
 
@@ -218,12 +240,12 @@ def _to_segment(x: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.hypot(*(a + t[:, None] * d - x).T)
 
 
-def _one_sheet(xy: np.ndarray, start: np.ndarray, end: np.ndarray, boundary: np.ndarray) -> list[Violation]:
+def _one_sheet(v: np.ndarray, start: np.ndarray, end: np.ndarray, boundary: np.ndarray) -> list[Violation]:
     """Check 6 of the module docstring: ``boundary`` indexes the (tile, side) pairs, ``tile * 4 +
     side``, that only one tile runs; ``start`` and ``end`` are their vertex labels."""
     out: list[Violation] = []
-    corners = xy.reshape(-1, 2)
-    p, q = corners[boundary], corners[(boundary // 4) * 4 + (boundary + 1) % 4]
+    corners = v.reshape(-1, 4)
+    p, q = _xy5(corners[boundary]), _xy5(corners[(boundary // 4) * 4 + (boundary + 1) % 4])
     s, e = start[boundary], end[boundary]
     # the boundary is connected (union-find over its vertices)
     parent = {int(v): int(v) for v in np.concatenate([s, e])}
@@ -260,8 +282,8 @@ def _one_sheet(xy: np.ndarray, start: np.ndarray, end: np.ndarray, boundary: np.
     # just inside each boundary edge, exactly one tile
     d = q - p
     probe = (p + q) / 2 + 1e-4 * np.stack([-d[:, 1], d[:, 0]], axis=1) / np.hypot(d[:, 0], d[:, 1])[:, None]
-    k, t = _near(probe, xy.mean(axis=1), 2.0)
-    rel = xy[t] - probe[k][:, None, :]
+    k, t = _near(probe, _xy5(v.sum(axis=1)) / 4, 2.0)
+    rel = _xy5(v[t]) - probe[k][:, None, :]
     side = _cross(rel, np.roll(rel, -1, axis=1))  # >= 0 on all sides of a triangle: inside (closed)
     diag = _cross(rel[:, 0], rel[:, 2])
     inside = ((side[:, 0] >= -1e-9) & (side[:, 1] >= -1e-9) & (-diag >= -1e-9)) | \
