@@ -56,21 +56,24 @@ def test_heesch_sat_s_six_hex_table():
     assert aniso.copies == 2 and aniso.cells == tuple(sorted(ANISOHEDRAL))
 
 
-#: A holeless 7-omino whose Heesch number is 0 without holes and 1 with holes in the outer
-#: corona: heesch-sat (``sat -isohedral -hh``) reports ``~ 0 1`` (H_c = 0, H_h = 1) for it.
+#: Holeless polyforms whose Heesch number is 0 without holes and 1 with holes in the outer
+#: corona: heesch-sat (``sat -isohedral -hh``) reports ``~ 0 1`` (H_c = 0, H_h = 1) for both
+#: (its triangle cells are these minus (1, 1)).
 HH_OMINO = ((1, -2), (1, -1), (0, 0), (1, 0), (2, 0), (3, 0), (1, 1))
+HH_IAMOND = ((2, -1), (1, 1), (4, 1), (-1, 2), (2, 2), (1, 4), (2, 5), (1, 7), (-1, 8))
 
 
-def test_holes_in_the_outer_corona_raise_the_heesch_number():
+@pytest.mark.parametrize("grid_name, cells", [("omino", HH_OMINO),
+                                              pytest.param("iamond", HH_IAMOND, marks=pytest.mark.slow)])
+def test_holes_in_the_outer_corona_raise_the_heesch_number(grid_name, cells):
     from tilesolve.model.shapes import Polyform, enclosed, grid
 
-    shape = Polyform("omino", HH_OMINO)
+    shape = Polyform(grid_name, cells)
     hc = solve(ShapesProblem("classify", (shape,)), seed=0)
     hh = solve(ShapesProblem("classify", (shape,), holes=True), seed=0)
     assert (hc.report.verdict, hc.report.heesch, hc.report.holes) == ("non-tiler", 0, False)
     assert (hh.report.verdict, hh.report.heesch, hh.report.holes) == ("non-tiler", 1, True)
     # the H_h patch really has a hole (else H_c would be 1 too), and each next level is refuted
-    assert enclosed(grid("omino"), {tuple(c) for c in hh.report.patch[:, 2:].tolist()})
+    assert enclosed(grid(grid_name), {tuple(c) for c in hh.report.patch[:, 2:].tolist()})
     assert hc.report.refutation["proof_status"] == hh.report.refutation["proof_status"] == "verified"
     assert hh.report.refutation["level"] == 2
-
