@@ -14,6 +14,8 @@ built, so that every command shown runs as written and every picture is the one 
 - **Gallery.** ``tilesolve demo`` draws every family's demos; ``hooks/gallery.yml`` adds
   commands for the families that need more (or have no demo). A family of the registry without
   a picture fails the build.
+- **Docstrings.** The docstrings' reStructuredText roles (``:class:`~tilesolve.family.Family```)
+  are shown as code (``Family``), in the API pages and everywhere else.
 - **Reference.** The command-line reference (``cli.md``) and the man page (``man/tilesolve.1``)
   are generated from the click commands (:mod:`reference`); the API pages of the families
   (``api/families.md``) from the registry's entry points.
@@ -38,7 +40,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import yaml
+from markdown import Extension
+from markdown.preprocessors import Preprocessor
 from mkdocs.exceptions import PluginError
+from mkdocs.plugins import event_priority
 from mkdocs.structure.files import File, Files
 
 sys.path.insert(0, str(Path(__file__).parent))
@@ -47,6 +52,7 @@ import reference  # noqa: E402  (beside this file; MkDocs loads hooks by path)
 log = logging.getLogger("mkdocs.hooks.tilesolve")
 
 HERE = Path(__file__).parent
+ROLE = re.compile(r":(?:class|func|meth|attr|mod|data|exc|obj|ref|doc):`(~?)([^`]+)`")
 RUN_BLOCK = re.compile(r"^```tilesolve-run[^\n]*\n(.*?)^```[ \t]*$", re.M | re.S)
 EXPECTED_EXIT = re.compile(r"#.*\bexit (\d+)\s*$")
 PICTURES = (".svg", ".png")
@@ -214,8 +220,28 @@ def _api_families() -> str:
     return "\n".join(out)
 
 
+class SphinxRoles(Extension):
+    """Show reStructuredText roles as code: ``:func:`~a.b.solve``` as ``solve``, ``:mod:`a.b```
+    as ``a.b`` (after the code blocks are put aside, so their text stays as written)."""
+
+    class _Roles(Preprocessor):
+        def run(self, lines: list[str]) -> list[str]:
+            return ROLE.sub(_role, "\n".join(lines)).split("\n")
+
+    def extendMarkdown(self, md) -> None:  # noqa: N802 (Markdown's name)
+        md.preprocessors.register(self._Roles(md), "sphinx_roles", 20)
+
+
+def _role(m: re.Match) -> str:
+    tilde, target = m.groups()
+    return f"`{target.rpartition('.')[2] if tilde else target}`"
+
+
+@event_priority(100)  # before mkdocstrings reads the Markdown extensions
 def on_config(config):
-    """Make the work folder and fill the Tutorials section of the navigation from the registry."""
+    """Make the work folder, fill the Tutorials section of the navigation from the registry and
+    add :class:`SphinxRoles` to the Markdown extensions."""
+    config.markdown_extensions.append(SphinxRoles())
     kept = os.environ.get("TILESOLVE_DOCS_WORK")
     work = Path(kept) if kept else Path(tempfile.mkdtemp(prefix="tilesolve-docs-"))
     if kept and work.exists():
