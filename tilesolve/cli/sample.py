@@ -132,7 +132,7 @@ def window(ctx, tileset, region, tiling, variant, hash_, seed, output, svg, png)
       tilesolve verify far.json
     """
     from tilesolve.families.poisson import solve
-    from tilesolve.io.poisson_json import write_points
+    from tilesolve.io.poisson_json import check_point_output, write_points
     from tilesolve.io.poisson_plots import write_points_picture
     from tilesolve.model.poisson import PoissonWindowProblem
     from tilesolve.model.window import parse_region
@@ -140,6 +140,8 @@ def window(ctx, tileset, region, tiling, variant, hash_, seed, output, svg, png)
     outs = Outputs(output, svg, png)
     _, ts = _load_set(tileset)
     problem = PoissonWindowProblem(ts, parse_region(region), tiling, variant, hash_)
+    if output:
+        check_point_output(output, problem.window)
     sol = solve(problem, method="window", seed=seed)
     w = sol.tiling
     caption = f"{w.n_points:,} points, rho {ts.problem.rho:g}, {w.window.caption()}"

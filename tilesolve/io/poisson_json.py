@@ -55,7 +55,7 @@ from tilesolve.model.solution import Solution, Status
 from tilesolve.model.window import Window
 
 __all__ = ["TILES_FORMAT", "WINDOW_FORMAT", "VERSIONS", "tiles_to_dict", "tiles_from_dict", "window_to_dict",
-           "window_from_dict", "dump", "write_points", "POINT_FORMATS", "FLOAT_RANGE"]
+           "window_from_dict", "dump", "write_points", "check_point_output", "POINT_FORMATS", "FLOAT_RANGE"]
 
 TILES_FORMAT = "tilesolve/poisson-tiles"
 WINDOW_FORMAT = "tilesolve/poisson-window"
@@ -172,20 +172,27 @@ def dump(doc: dict) -> str:
     return text + "\n}\n"
 
 
-def write_points(path: str | os.PathLike, problem: PoissonWindowProblem, solution: Solution) -> None:
-    """Write a window's points; the format follows the suffix: ``.json`` (:func:`window_to_dict`),
-    ``.csv`` or ``.npy`` (plane coordinates, windows within :data:`FLOAT_RANGE` only)."""
+def check_point_output(path: str | os.PathLike, window: Window) -> str:
+    """The format of a points file, from its suffix; refuses CSV and NPY for a window beyond
+    :data:`FLOAT_RANGE` (before any work is done)."""
     suffix = os.fspath(path).rsplit(".", 1)[-1].lower()
     if suffix not in POINT_FORMATS:
         raise InvalidProblem(f"cannot tell the format of {os.fspath(path)!r}: use .json, .csv or .npy")
+    far = max(abs(window.x0), abs(window.y0), abs(window.x0 + window.width), abs(window.y0 + window.height))
+    if suffix != "json" and far > FLOAT_RANGE:
+        raise InvalidProblem(f"the window lies beyond +-2**31, where {suffix.upper()} plane coordinates lose "
+                             "precision: write .json (points relative to the window's corner)")
+    return suffix
+
+
+def write_points(path: str | os.PathLike, problem: PoissonWindowProblem, solution: Solution) -> None:
+    """Write a window's points; the format follows the suffix: ``.json`` (:func:`window_to_dict`),
+    ``.csv`` or ``.npy`` (plane coordinates, windows within :data:`FLOAT_RANGE` only)."""
+    suffix = check_point_output(path, problem.window)
     w = solution.tiling
     if suffix == "json":
         write_text_atomic(path, dump(window_to_dict(problem, solution)))
         return
-    win = w.window
-    if max(abs(win.x0), abs(win.y0), abs(win.x0 + win.width), abs(win.y0 + win.height)) > FLOAT_RANGE:
-        raise InvalidProblem(f"the window lies beyond +-2**31, where {suffix.upper()} plane coordinates lose "
-                             "precision: write .json (points relative to the window's corner)")
     pts = w.absolute()
     if suffix == "npy":
         buf = io.BytesIO()
