@@ -5,8 +5,8 @@ from its keys), runs it, and checks every packing it returns with the independen
 :func:`tilesolve.verify.packing.packing_violations`; :func:`count` counts all packings for
 ``C = 2`` with or without symmetry reduction.
 
-Methods
--------
+Routes
+------
 ``euler``
     Eulerian constructions over Wei's 1D packing: the Wang outer product (§5.5.2, Fig. 5.10,
     closed-form tile positions) and, for odd ``C``, the corner packing
