@@ -1,17 +1,19 @@
-"""The SAT route's Jeandel-Rao tori and squares: bands and cylinders against the whole formula.
+"""The SAT route's Jeandel-Rao tori and squares: shared bands against the whole formula and per-torus bands.
 
 Jeandel-Rao (``tilesolve/data/tilesets/jeandel-rao.json``) tiles every square and no torus.
 Measured side by side in the same run:
 
 Tori (every p x q, 1 <= p, q <= ``--max-period``)
-    ``plain``: the board family's one-hot colour encoding, no proofs, one process (from
-    bench_aperiodic.py); ``whole``: each torus's tile-selection CNF solved whole with its DRAT
-    proof checked, one process (the route before bands); ``bands``:
-    :func:`tilesolve.engine.aperiodic.sweep` on ``--workers`` processes, each torus refuted
-    through its smallest refuted band, the band's proof checked against the whole torus's CNF.
-    The two baselines have ``--cap`` seconds each and say how far they got; they go from the
-    smallest torus up, so a capped baseline's rate (tori per second) is that of the small tori
-    and its ratio flatters it.
+    ``shared bands``: :func:`tilesolve.engine.aperiodic.sweep` on ``--workers`` processes: one
+    band per torus height (and per width for the tori left) solved and its proof checked once,
+    the trimmed proof renamed into every torus that holds the band
+    (:mod:`tilesolve.engine.aperiodic_bands`); then 8 sampled refutations re-checked as
+    ``verify`` does, against their re-derived CNF. Baselines, one process each, capped at
+    ``--cap`` s, the tori in a seeded random order (a capped baseline's rate is the mix's):
+    ``plain`` the board family's one-hot colour encoding, no proofs (from bench_aperiodic.py);
+    ``whole`` each torus's tile-selection CNF with its DRAT proof checked; ``per-torus bands``
+    each torus through its own bands (:func:`tilesolve.engine.aperiodic.decide`: the route
+    before shared bands). A capped baseline is compared in tori refuted per CPU second.
 Squares (a witness for each n in ``--sizes``)
     ``plain`` (capped) beside :func:`tilesolve.engine.aperiodic.square_scan` (the route is
     unchanged by bands: a square has no band to refute it).
@@ -27,12 +29,15 @@ Usage::
 from __future__ import annotations
 
 import argparse
+import random
+import tempfile
 import time
 
 from bench_aperiodic import cpu, fmt, plain, rss_mib
 
 from tilesolve.deadline import Deadline
-from tilesolve.engine.aperiodic import board_encoding, square_scan, sweep
+from tilesolve.engine.aperiodic import board_encoding, board_problem, decide, square_scan, sweep
+from tilesolve.engine.certificates import recheck_unsat
 from tilesolve.engine.routes import sat_route
 from tilesolve.io.builtin_tilesets import load
 from tilesolve.model.aperiodic import board_of, leg_colours
@@ -42,50 +47,72 @@ from tilesolve.model.solution import Status
 from tilesolve.verify.board import board_violations
 
 
-def baseline(ws, names, cap: float, whole: bool) -> tuple[int, float, float]:
-    """Tori refuted within ``cap`` s by the one-hot encoding (``whole`` False) or the whole
-    tile-selection CNF with checked proofs; wall and CPU seconds."""
+def baseline(ws, names, cap: float, how: str) -> tuple[int, float, float]:
+    """Tori refuted within ``cap`` s, one process, in a seeded random order (so that the rate of a
+    capped run is that of the whole mix): ``plain`` the one-hot encoding, no proofs; ``whole``
+    each torus's tile-selection CNF with its proof checked; ``per-torus bands`` each torus by
+    :func:`tilesolve.engine.aperiodic.decide` (its own bands, the route before shared bands).
+    Returns the count, wall and CPU seconds."""
+    order = list(names)
+    random.Random(1).shuffle(order)
     t, c = time.perf_counter(), cpu()
     done = 0
-    for name in names:
+    for name in order:
         left = cap - (time.perf_counter() - t)
         if left <= 0:
             break
-        if whole:
+        if how == "whole":
             enc = board_encoding(ws, name)
             st = sat_route(enc, RunOptions(seed=1, deadline=Deadline(left)), solver="cadical153",
                            t0=time.perf_counter()).status
+        elif how == "per-torus bands":
+            st = Status.UNSAT if decide(ws, name, RunOptions(seed=1, deadline=Deadline(left))).status == "refuted" \
+                else Status.UNKNOWN
         else:
             st = plain(ws, board_of(name), left)[0]
         done += st is Status.UNSAT
     return done, time.perf_counter() - t, cpu() - c
 
 
-def tori(ws, max_p: int, workers: int, cap: float) -> None:
+def tori(ws, max_p: int, workers: int, cap: float, proof_dir: str) -> None:
     names = [f"torus {p}x{q}" for p in range(1, max_p + 1) for q in range(1, max_p + 1)]
     print(f"\nTori p x q, 1 <= p, q <= {max_p} ({len(names)} tori); baselines capped at {cap:.0f} s")
     t, c = time.perf_counter(), cpu()
-    certs, _ = sweep(ws, names, RunOptions(seed=1, workers=workers))
+    certs, _ = sweep(ws, names, RunOptions(seed=1, workers=workers), proof_dir=proof_dir)
     ta, ca = time.perf_counter() - t, cpu() - c
     refuted = sum(x.status == "refuted" for x in certs)
-    banded = sum("the proof refutes" in str(x.evidence.get("reason", "")) for x in certs)
-    check = sum(float(x.evidence.get("proof_check_s", 0.0)) for x in certs)
-    rows = [("plain, no proofs, 1 proc", *baseline(ws, names, cap, False), "-"),
-            ("whole CNF + proofs, 1 proc", *baseline(ws, names, cap, True), "-"),
-            (f"bands + proofs, {workers} workers", refuted, ta, ca, f"{banded} / {check:.1f}")]
-    print(f"{'route':>30} {'refuted':>8} {'wall s':>10} {'cpu s':>8} {'tori/s':>7} {'max RSS MiB':>12} "
-          f"{'by band / check s':>18}")
+    shared = [x for x in certs if "band" in x.evidence]
+    bands = {(x.evidence["band"], x.board.split()[1].split("x")[0 if "column" in x.evidence["band"] else 1]): x
+             for x in shared}
+    check = sum(float(x.evidence.get("proof_check_s", 0.0)) for x in bands.values()) + \
+        sum(float(x.evidence.get("proof_check_s", 0.0)) for x in certs if "band" not in x.evidence)
+    lines = sorted(int(x.evidence.get("proof_lines", 0)) for x in bands.values())
+    kept = sorted(int(x.evidence.get("proof_lemmas", 0)) for x in bands.values())
+    rows = [(f"shared bands + proofs, {workers} workers", refuted, ta, ca,
+             f"{len(shared)} by {len(bands)} / {check:.1f}")]
+    rows += [(f"{how}, 1 proc", *baseline(ws, names, cap, how), "-")
+             for how in ("plain", "whole", "per-torus bands")]
+    print(f"{'route':>36} {'refuted':>8} {'wall s':>10} {'cpu s':>8} {'tori/s':>7} {'max RSS MiB':>12} "
+          f"{'tori by bands / check s':>24}")
     for label, done, wall, cp, extra in rows:
         st = Status.UNSAT if done == len(names) else Status.UNKNOWN
-        print(f"{label:>30} {done:>8} {fmt(st, wall, cap):>10} {cp:>8.1f} {done / wall:>7.2f} {rss_mib():>12.0f} "
-              f"{extra:>18}")
-    for label, done, wall, _, _ in rows[:2]:
+        print(f"{label:>36} {done:>8} {fmt(st, wall, cap):>10} {cp:>8.1f} {done / wall:>7.2f} {rss_mib():>12.0f} "
+              f"{extra:>24}")
+    if bands:
+        print(f"band proofs: median {lines[len(lines) // 2]} lines as solved, largest {lines[-1]}; trimmed to median "
+              f"{kept[len(kept) // 2]}, largest {kept[-1]} lemmas")
+    for label, done, wall, cp, _ in rows[1:]:
         base = label.split(",")[0]
         if done == len(names):
-            print(f"ratio {base}/bands: {wall / ta:.1f}x wall")
-        else:  # the baseline stopped at its cap: compare tori refuted per second
-            print(f"ratio {base}/bands: >= {(refuted / ta) / max(done / wall, 1e-9):.1f}x in tori refuted per second "
-                  f"({base} refuted {done} of {len(names)} within its cap)")
+            print(f"ratio {base}/shared bands: {wall / ta:.1f}x wall, {cp / ca:.1f}x CPU")
+        else:  # the baseline stopped at its cap: compare tori refuted per CPU second
+            print(f"ratio {base}/shared bands: >= {(refuted / ca) / max(done / cp, 1e-9):.1f}x in tori refuted per CPU "
+                  f"second ({base} refuted {done} of {len(names)} within its cap)")
+    sample = random.Random(2).sample([x for x in certs if x.status == "refuted"], min(8, refuted))
+    t = time.perf_counter()
+    ok = sum(recheck_unsat(board_problem(ws, x.board), x.evidence, proof_dir).ok for x in sample)
+    print(f"verify: {ok} of {len(sample)} sampled refutations re-checked against their re-derived CNF "
+          f"({time.perf_counter() - t:.1f} s)")
 
 
 def squares(ws, sizes, cap: float) -> None:
@@ -115,7 +142,8 @@ def main() -> None:
     args = ap.parse_args()
     ws, _ = load("jeandel-rao")
     if args.max_period:
-        tori(ws, args.max_period, args.workers, args.cap)
+        with tempfile.TemporaryDirectory() as proof_dir:
+            tori(ws, args.max_period, args.workers, args.cap, proof_dir)
     if args.sizes:
         squares(ws, args.sizes, args.cap)
 
