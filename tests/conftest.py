@@ -1,6 +1,7 @@
 """Shared pytest setup: hypothesis profiles, and the ``fast_cases`` marker of the fast tier."""
 
 import os
+import signal
 from collections import Counter
 
 import pytest
@@ -11,6 +12,12 @@ from hypothesis import HealthCheck, settings
 settings.register_profile("ci", deadline=None, suppress_health_check=[HealthCheck.too_slow])
 settings.register_profile("dev", deadline=None)
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci" if os.environ.get("CI") else "dev"))
+
+# A shell starts background jobs with SIGINT ignored, and Python then keeps it ignored (and so do
+# the console scripts the tests start, since an ignored signal survives exec). The Ctrl-C tests
+# would wait forever for an interrupt that never arrives; give the suite the usual handler.
+if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
+    signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
 @pytest.hookimpl(tryfirst=True)
