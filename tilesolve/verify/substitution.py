@@ -119,7 +119,7 @@ def _keys(rows: np.ndarray) -> np.ndarray:
 
 def penrose_violations(kind: str, types, vertices) -> list[Violation]:
     """Every way ``(types, vertices)`` fails to be a Penrose patch of ``kind`` (``"p3"`` or
-    ``"p2"``) with its matching rules (the module docstring's checks 1-5); ``[]`` when valid."""
+    ``"p2"``) with its matching rules (the module docstring's checks 1-6); ``[]`` when valid."""
     types = np.asarray(types)
     v = np.asarray(vertices)
     out: list[Violation] = []
