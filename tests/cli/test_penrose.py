@@ -88,3 +88,22 @@ def test_the_example_picture_is_drawn_by_its_command(tmp_path):
     assert run(*shlex.split(EXAMPLE), cwd=tmp_path).returncode == 0
     shipped = np.asarray(Image.open(ROOT / "examples" / "penrose.png"))
     assert np.array_equal(np.asarray(Image.open(tmp_path / "penrose.png")), shipped)
+
+
+def test_verify_finds_a_second_sheet_in_a_file(tmp_path):
+    """A forged file: a disk of a window with a ring of the same tiling moved by 5 over it. No edge or
+    vertex in common, every vertex locally flat, V - E + F = 1 + 0: the verifier's local checks
+    passed it; the one-sheet check (verify/substitution.py, check 6) finds the overlap."""
+    assert run("penrose", "--region", "-25,-20,50x40", "--seed", "1", "-o", "t.json", cwd=tmp_path).returncode == 0
+    doc = json.loads((tmp_path / "t.json").read_text())
+    types, v = np.array(doc["types"]), np.array(doc["vertices"])
+    angles = 2 * np.pi * np.arange(4) / 5
+    c = (v @ np.stack([np.cos(angles), np.sin(angles)], axis=1)).mean(axis=1)
+    disk, ring = np.hypot(c[:, 0], c[:, 1]) < 10, np.abs(np.hypot(c[:, 0] + 5, c[:, 1]) - 9.5) < 4.5
+    doc["types"] = np.concatenate([types[disk], types[ring]]).tolist()
+    doc["vertices"] = np.concatenate([v[disk], v[ring] + [5, 0, 0, 0]]).tolist()
+    doc["counts"] = {name: doc["types"].count(i) for i, name in enumerate(("thin", "thick"))}
+    doc["stats"].update(tiles=len(doc["types"]), **doc["counts"])
+    (tmp_path / "two.json").write_text(json.dumps(doc))
+    proc = run("verify", "two.json", cwd=tmp_path)
+    assert proc.returncode == 1 and "lie over one point" in proc.stdout + proc.stderr, (proc.stdout, proc.stderr)
