@@ -8,9 +8,11 @@ about 10^4, 10^5 and 10^6 rhombs (seed 1), and in the same run two baselines:
 * ``floor``: ``np.ceil`` over an array of ``5 x tiles`` floats, the five K-indices a rhomb
   needs: the floor any pentagrid costs.
 
-Then the independent verifier on the pentagrid's window, and the whole command
+Then the independent verifier on the pentagrid's window, and first the whole command
 ``tilesolve penrose --region ... -o t.json`` (generation, verification, writing the file) at
-10^5 tiles.
+10^6 tiles (10^5 with ``--quick``), best of ``--repeat`` runs, beside its parts measured in
+the same run: start-up (``tilesolve --version``), generation and verification in process; the
+rest is importing the modules and writing the file.
 
 Prints tiles, wall and CPU seconds (best of ``--repeat``), peak traced memory of one call,
 tiles per second, and the ratios baseline wall / pentagrid wall.
@@ -32,7 +34,7 @@ import tempfile
 
 import numpy as np
 
-from _measure import best, child, peak_mib  # noqa: E402 - benchmarks/ is on sys.path
+from _measure import best, best_child, peak_mib  # noqa: E402 - benchmarks/ is on sys.path
 
 SEED = 1
 #: Mean rhomb area (thick:thin = phi:1): a window of ``n * AREA`` square units holds about n rhombs.
@@ -45,17 +47,30 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=3)
     args = ap.parse_args()
     # the command runs first: a child's peak RSS starts from this process's at the fork
+    n = 10**5 if args.quick else 10**6
+    w = int(round((n * AREA * 1.25) ** 0.5))
+    h = int(round(n * AREA / w))
+    exe = os.path.join(os.path.dirname(sys.executable), "tilesolve")
     with tempfile.TemporaryDirectory() as d:
-        w = int(round((10**5 * AREA * 1.25) ** 0.5))
-        h = int(round(10**5 * AREA / w))
-        exe = os.path.join(os.path.dirname(sys.executable), "tilesolve")
         argv = [exe, "penrose", "--region", f"{-w // 2},{-h // 2},{w}x{h}", "--seed", str(SEED), "-o",
                 os.path.join(d, "t.json")]
-        r = child(argv)
-        print(f"whole command at 10^5 tiles (generate, verify, write {os.path.getsize(os.path.join(d, 't.json')) / 2**20:.1f} "
-              f"MiB): wall {r.wall:.2f} s, CPU {r.cpu:.2f} s, peak RSS {r.rss_mib:.0f} MiB, exit {r.returncode}")
+        r = best_child(argv, args.repeat)
+        size = os.path.getsize(os.path.join(d, "t.json")) / 2**20
+    start = best_child([exe, "--version"], args.repeat)
     from tilesolve.constructive.penrose import p3_substitution, pentagrid
     from tilesolve.verify.substitution import penrose_violations
+
+    window = (-w // 2, -h // 2, w, h)
+    gw, gc, (types, verts) = best(lambda: pentagrid(window, seed=SEED), args.repeat)
+    vw, vc, _ = best(lambda: penrose_violations("p3", types, verts), args.repeat)
+    print(f"whole command at {len(types):,} tiles (generate, verify, write {size:.0f} MiB), best of {args.repeat}; "
+          f"peak RSS {r.rss_mib:.0f} MiB")
+    print(f"{'part':<28}{'wall s':>8}{'cpu s':>8}{'share of command cpu':>22}")
+    for name, wall, cpu in (("whole command", r.wall, r.cpu), ("start-up (--version)", start.wall, start.cpu),
+                            ("generation (pentagrid)", gw, gc), ("verification", vw, vc),
+                            ("the rest (imports, writing)", r.wall - start.wall - gw - vw, r.cpu - start.cpu - gc - vc)):
+        print(f"{name:<28}{wall:>8.2f}{cpu:>8.2f}{cpu / r.cpu:>22.2f}")
+    print()
 
     sizes = [10**4, 10**5] + ([] if args.quick else [10**6])
     print(f"pentagrid windows, seed {SEED}; best of {args.repeat}; wall and CPU seconds")
