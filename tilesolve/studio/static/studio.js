@@ -224,15 +224,20 @@ function request() {
   return r;
 }
 
-// The fields an error message names (by label) are marked; the description is cleared and
-// marked invalid, so that it never shows the last valid problem under an invalid form.
+// The field an error message names is marked: "LABEL (NAME) must ..." (the form's checks) or, in
+// the CLI's own messages, the field whose label's first word comes first ("cannot read condition");
+// the description is cleared and marked invalid, so that it never shows the last valid problem.
 function markInvalid(message) {
   $("describe").textContent = "invalid problem: fix the marked field";
   $("describe").dataset.state = "invalid";
-  for (const el of $("form").elements) {
-    const hit = message && (message.includes(el.dataset.label) || message.includes(el.name));
-    el.setAttribute("aria-invalid", hit ? "true" : "false");
+  const els = [...$("form").elements].filter((el) => el.dataset.label);
+  const stem = (el) => el.dataset.label.split(/[\s(]/)[0].replace(/s$/, "").toLowerCase();
+  let hit = els.find((el) => message.includes(`(${el.name})`) || message.startsWith(el.dataset.label));
+  if (!hit) {
+    const at = (el) => { const m = new RegExp(`\\b${stem(el)}`, "i").exec(message); return m ? m.index : Infinity; };
+    hit = els.reduce((best, el) => (at(el) < (best ? at(best) : Infinity) ? el : best), null);
   }
+  for (const el of els) el.setAttribute("aria-invalid", el === hit ? "true" : "false");
 }
 
 let checkSeq = 0;
@@ -542,6 +547,7 @@ const PRESETS = [
   { label: "Texture (corner tiles)", f: "stochastic", v: { kind: "corner", size: "96x64", seed: 3 } },
   { label: "Penrose rhombs", f: "substitution", v: { kind: "p3", seed: 1 } },
   { label: "Pentomino tiling", f: "shapes", v: { seed: 1 } },
+  { label: "Isohedral IH41", f: "isohedral", v: { seed: 1 } },
 ];
 
 function buildGallery() {
@@ -702,7 +708,7 @@ studio.measurePan = (ms, dx = 6) => new Promise((done) => {
 function pickFamily() {
   studio.fam = studio.families.find(f => f.name === $("family").value);
   $("family-title").textContent = studio.fam.title;
-  clearResult(); $("status").textContent = "";
+  clearResult(); $("status").textContent = ""; $("describe").textContent = "";
   buildForm();
 }
 
@@ -718,7 +724,7 @@ async function start() {
   const { families, palette } = await api("/api/families");
   studio.palette = palette;
   // friendly families first: the pictures a newcomer reads at once
-  const order = ["dappled", "board", "stochastic", "substitution", "shapes", "packing"];
+  const order = ["dappled", "board", "stochastic", "isohedral", "substitution", "shapes", "packing"];
   const rank = (f) => { const k = order.indexOf(f.name); return k < 0 ? order.length : k; };
   studio.families = families.slice().sort((a, b) => rank(a) - rank(b));
   for (const f of studio.families) $("family").add(new Option(f.name, f.name));
@@ -738,6 +744,7 @@ async function start() {
   });
   for (const f of ["svg", "png"]) $("export-" + f).addEventListener("click", (e) => exportPicture(f, e));
   document.addEventListener("keydown", shortcuts);
+  window.addEventListener("hashchange", () => { const st = readState(); if (st) applyState(st, !!st.go); });
   studio.stage = new PanZoom($("stage"), $("picture"));
   setupEditor(); setupView(); buildGallery();
   const shared = readState();
