@@ -14,9 +14,12 @@ neighbour would show, so bilinear and mipmapped filtering across tile borders is
 construction of Ng et al. (§5.3, Fig. 5.1): one random square patch of the example per corner
 colour, each tile the four quarter patches of its corner colours (Fig. 5.1 b-c), and the
 cross-shaped seam covered by a new diamond-shaped patch of the example inside the tile's
-inscribed circle (Fig. 5.1 d). tilesolve blends the diamond with a feathered mask where the
-notes optimise its border with a graph cut (Kwatra et al. 2003); the border of each tile is
-untouched, which is what makes the tiles fit.
+inscribed circle (Fig. 5.1 d), its border optimised by a graph cut (Kwatra et al. 2003,
+:func:`graph_cut`: the minimum-error boundary between the new patch and the quarters). Each
+patch is placed where it fits best, as image quilting places its blocks (Efros & Freeman 2001):
+a corner patch where its edges continue the others' across the tiles' middle lines, the new
+patch where it matches the quarters around the seam (a random one of the close fits, so tiles
+differ). The border of each tile is untouched, which is what makes the tiles fit.
 
 The shader
 ----------
@@ -53,8 +56,8 @@ from tilesolve.errors import InvalidProblem
 from tilesolve.gpu.context import gpu_context, max_render_size, release
 from tilesolve.gpu.picture import assemble_bands, pass_layout
 
-__all__ = ["MAX_COLORS", "MAX_ATLAS", "Atlas", "check_atlas", "corner_packing", "synthesize_atlas", "read_example",
-           "example_patches", "diamond_mask", "PassRenderer", "TextureMapper"]
+__all__ = ["MAX_COLORS", "MAX_ATLAS", "Atlas", "check_atlas", "corner_packing", "synthesize_atlas", "graph_cut",
+           "read_example", "example_patches", "diamond_mask", "PassRenderer", "TextureMapper"]
 
 #: Largest ``C`` of an atlas (``C**4 = 4096`` tiles).
 MAX_COLORS = 8
@@ -256,11 +259,14 @@ def synthesize_atlas(example, grid, colors: int, *, tile: int = 64, seed: int = 
     True
     """
     c, t = check_atlas(colors, tile)
-    patch = example_patches(example, t, seed)
+    example_patches(example, t, seed)  # checks the example
+    ex = np.asarray(example, dtype=np.float32)
+    ex = np.dstack([ex, np.full(ex.shape[:2], 255, np.float32)]) if ex.shape[2] == 3 else ex
+    rng = rng_from_seed(seed)
     g = np.asarray(grid, dtype=np.int64)
-    corner = [patch(t) for _ in range(c)]
+    corner = _corner_patches(ex, c, t, rng)
     h = t // 2
-    alpha = diamond_mask(t, (h, h), 0.45 * t, 0.2 * t)  # the diamond, inside the inscribed circle
+    keep, cover = _cut_regions(t)
     atlas = np.empty((g.shape[0] * t, g.shape[1] * t, 4), dtype=np.uint8)
     for (r, q), k in np.ndenumerate(g):
         nw, sw, se, ne = k % c, (k // c) % c, (k // c**2) % c, k // c**3
@@ -269,9 +275,141 @@ def synthesize_atlas(example, grid, colors: int, *, tile: int = 64, seed: int = 
         img[:h, h:] = corner[ne][h:, :h]
         img[h:, :h] = corner[sw][:h, h:]
         img[h:, h:] = corner[se][:h, :h]
-        img = img * (1.0 - alpha) + patch(t) * alpha
+        new = _best_patch(ex, img, ~(keep | cover), rng)
+        inside = graph_cut(img, new, keep, cover)
+        # the cut's pixels themselves: the mean of the two patches, one pixel wide
+        alpha = (inside[..., None] + _shifted_mean(inside)[..., None]) / 2
+        img = img * (1.0 - alpha) + new * alpha
         atlas[r * t:(r + 1) * t, q * t:(q + 1) * t] = np.rint(img).astype(np.uint8)
     return atlas
+
+
+#: How close to the best a patch position must fit to be chosen, as a share of the way from the
+#: best fit to the median one: a random one of the close fits is taken, as image quilting does,
+#: so that the tiles differ from one another and from seed to seed.
+TOLERANCE = 0.1
+
+
+def _pick(cost: np.ndarray, rng, avoid=()) -> tuple[int, int]:
+    """A random position among those whose ``cost`` is within :data:`TOLERANCE` of the least,
+    at least half a patch away from the positions ``avoid`` (``(r, q, t)``)."""
+    cost = cost.astype(np.float64)
+    yy, xx = np.mgrid[0:cost.shape[0], 0:cost.shape[1]]
+    for r, q, t in avoid:
+        cost[(np.abs(yy - r) < t // 2) & (np.abs(xx - q) < t // 2)] = np.inf
+    finite = cost[np.isfinite(cost)]
+    lo, mid = float(finite.min()), float(np.median(finite))
+    close = np.flatnonzero(cost.ravel() <= lo + TOLERANCE * (mid - lo))
+    r, q = np.unravel_index(int(close[rng.integers(close.size)]), cost.shape)
+    return int(r), int(q)
+
+
+def _columns_cost(ex: np.ndarray, t: int, column: np.ndarray, at: int) -> np.ndarray:
+    """For every ``t x t`` patch position ``(r, q)`` of ``ex``: the squared RGB difference of
+    ``column`` (``(t, 3)``) and the patch's column ``at``."""
+    from numpy.lib.stride_tricks import sliding_window_view
+
+    rows = ex.shape[0] - t + 1
+    cols = ex.shape[1] - t + 1
+    win = sliding_window_view(ex[:, at:at + cols, :3], t, axis=0)  # (rows, cols, 3, t)
+    return ((win - column.T[None, None]) ** 2).sum(axis=(2, 3))[:rows]
+
+
+def _corner_patches(ex: np.ndarray, colors: int, t: int, rng) -> list[np.ndarray]:
+    """One ``t x t`` patch per corner colour, each placed where it best fits the patches chosen
+    before it and itself where two corner patches meet: a tile's quarters abut across its
+    middle lines, so that the east column of one patch lies beside the west column of any other,
+    and the south row above the north row. An example with a structure (mortar lines) then gets
+    patches whose structure continues across those lines, as image quilting places its blocks
+    (Efros & Freeman 2001)."""
+    exT = np.ascontiguousarray(ex.transpose(1, 0, 2))
+    own = ((ex[:, t - 1:, :3] - ex[:, :ex.shape[1] - t + 1, :3]) ** 2).sum(axis=2)
+    own_rows = ((ex[t - 1:, :, :3] - ex[:ex.shape[0] - t + 1, :, :3]) ** 2).sum(axis=2)
+    rows, cols = ex.shape[0] - t + 1, ex.shape[1] - t + 1
+    self_cost = (np.cumsum(np.pad(own, ((1, 0), (0, 0))), axis=0)[t:] - np.cumsum(np.pad(own, ((1, 0), (0, 0))),
+                                                                                    axis=0)[:-t])[:rows, :cols]
+    self_cost += (np.cumsum(np.pad(own_rows, ((0, 0), (1, 0))), axis=1)[:, t:]
+                  - np.cumsum(np.pad(own_rows, ((0, 0), (1, 0))), axis=1)[:, :-t])[:rows, :cols]
+    chosen: list[np.ndarray] = []
+    places: list[tuple[int, int, int]] = []
+    for _ in range(colors):
+        cost = self_cost.copy()
+        for p in chosen:
+            cost += _columns_cost(ex, t, p[:, -1, :3], 0) + _columns_cost(ex, t, p[:, 0, :3], t - 1)
+            cost += (_columns_cost(exT, t, p[-1, :, :3], 0) + _columns_cost(exT, t, p[0, :, :3], t - 1)).T
+        r, q = _pick(cost, rng, places)
+        places.append((r, q, t))
+        chosen.append(ex[r:r + t, q:q + t].copy())
+    return chosen
+
+
+def _best_patch(ex: np.ndarray, base: np.ndarray, free: np.ndarray, rng) -> np.ndarray:
+    """The patch of ``ex`` that best matches ``base`` where the cut may run (``free``), by the
+    sum of squared RGB differences over every patch position (FFT correlations)."""
+    from scipy.signal import fftconvolve
+
+    t = base.shape[0]
+    m = free.astype(np.float32)[::-1, ::-1]
+    cost = np.zeros((ex.shape[0] - t + 1, ex.shape[1] - t + 1), dtype=np.float64)
+    for k in range(3):
+        e, b = ex[..., k].astype(np.float64), base[..., k].astype(np.float64)
+        cost += fftconvolve(e * e, m, mode="valid") - 2 * fftconvolve(e, (b * free)[::-1, ::-1], mode="valid")
+    r, q = _pick(cost, rng)
+    return ex[r:r + t, q:q + t].copy()
+
+
+def _cut_regions(t: int) -> tuple[np.ndarray, np.ndarray]:
+    """``(keep, cover)`` boolean ``(t, t)`` masks of a tile: ``keep`` lies outside the circle
+    inscribed in the tile (its border, set by the corner colours alone, §5.3), ``cover`` is the
+    cross where the four quarter patches meet and a disc at the centre, which the new patch
+    must cover (Ng et al., Fig. 5.1 d)."""
+    h = t / 2
+    yy, xx = np.mgrid[0:t, 0:t].astype(np.float32) + 0.5
+    radius = np.hypot(yy - h, xx - h)
+    keep = radius > h - 1.0
+    cross = (np.abs(yy - h) < 1.0) | (np.abs(xx - h) < 1.0)
+    cover = ((cross & (radius < h - 3.0)) | (radius < 0.2 * t)) & ~keep
+    return keep, cover
+
+
+def graph_cut(old: np.ndarray, new: np.ndarray, keep: np.ndarray, cover: np.ndarray) -> np.ndarray:
+    """Where the ``new`` patch goes over ``old``: the minimum-error boundary of Kwatra et al.
+    (2003), the ``(t, t)`` boolean mask, true on ``cover`` and false on ``keep``, whose boundary
+    has the least cost, a pair of neighbouring pixels ``s, u`` cut apart costing
+    ``|old(s) - new(s)| + |old(u) - new(u)|`` (RGB, L1): a minimum s-t cut
+    (:func:`scipy.sparse.csgraph.maximum_flow`; integer capacities, so the same cut everywhere).
+    """
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import breadth_first_order, maximum_flow
+
+    t = old.shape[0]
+    n = t * t
+    err = np.abs(old[..., :3] - new[..., :3]).sum(axis=2).ravel()
+    ids = np.arange(n).reshape(t, t)
+    a = np.concatenate([ids[:, :-1].ravel(), ids[:-1, :].ravel()])
+    b = np.concatenate([ids[:, 1:].ravel(), ids[1:, :].ravel()])
+    cap = (np.rint(err[a] + err[b]) + 1).astype(np.int32)  # + 1: the shortest of equal cuts
+    source, sink, big = n, n + 1, np.int32(1 << 28)
+    src = np.flatnonzero(cover.ravel())
+    snk = np.flatnonzero(keep.ravel())
+    rows = np.concatenate([a, b, np.full(src.size, source), snk])
+    cols = np.concatenate([b, a, src, np.full(snk.size, sink)])
+    caps = np.concatenate([cap, cap, np.full(src.size + snk.size, big, dtype=np.int32)])
+    graph = coo_matrix((caps, (rows, cols)), shape=(n + 2, n + 2)).tocsr()
+    flow = maximum_flow(graph, source, sink).flow
+    residual = graph - flow
+    residual.data = np.where(residual.data > 0, 1, 0).astype(np.int32)
+    residual.eliminate_zeros()
+    reached = breadth_first_order(residual, source, directed=True, return_predecessors=False)
+    inside = np.zeros(n + 2, dtype=bool)
+    inside[reached] = True
+    return inside[:n].reshape(t, t)
+
+
+def _shifted_mean(mask: np.ndarray) -> np.ndarray:
+    """The mean of ``mask`` over each pixel's four neighbours (edge pixels repeat)."""
+    m = np.pad(mask.astype(np.float32), 1, mode="edge")
+    return (m[:-2, 1:-1] + m[2:, 1:-1] + m[1:-1, :-2] + m[1:-1, 2:]) / 4
 
 
 def example_patches(example, size: int, seed, *, what: str = "one tile"):
