@@ -321,7 +321,8 @@ def _draw(problem: PackingProblem, sol: Solution, path, fmt: str, *, indices: bo
     if fmt == "png":
         from tilesolve.io.png import write_packing_png
 
-        write_packing_png(path, sol.tiling, problem.kind, problem.colors, colors_v=problem.colors_v)
+        write_packing_png(path, sol.tiling, problem.kind, problem.colors, colors_v=problem.colors_v,
+                          caption=[title or f"{problem.describe()} ({sol.method}, seed {sol.seed})"])
         return
     from tilesolve.io.svg_packing import write_packing_svg
 
