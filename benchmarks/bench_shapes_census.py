@@ -6,8 +6,9 @@ workers unless ``--workers``), writing ``benchmarks/results/shapes_census_<grid>
 a set stopped by its time limit continues from that file on the next run, so the census grows
 over several runs. Then one table over every file: shapes done of the total, isohedral,
 periodic (k-isohedral, k <= ``max_copies``), non-tilers (their Heesch numbers), inconclusive,
-and the CPU-bound classification time per shape (the sum of the per-shape seconds recorded in
-the file over the shapes done), beside this run's wall time of the command.
+and the cost per shape over the shapes done: the wall and the CPU seconds (the worker's own)
+of each shape's classification and verification as the file records them (on a machine shared
+by other jobs the CPU time is the measure), beside this run's wall time of the command.
 
 Run from the repository root::
 
@@ -44,6 +45,7 @@ def summary(doc: dict) -> dict:
     return {"done": len(rows), "total": doc.get("total"), "isohedral": kinds["isohedral"],
             "periodic": kinds["periodic"], "non-tiler": kinds["non-tiler"], "inconclusive": kinds["inconclusive"],
             "heesch": dict(sorted(heesch.items())), "ms": 1000 * sum(r["time_s"] for r in rows) / max(len(rows), 1),
+            "cpu_ms": 1000 * sum(r.get("cpu_s") or 0 for r in rows) / max(len(rows), 1),
             "bad": sum(bool(r["violations"]) for r in rows)}
 
 
@@ -72,8 +74,8 @@ def main() -> None:
             if p.returncode not in (0, 3):
                 print(p.stderr[-2000:])
     print(f"\n| set | done / total | isohedral | periodic | non-tilers (H: count) | inconclusive | ms a shape "
-          f"| this run |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- |")
+          f"| CPU ms a shape | this run |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     for g, n in chosen:
         if not os.path.exists(path_of(g, n)):
             continue
@@ -83,7 +85,7 @@ def main() -> None:
         run = f"{walls[(g, n)][0]:.0f} s, exit {walls[(g, n)][1]}" if (g, n) in walls else "-"
         bad = f" ({s['bad']} failed verification)" if s["bad"] else ""
         print(f"| {n}-{g} | {s['done']} / {s['total']} | {s['isohedral']} | {s['periodic']} | {s['non-tiler']}"
-              f"{f' ({hs})' if hs else ''} | {s['inconclusive']} | {s['ms']:,.0f} | {run}{bad} |")
+              f"{f' ({hs})' if hs else ''} | {s['inconclusive']} | {s['ms']:,.0f} | {s['cpu_ms']:,.0f} | {run}{bad} |")
 
 
 if __name__ == "__main__":

@@ -282,11 +282,14 @@ def census_cmd(ctx, grid_name, size, holes, max_level, max_copies, workers, clus
         what = {"isohedral": "copies per period", "periodic": "copies per period"}.get(verdict, "Heesch number")
         click.echo(f"{n:6d}  {verdict} ({what} {k})")
     total = sum(r.time_s for r in rows)
-    click.echo(f"        {total:.2f} s of classification, {total / max(len(rows), 1) * 1000:.1f} ms per shape")
+    cpu = sum(r.cpu_s or 0.0 for r in rows)
+    click.echo(f"        {total:.2f} s of classification, {total / max(len(rows), 1) * 1000:.1f} ms per shape "
+               f"({cpu / max(len(rows), 1) * 1000:.1f} ms CPU)")
     if output:
         doc = {"format": "tilesolve/shapes-census", "version": 1, **options, "total": n_shapes,
                "shapes": [{"cells": [list(c) for c in r.cells], "verdict": r.verdict, "heesch": r.heesch,
-                           "copies": r.copies, "time_s": round(r.time_s, 4), "violations": list(r.problems)}
+                           "copies": r.copies, "time_s": round(r.time_s, 4),
+                           "cpu_s": None if r.cpu_s is None else round(r.cpu_s, 4), "violations": list(r.problems)}
                           for r in rows]}
         with outs.commit():
             write_text_atomic(output, dumps(doc))
@@ -318,6 +321,6 @@ def _resumed(output, options: dict) -> list:
         if differ:
             raise ValueError(f"its {differ[0]} is {doc.get(differ[0])!r}, this census has {options[differ[0]]!r}")
         return [CensusRow(tuple(tuple(c) for c in r["cells"]), r["verdict"], r["heesch"], r["copies"],
-                          float(r["time_s"]), tuple(r["violations"])) for r in doc["shapes"]]
+                          float(r["time_s"]), tuple(r["violations"]), r.get("cpu_s")) for r in doc["shapes"]]
     except (ValueError, KeyError, TypeError) as exc:
         raise InvalidProblem(f"cannot resume from {output}: {exc}") from None

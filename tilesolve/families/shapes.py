@@ -80,7 +80,9 @@ def polyforms(grid_name: str, size: int, *, holes: bool = True):
 
 @dataclass(frozen=True)
 class CensusRow:
-    """One shape of a census: its cells, verdict, Heesch number, copies per period, seconds."""
+    """One shape of a census: its cells, verdict, Heesch number, copies per period, wall and
+    CPU seconds of its classification and verification (the worker's own CPU time: the cost
+    of the shape on a loaded machine)."""
 
     cells: tuple
     verdict: str
@@ -88,6 +90,7 @@ class CensusRow:
     copies: int | None
     time_s: float
     problems: tuple = ()
+    cpu_s: float | None = None
 
 
 def _census_job(grid_name: str, todo: list, options: dict, seed: int) -> CensusRow:
@@ -99,11 +102,12 @@ def _census_job(grid_name: str, todo: list, options: dict, seed: int) -> CensusR
     index, cells = todo[seed]
     shape = Polyform(grid_name, cells)
     problem = ShapesProblem("classify", (shape,), **options)
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     sol = classify(problem, seed=index)
     bad = tuple(shapes_violations(problem, sol.report))
     r: ShapesReport = sol.report
-    return CensusRow(shape.cells, r.verdict, r.heesch, r.copies, time.perf_counter() - t0, bad)
+    return CensusRow(shape.cells, r.verdict, r.heesch, r.copies, time.perf_counter() - t0, bad,
+                     time.process_time() - c0)
 
 
 def census(grid_name: str, size: int, *, holes: bool = False, max_level: int = 3, max_copies: int = 2,
