@@ -26,9 +26,16 @@ Periods (:func:`sweep`)
     evidence, and a line whose witness or proof does not hold is decided again. A time limit or
     Ctrl-C leaves the rest undecided (never refuted).
 
-    A torus of at least :data:`BAND_MIN_CELLS` cells is first tried through its *bands*, its
-    first ``h`` columns or rows (:func:`_by_bands`): a band's clauses are a subset of the
-    torus's formula, so a band's DRAT proof, checked against the whole torus's CNF, refutes the
+    The sweep first refutes tori through *shared bands* (:mod:`tilesolve.engine.aperiodic_bands`):
+    per torus height, the narrowest band of first columns that cannot be tiled is solved and its
+    proof checked once, and every torus of that height wider than the band gets the trimmed
+    proof renamed into its own variables (Jeandel-Rao's 576 tori up to 24 x 24 rest on a few
+    dozen bands); then bands of first rows for the unsheared tori left; the rest one by one,
+    smallest first, and the sweep stops at its first witness.
+
+    A torus decided on its own (:func:`decide`) of at least :data:`BAND_MIN_CELLS` cells is first
+    tried through its *bands*, its first ``h`` columns or rows (:func:`_by_bands`): a band's
+    clauses are a subset of the torus's formula, so a band's DRAT proof, checked against the whole torus's CNF, refutes the
     torus (Jeandel-Rao 24x24 falls to its first 10 columns: 19 s CPU, where the whole formula
     was not refuted in 300 s). Then a witness is sought on a tall cylinder
     (:func:`_cylinder_witness`; periodic-10-30's 30x30 torus in 22 s CPU, where the torus
