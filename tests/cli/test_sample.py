@@ -74,6 +74,10 @@ def test_verify_finds_points_too_close(folder):
     "window set.json --region 3000000000,0,2x2 -o x.csv",
     "window set.json --region 0,0,2x2 --tiling direct --set compact -o x.csv",
     "window pts.svg --region 0,0,2x2 -o x.csv",
+    "texture set.json --region 0,0,2x2 --png x.svg",
+    "texture set.json --region 0,0,100x100 --px 512 --png x.png",
+    "texture set.json --region 0,0,2x2 --image missing.png --png x.png",
+    "texture set.json --region 0,0,2x2 --image set.json --png x.png",
 ])
 def test_bad_input_is_one_line_and_writes_nothing(folder, args):
     (folder / "pts.svg").write_text("<svg/>") if not (folder / "pts.svg").exists() else None
@@ -92,8 +96,19 @@ def test_spectrum_prints_the_table_and_plots(folder):
 
 
 @pytest.mark.slow
+def test_texture_scatters_objects_without_overlaps(folder):
+    from PIL import Image
+
+    r = run("sample", "poisson-tiles", "texture", "set.json", "--region", "-9,4,3x2", "--px", "20", "--seed", "3",
+            "--png", "t.png", cwd=folder)
+    assert r.returncode == 0, r.stderr
+    with Image.open(folder / "t.png") as img:
+        assert img.size == (60, 40)
+
+
+@pytest.mark.slow
 def test_help_examples_run_as_written_in_an_empty_folder(tmp_path):
-    for sub in ((), ("build",), ("window",), ("spectrum",)):
+    for sub in ((), ("build",), ("window",), ("spectrum",), ("texture",)):
         text = run("sample", "poisson-tiles", *sub, "--help", cwd=tmp_path).stdout
         lines = [ln.strip() for ln in text.splitlines() if ln.strip().startswith("tilesolve ")]
         assert lines

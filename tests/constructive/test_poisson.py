@@ -107,3 +107,26 @@ def test_lloyd_keeps_points_in_their_region_and_apart():
     assert not np.array_equal(moved, start)
     assert not ((moved[:, 0] < 0.3) & (moved[:, 1] < 0.3)).any()
     assert min_distance(np.vstack([moved, fixed])) >= 0.1
+
+
+@settings(max_examples=15, deadline=None)
+@given(ox=st.integers(-(2**60), 2**60), oy=st.integers(-(2**60), 2**60), seed=st.integers(0, 2**31 - 1),
+       pick=st.integers(1, 50))
+def test_the_object_distribution_function_is_the_closest_point_with_random_access(set2, ox, oy, seed, pick):
+    """§6.6.2: evaluations agree bit for bit whatever else is evaluated with them, and give the
+    closest point of the tiled distribution (against all points of a larger window)."""
+    from tilesolve.constructive.poisson import object_distribution
+
+    q = np.random.default_rng(seed).random((200, 2)) * [5, 4]
+    every = object_distribution(set2, q, origin=(ox, oy), seed=seed)
+    alone = object_distribution(set2, q[:pick], origin=(ox, oy), seed=seed)
+    assert all(np.array_equal(every[k][:pick], alone[k]) for k in every)
+    pts = window_points(set2, (ox - 2, oy - 2, 9, 8), seed=seed).local - [2, 2]
+    gaps = np.hypot(*(q[:, None, :] - pts[None]).transpose(2, 0, 1))
+    assert np.allclose(every["distance"], gaps.min(axis=1), rtol=0, atol=1e-12)
+    assert np.allclose(every["closest"], pts[gaps.argmin(axis=1)], rtol=0, atol=1e-12)
+    r = set2.problem.distance / 2
+    assert np.array_equal(every["inside"], every["distance"] < r)
+    assert (np.hypot(*every["local"][every["inside"]].T) < 1).all()
+    same = (every["id"][:, None, :] == every["id"][None, :, :]).all(axis=2)
+    assert np.array_equal(same, (every["closest"][:, None, :] == every["closest"][None, :, :]).all(axis=2))

@@ -40,6 +40,7 @@ def poisson_tiles() -> None:
       tilesolve sample poisson-tiles build -C 2 -N 64 --rho 0.75 --seed 1 -o set.json
       tilesolve sample poisson-tiles window set.json --region 0,0,8x8 --seed 2 -o pts.csv --svg pts.svg
       tilesolve sample poisson-tiles spectrum set.json --seed 2 --svg spectrum.svg
+      tilesolve sample poisson-tiles texture set.json --region 0,0,6x4 --px 48 --seed 2 --png texture.png
       tilesolve verify set.json
     """
 
@@ -190,3 +191,62 @@ def spectrum(ctx, tileset, size, seed, svg, png) -> None:
             if path:
                 write_spectrum_plot(path, series, title, fmt)
     _done(ctx, outs)
+
+
+@poisson_tiles.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP,
+                       short_help="Objects scattered without overlaps: the procedural object distribution (§6.6.2).")
+@click.argument("tileset", type=click.Path(dir_okay=False), metavar="SET.json")
+@click.option("--region", required=True, metavar="X0,Y0,WxH",
+              help="W x H tiles whose SW tile is (X0, Y0); y points north, coordinates may be negative.")
+@click.option("--px", type=click.IntRange(1, 512), default=32, show_default=True, help="Pixels a tile side.")
+@click.option("--image", type=click.Path(dir_okay=False, exists=False), metavar="IMG.png",
+              help="The object drawn in every Poisson disk (transparent pixels show the background); "
+                   "default: shaded disks coloured by the point's id.")
+@opt.seed_opt
+@click.option("--png", type=OutputFile("png", allow_dash=False), required=True, metavar="T.png",
+              help="Write the texture here.")
+@click.pass_context
+def texture(ctx, tileset, region, px, image, seed, png) -> None:
+    """Scatter objects over a texture with the procedural object distribution function (class
+    notes §6.6.2): each pixel is evaluated on its own (random access through the direct corner
+    tiling), finds its closest point of the tiled Poisson disk distribution, and draws the
+    object of that point's disk in the disk's own coordinates, or the background. Disks never
+    overlap, so neither do the objects.
+
+    \b
+    Examples:
+      tilesolve sample poisson-tiles build -C 2 -N 16 --rho 0.75 --seed 1 -o set.json
+      tilesolve sample poisson-tiles texture set.json --region 0,0,6x4 --px 48 --seed 2 --png texture.png
+      tilesolve sample poisson-tiles texture set.json --region 0,0,3x2 --px 64 --image texture.png --png again.png
+    """
+    from tilesolve.families.poisson import objects
+    from tilesolve.io.poisson_plots import MAX_TEXTURE_PIXELS, write_texture_png
+    from tilesolve.model.window import parse_region
+
+    outs = Outputs(png)
+    window = parse_region(region)
+    if window.width * window.height * px * px > MAX_TEXTURE_PIXELS:
+        raise InvalidProblem(f"a texture of {window.width * px:,} x {window.height * px:,} pixels is more than "
+                             f"{MAX_TEXTURE_PIXELS:,}: ask for fewer tiles or pixels")
+    picture = _read_image(image) if image else None
+    _, ts = _load_set(tileset)
+    evaluation = objects(ts, window, px, seed=seed)
+    with outs.commit():
+        write_texture_png(png, evaluation, picture)
+    say(f"ok: {int(evaluation['inside'].sum()):,} of {evaluation['inside'].size:,} pixels inside a Poisson disk, "
+        f"{window.caption()}")
+    _done(ctx, outs)
+
+
+def _read_image(path: str):
+    """An RGBA array of a picture file, or a one-line error."""
+    import numpy as np
+    from PIL import Image, UnidentifiedImageError
+
+    try:
+        with Image.open(path) as img:
+            if img.width * img.height > 1 << 22:
+                raise InvalidProblem(f"{path}: the object picture has more than {1 << 22:,} pixels")
+            return np.asarray(img.convert("RGBA"))
+    except (OSError, UnidentifiedImageError) as exc:
+        raise InvalidProblem(f"cannot read the picture {path}: {exc.__class__.__name__}") from None

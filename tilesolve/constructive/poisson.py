@@ -55,7 +55,7 @@ from tilesolve.errors import InvalidProblem
 from tilesolve.model.poisson import SLACK, PoissonTilesProblem, PoissonTileSet, PoissonWindow, PoissonWindowProblem
 from tilesolve.model.window import Window
 
-__all__ = ["build_tiles", "window_points", "dart_throwing", "lloyd"]
+__all__ = ["build_tiles", "window_points", "dart_throwing", "lloyd", "object_distribution"]
 
 #: The radius shrinks by this factor when darts keep missing (McCool and Fiume 1992).
 SHRINK = 0.97
@@ -238,11 +238,12 @@ def _padded(arrays: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
     return out, np.array([len(a) for a in arrays], dtype=np.int64)
 
 
-def _place(origins: np.ndarray, which: np.ndarray, arrays: list[np.ndarray]) -> np.ndarray:
-    """The points of tiles ``arrays[which[i]]`` moved to ``origins[i]``."""
+def _place(origins: np.ndarray, which: np.ndarray, arrays: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    """The points of tiles ``arrays[which[i]]`` at integer ``origins[i]``: each point's origin,
+    and its coordinates in its tile's frame."""
     pad, counts = _padded(arrays)
     mask = np.arange(pad.shape[1])[None, :] < counts[which][:, None]
-    return (origins[:, None, :] + pad[which])[mask]
+    return np.broadcast_to(origins[:, None, :], pad[which].shape)[mask], pad[which][mask]
 
 
 def window_points(tileset: PoissonTileSet, window, *, tiling: str = "direct", variant: str = "complete",
@@ -266,10 +267,17 @@ def window_points(tileset: PoissonTileSet, window, *, tiling: str = "direct", va
         Points relative to ``(x0, y0)``, ordered by kind of tile, then by tile position.
     """
     problem = PoissonWindowProblem(tileset, window, tiling, variant, hash)
-    w = problem.window
+    offsets, frame = _window_parts(problem, seed)
+    return PoissonWindow(problem.window, np.ascontiguousarray(offsets + frame), tileset.problem.distance)
+
+
+def _window_parts(problem: PoissonWindowProblem, seed) -> tuple[np.ndarray, np.ndarray]:
+    """The points of a window as integer offsets from its corner (float64) plus coordinates in
+    their tile's frame: their sum is the point."""
+    w, tileset = problem.window, problem.tileset
     c = tileset.problem.colors
-    grid = stochastic_window("corner", tiling, (w.x0, w.y0, w.width, w.height), colors=c, seed=seed,
-                             variant=variant, hash=hash)[::-1].astype(np.int64)  # row j: y0 + j
+    grid = stochastic_window("corner", problem.tiling, (w.x0, w.y0, w.width, w.height), colors=c, seed=seed,
+                             variant=problem.variant, hash=problem.hash)[::-1].astype(np.int64)  # row j: y0 + j
     ne, se, sw, nw = grid // c**3, grid // c**2 % c, grid // c % c, grid % c
     h, wd = grid.shape
     lat = np.empty((h + 1, wd + 1), np.int64)  # colour of lattice point (x0 + i, y0 + j) at [j, i]
@@ -286,6 +294,87 @@ def window_points(tileset: PoissonTileSet, window, *, tiling: str = "direct", va
         _place(lattice[:-1, :].reshape(-1, 2), (lat[:-1, :] * c + lat[1:, :]).ravel(), t["vedge"]),
         _place(lattice[:-1, :-1].reshape(-1, 2), grid.ravel(), t["interior"]),
     ]
-    pts = np.concatenate(parts)
+    offsets = np.concatenate([o for o, _ in parts])
+    frame = np.concatenate([f for _, f in parts])
+    pts = offsets + frame
     keep = (pts[:, 0] >= 0) & (pts[:, 0] < wd) & (pts[:, 1] >= 0) & (pts[:, 1] < h)
-    return PoissonWindow(w, np.ascontiguousarray(pts[keep]), tileset.problem.distance)
+    return offsets[keep], frame[keep]
+
+
+
+
+def object_distribution(tileset: PoissonTileSet, xy, *, origin=(0, 0), seed=None, hash: str = "long") -> dict:
+    """The 2-D procedural object distribution function (class notes §6.6.2.1, figure 6.5).
+
+    For each point of evaluation ``origin + xy[i]``, the closest point of the tiled Poisson
+    disk distribution (direct corner tiling, random access: the same answer whatever else is
+    evaluated), found among the tile of the point and its eight neighbours (exact: every
+    evaluation here finds a point within one tile side, which the builder's density ensures and
+    this function checks).
+
+    Parameters
+    ----------
+    tileset : PoissonTileSet
+    xy : (n, 2) array_like
+        Points of evaluation relative to ``origin`` (tile units, y north).
+    origin : (int, int)
+        An integer offset, so that points far from the origin keep full precision.
+    seed, hash
+        The direct corner tiling's hash (the texture's randomisation, §6.6.2.1).
+
+    Returns
+    -------
+    dict
+        ``inside`` (bool: within the Poisson disk, radius ``distance / 2``, of the closest point),
+        ``closest`` (its coordinates relative to ``origin``), ``distance`` (to it), ``local``
+        (the point of evaluation in the disk's frame: offset over the disk radius, so ``inside``
+        is ``|local| < 1``), ``id`` (``(n, 3)`` int64: the cell of the closest point, relative to
+        ``origin``, and its rank among that cell's points in lexicographic order).
+    """
+    from scipy.spatial import cKDTree
+
+    q = np.asarray(xy, dtype=np.float64).reshape(-1, 2)
+    if not np.isfinite(q).all():
+        raise InvalidProblem("points of evaluation must be finite")
+    ox, oy = (int(v) for v in origin)
+    cells = np.floor(q).astype(np.int64)
+    r = tileset.problem.distance / 2
+    n = len(q)
+    out = {"inside": np.zeros(n, bool), "closest": np.zeros((n, 2)), "distance": np.zeros(n),
+           "local": np.zeros((n, 2)), "id": np.zeros((n, 3), np.int64)}
+    if n == 0:
+        return out
+    ucells, group = np.unique(cells, axis=0, return_inverse=True)
+    group = group.ravel()
+    lo, hi = ucells.min(axis=0) - 1, ucells.max(axis=0) + 2
+    if int(np.prod(hi - lo)) <= max(64, 9 * len(ucells)):  # one window around them all
+        blocks = [(lo, np.arange(n))]
+    else:  # far apart: a 3 x 3 block around each cell
+        blocks = [(ucells[g] - 1, np.flatnonzero(group == g)) for g in range(len(ucells))]
+    for corner, which in blocks:
+        size = (hi - lo) if len(blocks) == 1 else np.array([3, 3])
+        problem = PoissonWindowProblem(tileset, (ox + int(corner[0]), oy + int(corner[1]), int(size[0]), int(size[1])),
+                                       hash=hash)
+        offsets, frame = _window_parts(problem, seed)
+        pts = offsets + frame
+        cell = np.floor(pts).astype(np.int64)
+        order = np.lexsort((pts[:, 1], pts[:, 0], cell[:, 1], cell[:, 0]))
+        pts, cell, offsets, frame = pts[order], cell[order], offsets[order], frame[order]
+        first = np.r_[True, (cell[1:] != cell[:-1]).any(axis=1)]
+        rank = np.arange(len(pts)) - np.maximum.accumulate(np.where(first, np.arange(len(pts)), 0))
+        _, k = cKDTree(pts).query(q[which] - corner)
+        # in the frame of the point of evaluation's own cell, so that every window gives the same bits
+        own = cells[which]
+        p = (offsets[k] + corner - own) + frame[k]
+        f = q[which] - own
+        dist = np.hypot(f[:, 0] - p[:, 0], f[:, 1] - p[:, 1])
+        if (dist > 1).any():
+            from tilesolve.errors import InternalError
+
+            raise InternalError("a point of evaluation lies farther than one tile side from every point of the set")
+        out["distance"][which] = dist
+        out["closest"][which] = own + p
+        out["local"][which] = (f - p) / r
+        out["id"][which] = np.column_stack([cell[k] + corner, rank[k]])
+    out["inside"] = out["distance"] < r
+    return out

@@ -46,7 +46,7 @@ from tilesolve.model.window import Window
 from tilesolve.progress import Progress
 from tilesolve.verify.dappled import Violation
 
-__all__ = ["FAMILY", "SOLVERS", "solve", "dart", "window", "poisson_violations", "auto_method", "spectra"]
+__all__ = ["FAMILY", "SOLVERS", "solve", "dart", "window", "poisson_violations", "auto_method", "spectra", "objects"]
 
 
 def dart(problem: PoissonTilesProblem, run: RunOptions) -> Solution:
@@ -122,6 +122,21 @@ def spectra(ts: PoissonTileSet, size: int, *, seed: int | None = None) -> list[d
         rows.append({"name": name, "points": len(pts), "rho": relative_radius(pts, size * size), "frequency": f,
                      "power": power, "anisotropy": aniso, "anisotropy_db": float(np.mean(aniso))})
     return rows
+
+
+def objects(ts: PoissonTileSet, window: Window, px: int, *, seed: int | None = None) -> dict:
+    """The procedural object distribution function (§6.6.2) at the centres of the ``px`` pixels
+    a tile of ``window`` (rows from the top): :func:`tilesolve.constructive.poisson.object_distribution`'s
+    arrays, each shaped ``(rows, cols, ...)``."""
+    import numpy as np
+
+    from tilesolve.constructive.poisson import object_distribution
+
+    rows, cols = window.height * px, window.width * px
+    r, c = np.mgrid[0:rows, 0:cols]
+    xy = np.column_stack([(c.ravel() + 0.5) / px, (rows - r.ravel() - 0.5) / px])
+    out = object_distribution(ts, xy, origin=(window.x0, window.y0), seed=seed)
+    return {k: v.reshape(rows, cols, *v.shape[1:]) for k, v in out.items()}
 
 
 def solve(problem: PoissonProblem, *, method: str | Any = "auto", seed: int | None = None,

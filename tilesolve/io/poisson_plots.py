@@ -23,10 +23,13 @@ from tilesolve.errors import InvalidProblem
 from tilesolve.io.atomic import atomic_write
 from tilesolve.model.window import Window
 
-__all__ = ["points_svg", "write_points_picture", "write_spectrum_plot", "MAX_PICTURE_POINTS"]
+__all__ = ["points_svg", "write_points_picture", "write_spectrum_plot", "texture_image", "write_texture_png",
+           "MAX_PICTURE_POINTS", "MAX_TEXTURE_PIXELS"]
 
 #: Most points a picture draws (an SVG of more is too slow to open).
 MAX_PICTURE_POINTS = 200_000
+#: Most pixels of a texture.
+MAX_TEXTURE_PIXELS = 1 << 24
 _SERIES = ("#0072B2", "#D55E00", "#009E73", "#CC79A7")
 
 
@@ -144,3 +147,36 @@ def write_spectrum_plot(path: str | os.PathLike, series: Sequence[tuple[str, np.
         draw.text((t[0], t[1] - 11), t[2].replace("—", "-"), fill=ImageColor.getrgb(t[3]) if len(t) > 3 else (51, 51, 51))
     with atomic_write(path, "wb", encoding=None) as fh:
         img.save(fh, format="PNG")
+
+
+def texture_image(evaluation: dict, image=None) -> np.ndarray:
+    """An RGB texture (§6.6.2, figure 6.6) from the object distribution function evaluated at
+    every pixel (:func:`tilesolve.families.poisson.objects`): inside a Poisson disk, the object
+    (``image``, an RGBA array drawn in the disk's square ``[-1, 1]^2``, or a shaded disk coloured
+    by the point's id); outside, a background shaded by the distance to the closest point."""
+    inside, local, ident, dist = evaluation["inside"], evaluation["local"], evaluation["id"], evaluation["distance"]
+    shade = np.clip(1.0 - 0.35 * np.minimum(dist / max(float(dist.max()), 1e-12), 1.0), 0, 1)
+    out = (np.array([236.0, 230.0, 214.0]) * shade[..., None])
+    palette = np.array([[int(c[i:i + 2], 16) for i in (1, 3, 5)] for c in _SERIES], dtype=np.float64)
+    if image is None:
+        mix = (ident[..., 0] * 73856093 ^ ident[..., 1] * 19349663 ^ ident[..., 2] * 83492791) % len(palette)
+        light = 1.0 - 0.5 * np.sum(local**2, axis=-1)
+        disk = palette[mix] * np.clip(light, 0, 1)[..., None]
+        out[inside] = disk[inside]
+    else:
+        img = np.asarray(image, dtype=np.float64)
+        ih, iw = img.shape[:2]
+        col = np.clip(((local[..., 0] + 1) / 2 * iw).astype(np.int64), 0, iw - 1)
+        row = np.clip(((1 - local[..., 1]) / 2 * ih).astype(np.int64), 0, ih - 1)
+        sampled = img[row, col]
+        alpha = (sampled[..., 3:4] / 255.0) * inside[..., None]
+        out = out * (1 - alpha) + sampled[..., :3] * alpha
+    return np.clip(out + 0.5, 0, 255).astype(np.uint8)
+
+
+def write_texture_png(path: str | os.PathLike, evaluation: dict, image=None) -> None:
+    """:func:`texture_image` as a PNG."""
+    from PIL import Image
+
+    with atomic_write(path, "wb", encoding=None) as f:
+        Image.fromarray(texture_image(evaluation, image), "RGB").save(f, format="PNG")
