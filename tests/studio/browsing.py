@@ -1,4 +1,4 @@
-"""Helpers of the studio's browser tests: pick a family, fill a field, solve and wait."""
+"""Helpers of the studio's browser tests: pick a family, fill a field, solve and wait, cancel."""
 
 from __future__ import annotations
 
@@ -18,3 +18,18 @@ def solve(page, timeout=60_000):
     page.wait_for_function("document.getElementById('solve').disabled === false && studio.job === null",
                            timeout=timeout)
     return page.evaluate("studio.result")
+
+
+def cancel_a_long_search(page):
+    """Start a search that runs for minutes (a corner packing, C = 4, by plain SAT; class notes
+    §5.5), wait for its streamed progress, cancel it and wait for the page to say so."""
+    page.select_option("#field-kind", "corner")
+    fill(page, "colors", 4)
+    page.select_option("#method", "sat")
+    page.fill("#seed", "1")
+    page.click("#solve")
+    page.wait_for_function("document.getElementById('status').textContent.startsWith('solving')")
+    # the solve's progress, streamed by the server: the route's task, with its elapsed time
+    page.wait_for_function("document.getElementById('status').textContent.includes(\"packing: solving with 'sat'\")")
+    page.click("#cancel")
+    page.wait_for_function("document.getElementById('status').textContent.startsWith('cancelled')", timeout=20_000)

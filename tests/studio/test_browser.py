@@ -23,7 +23,7 @@ import numpy as np
 import pytest
 
 from tests.clitools import ENV, SCRIPT
-from tests.studio.browsing import fill, pick, solve
+from tests.studio.browsing import cancel_a_long_search, fill, pick, solve
 
 ARTIFACTS = Path(__file__).resolve().parents[1] / "artifacts" / "studio"
 #: Every test here drives Chromium: slow.
@@ -102,16 +102,7 @@ def test_cancel_a_long_search_clears_the_picture(page):
     page.fill("#seed", "1")
     solve(page)
     assert page.locator("#picture svg, #picture img").count() == 1
-    page.select_option("#field-kind", "corner")
-    fill(page, "colors", 4)
-    page.select_option("#method", "sat")
-    page.fill("#seed", "1")
-    page.click("#solve")
-    page.wait_for_function("document.getElementById('status').textContent.startsWith('solving')")
-    # the solve's progress, streamed by the server: the route's task, with its elapsed time
-    page.wait_for_function("document.getElementById('status').textContent.includes(\"packing: solving with 'sat'\")")
-    page.click("#cancel")
-    page.wait_for_function("document.getElementById('status').textContent.startsWith('cancelled')", timeout=20_000)
+    cancel_a_long_search(page)
     assert page.is_enabled("#solve")
     # the previous picture, its verdict and exports are gone: nothing on screen belongs to another problem
     assert page.locator("#picture *").count() == 0

@@ -27,7 +27,7 @@ import numpy as np
 import pytest
 from PIL import Image, ImageChops
 
-from tests.studio.browsing import fill, pick
+from tests.studio.browsing import cancel_a_long_search, fill, pick
 
 REFERENCES = Path(__file__).resolve().parent / "screenshots"
 ARTIFACTS = Path(__file__).resolve().parents[1] / "artifacts" / "studio"
@@ -108,14 +108,7 @@ def test_every_family_with_a_form_has_a_screenshot(page):
 
 def test_the_cancelled_state(page):
     pick(page, "packing")
-    page.select_option("#field-kind", "corner")
-    fill(page, "colors", 4)
-    page.select_option("#method", "sat")
-    page.fill("#seed", "1")
-    page.click("#solve")
-    page.wait_for_function("document.getElementById('status').textContent.includes(\"packing: solving with 'sat'\")")
-    page.click("#cancel")
-    page.wait_for_function("document.getElementById('status').textContent.startsWith('cancelled')", timeout=20_000)
+    cancel_a_long_search(page)
     compare("state-cancelled", page.locator("#stage").screenshot(animations="disabled"))
 
 
