@@ -88,7 +88,8 @@ def check_suffix(path: str, formats: Sequence[str], option: str = "the output") 
 
 class OutputFile(click.Path):
     """The click type of an output option: a file (not a directory) whose suffix is one of
-    ``formats`` (:func:`check_suffix`); ``-`` (standard output) where ``allow_dash``."""
+    ``formats`` (:func:`check_suffix`); ``-`` (standard output) where ``allow_dash``, and any
+    existing device or FIFO (``/dev/stdout``, a named pipe: a stream, whose name says no format)."""
 
     def __init__(self, *formats: str, allow_dash: bool = True) -> None:
         super().__init__(dir_okay=False, allow_dash=allow_dash)
@@ -96,6 +97,8 @@ class OutputFile(click.Path):
 
     def convert(self, value, param, ctx):  # noqa: D102 - click API
         value = super().convert(value, param, ctx)
+        if os.path.exists(value) and not os.path.isfile(value):
+            return value  # a device or a FIFO (a directory is refused above)
         check_suffix(os.fsdecode(value), self.formats, "/".join(param.opts) if param is not None else "the output")
         return value
 
