@@ -161,14 +161,17 @@ def window(ctx, tileset, region, tiling, variant, hash_, seed, output, svg, png)
 @click.argument("tileset", type=click.Path(dir_okay=False), metavar="SET.json")
 @click.option("--size", type=click.IntRange(1, 64), default=8, show_default=True, metavar="W",
               help="The W x W window of tiles measured, at the origin.")
+@click.option("--runs", type=click.IntRange(1, 64), default=4, show_default=True,
+              help="Windows (and dart-throwing runs) whose periodograms are averaged.")
 @opt.seed_opt
 @click.option("--svg", type=OutputFile("svg", allow_dash=False), metavar="S.svg", help="Plot the spectra as SVG.")
 @click.option("--png", type=OutputFile("png", allow_dash=False), metavar="S.png", help="Plot the spectra as PNG.")
 @click.pass_context
-def spectrum(ctx, tileset, size, seed, svg, png) -> None:
-    """Measure a set on a window: the achieved relative radius, and the radially averaged power
-    spectrum and anisotropy (Ulichney 1987; §4.2.2) of its points against plain dart throwing
-    (Cook 1986) at the same distance on a torus of the same size. Prints a table.
+def spectrum(ctx, tileset, size, runs, seed, svg, png) -> None:
+    """Measure a set on windows: the achieved relative radius, and the radially averaged power
+    spectrum and anisotropy (Ulichney 1987; §4.2.2) of its points, the periodograms of --runs
+    windows averaged, against as many runs of plain dart throwing (Cook 1986) at the same
+    distance on a torus of the same size. Prints a table.
 
     \b
     Examples:
@@ -180,12 +183,12 @@ def spectrum(ctx, tileset, size, seed, svg, png) -> None:
 
     outs = Outputs(svg, png)
     problem, ts = _load_set(tileset)
-    rows = spectra(ts, size, seed=seed)
+    rows = spectra(ts, size, seed=seed, runs=runs)
     click.echo(f"{'distribution':<16} {'points':>8} {'rho':>6} {'mean anisotropy dB':>19}")
     for r in rows:
         click.echo(f"{r['name']:<16} {r['points']:>8,} {r['rho']:>6.3f} {r['anisotropy_db']:>19.2f}")
     series = [(r["name"], r["frequency"], r["power"], r["anisotropy"]) for r in rows]
-    title = f"{problem.describe()}: {size}x{size} tiles"
+    title = f"{problem.describe()}: {size}x{size} tiles, {runs} runs averaged"
     with outs.commit():
         for path, fmt in ((svg, "svg"), (png, "png")):
             if path:

@@ -196,23 +196,28 @@ def tileset_violations(ts: PoissonTileSet, *, max_blocks: int = 4096, seed: int 
 
 
 def radial_spectrum(points, side: float, *, k_max: int = 64) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Radially averaged power spectrum and anisotropy of ``points`` in ``[0, side)^2`` (§4.2.2).
+    """Radially averaged power spectrum and anisotropy of points in ``[0, side)^2`` (§4.2.2).
 
     The periodogram ``P(k) = |sum_j exp(-2 pi i k . x_j / side)|^2 / n`` over integer ``k``
-    with ``|k_x|, |k_y| <= k_max``, averaged over annuli of width 1.
+    with ``|k_x|, |k_y| <= k_max``, averaged over the point sets given (``points``: one
+    ``(n, 2)`` array or a list of them, Ulichney's averaged periodogram), then over annuli of
+    width 1.
 
     Returns
     -------
     (frequency, power, anisotropy)
         ``frequency`` in cycles per unit length, ``power`` the annulus mean (1 for white noise),
-        ``anisotropy`` ``10 log10(var / mean^2)`` in dB (about 0 dB for isotropic noise).
+        ``anisotropy`` ``10 log10(var / mean^2)`` in dB (about 0 dB for one periodogram of an
+        isotropic process, ``-10 log10(m)`` dB for the average of ``m``).
     """
-    pts = np.asarray(points, dtype=np.float64).reshape(-1, 2)
-    n = len(pts)
+    sets = [points] if isinstance(points, np.ndarray) else list(points)
     k = np.arange(-k_max, k_max + 1)
-    ex = np.exp(-2j * np.pi * np.outer(pts[:, 0] / side, k))
-    ey = np.exp(-2j * np.pi * np.outer(pts[:, 1] / side, k))
-    power = np.abs(ex.T @ ey) ** 2 / max(n, 1)
+    power = np.zeros((len(k), len(k)))
+    for pts in sets:
+        pts = np.asarray(pts, dtype=np.float64).reshape(-1, 2)
+        ex = np.exp(-2j * np.pi * np.outer(pts[:, 0] / side, k))
+        ey = np.exp(-2j * np.pi * np.outer(pts[:, 1] / side, k))
+        power += np.abs(ex.T @ ey) ** 2 / max(len(pts), 1) / len(sets)
     kx, ky = np.meshgrid(k, k, indexing="ij")
     ring = np.rint(np.hypot(kx, ky)).astype(np.int64).ravel()
     p = power.ravel()
