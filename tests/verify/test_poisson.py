@@ -87,3 +87,11 @@ def test_the_grid_finds_a_close_pair_exactly_when_there_is_one(n, scale, d, seed
     assert found <= close and bool(found) == bool(close)
     if len(pts) >= 2:
         assert min_distance(pts) == pytest.approx(gaps[np.triu_indices(len(pts), 1)].min(), rel=1e-12, abs=1e-300)
+
+
+def test_averaged_periodograms_of_white_noise_lose_anisotropy_as_ulichney_says():
+    rng = np.random.default_rng(1)
+    runs = [rng.random((2000, 2)) * 4 for _ in range(4)]
+    _, p, aniso = radial_spectrum(runs, 4.0, k_max=32)
+    assert 0.8 < float(p[8:].mean()) < 1.2
+    assert -7.5 < float(aniso[8:].mean()) < -4.5  # 10 log10(1/4) = -6 dB
