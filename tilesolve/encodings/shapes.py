@@ -68,8 +68,14 @@ def torus_reducer(g: Grid, lattice):
         i, j = i - k * bb, j - k * dd
         return (i % aa * p + sx, j * p + sy)
 
+    def reduce_unit(cell):  # the same for period 1, where it runs most
+        x, y = cell
+        k = y // dd
+        return ((x - k * bb) % aa, y - k * dd)
+
     types = [(0, 0)] if p == 1 else [(1, 1), (2, 2)]
-    return reduce, [(p * i + t[0], p * j + t[1]) for i in range(aa) for j in range(dd) for t in types]
+    return (reduce_unit if p == 1 else reduce), [(p * i + t[0], p * j + t[1]) for i in range(aa) for j in range(dd)
+                                                 for t in types]
 
 
 def _egcd(x: int, y: int) -> tuple[int, int, int]:
@@ -184,14 +190,20 @@ def encode_tiling(problem: ShapesProblem) -> TilingEncoding:
         def cover(cells_):
             return [index[c] for c in cells_]
     else:
+        # Modulo the periods a placement is its image with the image's first cell on one of the
+        # representatives: each is built once (not once per cell it covers).
         reduce, reps = torus_reducer(g, problem.lattice)
-        found = placements_at(g, images, reps)
         seen, places = set(), []
-        for c, s in found.items():
-            red = tuple(sorted(reduce(x) for x in c))
-            if len(set(red)) == len(red) and (s, red) not in seen:
-                seen.add((s, red))
-                places.append((s, c))
+        for s, img in images:
+            x0, y0 = img[0]
+            for hx, hy in reps:
+                if g.cell_type((hx, hy)) != g.cell_type((x0, y0)):
+                    continue
+                c = tuple((x + hx - x0, y + hy - y0) for x, y in img)
+                red = tuple(sorted(reduce(x) for x in c))
+                if len(set(red)) == len(red) and (s, red) not in seen:
+                    seen.add((s, red))
+                    places.append((s, c))
         index = {c: i for i, c in enumerate(reps)}
         cells = reps
 
