@@ -9,8 +9,7 @@ seconds per shape, CPU seconds, tracemalloc's peak over the worst shape. In the 
 whole command as a fresh process (``tilesolve shapes census --workers 1``: start-up,
 generation, classification, verification, output), and its wall time over the in-process sum.
 
-heesch-sat (Kaplan's C++ program) is not built here, so no side-by-side column: see the
-report of issue 21.
+heesch-sat (Kaplan's C++ program) side by side, shape by shape: ``bench_heesch_sat.py``.
 
 Run from the repository root: ``python benchmarks/bench_shapes.py`` (or ``--quick``).
 """
