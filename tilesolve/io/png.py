@@ -63,7 +63,10 @@ def caption_mask(lines, width: int, *, font_px: int = 12) -> np.ndarray:
     lines = [s for s in lines if s]
     if not lines or width < 16:
         return np.zeros((0, width), dtype=bool)
-    font = ImageFont.load_default(size=font_px)
+    try:
+        font = ImageFont.load_default(size=font_px)
+    except TypeError:  # Pillow before 10.1: its bitmap font, one size
+        font = ImageFont.load_default()
     room = width - 8
     wrapped: list[str] = []
     for line in lines:
