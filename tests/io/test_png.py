@@ -96,3 +96,16 @@ def test_draw_gives_packings_and_boards_their_caption(tmp_path):
         assert run("draw", "s.json", "-o", "s.png", cwd=tmp_path).returncode == 0
         luma = _caption_band(tmp_path / "s.png") @ np.array([0.299, 0.587, 0.114])
         assert (luma > 235).mean() > 0.7 and (luma < 110).mean() > 0.005, make[0]
+
+
+def test_a_dappled_png_lists_its_tiles_colours_like_its_svg(tmp_path):
+    from tilesolve.io.png import write_png
+
+    t = np.array([[0, 1, 2], [2, 1, 0]])
+    write_png(tmp_path / "t.png", t, scale=60, legend=True, caption=["3 tiles"])
+    with Image.open(tmp_path / "t.png") as img:
+        idx = np.asarray(img)
+    below = idx[120:]
+    for k in range(3):  # a swatch of each tile's palette colour (index k + 1), outlined, under the picture
+        assert (below == k + 1).sum() == 100
+    assert (below == 255).sum() > 3 * 44  # outlines and the labels' ink

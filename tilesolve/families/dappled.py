@@ -329,7 +329,7 @@ def _draw(problem: DappledProblem, sol: Solution, path, fmt: str, *, repeat: int
 
         caption = [title] if title else []
         caption += [problem.describe(), *legend, *notes] + ([f"shown {repeat}x{repeat}"] if repeat > 1 else [])
-        write_png(path, sol.tiling, repeat=repeat, grid=grid, caption=caption)
+        write_png(path, sol.tiling, repeat=repeat, grid=grid, caption=caption, legend=True)
         return
     from tilesolve.io.svg import write_svg
 

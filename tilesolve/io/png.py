@@ -34,7 +34,7 @@ if TYPE_CHECKING:  # pillow is imported by the functions that draw, not by impor
     from PIL import Image
 
 __all__ = ["MAX_PNG_PIXELS", "tiling_image", "write_png", "edge_image", "cell_pixels", "write_packed_rows",
-           "caption_mask", "caption_rows", "captioned",
+           "caption_mask", "caption_rows", "swatch_rows", "captioned",
            "write_board_png", "write_packing_png", "write_tileset_png"]
 
 #: Largest picture written (pixels); pictures stream row by row, so this bounds time, not memory.
@@ -92,6 +92,32 @@ def caption_mask(lines, width: int, *, font_px: int = 12) -> np.ndarray:
     for i, line in enumerate(wrapped):
         draw.text((4, 4 + i * step), line, fill=255, font=font)
     return np.asarray(img) > 127
+
+
+def swatch_rows(labels, colours, width: int, *, background: int = 0, ink: int = 255) -> np.ndarray:
+    """``(height, width)`` palette rows of a legend: for each label a 12 px square of its palette
+    index ``colours[k]`` (outlined in ``ink``) and the label beside it, as many a row as fit
+    (the SVG's legend, :func:`tilesolve.io.svg.tiling_drawing`); ``(0, width)`` when the picture
+    is too narrow for one.
+
+    >>> swatch_rows(["tile 0", "tile 1"], [1, 2], 200).shape
+    (20, 200)
+    """
+    texts = []
+    for label in labels:  # each label's ink, cropped: 18 rows, as wide as it reaches
+        m = caption_mask([label], 400)[2:20, 4:]
+        texts.append(m[:, :int(np.flatnonzero(m.any(axis=0)).max(initial=0)) + 1])
+    item = 12 + 4 + max((m.shape[1] for m in texts), default=0) + 12
+    per_row = (width - 8) // item
+    if not labels or per_row < 1:
+        return np.zeros((0, width), dtype=np.uint8)
+    out = np.full((-(-len(labels) // per_row) * 20, width), background, dtype=np.uint8)
+    for k, (text, colour) in enumerate(zip(texts, colours)):
+        y, x = (k // per_row) * 20, 4 + (k % per_row) * item
+        out[y + 4:y + 16, x:x + 12] = ink
+        out[y + 5:y + 15, x + 1:x + 11] = colour
+        out[y + 1:y + 19, x + 16:x + 16 + text.shape[1]][text] = ink
+    return out
 
 
 def caption_rows(mask: np.ndarray, background, ink) -> np.ndarray:
@@ -189,9 +215,10 @@ def tiling_image(tiling, *, scale: int | None = None, repeat: int = 1, grid: boo
 
 
 def write_png(path: str | os.PathLike, tiling, *, scale: int | None = None, repeat: int = 1,
-              grid: bool | None = None, caption=()) -> None:
+              grid: bool | None = None, caption=(), legend: bool = False) -> None:
     """Write the PNG picture of ``tiling`` (arguments of :func:`tiling_image`) atomically, with
-    the lines ``caption`` under it (:func:`caption_mask`; on the free cells' near-white).
+    the lines ``caption`` under it (:func:`caption_mask`; on the free cells' near-white), after
+    the tiles' colours where ``legend`` (:func:`swatch_rows`).
 
     The picture is streamed row by row (pypng), so a huge grid costs one pixel row of memory
     besides the tiling itself, however many pixels the picture has.
@@ -201,6 +228,9 @@ def write_png(path: str | os.PathLike, tiling, *, scale: int | None = None, repe
     idx, repeat, scale, grid, palette = _tiling_layout(tiling, scale, repeat, grid)
     height, width = idx.shape[0] * repeat * scale, idx.shape[1] * repeat * scale
     below = caption_rows(caption_mask(caption, width), 0, 255)
+    if legend:
+        tiles = range(int(np.asarray(tiling).max()) + 1)
+        below = np.concatenate([swatch_rows([f"tile {k}" for k in tiles], [k + 1 for k in tiles], width), below])
     writer = png.Writer(width, height + len(below), palette=palette, bitdepth=8, compression=6)
     rows = itertools.chain(_pixel_rows(idx, repeat, scale, grid), below)
     with atomic_write(path, "wb") as f:
