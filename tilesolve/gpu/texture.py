@@ -315,13 +315,14 @@ def _columns_cost(ex: np.ndarray, t: int, column: np.ndarray, at: int) -> np.nda
     return ((win - column.T[None, None]) ** 2).sum(axis=(2, 3))[:rows]
 
 
-def _corner_patches(ex: np.ndarray, colors: int, t: int, rng) -> list[np.ndarray]:
+def _corner_patches(example: np.ndarray, colors: int, t: int, rng) -> list[np.ndarray]:
     """One ``t x t`` patch per corner colour, each placed where it best fits the patches chosen
     before it and itself where two corner patches meet: a tile's quarters abut across its
     middle lines, so that the east column of one patch lies beside the west column of any other,
     and the south row above the north row. An example with a structure (mortar lines) then gets
     patches whose structure continues across those lines, as image quilting places its blocks
     (Efros & Freeman 2001)."""
+    ex = _structure(example)
     exT = np.ascontiguousarray(ex.transpose(1, 0, 2))
     own = ((ex[:, t - 1:, :3] - ex[:, :ex.shape[1] - t + 1, :3]) ** 2).sum(axis=2)
     own_rows = ((ex[t - 1:, :, :3] - ex[:ex.shape[0] - t + 1, :, :3]) ** 2).sum(axis=2)
@@ -340,7 +341,7 @@ def _corner_patches(ex: np.ndarray, colors: int, t: int, rng) -> list[np.ndarray
         r, q = _pick(cost, rng, places)
         places.append((r, q, t))
         chosen.append(ex[r:r + t, q:q + t].copy())
-    return chosen
+    return [example[r:r + t, q:q + t].copy() for r, q, _ in places]
 
 
 def _best_patch(ex: np.ndarray, base: np.ndarray, free: np.ndarray, rng) -> np.ndarray:
@@ -356,6 +357,13 @@ def _best_patch(ex: np.ndarray, base: np.ndarray, free: np.ndarray, rng) -> np.n
         cost += fftconvolve(e * e, m, mode="valid") - 2 * fftconvolve(e, (b * free)[::-1, ::-1], mode="valid")
     r, q = _pick(cost, rng)
     return ex[r:r + t, q:q + t].copy()
+
+
+def _structure(ex: np.ndarray) -> np.ndarray:
+    """The example's luminance in its three colour channels: where patches meet, its structure
+    (light mortar between darker bricks) matters more than each brick's own colour."""
+    luma = ex[..., :3] @ np.array([0.299, 0.587, 0.114], dtype=np.float32)
+    return np.repeat(luma[..., None], 3, axis=2)
 
 
 def _cut_regions(t: int) -> tuple[np.ndarray, np.ndarray]:
