@@ -267,6 +267,7 @@ def synthesize_atlas(example, grid, colors: int, *, tile: int = 64, seed: int = 
     corner = _corner_patches(ex, c, t, rng)
     h = t // 2
     keep, cover = _cut_regions(t)
+    best_patch = _patch_matcher(ex, t, ~(keep | cover))
     atlas = np.empty((g.shape[0] * t, g.shape[1] * t, 4), dtype=np.uint8)
     for (r, q), k in np.ndenumerate(g):
         nw, sw, se, ne = k % c, (k // c) % c, (k // c**2) % c, k // c**3
@@ -275,7 +276,7 @@ def synthesize_atlas(example, grid, colors: int, *, tile: int = 64, seed: int = 
         img[:h, h:] = corner[ne][h:, :h]
         img[h:, :h] = corner[sw][:h, h:]
         img[h:, h:] = corner[se][:h, :h]
-        new = _best_patch(ex, img, ~(keep | cover), rng)
+        new = best_patch(img, rng)
         inside = graph_cut(img, new, keep, cover)
         # the cut's pixels themselves: the mean of the two patches, one pixel wide
         alpha = (inside[..., None] + _shifted_mean(inside)[..., None]) / 2
@@ -344,19 +345,29 @@ def _corner_patches(example: np.ndarray, colors: int, t: int, rng) -> list[np.nd
     return [example[r:r + t, q:q + t].copy() for r, q, _ in places]
 
 
-def _best_patch(ex: np.ndarray, base: np.ndarray, free: np.ndarray, rng) -> np.ndarray:
-    """The patch of ``ex`` that best matches ``base`` where the cut may run (``free``), by the
-    sum of squared RGB differences over every patch position (FFT correlations)."""
-    from scipy.signal import fftconvolve
+def _patch_matcher(ex: np.ndarray, t: int, free: np.ndarray):
+    """A function ``best(base, rng)``: the patch of ``ex`` that best matches ``base`` where the
+    cut may run (``free``), by the sum of squared RGB differences at every patch position
+    (correlations by FFT; the example's own terms computed once), one of the close fits
+    (:func:`_pick`)."""
+    h, w = ex.shape[0], ex.shape[1]
+    shape = (h + t - 1, w + t - 1)  # no wrap-around
 
-    t = base.shape[0]
-    m = free.astype(np.float32)[::-1, ::-1]
-    cost = np.zeros((ex.shape[0] - t + 1, ex.shape[1] - t + 1), dtype=np.float64)
-    for k in range(3):
-        e, b = ex[..., k].astype(np.float64), base[..., k].astype(np.float64)
-        cost += fftconvolve(e * e, m, mode="valid") - 2 * fftconvolve(e, (b * free)[::-1, ::-1], mode="valid")
-    r, q = _pick(cost, rng)
-    return ex[r:r + t, q:q + t].copy()
+    def correlate(spectrum, kernel):
+        full = np.fft.irfft2(spectrum * np.fft.rfft2(kernel[::-1, ::-1], s=shape), s=shape)
+        return full[t - 1:h, t - 1:w]
+
+    channels = [ex[..., k].astype(np.float64) for k in range(3)]
+    spectra = [np.fft.rfft2(e, s=shape) for e in channels]
+    mask = free.astype(np.float64)
+    own = correlate(np.fft.rfft2(sum(e * e for e in channels), s=shape), mask)
+
+    def best(base: np.ndarray, rng) -> np.ndarray:
+        cost = own - 2 * sum(correlate(f, base[..., k] * mask) for k, f in enumerate(spectra))
+        r, q = _pick(cost, rng)
+        return ex[r:r + t, q:q + t].copy()
+
+    return best
 
 
 def _structure(ex: np.ndarray) -> np.ndarray:
