@@ -52,6 +52,23 @@ def _mix(x: np.ndarray, y: np.ndarray) -> np.ndarray:
     return h
 
 
+def _patterns(legs: np.ndarray, k: int, s: int) -> np.ndarray:
+    """``(m, s, s)`` uint8 of each brick tile in ``legs`` (``(m, 4)`` colours N, E, S, W of
+    ``k``): the corner region of each pixel (TL 0, TR 1, BL 2, BR 3) or 4 on a mortar line."""
+    pos = np.clip(np.rint((legs + 1) / (k + 1) * s).astype(np.int64), 1, s - 1)  # N, E, S, W in pixels
+    n_, e_, s_, w_ = (pos[:, i, None, None] for i in range(4))
+    horizontal = (legs[:, 3] == legs[:, 1])[:, None, None]  # W_H: W = E
+    v = np.arange(s)[None, :, None]  # pixel row in the cell
+    u = np.arange(s)[None, None, :]  # pixel column
+    th = max(1, round(s / 10))
+    on = lambda coord, p: (coord >= p - th // 2) & (coord < p - th // 2 + th)  # noqa: E731 - a line's pixels
+    top = np.where(horizontal, v < w_, np.where(u < n_, v < w_, v < e_))
+    left = np.where(horizontal, np.where(v < w_, u < n_, u < s_), u < n_)
+    mortar = np.where(horizontal, on(v, w_) | np.where(v < w_, on(u, n_), on(u, s_)),
+                      on(u, n_) | np.where(u < n_, on(v, w_), on(v, e_)))
+    return np.where(mortar, 4, 2 * ~top + ~left).astype(np.uint8)  # ~ on bools is not
+
+
 def brick_image(problem, tiling, *, window: Window | None = None, scale: int | None = None):
     """A palette :class:`PIL.Image.Image` of a brick tiling of ``problem.board``.
 
@@ -74,26 +91,22 @@ def brick_image(problem, tiling, *, window: Window | None = None, scale: int | N
     rows, cols = int(lab[:, 0].max()) + 1, int(lab[:, 1].max()) + 1
     s = brick_scale(rows, cols) if scale is None else int(scale)
     k = problem.n_colors
-    pos = np.clip(np.rint((t + 1) / (k + 1) * s).astype(np.int64), 1, s - 1)  # (n, 4) N, E, S, W in pixels
-    n_, e_, s_, w_ = (pos[:, i, None, None] for i in range(4))
-    horizontal = (t[:, 3] == t[:, 1])[:, None, None]  # W_H: W = E
-    v = np.arange(s)[None, :, None]  # pixel row in the cell
-    u = np.arange(s)[None, None, :]  # pixel column
-    th = max(1, round(s / 10))
-    on = lambda coord, p: (coord >= p - th // 2) & (coord < p - th // 2 + th)  # noqa: E731 - a line's pixels
-    top = np.where(horizontal, v < w_, np.where(u < n_, v < w_, v < e_))
-    left = np.where(horizontal, np.where(v < w_, u < n_, u < s_), u < n_)
-    mortar = np.where(horizontal, on(v, w_) | np.where(v < w_, on(u, n_), on(u, s_)),
-                      on(u, n_) | np.where(u < n_, on(v, w_), on(v, e_)))
-    # the brick of a corner region has its top-left corner in the cell up (top) and left (left) of it
-    arow = lab[:, 0, None, None] - top
-    acol = lab[:, 1, None, None] - left
+    # a cell's pixels depend on its legs only: one pattern per tile (legs as one number in base k)
+    _, first, tile_of = np.unique(((t[:, 0] * k + t[:, 1]) * k + t[:, 2]) * k + t[:, 3], return_index=True,
+                                  return_inverse=True)
+    patterns = _patterns(t[first], k, s)  # (tiles, s, s): region 0..3 or 4 for mortar
+    # the brick of a corner region TL, TR, BL, BR has its top-left corner in the cell up (top
+    # regions) and left (left regions) of it: one colour per cell and region, then per pixel
+    arow = lab[:, 0, None] - np.array([1, 1, 0, 0])
+    acol = lab[:, 1, None] - np.array([1, 0, 1, 0])
     if window is not None:
         x, y = window.x0 + acol, (window.y0 + window.height - 1 - arow if window.y_up else window.y0 + arow)
     else:
         x, y = acol, -arow
-    idx = (_mix(x, y) % np.uint64(N_BRICK_COLOURS)).astype(np.uint8)
-    idx[mortar] = MORTAR
+    colour = (_mix(x, y) % np.uint64(N_BRICK_COLOURS)).astype(np.uint8)  # (n, 4)
+    colour = np.concatenate([colour, np.full((len(t), 1), MORTAR, np.uint8)], axis=1)
+    region = patterns[tile_of.reshape(-1)]
+    idx = np.take_along_axis(colour, region.reshape(len(t), -1), axis=1).reshape(region.shape)
     pixels = np.full((rows, s, cols, s), HOLE, dtype=np.uint8)
     pixels[lab[:, 0], :, lab[:, 1], :] = idx
     img = Image.fromarray(pixels.reshape(rows * s, cols * s))
