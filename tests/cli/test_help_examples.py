@@ -32,7 +32,9 @@ COMMANDS = [(), ("aperiodic", "census"), ("aperiodic", "check"), ("aperiodic", "
             ("shapes", "heesch"), ("shapes", "list"), ("shapes", "tile"), ("tiling",), ("penrose",), ("reptile",),
             ("verify",), ("draw",), ("export", "dimacs"), ("demo",), ("backends",), ("crosscheck", "tiling"),
             ("crosscheck", "wall"), ("render",), ("render", "texture"), ("render", "wall"), ("gpu",), ("gpu", "info"),
-            ("wall-lines",), ("studio",), ("isohedral", "draw"), ("isohedral", "list")]
+            ("wall-lines",), ("studio",), ("isohedral", "draw"), ("isohedral", "list"),
+            ("sample", "poisson-tiles"), ("sample", "poisson-tiles", "build"), ("sample", "poisson-tiles", "spectrum"),
+            ("sample", "poisson-tiles", "window"), ("sample", "poisson-tiles", "texture")]
 
 
 def run(args: list[str], cwd) -> subprocess.CompletedProcess:
