@@ -136,12 +136,18 @@ def _keys(lits: np.ndarray, sizes: np.ndarray) -> list[bytes]:
 
 
 def _text(lits: np.ndarray, sizes: np.ndarray, dels: np.ndarray) -> bytes:
-    """DRAT text of the steps, one a line (the bytes ``drat_sha256`` hashes)."""
-    words = list(map(str, lits.tolist()))
-    ends = np.cumsum(sizes).tolist()
-    starts = [0] + ends[:-1]
-    lines = [("d " if d else "") + " ".join(words[s:e] + ["0"]) for s, e, d in zip(starts, ends, dels.tolist())]
-    return ("\n".join(lines) + "\n").encode("ascii")
+    """DRAT text of the steps, one a line (the bytes ``drat_sha256`` hashes).
+
+    >>> _text(np.array([1, -2, 3]), np.array([2, 1, 0]), np.array([0, 1, 0]))
+    b'1 -2 0\\nd 3 0\\n0\\n'
+    """
+    zeros = np.cumsum(sizes) + np.arange(sizes.size)  # where each step's 0 lands
+    words = list(map(str, np.insert(lits, np.cumsum(sizes), 0).tolist()))
+    for z in zeros.tolist():
+        words[z] = "0\n"
+    for first in (zeros[:-1] + 1)[dels[1:] != 0].tolist() + ([0] if dels.size and dels[0] else []):
+        words[first] = "d " + words[first]
+    return " ".join(words).replace("\n ", "\n").encode("ascii")
 
 
 def refute_band(tileset: WangTileSet, axis: str, length: int, max_width: int, *, solver: str, seed: int | None,
