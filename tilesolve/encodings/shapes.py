@@ -119,7 +119,7 @@ def _at_most_one(cs: ClauseSet, lits: list[int], top: int, label: str) -> int:
         return top
     clauses = cardinality("atmost", lits, 1, top_id=top, encoding=1)  # sequential counter
     cs.add_lists(clauses, f"{label}: at most one", grid_only=False)
-    return max([top] + [abs(v) for cl in clauses for v in cl])
+    return max(top, max(map(max, clauses)), -min(map(min, clauses)))
 
 
 @dataclass
