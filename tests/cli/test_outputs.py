@@ -178,7 +178,8 @@ PICTURE = {"pack": "--svg", "dappled": "--png"}
 def test_interruption_writes_nothing(tmp_path, command, sig, code, word):
     (tmp_path / "out.json").write_text("the result of an earlier run")
     before = snapshot(tmp_path)
-    got, err = _interrupt(HARD[command] + ["-o", "out.json", PICTURE[command], "picture"], tmp_path, sig)
+    picture = "picture." + PICTURE[command].lstrip("-")
+    got, err = _interrupt(HARD[command] + ["-o", "out.json", PICTURE[command], picture], tmp_path, sig)
     assert got == code, err
     assert f"tilesolve: {word} (no file was written)" in err and "Traceback" not in err
     assert snapshot(tmp_path) == before  # out.json untouched, no picture, no temporary
