@@ -40,29 +40,41 @@ def _viewbox(root) -> tuple[float, float, float, float]:
     return 0.0, 0.0, float(root.get("width").rstrip("px")), float(root.get("height").rstrip("px"))
 
 
-def _shift(el) -> tuple[float, float]:
-    m = re.fullmatch(r"\s*translate\(\s*([-\d.e]+)[ ,]+([-\d.e]+)\s*\)\s*", el.get("transform") or "translate(0,0)")
-    assert m, f"unexpected transform {el.get('transform')}"
-    return float(m[1]), float(m[2])
+def _affine(el) -> np.ndarray:
+    """The 3x3 matrix of ``el``'s ``transform`` (translate, scale and matrix, composed in order)."""
+    out = np.eye(3)
+    for name, args in re.findall(r"(\w+)\s*\(([^)]*)\)", el.get("transform") or ""):
+        v = [float(a) for a in re.split(r"[\s,]+", args.strip())]
+        m = np.eye(3)
+        if name == "translate":
+            m[:2, 2] = v[0], v[1] if len(v) > 1 else 0.0
+        elif name == "scale":
+            m[0, 0], m[1, 1] = v[0], v[1] if len(v) > 1 else v[0]
+        elif name == "matrix":
+            m[:2] = [[v[0], v[2], v[4]], [v[1], v[3], v[5]]]
+        else:
+            raise AssertionError(f"unexpected transform {name}")
+        out = out @ m
+    return out
 
 
-def _texts(el, dx=0.0, dy=0.0, style=None):
+def _texts(el, frame=None, style=None):
     """``(text, x_left, x_right, y_top, y_bottom)`` of every text outside ``<defs>``."""
     style = dict(style or {"font-size": "16", "text-anchor": "start", "font-weight": "normal"})
     for key in style:
         if el.get(key) is not None:
             style[key] = el.get(key)
-    sx, sy = _shift(el)
-    dx, dy = dx + sx, dy + sy
+    frame = (np.eye(3) if frame is None else frame) @ _affine(el)
     if el.tag == SVG + "text":
-        px = float(style["font-size"].rstrip("px"))
+        k = abs(np.linalg.det(frame[:2, :2])) ** 0.5  # the frame's scale
+        px = float(style["font-size"].rstrip("px")) * k
         w = _width(el.text or "", px, style["font-weight"] == "bold")
-        x, y = dx + float(el.get("x", 0)), dy + float(el.get("y", 0))
+        x, y, _ = frame @ [float(el.get("x", 0)), float(el.get("y", 0)), 1.0]
         left = {"start": x, "middle": x - w / 2, "end": x - w}[style["text-anchor"]]
         yield el.text, left, left + w, y - 0.8 * px, y + 0.25 * px
     for child in el:
         if child.tag != SVG + "defs":
-            yield from _texts(child, dx, dy, style)
+            yield from _texts(child, frame, style)
 
 
 def check_picture(text: str) -> int:
@@ -73,7 +85,8 @@ def check_picture(text: str) -> int:
     assert first.tag == SVG + "rect", "the first shape is the background"
     box = [float(first.get(k, 0)) for k in ("x", "y", "width", "height")]
     assert box[0] <= x and box[1] <= y and box[0] + box[2] >= x + w and box[1] + box[3] >= y + h
-    assert first.get("fill", "").upper() == "#FFFFFF" and first.get("fill-opacity") in (None, "1")
+    assert first.get("fill", "none").lower() not in ("none", "transparent") and "url(" not in first.get("fill")
+    assert all(first.get(k) in (None, "1") for k in ("fill-opacity", "opacity")), "an opaque background"
     n = 0
     for s, left, right, top, bottom in _texts(root):
         assert x <= left and right <= x + w and y <= top and bottom <= y + h, (s, (left, right, top, bottom),
@@ -82,9 +95,20 @@ def check_picture(text: str) -> int:
     return n
 
 
+def _demo_families() -> list:
+    """Every family with demos, the cheap ones first; a family whose pictures are known not to
+    keep the promise yet is marked (strict: the mark goes once they do)."""
+    from tilesolve import family
+
+    first = ["packing", "stochastic", "board"]
+    names = sorted((f.name for f in family.families() if f.demos), key=lambda n: (n not in first, first.index(n)
+                                                                                  if n in first else 0, n))
+    late = {"isohedral": "its SVG writer draws no background yet (svg.canvas)"}
+    return [pytest.param(n, marks=pytest.mark.xfail(reason=late[n], strict=True)) if n in late else n for n in names]
+
+
 @pytest.mark.fast_cases(3)
-@pytest.mark.parametrize("family", ["packing", "stochastic", "board", "aperiodic", "substitution", "shapes",
-                                    "dappled"])
+@pytest.mark.parametrize("family", _demo_families())
 def test_every_demo_picture_fits_its_captions_on_a_background(tmp_path, family):
     proc = run("demo", "--family", family, "--out", "pics", cwd=tmp_path)
     assert proc.returncode == 0, proc.stderr
