@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 
 import numpy as np
 import pytest
@@ -99,7 +100,9 @@ def test_the_svg_shows_the_prototile_once_and_each_tile_by_its_motion(drawn):
     problem, sol, _ = drawn
     text = svg_text(problem, sol.tiling)
     assert text.count("<path ") == 1 and text.count("<use ") == sol.tiling.n_tiles
-    assert 'width="240" height="160"' in text
+    w, h = (float(v) for v in re.search(r'<svg [^>]*width="([\d.]+)" height="([\d.]+)"', text).groups())
+    assert w >= 240 and h > 160  # the 240x160 px drawing, its caption under it
+    assert text.index("<rect ") < text.index("<use ")  # an opaque background first
 
 
 def test_a_picture_too_large_is_refused():

@@ -96,15 +96,13 @@ def check_picture(text: str) -> int:
 
 
 def _demo_families() -> list:
-    """Every family with demos, the cheap ones first; a family whose pictures are known not to
-    keep the promise yet is marked (strict: the mark goes once they do)."""
+    """Every family with demos, the cheap ones first."""
     from tilesolve import family
 
     first = ["packing", "stochastic", "board"]
     names = sorted((f.name for f in family.families() if f.demos), key=lambda n: (n not in first, first.index(n)
                                                                                   if n in first else 0, n))
-    late = {"isohedral": "its SVG writer draws no background yet (svg.canvas)"}
-    return [pytest.param(n, marks=pytest.mark.xfail(reason=late[n], strict=True)) if n in late else n for n in names]
+    return names
 
 
 @pytest.mark.fast_cases(3)

@@ -179,13 +179,23 @@ def svg_text(problem: IsohedralProblem, tiling: IsohedralTiling) -> str:
     SVG's ``matrix(a b c d e f)`` maps (x, y) to (a x + c y + e, b x + d y + f): a motion
     ``[[m00, m01, m02], [m10, m11, m12]]`` is ``matrix(m00 m10 m01 m11 m02 m12)``.
     """
+    from xml.sax.saxutils import escape
+
+    from tilesolve.io.svg import BACKGROUND, CAPTION_COLOUR, caption_box
+
     wp, hp = _size(problem)
     x0, y0, w, h = problem.region
     s = problem.scale
+    caption = problem.describe()
+    cw, ch = caption_box([caption])
+    W, H = max(wp, round(cw) + 8), hp + round(ch) + 4  # the caption under the picture, never clipped
     path = "M" + " L".join(f"{_f(x)} {_f(y)}" for x, y in tiling.outline) + " Z"
     lines = [f'<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" '
-             f'width="{wp}" height="{hp}" viewBox="0 0 {wp} {hp}">',
-             f'<title>{problem.describe()}</title>',
+             f'width="{W}" height="{H}" viewBox="0 0 {W} {H}">',
+             f'<title>{escape(caption)}</title>',
+             f'<rect x="0" y="0" width="{W}" height="{H}" fill="{BACKGROUND}"/>',
+             f'<text x="4" y="{hp + 14}" font-family="sans-serif" font-size="12" fill="{CAPTION_COLOUR}">'
+             f'{escape(caption)}</text>',
              f'<defs><path id="tile" d="{path}"/></defs>',
              f'<g transform="matrix({_f(s)} 0 0 {_f(-s)} {_f(-x0 * s)} {_f((y0 + h) * s)})" '
              f'stroke="{STROKE}" stroke-width="{_f(1.0 / s)}" stroke-linejoin="round">']
@@ -214,8 +224,10 @@ def png_bytes(problem: IsohedralProblem, tiling: IsohedralTiling) -> bytes:
     px = np.stack([(xy[..., 0] - x0) * s, (y0 + h - xy[..., 1]) * s], axis=-1).reshape(len(placed), -1)
     for flat, c in zip(px.tolist(), tiling.colours.tolist()):
         draw.polygon(flat, fill=COLOURS[c % len(COLOURS)], outline=STROKE)
+    from tilesolve.io.png import captioned
+
     buf = io.BytesIO()
-    img.save(buf, format="PNG")
+    captioned(img, [problem.describe()]).save(buf, format="PNG")
     return buf.getvalue()
 
 
