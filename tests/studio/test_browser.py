@@ -183,6 +183,8 @@ def canvas_rgb(page, selector: str, x: float, y: float) -> list[int]:
 
 def test_the_page_opens_on_a_friendly_family(page):
     assert page.input_value("#family") == "dappled"
+    assert page.evaluate("studio.result.status") == "sat"  # with its picture: pictures first
+    assert page.locator("#picture svg, #picture img").count() == 1
     assert "dappled" in page.text_content("#describe") or "|T|" in page.text_content("#describe")
 
 

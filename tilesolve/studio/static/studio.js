@@ -749,7 +749,7 @@ async function start() {
   setupEditor(); setupView(); buildGallery();
   const shared = readState();
   if (shared) await applyState(shared, !!shared.go);
-  else { pickFamily(); await formChanged(); }
+  else { pickFamily(); await formChanged(); await solve(); }   // pictures first: the page opens on one
   document.body.dataset.ready = "1";
 }
 start().catch((e) => showError(e.message));
