@@ -31,7 +31,7 @@ Periods (:func:`sweep`)
     proof checked once, and every torus of that height wider than the band gets the trimmed
     proof renamed into its own variables (Jeandel-Rao's 576 tori up to 24 x 24 rest on a few
     dozen bands); then bands of first rows for the unsheared tori left; the rest one by one,
-    smallest first, and the sweep stops at its first witness.
+    largest first, and the sweep stops at its first witness.
 
     A torus decided on its own (:func:`decide`) of at least :data:`BAND_MIN_CELLS` cells is first
     tried through its *bands*, its first ``h`` columns or rows (:func:`_by_bands`): a band's
@@ -534,8 +534,9 @@ def sweep(tileset: WangTileSet, names: Sequence[str], run: RunOptions, *, cache:
                     interrupted = True
                     break
                 tried.update(n for n in left if parse_board_name(n)[2] == 0)
-            # the smallest first: with stop_at_witness, the first witness is a small one
-            left = sorted((n for n in todo if n not in result), key=_cells)
+            # the largest first (todo's order): a torus whose bands all tile is likely tiled, and the
+            # largest such is the likeliest (periodic-10-30: its 30x30 torus, through a cylinder)
+            left = [n for n in todo if n not in result]
             if not interrupted and not (stop_at_witness and counts["tiles"]):
                 task = functools.partial(_job, tiles, n_colors, tuple(left), refutations, frozenset(tried), *common)
                 interrupted = dispatch(task, len(left), run, lambda i, cert: take(left[i], cert), show)

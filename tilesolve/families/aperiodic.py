@@ -33,7 +33,7 @@ Examples
 >>> ws = WangTileSet([[0, 1, 1, 1], [1, 1, 0, 1]], 2)   # N, E, S, W: a 2-row period
 >>> s = solve(AperiodicProblem(ws, 3, 2), seed=1, workers=1)
 >>> s.report.largest_square, [c.status for c in s.report.periods]  # the sweep stops at a witness
-(3, ['refuted', 'refuted', 'tiles', 'undecided'])
+(3, ['undecided', 'refuted', 'undecided', 'tiles'])
 >>> s.verdict, s.status.value, s.tiling is None
 ('periodic', 'sat', True)
 """
