@@ -28,6 +28,7 @@ EXAMPLES = {
 }
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("command", [["isohedral", "draw"], ["isohedral", "list"]])
 def test_help_examples_run_in_an_empty_folder(tmp_path, command):
     text = run(*command, "--help", cwd=tmp_path).stdout

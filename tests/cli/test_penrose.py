@@ -17,6 +17,7 @@ ROOT = Path(__file__).resolve().parents[2]
 EXAMPLE = "penrose --kind p3 --region -16,-9,32x18 --seed 1 --png penrose.png"
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("command", ["penrose", "reptile"])
 def test_help_examples_run(tmp_path, command):
     text = run(command, "--help", cwd=tmp_path).stdout

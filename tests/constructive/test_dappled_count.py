@@ -514,6 +514,7 @@ def upside_down_problems(draw):
     return DappledProblem(rows, cols, n_tiles=n_tiles, conditions=tuple(conds), fixed=fixed)
 
 
+@pytest.mark.slow
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(upside_down_problems())
 def test_meeting_in_the_middle_matches_brute_force(problem):

@@ -199,6 +199,7 @@ def test_ctrl_c_during_a_streamed_picture_leaves_no_file(tmp_path):
     assert list(tmp_path.iterdir()) == []
 
 
+@pytest.mark.slow
 # ----------------------------------------------------------------------------- legible maps (issue 22)
 def test_a_distance_map_reads_at_full_size(tmp_path):
     """A distance map of a large region: 8 px a cell by default (not 2: noise), in colour from
@@ -219,6 +220,7 @@ def test_a_distance_map_reads_at_full_size(tmp_path):
     assert ink.any() and ink.mean() < 0.3  # the lines that read the bar and name the wall
 
 
+@pytest.mark.slow
 def test_a_histogram_of_one_seed_says_seed(tmp_path):
     proc = run("wall-lines", "--method", "procedural", "--max-line", "2", "--size", "8x8", "--samples", "1",
                "--seed", "4", "--svg", "h.svg", cwd=tmp_path)
