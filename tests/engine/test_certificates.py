@@ -379,8 +379,9 @@ def test_sweep_api_without_a_witness_check_uses_no_cached_witness(tmp_path):
     ws = WangTileSet(DIAGONAL, 3)
     names = ["torus 1x1", "torus 3x1 shear 1"]
     cache = tmp_path / "c.jsonl"
-    sweep(ws, names, RunOptions(seed=1, workers=1), cache=cache)
-    again, _ = sweep(ws, names, RunOptions(seed=1, workers=1), cache=cache)
+    # Both boards decided (the sweep would otherwise stop at the tiled one, the larger, first).
+    sweep(ws, names, RunOptions(seed=1, workers=1), cache=cache, stop_at_witness=False)
+    again, _ = sweep(ws, names, RunOptions(seed=1, workers=1), cache=cache, stop_at_witness=False)
     assert again[0].evidence.get("cached") and not again[1].evidence.get("cached")
     assert "was not re-verified" in again[1].evidence["cache_rejected"]
 

@@ -457,7 +457,7 @@ def sweep(tileset: WangTileSet, names: Sequence[str], run: RunOptions, *, cache:
           proof_dir: str | os.PathLike | None = None, label: str = "periods",
           check_witness: Callable[[Certificate], bool] | None = None,
           stop_at_witness: bool = True) -> tuple[list[Certificate], bool]:
-    """Decide every board in ``names``; returns ``(certificates in order, interrupted)``.
+    """Decide the boards in ``names``; returns ``(certificates in order, interrupted)``.
 
     Bands first (:mod:`tilesolve.engine.aperiodic_bands`): for every torus height, the
     narrowest refuted band of its first columns, solved and checked once, refutes every torus
