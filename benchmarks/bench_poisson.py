@@ -51,7 +51,6 @@ def main() -> None:
     ap.add_argument("--command", action="store_true", help="also time the whole window command")
     args = ap.parse_args()
 
-    import numpy as np
     from scipy.stats import qmc
 
     from tilesolve.constructive.poisson import build_tiles, dart_throwing, window_points

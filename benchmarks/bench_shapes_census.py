@@ -73,7 +73,7 @@ def main() -> None:
             print(f"{g}{n}: exit {p.returncode} in {walls[(g, n)][0]:.0f} s", flush=True)
             if p.returncode not in (0, 3):
                 print(p.stderr[-2000:])
-    print(f"\n| set | done / total | isohedral | periodic | non-tilers (H: count) | inconclusive | ms a shape "
+    print("\n| set | done / total | isohedral | periodic | non-tilers (H: count) | inconclusive | ms a shape "
           f"| CPU ms a shape | this run |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     for g, n in chosen:

@@ -84,7 +84,6 @@ def test_periodic_set_gives_a_verified_torus_witness():
     s = solve(AperiodicProblem(DIAGONAL, 4, 3, shears=True), seed=1, workers=1)
     rep = s.report
     assert s.verdict == "periodic" and s.tiling is None and s.status.value == "sat"
-    by = {c.board: c for c in rep.periods}
     # the sweep stops at its first tiled torus: the rest are undecided and say why
     tiled = [c for c in rep.periods if c.status == "tiles"]
     assert len(tiled) == 1 and tiled[0].tiling is not None

@@ -44,8 +44,6 @@ Examples
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from tilesolve._random import rng_from_seed
@@ -53,7 +51,6 @@ from tilesolve.constructive import _poisson_kernels as _k
 from tilesolve.constructive.stochastic import stochastic_window
 from tilesolve.errors import InvalidProblem
 from tilesolve.model.poisson import SLACK, PoissonTilesProblem, PoissonTileSet, PoissonWindow, PoissonWindowProblem
-from tilesolve.model.window import Window
 
 __all__ = ["build_tiles", "window_points", "dart_throwing", "lloyd", "object_distribution"]
 
