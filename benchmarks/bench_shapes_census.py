@@ -74,7 +74,7 @@ def main() -> None:
             if p.returncode not in (0, 3):
                 print(p.stderr[-2000:])
     print("\n| set | done / total | isohedral | periodic | non-tilers (H: count) | inconclusive | ms a shape "
-          f"| CPU ms a shape | this run |")
+          "| CPU ms a shape | this run |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
     for g, n in chosen:
         if not os.path.exists(path_of(g, n)):
