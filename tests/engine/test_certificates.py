@@ -235,7 +235,7 @@ def test_relabelled_lattice_with_another_boards_proof_is_refused(tmp_path):
 
     with writing_proofs(tmp_path / "proofs"):
         certs, _ = sweep(tileset, ["torus 1x1", "torus 7x6 shear 6", "torus 14x6 shear 6"],
-                         RunOptions(seed=1, workers=1))
+                         RunOptions(seed=1, workers=1), stop_at_witness=False)
     assert [c.status for c in certs] == ["refuted", "tiles", "tiles"]
 
     def report(periods):
@@ -322,7 +322,7 @@ def test_report_with_a_three_colour_tile_is_one_error_line(tmp_path):
 @pytest.mark.slow
 def test_forged_cache_lines_are_decided_again_and_proofs_written_for_cached_refutations(tmp_path):
     (tmp_path / "d.json").write_text(json.dumps({"order": "NESW", "colors": 3, "tiles": DIAGONAL}))
-    args = ["aperiodic", "check", "d.json", "--max-period", "3", "--shears", "--workers", "1"]
+    args = ["aperiodic", "check", "d.json", "--max-period", "3", "--shears", "--workers", "1", "--every-board"]
     assert run(*args, "-o", "r.json", cwd=tmp_path).returncode == 0  # no --proof-dir: the cache keeps the proofs
     cache = tmp_path / "r.json.cache.jsonl"
     lines = [json.loads(ln) for ln in cache.read_text().splitlines()]

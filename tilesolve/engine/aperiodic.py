@@ -424,18 +424,24 @@ def _band_job(tiles: list, n_colors: int, specs: Sequence[tuple[str, int, int]],
               seed: int) -> list[Certificate]:
     """Band ``specs[seed]`` (``(axis, length, widest)``) of a sweep, in a worker process: the
     narrowest refuted band (:func:`~tilesolve.engine.aperiodic_bands.refute_band`) and the
-    refutations of every torus of ``names`` it holds in (none when every band is tiled)."""
+    refutations of every torus of ``names`` it holds in (none when every band is tiled). The
+    time limit ends it with the refutations made so far: the other tori stay for the sweep."""
+    from tilesolve.deadline import TimeLimitReached
     from tilesolve.engine.aperiodic_bands import band_refutation, covers, proof_dirs, refute_band
 
     tileset = WangTileSet(np.asarray(tiles, dtype=np.int64), n_colors)
     axis, length, widest = specs[seed]
-    band = refute_band(tileset, axis, length, widest, solver=solver or DEFAULT_SOLVER, seed=seed0, deadline=deadline)
     out = []
-    for name in names if band is not None else ():
-        if covers(band, name) and not deadline.expired():
-            cert = band_refutation(tileset, name, band, deadline=deadline, proof_dirs=proof_dirs(proof_dir, store))
-            if cert is not None:
-                out.append(cert)
+    try:
+        band = refute_band(tileset, axis, length, widest, solver=solver or DEFAULT_SOLVER, seed=seed0,
+                           deadline=deadline)
+        for name in names if band is not None else ():
+            if covers(band, name) and not deadline.expired():
+                cert = band_refutation(tileset, name, band, deadline=deadline, proof_dirs=proof_dirs(proof_dir, store))
+                if cert is not None:
+                    out.append(cert)
+    except TimeLimitReached:
+        pass
     return out
 
 

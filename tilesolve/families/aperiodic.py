@@ -97,7 +97,8 @@ def build_report(problem: AperiodicProblem, squares, largest: int | None, period
 def sat(problem: AperiodicProblem, run: RunOptions) -> Solution:
     """The SAT route (:mod:`tilesolve.engine.aperiodic`): squares by bisection, periods swept in
     parallel; ``run.options``: ``proof_dir`` (CNF + DRAT of every refutation), ``cache`` (a
-    results file: decided lattices are read from it and added to it)."""
+    results file: decided lattices are read from it and added to it), ``every_board`` (decide
+    every lattice, not only up to the first tiled torus)."""
     from tilesolve.engine.aperiodic import square_scan, sweep
 
     proof_dir = run.option("proof_dir")
@@ -116,7 +117,8 @@ def sat(problem: AperiodicProblem, run: RunOptions) -> Solution:
     if problem.max_period:
         names = [lat.name() for lat in problem.lattices()]
         periods, interrupted = sweep(problem.tileset, names, run, cache=run.option("cache"), proof_dir=proof_dir,
-                                     check_witness=functools.partial(_witness_holds, problem))
+                                     check_witness=functools.partial(_witness_holds, problem),
+                                     stop_at_witness=not run.option("every_board", False))
         if interrupted:
             done = sum(c.status != "undecided" for c in periods)
             return Solution(Status.UNKNOWN, None, "sat", None, run.seed, run.deadline.elapsed(),
