@@ -305,3 +305,27 @@ def test_whole_commands_refuse_a_suffix_of_another_format(tmp_path, args, bad):
 def test_suffixes_of_the_format_are_written(tmp_path, args, name):
     assert run(*args, cwd=tmp_path).returncode == 0
     assert (tmp_path / name).stat().st_size > 0
+
+
+@posix_only
+def test_an_error_that_follows_ctrl_c_is_reported_as_the_interruption(monkeypatch, tmp_path, capsys):
+    """A Ctrl-C can surface as another exception (numpy turns a KeyboardInterrupt raised inside
+    a structured-array comparison into a TypeError, seen while a wall PNG was streamed): after
+    a signal it is the interruption, exit 130, not an internal error."""
+    from tilesolve.cli import group
+    from tilesolve.families import dappled
+
+    def solve(*args, **kwargs):
+        try:
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(60)
+        except KeyboardInterrupt:
+            raise TypeError("Cannot compare structured arrays unless they have a common dtype") from None
+
+    monkeypatch.setattr(dappled, "solve", solve)
+    monkeypatch.chdir(tmp_path)
+    assert group.run(["dappled", "solve", "--size", "4x4", "-o", "t.json"]) == 130
+    assert "tilesolve: interrupted (no file was written)" in capsys.readouterr().err
+    assert os.listdir(tmp_path) == []
+    monkeypatch.setattr(dappled, "solve", lambda *a, **k: 1 / 0)  # without a signal: a bug, exit 70
+    assert group.run(["dappled", "solve", "--size", "4x4", "-o", "t.json"]) == 70

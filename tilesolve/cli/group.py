@@ -29,7 +29,7 @@ import click
 from tilesolve import __version__
 from tilesolve.cli.common import CliError, usage_error
 from tilesolve.cli.options import CONTEXT_SETTINGS, EXIT_HELP
-from tilesolve.cli.outputs import interruption, sigterm_as_interrupt
+from tilesolve.cli.outputs import interrupt_received, interruption, sigterm_as_interrupt
 from tilesolve.errors import InternalError, TilesolveError
 from tilesolve.io.atomic import remove_temporaries
 
@@ -62,10 +62,12 @@ class TilesolveGroup(click.Group):
         except (click.ClickException, click.exceptions.Exit, click.Abort):
             raise
         except SystemError as exc:  # Ctrl-C inside a compiled (numba) kernel comes back wrapped in one
-            if isinstance(exc.__cause__, KeyboardInterrupt):
+            if isinstance(exc.__cause__, KeyboardInterrupt) or interrupt_received():
                 ctx.exit(_interrupted())
             raise _internal(exc) from None
         except Exception as exc:  # noqa: BLE001 - any other exception is a bug: exit 70, one line
+            if interrupt_received():  # the interruption's consequence (see interrupt_received)
+                ctx.exit(_interrupted())
             raise _internal(exc) from None
 
     def list_commands(self, ctx: click.Context) -> list[str]:

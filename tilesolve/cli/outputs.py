@@ -34,9 +34,10 @@ import click
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.atomic import commit_together, probe_writable
 
-__all__ = ["Outputs", "OutputFile", "check_suffix", "check_target", "sigterm_as_interrupt", "interruption"]
+__all__ = ["Outputs", "OutputFile", "check_suffix", "check_target", "sigterm_as_interrupt", "interruption",
+           "interrupt_received"]
 
-_state = {"terminated": False, "pid": 0}
+_state = {"terminated": False, "interrupted": False, "pid": 0}
 
 
 def check_target(path: str) -> None:
@@ -179,20 +180,38 @@ def _on_sigterm(signum, frame) -> None:
     raise KeyboardInterrupt
 
 
+def _on_sigint(signum, frame) -> None:
+    _state["interrupted"] = True
+    raise KeyboardInterrupt
+
+
 @contextlib.contextmanager
 def sigterm_as_interrupt() -> Iterator[None]:
     """Inside the block, SIGTERM in this process behaves as Ctrl-C, remembered for the exit
-    code (143); after it, SIGTERM ends the process at once again, as by default."""
-    _state["pid"] = os.getpid()
+    code (143); after it, SIGTERM ends the process at once again, as by default. Ctrl-C is
+    remembered too (:func:`interrupt_received`), for this run only."""
+    _state.update(pid=os.getpid(), terminated=False, interrupted=False)
     try:
         previous = signal.signal(signal.SIGTERM, _on_sigterm)
     except (ValueError, OSError, AttributeError):  # not the main thread, or no SIGTERM here
         yield
         return
+    previous_int = signal.getsignal(signal.SIGINT)
+    if previous_int is signal.default_int_handler:  # an ignored Ctrl-C stays ignored
+        signal.signal(signal.SIGINT, _on_sigint)
     try:
         yield
     finally:
         signal.signal(signal.SIGTERM, previous)
+        if previous_int is signal.default_int_handler:
+            signal.signal(signal.SIGINT, previous_int)
+
+
+def interrupt_received() -> bool:
+    """Whether Ctrl-C or SIGTERM reached this run. An exception that follows one is its
+    consequence, not a bug: numpy, for one, turns a ``KeyboardInterrupt`` raised inside a
+    structured-array comparison into a ``TypeError``."""
+    return _state["interrupted"] or _state["terminated"]
 
 
 def interruption() -> tuple[int, str]:
