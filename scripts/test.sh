@@ -8,7 +8,8 @@
 # 1. System packages, with apt-get (as root, or through sudo) when missing: Python >= 3.11 with
 #    venv, EGL + Mesa for the headless moderngl context (the GPU path runs on llvmpipe) and
 #    Debian's chromium for the studio's browser tests (Playwright's own browser download is
-#    not used). Without root, sudo or apt-get it stops with one line naming what is missing.
+#    not used), and groff to render the man page. Without root, sudo or apt-get it stops with one
+#    line naming what is missing.
 # 2. A virtual environment, $VENV (default .venv), made when missing, with tilesolve and its
 #    test extra installed into it (pip install ".[test]": a real install, as a user gets).
 # 3. python -m pytest -q -n auto --dist loadscope, in that environment: pytest-xdist on every
@@ -38,6 +39,7 @@ for lib in libEGL.so.1 libEGL_mesa.so.0 libGL.so.1; do
 done
 ls /usr/lib/*/dri/swrast_dri.so >/dev/null 2>&1 || need+=(libgl1-mesa-dri)
 command -v chromium >/dev/null 2>&1 || need+=(chromium)
+command -v groff >/dev/null 2>&1 || need+=(groff-base)  # renders the man page in tests/test_docs.py
 if [ "${#need[@]}" -gt 0 ]; then
     packages="$(printf '%s\n' "${need[@]}" | sort -u | tr '\n' ' ')"
     if [ "$(id -u)" -eq 0 ]; then
