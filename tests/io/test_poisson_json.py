@@ -61,6 +61,8 @@ def test_csv_and_npy_hold_plane_coordinates(built, tmp_path):
     (lambda d: d["tiles"]["corner"][0].append([1, "x"]), "corner"),
     (lambda d: d["tiles"]["interior"].append([]), "interior"),
     (lambda d: d.update(seed=-1), "seed"),
+    (lambda d: d.update(distance=d["distance"] / 2), "'distance' is"),  # a weaker promise, forged
+    (lambda d: d.update(distance="0.1"), "'distance' is"),
 ])
 def test_bad_set_files_are_one_line_errors(built, edit, words):
     p, sol = built

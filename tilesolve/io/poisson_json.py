@@ -97,9 +97,17 @@ def _read_problem(doc: dict, source: str) -> PoissonTilesProblem:
         if key not in doc:
             raise InvalidProblem(f"{source}: missing field {key!r}")
     try:
-        return PoissonTilesProblem(doc["colors"], doc["points"], doc["rho"], doc["lloyd"])
+        problem = PoissonTilesProblem(doc["colors"], doc["points"], doc["rho"], doc["lloyd"])
     except InvalidProblem as exc:
         raise InvalidProblem(f"{source}: {exc}") from None
+    # The distance is recomputed from the problem; a file that states another one is refused,
+    # so that the verdict can never be read as a promise about the stated distance.
+    stated = doc.get("distance", problem.distance)
+    if isinstance(stated, bool) or not isinstance(stated, (int, float)) or not math.isclose(
+            stated, problem.distance, rel_tol=1e-12):
+        raise InvalidProblem(f"{source}: 'distance' is {stated!r}, but its problem's is {problem.distance!r} "
+                             "(2 rho r_max(N))")
+    return problem
 
 
 def _seed(doc: dict, source: str):
