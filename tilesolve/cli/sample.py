@@ -103,11 +103,17 @@ def build(ctx, colors, points, rho, lloyd, seed, output) -> None:
     _done(ctx, outs)
 
 
+def _set_and_region(command):
+    """The SET.json argument and the --region option of the commands that lay out a window."""
+    command = click.option("--region", required=True, metavar="X0,Y0,WxH",
+                           help="W x H tiles whose SW tile is (X0, Y0); y points north, coordinates may be "
+                                "negative.")(command)
+    return click.argument("tileset", type=click.Path(dir_okay=False), metavar="SET.json")(command)
+
+
 @poisson_tiles.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP,
                        short_help="The points of a window of the plane tiled with a set.")
-@click.argument("tileset", type=click.Path(dir_okay=False), metavar="SET.json")
-@click.option("--region", required=True, metavar="X0,Y0,WxH",
-              help="W x H tiles whose SW tile is (X0, Y0); y points north, coordinates may be negative.")
+@_set_and_region
 @click.option("--tiling", type=click.Choice(["direct", "scanline"]), default="direct", show_default=True,
               help="The stochastic corner tiling that colours the lattice (§3.3.1 direct, §3.2.2 scanline).")
 @click.option("--set", "variant", type=click.Choice(["complete", "compact"]), default="complete", show_default=True,
@@ -123,7 +129,7 @@ def build(ctx, colors, points, rho, lloyd, seed, output) -> None:
 @click.pass_context
 def window(ctx, tileset, region, tiling, variant, hash_, seed, output, svg, png) -> None:
     """Sample a window: place the set's tiles on a stochastic corner tiling and keep the points
-    inside the region. The window is verified (a KD-tree over its points) before it is written.
+    inside the region. The window is verified (every pair of points closer than the distance is searched on a grid of cells) before it is written.
 
     \b
     Examples:
@@ -198,9 +204,7 @@ def spectrum(ctx, tileset, size, runs, seed, svg, png) -> None:
 
 @poisson_tiles.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP,
                        short_help="Objects scattered without overlaps: the procedural object distribution (§6.6.2).")
-@click.argument("tileset", type=click.Path(dir_okay=False), metavar="SET.json")
-@click.option("--region", required=True, metavar="X0,Y0,WxH",
-              help="W x H tiles whose SW tile is (X0, Y0); y points north, coordinates may be negative.")
+@_set_and_region
 @click.option("--px", type=click.IntRange(1, 512), default=32, show_default=True, help="Pixels a tile side.")
 @click.option("--image", type=click.Path(dir_okay=False, exists=False), metavar="IMG.png",
               help="The object drawn in every Poisson disk (transparent pixels show the background); "

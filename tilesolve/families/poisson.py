@@ -12,7 +12,7 @@ Two questions (:mod:`tilesolve.model.poisson`):
 * :class:`~tilesolve.model.poisson.PoissonWindowProblem`: the points of a window of the
   plane tiled by a stochastic corner tiling (direct or scanline); route ``window``. The answer,
   a :class:`~tilesolve.model.poisson.PoissonWindow`, is checked by
-  :func:`tilesolve.verify.poisson.point_violations` (a KD-tree over the window).
+  :func:`tilesolve.verify.poisson.point_violations` (a grid search over the window).
 
 Examples
 --------
