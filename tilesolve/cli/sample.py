@@ -129,7 +129,8 @@ def _set_and_region(command):
 @click.pass_context
 def window(ctx, tileset, region, tiling, variant, hash_, seed, output, svg, png) -> None:
     """Sample a window: place the set's tiles on a stochastic corner tiling and keep the points
-    inside the region. The window is verified (every pair of points closer than the distance is searched on a grid of cells) before it is written.
+    inside the region. The window is verified before it is written: a search on a grid of
+    cells finds every pair of points closer than the distance.
 
     \b
     Examples:
