@@ -52,7 +52,7 @@ from tilesolve.constructive.stochastic import stochastic_window
 from tilesolve.errors import InvalidProblem
 from tilesolve.model.poisson import SLACK, PoissonTilesProblem, PoissonTileSet, PoissonWindow, PoissonWindowProblem
 
-__all__ = ["build_tiles", "window_points", "dart_throwing", "lloyd", "object_distribution"]
+__all__ = ["build_tiles", "window_points", "place_tiles", "corner_lattice", "dart_throwing", "lloyd", "object_distribution"]
 
 #: The radius shrinks by this factor when darts keep missing (McCool and Fiume 1992).
 SHRINK = 0.97
@@ -235,12 +235,13 @@ def _padded(arrays: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
     return out, np.array([len(a) for a in arrays], dtype=np.int64)
 
 
-def _place(origins: np.ndarray, which: np.ndarray, arrays: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+def _place(origins: np.ndarray, which: np.ndarray, arrays: list[np.ndarray]):
     """The points of tiles ``arrays[which[i]]`` at integer ``origins[i]``: each point's origin,
-    and its coordinates in its tile's frame."""
+    its coordinates in its tile's frame, and its index in its tile."""
     pad, counts = _padded(arrays)
     mask = np.arange(pad.shape[1])[None, :] < counts[which][:, None]
-    return np.broadcast_to(origins[:, None, :], pad[which].shape)[mask], pad[which][mask]
+    index = np.broadcast_to(np.arange(pad.shape[1])[None, :], mask.shape)[mask]
+    return np.broadcast_to(origins[:, None, :], pad[which].shape)[mask], pad[which][mask], index
 
 
 def window_points(tileset: PoissonTileSet, window, *, tiling: str = "direct", variant: str = "complete",
@@ -268,21 +269,48 @@ def window_points(tileset: PoissonTileSet, window, *, tiling: str = "direct", va
     return PoissonWindow(problem.window, np.ascontiguousarray(offsets + frame), tileset.problem.distance)
 
 
-def _window_parts(problem: PoissonWindowProblem, seed) -> tuple[np.ndarray, np.ndarray]:
-    """The points of a window as integer offsets from its corner (float64) plus coordinates in
-    their tile's frame: their sum is the point."""
-    w, tileset = problem.window, problem.tileset
-    c = tileset.problem.colors
-    grid = stochastic_window("corner", problem.tiling, (w.x0, w.y0, w.width, w.height), colors=c, seed=seed,
-                             variant=problem.variant, hash=problem.hash)[::-1].astype(np.int64)  # row j: y0 + j
+def corner_lattice(grid: np.ndarray, colors: int) -> np.ndarray:
+    """The lattice colouring of a window of a corner tiling: ``lat[j, i]`` is the colour of
+    lattice point ``(x0 + i, y0 + j)`` (y north) of the ``(h, w)`` grid of eq. 2.5 tiles
+    ``grid`` (row 0 at the top, as :func:`~tilesolve.constructive.stochastic.stochastic_window`
+    gives it).
+
+    >>> corner_lattice(np.array([[0b0110]]), 2).tolist()  # NE 0, SE 1, SW 1, NW 0
+    [[1, 1], [0, 0]]
+    """
+    c = colors
+    grid = np.asarray(grid, dtype=np.int64)[::-1]  # row j: y0 + j
     ne, se, sw, nw = grid // c**3, grid // c**2 % c, grid // c % c, grid % c
     h, wd = grid.shape
-    lat = np.empty((h + 1, wd + 1), np.int64)  # colour of lattice point (x0 + i, y0 + j) at [j, i]
+    lat = np.empty((h + 1, wd + 1), np.int64)
     lat[:h, :wd] = sw
     lat[:h, wd] = se[:, -1]
     lat[h, :wd] = nw[-1, :]
     lat[h, wd] = ne[-1, -1]
-    jj, ii = np.mgrid[0:h + 1, 0:wd + 1]
+    return lat
+
+
+def place_tiles(tileset: PoissonTileSet, lat: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Every point of the tiles a coloured lattice places (§4.3), none cropped.
+
+    Parameters
+    ----------
+    tileset : PoissonTileSet
+    lat : (h + 1, w + 1) int array
+        ``lat[j, i]``: the colour of lattice point ``(i, j)`` (y north).
+
+    Returns
+    -------
+    (offsets, frame, which)
+        Each point's tile origin (integer, float64) and its coordinates in its tile's frame
+        (their sum is the point), and the point's index in its tile (ordered by kind of tile,
+        then by tile position).
+    """
+    c = tileset.problem.colors
+    lat = np.asarray(lat, dtype=np.int64)
+    sw, se, ne, nw = lat[:-1, :-1], lat[:-1, 1:], lat[1:, 1:], lat[1:, :-1]
+    grid = ((ne * c + se) * c + sw) * c + nw
+    jj, ii = np.mgrid[0:lat.shape[0], 0:lat.shape[1]]
     lattice = np.stack([ii, jj], axis=-1).astype(np.float64)
     t = tileset.tiles
     parts = [
@@ -291,8 +319,19 @@ def _window_parts(problem: PoissonWindowProblem, seed) -> tuple[np.ndarray, np.n
         _place(lattice[:-1, :].reshape(-1, 2), (lat[:-1, :] * c + lat[1:, :]).ravel(), t["vedge"]),
         _place(lattice[:-1, :-1].reshape(-1, 2), grid.ravel(), t["interior"]),
     ]
-    offsets = np.concatenate([o for o, _ in parts])
-    frame = np.concatenate([f for _, f in parts])
+    return (np.concatenate([o for o, _, _ in parts]), np.concatenate([f for _, f, _ in parts]),
+            np.concatenate([k for _, _, k in parts]))
+
+
+def _window_parts(problem: PoissonWindowProblem, seed) -> tuple[np.ndarray, np.ndarray]:
+    """The points of a window as integer offsets from its corner (float64) plus coordinates in
+    their tile's frame: their sum is the point."""
+    w, tileset = problem.window, problem.tileset
+    c = tileset.problem.colors
+    grid = stochastic_window("corner", problem.tiling, (w.x0, w.y0, w.width, w.height), colors=c, seed=seed,
+                             variant=problem.variant, hash=problem.hash)
+    h, wd = grid.shape
+    offsets, frame, _ = place_tiles(tileset, corner_lattice(grid, c))
     pts = offsets + frame
     keep = (pts[:, 0] >= 0) & (pts[:, 0] < wd) & (pts[:, 1] >= 0) & (pts[:, 1] < h)
     return offsets[keep], frame[keep]
