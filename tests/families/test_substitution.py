@@ -76,12 +76,14 @@ def test_the_form_and_its_command_pose_the_same_problem(tmp_path, values):
     assert len(doc["types"]) == ours.n_tiles
 
 
-def test_the_form_refuses_a_rep_tile_window():
-    from tilesolve.errors import InvalidProblem
+def test_a_rep_tile_grows_by_steps_whatever_the_window_fields_say():
     from tilesolve.families.substitution import FORM
 
-    with pytest.raises(InvalidProblem, match="grown by steps"):
-        FORM.build({f.name: f.default for f in FORM.fields} | {"kind": "chair"})
+    vals = FORM.values({"kind": "chair", "patch": "window", "steps": 3, "seed": 1})
+    problem, _ = FORM.build(vals)
+    assert (problem.kind, problem.steps, problem.region) == ("chair", 3, None)
+    applies = {f.name: f.applies(vals) for f in FORM.fields}  # the studio hides the others
+    assert applies == {"kind": True, "patch": False, "x0": False, "y0": False, "size": False, "steps": True}
 
 
 @pytest.mark.slow

@@ -29,7 +29,7 @@ from tilesolve.model.isohedral import (
     IsohedralType,
 )
 
-__all__ = ["edge_path", "prototile", "layout"]
+__all__ = ["edge_path", "side_maps", "prototile", "layout"]
 
 # tactile's M_orients by (flip, rotate): identity, half-turn about (1/2, 0), mirror in x = 1/2,
 # reflection in the x axis.
@@ -61,18 +61,24 @@ def _evaluate(coeffs: np.ndarray, params: tuple[float, ...]) -> np.ndarray:
     return coeffs @ np.array((*params, 1.0))
 
 
-def prototile(t: IsohedralType, params: tuple[float, ...], edges: tuple[EdgeShape, ...]) -> tuple[np.ndarray, tuple[int, ...]]:
-    """The prototile's outline (tiling-vertex order, not closed) and the index of each tiling vertex.
+def side_maps(t: IsohedralType, params: tuple[float, ...]) -> list[tuple[np.ndarray, bool]]:
+    """Per tiling edge ``k`` (vertex ``k`` to ``k + 1``): the affine map ``(2, 3)`` from its class's
+    unit frame onto the edge, after the edge's orientation (§7.4.2), and whether the mapped path
+    runs backwards (exactly one of flip and rotate).
 
     Raises
     ------
     InvalidProblem
-        Two tiling vertices coincide, the outline is too long, or the tile crosses or touches itself.
+        Two tiling vertices coincide.
+
+    >>> from tilesolve.model.isohedral import isohedral_type
+    >>> m, reverse = side_maps(isohedral_type(41), (0.5, 0.5))[0]
+    >>> m.shape, reverse
+    ((2, 3), False)
     """
     verts = _evaluate(t.vertex_coeffs, params)
     size = float(np.abs(verts).max()) + 1.0
-    paths = [edge_path(e) for e in edges]
-    out, corners = [], []
+    out = []
     for k in range(t.n_vertices):
         p, q = verts[k], verts[(k + 1) % t.n_vertices]
         d = q - p
@@ -81,9 +87,24 @@ def prototile(t: IsohedralType, params: tuple[float, ...], edges: tuple[EdgeShap
                                  f"(vertices {k} and {(k + 1) % t.n_vertices} coincide)")
         orient = _ORIENT[t.orientations[k]]
         match = np.array([[d[0], -d[1], p[0]], [d[1], d[0], p[1]]])
-        local = paths[t.edge_classes[k]] @ orient[:, :2].T + orient[:, 2]
-        pts = local @ match[:, :2].T + match[:, 2]
-        if t.orientations[k][0] != t.orientations[k][1]:
+        m = np.hstack([match[:, :2] @ orient[:, :2], match[:, :2] @ orient[:, 2:] + match[:, 2:]])
+        out.append((m, t.orientations[k][0] != t.orientations[k][1]))
+    return out
+
+
+def prototile(t: IsohedralType, params: tuple[float, ...], edges: tuple[EdgeShape, ...]) -> tuple[np.ndarray, tuple[int, ...]]:
+    """The prototile's outline (tiling-vertex order, not closed) and the index of each tiling vertex.
+
+    Raises
+    ------
+    InvalidProblem
+        Two tiling vertices coincide, the outline is too long, or the tile crosses or touches itself.
+    """
+    paths = [edge_path(e) for e in edges]
+    out, corners = [], []
+    for k, (m, reverse) in enumerate(side_maps(t, params)):
+        pts = paths[t.edge_classes[k]] @ m[:, :2].T + m[:, 2]
+        if reverse:
             pts = pts[::-1]
         corners.append(sum(len(o) for o in out))
         out.append(pts[:-1])

@@ -270,6 +270,7 @@ def _form_command(values) -> tuple[list[str], dict[str, str]]:
 def _form() -> Form:
     from tilesolve.io.builtin_tilesets import names
 
+    most_period = 8
     return Form(
         fields=(
             Field("tileset", "choice", "tile set", "jeandel-rao", "a built-in Wang tile set",
@@ -277,9 +278,9 @@ def _form() -> Form:
             Field("max_square", "int", "max square", 12, "find the largest tiled n x n square, n <= this (0: none)",
                   low=0, high=40, option="--max-square"),
             Field("max_period", "int", "max period", 2, "check every torus p x q, p, q <= this (0: none)",
-                  low=0, high=8, option="--max-period"),
+                  low=0, high=most_period, option="--max-period"),
             Field("shears", "bool", "sheared tori", False, "also every sheared torus (every lattice of periods)",
-                  option="--shears"),
+                  option="--shears", when=({"max_period": tuple(range(1, most_period + 1))},)),
         ),
         build=_form_build,
         command=_form_command,

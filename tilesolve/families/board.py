@@ -452,7 +452,7 @@ FORM = Form(
         Field("max_v", "int", "longest vertical line", None, "no vertical line through more cells (SAT route)",
               low=1, high=1 << 20, option="--max-v"),
         Field("mask", "cells", "holes (mask boards)", None, "click cells to make holes (0) or cells (1)",
-              option="--board", extent=_mask_extent),
+              option="--board", extent=_mask_extent, when=({"board": ("mask",)},)),
         Field("edge", "cells", "boundary colours (painted)", None, "paint the frame around the board (or a "
               "hole): every boundary leg facing a painted cell takes its colour", option="--boundary",
               extent=_edge_extent),

@@ -31,11 +31,21 @@ from __future__ import annotations
 import time
 from typing import Any, Sequence
 
+import numpy as np
+
 from tilesolve.errors import InvalidProblem
 from tilesolve.family import Codec, Demo, Family, Field, Form, RunOptions, register
 from tilesolve.family import solve as _solve
 from tilesolve.io.isohedral_json import TILING_FORMAT, VERSIONS
-from tilesolve.model.isohedral import TYPES, EdgeShape, IsohedralProblem, IsohedralTiling, parse_type
+from tilesolve.model.isohedral import (
+    BEZIER_CHORDS,
+    TYPES,
+    EdgeShape,
+    IsohedralProblem,
+    IsohedralTiling,
+    isohedral_type,
+    parse_type,
+)
 from tilesolve.model.solution import Solution, Status
 from tilesolve.progress import Progress
 
@@ -84,7 +94,7 @@ def problem(type: int | str, params: Sequence[float] | None = None,
     (``"bezier:0.3,0.2/0.7,-0.2"``), a list (one per edge class) or a dict class -> shape
     (the others straight)."""
     number = parse_type(type)
-    from tilesolve.model.isohedral import STRAIGHT, isohedral_type
+    from tilesolve.model.isohedral import STRAIGHT
 
     n = len(isohedral_type(number).edge_kinds)
     if isinstance(edges, dict):
@@ -159,6 +169,18 @@ def _form_build(values) -> tuple[IsohedralProblem, dict]:
     return problem(*_form_values(values)), {}
 
 
+def _form_sketch(values) -> dict:
+    """The prototile's sides for the studio's live edge editor (:attr:`tilesolve.family.Form.sketch`)."""
+    from tilesolve.constructive.isohedral import side_maps
+
+    p = _form_build(values)[0]
+    t = p.template
+    return {"edges": [{"field": f"edge{k}", "kind": kind} for k, kind in enumerate(t.edge_kinds)],
+            "sides": [{"edge": c, "map": np.round(m, 12).tolist(), "reverse": reverse}
+                      for c, (m, reverse) in zip(t.edge_classes, side_maps(t, p.params))],
+            "chords": BEZIER_CHORDS}
+
+
 def _form_command(values) -> tuple[list[str], dict[str, str]]:
     typ, params, edges, (_, _, w, h), scale = _form_values(values)
     words = ["isohedral", "draw", "--type", typ]
@@ -177,7 +199,9 @@ FORM = Form(
               option="--params"),
         *(Field(f"edge{k}", "text", f"edge class {k}", "bezier:0.3,0.2/0.7,-0.2" if k < 2 else "",
                 "line, line:X,Y/... or bezier:X,Y/X,Y (empty: straight); J free, U mirror-symmetric, "
-                "S half-turn-symmetric, I straight", option="--edge") for k in range(_FORM_EDGES)),
+                "S half-turn-symmetric, I straight", option="--edge",
+                when=({"type": tuple(f"IH{n:02d}" for n in TYPES if len(isohedral_type(n).edge_kinds) > k)},))
+          for k in range(_FORM_EDGES)),
         Field("region", "size", "region (WxH)", "10x8", "width by height in tile units", high=100_000,
               option="--region"),
         Field("scale", "float", "pixels per unit", 40.0, "the picture is W and H times this", low=1, high=1000,
@@ -186,6 +210,7 @@ FORM = Form(
     build=_form_build,
     command=_form_command,
     time_limit=False,
+    sketch=_form_sketch,
 )
 
 FAMILY = register(Family(

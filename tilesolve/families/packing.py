@@ -369,7 +369,7 @@ FORM = Form(
         Field("colors", "int", "colours C", 3, "C >= 2: the complete set has C^4 tiles", low=2, high=6,
               option="--colors"),
         Field("colors_v", "int", "vertical colours C_v", None, "Wang tiles only: colours of the E/W edges",
-              low=2, high=6, option="--colors-v"),
+              low=2, high=6, option="--colors-v", when=({"kind": ("wang",)},)),
         Field("pins", "cells", "pinned tiles", None, "click a cell to pin its tile (§5.5.4 puzzles)",
               option="--fix", extent=_pins_extent),
     ),

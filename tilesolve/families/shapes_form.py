@@ -78,6 +78,9 @@ def _form_command(values) -> tuple[list[str], dict[str, str]]:
     return words + ([] if values["reflections"] else ["--no-reflections"]), {}
 
 
+#: When a field applies: the tile question's, the heesch question's.
+_TILE, _HEESCH = ({"question": ("tile",)},), ({"question": ("heesch",)},)
+
 FORM = Form(
     fields=(
         Field("question", "choice", "question", "tile", "tile: copies cover a torus or a rectangle; heesch: "
@@ -87,15 +90,17 @@ FORM = Form(
         Field("shape", "text", "shape", "XX/XX/X.", "ASCII art, rows top first, '/' between rows, or cells "
               "'x,y x,y'; a painted shape takes its place", option="--shape"),
         Field("where", "choice", "tile on", "torus", "tile: a torus with periods (W, 0), (0, H) or a W x H region",
-              choices=("torus", "region")),
-        Field("size", "size", "size (WxH)", "5x4", "tile: W by H translation cells", high=4096, option="--torus"),
+              choices=("torus", "region"), when=_TILE),
+        Field("size", "size", "size (WxH)", "5x4", "tile: W by H translation cells", high=4096, option="--torus",
+              when=_TILE),
         Field("reflections", "bool", "mirror images", True, "copies may be reflected (rotations always may)",
               option="--no-reflections"),
         Field("max_level", "int", "most coronas", 3, "heesch: the most coronas tried", low=1, high=6,
-              option="--max-level"),
+              option="--max-level", when=_HEESCH),
         Field("max_copies", "int", "copies per period", 2, "heesch: the most copies per period tried on tori",
-              low=1, high=6, option="--max-copies"),
-        Field("holes", "bool", "holes in the outer corona", False, "heesch: H_h rather than H_c", option="--holes"),
+              low=1, high=6, option="--max-copies", when=_HEESCH),
+        Field("holes", "bool", "holes in the outer corona", False, "heesch: H_h rather than H_c", option="--holes",
+              when=_HEESCH),
         Field("paint", "cells", "shape (painted)", None, "paint the shape's cells (1); rows top first as in "
               "ASCII art", option="--shape", extent=_paint_extent),
     ),

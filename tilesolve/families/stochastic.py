@@ -212,7 +212,8 @@ FORM = Form(
         Field("hash", "choice", "hash", "long", "lattice hash of the generators (§3.4)", choices=("long", "table"),
               option="--hash"),
         Field("algorithm", "choice", "direct algorithm", "edges", "complete Wang sets: hashes at the edges "
-              "(§3.3.2.3) or two at the corners (§3.3.2.1)", choices=("edges", "two"), option="--algorithm"),
+              "(§3.3.2.3) or two at the corners (§3.3.2.1)", choices=("edges", "two"), option="--algorithm",
+              when=({"kind": ("wang",), "set": ("complete",)},)),
     ),
     build=_form_build,
     command=_form_command,

@@ -42,7 +42,7 @@ from tilesolve.family import Codec, Demo, Family, Field, Form, RunOptions, form_
 from tilesolve.family import solve as _solve
 from tilesolve.io.substitution_json import PATCH_FORMAT, VERSIONS
 from tilesolve.model.solution import Solution, Status
-from tilesolve.model.substitution import KINDS, PENROSE, Patch, SubstitutionProblem
+from tilesolve.model.substitution import KINDS, PENROSE, REPTILES, Patch, SubstitutionProblem
 from tilesolve.progress import Progress
 from tilesolve.verify.dappled import Violation
 
@@ -162,7 +162,7 @@ DEMOS = (
 
 def _form_build(values) -> tuple[SubstitutionProblem, dict]:
     """A Penrose window (``patch`` = window) or a patch grown by steps."""
-    if values["patch"] == "window":
+    if values["patch"] == "window" and values["kind"] in PENROSE:  # rep-tiles grow by steps
         rows, cols = form_size(values["size"])
         return SubstitutionProblem(values["kind"], region=(values["x0"], values["y0"], cols, rows)), {}
     return SubstitutionProblem(values["kind"], steps=values["steps"]), {}
@@ -178,18 +178,22 @@ def _form_command(values) -> tuple[list[str], dict[str, str]]:
     return ["penrose", "--kind", problem.kind, "--steps", str(problem.steps)], {}
 
 
+#: When the window's fields apply: a Penrose window.
+_WINDOW = ({"kind": PENROSE, "patch": ("window",)},)
+
 FORM = Form(
     fields=(
         Field("kind", "choice", "tiling", "p3", "Penrose rhombs (p3), kites and darts (p2), or a rep-tile",
               choices=KINDS, option="--kind"),
         Field("patch", "choice", "patch", "window", "a window of the plane (Penrose) or a patch grown by steps",
-              choices=("window", "steps")),
+              choices=("window", "steps"), when=({"kind": PENROSE},)),
         Field("x0", "int", "window x0", -20, "left edge (units: the rhomb edge)", low=-10**6, high=10**6,
-              option="--region"),
+              option="--region", when=_WINDOW),
         Field("y0", "int", "window y0", -12, "bottom edge (y grows upwards)", low=-10**6, high=10**6,
-              option="--region"),
-        Field("size", "size", "window (WxH)", "40x24", "W by H units", high=10**6, option="--region"),
-        Field("steps", "int", "steps", 5, "substitution steps (patch = steps)", low=0, high=12, option="--steps"),
+              option="--region", when=_WINDOW),
+        Field("size", "size", "window (WxH)", "40x24", "W by H units", high=10**6, option="--region", when=_WINDOW),
+        Field("steps", "int", "steps", 5, "substitution steps (patch = steps)", low=0, high=12, option="--steps",
+              when=({"patch": ("steps",)}, {"kind": REPTILES})),
     ),
     build=_form_build,
     command=_form_command,

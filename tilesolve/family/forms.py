@@ -37,6 +37,10 @@ class Field:
     extent : callable, optional
         ``cells`` only: ``extent(values) -> (rows, cols, low, high)``, the grid's shape and its
         cell values' range for the other values of the form.
+    when : tuple of dict
+        When the field applies (the studio hides it otherwise): under any one of these
+        conditions, each a mapping ``{other field's name: the values under which it applies}``
+        that all hold; empty: always. A field that does not apply takes its default (:meth:`Form.values`).
     """
 
     name: str
@@ -49,11 +53,22 @@ class Field:
     choices: tuple[str, ...] = ()
     option: str | None = None
     extent: Callable[[Mapping[str, Any]], tuple[int, int, int, int]] | None = None
+    when: tuple[Mapping[str, tuple], ...] = ()
 
     def public(self) -> dict:
         """The field as JSON for the page (without the callables)."""
-        return {k: getattr(self, k) for k in ("name", "kind", "label", "default", "help", "low", "high",
-                                               "choices", "option")}
+        out = {k: getattr(self, k) for k in ("name", "kind", "label", "default", "help", "low", "high",
+                                              "choices", "option")}
+        out["when"] = [{name: list(vals) for name, vals in cond.items()} for cond in self.when]
+        return out
+
+    def applies(self, values: Mapping[str, Any]) -> bool:
+        """Whether the field applies to the form's ``values`` (:attr:`when`).
+
+        >>> Field("steps", "int", "steps", when=({"patch": ("steps",)},)).applies({"patch": "window"})
+        False
+        """
+        return not self.when or any(all(values.get(k) in vals for k, vals in cond.items()) for cond in self.when)
 
 
 @dataclass(frozen=True)
@@ -82,6 +97,14 @@ class Form:
     time_limit : bool
         Whether :attr:`command`'s command takes ``--time-limit`` (the studio's copied command
         keeps the page's time limit where it does).
+    sketch : callable, optional
+        Families whose tile has edges the user shapes (the studio's live edge editor):
+        ``sketch(values) -> dict``, JSON-ready: ``{"edges": [{"field", "kind"}, ...]}`` one per
+        edge class (the ``text`` field that holds its shape, its constraint J, U, S or I),
+        ``"sides"``: the tile's sides in outline order, each ``{"edge": class, "map": 2x3 affine
+        map from the class's unit frame (0, 0)-(1, 0) onto the side, "reverse": bool}``, and
+        ``"chords"``: chords per cubic Bézier piece. The outline is each side's shape mapped,
+        reversed where said, without its last point.
     """
 
     fields: tuple[Field, ...]
@@ -90,12 +113,14 @@ class Form:
     window: Callable[..., tuple[Any, str, Mapping[str, Any]]] | None = None
     cells: Callable[[Any, Solution], Any] | None = None
     time_limit: bool = True
+    sketch: Callable[[Mapping[str, Any]], dict] | None = None
 
     def values(self, given: Mapping[str, Any]) -> dict[str, Any]:
         """``given`` checked against the fields (types, limits, choices), defaults filled in.
 
         Unknown keys and values of the wrong type raise :class:`InvalidProblem` (one line
-        naming the field). ``cells`` grids are checked for shape by :attr:`Field.extent`.
+        naming the field). ``cells`` grids are checked for shape by :attr:`Field.extent`. A
+        field that does not apply to the other values (:attr:`Field.when`) takes its default.
         """
         if not isinstance(given, Mapping):
             raise InvalidProblem("form values must be a JSON object")
@@ -106,6 +131,9 @@ class Form:
         out: dict[str, Any] = {}
         for f in self.fields:
             out[f.name] = _field_value(f, given.get(f.name, f.default))
+        for f in self.fields:  # a field that does not apply keeps its default, whatever was given
+            if not f.applies(out):
+                out[f.name] = _field_value(f, f.default)
         seed = given.get("seed")
         out["seed"] = draw_seed() if seed is None else check_seed(seed)
         for f in self.fields:

@@ -7,7 +7,8 @@ message>"}``):
 ``GET /api/families``               every family with a form: name, title, methods, fields, view,
                                     the picture formats it draws; and the pictures' tile palette
 ``POST /api/check``                 ``{family, values}`` -> the problem's description, the
-                                    painted grids' extents, the CLI command
+                                    painted grids' extents, the CLI command, and the tile's
+                                    sides for the live edge editor (``sketch``, or null)
 ``POST /api/solve``                 ``{family, values, method, time_limit}`` -> ``{id}`` (a job)
 ``GET /api/jobs/{id}?wait=S``       the job: state, elapsed time, progress, and when done its
                                     result (status, method, verdict, picture, solution JSON, command)
@@ -19,6 +20,8 @@ message>"}``):
 ``GET /api/jobs/{id}/solution.json|picture.svg|picture.png``  the exports (the CLI's files)
 ``GET /api/view/{family}.png?values=JSON&x=&y=&n=``  one n x n window of an infinite
                                     procedural view (pan and zoom), x/y its bottom-left cell
+``GET /api/webgl/{family}?values=JSON``  the shaders with which the page draws that view itself
+                                    (WebGL2; the procedural wall), or ``{"kind": null}``
 
 The page sends values, never paths: no endpoint reads or writes a file named by a request.
 Only requests addressed to the server's own socket are answered, and only the studio's own
@@ -179,7 +182,8 @@ def _check(doc: dict) -> dict:
     sizing.refuse_oversized(fam, problem, method)
     grids = {f.name: list(f.extent(vals)) for f in fam.form.fields if f.kind == "cells"}
     return {"describe": problem.describe() if hasattr(problem, "describe") else fam.name, "cells": grids,
-            "seed": vals["seed"], "command": worker.command_line(fam, vals, method, vals["seed"], time_limit)}
+            "seed": vals["seed"], "command": worker.command_line(fam, vals, method, vals["seed"], time_limit),
+            "sketch": fam.form.sketch(vals) if fam.form.sketch is not None else None}
 
 
 def _posed(data: bytearray) -> tuple[dict, dict]:
@@ -285,11 +289,22 @@ async def view(request: Request) -> Response:
         raise InvalidProblem("x, y and n must be whole numbers") from None
     if not 1 <= n <= MAX_VIEW_CELLS:
         raise InvalidProblem(f"a view window is 1..{MAX_VIEW_CELLS} cells wide, got {n}")
-    raw = q.get("values", "{}")
-    if len(raw) > 100_000:
-        raise InvalidProblem("values too long")
+    raw = _view_values(request)
     data = await anyio.to_thread.run_sync(request.app.state.views.png, request.path_params["family"], raw, x, y, n)
     return Response(data, media_type="image/png", headers={"Cache-Control": "max-age=3600"})
+
+
+def _view_values(request: Request) -> str:
+    """The form values (JSON text) of a view request."""
+    raw = request.query_params.get("values", "{}")
+    if len(raw) > 100_000:
+        raise InvalidProblem("values too long")
+    return raw
+
+
+@_guard
+async def webgl(request: Request) -> Response:
+    return JSONResponse(request.app.state.views.webgl(request.path_params["family"], _view_values(request)))
 
 
 # ----------------------------------------------------------------------------- the app
@@ -305,6 +320,7 @@ def _routes() -> list:
         Route("/api/jobs/{id}/events", job_events),
         Route("/api/jobs/{id}/{what}", export),
         Route("/api/view/{family}.png", view),
+        Route("/api/webgl/{family}", webgl),
         Mount("/static", StaticFiles(directory=STATIC), name="static"),
     ]
 

@@ -104,26 +104,36 @@ async function exportPicture(fmt, ev) {
 }
 
 // ------------------------------------------------------------------ pan and zoom
+// A painter ({active(), down(e), move(e), up()}) takes the left button while it is active: then
+// the middle button or Shift+drag pans.
 class PanZoom {
-  constructor(stage, content, { onChange = () => {}, maxZoom = 64 } = {}) {
-    Object.assign(this, { stage, content, onChange, maxZoom, z: 1, x: 0, y: 0 });
-    let drag = null;
+  constructor(stage, content, { onChange = () => {}, maxZoom = 64, painter = null } = {}) {
+    Object.assign(this, { stage, content, onChange, maxZoom, painter, z: 1, x: 0, y: 0 });
+    let drag = null, stroke = false;
+    const painting = () => this.painter !== null && this.painter.active();
     stage.addEventListener("pointerdown", (e) => {
-      if (e.button !== 0 || e.target.closest("button")) return;
-      drag = { x: e.clientX, y: e.clientY }; stage.classList.add("dragging"); stage.setPointerCapture(e.pointerId);
+      if ((e.button !== 0 && e.button !== 1) || e.target.closest("button")) return;
+      if (e.button === 1) e.preventDefault();   // no autoscroll
+      stage.setPointerCapture(e.pointerId);
+      if (e.button === 0 && !e.shiftKey && painting()) { stroke = true; this.painter.down(e); return; }
+      drag = { x: e.clientX, y: e.clientY }; stage.classList.add("dragging");
     });
     stage.addEventListener("pointermove", (e) => {
+      if (stroke) { this.painter.move(e); return; }
       if (!drag) return;
       this.x += e.clientX - drag.x; this.y += e.clientY - drag.y; drag = { x: e.clientX, y: e.clientY }; this.apply();
     });
-    const end = () => { drag = null; stage.classList.remove("dragging"); };
+    const end = () => {
+      if (stroke) { stroke = false; this.painter.up(); }
+      drag = null; stage.classList.remove("dragging");
+    };
     stage.addEventListener("pointerup", end); stage.addEventListener("pointercancel", end);
     stage.addEventListener("wheel", (e) => {
       e.preventDefault();
       const r = stage.getBoundingClientRect();
       this.zoomAt(Math.exp(-e.deltaY / 400), e.clientX - r.left, e.clientY - r.top);
     }, { passive: false });
-    stage.addEventListener("dblclick", () => this.fit());
+    stage.addEventListener("dblclick", () => { if (!painting()) this.fit(); });
     stage.addEventListener("keydown", (e) => {
       const r = stage.getBoundingClientRect();
       if (e.key === "+" || e.key === "=") this.zoomAt(1.25, r.width / 2, r.height / 2);
@@ -191,7 +201,7 @@ function buildForm() {
     }
     input.name = f.name; input.id = "field-" + f.name; input.dataset.kind = f.kind; input.dataset.label = f.label;
     input.addEventListener("change", formChanged);
-    label.appendChild(input);
+    label.appendChild(input); label.dataset.field = f.name;
     form.appendChild(label);
   }
   $("method").innerHTML = "";
@@ -201,8 +211,28 @@ function buildForm() {
   const gf = $("grid-field"); gf.innerHTML = "";
   for (const f of studio.fam.fields) if (f.kind === "cells") gf.add(new Option(f.label, f.name));
   studio.grids = {}; studio.cells = null; undoStack.length = 0; redoStack.length = 0;
-  $("editor").hidden = gf.options.length === 0;
+  studio.sketch = null; drawEdges();
   $("view-panel").hidden = !studio.fam.view;
+  showApplicable();
+}
+
+// A field applies under any one of its conditions (Field.when: {other field: values}, all of
+// them holding), or always; the others are hidden (the server takes their defaults).
+const applies = (f, v) => !f.when.length || f.when.some((c) => Object.entries(c).every(([k, vs]) => vs.includes(v[k])));
+
+function showApplicable() {
+  const v = formValues(), gf = $("grid-field");
+  for (const f of studio.fam.fields) {
+    const on = applies(f, v);
+    if (f.kind === "cells") { const o = gf.querySelector(`option[value="${f.name}"]`); o.hidden = o.disabled = !on; }
+    else $("form").querySelector(`label[data-field="${f.name}"]`).hidden = !on;
+  }
+  if (gf.selectedOptions.length && gf.selectedOptions[0].disabled) {
+    const next = [...gf.options].find((o) => !o.disabled);
+    if (next) gf.value = next.value;
+  }
+  $("editor").hidden = ![...gf.options].some((o) => !o.disabled);
+  if ($("editor").hidden) setPaintMode(false);
 }
 
 function formValues() {
@@ -243,14 +273,14 @@ function markInvalid(message) {
 let checkSeq = 0;
 async function formChanged() {
   const seq = ++checkSeq;
-  resetView(); saveState(false);
+  showApplicable(); resetView(); saveState(false);
   try {
     const doc = await api("/api/check", request());
     if (seq !== checkSeq) return;
     showError("");
     for (const el of $("form").elements) el.setAttribute("aria-invalid", "false");
     $("describe").textContent = doc.describe; $("describe").dataset.state = "ok";
-    studio.extents = doc.cells;
+    studio.extents = doc.cells; studio.sketch = doc.sketch; drawEdges();
     for (const [name, [rows, cols]] of Object.entries(doc.cells)) {
       const g = studio.grids[name];
       if (g && (g.length !== rows || g[0].length !== cols)) delete studio.grids[name];
@@ -276,7 +306,7 @@ function fillBrushes() {
   if ([...b.options].some(o => o.value === keep)) b.value = keep;
 }
 
-function cellPx(rows, cols) { return Math.max(1, Math.min(24, Math.floor(384 / Math.max(rows, cols)))); }
+function cellPx(rows, cols) { return Math.max(1, Math.min(32, Math.floor(1024 / Math.max(rows, cols)))); }
 const solutionCell = (r, c) => studio.cells.data[r * studio.cells.cols + c];
 
 // One pixel per cell on a small canvas, scaled up without smoothing: any size draws in milliseconds.
@@ -339,12 +369,30 @@ function restore(from, to) {
 }
 const undo = () => restore(undoStack, redoStack), redo = () => restore(redoStack, undoStack);
 
+// Paint mode: the stage shows the painted grid (the solution's tiles faint under it) in place of
+// the picture, with the same pan and zoom; the left button paints (studio.stage's painter).
+function setPaintMode(on) {
+  if (!studio.stage || studio.painting === on) return;
+  studio.painting = on;
+  $("paint-mode").setAttribute("aria-pressed", String(on));
+  $("stage").classList.toggle("painting", on);
+  $("paint").hidden = !on; $("picture").hidden = on;
+  studio.stage.content = on ? $("paint") : $("picture");
+  $("stage-empty").hidden = on || !!(studio.result && studio.result.picture);
+  drawGrid(); studio.stage.fit();
+}
+
+const painter = {
+  active: () => studio.painting,
+  down(e) { undoStack.push(snapshot()); redoStack.length = 0; paintAt(e); },
+  move: paintAt,
+  up: () => formChanged(),
+};
+
 function setupEditor() {
-  let down = false;
-  $("grid").addEventListener("mousedown", (e) => { undoStack.push(snapshot()); redoStack.length = 0; down = true; paintAt(e); });
-  $("grid").addEventListener("mousemove", (e) => { if (down) paintAt(e); });
-  window.addEventListener("mouseup", () => { if (down) { down = false; formChanged(); } });
-  $("grid-field").addEventListener("change", drawGrid);
+  studio.painting = false;
+  $("paint-mode").addEventListener("click", () => setPaintMode(!studio.painting));
+  $("grid-field").addEventListener("change", () => { drawGrid(); if (studio.painting) studio.stage.fit(); });
   $("grid-undo").addEventListener("click", undo);
   $("grid-redo").addEventListener("click", redo);
   $("grid-clear").addEventListener("click", () => {
@@ -367,11 +415,215 @@ function setupEditor() {
   });
 }
 
+// ------------------------------------------------------------------ live edge editor
+// A family whose tile has shaped edges (Form.sketch: the tile's sides, each an affine map of an
+// edge class's unit frame (0,0)-(1,0)) gets a drawing of its tile here. Each class's points are
+// dragged on the first side of that class, under its constraint: J free, U mirror-symmetric in
+// x = 1/2, S symmetric by a half-turn about (1/2, 0), I straight (no points). The class's text
+// field follows; the picture's tile (its SVG draws one tile path, placed by <use>) is redrawn
+// at once from the same outline the server builds (constructive/isohedral.py, prototile: done
+// here too so that a drag redraws at frame rate), and the server solves, verifies and draws the
+// tiling again when the drag pauses or ends.
+const SVGNS = "http://www.w3.org/2000/svg";
+const EDGE_COLOURS = ["#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00"];
+const round3 = (v) => Math.round(v * 1000) / 1000;
+const clamp = (v, lo, hi) => Math.min(hi, Math.max(lo, v));
+
+// "", "line", "line:X,Y/X,Y" or "bezier:X,Y/X,Y" as {kind, points}; null when unreadable.
+function parseShape(text) {
+  const m = /^\s*(line|bezier)?\s*(?::(.*))?$/.exec(text);
+  if (!m || (!m[1] && m[2] !== undefined)) return null;
+  const points = m[2] ? m[2].split("/").map((p) => p.split(",").map((v) => (v.trim() === "" ? NaN : Number(v)))) : [];
+  if (points.some((p) => p.length !== 2 || !p.every(Number.isFinite))) return null;
+  return { kind: m[1] || "line", points };
+}
+const formatShape = (s) => (s.points.length ? `${s.kind}:` + s.points.map(([x, y]) => `${x},${y}`).join("/") : s.kind);
+
+// The shape's path from (0,0) to (1,0); a Bézier chain as `chords` chords per cubic.
+function edgePath(s, chords) {
+  const pts = [[0, 0], ...s.points, [1, 0]];
+  if (s.kind === "line") return pts;
+  const out = [];
+  for (let k = 0; k + 3 < pts.length; k += 3) for (let i = 0; i < chords; i++) {
+    const t = i / chords, b = [(1 - t) ** 3, 3 * t * (1 - t) ** 2, 3 * t * t * (1 - t), t ** 3];
+    out.push([0, 1].map((d) => b.reduce((acc, w, j) => acc + w * pts[k + j][d], 0)));
+  }
+  out.push([1, 0]);
+  return out;
+}
+const mapPoint = (m, [x, y]) => [m[0][0] * x + m[0][1] * y + m[0][2], m[1][0] * x + m[1][1] * y + m[1][2]];
+function unmapPoint(m, [X, Y]) {
+  const [[a, b, c], [d, e, f]] = m, det = a * e - b * d, u = X - c, v = Y - f;
+  return [(e * u - b * v) / det, (a * v - d * u) / det];
+}
+
+function edgeShapes(sk) { return sk.edges.map((e) => parseShape($("field-" + e.field).value)); }
+
+// The tile's outline: each side's shape mapped onto it, reversed where said, without its last point.
+function tileOutline(sk, shapes) {
+  if (shapes.some((s) => s === null)) return null;
+  const out = [];
+  for (const side of sk.sides) {
+    const pts = edgePath(shapes[side.edge], sk.chords).map((p) => mapPoint(side.map, p));
+    if (side.reverse) pts.reverse();
+    out.push(...pts.slice(0, -1));
+  }
+  return out;
+}
+
+// The partner a point's constraint gives (U: mirror in x = 1/2; S: half-turn about (1/2, 0)).
+const partner = (kind, [x, y]) => (kind === "U" ? [round3(1 - x), y] : [round3(1 - x), round3(-y)]);
+
+function movePoint(s, kind, i, q) {
+  q = [round3(clamp(q[0], -3, 4)), round3(clamp(q[1], -4, 4))];   // the model's box: |coordinate| <= 4
+  const j = s.points.length - 1 - i;
+  if (kind === "U" || kind === "S") {
+    if (i === j) q = kind === "U" ? [0.5, q[1]] : [0.5, 0];
+    else s.points[j] = partner(kind, q);
+  }
+  s.points[i] = q;
+}
+
+function segmentDistance([px, py], [ax, ay], [bx, by]) {
+  const dx = bx - ax, dy = by - ay, len = dx * dx + dy * dy;
+  const t = len ? clamp(((px - ax) * dx + (py - ay) * dy) / len, 0, 1) : 0;
+  return Math.hypot(px - ax - t * dx, py - ay - t * dy);
+}
+
+// A polyline point at q on its nearest segment, with its partner on the mirror segment (U, S).
+function insertPoint(s, kind, q) {
+  q = [round3(clamp(q[0], -3, 4)), round3(clamp(q[1], -4, 4))];
+  const P = s.points, n = P.length, path = [[0, 0], ...P, [1, 0]];
+  let seg = 0;
+  for (let t = 1; t <= n; t++) if (segmentDistance(q, path[t], path[t + 1]) < segmentDistance(q, path[seg], path[seg + 1])) seg = t;
+  if (kind === "J") { P.splice(seg, 0, q); return; }
+  if (2 * seg === n) { P.splice(seg, 0, kind === "U" ? [0.5, q[1]] : [0.5, 0]); return; }   // the middle segment
+  let a = q, b = partner(kind, q);
+  if (seg > n - seg) { seg = n - seg; [a, b] = [b, a]; }
+  s.points = [...P.slice(0, seg), a, ...P.slice(seg, n - seg), b, ...P.slice(n - seg)];
+}
+
+function removePoint(s, kind, i) {
+  const j = s.points.length - 1 - i;
+  s.points = s.points.filter((_, k) => k !== i && (kind === "J" || k !== j));
+}
+
+function svgEl(tag, attrs, parent) {
+  const el = document.createElementNS(SVGNS, tag);
+  for (const [k, v] of Object.entries(attrs)) el.setAttribute(k, v);
+  if (parent) parent.appendChild(el);
+  return el;
+}
+const pointsAttr = (pts) => pts.map(([x, y]) => `${x},${y}`).join(" ");
+
+function drawEdges() {
+  const sk = studio.sketch, svg = $("edge-editor");
+  $("edges").hidden = !sk;
+  if (!sk) return;
+  const shapes = edgeShapes(sk), outline = tileOutline(sk, shapes);
+  // the view: the straight tile's corners with room around them for the edges' points
+  const corners = sk.sides.map((side) => mapPoint(side.map, [0, 0]));
+  const xs = corners.map((p) => p[0]), ys = corners.map((p) => p[1]);
+  const wide = Math.max(...xs) - Math.min(...xs), high = Math.max(...ys) - Math.min(...ys), pad = 0.4 * Math.max(wide, high);
+  const w = wide + 2 * pad, h = high + 2 * pad;
+  svg.setAttribute("viewBox", `${Math.min(...xs) - pad} ${-Math.max(...ys) - pad} ${w} ${h}`);
+  const unit = Math.max(w / (svg.clientWidth || 320), h / (svg.clientHeight || 280));   // a CSS pixel in the tile's units
+  svg.replaceChildren();
+  const g = svgEl("g", { transform: "scale(1 -1)" }, svg);
+  studio.edgeFrame = g;
+  if (outline) svgEl("polygon", { points: pointsAttr(outline), fill: "#e9eef5", stroke: "none" }, g);
+  const seen = new Set();
+  sk.sides.forEach((side, k) => {
+    const shape = shapes[side.edge], kind = sk.edges[side.edge].kind, colour = EDGE_COLOURS[side.edge % EDGE_COLOURS.length];
+    if (!shape) return;
+    const pts = edgePath(shape, sk.chords).map((p) => mapPoint(side.map, p));
+    svgEl("polyline", { points: pointsAttr(pts), fill: "none", stroke: colour, "stroke-width": 2 * unit,
+                        "stroke-dasharray": kind === "I" ? `${4 * unit} ${3 * unit}` : "none" }, g);
+    if (seen.has(side.edge)) return;   // the first side of its class carries the points
+    seen.add(side.edge);
+    const mid = mapPoint(side.map, [0.5, 0]);
+    const label = svgEl("text", { x: mid[0], y: -mid[1], "font-size": 12 * unit, fill: colour, "text-anchor": "middle",
+                                  "font-weight": 600, "pointer-events": "none" }, svg);
+    label.textContent = `${side.edge} ${kind}`;
+    if (kind === "I") return;
+    if (shape.kind === "line") {
+      const hit = svgEl("polyline", { points: pointsAttr(pts), fill: "none", stroke: "transparent",
+                                      "stroke-width": 12 * unit, class: "hit" }, g);
+      hit.dataset.side = k;
+    } else {
+      const ctrl = [[0, 0], ...shape.points, [1, 0]].map((p) => mapPoint(side.map, p));
+      svgEl("polyline", { points: pointsAttr(ctrl), fill: "none", stroke: colour, "stroke-opacity": 0.5,
+                          "stroke-width": unit, "stroke-dasharray": `${3 * unit} ${3 * unit}` }, g);
+    }
+    shape.points.forEach((p, i) => {
+      const [cx, cy] = mapPoint(side.map, p);
+      const c = svgEl("circle", { cx, cy, r: 6 * unit, fill: colour, stroke: "#fff", "stroke-width": 1.5 * unit, class: "handle" }, g);
+      c.dataset.side = k; c.dataset.i = i;
+    });
+  });
+}
+
+// A changed shape: its text field, the editor, the picture's tile at once, the server's tiling soon.
+function commitShape(edge, shape) {
+  $("field-" + studio.sketch.edges[edge].field).value = formatShape(shape);
+  drawEdges();
+  const outline = tileOutline(studio.sketch, edgeShapes(studio.sketch));
+  const tile = $("picture").querySelector("svg path#tile");
+  if (outline && tile && studio.result && studio.result.family === studio.fam.name)
+    tile.setAttribute("d", "M" + outline.map(([x, y]) => `${x.toFixed(6)} ${y.toFixed(6)}`).join(" L") + " Z");
+  resolveSoon();
+}
+
+let resolveTimer = null;
+function resolveSoon(ms = 400) {
+  clearTimeout(resolveTimer);
+  resolveTimer = setTimeout(async () => {
+    if (studio.job) { resolveSoon(ms); return; }
+    studio.keepView = true;
+    try { await solve(); } finally { studio.keepView = false; }
+  }, ms);
+}
+
+function setupEdgeEditor() {
+  const svg = $("edge-editor");
+  let drag = null;
+  const at = (e) => {   // the pointer in the tile's coordinates
+    const p = svg.createSVGPoint(); p.x = e.clientX; p.y = e.clientY;
+    const q = p.matrixTransform(studio.edgeFrame.getScreenCTM().inverse()); return [q.x, q.y];
+  };
+  const target = (e) => {
+    const side = studio.sketch.sides[Number(e.target.dataset.side)], edge = side.edge;
+    return { side, edge, kind: studio.sketch.edges[edge].kind, shape: edgeShapes(studio.sketch)[edge] };
+  };
+  svg.addEventListener("pointerdown", (e) => {
+    if (!e.target.classList.contains("handle") || e.button !== 0) return;
+    drag = { ...target(e), i: Number(e.target.dataset.i) };
+    svg.setPointerCapture(e.pointerId);
+  });
+  svg.addEventListener("pointermove", (e) => {
+    if (!drag) return;
+    drag.moved = true;
+    movePoint(drag.shape, drag.kind, drag.i, unmapPoint(drag.side.map, at(e)));
+    commitShape(drag.edge, drag.shape);
+  });
+  const end = () => { if (drag && drag.moved) { formChanged(); resolveSoon(0); } drag = null; };
+  svg.addEventListener("pointerup", end); svg.addEventListener("pointercancel", end);
+  svg.addEventListener("dblclick", (e) => {
+    const hit = e.target.classList;
+    if (!hit.contains("handle") && !hit.contains("hit")) return;
+    const t = target(e);
+    if (t.shape.kind !== "line") return;
+    if (hit.contains("handle")) removePoint(t.shape, t.kind, Number(e.target.dataset.i));
+    else insertPoint(t.shape, t.kind, unmapPoint(t.side.map, at(e)));
+    commitShape(t.edge, t.shape); formChanged();
+  });
+}
+
 // ------------------------------------------------------------------ solving
 function clearResult() {
   studio.result = null; studio.pictureImage = null;
   $("picture").innerHTML = ""; $("verdict").textContent = ""; $("window-caption").textContent = "";
-  $("exports").hidden = true; $("stage-empty").hidden = false; delete $("status").dataset.status;
+  $("exports").hidden = true; $("stage-empty").hidden = !!studio.painting; delete $("status").dataset.status;
 }
 
 async function solve() {
@@ -380,7 +632,7 @@ async function solve() {
   $("solve").disabled = true; $("cancel").disabled = false; $("progress").hidden = false;
   $("progress").removeAttribute("value");
   $("status").textContent = "solving…"; delete $("status").dataset.status;
-  $("picture").style.opacity = .35;
+  if (!studio.keepView) $("picture").style.opacity = .35;   // an edge editor's redraw keeps the picture as it is
   try {
     const { id } = await api("/api/solve", request());
     studio.job = id; studio.lastJob = id;
@@ -451,7 +703,7 @@ async function showResult(res) {
     studio.pictureImage = img; pic.replaceChildren(img);
   } else { pic.innerHTML = ""; studio.pictureImage = null; $("stage-empty").hidden = false; }
   recolourPicture();
-  studio.stage.fit();
+  if (!studio.keepView) studio.stage.fit();
   studio.timings.lastSolveMs = performance.now() - studio.timings.click;
   const obj = res.objective === null ? "" : `, distance ${res.objective}`;
   const run = `${res.method}, seed ${res.seed}, ${res.time_s.toFixed(3)} s`;
@@ -577,6 +829,7 @@ function resetView() {
     ([k]) => !studio.fam.fields.some(f => f.name === k && f.kind === "cells")));
   values.seed = values.seed === undefined ? 0 : values.seed;   // one seed for every window
   view.values = encodeURIComponent(JSON.stringify(values));
+  if (window.studioWebGL) studioWebGL.configure(studio.fam.name, view.values).then(() => requestAnimationFrame(drawView));
   requestAnimationFrame(drawView);
 }
 
@@ -631,6 +884,12 @@ function drawView() {
   const ctx = cv.getContext("2d");
   ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
   ctx.clearRect(0, 0, w, h);
+  if (window.studioWebGL && studioWebGL.draw(view, CELL, w, h, dpr)) {   // drawn here by the GPU path's shaders
+    view.wanted = []; view.missing = 0; $("view-loading").hidden = true;
+    $("view-info").textContent = `cells x ${Math.floor(view.x / CELL)}, y ${-Math.floor(view.y / CELL)}, ` +
+      `zoom ${view.zoom.toFixed(2)}, drawn by WebGL2`;
+    return;
+  }
   const level = levelFor(view.zoom), n = VIEW_N << level, T = n * CELL, z = view.zoom;
   const i0 = Math.floor(view.x / T), j0 = Math.floor(view.y / T);
   const i1 = Math.floor((view.x + w / z) / T), j1 = Math.floor((view.y + h / z) / T);
@@ -675,6 +934,7 @@ function drawView() {
 
 function setupView() {
   const vp = $("viewport");
+  if (window.studioWebGL) studioWebGL.setup(resetView);
   let drag = null, pending = false;
   const redraw = () => { if (!pending) { pending = true; requestAnimationFrame(() => { pending = false; drawView(); }); } };
   vp.addEventListener("pointerdown", (e) => { drag = { x: e.clientX, y: e.clientY }; vp.style.cursor = "grabbing"; vp.setPointerCapture(e.pointerId); });
@@ -718,6 +978,7 @@ function shortcuts(e) {
   else if (e.key === "Escape" && studio.job) cancel();
   else if (mod && !typing && (e.key === "z" || e.key === "Z")) { e.preventDefault(); (e.shiftKey ? redo : undo)(); }
   else if (mod && !typing && e.key === "y") { e.preventDefault(); redo(); }
+  else if (!mod && !e.altKey && !typing && (e.key === "p" || e.key === "P") && !$("editor").hidden) setPaintMode(!studio.painting);
 }
 
 async function start() {
@@ -745,8 +1006,8 @@ async function start() {
   for (const f of ["svg", "png"]) $("export-" + f).addEventListener("click", (e) => exportPicture(f, e));
   document.addEventListener("keydown", shortcuts);
   window.addEventListener("hashchange", () => { const st = readState(); if (st) applyState(st, !!st.go); });
-  studio.stage = new PanZoom($("stage"), $("picture"));
-  setupEditor(); setupView(); buildGallery();
+  studio.stage = new PanZoom($("stage"), $("picture"), { painter });
+  setupEditor(); setupEdgeEditor(); setupView(); buildGallery();
   const shared = readState();
   if (shared) await applyState(shared, !!shared.go);
   else { pickFamily(); await formChanged(); await solve(); }   // pictures first: the page opens on one
