@@ -6,6 +6,8 @@
     tilesolve sample poisson-tiles window set.json --region X0,Y0,WxH [--tiling direct|scanline]
                      [--seed S] [-o pts.json|pts.csv|pts.npy] [--svg pts.svg] [--png pts.png]
     tilesolve sample poisson-tiles spectrum set.json [--size W] [--seed S] [--svg s.svg] [--png s.png]
+    tilesolve sample stipple [IMAGE.png] [--method penrose|polyomino|rejection] [--points N] -o out.svg
+    tilesolve sample importance-spectrum [IMAGE.png] [--points N] [--svg s.svg] [--periodogram p.png]
 """
 
 from __future__ import annotations
@@ -258,3 +260,255 @@ def _read_image(path: str):
             return np.asarray(img.convert("RGBA"))
     except (OSError, UnidentifiedImageError) as exc:
         raise InvalidProblem(f"cannot read the picture {path}: {exc.__class__.__name__}") from None
+
+
+@sample.group("poisson-spheres", context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP,
+              short_help="Corner-based Poisson sphere tiles: build a 3-D set, sample boxes of space (§4.4).")
+def poisson_spheres() -> None:
+    """Corner-based Poisson sphere tiles (class notes §4.4).
+
+    A set of C + 3C^2 + 3C^4 + C^8 tiles on corner cubes (corner, edge, face and interior
+    regions) is built once; any box of space, tiled by the direct 3-D corner tiling with the
+    long-period hash, is then a Poisson sphere distribution: no two points closer than
+    2 rho r_max(N), across tile seams too.
+
+    \b
+    Examples:
+      tilesolve sample poisson-spheres build -C 2 -N 128 --rho 0.65 --seed 1 -o spheres.json
+      tilesolve sample poisson-spheres window spheres.json --region 0,0,0,4x4x4 --seed 2 -o pts.npy
+      tilesolve verify spheres.json
+    """
+
+
+@poisson_spheres.command("build", context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP,
+                         short_help="Build a 3-D tile set: C colours, N points a cell, relative radius rho.")
+@click.option("-C", "--colors", type=int, required=True, metavar="C", help="Corner colours (1..4): C^8 interior tiles.")
+@click.option("-N", "--points", type=int, required=True, metavar="N", help="Points a unit cell.")
+@click.option("--rho", type=float, default=0.65, show_default=True,
+              help="Relative radius (eq. 4.6): no two points closer than 2 rho r_max(N); 0.05..0.85.")
+@opt.seed_opt
+@click.option("-o", "--output", type=OutputFile("json"), required=True, metavar="SET.json",
+              help="Write the tile set here ('-' for stdout).")
+@click.pass_context
+def spheres_build(ctx, colors, points, rho, seed, output) -> None:
+    """Build a set of corner-based Poisson sphere tiles and verify it.
+
+    The set is checked before it is written: every point in its region, and every pair of
+    nearby tiles under every colouring of the lattice points they touch (C <= 2; 4,096
+    random colourings a pair above). The same seed gives the same file, byte for byte.
+
+    \b
+    Examples:
+      tilesolve sample poisson-spheres build -C 2 -N 128 --rho 0.65 --seed 1 -o spheres.json
+      tilesolve sample poisson-spheres build -C 1 -N 100 --rho 0.6 -o one.json
+    """
+    from tilesolve.families.poisson_sphere import solve
+    from tilesolve.io.atomic import write_text_atomic
+    from tilesolve.io.poisson_sphere_json import dump, tiles_to_dict
+    from tilesolve.model.poisson_sphere import PoissonSphereTilesProblem
+
+    problem = PoissonSphereTilesProblem(colors, points, rho)
+    outs = Outputs(output)
+    sol = solve(problem, method="dart", seed=seed)
+    with outs.commit(sol):
+        text = dump(tiles_to_dict(problem, sol))
+        if output == "-":
+            click.echo(text, nl=False)
+        else:
+            write_text_atomic(output, text)
+    short = sol.stats["short"]
+    say(f"{sol.status.value}: {problem.describe()}, {sol.stats['points']:,} points, seed {sol.seed}, "
+        f"in {sol.time_s:.2f} s" + (f"; interior tiles lack {short} points in all" if short else ""))
+    _done(ctx, outs)
+
+
+@poisson_spheres.command("window", context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP,
+                         short_help="The points of a box of space tiled with a 3-D set.")
+@click.argument("tileset", type=click.Path(dir_okay=False), metavar="SET.json")
+@click.option("--region", required=True, metavar="X0,Y0,Z0,WxHxD",
+              help="W x H x D cells whose least cell is (X0, Y0, Z0); coordinates may be negative.")
+@click.option("--hash", "hash_", type=click.Choice(["long", "table"]), default="long", show_default=True,
+              help="Lattice hash of the direct corner tiling (§3.4).")
+@opt.seed_opt
+@click.option("-o", "--output", type=OutputFile("json", "csv", "npy", allow_dash=False), metavar="PTS.npy|csv|json",
+              help="Write the points: JSON (relative to the box's least corner, any box), CSV or NPY (coordinates "
+                   "of space).")
+@click.pass_context
+def spheres_window(ctx, tileset, region, hash_, seed, output) -> None:
+    """Sample a box: colour its lattice points with the direct 3-D corner tiling, place the
+    set's tiles and keep the points inside. The box is verified before it is written: a
+    search on a grid of cells finds every pair of points closer than the distance.
+
+    \b
+    Examples:
+      tilesolve sample poisson-spheres build -C 2 -N 128 --rho 0.65 --seed 1 -o spheres.json
+      tilesolve sample poisson-spheres window spheres.json --region 0,0,0,20x20x20 --seed 2 -o pts.npy
+      tilesolve sample poisson-spheres window spheres.json --region 1000000000000,-5,7,2x2x2 -o far.json
+      tilesolve verify far.json
+    """
+    from tilesolve.families.poisson_sphere import solve
+    from tilesolve.io.jsonio import load_document
+    from tilesolve.io.poisson_sphere_json import (
+        TILES_FORMAT,
+        VERSIONS,
+        check_point_output3,
+        tiles_from_dict,
+        write_points3,
+    )
+    from tilesolve.model.poisson_sphere import PoissonSphereWindowProblem, parse_box
+
+    box = parse_box(region)
+    outs = Outputs(output)
+    if output:
+        check_point_output3(output, box)
+    _, set_sol = tiles_from_dict(load_document(tileset, {TILES_FORMAT: VERSIONS}), tileset)
+    problem = PoissonSphereWindowProblem(set_sol.tiling, box, hash_)
+    sol = solve(problem, method="window", seed=seed)
+    with outs.commit(sol):
+        if output:
+            write_points3(output, problem, sol)
+    say(f"{sol.status.value}: {sol.tiling.n_points:,} points, {problem.describe()}, seed {sol.seed}, "
+        f"in {sol.time_s:.2f} s")
+    _done(ctx, outs)
+
+
+def _density_options(command):
+    """The IMAGE argument and the options shared by the importance-sampling commands."""
+    for option in reversed((
+        click.argument("image", required=False, type=click.Path(dir_okay=False), metavar="[IMAGE.png]"),
+        click.option("--test-image", type=click.Choice(["radial", "gradient", "flat"]), default=None,
+                     help="A built-in 256 x 256 test image instead of IMAGE (radial when neither is given)."),
+        click.option("-n", "--points", type=int, default=20_000, show_default=True, metavar="N",
+                     help="About how many samples (1..2,000,000)."),
+        click.option("--tile", type=click.Choice(["x-pentomino", "chair", "l-tetromino", "p-pentomino"]),
+                     default="x-pentomino", show_default=True,
+                     help="The polyomino method's self-similar tile: the X pentomino of base 2 + i (rep-5, each "
+                          "level turned by atan(1/2)) or a rep-4 polyomino."),
+        click.option("--lloyd", type=click.IntRange(0, 50), default=0, show_default=True, metavar="K",
+                     help="Density-weighted Lloyd steps after sampling (penrose, polyomino)."),
+        click.option("--jitter/--no-jitter", default=False, show_default=True,
+                     help="Each sample at a random point of its tile, not its centroid (penrose, polyomino)."),
+    )):
+        command = option(command)
+    return command
+
+
+@sample.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP,
+                short_help="Stipple an image: samples whose density follows its darkness (Parts IV-V).")
+@_density_options
+@click.option("--method", type=click.Choice(["penrose", "polyomino", "rejection"]), default="polyomino",
+              show_default=True, help="The sampler.")
+@opt.seed_opt
+@click.option("-o", "--output", type=OutputFile("svg", allow_dash=False), required=True, metavar="OUT.svg",
+              help="Write the stippled picture here.")
+@click.option("--png", type=OutputFile("png", allow_dash=False), metavar="OUT.png", help="Also as PNG.")
+@click.option("--csv", "csv_", type=OutputFile("csv", allow_dash=False), metavar="PTS.csv",
+              help="Also the samples: x, y (y up, the image's longer side 1).")
+@click.pass_context
+def stipple(ctx, image, test_image, points, tile, lloyd, jitter, method, seed, output, png, csv_) -> None:
+    """Stipple an image (class notes Part V): about N samples whose density follows the image's
+    darkness (1 - grey / 255), drawn as dots sized by it. The samplers are hierarchical: a
+    Penrose tiling's Robinson triangles (Ostromoukhov, Donohue, Jodoin 2004) or a self-similar
+    polyomino (Ostromoukhov 2007) subdivided where the image needs more than one sample a tile,
+    each tile's sample kept by a threshold on its structural index; or plain rejection sampling.
+    The papers' correction vectors are not tabulated: --jitter and --lloyd stand in for them.
+    The samples are checked before anything is written: inside the image, and the counts of 2 x 2
+    and 4 x 4 blocks near their share of the image's darkness (exit 1 if not). Without IMAGE, a
+    built-in radial ramp. The same seed gives the same files, byte for byte.
+
+    \b
+    Examples:
+      tilesolve sample stipple --points 3000 --seed 1 -o radial.svg
+      tilesolve sample stipple --test-image gradient --method penrose --points 3000 --seed 1 -o g.svg --png g.png
+      tilesolve sample stipple --points 3000 --jitter --lloyd 4 --seed 1 -o smooth.svg --csv smooth.csv
+    """
+    from tilesolve.families.importance import density_of
+    from tilesolve.families.importance import stipple as run_stipple
+    from tilesolve.io.stipple import MAX_STIPPLE_POINTS, write_stipple
+    from tilesolve.model.importance import ImportanceProblem
+
+    outs = Outputs(output, png, csv_)
+    if points > MAX_STIPPLE_POINTS:
+        raise InvalidProblem(f"a stippled picture draws at most {MAX_STIPPLE_POINTS:,} points, not {points:,}")
+    problem = ImportanceProblem(density_of(image, test_image), points, method, tile, lloyd, jitter)
+    r = run_stipple(problem, seed=seed)
+    pts = r["points"]
+    status = "violations" if r["violations"] else "ok"
+    for v in r["violations"]:
+        say(f"  {v.kind}: {v.message}")
+    caption = f"{len(pts):,} points, {problem.describe().split(', ', 1)[1]}"
+    with outs.commit():
+        write_stipple(output, pts, problem.density, caption, "svg")
+        if png:
+            write_stipple(png, pts, problem.density, caption, "png")
+        if csv_:
+            import numpy as np
+
+            from tilesolve.io.atomic import write_text_atomic
+
+            rows = "".join(f"{x!r},{y!r}\n" for x, y in np.asarray(pts, dtype=float).tolist())
+            write_text_atomic(csv_, "x,y\n" + rows)
+    say(f"{status}: {len(pts):,} points ({problem.describe()}), discrepancy {r['discrepancy']:.4f}, "
+        f"sampled in {r['time_s']:.2f} s")
+    if r["violations"]:
+        ctx.exit(1)
+    _done(ctx, outs)
+
+
+@sample.command("importance-spectrum", context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP,
+                short_help="Penrose and polyomino sampling against rejection: speed, discrepancy, spectra.")
+@_density_options
+@click.option("--runs", type=click.IntRange(1, 32), default=4, show_default=True,
+              help="Seeds whose flat-image periodograms are averaged.")
+@click.option("--spectrum-points", type=click.IntRange(64, 16384), default=4096, show_default=True, metavar="M",
+              help="Samples of the flat image whose spectra are measured.")
+@opt.seed_opt
+@click.option("--svg", type=OutputFile("svg", allow_dash=False), metavar="S.svg",
+              help="Plot the radial power and anisotropy as SVG.")
+@click.option("--png", type=OutputFile("png", allow_dash=False), metavar="S.png",
+              help="Plot the radial power and anisotropy as PNG.")
+@click.option("--periodogram", type=OutputFile("png", allow_dash=False), metavar="P.png",
+              help="Draw the 2-D periodograms side by side (PNG, log scale).")
+@click.pass_context
+def importance_spectrum(ctx, image, test_image, points, tile, lloyd, jitter, runs, spectrum_points, seed, svg, png,
+                        periodogram) -> None:
+    """Compare the Penrose and polyomino samplers with plain rejection sampling in one run: on the
+    image, the samples a second and the density-weighted star discrepancy (anchored boxes on
+    pixel edges: max |share of points - share of darkness|); on a flat image (the uniform case,
+    as the papers show it), the radially averaged power spectrum and anisotropy (Ulichney 1987)
+    of --runs seeds, and the peak factor: the largest power of the averaged 2-D periodogram
+    over its annulus' mean (about 10 for white noise; spikes of a tiling's structure give
+    hundreds). Prints a table.
+
+    \b
+    Examples:
+      tilesolve sample importance-spectrum --points 5000 --spectrum-points 1024 --runs 2 --seed 1 --svg s.svg --periodogram p.png
+      tilesolve sample importance-spectrum --test-image gradient --points 5000 --spectrum-points 1024 --runs 2 --jitter --lloyd 3 --seed 1
+    """
+    from tilesolve.families.importance import compare, density_of
+    from tilesolve.io.poisson_plots import write_spectrum_plot
+    from tilesolve.io.stipple import write_periodograms_png
+    from tilesolve.model.importance import ImportanceProblem
+
+    outs = Outputs(svg, png, periodogram)
+    problem = ImportanceProblem(density_of(image, test_image), points, "polyomino", tile, lloyd, jitter)
+    rows = compare(problem, seed=seed, runs=runs, spectrum_points=spectrum_points)
+    click.echo(f"{'method':<24} {'points':>9} {'points/s':>12} {'discrepancy':>12} {'peak factor':>12} "
+               f"{'anisotropy dB':>14}")
+    for r in rows:
+        click.echo(f"{r['name']:<24} {r['points']:>9,} {r['rate']:>12,.0f} {r['discrepancy']:>12.4f} "
+                   f"{r['peak']:>12.1f} {r['anisotropy_db']:>14.2f}")
+    settings = (", jittered" if jitter else "") + (f", {lloyd} Lloyd steps" if lloyd else "")
+    title = f"flat image, {spectrum_points:,} points{settings}, {runs} runs averaged"
+    with outs.commit():
+        series = [(r["name"], r["frequency"], r["power"], r["anisotropy"]) for r in rows]
+        for path, fmt in ((svg, "svg"), (png, "png")):
+            if path:
+                write_spectrum_plot(path, series, title, fmt, xlabel="frequency (cycles per image side)")
+        if periodogram:
+            write_periodograms_png(periodogram, [(r["name"], r["periodogram"]) for r in rows], title)
+    bad = [r["name"] for r in rows if r["violations"]]
+    if bad:
+        say(f"violations: the samples of {', '.join(bad)} do not follow the image's density")
+        ctx.exit(1)
+    _done(ctx, outs)

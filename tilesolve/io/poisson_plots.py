@@ -98,9 +98,9 @@ def _layout(series, key: int, lo: float | None, hi: float | None):
 
 
 def write_spectrum_plot(path: str | os.PathLike, series: Sequence[tuple[str, np.ndarray, np.ndarray, np.ndarray]],
-                        title: str, fmt: str) -> None:
+                        title: str, fmt: str, *, xlabel: str = "frequency (cycles per tile side)") -> None:
     """Two panels (radial power, anisotropy in dB) of ``series``: ``(label, frequency, power,
-    anisotropy)`` each; as ``fmt`` (``"svg"`` or ``"png"``)."""
+    anisotropy)`` each; as ``fmt`` (``"svg"`` or ``"png"``); ``xlabel`` names the frequency's unit."""
     W, H, M = 720, 260, 50
     panels = [("radial power", 1, 0.0, None), ("anisotropy (dB)", 2, -10.0, 10.0)]
     fmax = max(float(np.max(s[1])) for s in series)
@@ -118,7 +118,7 @@ def write_spectrum_plot(path: str | os.PathLike, series: Sequence[tuple[str, np.
             if p == 0:
                 texts.append((W - 260, top + 16 + 14 * k, f"— {s[0]}", _SERIES[k % len(_SERIES)]))
     bottom = 40 + 2 * (H + 40)
-    texts.append((M, bottom - 16, f"frequency (cycles per tile side), 0 .. {fmax:.3g}"))
+    texts.append((M, bottom - 16, f"{xlabel}, 0 .. {fmax:.3g}"))
     if fmt == "svg":
         import svgwrite
 

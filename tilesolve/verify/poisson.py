@@ -30,7 +30,8 @@ import numpy as np
 from tilesolve.model.poisson import PoissonTileSet, r_max
 from tilesolve.verify.dappled import Violation
 
-__all__ = ["point_violations", "tileset_violations", "min_distance", "relative_radius", "radial_spectrum"]
+__all__ = ["point_violations", "tileset_violations", "min_distance", "relative_radius", "radial_spectrum",
+           "periodogram"]
 
 #: Violations listed at most (the count is always given).
 MAX_LISTED = 20
@@ -195,6 +196,21 @@ def tileset_violations(ts: PoissonTileSet, *, max_blocks: int = 4096, seed: int 
     return out
 
 
+def periodogram(points, side: float, *, k_max: int = 64) -> np.ndarray:
+    """The periodogram ``P(k) = |sum_j exp(-2 pi i k . x_j / side)|^2 / n`` of points in
+    ``[0, side)^2`` over integer ``k`` with ``|k_x|, |k_y| <= k_max`` (``power[k_x + k_max, k_y +
+    k_max]``), averaged over the point sets given (``points``: one ``(n, 2)`` array or a list)."""
+    sets = [points] if isinstance(points, np.ndarray) else list(points)
+    k = np.arange(-k_max, k_max + 1)
+    power = np.zeros((len(k), len(k)))
+    for pts in sets:
+        pts = np.asarray(pts, dtype=np.float64).reshape(-1, 2)
+        ex = np.exp(-2j * np.pi * np.outer(pts[:, 0] / side, k))
+        ey = np.exp(-2j * np.pi * np.outer(pts[:, 1] / side, k))
+        power += np.abs(ex.T @ ey) ** 2 / max(len(pts), 1) / len(sets)
+    return power
+
+
 def radial_spectrum(points, side: float, *, k_max: int = 64) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Radially averaged power spectrum and anisotropy of points in ``[0, side)^2`` (§4.2.2).
 
@@ -210,14 +226,8 @@ def radial_spectrum(points, side: float, *, k_max: int = 64) -> tuple[np.ndarray
         ``anisotropy`` ``10 log10(var / mean^2)`` in dB (about 0 dB for one periodogram of an
         isotropic process, ``-10 log10(m)`` dB for the average of ``m``).
     """
-    sets = [points] if isinstance(points, np.ndarray) else list(points)
+    power = periodogram(points, side, k_max=k_max)
     k = np.arange(-k_max, k_max + 1)
-    power = np.zeros((len(k), len(k)))
-    for pts in sets:
-        pts = np.asarray(pts, dtype=np.float64).reshape(-1, 2)
-        ex = np.exp(-2j * np.pi * np.outer(pts[:, 0] / side, k))
-        ey = np.exp(-2j * np.pi * np.outer(pts[:, 1] / side, k))
-        power += np.abs(ex.T @ ey) ** 2 / max(len(pts), 1) / len(sets)
     kx, ky = np.meshgrid(k, k, indexing="ij")
     ring = np.rint(np.hypot(kx, ky)).astype(np.int64).ravel()
     p = power.ravel()

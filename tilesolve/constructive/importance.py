@@ -1,0 +1,433 @@
+"""Hierarchical importance sampling on self-similar tilings: Penrose (Ostromoukhov, Donohue,
+Jodoin, "Fast hierarchical importance sampling with blue noise properties", SIGGRAPH 2004) and
+polyominoes (Ostromoukhov, "Sampling with polyominoes", SIGGRAPH 2007); class notes Part IV.
+Plain rejection sampling is the anchor.
+
+The seeds hold only the slides of Part IV (the papers' text is not among them), so the method is
+reconstructed from the slides' outline ("adaptive subdivision, structural indices, corrective
+vectors lookup table") and stated here in full:
+
+* **Tiles.** A tiling that subdivides into smaller copies of its own tiles: the Robinson
+  triangles of the Penrose tiling (:func:`tilesolve.constructive.penrose.deflate`: an acute
+  triangle into 2, an obtuse one into 3, legs shrinking by phi) or a rep-4 polyomino
+  (:func:`tilesolve.constructive.reptile.rule`: 4 copies at half size). One root patch (a sun
+  of ten triangles, or one large polyomino), randomly turned and placed by the seed, covers the
+  image's domain.
+* **One sample a tile**, at its centroid. A tile's children are ranked once per tile type (the
+  *structural index*): rank 0 is the child that carries the parent's sample on (the largest
+  child, the one nearest the parent's centroid among equals), the others follow farthest first
+  from it, so that the first new samples of a tile are spread.
+* **Thresholds in density units.** A tile ``T`` of area ``A`` is subdivided where the density
+  integrated over it exceeds 1 (the level's threshold: it would hold more than one sample).
+  The samples of its children appear one by one as the density rises from ``1 / A`` to
+  ``1 / A_child`` (where each child in turn is full): child ``r >= 1`` of ``k`` has the
+  threshold ``1/A + s (1/A_child - 1/A)``, ``s = (r - 1 + v_T) / (k - 1)``; rank 0 keeps its
+  parent's threshold. ``v`` is the tile's place in its neighbourhood, ``v_child = (r + v_T) /
+  k`` (a radical inverse along the hierarchy, as an ordered-dither matrix is built), so that
+  neighbouring tiles take their next sample at staggered densities. A leaf (a tile not
+  subdivided) emits its sample where the mean density over it exceeds its threshold.
+  With equal children (polyominoes) the expected count in a tile of uniform density ``D`` is
+  exactly ``D A``; with the Penrose triangles' two sizes it is close to it on average (the
+  2004 paper's Fibonacci number system exists to make that exact; measured here, not assumed).
+* **Correction vectors** (learnt by Lloyd relaxation in both papers, stored per structural
+  index) are not tabulated: the samples stay at tile centroids. ``lloyd`` steps of
+  density-weighted Lloyd relaxation (:func:`lloyd`) can move them afterwards instead.
+
+The density integral over a polyomino is exact (its cells are squares: a summed-area table,
+bilinear between pixel corners); over a Penrose triangle it is the mean over its bounding box
+times its area (an approximation at the tile's scale). Samples whose tile centroid falls
+outside the domain are dropped.
+
+>>> from tilesolve.model.importance import ImportanceProblem, builtin_density
+>>> pts = sample(ImportanceProblem(builtin_density("flat", 16), 500, "polyomino"), seed=1)
+>>> 450 < len(pts) < 550 and pts.min() >= 0 and pts.max() <= 1
+True
+"""
+
+from __future__ import annotations
+
+import functools
+
+import numpy as np
+
+from tilesolve._random import rng_from_seed
+from tilesolve.constructive import penrose, reptile
+from tilesolve.model.importance import DensityMap, ImportanceProblem
+
+__all__ = ["CALIBRATE", "MassTable", "penrose_points", "polyomino_points", "rejection_points", "lloyd", "sample"]
+
+_PHI = (1 + 5**0.5) / 2
+#: The mean area of a Robinson triangle of legs 1 in a Penrose tiling (obtuse : acute = phi : 1).
+_MEAN_AREA = (np.sin(np.pi / 5) + _PHI * np.sin(3 * np.pi / 5)) / (2 * (1 + _PHI))
+#: Relative error of the count above which :func:`sample` calibrates the density once.
+CALIBRATE = 0.01
+#: Deepest subdivision of a polyomino (its side shrinks by 2 a level: 2^-30 of the domain).
+MAX_POLYOMINO_LEVELS = 30
+#: Deepest subdivision of the Penrose sun (legs shrink by phi a level; ring coordinates up to phi^60 fit int64).
+MAX_PENROSE_LEVELS = 60
+
+
+class MassTable:
+    """Integrals of a density scaled to ``total`` samples over axis-aligned boxes of the domain:
+    a summed-area table, bilinear between pixel corners (exact for a density constant on each
+    pixel)."""
+
+    def __init__(self, density: DensityMap, total: float) -> None:
+        v = density.values[::-1]  # row 0 at the bottom: y up
+        s = np.zeros((v.shape[0] + 1, v.shape[1] + 1))
+        s[1:, 1:] = v.cumsum(axis=0).cumsum(axis=1)
+        self.rows, self.cols = v.shape
+        self.per_unit = 1.0 / density.pixel
+        self.sat = s * (total / s[-1, -1])
+        #: The highest density, in samples per unit area.
+        self.peak = float(v.max()) * total / float(s[-1, -1]) * self.per_unit**2
+
+    def cumulative(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
+        """The mass of ``[0, x] x [0, y]``."""
+        u = np.clip(x * self.per_unit, 0, self.cols)
+        w = np.clip(y * self.per_unit, 0, self.rows)
+        j = np.minimum(u.astype(np.int64), self.cols - 1)
+        i = np.minimum(w.astype(np.int64), self.rows - 1)
+        fu, fw = u - j, w - i
+        s = self.sat
+        return ((s[i, j] * (1 - fu) + s[i, j + 1] * fu) * (1 - fw) + (s[i + 1, j] * (1 - fu) + s[i + 1, j + 1] * fu) * fw)
+
+    def box(self, x0, y0, x1, y1) -> np.ndarray:
+        """The mass of the boxes ``[x0, x1] x [y0, y1]`` (arrays)."""
+        f = self.cumulative
+        return f(x1, y1) - f(x0, y1) - f(x1, y0) + f(x0, y0)
+
+
+def _ranks(parent_centre: np.ndarray, centres: np.ndarray, areas: np.ndarray) -> np.ndarray:
+    """The structural index of each child slot: rank 0 the largest child (nearest the parent's
+    centroid among equals), then the others farthest first from it."""
+    big = np.flatnonzero(np.isclose(areas, areas.max()))
+    first = big[np.argmin(np.hypot(*(centres[big] - parent_centre).T))]
+    far = np.hypot(*(centres - centres[first]).T)
+    order = [first] + [int(i) for i in np.argsort(-far, kind="stable") if i != first]
+    ranks = np.empty(len(order), dtype=np.int64)
+    ranks[order] = np.arange(len(order))
+    return ranks
+
+
+def _hierarchy(system, mass: MassTable, rng, max_levels: int, jitter: bool = False) -> np.ndarray:
+    """The samples of the adaptive subdivision (the module docstring's rule), level by level.
+
+    ``system`` gives ``roots()`` (a state), ``measure(state, mass)`` (each tile's mean density,
+    the mean area of a tile of its level, its centroid) and ``split(state, which)`` (the children of the tiles ``which``: their state,
+    parent positions in ``which``, structural ranks, sibling counts)."""
+    state = system.roots()
+    n = system.size(state)
+    v = (rng.permutation(n) + rng.random()) / n
+    lo, s = np.zeros(n), v.copy()  # root thresholds s / A
+    out = []
+    for level in range(max_levels + 1):
+        density, area, centre = system.measure(state, mass)
+        inv = 1.0 / area
+        theta = lo + s * (inv - lo)
+        sub = density * area > 1.0 if level < max_levels else np.zeros(len(density), bool)
+        emit = ~sub & (density > theta)
+        out.append(system.uniform(system.take(state, emit), rng) if jitter else centre[emit])
+        which = np.flatnonzero(sub)
+        if not len(which):
+            break
+        state, parent, rank, k = system.split(state, which)
+        p = which[parent]
+        first = rank == 0
+        lo = np.where(first, theta[p], inv[p])
+        s = np.where(first, 0.0, (rank - 1 + v[p]) / np.maximum(k - 1, 1))
+        v = (rank + v[p]) / k
+    return np.concatenate(out) if out else np.zeros((0, 2))
+
+
+class _Penrose:
+    """Robinson triangles of a sun (exact ring coordinates, :mod:`tilesolve.constructive.penrose`),
+    turned and placed in the plane by a similarity."""
+
+    def __init__(self, levels: int, scale: float, angle: float, centre: np.ndarray) -> None:
+        self.levels = levels
+        c, s = np.cos(angle), np.sin(angle)
+        self.turn = scale * np.array([[c, -s], [s, c]])
+        self.centre = centre
+
+    def roots(self):
+        return penrose.sun(self.levels)
+
+    @staticmethod
+    def size(state) -> int:
+        return len(state[0])
+
+    def _xy(self, ring: np.ndarray) -> np.ndarray:
+        return penrose.zeta_xy(ring) @ self.turn.T + self.centre
+
+    def measure(self, state, mass: MassTable):
+        _, a, b, c = state
+        pa, pb, pc = self._xy(a), self._xy(b), self._xy(c)
+        lo, hi = np.minimum(np.minimum(pa, pb), pc), np.maximum(np.maximum(pa, pb), pc)
+        density = mass.box(lo[:, 0], lo[:, 1], hi[:, 0], hi[:, 1]) / np.prod(hi - lo, axis=1)
+        legs = np.sum((pb - pa) ** 2, axis=1)  # every triangle of a level has the same legs
+        return density, legs * _MEAN_AREA, (pa + pb + pc) / 3
+
+    @staticmethod
+    def take(state, which):
+        return tuple(x[which] for x in state)
+
+    def uniform(self, state, rng) -> np.ndarray:
+        """A uniform random point of each triangle."""
+        _, a, b, c = state
+        pa, pb, pc = self._xy(a), self._xy(b), self._xy(c)
+        u, v = rng.random((2, len(a), 1))
+        flip = u + v > 1
+        u, v = np.where(flip, 1 - u, u), np.where(flip, 1 - v, v)
+        return pa + u * (pb - pa) + v * (pc - pa)
+
+    def split(self, state, which: np.ndarray):
+        t, a, b, c = self.take(state, which)
+        acute = t == 0
+        ia, io = np.flatnonzero(acute), np.flatnonzero(~acute)
+        children = penrose.deflate(t, a, b, c)
+        parent = np.concatenate([ia, ia, io, io, io])
+        ranks_acute, ranks_obtuse = _penrose_ranks()
+        rank = np.concatenate([np.repeat(ranks_acute, len(ia)), np.repeat(ranks_obtuse, len(io))])
+        k = np.concatenate([np.full(2 * len(ia), 2), np.full(3 * len(io), 3)])
+        return children, parent, rank, k
+
+
+@functools.lru_cache(maxsize=None)
+def _penrose_ranks() -> tuple[np.ndarray, np.ndarray]:
+    """The structural ranks of the children slots of :func:`penrose.deflate` (acute: 2 slots,
+    obtuse: 3), from one triangle of each type (ranks are invariant under similarities)."""
+    out = []
+    tri = penrose.sun(3)
+    for kind in (0, 1):
+        i = int(np.flatnonzero(tri[0] == kind)[0])
+        one = tuple(x[i:i + 1] for x in tri)
+        t, a, b, c = penrose.deflate(*one)
+        corners = np.stack([penrose.zeta_xy(x) for x in (a, b, c)], axis=1)
+        centres = corners.mean(axis=1)
+        d1, d2 = corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0]
+        areas = 0.5 * np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0])
+        parent = np.stack([penrose.zeta_xy(x) for x in (one[1], one[2], one[3])], axis=1).mean(axis=1)[0]
+        out.append(_ranks(parent, centres, areas))
+        tri = (t, a, b, c)  # its obtuse child is the next kind's example
+    return out[0], out[1]
+
+
+class _Polyomino:
+    """Tiles ``x -> L x + t`` of a rep-4 polyomino (:func:`tilesolve.constructive.reptile.rule`),
+    in floats (each level halves ``L``: exact in binary)."""
+
+    def __init__(self, name: str, lin: np.ndarray, off: np.ndarray) -> None:
+        proto = reptile.PROTOTILES[name]
+        self.cells = np.array([c[:2] for c in proto.cells], dtype=np.float64)
+        self.centre = self.cells.mean(axis=0) + 0.5
+        maps = reptile.rule(name)
+        self.mats = np.stack([g for g, _ in maps]).astype(np.float64) / 2
+        self.trans = np.stack([t for _, t in maps]).astype(np.float64) / 2
+        self.lin, self.off = lin, off
+        centres = (self.mats @ self.centre) + self.trans
+        self.ranks = _ranks(self.centre, centres, np.ones(len(maps)))
+
+    def roots(self):
+        return self.lin[None], self.off[None]
+
+    @staticmethod
+    def size(state) -> int:
+        return len(state[0])
+
+    def measure(self, state, mass: MassTable):
+        lin, off = state
+        p0 = np.einsum("nij,cj->nci", lin, self.cells) + off[:, None]
+        p1 = np.einsum("nij,cj->nci", lin, self.cells + 1) + off[:, None]
+        lo, hi = np.minimum(p0, p1), np.maximum(p0, p1)
+        m = mass.box(lo[..., 0], lo[..., 1], hi[..., 0], hi[..., 1]).sum(axis=1)
+        area = np.abs(np.linalg.det(lin)) * len(self.cells)
+        return m / area, area, lin @ self.centre + off
+
+    @staticmethod
+    def take(state, which):
+        return state[0][which], state[1][which]
+
+    def uniform(self, state, rng) -> np.ndarray:
+        """A uniform random point of each tile (a random cell, a random point in it)."""
+        lin, off = state
+        cell = self.cells[rng.integers(len(self.cells), size=len(off))] + rng.random((len(off), 2))
+        return np.einsum("nij,nj->ni", lin, cell) + off
+
+    def split(self, state, which: np.ndarray):
+        lin, off = self.take(state, which)
+        k = len(self.mats)
+        new_lin = (lin[:, None] @ self.mats[None]).reshape(-1, 2, 2)
+        new_off = (off[:, None] + np.einsum("nij,mj->nmi", lin, self.trans)).reshape(-1, 2)
+        parent = np.repeat(np.arange(len(which)), k)
+        return (new_lin, new_off), parent, np.tile(self.ranks, len(which)), np.full(len(parent), k)
+
+
+class _Cross:
+    """The X-pentomino digit tiling: base ``c = 2 + i``, digits ``0, 1, i, -1, -i`` (a complete
+    residue system modulo ``c``). A tile is its centre ``z`` (complex) at a level whose scale
+    ``s`` is a complex number; its five children are centred at ``z + d s / c``. Each level
+    shrinks by ``sqrt 5`` and turns by ``atan(1/2)`` (an irrational angle: the levels share no
+    lattice). The tile is a self-similar fractal of area ``|s|^2`` around its centre,
+    approximated one level down by five squares (an X pentomino)."""
+
+    digits = np.array([0, 1, -1, 1j, -1j])  # rank order: the centre (same centroid), then opposites
+
+    def __init__(self, centres: np.ndarray, scale: complex) -> None:
+        self.centres, self.scale = centres, scale
+        self.ranks = np.arange(5)
+
+    def roots(self):
+        return self.centres, 0
+
+    @staticmethod
+    def size(state) -> int:
+        return len(state[0])
+
+    def _cells(self, state):
+        z, level = state
+        s = self.scale / (2 + 1j) ** (level + 1)
+        return z[:, None] + s * self.digits, s
+
+    def measure(self, state, mass: MassTable):
+        cells, s = self._cells(state)
+        h = abs(s) / 2  # each cell as the axis-parallel square of its area
+        x, y = cells.real, cells.imag
+        m = mass.box(x - h, y - h, x + h, y + h).sum(axis=1)
+        z = state[0]
+        return m / (5 * abs(s) ** 2), np.full(len(z), 5 * abs(s) ** 2), np.column_stack([z.real, z.imag])
+
+    @staticmethod
+    def take(state, which):
+        return state[0][which], state[1]
+
+    def uniform(self, state, rng) -> np.ndarray:
+        """A uniform random point of each tile's X pentomino."""
+        cells, s = self._cells(state)
+        pick = cells[np.arange(len(cells)), rng.integers(5, size=len(cells))]
+        u = rng.random((len(cells), 2)) - 0.5
+        p = pick + s * (u[:, 0] + 1j * u[:, 1])
+        return np.column_stack([p.real, p.imag])
+
+    def split(self, state, which: np.ndarray):
+        cells, _ = self._cells(self.take(state, which))
+        parent = np.repeat(np.arange(len(which)), 5)
+        return (cells.ravel(), state[1] + 1), parent, np.tile(self.ranks, len(which)), np.full(len(parent), 5)
+
+
+def _cross_roots(density: DensityMap, rng) -> _Cross:
+    """Level-0 tiles of side 0.5 (turned by the seed) whose tiles may meet the domain: the
+    lattice ``s Z[i]`` near it (a tile lies within ``|s| / (sqrt 5 - 1)`` of its centre)."""
+    s = 0.5 * np.exp(2j * np.pi * rng.random())
+    shift = (rng.random() + 1j * rng.random()) * s
+    reach = abs(s) / (5**0.5 - 1) + abs(s)
+    span = int(np.ceil((np.hypot(density.width, density.height) + 2 * reach) / abs(s))) + 1
+    m, n = np.meshgrid(np.arange(-span, span + 1), np.arange(-span, span + 1))
+    z = (m.ravel() + 1j * n.ravel()) * s + shift + (density.width + 1j * density.height) / 2
+    near = (z.real > -reach) & (z.real < density.width + reach) & (z.imag > -reach) & (z.imag < density.height + reach)
+    return _Cross(z[near], s)
+
+
+def _inside(points: np.ndarray, density: DensityMap) -> np.ndarray:
+    x, y = points[:, 0], points[:, 1]
+    return points[(x >= 0) & (x < density.width) & (y >= 0) & (y < density.height)]
+
+
+def penrose_points(density: DensityMap, n: int, *, jitter: bool = False, seed=None) -> np.ndarray:
+    """About ``n`` samples of ``density`` by adaptive subdivision of a Penrose tiling's Robinson
+    triangles (the module docstring; Ostromoukhov et al. 2004). A ``(m, 2)`` array."""
+    rng = rng_from_seed(seed)
+    mass = MassTable(density, n)
+    centre = np.array([density.width, density.height]) / 2 + (rng.random(2) - 0.5) * 0.1
+    far = np.maximum(centre, [density.width - centre[0], density.height - centre[1]])
+    radius = 1.01 * np.hypot(*far) / np.cos(np.pi / 10)  # the sun's inner radius covers the domain
+    root_area = 0.5 * radius**2 * np.sin(np.pi / 5)
+    levels = int(np.clip(np.ceil(np.log(max(mass.peak * root_area, 1.0)) / (2 * np.log(_PHI))) + 2, 1,
+                         MAX_PENROSE_LEVELS))
+    system = _Penrose(levels, radius / _PHI**levels, rng.random() * 2 * np.pi, centre)
+    return _inside(_hierarchy(system, mass, rng, levels, jitter), density)
+
+
+def polyomino_points(density: DensityMap, n: int, *, tile: str = "chair", jitter: bool = False,
+                     seed=None) -> np.ndarray:
+    """About ``n`` samples of ``density`` by adaptive subdivision of a rep-4 polyomino (the
+    module docstring; Ostromoukhov 2007). A ``(m, 2)`` array."""
+    rng = rng_from_seed(seed)
+    mass = MassTable(density, n)
+    if tile == "x-pentomino":
+        return _inside(_hierarchy(_cross_roots(density, rng), mass, rng, MAX_POLYOMINO_LEVELS, jitter), density)
+    side = 1.25  # the root's cell (0, 0) is a square of this side around the domain
+    sym = reptile._symmetries("square")[int(rng.integers(8))].astype(np.float64) * side
+    corner = np.minimum(np.minimum(sym @ [0, 0], sym @ [1, 1]), np.minimum(sym @ [1, 0], sym @ [0, 1]))
+    slack = np.array([side - density.width, side - density.height])
+    off = -corner - rng.random(2) * slack
+    system = _Polyomino(tile, sym, off)
+    return _inside(_hierarchy(system, mass, rng, MAX_POLYOMINO_LEVELS, jitter), density)
+
+
+def rejection_points(density: DensityMap, n: int, *, seed=None) -> np.ndarray:
+    """Exactly ``n`` samples of ``density`` by rejection: uniform points of the domain, each kept
+    with probability (its pixel's value) / (the largest value). A ``(n, 2)`` array."""
+    rng = rng_from_seed(seed)
+    v = density.values
+    accept = (v / v.max()).ravel()
+    rate = float(accept.mean())
+    out, have = [], 0
+    while have < n:
+        m = int((n - have) / rate * 1.05) + 16
+        xy = rng.random((m, 2)) * [density.width, density.height]
+        col = np.minimum((xy[:, 0] / density.pixel).astype(np.int64), density.cols - 1)
+        row = np.minimum(((density.height - xy[:, 1]) / density.pixel).astype(np.int64), density.rows - 1)
+        keep = xy[rng.random(m) < accept[row * density.cols + col]]
+        out.append(keep[: n - have])
+        have += len(out[-1])
+    return np.concatenate(out)
+
+
+def lloyd(points: np.ndarray, density: DensityMap, steps: int, *, resolution: int = 16) -> np.ndarray:
+    """``steps`` of density-weighted Lloyd relaxation: each point moves to the density-weighted
+    centroid of its Voronoi cell, the cells measured on a grid of about ``resolution`` sample
+    positions per point (or one per pixel, whichever is finer). scipy's KD-tree finds each
+    position's nearest point."""
+    if steps == 0 or len(points) == 0:
+        return points
+    from scipy.spatial import cKDTree
+
+    want = max(resolution * len(points), density.rows * density.cols)
+    per = max(1, int(np.ceil(np.sqrt(want / (density.rows * density.cols)))))
+    step = density.pixel / per
+    gx = (np.arange(density.cols * per) + 0.5) * step
+    gy = (np.arange(density.rows * per) + 0.5) * step
+    x, y = np.meshgrid(gx, gy)
+    w = np.repeat(np.repeat(density.values[::-1], per, axis=0), per, axis=1).ravel()
+    grid = np.column_stack([x.ravel(), y.ravel()])[w > 0]
+    w = w[w > 0]
+    pts = points.copy()
+    for _ in range(steps):
+        _, idx = cKDTree(pts).query(grid)
+        total = np.bincount(idx, w, minlength=len(pts))
+        moved = total > 0
+        for d in (0, 1):
+            pts[moved, d] = np.bincount(idx, w * grid[:, d], minlength=len(pts))[moved] / total[moved]
+    return pts
+
+
+def sample(problem: ImportanceProblem, *, seed=None) -> np.ndarray:
+    """The samples ``problem`` asks for: its method, then its Lloyd steps. A hierarchical
+    sampler whose count is off by more than :data:`CALIBRATE` of the target runs once more on
+    the same tiling with the target scaled by the shortfall (the Penrose triangles' two sizes
+    and the samples dropped at the border bias the count by a few percent)."""
+    d, n = problem.density, problem.points
+    if problem.method == "rejection":
+        return rejection_points(d, n, seed=seed)
+    if problem.method == "penrose":
+        def run(target, s):
+            return penrose_points(d, target, jitter=problem.jitter, seed=s)
+    else:
+        def run(target, s):
+            return polyomino_points(d, target, tile=problem.tile, jitter=problem.jitter, seed=s)
+    s = int(rng_from_seed(seed).integers(1 << 62))
+    pts = run(n, s)
+    if len(pts) and abs(len(pts) - n) > CALIBRATE * n:
+        pts = run(n * n / len(pts), s)  # the same tiling, the density scaled by the first pass's shortfall
+    return lloyd(pts, d, problem.lloyd)

@@ -1,0 +1,136 @@
+"""Importance sampling's files: the density image read, the stippled picture and the
+periodogram pictures written (class notes Part V, stippling; Part IV, spectra).
+
+* :func:`read_density`: a picture file (any format Pillow reads) as a density, its darkness
+  ``1 - grey / 255``: black draws the most samples, white none.
+* :func:`stipple_svg` / :func:`write_stipple`: the samples as black dots on white, sized by the
+  density where they sit (SVG with svgwrite, PNG with Pillow).
+* :func:`write_periodograms_png`: 2-D periodograms side by side, log scale, the spectra in
+  which a tiling's structure shows as peaks.
+
+>>> import numpy as np
+>>> from tilesolve.model.importance import builtin_density
+>>> text = stipple_svg(np.array([[0.5, 0.5]]), builtin_density("flat", 4), "one dot")
+>>> text.startswith("<svg") and text.count("<circle") == 1
+True
+"""
+
+from __future__ import annotations
+
+import os
+
+import numpy as np
+
+from tilesolve.errors import InvalidProblem
+from tilesolve.io.atomic import atomic_write
+from tilesolve.model.importance import MAX_PIXELS, DensityMap
+
+__all__ = ["MAX_STIPPLE_POINTS", "read_density", "dot_radii", "stipple_svg", "write_stipple",
+           "write_periodograms_png"]
+
+#: Most dots a stippled picture draws (an SVG of more is too slow to open).
+MAX_STIPPLE_POINTS = 200_000
+_SIDE = 800  # pixels of the picture's longer side
+
+
+def read_density(path: str | os.PathLike) -> DensityMap:
+    """The darkness of a picture file as a density (one line of error for a file that is not a
+    readable picture, or one of more than :data:`~tilesolve.model.importance.MAX_PIXELS` pixels)."""
+    from PIL import Image, UnidentifiedImageError
+
+    name = os.fspath(path)
+    try:
+        with Image.open(name) as img:
+            if img.width * img.height > MAX_PIXELS:
+                raise InvalidProblem(f"{name}: the image has {img.width * img.height:,} pixels; at most {MAX_PIXELS:,}")
+            if img.mode in ("RGBA", "LA", "PA") or (img.mode == "P" and "transparency" in img.info):
+                rgba = img.convert("RGBA")
+                white = Image.new("RGBA", rgba.size, (255, 255, 255, 255))
+                img = Image.alpha_composite(white, rgba)  # transparent pixels are white paper
+            grey = np.asarray(img.convert("L"), dtype=np.float64)
+    except FileNotFoundError:
+        raise InvalidProblem(f"cannot read the image {name}: no such file") from None
+    except (OSError, UnidentifiedImageError, ValueError) as exc:
+        raise InvalidProblem(f"cannot read the image {name}: not a picture Pillow reads "
+                             f"({exc.__class__.__name__})") from None
+    return DensityMap(1.0 - grey / 255.0, os.path.basename(name))
+
+
+def dot_radii(points: np.ndarray, density: DensityMap) -> np.ndarray:
+    """Each dot's radius in domain units: ``r0 (0.6 + 0.6 d / d_max)``, ``d`` the density under the
+    dot, ``r0 = sqrt(mean(d) W H / (pi n))`` the radius whose ``n`` disjoint dots would cover the
+    mean darkness (so the dots' ink roughly follows the image's tone, larger where it is dark)."""
+    v = density.values
+    n = max(len(points), 1)
+    r0 = np.sqrt(v.mean() * density.width * density.height / (np.pi * n))
+    col = np.clip((points[:, 0] / density.pixel).astype(np.int64), 0, density.cols - 1)
+    row = np.clip(((density.height - points[:, 1]) / density.pixel).astype(np.int64), 0, density.rows - 1)
+    return r0 * (0.6 + 0.6 * v[row, col] / v.max())
+
+
+def _check(n: int) -> None:
+    if n > MAX_STIPPLE_POINTS:
+        raise InvalidProblem(f"a stippled picture draws at most {MAX_STIPPLE_POINTS:,} points, not {n:,}")
+
+
+def stipple_svg(points: np.ndarray, density: DensityMap, caption: str) -> str:
+    """SVG text: black dots on white, the longer side 800 pixels, a caption below."""
+    import svgwrite
+
+    _check(len(points))
+    px = _SIDE / max(density.width, density.height)
+    w, h = density.width * px, density.height * px
+    dwg = svgwrite.Drawing(size=(f"{w:.0f}", f"{h + 24:.0f}"), profile="full", debug=False)
+    dwg.add(dwg.rect((0, 0), (w, h + 24), fill="white"))
+    dots = dwg.g(fill="black")
+    for (x, y), r in zip(points.tolist(), (dot_radii(points, density) * px).tolist()):
+        dots.add(dwg.circle((round(x * px, 2), round(h - y * px, 2)), round(r, 2)))
+    dwg.add(dots)
+    dwg.add(dwg.text(caption, insert=(4, h + 17), font_size="12px", font_family="sans-serif", fill="#333333"))
+    return dwg.tostring()
+
+
+def write_stipple(path: str | os.PathLike, points: np.ndarray, density: DensityMap, caption: str, fmt: str) -> None:
+    """The stippled picture as ``fmt`` (``"svg"`` or ``"png"``, the PNG drawn at 2x and
+    averaged down for smooth dots); y grows upwards in the picture."""
+    if fmt == "svg":
+        text = stipple_svg(points, density, caption)
+        with atomic_write(path) as f:
+            f.write(text)
+        return
+    from PIL import Image, ImageDraw
+
+    _check(len(points))
+    px = 2 * _SIDE / max(density.width, density.height)
+    w, h = int(round(density.width * px)), int(round(density.height * px))
+    img = Image.new("L", (w, h), 255)
+    draw = ImageDraw.Draw(img)
+    for (x, y), r in zip(points.tolist(), (dot_radii(points, density) * px).tolist()):
+        cx, cy = x * px, h - y * px
+        draw.ellipse([cx - r, cy - r, cx + r, cy + r], fill=0)
+    small = img.resize((w // 2, h // 2), Image.LANCZOS)
+    out = Image.new("L", (w // 2, h // 2 + 20), 255)
+    out.paste(small, (0, 0))
+    ImageDraw.Draw(out).text((4, h // 2 + 4), caption, fill=51)
+    with atomic_write(path, "wb", encoding=None) as f:
+        out.save(f, format="PNG")
+
+
+def write_periodograms_png(path: str | os.PathLike, panels: list[tuple[str, np.ndarray]], title: str) -> None:
+    """2-D periodograms (each ``(2k + 1, 2k + 1)``, zero frequency at the centre) side by side,
+    ``log10`` of the power mapped to grey (white 0.01, black 100), each with its label."""
+    from PIL import Image, ImageDraw
+
+    if not panels:
+        raise InvalidProblem("no periodogram to draw")
+    size = 320
+    img = Image.new("L", (len(panels) * (size + 10) + 10, size + 50), 255)
+    draw = ImageDraw.Draw(img)
+    draw.text((10, 6), title, fill=0)
+    for i, (label, power) in enumerate(panels):
+        grey = 255 - np.clip((np.log10(np.maximum(power, 1e-12)) + 2) / 4, 0, 1) * 255
+        tile = Image.fromarray(grey.T[::-1].astype(np.uint8), "L").resize((size, size), Image.NEAREST)
+        img.paste(tile, (10 + i * (size + 10), 22))
+        draw.text((10 + i * (size + 10), size + 28), label, fill=0)
+    with atomic_write(path, "wb", encoding=None) as f:
+        img.save(f, format="PNG")
