@@ -6,6 +6,7 @@
     tilesolve sample poisson-tiles window set.json --region X0,Y0,WxH [--tiling direct|scanline]
                      [--seed S] [-o pts.json|pts.csv|pts.npy] [--svg pts.svg] [--png pts.png]
     tilesolve sample poisson-tiles spectrum set.json [--size W] [--seed S] [--svg s.svg] [--png s.png]
+    tilesolve sample recursive-wang build|window ...   (tilesolve.cli.sample_recursive)
     tilesolve sample stipple [IMAGE.png] [--method penrose|polyomino|rejection] [--points N] -o out.svg
     tilesolve sample importance-spectrum [IMAGE.png] [--points N] [--svg s.svg] [--periodogram p.png]
 """
@@ -17,6 +18,7 @@ import click
 from tilesolve.cli import options as opt
 from tilesolve.cli.common import say
 from tilesolve.cli.outputs import OutputFile, Outputs
+from tilesolve.cli.sample_recursive import recursive_wang
 from tilesolve.errors import InvalidProblem
 
 __all__ = ["sample"]
@@ -26,6 +28,9 @@ __all__ = ["sample"]
              short_help="Tile-based sampling: corner-based Poisson disk tiles (class notes ch. 4).")
 def sample() -> None:
     """Tile-based sampling: point distributions of any size from a small precomputed tile set."""
+
+
+sample.add_command(recursive_wang)
 
 
 @sample.group("poisson-tiles", context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP,

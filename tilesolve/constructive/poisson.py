@@ -237,11 +237,12 @@ def _padded(arrays: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
 
 def _place(origins: np.ndarray, which: np.ndarray, arrays: list[np.ndarray]):
     """The points of tiles ``arrays[which[i]]`` at integer ``origins[i]``: each point's origin,
-    its coordinates in its tile's frame, and its index in its tile."""
+    its coordinates in its tile's frame, its index in its tile and its tile's size."""
     pad, counts = _padded(arrays)
     mask = np.arange(pad.shape[1])[None, :] < counts[which][:, None]
     index = np.broadcast_to(np.arange(pad.shape[1])[None, :], mask.shape)[mask]
-    return np.broadcast_to(origins[:, None, :], pad[which].shape)[mask], pad[which][mask], index
+    size = np.broadcast_to(counts[which][:, None], mask.shape)[mask]
+    return np.broadcast_to(origins[:, None, :], pad[which].shape)[mask], pad[which][mask], index, size
 
 
 def window_points(tileset: PoissonTileSet, window, *, tiling: str = "direct", variant: str = "complete",
@@ -290,7 +291,7 @@ def corner_lattice(grid: np.ndarray, colors: int) -> np.ndarray:
     return lat
 
 
-def place_tiles(tileset: PoissonTileSet, lat: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def place_tiles(tileset: PoissonTileSet, lat: np.ndarray) -> tuple[np.ndarray, ...]:
     """Every point of the tiles a coloured lattice places (§4.3), none cropped.
 
     Parameters
@@ -301,10 +302,10 @@ def place_tiles(tileset: PoissonTileSet, lat: np.ndarray) -> tuple[np.ndarray, n
 
     Returns
     -------
-    (offsets, frame, which)
+    (offsets, frame, index, size)
         Each point's tile origin (integer, float64) and its coordinates in its tile's frame
-        (their sum is the point), and the point's index in its tile (ordered by kind of tile,
-        then by tile position).
+        (their sum is the point), the point's index in its tile and the number of points of its
+        tile; points ordered by kind of tile, then by tile position.
     """
     c = tileset.problem.colors
     lat = np.asarray(lat, dtype=np.int64)
@@ -319,8 +320,7 @@ def place_tiles(tileset: PoissonTileSet, lat: np.ndarray) -> tuple[np.ndarray, n
         _place(lattice[:-1, :].reshape(-1, 2), (lat[:-1, :] * c + lat[1:, :]).ravel(), t["vedge"]),
         _place(lattice[:-1, :-1].reshape(-1, 2), grid.ravel(), t["interior"]),
     ]
-    return (np.concatenate([o for o, _, _ in parts]), np.concatenate([f for _, f, _ in parts]),
-            np.concatenate([k for _, _, k in parts]))
+    return tuple(np.concatenate([part[i] for part in parts]) for i in range(4))
 
 
 def _window_parts(problem: PoissonWindowProblem, seed) -> tuple[np.ndarray, np.ndarray]:
@@ -331,7 +331,7 @@ def _window_parts(problem: PoissonWindowProblem, seed) -> tuple[np.ndarray, np.n
     grid = stochastic_window("corner", problem.tiling, (w.x0, w.y0, w.width, w.height), colors=c, seed=seed,
                              variant=problem.variant, hash=problem.hash)
     h, wd = grid.shape
-    offsets, frame, _ = place_tiles(tileset, corner_lattice(grid, c))
+    offsets, frame, _, _ = place_tiles(tileset, corner_lattice(grid, c))
     pts = offsets + frame
     keep = (pts[:, 0] >= 0) & (pts[:, 0] < wd) & (pts[:, 1] >= 0) & (pts[:, 1] < h)
     return offsets[keep], frame[keep]

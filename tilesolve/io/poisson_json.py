@@ -55,7 +55,8 @@ from tilesolve.model.solution import Solution, Status
 from tilesolve.model.window import Window
 
 __all__ = ["TILES_FORMAT", "WINDOW_FORMAT", "VERSIONS", "tiles_to_dict", "tiles_from_dict", "window_to_dict",
-           "window_from_dict", "dump", "write_points", "check_point_output", "POINT_FORMATS", "FLOAT_RANGE"]
+           "window_from_dict", "read_problem", "read_seed", "dump", "write_points", "check_point_output",
+           "POINT_FORMATS", "FLOAT_RANGE"]
 
 TILES_FORMAT = "tilesolve/poisson-tiles"
 WINDOW_FORMAT = "tilesolve/poisson-window"
@@ -92,7 +93,9 @@ def _points(value: Any, what: str, source: str, limit: int) -> np.ndarray:
     return np.array(value, dtype=np.float64).reshape(-1, 2)
 
 
-def _read_problem(doc: dict, source: str) -> PoissonTilesProblem:
+def read_problem(doc: dict, source: str) -> PoissonTilesProblem:
+    """The problem a document states (``colors``, ``points``, ``rho``, ``lloyd``); a stated
+    ``distance`` other than the problem's is refused."""
     for key in _PROBLEM:
         if key not in doc:
             raise InvalidProblem(f"{source}: missing field {key!r}")
@@ -110,7 +113,8 @@ def _read_problem(doc: dict, source: str) -> PoissonTilesProblem:
     return problem
 
 
-def _seed(doc: dict, source: str):
+def read_seed(doc: dict, source: str):
+    """A document's ``seed``: ``None`` or an integer within ``0..2**63 - 1``."""
     seed = doc.get("seed")
     if seed is not None and (isinstance(seed, bool) or not isinstance(seed, int) or not 0 <= seed < 2**63):
         raise InvalidProblem(f"{source}: 'seed' must be an integer from 0 to 2**63 - 1, got {seed!r}")
@@ -120,7 +124,7 @@ def _seed(doc: dict, source: str):
 def tiles_from_dict(doc: dict, source: str = "<document>") -> tuple[PoissonTilesProblem, Solution]:
     """Read :func:`tiles_to_dict`'s document; one-line errors naming ``source`` and the field."""
     check_document(doc, source, {TILES_FORMAT: VERSIONS}, fields=_TILES_KEYS, required=("tiles",))
-    problem = _read_problem(doc, source)
+    problem = read_problem(doc, source)
     tiles = doc["tiles"]
     if not isinstance(tiles, dict) or set(tiles) != set(KINDS):
         raise InvalidProblem(f"{source}: 'tiles' must have the fields {', '.join(KINDS)}")
@@ -134,7 +138,7 @@ def tiles_from_dict(doc: dict, source: str = "<document>") -> tuple[PoissonTiles
     stats = doc.get("stats", {})
     if not isinstance(stats, dict):
         raise InvalidProblem(f"{source}: 'stats' must be an object")
-    seed = _seed(doc, source)
+    seed = read_seed(doc, source)
     ts = PoissonTileSet(problem, arrays, seed=seed, stats=dict(stats))
     method = doc.get("method", "dart")
     return problem, Solution(Status.SAT, ts, method=method if isinstance(method, str) else "dart", seed=seed,
@@ -153,10 +157,10 @@ def window_from_dict(doc: dict, source: str = "<document>") -> tuple[PoissonTile
     """Read :func:`window_to_dict`'s document: the set's problem, and the window as the answer
     (checked against the problem's distance by :func:`tilesolve.verify.poisson.point_violations`)."""
     check_document(doc, source, {WINDOW_FORMAT: VERSIONS}, fields=_WINDOW_KEYS, required=("window", "local"))
-    problem = _read_problem(doc, source)
+    problem = read_problem(doc, source)
     window = Window.from_dict(doc["window"])
     local = _points(doc["local"], "local", source, MAX_WINDOW_POINTS)
-    seed = _seed(doc, source)
+    seed = read_seed(doc, source)
     return problem, Solution(Status.SAT, PoissonWindow(window, local, problem.distance),
                              method=str(doc.get("tiling", "direct")), seed=seed, window=window)
 
