@@ -46,6 +46,6 @@ def page(browser, server):
     ctx = browser.new_context(viewport={"width": 1400, "height": 1000}, accept_downloads=True)
     pg = ctx.new_page()
     pg.goto(server + "/")
-    pg.wait_for_selector("body[data-ready='1']")
+    pg.wait_for_selector("body[data-ready='1']", timeout=120_000)  # a loaded machine starts its workers slowly
     yield pg
     ctx.close()

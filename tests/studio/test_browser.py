@@ -31,10 +31,13 @@ pytestmark = pytest.mark.slow
 
 
 def paint(page, grid: str, brush: str, r: int, c: int, cols: int) -> float:
-    """Paint cell ``(r, c)`` of the editor's ``grid`` (``cols`` wide) with ``brush``; its side in px."""
+    """Paint cell ``(r, c)`` of ``grid`` (``cols`` wide) with ``brush`` on the picture, in paint
+    mode; the cell's side in CSS px."""
+    if not page.evaluate("studio.painting"):
+        page.click("#paint-mode")
     page.select_option("#grid-field", grid)
     page.select_option("#brush", brush)
-    page.locator("#grid").scroll_into_view_if_needed()
+    page.locator("#stage").scroll_into_view_if_needed()
     box = page.locator("#grid").bounding_box()
     px = box["width"] / cols
     page.mouse.click(box["x"] + (c + 0.5) * px, box["y"] + (r + 0.5) * px)
@@ -371,8 +374,158 @@ def test_painting_has_undo_and_redo(page):
     pick(page, "dappled")
     fill(page, "size", "8x6")
     paint(page, "fixed", "1", 0, 0, 8)
-    page.click("#stage")
+    page.focus("#stage")
     page.keyboard.press("Control+z")
     page.wait_for_function("!document.getElementById('describe').textContent.includes('fixed cells')")
     page.keyboard.press("Control+Shift+z")
     page.wait_for_function("document.getElementById('describe').textContent.includes('1 fixed cells')")
+
+
+# ----------------------------------------------------------------------------- editing on the picture
+def test_paint_mode_paints_on_the_picture_and_still_zooms_and_pans(page):
+    pick(page, "dappled")
+    fill(page, "size", "8x6")
+    page.fill("#seed", "1")
+    first = solve(page)["status"] and page.evaluate("studio.cellRows()")
+    page.focus("#stage")
+    page.keyboard.press("p")  # paint mode: the stage shows the grid in place of the picture
+    assert page.evaluate("studio.painting") and page.is_hidden("#picture") and page.is_visible("#stage #grid")
+    box = page.locator("#stage").bounding_box()
+    cx, cy = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+    z = page.evaluate("studio.stage.z")
+    page.mouse.move(cx, cy)
+    page.mouse.wheel(0, 300)  # the wheel still zooms
+    assert page.evaluate("studio.stage.z") < z
+    x = page.evaluate("studio.stage.x")
+    page.keyboard.down("Shift")  # Shift+drag pans and paints nothing
+    page.mouse.down()
+    page.mouse.move(cx + 40, cy + 10, steps=4)
+    page.mouse.up()
+    page.keyboard.up("Shift")
+    assert page.evaluate("studio.stage.x") == pytest.approx(x + 40)
+    assert page.evaluate("studio.grids.fixed === undefined")
+    r, c = 4, 6
+    want = 1 - first[r][c]
+    paint(page, "fixed", str(want), r, c, 8)
+    solve(page)
+    assert page.evaluate("studio.cellRows()")[r][c] == want
+    assert page.evaluate(f"studio.grids.fixed[{r}][{c}]") == want
+    page.keyboard.press("p")  # and back to the picture
+    assert not page.evaluate("studio.painting") and page.is_visible("#picture svg") and page.is_hidden("#grid")
+    ARTIFACTS.mkdir(parents=True, exist_ok=True)
+    page.screenshot(path=str(ARTIFACTS / "paint-mode.png"))
+
+
+def test_undo_takes_back_a_stroke_on_the_picture(page):
+    pick(page, "dappled")
+    fill(page, "size", "8x6")
+    paint(page, "fixed", "0", 1, 1, 8)
+    page.keyboard.press("Control+z")
+    page.wait_for_function("!document.getElementById('describe').textContent.includes('fixed cells')")
+    assert page.evaluate("studio.grids.fixed === undefined")
+    page.click("#grid-redo")
+    page.wait_for_function("document.getElementById('describe').textContent.includes('1 fixed cells')")
+    assert page.evaluate("studio.grids.fixed[1][1]") == 0
+
+
+def hidden_fields(page) -> list[str]:
+    return page.eval_on_selector_all("#form label[hidden]", "ls => ls.map(l => l.dataset.field)")
+
+
+def test_fields_that_do_not_apply_are_hidden(page):
+    pick(page, "shapes")
+    assert hidden_fields(page) == ["max_level", "max_copies", "holes"]  # the tile question: no Heesch fields
+    page.select_option("#field-question", "heesch")
+    page.wait_for_function("document.querySelector('#form label[data-field=where]').hidden")
+    assert hidden_fields(page) == ["where", "size"]
+    pick(page, "packing")
+    assert page.is_visible("#field-colors_v")
+    page.select_option("#field-kind", "corner")
+    page.wait_for_function("document.querySelector('#form label[data-field=colors_v]').hidden")
+    pick(page, "board")  # the holes grid only for mask boards
+    assert page.evaluate("document.querySelector('#grid-field option[value=mask]').disabled")
+    page.select_option("#field-board", "mask")
+    page.wait_for_function("!document.querySelector('#grid-field option[value=mask]').disabled")
+    pick(page, "isohedral")  # IH41 has two edge classes
+    assert hidden_fields(page) == ["edge2", "edge3", "edge4"]
+    page.select_option("#field-type", "IH04")
+    page.wait_for_function("!document.querySelector('#form label[data-field=edge4]').hidden")
+
+
+def drag_handle(page, index: int, dx: float, dy: float, *, release: bool = True) -> None:
+    """Drag the ``index``-th point of the edge editor by ``(dx, dy)`` CSS px."""
+    box = page.locator("#edge-editor circle.handle").nth(index).bounding_box()
+    x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+    page.mouse.move(x, y)
+    page.mouse.down()
+    page.mouse.move(x + dx, y + dy, steps=6)
+    if release:
+        page.mouse.up()
+
+
+def wait_for_the_servers_edges(page) -> dict:
+    """Wait until the solved tiling has the edge fields' shapes; its JSON document."""
+    page.wait_for_function("""() => studio.result && studio.job === null && studio.sketch && studio.sketch.edges.every(
+        (e, k) => JSON.parse(studio.result.json).edges[k] === (document.getElementById('field-' + e.field).value || 'line'))""",
+                           timeout=60_000)
+    return json.loads(page.evaluate("studio.result.json"))
+
+
+def test_dragging_an_edge_point_redraws_the_tiling_live_and_it_verifies(page, tmp_path):
+    pick(page, "isohedral")
+    fill(page, "region", "6x4")
+    solve(page)
+    before = page.get_attribute("#picture svg path#tile", "d")
+    shape = page.input_value("#field-edge0")
+    drag_handle(page, 0, 25, -30, release=False)
+    # while the point moves: the field and the picture's tile follow at once
+    assert page.input_value("#field-edge0") != shape
+    assert page.get_attribute("#picture svg path#tile", "d") != before
+    page.mouse.up()
+    doc = wait_for_the_servers_edges(page)
+    assert doc["edges"][0] == page.input_value("#field-edge0") != shape
+    assert "ok: solution.json is a valid tiling" in page.text_content("#verdict")
+    # the page's outline (drawn while dragging) is the server's
+    ours = np.array(page.evaluate("tileOutline(studio.sketch, edgeShapes(studio.sketch))"))
+    assert np.allclose(ours, np.array(doc["outline"]), atol=1e-6)
+    with page.expect_download() as dl:
+        page.click("#export-json")
+    path = tmp_path / "solution.json"
+    dl.value.save_as(path)
+    run = subprocess.run([SCRIPT, "verify", str(path)], capture_output=True, text=True)
+    assert run.returncode == 0, run.stdout + run.stderr
+    assert json.loads(path.read_text())["edges"][0] == page.input_value("#field-edge0")
+    ARTIFACTS.mkdir(parents=True, exist_ok=True)
+    page.screenshot(path=str(ARTIFACTS / "edge-editor.png"), full_page=True)
+
+
+def points(text: str) -> np.ndarray:
+    return np.array([[float(v) for v in p.split(",")] for p in text.split(":")[1].split("/")])
+
+
+def test_a_u_edge_stays_mirror_symmetric_while_dragged(page):
+    pick(page, "isohedral")
+    page.select_option("#field-type", "IH12")  # edge class 0 is U, class 1 is J
+    fill(page, "edge0", "line:0.3,0.2/0.7,0.2")
+    fill(page, "edge1", "line")
+    page.wait_for_function("studio.sketch && studio.sketch.edges[0].kind === 'U' && "
+                           "document.querySelectorAll('#edge-editor circle.handle').length === 2")
+    drag_handle(page, 0, -18, 22)
+    p = points(page.input_value("#field-edge0"))
+    assert len(p) == 2 and not np.allclose(p[0], [0.3, 0.2])
+    assert np.allclose(p[1], [1 - p[0][0], p[0][1]], atol=1e-9)  # X,Y and 1-X,Y: mirror in x = 1/2
+    drag_handle(page, 1, 10, 10)  # its partner moves it too
+    q = points(page.input_value("#field-edge0"))
+    assert not np.allclose(q, p) and np.allclose(q[0], [1 - q[1][0], q[1][1]], atol=1e-9)
+    doc = wait_for_the_servers_edges(page)  # the server takes it as a U edge
+    assert doc["status"] == "sat" and page.text_content("#error") == ""
+    # a point added on a polyline comes with its mirror image
+    x, y = page.evaluate("""() => { const hit = document.querySelector('#edge-editor polyline.hit');
+        const [a, b] = [hit.points.getItem(0), hit.points.getItem(1)], p = hit.ownerSVGElement.createSVGPoint();
+        p.x = (a.x + b.x) / 2; p.y = (a.y + b.y) / 2;   // halfway from the side's start to its first point
+        const q = p.matrixTransform(hit.getScreenCTM()); return [q.x, q.y]; }""")
+    page.mouse.dblclick(x, y)
+    r = points(page.input_value("#field-edge0"))
+    assert len(r) in (3, 4) and np.allclose(r, np.column_stack([1 - r[::-1, 0], r[::-1, 1]]), atol=1e-9)
+    wait_for_the_servers_edges(page)
+    assert page.text_content("#error") == ""
