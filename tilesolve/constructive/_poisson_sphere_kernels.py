@@ -1,4 +1,4 @@
-"""The kernels of the corner-based Poisson sphere tiles (:mod:`.poisson_sphere`).
+"""The dart-throwing kernel of the corner-based Poisson sphere tiles (:mod:`.poisson_sphere`).
 
 :func:`dart_fill3` is relaxation dart throwing (McCool and Fiume 1992; class notes §4.2.4.2,
 in 3-D as §4.4.1.3 says it generalizes) into a region made of boxes, around fixed points, on
@@ -8,10 +8,6 @@ stops at ``target`` points or when ``final`` darts in a row miss at ``rmin``. sc
 ``PoissonDisk(d=3)`` fills a box at one radius and knows no point count, fixed points, holes
 or torus: hence this kernel. Plain and compiled paths give the same points (xorshift64,
 :func:`tilesolve.constructive._jit.rand32`).
-
-:func:`place3` lays the tiles of a window out: for every slot (a lattice point, edge, face or
-cell of the window) it copies the points of the slot's tile, shifted to the slot's offset in
-the box, and keeps those inside.
 """
 
 from __future__ import annotations
@@ -22,7 +18,7 @@ import numpy as np
 
 from tilesolve.constructive._jit import Kernels, kernel, rand32, seed_state
 
-__all__ = ["dart_fill3", "place3", "KERNELS"]
+__all__ = ["dart_fill3", "KERNELS"]
 
 _SCALE = 1.0 / 4294967296.0
 
@@ -190,26 +186,6 @@ def dart_fill3(fixed, allow, forbid, target, r0, rmin, shrink, patience, final, 
                 r = max(rmin, r * shrink)
                 fails = 0
     return n, r
-
-
-@kernel()
-def place3(slot_off, slot_tile, pad, counts, size, out):
-    """Copy the points of tile ``slot_tile[s]`` (rows of ``pad``, ``counts`` of them), shifted
-    by the integer offset ``slot_off[s]``, into ``out`` where they lie in ``[0, size)``;
-    returns how many were written (``out`` must have room for all)."""
-    n = 0
-    for s in range(slot_off.shape[0]):
-        t = slot_tile[s]
-        for k in range(counts[t]):
-            x = slot_off[s, 0] + pad[t, k, 0]
-            y = slot_off[s, 1] + pad[t, k, 1]
-            z = slot_off[s, 2] + pad[t, k, 2]
-            if 0.0 <= x < size[0] and 0.0 <= y < size[1] and 0.0 <= z < size[2]:
-                out[n, 0] = x
-                out[n, 1] = y
-                out[n, 2] = z
-                n += 1
-    return n
 
 
 #: Compiled from the first fill of a hundred points on (a plain fill takes seconds in Python).

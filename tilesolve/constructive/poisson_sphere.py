@@ -290,8 +290,7 @@ def window_points(tileset: PoissonSphereTileSet, box, *, hash: str = "long", see
         for i, t in enumerate(arrays):
             pad[i, :len(t)] = t
         off, which = slots[kind]
-        room = int(counts[which].sum())
-        out = np.empty((room, 3))
-        m = _k.KERNELS.pick(room).place3(off.astype(np.float64), which, pad, counts, size, out)
-        parts.append(out[:m])
+        mask = np.arange(pad.shape[1])[None, :] < counts[which][:, None]
+        pts = (pad[which] + off[:, None, :])[mask]
+        parts.append(pts[((pts >= 0) & (pts < size)).all(axis=1)])
     return PoissonSphereWindow(box, np.concatenate(parts), tileset.problem.distance)

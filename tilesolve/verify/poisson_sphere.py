@@ -58,6 +58,10 @@ def close_pairs3(points: np.ndarray, distance: float) -> np.ndarray:
     skey = key[order]
     start = np.flatnonzero(np.r_[True, skey[1:] != skey[:-1]])
     ukey, count = skey[start], np.diff(np.r_[start, n])
+    total = int(np.prod(dims))
+    if total <= 16 * n + (1 << 22):  # a dense table of the cells: one lookup a point and offset
+        slot = np.full(total, -1, np.int64)
+        slot[ukey] = np.arange(len(ukey))
     found = []
     for c in np.flatnonzero(count > _CELL_MAX):
         members = order[start[c]:start[c] + _CELL_MAX + 1]
@@ -66,9 +70,13 @@ def close_pairs3(points: np.ndarray, distance: float) -> np.ndarray:
     keep = np.repeat(count <= _CELL_MAX, count)
     for dx, dy, dz in _OFFSETS:
         target = skey + (dx * dims[1] + dy) * dims[2] + dz
-        at = np.searchsorted(ukey, target)
-        at[at >= len(ukey)] = 0
-        hit = (ukey[at] == target) & keep & (count[at] <= _CELL_MAX)
+        if total <= 16 * n + (1 << 22):
+            at = slot[target]
+            hit = at >= 0
+        else:  # sparse points (a forged file): search the sorted cells
+            at = np.minimum(np.searchsorted(ukey, target), len(ukey) - 1)
+            hit = ukey[at] == target
+        hit &= keep & (count[at] <= _CELL_MAX)
         src = np.flatnonzero(hit)
         reps = count[at[src]]
         i = np.repeat(src, reps)
@@ -212,9 +220,10 @@ def tileset_violations3(ts: PoissonSphereTileSet, *, max_colourings: int = 4096,
         same = k1 == k2 and not any(off)
         bad = _first_close(ts.tiles[k1], None if same else ts.tiles[k2], combos, np.array(off, float), d)
         if bad is not None:
-            t1, t2, gap = bad
-            out.append(Violation("distance", f"{k1} tile {t1} at (0, 0, 0) and {k2} tile {t2} at {off}: two points "
-                                             f"{gap:.4g} apart, closer than {d:.6g}"))
+            (t1, t2, gap), sides = bad
+            where = [f"{k1} tile {t1} at (0, 0, 0)", f"{k2} tile {t2} at {off}"]
+            what = f"{where[0]} and {where[1]}" if sides == {0, 1} else f"{where[sides.pop()]}, within the tile"
+            out.append(Violation("distance", f"{what}: two points {gap:.4g} apart, closer than {d:.6g}"))
             if len(out) >= MAX_LISTED:
                 break
     return out
@@ -222,20 +231,22 @@ def tileset_violations3(ts: PoissonSphereTileSet, *, max_colourings: int = 4096,
 
 def _first_close(tiles1, tiles2, combos: np.ndarray, off: np.ndarray, distance: float):
     """The first ``(tile 1, tile 2, gap)`` of ``combos`` whose points (tile 2 moved by ``off``;
-    one slot when ``tiles2`` is None) come closer than ``distance``, or None. The combinations
-    are laid side by side, 8 units apart along x, and searched at once."""
-    pts, owner = [], []
+    one slot when ``tiles2`` is None) come closer than ``distance``, with the set of sides (0:
+    tile 1, 1: tile 2) the two points come from; or None. The combinations are laid side by
+    side, 8 units apart along x, and searched at once."""
+    pts, owner, side = [], [], []
     for j, (t1, t2) in enumerate(combos):
         a = tiles1[t1]
         b = np.zeros((0, 3)) if tiles2 is None else tiles2[t2] + off
         pts += [a + (8.0 * j, 0, 0), b + (8.0 * j, 0, 0)]
         owner.append(np.full(len(a) + len(b), j))
+        side.append(np.repeat([0, 1], [len(a), len(b)]))
     if not pts:
         return None
-    pts, owner = np.concatenate(pts), np.concatenate(owner)
+    pts, owner, side = np.concatenate(pts), np.concatenate(owner), np.concatenate(side)
     pairs = close_pairs3(pts, distance)
     if len(pairs) == 0:
         return None
     i, k = pairs[0]
     t1, t2 = combos[owner[i]]
-    return int(t1), int(t2), float(np.linalg.norm(pts[i] - pts[k]))
+    return (int(t1), int(t2), float(np.linalg.norm(pts[i] - pts[k]))), {int(side[i]), int(side[k])}

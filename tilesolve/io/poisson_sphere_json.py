@@ -1,0 +1,199 @@
+"""Poisson sphere tile sets and boxes of points as files (class notes §4.4).
+
+``tilesolve/poisson-sphere-tiles`` (version 1), a tile set::
+
+    {
+      "format": "tilesolve/poisson-sphere-tiles", "version": 1,
+      "colors": 2, "points": 128, "rho": 0.65,   # the problem (C, N, rho)
+      "distance": 0.14...,        # 2 rho r_max(N) (eq. 4.5-4.6), for people: readers recompute it
+      "method": "dart", "seed": 1, "stats": {"short": 0},
+      "tiles": {"corner": [[[x, y, z], ...], ...], "xedge": [...], "yedge": [...], "zedge": [...],
+                "xface": [...], "yface": [...], "zface": [...], "interior": [...]}
+    }
+
+(tile order as in :class:`tilesolve.model.poisson_sphere.PoissonSphereTileSet`).
+
+``tilesolve/poisson-sphere-window`` (version 1), the points of a box::
+
+    {
+      "format": "tilesolve/poisson-sphere-window", "version": 1,
+      "colors": 2, "points": 128, "rho": 0.65, "distance": 0.14...,
+      "box": {"x0": 0, "y0": 0, "z0": 0, "width": 4, "height": 4, "depth": 4},
+      "hash": "long", "seed": 1,
+      "local": [[x, y, z], ...]   # relative to (x0, y0, z0)
+    }
+
+Writes are deterministic (no timings): the same seed gives the same bytes. :func:`write_points3`
+also writes a box as CSV (``x,y,z`` header) or NPY (an ``(n, 3)`` float64 array) of coordinates
+of space, for boxes within ``+-2**31``; the JSON form keeps any box exact.
+"""
+
+from __future__ import annotations
+
+import io
+import json
+import math
+import os
+from typing import Any
+
+import numpy as np
+
+from tilesolve.errors import InvalidProblem
+from tilesolve.io.atomic import write_bytes_atomic, write_text_atomic
+from tilesolve.io.jsonio import check_document
+from tilesolve.io.poisson_json import FLOAT_RANGE, POINT_FORMATS
+from tilesolve.model.poisson_sphere import (
+    KINDS,
+    MAX_WINDOW_POINTS,
+    Box,
+    PoissonSphereTilesProblem,
+    PoissonSphereTileSet,
+    PoissonSphereWindow,
+    PoissonSphereWindowProblem,
+)
+from tilesolve.model.solution import Solution, Status
+
+__all__ = ["TILES_FORMAT", "WINDOW_FORMAT", "VERSIONS", "tiles_to_dict", "tiles_from_dict", "window_to_dict",
+           "window_from_dict", "dump", "write_points3", "check_point_output3"]
+
+TILES_FORMAT = "tilesolve/poisson-sphere-tiles"
+WINDOW_FORMAT = "tilesolve/poisson-sphere-window"
+VERSIONS = frozenset({1})
+
+_PROBLEM = ("colors", "points", "rho")
+_TILES_KEYS = {"format", "version", *_PROBLEM, "distance", "method", "seed", "stats", "tiles"}
+_WINDOW_KEYS = {"format", "version", *_PROBLEM, "distance", "box", "hash", "seed", "local"}
+
+
+def _problem(p: PoissonSphereTilesProblem) -> dict:
+    return {"colors": p.colors, "points": p.points, "rho": p.rho, "distance": p.distance}
+
+
+def tiles_to_dict(problem: PoissonSphereTilesProblem, solution: Solution) -> dict:
+    """The document of a built set (``solution.tiling`` is the :class:`PoissonSphereTileSet`)."""
+    ts = solution.tiling
+    return {"format": TILES_FORMAT, "version": 1, **_problem(problem), "method": solution.method,
+            "seed": solution.seed, "stats": {"short": int(ts.stats.get("short", 0))},
+            "tiles": {k: [a.tolist() for a in ts.tiles[k]] for k in KINDS}}
+
+
+def _points3(value: Any, what: str, source: str, limit: int) -> np.ndarray:
+    if not isinstance(value, list) or len(value) > limit:
+        raise InvalidProblem(f"{source}: {what!r} must be a list of at most {limit:,} [x, y, z] points")
+    for p in value:
+        if not (isinstance(p, list) and len(p) == 3 and all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                                                             and math.isfinite(v) for v in p)):
+            raise InvalidProblem(f"{source}: {what!r} holds {p!r}, not an [x, y, z] triple of numbers")
+    return np.array(value, dtype=np.float64).reshape(-1, 3)
+
+
+def _read_problem(doc: dict, source: str) -> PoissonSphereTilesProblem:
+    missing = [k for k in _PROBLEM if k not in doc]
+    if missing:
+        raise InvalidProblem(f"{source}: missing field {missing[0]!r}")
+    try:
+        problem = PoissonSphereTilesProblem(doc["colors"], doc["points"], doc["rho"])
+    except InvalidProblem as exc:
+        raise InvalidProblem(f"{source}: {exc}") from None
+    stated = doc.get("distance", problem.distance)  # recomputed; another stated distance is refused
+    if isinstance(stated, bool) or not isinstance(stated, (int, float)) or not math.isclose(
+            stated, problem.distance, rel_tol=1e-12):
+        raise InvalidProblem(f"{source}: 'distance' is {stated!r}, but its problem's is {problem.distance!r} "
+                             "(2 rho r_max(N))")
+    return problem
+
+
+def _seed(doc: dict, source: str) -> int | None:
+    seed = doc.get("seed")
+    if seed is None or (type(seed) is int and 0 <= seed < 2**63):
+        return seed
+    raise InvalidProblem(f"{source}: 'seed' must be an integer from 0 to 2**63 - 1, got {seed!r}")
+
+
+def tiles_from_dict(doc: dict, source: str = "<document>") -> tuple[PoissonSphereTilesProblem, Solution]:
+    """Read :func:`tiles_to_dict`'s document; one-line errors naming ``source`` and the field."""
+    check_document(doc, source, {TILES_FORMAT: VERSIONS}, fields=_TILES_KEYS, required=("tiles",))
+    problem = _read_problem(doc, source)
+    tiles = doc["tiles"]
+    if not isinstance(tiles, dict) or set(tiles) != set(KINDS):
+        raise InvalidProblem(f"{source}: 'tiles' must have the fields {', '.join(KINDS)}")
+    arrays = {}
+    for kind, n in problem.counts().items():
+        if not isinstance(tiles[kind], list) or len(tiles[kind]) != n:
+            raise InvalidProblem(f"{source}: a set over {problem.colors} colours has {n} {kind} tiles")
+        arrays[kind] = [_points3(t, f"tiles.{kind}[{i}]", source, 4 * problem.points + 16)
+                        for i, t in enumerate(tiles[kind])]
+    stats = doc.get("stats", {})
+    if not isinstance(stats, dict):
+        raise InvalidProblem(f"{source}: 'stats' must be an object")
+    seed = _seed(doc, source)
+    ts = PoissonSphereTileSet(problem, arrays, seed=seed, stats=dict(stats))
+    method = doc.get("method", "dart")
+    return problem, Solution(Status.SAT, ts, method=method if isinstance(method, str) else "dart", seed=seed,
+                             stats=dict(stats))
+
+
+def window_to_dict(problem: PoissonSphereWindowProblem, solution: Solution) -> dict:
+    """The document of a box (``solution.tiling`` is the :class:`PoissonSphereWindow`)."""
+    return {"format": WINDOW_FORMAT, "version": 1, **_problem(problem.tileset.problem),
+            "box": problem.box.to_dict(), "hash": problem.hash, "seed": solution.seed,
+            "local": solution.tiling.local}
+
+
+def window_from_dict(doc: dict, source: str = "<document>") -> tuple[PoissonSphereTilesProblem, Solution]:
+    """Read :func:`window_to_dict`'s document: the set's problem, and the box as the answer."""
+    check_document(doc, source, {WINDOW_FORMAT: VERSIONS}, fields=_WINDOW_KEYS, required=("box", "local"))
+    problem = _read_problem(doc, source)
+    box = Box.from_dict(doc["box"])
+    local = _points3(doc["local"], "local", source, MAX_WINDOW_POINTS)
+    return problem, Solution(Status.SAT, PoissonSphereWindow(box, local, problem.distance), method="window",
+                             seed=_seed(doc, source))
+
+
+def dump(doc: dict) -> str:
+    """JSON text: a tile's points on one line, a box's one point a line (floats round-trip)."""
+    def line(rows) -> str:
+        return "[" + ", ".join(f"[{x!r}, {y!r}, {z!r}]" for x, y, z in rows) + "]"
+
+    head = {k: v for k, v in doc.items() if k not in ("tiles", "local")}
+    text = json.dumps(head, indent=2)[:-2]
+    if "tiles" in doc:
+        kinds = [f'    "{k}": [\n' + ",\n".join("      " + line(t) for t in doc["tiles"][k]) + "\n    ]"
+                 for k in KINDS]
+        text += ',\n  "tiles": {\n' + ",\n".join(kinds) + "\n  }"
+    if "local" in doc:
+        rows = np.asarray(doc["local"]).tolist()
+        text += ',\n  "local": [' + ",".join(f"\n    [{x!r}, {y!r}, {z!r}]" for x, y, z in rows)
+        text += "\n  ]" if rows else "]"
+    return text + "\n}\n"
+
+
+def check_point_output3(path: str | os.PathLike, box: Box) -> str:
+    """The format of a points file, from its suffix; refuses CSV and NPY for a box beyond
+    ``+-2**31`` (before any work is done)."""
+    suffix = os.fspath(path).rsplit(".", 1)[-1].lower()
+    if suffix not in POINT_FORMATS:
+        raise InvalidProblem(f"cannot tell the format of {os.fspath(path)!r}: use .json, .csv or .npy")
+    far = max(max(abs(lo), abs(lo + n)) for lo, n in zip(box.origin, box.size))
+    if suffix != "json" and far > FLOAT_RANGE:
+        raise InvalidProblem(f"the box lies beyond +-2**31, where {suffix.upper()} coordinates lose precision: "
+                             "write .json (points relative to the box's corner)")
+    return suffix
+
+
+def write_points3(path: str | os.PathLike, problem: PoissonSphereWindowProblem, solution: Solution) -> None:
+    """Write a box's points: ``.json`` (:func:`window_to_dict`), ``.csv`` or ``.npy``."""
+    suffix = check_point_output3(path, problem.box)
+    if suffix == "json":
+        write_text_atomic(path, dump(window_to_dict(problem, solution)))
+        return
+    pts = solution.tiling.absolute()
+    if suffix == "npy":
+        buf = io.BytesIO()
+        np.save(buf, pts)
+        write_bytes_atomic(path, buf.getvalue())
+    else:
+        buf = io.StringIO()
+        buf.write("x,y,z\n")
+        np.savetxt(buf, pts, fmt="%.17g", delimiter=",")
+        write_text_atomic(path, buf.getvalue())
