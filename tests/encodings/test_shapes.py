@@ -5,7 +5,8 @@ from __future__ import annotations
 import pytest
 from pysat.solvers import Solver
 
-from tilesolve.encodings.shapes import encode_coronas, encode_tiling, torus_reducer
+from tilesolve.encodings.shapes import (encode_coronas, encode_surround, encode_tiling, lattice_basis, point_group,
+                                        torus_reducer)
 from tilesolve.model.shapes import GRIDS, ShapesProblem, parse_ascii, parse_cells
 
 
@@ -56,3 +57,35 @@ def test_coronas_of_a_square_exist_and_of_a_non_tiler_stop():
     assert _sat(encode_coronas(square, 2))
     hexes = ShapesProblem("classify", (parse_cells("0,0 0,1 0,2 0,3 1,-1 1,3", "hex"),))
     assert _sat(encode_coronas(hexes, 1)) and not _sat(encode_coronas(hexes, 2))
+
+
+@pytest.mark.parametrize("grid, reflections", [("omino", True), ("omino", False), ("hex", True), ("iamond", False)])
+def test_the_point_group_table_is_a_group_of_the_grids_matrices(grid, reflections):
+    import numpy as np
+
+    mats, product, inverse = point_group(GRIDS[grid], reflections)
+    assert len(mats) == GRIDS[grid].order * (2 if reflections else 1) and (mats[0] == np.eye(2)).all()
+    for a in range(len(mats)):
+        assert product[a, inverse[a]] == 0 and product[inverse[a], a] == 0
+        for b in range(len(mats)):
+            assert (mats[product[a, b]] == mats[a] @ mats[b]).all()
+
+
+@pytest.mark.parametrize("grid, art", [("omino", "#"), ("hex", "##"), ("iamond", "##")])
+def test_every_surround_candidate_touches_the_shape_without_overlapping_it(grid, art):
+    p = ShapesProblem("classify", (parse_ascii(art, grid),))
+    enc = encode_surround(p)
+    g = GRIDS[grid]
+    shape = set(enc.shape)
+    around = {n for c in shape for n in g.touching(c)} - shape
+    for m, t in zip(enc.m.tolist(), enc.t.tolist()):
+        cells = {tuple(int(v) for v in enc.mats[m] @ c + t) for c in enc.shape}
+        assert cells.isdisjoint(shape) and cells & around and all(g.is_cell(c) for c in cells)
+    with Solver(name="cadical153", bootstrap_with=enc.clauses) as s:
+        assert s.solve()
+
+
+@pytest.mark.parametrize("vectors, basis", [([(3, 0), (0, 2)], ((3, 0), (0, 2))), ([(1, 2), (2, 1)], ((3, 0), (2, 1))),
+                                            ([(0, 0), (5, 0)], None), ([(-2, -1), (4, 0)], ((4, 0), (2, 1)))])
+def test_lattice_basis_is_the_hermite_form(vectors, basis):
+    assert lattice_basis(vectors) == basis

@@ -27,6 +27,7 @@ Coronas (:func:`encode_coronas`)
 from __future__ import annotations
 
 import functools
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -34,8 +35,8 @@ import numpy as np
 from tilesolve.encodings import ClauseSet, cardinality
 from tilesolve.model.shapes import Grid, ShapesProblem
 
-__all__ = ["PAIRWISE_MAX", "TilingEncoding", "CoronaEncoding", "encode_tiling", "encode_coronas", "torus_reducer",
-           "orientations", "placements_at"]
+__all__ = ["PAIRWISE_MAX", "TilingEncoding", "CoronaEncoding", "SurroundEncoding", "encode_tiling", "encode_coronas",
+           "encode_surround", "torus_reducer", "lattice_basis", "orientations", "placements_at", "point_group"]
 
 #: Cells covered by at most this many placements get a pairwise at-most-one.
 PAIRWISE_MAX = 8
@@ -84,6 +85,36 @@ def _egcd(x: int, y: int) -> tuple[int, int, int]:
         return (abs(x), (1 if x >= 0 else -1), 0)
     g, u, w = _egcd(y, x % y)
     return g, w, u - (x // y) * w
+
+
+def lattice_basis(vectors) -> tuple[tuple[int, int], tuple[int, int]] | None:
+    """The Hermite basis ``(A, 0), (B, D)`` (``A, D > 0``, ``0 <= B < A``) of the lattice that
+    integer ``vectors`` generate, or ``None`` when they span less than the plane.
+
+    Examples
+    --------
+    >>> lattice_basis([(2, 1), (0, 3), (4, 2)])
+    ((6, 0), (2, 1))
+    >>> lattice_basis([(1, 1), (2, 2)]) is None
+    True
+    """
+    a, pivot = 0, None
+    for x, y in vectors:
+        x, y = int(x), int(y)
+        if y == 0:
+            a = math.gcd(a, x)
+            continue
+        if pivot is None:
+            pivot = (x, y)
+            continue
+        px, py = pivot
+        d, u, w = _egcd(py, y)
+        pivot = (u * px + w * x, d)
+        a = math.gcd(a, (y // d) * px - (py // d) * x)
+    if pivot is None or a == 0:
+        return None
+    px, py = pivot if pivot[1] > 0 else (-pivot[0], -pivot[1])
+    return (a, 0), (px % a, py)
 
 
 def placements_at(g: Grid, images, cells) -> dict:
@@ -354,4 +385,144 @@ def encode_coronas(problem: ShapesProblem, levels: int, blocked=()) -> CoronaEnc
     if blocks:
         cs.add_lists(blocks, "no hole (H_c): these tiles absent or the hole's cells covered")
     enc.n_vars = max(top, 1)
+    return enc
+
+
+#: Cell codes of the surround encoding: ``(x + _OFF) * _W + (y + _OFF)`` (cells of a polyform of up
+#: to :data:`tilesolve.model.shapes.MAX_CELLS` cells and its neighbours fit).
+_OFF, _W = 1 << 16, 1 << 17
+
+
+def _codes(cells: np.ndarray) -> np.ndarray:
+    return (cells[..., 0] + _OFF) * _W + (cells[..., 1] + _OFF)
+
+
+@functools.lru_cache(maxsize=8)
+def point_group(g: Grid, reflections: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(matrices, product, inverse)``: the point group used (``(G, 2, 2)``, the identity
+    first), its multiplication table (``product[a, b]`` is the index of ``M_a M_b``) and each
+    element's inverse.
+
+    Examples
+    --------
+    >>> from tilesolve.model.shapes import GRIDS
+    >>> mats, product, inverse = point_group(GRIDS["omino"], True)
+    >>> len(mats), int(product[1, 3]), int(inverse[1])
+    (8, 0, 3)
+    """
+    mats = np.stack(g.matrices if reflections else g.matrices[: g.order])
+    index = {m.tobytes(): i for i, m in enumerate(mats)}
+    product = np.array([[index[(a @ b).tobytes()] for b in mats] for a in mats], dtype=np.int64)
+    inverse = np.argmin(product, axis=1)  # the identity is element 0
+    return mats, product, inverse
+
+
+@dataclass
+class SurroundEncoding:
+    """A closed first corona around one shape (:func:`encode_surround`).
+
+    Attributes
+    ----------
+    mats, product, inverse : numpy.ndarray
+        The point group used (:func:`point_group`).
+    m, t : numpy.ndarray
+        Per candidate transform ``i``: its matrix's index ``m[i]`` and translation ``t[i]``
+        (cell coordinates); sorted by :func:`_codes` key.
+    clauses : list of list of int
+        The CNF (variables ``1..len(m)``).
+    """
+
+    grid: Grid
+    shape: tuple
+    mats: np.ndarray
+    product: np.ndarray
+    inverse: np.ndarray
+    m: np.ndarray
+    t: np.ndarray
+    clauses: list = field(default_factory=list)
+
+    @property
+    def n_vars(self) -> int:
+        return len(self.m)
+
+    def decode(self, model) -> list[int]:
+        """The indices of the used transforms."""
+        return [v - 1 for v in model if 0 < v <= len(self.m)]
+
+
+def encode_surround(problem: ShapesProblem) -> SurroundEncoding:
+    """The CNF "``S`` has a closed surround" (module docstring).
+
+    Every pair of candidates is classified at once from ``T_i^-1 T_j`` (whether its image of
+    ``S`` overlaps ``S``, touches it or lies apart), with integer arrays.
+
+    Examples
+    --------
+    >>> from tilesolve.model.shapes import parse_ascii
+    >>> enc = encode_surround(ShapesProblem("classify", (parse_ascii("#", "omino"),)))
+    >>> enc.n_vars  # the 8 neighbours of a square, each under the 8 symmetries
+    64
+    """
+    g = problem.geometry
+    shape = problem.shapes[0].cells
+    mats, product, inverse = point_group(g, problem.reflections)
+    x = np.asarray(shape, dtype=np.int64)
+    halo = np.asarray(sorted(_halo(g, shape)), dtype=np.int64)
+    p = g.period
+    images = np.einsum("gab,nb->gna", mats, x)  # (G, n, 2): M_g S
+    # translations putting a cell of M_g S on a cell of S or of its halo
+    near = np.concatenate((x, halo))
+    t = (near[None, :, None, :] - images[:, None, :, :]).reshape(len(mats), -1, 2)
+    keys, cells_of = [], []
+    s_codes, h_codes = _codes(x), _codes(halo)
+    for gi in range(len(mats)):
+        tg = t[gi]
+        tc = np.unique(_codes(tg[(tg[:, 0] % p == 0) & (tg[:, 1] % p == 0)]))
+        tg = np.stack((tc // _W - _OFF, tc % _W - _OFF), axis=1)
+        c = _codes(images[gi][None, :, :] + tg[:, None, :])
+        overlap = np.isin(c, s_codes).any(axis=1)
+        touch = np.isin(c, h_codes).any(axis=1)
+        # overlapping transforms (the identity too) get key parity 1, touching ones 0
+        kind = np.where(overlap, 1, np.where(touch, 0, -1))
+        keep = kind >= 0
+        keys.append(((gi * _W * _W + tc) * 2 + kind)[keep])
+        cells_of.append(c[keep & ~overlap])
+    allkeys = np.sort(np.concatenate(keys))
+    cand = allkeys[allkeys % 2 == 0] // 2  # touching transforms, sorted
+    m = cand // (_W * _W)
+    rest = cand % (_W * _W)
+    t = np.stack((rest // _W - _OFF, rest % _W - _OFF), axis=1)
+    k = len(m)
+    enc = SurroundEncoding(g, shape, mats, product, inverse, m, t)
+    clauses: list = []
+    # the cells around S are covered (each grid element's translations came sorted, as ``cand``)
+    codes = np.concatenate(cells_of)
+    for h in h_codes:
+        clauses.append((np.flatnonzero((codes == h).any(axis=1)) + 1).tolist())
+    # T -> T^-1
+    inv_m = inverse[m]
+    minv = mats[inv_m]
+    ti = -np.einsum("kab,kb->ka", minv, t)
+    pos = np.searchsorted(cand, inv_m * _W * _W + _codes(ti))
+    pos[pos >= k] = 0
+    has = cand[pos] == inv_m * _W * _W + _codes(ti)
+    a = np.arange(k)
+    clauses += np.stack((-(a[has] + 1), pos[has] + 1), axis=1).tolist()
+    clauses += [[-(v + 1)] for v in a[~has].tolist()]
+    # every pair i < j: u = T_i^-1 T_j overlapping S (the tiles overlap) or touching it (closure)
+    i, j = np.triu_indices(k, 1)
+    dx, dy = t[j, 0] - t[i, 0], t[j, 1] - t[i, 1]
+    mi = minv[i]
+    ux = mi[:, 0, 0] * dx + mi[:, 0, 1] * dy
+    uy = mi[:, 1, 0] * dx + mi[:, 1, 1] * dy
+    ukey = (product[inv_m[i], m[j]] * _W * _W + (ux + _OFF) * _W + (uy + _OFF)) * 2
+    pos = np.searchsorted(allkeys, ukey)
+    pos[pos >= len(allkeys)] = 0
+    found = allkeys[pos]
+    over = found == ukey + 1
+    clauses += np.stack((-(i[over] + 1), -(j[over] + 1)), axis=1).tolist()
+    touch = found == ukey
+    upos = np.searchsorted(cand, ukey[touch] // 2)
+    clauses += np.stack((-(i[touch] + 1), -(j[touch] + 1), upos + 1), axis=1).tolist()
+    enc.clauses = clauses
     return enc

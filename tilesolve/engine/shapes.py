@@ -3,17 +3,26 @@ unmarked polyforms", 2022, whose program heesch-sat classifies polyforms the sam
 
 :func:`classify` answers, for one shape:
 
-1. *Tiler?* For ``k = 1, 2, ..., max_copies`` copies per period, every sublattice ``L`` of the
-   translations of index ``k * n / t`` (``n`` cells, ``t`` cell types; Hermite forms
-   ``(A, 0), (B, D)``), the exact cover of the torus ``Z^2 / L``
-   (:func:`tilesolve.encodings.shapes.encode_tiling`). An isohedral tiling has a translation
-   lattice with at most as many tiles per period as the grid's point group has elements, so it
-   is found here for ``max_copies`` large enough. A torus tiling is kept as ``isohedral`` when
-   a symmetry of it maps tile 0 onto each tile (:func:`is_isohedral`); tilings that are not
-   are blocked and the search goes on (at most :data:`TILINGS_PER_TORUS` per torus), the first
-   one kept as a ``periodic`` witness. Unsatisfiable tori prove nothing here and are not
-   certified.
-   A shape with a periodic tiling is a tiler (Heesch number infinite): no coronas are tried.
+1. *Tiler?* In three stages, cheapest first, each ending the search with its witness:
+
+   a. *Lattice tilings*: every sublattice ``L`` of the translations of index ``n / t`` (``n``
+      cells, ``t`` cell types; Hermite forms ``(A, 0), (B, D)``, :func:`lattices`), the exact
+      cover of the torus ``Z^2 / L`` by one copy (:func:`tilesolve.encodings.shapes.encode_tiling`).
+   b. *Isohedral tilings, any number of copies per period*: closed surrounds of the shape
+      (:func:`tilesolve.encodings.shapes.encode_surround`), the neighbours of an isohedral
+      tiling seen from one tile; the transforms of a model generate a group whose orbit of the
+      shape is checked to be a torus tiling (:func:`surround_tiling`), else the model is
+      blocked (at most :data:`SURROUNDS`). An isohedral tiling may need as many copies per
+      period as the point group has elements (4 for some 7-ominoes), which no torus bound
+      guesses.
+   c. *Periodic tilings*: for ``k = 2, ..., max_copies`` copies per period, the exact cover of
+      every torus of index ``k * n / t``. A torus tiling is kept as ``isohedral`` when a
+      symmetry of it maps tile 0 onto each tile (:func:`is_isohedral`); tilings that are not
+      are blocked and the search goes on (at most :data:`TILINGS_PER_TORUS` per torus), the
+      first one kept as a ``periodic`` witness.
+
+   Unsatisfiable tori and surrounds prove nothing here and are not certified. A shape with a
+   periodic tiling is a tiler (Heesch number infinite): no coronas are tried.
 2. Else its *Heesch number*: coronas ``1, 2, ...``
    (:func:`tilesolve.encodings.shapes.encode_coronas`) until a level is unsatisfiable, that
    refutation certified by a checked DRAT proof; without ``holes`` a model whose patch has a
@@ -29,18 +38,20 @@ from typing import Iterator
 import numpy as np
 
 from tilesolve.deadline import NO_LIMIT, Deadline
-from tilesolve.encodings.shapes import encode_tiling, torus_reducer
+from tilesolve.encodings.shapes import encode_surround, encode_tiling, lattice_basis, torus_reducer
 from tilesolve.engine.sat import solve_cnf
 from tilesolve.errors import InvalidProblem
 from tilesolve.model.shapes import Grid, ShapesProblem, ShapesReport, enclosed
 from tilesolve.model.solution import Solution, Status
 
-__all__ = ["SHAPES_SAT_SOLVER", "TILINGS_PER_TORUS", "MAX_LITERALS", "lattices", "is_isohedral", "classify",
-           "check_size"]
+__all__ = ["SHAPES_SAT_SOLVER", "TILINGS_PER_TORUS", "SURROUNDS", "MAX_LITERALS", "lattices", "is_isohedral",
+           "classify", "check_size", "surround_tiling"]
 
 SHAPES_SAT_SOLVER = "cadical153"
 #: Torus tilings tried per torus before the next torus (tilings that are not isohedral).
 TILINGS_PER_TORUS = 20
+#: Closed surrounds tried (each whose group does not tile is blocked) before the isohedral search gives up.
+SURROUNDS = 20
 #: The largest tiling CNF built (an estimate of its literals, checked before building).
 MAX_LITERALS = 10_000_000
 
@@ -124,9 +135,10 @@ def _pieces(tiling: np.ndarray) -> list[list[tuple[int, int]]]:
     return [[tuple(r) for r in tiling[tiling[:, 0] == k][:, 2:].tolist()] for k in np.unique(tiling[:, 0])]
 
 
-def _torus_search(problem: ShapesProblem, deadline: Deadline, solver: str, seed):
-    """``(found, tori tried)``: ``found`` the first isohedral torus tiling, else the first
-    periodic one, else ``None``, as ``(verdict, copies, lattice, tiling)``."""
+def _torus_search(problem: ShapesProblem, deadline: Deadline, solver: str, seed, copies: range):
+    """``(found, tori tried)``: ``found`` the first isohedral torus tiling with a number of
+    ``copies`` per period, else the first periodic one, else ``None``, as ``(verdict, copies,
+    lattice, tiling)``."""
     from pysat.solvers import Solver
 
     shape = problem.shapes[0]
@@ -134,7 +146,7 @@ def _torus_search(problem: ShapesProblem, deadline: Deadline, solver: str, seed)
     types = 1 if g.period == 1 else 2
     first = None
     tried = 0
-    for k in range(1, problem.max_copies + 1):
+    for k in copies:
         if (k * shape.size) % types:
             continue
         for lattice in lattices(k * shape.size // types):
@@ -157,6 +169,86 @@ def _torus_search(problem: ShapesProblem, deadline: Deadline, solver: str, seed)
                         first = ("periodic", k, lattice, tiling)
                     s.add_clause([-v for v in model if 0 < v <= len(enc.placements)])
     return first, tried
+
+
+def surround_tiling(enc, used: list[int]):
+    """The torus tiling of the group that the transforms ``used`` (of the surround encoding
+    ``enc``) generate, as ``(copies, lattice, tiling)``, or ``None`` when its orbit of the shape
+    is no tiling.
+
+    The point parts ``H`` of the group and one element ``r_h`` per ``h`` come from a closure
+    over the generators; the translations ``L`` are generated by the Schreier elements
+    ``r_h'^-1 s r_h`` (Schreier's lemma); the tiles ``r_h(S)`` modulo ``L`` must cover the
+    torus ``Z^2 / L`` exactly once. Then the group maps the tiling onto itself and moves
+    ``S`` onto every tile: the tiling is isohedral.
+    """
+    g = enc.grid
+    mats, product, inverse = enc.mats, enc.product, enc.inverse
+    gens = [(int(enc.m[i]), np.asarray(enc.t[i], dtype=np.int64)) for i in used]
+    reps = {0: np.zeros(2, dtype=np.int64)}  # point part -> translation of one element
+    todo = [0]
+    while todo:
+        h = todo.pop()
+        for ms, ts in gens:
+            k = int(product[ms, h])
+            if k not in reps:
+                reps[k] = mats[ms] @ reps[h] + ts
+                todo.append(k)
+    p = g.period
+    shifts = []
+    for h, th in reps.items():
+        for ms, ts in gens:
+            k = int(product[ms, h])
+            shift = mats[int(inverse[k])] @ (mats[ms] @ th + ts - reps[k])
+            if shift.any():
+                shifts.append(shift)
+    if any(int(v) % p for sh in shifts for v in sh):
+        return None
+    lattice = lattice_basis([(int(x) // p, int(y) // p) for x, y in shifts])
+    if lattice is None:
+        return None
+    reduce, cells = torus_reducer(g, lattice)
+    x = np.asarray(enc.shape, dtype=np.int64)
+    seen: dict = {}
+    pieces = []
+    covered: set = set()
+    for h in sorted(reps):
+        placed = [tuple(c) for c in (x @ mats[h].T + reps[h]).tolist()]
+        key = frozenset(reduce(c) for c in placed)
+        if key in seen:
+            continue
+        if len(key) != len(placed) or covered & key:
+            return None
+        seen[key] = len(pieces)
+        covered |= key
+        pieces.append(placed)
+    if len(covered) != len(cells):
+        return None
+    tiling = np.asarray([(i, 0, cx, cy) for i, cs in enumerate(pieces) for cx, cy in cs], dtype=np.int64)
+    return len(pieces), lattice, tiling
+
+
+def _surround_search(problem: ShapesProblem, deadline: Deadline, solver: str, seed):
+    """``(found, surrounds tried)``: ``found`` an isohedral torus tiling from a closed surround
+    (:func:`tilesolve.encodings.shapes.encode_surround`, :func:`surround_tiling`) as
+    ``("isohedral", copies, lattice, tiling)``, else ``None``: no closed surround, or
+    :data:`SURROUNDS` of them whose groups do not tile, or the deadline."""
+    from tilesolve.engine.sat import SatSession
+
+    enc = encode_surround(problem)
+    tried = 0
+    with SatSession(enc.clauses, solver=solver, seed=seed, deadline=deadline) as s:
+        while tried < SURROUNDS:
+            r = s.solve(deadline=deadline)
+            if r.status is not Status.SAT:
+                break
+            tried += 1
+            used = enc.decode(r.model)
+            found = surround_tiling(enc, used)
+            if found is not None:
+                return ("isohedral", *found), tried
+            s.add_clause([-(i + 1) for i in used])
+    return None, tried
 
 
 def _holes_of(g: Grid, patch: np.ndarray) -> list:
@@ -217,14 +309,20 @@ def classify(problem: ShapesProblem, *, solver: str = SHAPES_SAT_SOLVER, seed=No
 
     progress = as_progress(progress)
     t0 = time.perf_counter()
-    with progress.task("tori", total=None, unit="torus") as task:
-        found, tried = _torus_search(problem, deadline, solver, seed)
-        task.note(f"{tried} tori")
-    stats = {"tori": tried}
-    if found is not None:
-        verdict, copies, lattice, tiling = found
-        return _done(ShapesReport(verdict, copies=copies, lattice=lattice, tiling=tiling, holes=problem.holes),
-                     solver, seed, t0, stats)
+    stats = {"tori": 0}
+    for stage in ("lattice", "surround", "tori"):
+        with progress.task(stage, total=None, unit="model") as task:
+            if stage == "surround":
+                found, stats["surrounds"] = _surround_search(problem, deadline, solver, seed)
+            else:
+                copies = range(1, 2) if stage == "lattice" else range(2, problem.max_copies + 1)
+                found, tried = _torus_search(problem, deadline, solver, seed, copies)
+                stats["tori"] += tried
+            task.note(f"{stats['tori']} tori, {stats.get('surrounds', 0)} surround(s)")
+        if found is not None:
+            verdict, copies, lattice, tiling = found
+            report = ShapesReport(verdict, copies=copies, lattice=lattice, tiling=tiling, holes=problem.holes)
+            return _done(report, solver, seed, t0, stats)
     with progress.task("coronas", total=problem.max_level, unit="level") as task:
         heesch, patch, refutation, reason = _coronas(problem, deadline, solver, seed, t0, task)
     if refutation is not None:
