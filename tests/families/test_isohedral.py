@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import re
 
+import numpy as np
 import pytest
 
 from tilesolve.errors import InvalidProblem
@@ -52,5 +53,32 @@ def test_the_forms_command_poses_the_forms_problem(tmp_path):
     assert run(*words, "-o", "t.json", cwd=tmp_path).returncode == 0
     fam, codec, doc = read_document(tmp_path / "t.json")
     assert fam is facade.FAMILY and codec.read(doc, "t.json")[0] == built
-    with pytest.raises(InvalidProblem, match="edge class 1 does not exist"):
-        form.build(form.values({"seed": 1, "type": "IH10"}))  # IH10 has one edge class; the default fills two
+    # IH10 has one edge class: the second class's field does not apply (the studio hides it) and is ignored
+    values = form.values({"seed": 1, "type": "IH10", "edge1": "line:0.5,0.3"})
+    assert [f.name for f in form.fields if not f.applies(values)] == ["edge1", "edge2", "edge3", "edge4"]
+    assert len(form.build(values)[0].edges) == 1 and "--edge 1=" not in " ".join(form.command(values)[0])
+
+
+def test_the_forms_sketch_maps_each_class_onto_the_prototiles_sides():
+    """The studio's edge editor draws the tile from the sketch: each side's map of its class's
+    path, reversed where said, without its last point, is the prototile's outline, for every type."""
+    from tilesolve.constructive.isohedral import edge_path, prototile
+    from tilesolve.model.isohedral import TYPES, isohedral_type
+
+    shaped = {"J": "line:0.3,0.05/0.6,-0.03", "U": "line:0.3,0.05/0.7,0.05", "S": "line:0.3,0.05/0.7,-0.05", "I": ""}
+    form = facade.FORM
+    for n in TYPES:
+        kinds = isohedral_type(n).edge_kinds
+        values = form.values({"seed": 1, "type": f"IH{n:02d}", **{f"edge{k}": "" for k in range(5)},
+                              **{f"edge{k}": shaped[kind] for k, kind in enumerate(kinds)}})
+        problem, _ = form.build(values)
+        sketch = form.sketch(values)
+        assert [e["kind"] for e in sketch["edges"]] == list(kinds)
+        assert [e["field"] for e in sketch["edges"]] == [f"edge{k}" for k in range(len(kinds))]
+        outline = []
+        for side in sketch["sides"]:
+            m = np.array(side["map"])
+            pts = edge_path(problem.edges[side["edge"]]) @ m[:, :2].T + m[:, 2]
+            outline.extend((pts[::-1] if side["reverse"] else pts)[:-1])
+        want, _ = prototile(problem.template, problem.params, problem.edges)
+        assert np.allclose(outline, want, atol=1e-9), problem.template.name

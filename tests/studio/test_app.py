@@ -82,6 +82,26 @@ def test_check_describes_the_problem_and_the_painted_grids(client):
     assert doc["describe"].startswith("7x5 grid, |T|=3")
     assert doc["cells"]["fixed"] == [5, 7, 0, 2]
     assert doc["command"].endswith("--seed 4 -o solution.json")
+    assert doc["sketch"] is None  # no tile edges to shape
+
+
+def test_check_gives_the_tiles_sides_to_the_edge_editor(client):
+    r = client.post("/api/check", json={"family": "isohedral", "values": {"type": "IH12", "edge0": "line:0.3,0.2/0.7,0.2",
+                                                                        "edge1": "line", "seed": 1}})
+    assert r.status_code == 200, r.text
+    sketch = r.json()["sketch"]
+    assert sketch["edges"] == [{"field": "edge0", "kind": "U"}, {"field": "edge1", "kind": "J"}]
+    assert {s["edge"] for s in sketch["sides"]} == {0, 1} and sketch["chords"] == 16
+    assert all(np.shape(s["map"]) == (2, 3) and isinstance(s["reverse"], bool) for s in sketch["sides"])
+    # a U edge that is not mirror-symmetric is refused with the model's message
+    r = client.post("/api/check", json={"family": "isohedral", "values": {"type": "IH12", "edge0": "line:0.3,0.2", "seed": 1}})
+    assert r.status_code == 400 and "U edge" in r.json()["error"]
+
+
+def test_fields_say_when_they_apply(client):
+    fields = {f["name"]: f for f in next(f for f in client.get("/api/families").json()["families"]
+                                          if f["name"] == "shapes")["fields"]}
+    assert fields["holes"]["when"] == [{"question": ["heesch"]}] and fields["shape"]["when"] == []
 
 
 @pytest.mark.parametrize("body, message", [

@@ -159,7 +159,8 @@ def _form_values(values) -> tuple[str, tuple[float, ...] | None, dict[int, str],
         params = tuple(float(p) for p in text.split(",")) if text else None
     except ValueError:
         raise InvalidProblem(f"cannot read parameters {text!r}: expected numbers separated by commas") from None
-    edges = {k: values[f"edge{k}"].strip() for k in range(_FORM_EDGES) if values[f"edge{k}"].strip()}
+    n = len(isohedral_type(parse_type(values["type"])).edge_kinds)  # the others do not apply (hidden)
+    edges = {k: values[f"edge{k}"].strip() for k in range(n) if values[f"edge{k}"].strip()}
     w, h = (int(v) for v in values["region"].lower().split("x"))
     return values["type"], params, edges, (0.0, 0.0, float(w), float(h)), values["scale"]
 
