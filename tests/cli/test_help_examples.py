@@ -34,7 +34,9 @@ COMMANDS = [(), ("aperiodic", "census"), ("aperiodic", "check"), ("aperiodic", "
             ("crosscheck", "wall"), ("render",), ("render", "texture"), ("render", "wall"), ("gpu",), ("gpu", "info"),
             ("wall-lines",), ("studio",), ("isohedral", "draw"), ("isohedral", "list"),
             ("sample", "poisson-tiles"), ("sample", "poisson-tiles", "build"), ("sample", "poisson-tiles", "spectrum"),
-            ("sample", "poisson-tiles", "window"), ("sample", "poisson-tiles", "texture")]
+            ("sample", "poisson-tiles", "window"), ("sample", "poisson-tiles", "texture"),
+            ("sample", "poisson-spheres"), ("sample", "poisson-spheres", "build"), ("sample", "poisson-spheres", "window"), ("sample", "stipple"),
+            ("sample", "importance-spectrum")]
 
 
 def run(args: list[str], cwd) -> subprocess.CompletedProcess:

@@ -117,3 +117,68 @@ def test_help_examples_run_as_written_in_an_empty_folder(tmp_path):
         for line in lines:
             r = run(*shlex.split(line)[1:], cwd=folder)
             assert r.returncode == 0, (line, r.stderr)
+
+
+# --- sample stipple, sample importance-spectrum (Penrose and polyomino sampling, Part IV-V) ---
+
+@pytest.mark.parametrize("method", ["penrose", "polyomino", "rejection"])
+def test_stipple_same_seed_same_bytes(tmp_path, method):
+    for name in ("a", "b"):
+        r = run("sample", "stipple", "--test-image", "gradient", "--method", method, "--points", "1500", "--seed", "4",
+                "-o", f"{name}.svg", "--png", f"{name}.png", "--csv", f"{name}.csv", cwd=tmp_path)
+        assert r.returncode == 0, r.stderr
+        assert r.stderr.startswith("ok: ")
+    for ext in ("svg", "png", "csv"):
+        assert (tmp_path / f"a.{ext}").read_bytes() == (tmp_path / f"b.{ext}").read_bytes()
+    pts = np.loadtxt(tmp_path / "a.csv", delimiter=",", skiprows=1)
+    assert (tmp_path / "a.svg").read_text().count("<circle") == len(pts)
+    assert abs(len(pts) - 1500) <= 75
+    assert (pts[:, 0] >= 0.5).mean() > 0.6  # the gradient is darker on the right
+
+
+def test_stipple_of_a_picture_follows_its_darkness(tmp_path):
+    from PIL import Image
+
+    a = np.full((40, 60), 255, np.uint8)
+    a[:, :30] = 0  # the left half black, the right half white
+    Image.fromarray(a, "L").save(tmp_path / "half.png")
+    r = run("sample", "stipple", "half.png", "--points", "2000", "--seed", "1", "-o", "h.svg", "--csv", "h.csv",
+            cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    pts = np.loadtxt(tmp_path / "h.csv", delimiter=",", skiprows=1)
+    assert (pts[:, 0] < 0.5).all() and (pts[:, 1] <= 40 / 60).all()
+    assert abs(len(pts) - 2000) <= 40
+
+
+@pytest.mark.parametrize("args,message", [
+    (["missing.png"], "no such file"),
+    (["text.png"], "not a picture"),
+    (["white.png"], "zero everywhere"),
+    (["--points", "0"], "points must be in"),
+    (["--points", "1000000000"], "at most"),
+    (["--points", "lots"], "--points"),
+    (["text.png", "--test-image", "radial"], "not both"),
+])
+def test_stipple_bad_input_is_one_line_and_no_file(tmp_path, args, message):
+    from PIL import Image
+
+    (tmp_path / "text.png").write_text("this is no picture\n")
+    Image.new("L", (4, 4), 255).save(tmp_path / "white.png")
+    before = snapshot(tmp_path)
+    line = one_line_error(run("sample", "stipple", *args, "--seed", "1", "-o", "out.svg", "--png", "out.png",
+                              cwd=tmp_path))
+    assert message in line, line
+    assert snapshot(tmp_path) == before
+
+
+def test_importance_spectrum_prints_the_table_and_draws(tmp_path):
+    r = run("sample", "importance-spectrum", "--points", "3000", "--spectrum-points", "256", "--runs", "2", "--seed",
+            "1", "--svg", "s.svg", "--png", "s.png", "--periodogram", "p.png", cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    rows = [ln.split() for ln in r.stdout.splitlines()[1:]]
+    assert [row[0] for row in rows] == ["penrose", "polyomino", "rejection"]
+    peak = {row[0]: float(row[-2]) for row in rows}
+    assert peak["rejection"] < 30 < peak["polyomino"]  # white noise has no spikes; a raw tiling's lattice has
+    assert (tmp_path / "s.svg").read_text().count("<polyline") == 6
+    for name in ("s.png", "p.png"):
+        assert (tmp_path / name).read_bytes()[:4] == b"\x89PNG"

@@ -279,7 +279,7 @@ def poisson_spheres() -> None:
 
     \b
     Examples:
-      tilesolve sample poisson-spheres build -C 2 -N 128 --rho 0.65 --seed 1 -o spheres.json
+      tilesolve sample poisson-spheres build -C 2 -N 100 --rho 0.6 --seed 1 -o spheres.json
       tilesolve sample poisson-spheres window spheres.json --region 0,0,0,4x4x4 --seed 2 -o pts.npy
       tilesolve verify spheres.json
     """
@@ -304,7 +304,7 @@ def spheres_build(ctx, colors, points, rho, seed, output) -> None:
 
     \b
     Examples:
-      tilesolve sample poisson-spheres build -C 2 -N 128 --rho 0.65 --seed 1 -o spheres.json
+      tilesolve sample poisson-spheres build -C 2 -N 100 --rho 0.6 --seed 1 -o spheres.json
       tilesolve sample poisson-spheres build -C 1 -N 100 --rho 0.6 -o one.json
     """
     from tilesolve.families.poisson_sphere import solve
@@ -346,8 +346,8 @@ def spheres_window(ctx, tileset, region, hash_, seed, output) -> None:
 
     \b
     Examples:
-      tilesolve sample poisson-spheres build -C 2 -N 128 --rho 0.65 --seed 1 -o spheres.json
-      tilesolve sample poisson-spheres window spheres.json --region 0,0,0,20x20x20 --seed 2 -o pts.npy
+      tilesolve sample poisson-spheres build -C 2 -N 100 --rho 0.6 --seed 1 -o spheres.json
+      tilesolve sample poisson-spheres window spheres.json --region 0,0,0,8x8x8 --seed 2 -o pts.npy
       tilesolve sample poisson-spheres window spheres.json --region 1000000000000,-5,7,2x2x2 -o far.json
       tilesolve verify far.json
     """
@@ -487,8 +487,8 @@ def importance_spectrum(ctx, image, test_image, points, tile, lloyd, jitter, run
 
     \b
     Examples:
-      tilesolve sample importance-spectrum --points 5000 --spectrum-points 1024 --runs 2 --seed 1 --svg s.svg --periodogram p.png
-      tilesolve sample importance-spectrum --test-image gradient --points 5000 --spectrum-points 1024 --runs 2 --jitter --lloyd 3 --seed 1
+      tilesolve sample importance-spectrum --spectrum-points 1024 --runs 2 --seed 1 --svg s.svg --periodogram p.png
+      tilesolve sample importance-spectrum --test-image gradient --spectrum-points 1024 --jitter --lloyd 3 --seed 1
     """
     from tilesolve.families.importance import compare, density_of
     from tilesolve.io.poisson_plots import write_spectrum_plot

@@ -9,38 +9,45 @@ vectors lookup table") and stated here in full:
 
 * **Tiles.** A tiling that subdivides into smaller copies of its own tiles: the Robinson
   triangles of the Penrose tiling (:func:`tilesolve.constructive.penrose.deflate`: an acute
-  triangle into 2, an obtuse one into 3, legs shrinking by phi) or a rep-4 polyomino
-  (:func:`tilesolve.constructive.reptile.rule`: 4 copies at half size). One root patch (a sun
-  of ten triangles, or one large polyomino), randomly turned and placed by the seed, covers the
-  image's domain.
+  triangle into 2, an obtuse one into 3, legs shrinking by phi); the X pentomino of the base
+  ``2 + i`` number system (5 children, each level shrinking by ``sqrt 5`` and turning by
+  ``atan(1/2)``; the reconstruction of the 2007 paper's rotated polyominoes); or a rep-4
+  polyomino (:func:`tilesolve.constructive.reptile.rule`: 4 copies at half size). Root tiles
+  (a sun of ten triangles, a patch of the pentomino lattice, one large polyomino), turned and
+  placed by the seed, cover the image's domain.
 * **One sample a tile**, at its centroid. A tile's children are ranked once per tile type (the
   *structural index*): rank 0 is the child that carries the parent's sample on (the largest
-  child, the one nearest the parent's centroid among equals), the others follow farthest first
-  from it, so that the first new samples of a tile are spread.
-* **Thresholds in density units.** A tile ``T`` of area ``A`` is subdivided where the density
-  integrated over it exceeds 1 (the level's threshold: it would hold more than one sample).
-  The samples of its children appear one by one as the density rises from ``1 / A`` to
-  ``1 / A_child`` (where each child in turn is full): child ``r >= 1`` of ``k`` has the
-  threshold ``1/A + s (1/A_child - 1/A)``, ``s = (r - 1 + v_T) / (k - 1)``; rank 0 keeps its
+  child, the one nearest the parent's centroid among equals; the centre of the X pentomino,
+  whose centroid is its parent's), the others follow farthest first from it (opposites first
+  for the pentomino), so that the first new samples of a tile are spread.
+* **Thresholds in density units.** Let ``a_l`` be the mean area of a tile of level ``l`` (all
+  tiles for polyominoes; the Penrose triangles' two sizes averaged, obtuse : acute = phi : 1).
+  A tile is subdivided where the mean density over it exceeds ``1 / a_l`` (its level's
+  threshold: it would hold more than one sample). The samples born at level ``l + 1`` appear
+  as the density rises from ``1 / a_l`` to ``1 / a_(l+1)``: child ``r >= 1`` of ``k`` has the
+  threshold ``1/a_l + s (1/a_(l+1) - 1/a_l)``, ``s = (r - 1 + v_T) / (k - 1)``; rank 0 keeps its
   parent's threshold. ``v`` is the tile's place in its neighbourhood, ``v_child = (r + v_T) /
   k`` (a radical inverse along the hierarchy, as an ordered-dither matrix is built), so that
   neighbouring tiles take their next sample at staggered densities. A leaf (a tile not
-  subdivided) emits its sample where the mean density over it exceeds its threshold.
-  With equal children (polyominoes) the expected count in a tile of uniform density ``D`` is
-  exactly ``D A``; with the Penrose triangles' two sizes it is close to it on average (the
-  2004 paper's Fibonacci number system exists to make that exact; measured here, not assumed).
+  subdivided) emits its sample where the mean density over it exceeds its threshold. The
+  expected count of a region of uniform density ``D`` is then ``D`` times its area on average
+  over the tiles (exactly per tile for equal children); the 2004 paper's Fibonacci number
+  system plays this part for the Penrose triangles.
 * **Correction vectors** (learnt by Lloyd relaxation in both papers, stored per structural
-  index) are not tabulated: the samples stay at tile centroids. ``lloyd`` steps of
-  density-weighted Lloyd relaxation (:func:`lloyd`) can move them afterwards instead.
+  index) are not tabulated: the samples stay at tile centroids. Two stand-ins: ``jitter`` (each
+  sample at a uniform random point of its tile: stratified sampling over the tiles) and
+  ``lloyd`` steps of density-weighted Lloyd relaxation (:func:`lloyd`) afterwards.
 
-The density integral over a polyomino is exact (its cells are squares: a summed-area table,
-bilinear between pixel corners); over a Penrose triangle it is the mean over its bounding box
-times its area (an approximation at the tile's scale). Samples whose tile centroid falls
-outside the domain are dropped.
+The density integral over a rep-4 polyomino is exact (its cells are squares: a summed-area
+table, bilinear between pixel corners); over a Penrose triangle it is the mean over its
+bounding box, over the fractal pentomino the sum over its five squares one level down (each
+the axis-parallel square of the same area): approximations at the tile's scale. Samples whose
+tile centroid falls outside the domain, or on a white pixel, are dropped; :func:`sample`
+calibrates the count.
 
 >>> from tilesolve.model.importance import ImportanceProblem, builtin_density
 >>> pts = sample(ImportanceProblem(builtin_density("flat", 16), 500, "polyomino"), seed=1)
->>> 450 < len(pts) < 550 and pts.min() >= 0 and pts.max() <= 1
+>>> bool(450 < len(pts) < 550 and pts.min() >= 0 and pts.max() <= 1)
 True
 """
 
@@ -54,13 +61,16 @@ from tilesolve._random import rng_from_seed
 from tilesolve.constructive import penrose, reptile
 from tilesolve.model.importance import DensityMap, ImportanceProblem
 
-__all__ = ["CALIBRATE", "MassTable", "penrose_points", "polyomino_points", "rejection_points", "lloyd", "sample"]
+__all__ = ["CALIBRATE", "CALIBRATION_PASSES", "MassTable", "penrose_points", "polyomino_points", "rejection_points",
+           "lloyd", "sample"]
 
 _PHI = (1 + 5**0.5) / 2
 #: The mean area of a Robinson triangle of legs 1 in a Penrose tiling (obtuse : acute = phi : 1).
 _MEAN_AREA = (np.sin(np.pi / 5) + _PHI * np.sin(3 * np.pi / 5)) / (2 * (1 + _PHI))
 #: Relative error of the count above which :func:`sample` calibrates the density once.
 CALIBRATE = 0.01
+#: Most extra passes of the calibration.
+CALIBRATION_PASSES = 3
 #: Deepest subdivision of a polyomino (its side shrinks by 2 a level: 2^-30 of the domain).
 MAX_POLYOMINO_LEVELS = 30
 #: Deepest subdivision of the Penrose sun (legs shrink by phi a level; ring coordinates up to phi^60 fit int64).
@@ -90,7 +100,7 @@ class MassTable:
         i = np.minimum(w.astype(np.int64), self.rows - 1)
         fu, fw = u - j, w - i
         s = self.sat
-        return ((s[i, j] * (1 - fu) + s[i, j + 1] * fu) * (1 - fw) + (s[i + 1, j] * (1 - fu) + s[i + 1, j + 1] * fu) * fw)
+        return (s[i, j] * (1 - fu) + s[i, j + 1] * fu) * (1 - fw) + (s[i + 1, j] * (1 - fu) + s[i + 1, j + 1] * fu) * fw
 
     def box(self, x0, y0, x1, y1) -> np.ndarray:
         """The mass of the boxes ``[x0, x1] x [y0, y1]`` (arrays)."""
@@ -113,9 +123,11 @@ def _ranks(parent_centre: np.ndarray, centres: np.ndarray, areas: np.ndarray) ->
 def _hierarchy(system, mass: MassTable, rng, max_levels: int, jitter: bool = False) -> np.ndarray:
     """The samples of the adaptive subdivision (the module docstring's rule), level by level.
 
-    ``system`` gives ``roots()`` (a state), ``measure(state, mass)`` (each tile's mean density,
-    the mean area of a tile of its level, its centroid) and ``split(state, which)`` (the children of the tiles ``which``: their state,
-    parent positions in ``which``, structural ranks, sibling counts)."""
+    ``system`` gives ``roots()`` (a state), ``size(state)``, ``measure(state, mass)`` (each
+    tile's mean density, the mean area of a tile of its level, its centroid), ``take(state,
+    which)``, ``uniform(state, rng)`` (a random point of each tile) and ``split(state, which)``
+    (the children of the tiles ``which``: their state, parent positions in ``which``,
+    structural ranks, sibling counts)."""
     state = system.roots()
     n = system.size(state)
     v = (rng.permutation(n) + rng.random()) / n
@@ -329,8 +341,13 @@ def _cross_roots(density: DensityMap, rng) -> _Cross:
 
 
 def _inside(points: np.ndarray, density: DensityMap) -> np.ndarray:
+    """The points inside the domain on a pixel of positive density (a tile that straddles an
+    edge of the image, or of a white region, may have its centroid outside it)."""
     x, y = points[:, 0], points[:, 1]
-    return points[(x >= 0) & (x < density.width) & (y >= 0) & (y < density.height)]
+    points = points[(x >= 0) & (x < density.width) & (y >= 0) & (y < density.height)]
+    col = np.minimum((points[:, 0] / density.pixel).astype(np.int64), density.cols - 1)
+    row = np.minimum(((density.height - points[:, 1]) / density.pixel).astype(np.int64), density.rows - 1)
+    return points[density.values[row, col] > 0]
 
 
 def penrose_points(density: DensityMap, n: int, *, jitter: bool = False, seed=None) -> np.ndarray:
@@ -414,9 +431,10 @@ def lloyd(points: np.ndarray, density: DensityMap, steps: int, *, resolution: in
 
 def sample(problem: ImportanceProblem, *, seed=None) -> np.ndarray:
     """The samples ``problem`` asks for: its method, then its Lloyd steps. A hierarchical
-    sampler whose count is off by more than :data:`CALIBRATE` of the target runs once more on
-    the same tiling with the target scaled by the shortfall (the Penrose triangles' two sizes
-    and the samples dropped at the border bias the count by a few percent)."""
+    sampler whose count is off by more than :data:`CALIBRATE` of the target runs again on the
+    same tiling with the target scaled by the error, at most :data:`CALIBRATION_PASSES` times,
+    and the closest count is kept (the Penrose triangles' two sizes and the samples dropped at
+    the border bias the count by a few percent)."""
     d, n = problem.density, problem.points
     if problem.method == "rejection":
         return rejection_points(d, n, seed=seed)
@@ -427,7 +445,13 @@ def sample(problem: ImportanceProblem, *, seed=None) -> np.ndarray:
         def run(target, s):
             return polyomino_points(d, target, tile=problem.tile, jitter=problem.jitter, seed=s)
     s = int(rng_from_seed(seed).integers(1 << 62))
-    pts = run(n, s)
-    if len(pts) and abs(len(pts) - n) > CALIBRATE * n:
-        pts = run(n * n / len(pts), s)  # the same tiling, the density scaled by the first pass's shortfall
-    return lloyd(pts, d, problem.lloyd)
+    target = float(n)
+    best = pts = run(target, s)
+    for _ in range(CALIBRATION_PASSES):  # the same tiling, the density scaled by the last pass's error
+        if not len(pts) or abs(len(pts) - n) <= CALIBRATE * n:
+            break
+        target *= n / len(pts)
+        pts = run(target, s)
+        if abs(len(pts) - n) < abs(len(best) - n):
+            best = pts
+    return lloyd(best, d, problem.lloyd)

@@ -1,0 +1,56 @@
+"""Reading a picture as a density; the stippled pictures."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from PIL import Image
+
+from tilesolve.errors import InvalidProblem
+from tilesolve.io.stipple import dot_radii, read_density, stipple_svg, write_periodograms_png, write_stipple
+from tilesolve.model.importance import builtin_density
+
+
+def test_darkness_of_a_picture(tmp_path):
+    a = np.full((4, 6), 255, np.uint8)
+    a[0, 0] = 0
+    Image.fromarray(a, "L").save(tmp_path / "g.png")
+    d = read_density(tmp_path / "g.png")
+    assert d.values.shape == (4, 6) and d.values[0, 0] == 1.0 and d.values[1:, 1:].max() == 0.0
+    assert (d.width, d.height) == (1.0, pytest.approx(4 / 6))
+
+
+def test_transparent_pixels_are_white_paper(tmp_path):
+    a = np.zeros((2, 2, 4), np.uint8)
+    a[0, 0] = (0, 0, 0, 255)  # one opaque black pixel; the others transparent black
+    Image.fromarray(a, "RGBA").save(tmp_path / "t.png")
+    assert read_density(tmp_path / "t.png").values.tolist() == [[1.0, 0.0], [0.0, 0.0]]
+
+
+def test_bad_pictures_are_one_line_errors(tmp_path):
+    (tmp_path / "x.png").write_text("not a picture")
+    with pytest.raises(InvalidProblem, match="not a picture"):
+        read_density(tmp_path / "x.png")
+    with pytest.raises(InvalidProblem, match="no such file"):
+        read_density(tmp_path / "missing.png")
+    Image.new("L", (3, 3), 255).save(tmp_path / "white.png")
+    with pytest.raises(InvalidProblem, match="zero everywhere"):
+        read_density(tmp_path / "white.png")
+
+
+def test_dots_are_larger_where_it_is_dark():
+    d = builtin_density("gradient", 16)
+    r = dot_radii(np.array([[0.01, 0.5], [0.99, 0.5]]), d)
+    assert r[1] > 1.5 * r[0]
+
+
+def test_pictures(tmp_path):
+    d = builtin_density("radial", 16)
+    pts = np.array([[0.5, 0.5], [0.1, 0.9]])
+    assert stipple_svg(pts, d, "two").count("<circle") == 2
+    write_stipple(tmp_path / "s.png", pts, d, "two", "png")
+    with Image.open(tmp_path / "s.png") as img:
+        assert img.size == (800, 820)
+        assert np.asarray(img).min() == 0  # a black dot
+    write_periodograms_png(tmp_path / "p.png", [("a", np.ones((9, 9))), ("b", np.ones((9, 9)))], "t")
+    assert (tmp_path / "p.png").read_bytes()[:4] == b"\x89PNG"
