@@ -36,7 +36,8 @@ COMMANDS = [(), ("aperiodic", "census"), ("aperiodic", "check"), ("aperiodic", "
             ("sample", "poisson-tiles"), ("sample", "poisson-tiles", "build"), ("sample", "poisson-tiles", "spectrum"),
             ("sample", "poisson-tiles", "window"), ("sample", "poisson-tiles", "texture"),
             ("sample", "poisson-spheres"), ("sample", "poisson-spheres", "build"), ("sample", "poisson-spheres", "window"), ("sample", "stipple"),
-            ("sample", "importance-spectrum")]
+            ("sample", "importance-spectrum"), ("sample", "recursive-wang"), ("sample", "recursive-wang", "build"),
+            ("sample", "recursive-wang", "window")]
 
 
 def run(args: list[str], cwd) -> subprocess.CompletedProcess:

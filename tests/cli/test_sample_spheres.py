@@ -1,0 +1,88 @@
+"""``tilesolve sample poisson-spheres`` (tilesolve/cli/sample.py) through the console script."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from clitools import one_line_error, run, snapshot
+
+
+@pytest.fixture(scope="module")
+def folder(tmp_path_factory):
+    """A folder with set.json, written by the build command."""
+    d = tmp_path_factory.mktemp("spheres")
+    r = run("sample", "poisson-spheres", "build", "-C", "1", "-N", "100", "--rho", "0.6", "--seed", "1", "-o",
+            "set.json", cwd=d)
+    assert r.returncode == 0, r.stderr
+    return d
+
+
+def test_build_is_deterministic_and_verifies(folder):
+    r = run("sample", "poisson-spheres", "build", "-C", "1", "-N", "100", "--rho", "0.6", "--seed", "1", "-o",
+            "again.json", cwd=folder)
+    assert r.returncode == 0, r.stderr
+    assert (folder / "again.json").read_bytes() == (folder / "set.json").read_bytes()
+    doc = json.loads((folder / "set.json").read_text())
+    assert doc["format"] == "tilesolve/poisson-sphere-tiles" and doc["version"] == 1
+    v = run("verify", "set.json", cwd=folder)
+    assert v.returncode == 0 and "ok" in v.stdout + v.stderr
+
+
+def test_window_writes_points_and_far_boxes_verify(folder):
+    r = run("sample", "poisson-spheres", "window", "set.json", "--region", "-3,4,-1,3x2x2", "--seed", "2", "-o",
+            "pts.npy", cwd=folder)
+    assert r.returncode == 0, r.stderr
+    pts = np.load(folder / "pts.npy")
+    assert pts.shape[1] == 3 and ((pts >= [-3, 4, -1]) & (pts < [0, 6, 1])).all()
+    r = run("sample", "poisson-spheres", "window", "set.json", "--region", "-3,4,-1,3x2x2", "--seed", "2", "-o",
+            "pts.csv", cwd=folder)
+    assert np.allclose(np.loadtxt(folder / "pts.csv", delimiter=",", skiprows=1), pts)
+    r = run("sample", "poisson-spheres", "window", "set.json", "--region", "4611686018427387000,-9,77,2x2x2",
+            "--hash", "table", "--seed", "5", "-o", "far.json", cwd=folder)
+    assert r.returncode == 0, r.stderr
+    assert run("verify", "far.json", cwd=folder).returncode == 0
+
+
+def test_verify_catches_a_forged_set_and_a_forged_box(folder):
+    doc = json.loads((folder / "set.json").read_text())
+    x, y, z = doc["tiles"]["interior"][0][0]
+    doc["tiles"]["interior"][0].append([x + 1e-3, y, z])
+    (folder / "forged.json").write_text(json.dumps(doc))
+    v = run("verify", "forged.json", cwd=folder)
+    assert v.returncode == 1, (v.stdout, v.stderr)
+    run("sample", "poisson-spheres", "window", "set.json", "--region", "0,0,0,2x1x1", "--seed", "2", "-o", "w.json",
+        cwd=folder)
+    doc = json.loads((folder / "w.json").read_text())
+    x, y, z = doc["local"][0]
+    doc["local"].append([x, y + 1e-4, z])
+    (folder / "wf.json").write_text(json.dumps(doc))
+    assert run("verify", "wf.json", cwd=folder).returncode == 1
+
+
+@pytest.mark.parametrize("args, words", [
+    (["build", "-C", "9", "-N", "100", "-o", "x.json"], "colors must be within 1..4"),
+    (["build", "-C", "2", "-N", "20", "--rho", "0.7", "-o", "x.json"], "use at least 97 points"),
+    (["build", "-C", "2", "-N", "100", "--rho", "2", "-o", "x.json"], "rho must be within"),
+    (["window", "set.json", "--region", "0,0,4x4", "-o", "x.npy"], "expected X0,Y0,Z0,WxHxD"),
+    (["window", "set.json", "--region", "0,0,0,0x1x1", "-o", "x.npy"], "box size must be positive"),
+    (["window", "set.json", "--region", "3000000000,0,0,1x1x1", "-o", "x.npy"], "beyond +-2**31"),
+    (["window", "set.json", "--region", "0,0,0,1000x1000x1000", "-o", "x.npy"], "at most"),
+    (["window", "missing.json", "--region", "0,0,0,1x1x1", "-o", "x.npy"], "missing.json"),
+    (["window", "set.json", "--region", "0,0,0,1x1x1", "-o", "x.txt"], "x.txt"),
+])
+def test_bad_input_is_one_line_and_writes_nothing(folder, args, words):
+    before = snapshot(folder)
+    line = one_line_error(run("sample", "poisson-spheres", *args, cwd=folder))
+    assert words in line, line
+    assert snapshot(folder) == before
+
+
+def test_a_window_of_another_format_is_refused(folder):
+    (folder / "bad.json").write_text(json.dumps({"format": "tilesolve/poisson-tiles", "version": 1}))
+    before = snapshot(folder)
+    line = one_line_error(run("sample", "poisson-spheres", "window", "bad.json", "--region", "0,0,0,1x1x1", "-o",
+                              "x.npy", cwd=folder))
+    assert "poisson-sphere-tiles" in line
+    assert snapshot(folder) == before
