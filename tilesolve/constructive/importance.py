@@ -40,10 +40,10 @@ vectors lookup table") and stated here in full:
 
 The density integral over a rep-4 polyomino is exact (its cells are squares: a summed-area
 table, bilinear between pixel corners); over a Penrose triangle it is the mean over its
-bounding box, over the fractal pentomino the sum over its five squares one level down (each
-the axis-parallel square of the same area): approximations at the tile's scale. Samples whose
-tile centroid falls outside the domain, or on a white pixel, are dropped; :func:`sample`
-calibrates the count.
+bounding box, over the fractal pentomino the mean over its bounding square: approximations at
+the tile's scale. Samples whose
+tile centroid falls outside the domain are reflected into it across the edge; those on a white
+pixel are dropped; :func:`sample` calibrates the count.
 
 >>> from tilesolve.model.importance import ImportanceProblem, builtin_density
 >>> pts = sample(ImportanceProblem(builtin_density("flat", 16), 500, "polyomino"), seed=1)
@@ -89,6 +89,7 @@ class MassTable:
         self.rows, self.cols = v.shape
         self.per_unit = 1.0 / density.pixel
         self.sat = s * (total / s[-1, -1])
+        self.flat = self.sat.ravel()
         #: The highest density, in samples per unit area.
         self.peak = float(v.max()) * total / float(s[-1, -1]) * self.per_unit**2
 
@@ -99,8 +100,11 @@ class MassTable:
         j = np.minimum(u.astype(np.int64), self.cols - 1)
         i = np.minimum(w.astype(np.int64), self.rows - 1)
         fu, fw = u - j, w - i
-        s = self.sat
-        return (s[i, j] * (1 - fu) + s[i, j + 1] * fu) * (1 - fw) + (s[i + 1, j] * (1 - fu) + s[i + 1, j + 1] * fu) * fw
+        flat = i * (self.cols + 1) + j  # np.take on the flat table: several times faster than s[i, j]
+        s, step = self.flat, self.cols + 1
+        low = s.take(flat) + (s.take(flat + 1) - s.take(flat)) * fu
+        high = s.take(flat + step) + (s.take(flat + step + 1) - s.take(flat + step)) * fu
+        return low + (high - low) * fw
 
     def box(self, x0, y0, x1, y1) -> np.ndarray:
         """The mass of the boxes ``[x0, x1] x [y0, y1]`` (arrays)."""
@@ -280,8 +284,9 @@ class _Cross:
     residue system modulo ``c``). A tile is its centre ``z`` (complex) at a level whose scale
     ``s`` is a complex number; its five children are centred at ``z + d s / c``. Each level
     shrinks by ``sqrt 5`` and turns by ``atan(1/2)`` (an irrational angle: the levels share no
-    lattice). The tile is a self-similar fractal of area ``|s|^2`` around its centre,
-    approximated one level down by five squares (an X pentomino)."""
+    lattice). The tile is a self-similar fractal of area ``|s|^2`` around its centre, drawn one
+    level down as five squares (an X pentomino); its density is measured over its bounding
+    square (it lies within ``|s| / (sqrt 5 - 1)`` of its centre)."""
 
     digits = np.array([0, 1, -1, 1j, -1j])  # rank order: the centre (same centroid), then opposites
 
@@ -302,12 +307,11 @@ class _Cross:
         return z[:, None] + s * self.digits, s
 
     def measure(self, state, mass: MassTable):
-        cells, s = self._cells(state)
-        h = abs(s) / 2  # each cell as the axis-parallel square of its area
-        x, y = cells.real, cells.imag
-        m = mass.box(x - h, y - h, x + h, y + h).sum(axis=1)
-        z = state[0]
-        return m / (5 * abs(s) ** 2), np.full(len(z), 5 * abs(s) ** 2), np.column_stack([z.real, z.imag])
+        z, level = state
+        side = abs(self.scale) / 5 ** (level / 2)  # sqrt of the tile's area
+        x, y, h = z.real, z.imag, side / (5**0.5 - 1)  # the fractal lies within this radius of its centre
+        density = mass.box(x - h, y - h, x + h, y + h) / (2 * h) ** 2
+        return density, np.full(len(z), side**2), np.column_stack([x, y])
 
     @staticmethod
     def take(state, which):
@@ -341,8 +345,13 @@ def _cross_roots(density: DensityMap, rng) -> _Cross:
 
 
 def _inside(points: np.ndarray, density: DensityMap) -> np.ndarray:
-    """The points inside the domain on a pixel of positive density (a tile that straddles an
-    edge of the image, or of a white region, may have its centroid outside it)."""
+    """The points reflected into the domain across its nearest edge (a tile that straddles the
+    edge may have its centroid outside), then those on a pixel of positive density (a tile
+    that straddles the edge of a white region may have its centroid in it)."""
+    points = points.copy()
+    for d, top in ((0, density.width), (1, density.height)):
+        x = points[:, d]
+        points[:, d] = np.where(x < 0, -x, np.where(x >= top, 2 * top - x, x))
     x, y = points[:, 0], points[:, 1]
     points = points[(x >= 0) & (x < density.width) & (y >= 0) & (y < density.height)]
     col = np.minimum((points[:, 0] / density.pixel).astype(np.int64), density.cols - 1)
