@@ -1,4 +1,4 @@
-"""Helpers of the studio's browser tests: pick a family, fill a field, solve and wait, cancel."""
+"""Helpers of the studio's browser tests: pick a family, fill a field, solve and wait, pan the view, cancel."""
 
 from __future__ import annotations
 
@@ -18,6 +18,16 @@ def solve(page, timeout=60_000):
     page.wait_for_function("document.getElementById('solve').disabled === false && studio.job === null",
                            timeout=timeout)
     return page.evaluate("studio.result")
+
+
+def pan_view(page, dx, dy, steps=8):
+    """Drag the infinite view by ``(dx, dy)`` CSS px from its centre; the pointer stays there."""
+    box = page.locator("#viewport").bounding_box()
+    cx, cy = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+    page.mouse.move(cx, cy)
+    page.mouse.down()
+    page.mouse.move(cx + dx, cy + dy, steps=steps)
+    page.mouse.up()
 
 
 def cancel_a_long_search(page):

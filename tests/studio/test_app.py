@@ -15,6 +15,7 @@ from starlette.testclient import TestClient
 
 from tests.clitools import SCRIPT
 from tilesolve import family  # noqa: E402
+from tilesolve.constructive.hashes import FnvXorshift
 from tilesolve.studio.app import MAX_BODY, create_app  # noqa: E402
 from tilesolve.studio import jobs as jobs_module  # noqa: E402
 
@@ -430,3 +431,16 @@ def test_the_window_form_offers_every_set_with_a_constructive_route():
     from tilesolve.families.aperiodic_window_form import BUILTINS
 
     assert set(BUILTINS) == set(_routes_by_set())
+
+
+def test_the_wall_view_sends_its_shaders_for_webgl2(client):
+    r = client.get(f"/api/webgl/board?values={json.dumps({'seed': 7, 'colors': 4, 'max_h': 2})}")
+    assert r.status_code == 200
+    doc = r.json()
+    assert doc["kind"] == "wall" and doc["uniforms"]["u_nc"] == 4
+    assert doc["uniforms"]["u_basis"] == [w for k in range(4) for w in divmod(FnvXorshift(7, k).basis, 1 << 32)[::-1]]
+    assert all(doc[k].startswith("#version 300 es\n") for k in ("vertex", "cells", "colour", "data"))
+    assert client.get("/api/webgl/stochastic").json() == {"kind": None}  # its view is the server's tiles
+    r = client.get("/api/webgl/dappled")
+    assert r.status_code == 400 and "no infinite view" in r.json()["error"]
+    assert client.get("/api/webgl/board?values={\"colors\": 2}").status_code == 400

@@ -23,7 +23,7 @@ import numpy as np
 import pytest
 
 from tests.clitools import ENV, SCRIPT
-from tests.studio.browsing import cancel_a_long_search, fill, pick, solve
+from tests.studio.browsing import cancel_a_long_search, fill, pan_view, pick, solve
 
 ARTIFACTS = Path(__file__).resolve().parents[1] / "artifacts" / "studio"
 #: Every test here drives Chromium: slow.
@@ -303,12 +303,7 @@ def test_the_infinite_view_shows_loading_and_is_whole_after_pan_and_zoom(page):
         .observe(document.getElementById('view-loading'), {attributes: true, childList: true, subtree: true}); }""")
     view_settled(page)
     check_view_is_whole(page)
-    box = page.locator("#viewport").bounding_box()
-    cx, cy = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
-    page.mouse.move(cx, cy)
-    page.mouse.down()
-    page.mouse.move(cx - 333, cy - 171, steps=8)
-    page.mouse.up()
+    pan_view(page, -333, -171)
     page.mouse.wheel(0, 700)  # zoom out past a level
     assert page.is_visible("#view-loading") or page.evaluate("studio.view.missing") == 0
     view_settled(page)

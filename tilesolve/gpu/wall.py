@@ -3,9 +3,10 @@
 Edge colours
 ------------
 The GLSL function ``wall_tile`` is :class:`tilesolve.constructive.walls` ``_ScalarWall.tile``
-written out for the GPU: the FNV-1a/xorshift64* hashes of 004 §4.2 on 64-bit integers
-(``GL_ARB_gpu_shader_int64``; the paper fell back to float hashes for lack of integers, §5.2),
-the multiply-shift reductions (``umulExtended``), procedural dappling (§4.3) and the 2x2 block
+written out for the GPU: the FNV-1a/xorshift64* hashes of 004 §4.2 on 64-bit integers (kept
+as pairs of 32-bit words, products from 16-bit halves, so that one source serves OpenGL 4.5 and
+WebGL2; the paper fell back to float hashes for lack of integers, §5.2), the multiply-shift
+reductions, procedural dappling (§4.3) and the 2x2 block
 solver of App. B (its table, :data:`~tilesolve.constructive.walls.APPENDIX_B`, compiled into the
 shader). Every cell's leg colours ``(N, E, S, W)`` equal
 :func:`~tilesolve.constructive.walls.wall_window` bit for bit, anywhere on the 63-bit lattice:
@@ -34,6 +35,13 @@ evaluates ``wall_tile`` in every fragment (twice: the cell and its diagonal neig
 §5.2 describes. Both give the same picture. Multisampling renders into a multisample target
 with per-sample shading and resolves it; the sample counts are those the context allows
 (Mesa llvmpipe: 1, 2, 4).
+
+In the browser
+--------------
+:func:`webgl_wall` hands the studio (``static/webgl.js``) these very shaders as GLSL ES 3.00
+(WebGL2): the same source behind a ``#version 300 es`` header with the precisions ES asks for,
+and the uniforms of a seed and colouring. The page places the window itself (``u_origin``,
+``u_local0``, ``u_dres``, ``u_offset`` and ``u_first``, computed as :class:`WallRenderer` does).
 """
 
 from __future__ import annotations
@@ -47,7 +55,7 @@ from tilesolve.gpu.context import gpu_context, max_render_size, release
 from tilesolve.gpu.texture import DIV_GLSL
 from tilesolve.gpu.picture import assemble_bands, pass_layout
 
-__all__ = ["SAMPLE_COUNTS", "WallRenderer", "allowed_samples"]
+__all__ = ["SAMPLE_COUNTS", "WallRenderer", "allowed_samples", "webgl_wall"]
 
 #: The sample counts of 004 Table 1 (and 4, which llvmpipe offers).
 SAMPLE_COUNTS = (1, 2, 4, 8, 16, 32)
@@ -68,7 +76,9 @@ def _option_glsl() -> str:
             f"const ivec4 OPT[48] = ivec4[48]({', '.join(opt)});\n")
 
 
-_HEADER = "#version 450\n#extension GL_ARB_gpu_shader_int64 : require\n"
+_HEADER = "#version 450\n"
+#: The same shaders as GLSL ES 3.00 (WebGL2): ES has no default precision for these.
+_ES_HEADER = "#version 300 es\nprecision highp float;\nprecision highp int;\nprecision highp usampler2D;\n"
 
 WALL_GLSL = """
 uniform uvec2 u_basis[4];    // FNV-1a states after seed and stream (streams 0 H, 1 V, 2 option, 3 colour)
@@ -80,21 +90,34 @@ uniform int u_dres;          // (I0 - J0) % P + P * pad, so that u_dres + i - j 
 
 """ + _option_glsl() + """
 // FNV-1a over the 32-bit words of x and y, then xorshift64* (004 §4.2); the high 32 bits.
-uint raw(int k, int i, int j) {
-    uint64_t x = packUint2x32(u_origin[0]) + uint64_t(i), y = packUint2x32(u_origin[1]) + uint64_t(j);
-    const uint64_t P = 0x100000001B3UL;
-    uint64_t h = packUint2x32(u_basis[k]);
-    h = (h ^ (x & 0xFFFFFFFFUL)) * P;
-    h = (h ^ (x >> 32)) * P;
-    h = (h ^ (y & 0xFFFFFFFFUL)) * P;
-    h = (h ^ (y >> 32)) * P;
-    h ^= h >> 12;
-    h ^= h << 25;
-    h ^= h >> 27;
-    return unpackUint2x32(h * 0x2545F4914F6CDD1DUL).y;
+// 64-bit values are (lo, hi) word pairs and 32 x 32-bit products are made of 16-bit halves, so
+// that the same source compiles as GLSL 4.50 and as GLSL ES 3.00 (WebGL2, which has neither
+// 64-bit integers nor umulExtended); uint arithmetic wraps modulo 2**32 in both.
+uvec2 mul32(uint a, uint b) {   // a * b as (lo, hi)
+    uint a0 = a & 0xFFFFu, a1 = a >> 16, b0 = b & 0xFFFFu, b1 = b >> 16;
+    uint p00 = a0 * b0, p01 = a0 * b1, p10 = a1 * b0;
+    uint mid = (p00 >> 16) + (p01 & 0xFFFFu) + (p10 & 0xFFFFu);
+    return uvec2((mid << 16) | (p00 & 0xFFFFu), a1 * b1 + (p01 >> 16) + (p10 >> 16) + (mid >> 16));
 }
 
-uint reduce(uint r, uint k) { uint hi, lo; umulExtended(r, k, hi, lo); return hi; }
+uvec2 mul64(uvec2 a, uvec2 b) { uvec2 p = mul32(a.x, b.x); return uvec2(p.x, p.y + a.x * b.y + a.y * b.x); }
+
+// One FNV-1a step on the word w: (h ^ w) * 0x100000001B3, the prime being 2**40 + 0x1B3.
+uvec2 fnv(uvec2 h, uint w) { uint l = h.x ^ w; uvec2 p = mul32(l, 0x1B3u); return uvec2(p.x, p.y + h.y * 0x1B3u + (l << 8)); }
+
+// o + i with i sign-extended to 64 bits.
+uvec2 add64(uvec2 o, int i) { uint lo = o.x + uint(i); return uvec2(lo, o.y + uint(lo < o.x) + (i < 0 ? 0xFFFFFFFFu : 0u)); }
+
+uint raw(int k, int i, int j) {
+    uvec2 x = add64(u_origin[0], i), y = add64(u_origin[1], j);
+    uvec2 h = fnv(fnv(fnv(fnv(u_basis[k], x.x), x.y), y.x), y.y);
+    h ^= uvec2((h.x >> 12) | (h.y << 20), h.y >> 12);
+    h ^= uvec2(h.x << 25, (h.y << 25) | (h.x >> 7));
+    h ^= uvec2((h.x >> 27) | (h.y << 5), h.y >> 27);
+    return mul64(h, uvec2(0x4F6CDD1Du, 0x2545F491u)).y;   // xorshift64*'s multiplier 0x2545F4914F6CDD1D
+}
+
+uint reduce(uint r, uint k) { return mul32(r, k).y; }
 
 uint d1(uint r, uint c) { uint m = reduce(r, u_nc - 1u); return m < c ? m : m + 1u; }
 
@@ -152,16 +175,14 @@ uvec4 wall_tile(int i, int j) {
 }
 """
 
-_VERTEX = """
-#version 450
-in vec2 in_pos;
+_VERTEX = _HEADER + """in vec2 in_pos;
 void main() { gl_Position = vec4(in_pos, 0.0, 1.0); }
 """
 
 #: First pass: one fragment per cell (local cell = fragment + u_first): its legs, and for its SW
 #: lattice point (I, J) the four edges that meet there, H[I-1, J], H[I, J], V[I, J], V[I, J-1]
 #: (one byte each: they bound the brick of that point), and the point's colour hash.
-_FRAGMENT_CELLS = _HEADER + DIV_GLSL + WALL_GLSL + """
+_CELLS_GLSL = """
 uniform ivec2 u_first;
 layout(location = 0) out uvec4 f_legs;
 layout(location = 1) out uvec2 f_point;
@@ -256,6 +277,55 @@ void main() {
 """
 
 
+def _fragment(kind: str, *, per_fragment: bool = False, samples: bool = False, header: str = _HEADER) -> str:
+    """The fragment shader of a pass: ``cells`` (first pass), ``colour`` or ``data`` (second)."""
+    if kind == "cells":
+        return header + DIV_GLSL + WALL_GLSL + _CELLS_GLSL
+    defines = "#define PER_FRAGMENT\n" if per_fragment else ""
+    if kind == "data":
+        defines += "#define DATA\n"
+    if kind == "colour" and samples:
+        defines += "#define SAMPLES\n"
+    return header + defines + DIV_GLSL + WALL_GLSL + _SHADE_GLSL
+
+
+def _wall_params(colors, max_line, seed) -> tuple[int, int, bool, int]:
+    """``(colours, dappling period, fixed, seed)`` of a wall, checked (one-line errors)."""
+    nc = check_int(colors, "colors", 3)
+    if nc > 127:
+        raise InvalidProblem(f"tilesolve draws walls with at most 127 colours, got {nc}")
+    seed = check_int(seed, "seed", 0)
+    if seed >= 1 << 64:
+        raise InvalidProblem(f"seed must be below 2**64, got {seed}")
+    return nc, dappling_period(max_line), max_line is not None and int(max_line) % 2 == 1, seed
+
+
+def webgl_wall(*, colors: int = 3, max_line: int | None = None, seed: int = 0, mortar: float = 0.04) -> dict:
+    """The wall's shaders as GLSL ES 3.00 for WebGL2, and the uniforms that hold for every window.
+
+    Returns
+    -------
+    dict
+        ``vertex``, and the fragment shaders ``cells`` (first pass), ``colour`` and ``data``
+        (second pass, as :class:`WallRenderer` draws them with one sample per pixel): this
+        module's GLSL behind :data:`_ES_HEADER`. ``uniforms``: ``u_basis`` (the four streams'
+        FNV-1a states as eight 32-bit words, low word first), ``u_nc``, ``u_p``, ``u_fixed``,
+        ``u_mortar``. ``margin``: the cells a pass reaches south-west of the picture.
+
+    Examples
+    --------
+    >>> w = webgl_wall(colors=3, max_line=4, seed=2)
+    >>> w["colour"].splitlines()[0], w["uniforms"]["u_p"], len(w["uniforms"]["u_basis"])
+    ('#version 300 es', 4, 8)
+    """
+    nc, period, fixed, seed = _wall_params(colors, max_line, seed)
+    basis = [w for k in range(4) for w in _uvec2(FnvXorshift(seed, k).basis)]
+    return {"vertex": _ES_HEADER + _VERTEX.removeprefix(_HEADER),
+            **{kind: _fragment(kind, header=_ES_HEADER) for kind in ("cells", "colour", "data")},
+            "uniforms": {"u_basis": basis, "u_nc": nc, "u_p": period, "u_fixed": fixed, "u_mortar": float(mortar)},
+            "margin": _MARGIN}
+
+
 def allowed_samples(ctx=None) -> tuple[int, ...]:
     """The sample counts of :data:`SAMPLE_COUNTS` this context can render (llvmpipe: 1, 2, 4)."""
     ctx = ctx or gpu_context()
@@ -284,14 +354,7 @@ class WallRenderer:
 
     def __init__(self, *, colors: int = 3, max_line: int | None = None, seed: int = 0, origin=(0, 0),
                  cell_px: int = 32, samples: int = 1, per_fragment: bool = False, mortar: float = 0.04) -> None:
-        self.nc = check_int(colors, "colors", 3)
-        if self.nc > 127:
-            raise InvalidProblem(f"tilesolve draws walls with at most 127 colours, got {self.nc}")
-        self.period = dappling_period(max_line)
-        self.fixed = max_line is not None and int(max_line) % 2 == 1
-        self.seed = check_int(seed, "seed", 0)
-        if self.seed >= 1 << 64:
-            raise InvalidProblem(f"seed must be below 2**64, got {self.seed}")
+        self.nc, self.period, self.fixed, self.seed = _wall_params(colors, max_line, seed)
         x0, y0 = origin
         self.x0, self.y0, _, _ = check_window(x0, y0, 1, 1, what="wall window")
         self.cell_px = check_int(cell_px, "cell size", 1)
@@ -319,17 +382,7 @@ class WallRenderer:
 
     def _program(self, kind: str):
         if kind not in self._programs:
-            defines = ""
-            if kind == "cells":
-                src = _FRAGMENT_CELLS
-            else:
-                if self.per_fragment:
-                    defines += "#define PER_FRAGMENT\n"
-                if kind == "data":
-                    defines += "#define DATA\n"
-                if kind == "colour" and self.samples > 1:
-                    defines += "#define SAMPLES\n"
-                src = _HEADER + defines + DIV_GLSL + WALL_GLSL + _SHADE_GLSL
+            src = _fragment(kind, per_fragment=self.per_fragment, samples=self.samples > 1)
             prog = self.ctx.program(vertex_shader=_VERTEX, fragment_shader=src)
             if "u_basis" in prog:  # the compiler drops what a pass does not use (streams, uniforms)
                 basis = prog["u_basis"]

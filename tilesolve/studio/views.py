@@ -1,5 +1,6 @@
 """The studio's infinite views: one n x n window of a family's procedural plane as PNG
-(:attr:`tilesolve.family.Form.window`), for pan and zoom, kept in an LRU cache."""
+(:attr:`tilesolve.family.Form.window`), for pan and zoom, kept in an LRU cache; and for the
+procedural wall, the GPU path's shaders that let the page draw the view itself (WebGL2)."""
 
 from __future__ import annotations
 
@@ -33,6 +34,18 @@ def _square(data: bytes) -> bytes:
         return buf.getvalue()
 
 
+def _posed(name: str, raw: str):
+    """``(family, checked form values)`` of a view request (``raw``: JSON text); one seed, 0
+    unless given, for every window of one view."""
+    given = json.loads(raw)
+    if isinstance(given, dict):
+        given.setdefault("seed", 0)
+    fam, vals, _, _ = worker.pose(name, given)
+    if fam.form.window is None:
+        raise InvalidProblem(f"{fam.name} problems have no infinite view")
+    return fam, vals
+
+
 class Views:
     """The view tiles of one server: rendered on demand, the last :data:`VIEW_CACHE` kept."""
 
@@ -43,12 +56,7 @@ class Views:
     def png(self, name: str, raw: str, x: int, y: int, n: int) -> bytes:
         """The PNG of the n x n window with bottom-left cell (x, y) of family ``name``'s view for
         the form values ``raw`` (JSON text; every window of one view from one seed)."""
-        given = json.loads(raw)
-        if isinstance(given, dict):
-            given.setdefault("seed", 0)  # every window of one view from one seed
-        fam, vals, _, _ = worker.pose(name, given)
-        if fam.form.window is None:
-            raise InvalidProblem(f"{fam.name} problems have no infinite view")
+        fam, vals = _posed(name, raw)
         key = (fam.name, json.dumps(vals, sort_keys=True), x, y, n)
         with self._lock:
             if key in self._cache:
@@ -64,6 +72,18 @@ class Views:
             while len(self._cache) > VIEW_CACHE:
                 self._cache.popitem(last=False)
         return data
+
+    def webgl(self, name: str, raw: str) -> dict:
+        """How the page draws family ``name``'s view itself for the form values ``raw``: the
+        wall's GLSL ES shaders and uniforms (:func:`tilesolve.gpu.wall.webgl_wall`, ``kind``
+        ``"wall"``) when the view is the procedural wall, else ``{"kind": None}`` (server tiles)."""
+        from tilesolve.gpu.wall import webgl_wall
+
+        fam, vals = _posed(name, raw)
+        problem, method, _ = fam.form.window(vals, Window(0, 0, 1, 1))
+        if method != "procedural":
+            return {"kind": None}
+        return {"kind": "wall", **webgl_wall(colors=problem.n_colors, max_line=problem.max_h, seed=vals["seed"])}
 
     def warm(self) -> None:
         """Run the families' warm hooks and render one small window of every view, so that the

@@ -1,0 +1,218 @@
+"""The studio's WebGL2 view (static/webgl.js) in headless Chromium: the GPU path's wall shaders
+(:func:`tilesolve.gpu.wall.webgl_wall`, GLSL ES 3.00 on Chromium's SwiftShader) give the CPU's wall.
+
+What is compared, read back from the browser with ``gl.readPixels``:
+
+* every cell's leg colours ``(N, E, S, W)`` (the first pass): equal to
+  :func:`tilesolve.constructive.walls.wall_window`, exactly, at small and at 2**61 origins;
+* every pixel's brick (the lattice point whose brick it lies in) and tile orientation: equal to
+  :func:`tilesolve.constructive.wall_maps.wall_maps`, exactly; distance and UV within 1e-5 cells;
+* the colours: those of the same shaders run by the desktop GPU path (:class:`WallRenderer`,
+  Mesa llvmpipe), pixel for pixel within one level of 255 (two float rasterisers may round
+  the mortar's smoothstep apart) -- and in the studio's own view, after a pan, the window the
+  page says it drew.
+
+The test browser's WebGL2 is SwiftShader, a software rasteriser, on which the page starts with
+the "WebGL2" box unticked (the server's tiles come sooner); the tests tick it. Without WebGL2
+(``--disable-webgl2``), or with the box unticked, the view is the server's tiles.
+"""
+
+from __future__ import annotations
+
+import base64
+import json
+import os
+
+import numpy as np
+import pytest
+
+from tests.studio.browsing import pan_view
+from tilesolve.constructive.wall_maps import wall_maps
+from tilesolve.constructive.walls import orientation, wall_window
+from tilesolve.gpu.wall import webgl_wall
+
+#: Every test here drives Chromium: slow.
+pytestmark = pytest.mark.slow
+
+CHROMIUM = "/usr/bin/chromium"
+#: WebGL2 without a GPU: ANGLE on SwiftShader (Chromium's software Vulkan).
+SWIFTSHADER = ["--no-sandbox", "--use-angle=swiftshader", "--enable-unsafe-swiftshader"]
+HUGE = 2**61 + 12345
+
+#: Draw the wall of ``config`` (webgl_wall's dict) with picture SW cell (x0, y0) on a canvas of
+#: its own; read back the colours, the first pass's legs and, when float targets can be drawn,
+#: the data pass (bricks, geometry), as base64 of the raw arrays (GL rows, bottom first).
+READ = """([config, x0, y0, cellPx, w, h]) => {
+  const cv = document.createElement("canvas"); cv.width = w; cv.height = h;
+  const gl = cv.getContext("webgl2", { antialias: false, alpha: false, preserveDrawingBuffer: true });
+  const b64 = (a) => { const u = new Uint8Array(a.buffer); let s = "";
+                       for (let i = 0; i < u.length; i += 8192) s += String.fromCharCode(...u.subarray(i, i + 8192));
+                       return btoa(s); };
+  const read = (fbo, attachment, nx, ny, format, type, Array_) => {
+    gl.bindFramebuffer(gl.FRAMEBUFFER, fbo); if (fbo) gl.readBuffer(attachment);
+    const out = new Array_(nx * ny * 4); gl.readPixels(0, 0, nx, ny, format, type, out); return b64(out); };
+  const wall = new studioWebGL.Wall(gl); wall.use(config);
+  wall.draw(x0, y0, 0, 0, cellPx, w, h);
+  const c = wall.cells, out = { nx: c.nx, ny: c.ny,
+    colour: read(null, null, w, h, gl.RGBA, gl.UNSIGNED_BYTE, Uint8Array),
+    legs: read(c.fbo, gl.COLOR_ATTACHMENT0, c.nx, c.ny, gl.RGBA_INTEGER, gl.UNSIGNED_INT, Uint32Array) };
+  if (gl.getExtension("EXT_color_buffer_float")) {
+    const tex = (internal, format, type) => { const t = gl.createTexture(); gl.bindTexture(gl.TEXTURE_2D, t);
+      gl.texStorage2D(gl.TEXTURE_2D, 1, internal, w, h); return t; };
+    const fbo = gl.createFramebuffer(); gl.bindFramebuffer(gl.FRAMEBUFFER, fbo);
+    [tex(gl.RGBA8), tex(gl.RG32I), tex(gl.RGBA32F)].forEach((t, k) =>
+      gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0 + k, gl.TEXTURE_2D, t, 0));
+    gl.drawBuffers([gl.COLOR_ATTACHMENT0, gl.COLOR_ATTACHMENT1, gl.COLOR_ATTACHMENT2]);
+    wall.draw(x0, y0, 0, 0, cellPx, w, h, "data", fbo);
+    out.brick = read(fbo, gl.COLOR_ATTACHMENT1, w, h, gl.RGBA_INTEGER, gl.INT, Int32Array);
+    out.geom = read(fbo, gl.COLOR_ATTACHMENT2, w, h, gl.RGBA, gl.FLOAT, Float32Array);
+  }
+  out.error = gl.getError();
+  return out;
+}"""
+
+
+def _array(doc, key, dtype, w, h) -> np.ndarray:
+    """A read-back array as ``(h, w, 4)``, row 0 at the top."""
+    return np.frombuffer(base64.b64decode(doc[key]), dtype=dtype).reshape(h, w, 4)[::-1]
+
+
+def _desktop_colour(w: int, h: int, **kw):
+    """The same window drawn by the desktop GPU path (Mesa llvmpipe), or None without one."""
+    from tilesolve.gpu.context import GpuUnavailable
+    from tilesolve.gpu.wall import WallRenderer
+
+    try:
+        return WallRenderer(**kw).image(w, h)
+    except GpuUnavailable:
+        return None
+
+
+@pytest.fixture(scope="module")
+def playwright_():
+    from playwright import sync_api as playwright
+
+    assert os.path.exists(CHROMIUM), f"the browser tests need Debian's chromium at {CHROMIUM} (.ci/run installs it)"
+    with playwright.sync_playwright() as p:
+        yield p
+
+
+@pytest.fixture(scope="module")
+def gl_page(playwright_, server):
+    b = playwright_.chromium.launch(executable_path=CHROMIUM, headless=True, args=SWIFTSHADER)
+    page = b.new_page(viewport={"width": 1400, "height": 1000})
+    page.set_default_timeout(180_000)  # SwiftShader compiles the wall's shaders in seconds, more on a busy machine
+    page.goto(server + "/")
+    page.wait_for_selector("body[data-ready='1']")
+    yield page
+    b.close()
+
+
+def test_the_test_browser_has_webgl2_on_a_software_rasteriser(gl_page):
+    assert gl_page.evaluate("studioWebGL.gl.getParameter(studioWebGL.gl.VERSION)").startswith("WebGL 2.0")
+    assert "SwiftShader" in gl_page.evaluate("studioWebGL.renderer")
+    # a software rasteriser: the server's tiles unless the box is ticked
+    assert gl_page.is_enabled("#view-webgl") and not gl_page.is_checked("#view-webgl")
+
+
+@pytest.mark.parametrize("colors,max_line,seed,origin,cell", [
+    (3, 3, 0, (0, 0), 8),
+    (3, None, 5, (-37, -11), 12),
+    (4, 4, 7, (HUGE, -HUGE), 10),
+    (5, 2, 2, (123456789, -987654321), 7),
+    (3, 1, 11, (-5, 3), 9),
+])
+def test_the_browser_draws_the_cpu_wall(gl_page, colors, max_line, seed, origin, cell):
+    w, h = 23 * cell, 13 * cell
+    config = webgl_wall(colors=colors, max_line=max_line, seed=seed)
+    doc = gl_page.evaluate(READ, [config, str(origin[0]), str(origin[1]), cell, w, h])
+    assert doc["error"] == 0
+    # the first pass: texel (tx, ty) holds cell (x0 - 1 + tx, y0 - 1 + ty)
+    nx, ny = doc["nx"], doc["ny"]
+    legs = _array(doc, "legs", np.uint32, nx, ny)
+    cpu = wall_window(origin[0] - 1, origin[1] - 1, nx, ny, colors=colors, max_line=max_line, seed=seed)
+    assert np.array_equal(legs, cpu)
+    assert "brick" in doc, "the data pass needs float render targets (EXT_color_buffer_float)"
+    halo = wall_window(origin[0] - 1, origin[1] - 1, 25, 15, colors=colors, max_line=max_line, seed=seed)
+    m = wall_maps(halo, colors, cell, origin=origin)
+    brick, geom = _array(doc, "brick", np.int32, w, h), _array(doc, "geom", np.float32, w, h)
+    assert np.array_equal(brick[..., 0] + np.int64(origin[0]), m.vx)
+    assert np.array_equal(brick[..., 1] + np.int64(origin[1]), m.vy)
+    assert np.array_equal(geom[..., 3] > 0.5, np.repeat(np.repeat(orientation(halo[1:-1, 1:-1]), cell, 0), cell, 1))
+    assert np.allclose(geom[..., 0], m.distance, atol=1e-5)
+    assert np.allclose(geom[..., 1], m.u, atol=1e-5) and np.allclose(geom[..., 2], m.v, atol=1e-5)
+    colour = _array(doc, "colour", np.uint8, w, h)
+    desktop = _desktop_colour(w, h, colors=colors, max_line=max_line, seed=seed, origin=origin, cell_px=cell)
+    if desktop is not None:
+        diff = np.abs(colour.astype(int) - desktop.astype(int)).max(axis=2)
+        print(f"\nWebGL2 vs llvmpipe colours: {np.count_nonzero(diff)} of {diff.size} pixels differ, by at most {diff.max()}")
+        assert diff.max() <= 1
+
+
+def test_the_studio_view_is_drawn_by_webgl_and_is_the_wall(gl_page):
+    page = gl_page
+    page.select_option("#family", "board")
+    page.check("#view-webgl")
+    page.fill("#field-colors", "4")
+    page.dispatch_event("#field-colors", "change")
+    page.fill("#seed", "9")
+    page.dispatch_event("#seed", "change")
+    page.locator("#viewport").scroll_into_view_if_needed()
+    pan_view(page, -333, -171, steps=4)
+    page.mouse.wheel(0, -300)  # zoom in: whole pixels a cell, the pan an odd number of them
+    page.wait_for_function("studioWebGL.state.drawn && !studioWebGL.state.pending && "
+                           "document.getElementById('view-info').textContent.includes('drawn by WebGL2')")
+    page.wait_for_timeout(300)  # the wheel's redraw
+    drawn, values = page.evaluate("[studioWebGL.state.drawn, decodeURIComponent(studio.view.values)]")
+    assert page.is_visible("#view-gl") and page.is_hidden("#view-loading")
+    assert page.evaluate("studio.view.wanted.length") == 0  # no server tile asked for
+    assert json.loads(values)["seed"] == 9 and json.loads(values)["colors"] == 4
+    assert drawn["ox"] or drawn["oy"]
+    w, h, ox, oy = drawn["width"], drawn["height"], drawn["ox"], drawn["oy"]
+    pixels = page.evaluate("""() => { const gl = studioWebGL.gl, out = new Uint8Array(gl.drawingBufferWidth *
+        gl.drawingBufferHeight * 4); gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+        gl.readPixels(0, 0, gl.drawingBufferWidth, gl.drawingBufferHeight, gl.RGBA, gl.UNSIGNED_BYTE, out);
+        let s = ""; for (let i = 0; i < out.length; i += 8192) s += String.fromCharCode(...out.subarray(i, i + 8192));
+        return btoa(s); }""")
+    colour = _array({"c": pixels}, "c", np.uint8, w, h)
+    # the board form's view: the wall of its colours, lines of at most 3 (the form's default), its seed
+    desktop = _desktop_colour(w + ox, h + oy, colors=4, max_line=3, seed=9, origin=(drawn["x0"], drawn["y0"]),
+                              cell_px=drawn["cellPx"])
+    if desktop is None:
+        pytest.skip("no desktop GPU path to draw the reference colours")
+    diff = np.abs(colour.astype(int) - desktop[:h, ox:ox + w].astype(int)).max(axis=2)
+    print(f"\nstudio view {w}x{h} px, {drawn['cellPx']} px a cell: {np.count_nonzero(diff)} pixels differ, "
+          f"by at most {diff.max()}")
+    assert diff.max() <= 1
+
+
+def test_the_box_switches_between_webgl2_and_the_server_tiles(gl_page):
+    page = gl_page
+    page.select_option("#family", "board")
+    page.locator("#viewport").scroll_into_view_if_needed()
+    page.check("#view-webgl")
+    page.wait_for_function("document.getElementById('view-info').textContent.includes('drawn by WebGL2')")
+    assert page.is_visible("#view-gl")
+    page.uncheck("#view-webgl")
+    page.wait_for_function("studio.view.wanted.length > 0 && studio.view.missing === 0 && studio.view.inflight === 0")
+    assert page.is_hidden("#view-gl")
+    assert "-cell tiles" in page.text_content("#view-info")
+
+
+def test_without_webgl2_the_view_is_the_server_tiles(playwright_, server):
+    b = playwright_.chromium.launch(executable_path=CHROMIUM, headless=True, args=["--no-sandbox", "--disable-webgl2"])
+    try:
+        page = b.new_page(viewport={"width": 1400, "height": 1000})
+        page.set_default_timeout(180_000)
+        page.goto(server + "/")
+        page.wait_for_selector("body[data-ready='1']")
+        assert page.evaluate("studioWebGL.gl") is None
+        assert page.is_disabled("#view-webgl") and not page.is_checked("#view-webgl")
+        page.select_option("#family", "board")
+        page.locator("#viewport").scroll_into_view_if_needed()
+        page.wait_for_function("studio.view.wanted.length > 0 && studio.view.missing === 0 && "
+                               "studio.view.inflight === 0")
+        assert page.is_hidden("#view-gl")
+        assert page.evaluate("studio.view.wanted.every(t => t.state === 'ready' && t.img.naturalWidth > 0)")
+    finally:
+        b.close()

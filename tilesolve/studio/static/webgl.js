@@ -1,0 +1,197 @@
+// tilesolve studio: the infinite view of the procedural wall drawn on the page's own GPU by the
+// GPU path's shaders (tilesolve/gpu/wall.py, served as GLSL ES 3.00 by GET /api/webgl/{family}).
+// Their integer hashes are the CPU's (tilesolve/constructive/walls.py), so every cell's edge
+// colours, and with them every brick, are those of the server's wall. studio.js draws the
+// server's view tiles instead when WebGL2 is missing, when the view has no shader, when a
+// shader fails, or when the "WebGL2" box is unticked. The box starts unticked on a software
+// rasteriser (SwiftShader, llvmpipe: headless browsers, machines without a GPU driver), where
+// the server's tiles come sooner: there the first frame waits seconds for the shaders to
+// compile, and a zoomed-out frame (a cell a pixel) takes seconds more.
+"use strict";
+window.studioWebGL = (() => {
+  const state = { wall: null, seq: 0, pending: false, error: "", drawn: null };
+  let made = null;                             // the one Wall of the page's context
+
+  const mod = (a, n) => ((a % n) + n) % n;     // floor modulo (BigInt or Number)
+  const words = (v) => { const u = BigInt.asUintN(64, v); return [Number(u & 0xFFFFFFFFn), Number(u >> 32n)]; };
+
+  function link(gl, vertex, fragment) {
+    const p = gl.createProgram();
+    for (const [type, src] of [[gl.VERTEX_SHADER, vertex], [gl.FRAGMENT_SHADER, fragment]]) {
+      const s = gl.createShader(type);
+      gl.shaderSource(s, src); gl.compileShader(s);
+      if (!gl.getShaderParameter(s, gl.COMPILE_STATUS)) throw new Error("shader: " + gl.getShaderInfoLog(s));
+      gl.attachShader(p, s); gl.deleteShader(s);
+    }
+    gl.bindAttribLocation(p, 0, "in_pos"); gl.linkProgram(p);
+    if (!gl.getProgramParameter(p, gl.LINK_STATUS)) throw new Error("program: " + gl.getProgramInfoLog(p));
+    return p;
+  }
+
+  function texture(gl, internal, format, type, w, h) {
+    const t = gl.createTexture();
+    gl.bindTexture(gl.TEXTURE_2D, t);
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);   // integer textures: NEAREST or incomplete
+    gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
+    gl.texImage2D(gl.TEXTURE_2D, 0, internal, w, h, 0, format, type, null);
+    return t;
+  }
+
+  // The two passes of WallRenderer (tilesolve/gpu/wall.py) on one WebGL2 context: ``cells`` (a
+  // fragment per cell: its legs, RGBA8UI, and its SW lattice point, RG32UI), then a pass per pixel.
+  class Wall {
+    constructor(gl) {
+      this.gl = gl; this.config = null; this.programs = {}; this.cells = null;
+      gl.bindVertexArray(gl.createVertexArray());
+      gl.bindBuffer(gl.ARRAY_BUFFER, gl.createBuffer());
+      gl.bufferData(gl.ARRAY_BUFFER, new Float32Array([-1, -1, 1, -1, -1, 1, 1, 1]), gl.STATIC_DRAW);
+      gl.enableVertexAttribArray(0); gl.vertexAttribPointer(0, 2, gl.FLOAT, false, 0, 0);
+    }
+
+    // A new seed or colouring: the served shaders, compiled now so that a failure shows at once.
+    use(config) {
+      for (const p of Object.values(this.programs)) this.gl.deleteProgram(p);
+      this.config = config; this.programs = {};
+      this.program("cells"); this.program("colour");
+    }
+
+    program(kind) {
+      if (!this.programs[kind]) {
+        const gl = this.gl, u = this.config.uniforms, p = link(gl, this.config.vertex, this.config[kind]);
+        const at = (name) => gl.getUniformLocation(p, name);   // null (a no-op) where the compiler dropped it
+        gl.useProgram(p);
+        gl.uniform2uiv(at("u_basis"), new Uint32Array(u.u_basis));
+        gl.uniform1ui(at("u_nc"), u.u_nc); gl.uniform1i(at("u_p"), u.u_p); gl.uniform1i(at("u_fixed"), u.u_fixed ? 1 : 0);
+        gl.uniform1f(at("u_mortar"), u.u_mortar); gl.uniform1i(at("u_cells"), 0); gl.uniform1i(at("u_points"), 1);
+        this.programs[kind] = p;
+      }
+      return this.programs[kind];
+    }
+
+    // Local cells start at a multiple of 4, `margin` cells south-west of the picture's SW cell
+    // (x0, y0) (BigInt): the 64-bit origin as words, the local SW cell, and u_dres (WallRenderer).
+    locate(x0, y0) {
+      const m = BigInt(this.config.margin), P = BigInt(Math.max(this.config.uniforms.u_p, 1));
+      const i0 = x0 - m - mod(x0, 4n), j0 = y0 - m - mod(y0, 4n);
+      return { origin: [...words(i0), ...words(j0)], local0: [Number(x0 - i0), Number(y0 - j0)],
+               dres: Number(mod(i0 - j0, P) + P * ((65536n + P - 1n) / P)) };
+    }
+
+    cellTargets(nx, ny) {
+      const gl = this.gl;
+      if (this.cells && this.cells.nx === nx && this.cells.ny === ny) return this.cells;
+      if (this.cells) { gl.deleteFramebuffer(this.cells.fbo); gl.deleteTexture(this.cells.legs); gl.deleteTexture(this.cells.points); }
+      const legs = texture(gl, gl.RGBA8UI, gl.RGBA_INTEGER, gl.UNSIGNED_BYTE, nx, ny);
+      const points = texture(gl, gl.RG32UI, gl.RG_INTEGER, gl.UNSIGNED_INT, nx, ny);
+      const fbo = gl.createFramebuffer();
+      gl.bindFramebuffer(gl.FRAMEBUFFER, fbo);
+      gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, legs, 0);
+      gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT1, gl.TEXTURE_2D, points, 0);
+      gl.drawBuffers([gl.COLOR_ATTACHMENT0, gl.COLOR_ATTACHMENT1]);
+      this.cells = { nx, ny, legs, points, fbo };
+      return this.cells;
+    }
+
+    // Shade the pixels (ox, oy) + [0, w) x [0, h) of the picture whose SW cell is (x0, y0), cells
+    // `cellPx` pixels a side, into `target` (null: the canvas) with the program `kind`
+    // ("colour", or "data" into a framebuffer of three attachments), as WallRenderer._pass does.
+    draw(x0, y0, ox, oy, cellPx, w, h, kind = "colour", target = null) {
+      const gl = this.gl, at = this.locate(BigInt(x0), BigInt(y0));
+      const first = [Math.floor(ox / cellPx) + at.local0[0] - 1, Math.floor(oy / cellPx) + at.local0[1] - 1];
+      const cells = this.cellTargets(Math.floor((ox + w - 1) / cellPx) - Math.floor(ox / cellPx) + 3,
+                                     Math.floor((oy + h - 1) / cellPx) - Math.floor(oy / cellPx) + 3);
+      const place = (p) => {
+        gl.useProgram(p);
+        const loc = (name) => gl.getUniformLocation(p, name);
+        gl.uniform2uiv(loc("u_origin"), new Uint32Array(at.origin)); gl.uniform1i(loc("u_dres"), at.dres);
+        gl.uniform2i(loc("u_first"), first[0], first[1]); gl.uniform2i(loc("u_local0"), at.local0[0], at.local0[1]);
+        gl.uniform1i(loc("u_cell_px"), cellPx); gl.uniform2i(loc("u_offset"), ox, oy);
+      };
+      gl.bindFramebuffer(gl.FRAMEBUFFER, cells.fbo);
+      gl.viewport(0, 0, cells.nx, cells.ny);
+      place(this.program("cells"));
+      gl.drawArrays(gl.TRIANGLE_STRIP, 0, 4);
+      gl.bindFramebuffer(gl.FRAMEBUFFER, target);
+      gl.viewport(0, 0, w, h);
+      gl.activeTexture(gl.TEXTURE0); gl.bindTexture(gl.TEXTURE_2D, cells.legs);
+      gl.activeTexture(gl.TEXTURE1); gl.bindTexture(gl.TEXTURE_2D, cells.points);
+      place(this.program(kind));
+      gl.drawArrays(gl.TRIANGLE_STRIP, 0, 4);
+      gl.bindTexture(gl.TEXTURE_2D, null); gl.activeTexture(gl.TEXTURE0); gl.bindTexture(gl.TEXTURE_2D, null);
+    }
+  }
+
+  // The canvas over the view's 2D canvas, and its context (null without WebGL2).
+  function canvas() {
+    let cv = document.getElementById("view-gl");
+    if (!cv) {
+      cv = document.createElement("canvas"); cv.id = "view-gl";
+      cv.style.cssText = "position: absolute; inset: 0; width: 100%; height: 100%; display: none";
+      document.getElementById("view-canvas").after(cv);
+    }
+    return cv;
+  }
+
+  const gl = canvas().getContext("webgl2", { antialias: false, alpha: false, preserveDrawingBuffer: true });
+  const info = gl && gl.getExtension("WEBGL_debug_renderer_info");
+  const renderer = gl ? gl.getParameter(info ? info.UNMASKED_RENDERER_WEBGL : gl.RENDERER) : "";
+  const software = /SwiftShader|llvmpipe|softpipe|software/i.test(renderer);
+
+  // The "WebGL2" box of the view panel: `changed` (studio.js's resetView) when it is ticked or not.
+  function setup(changed) {
+    const box = document.createElement("label");
+    box.id = "view-webgl-label";
+    box.title = !gl ? "this browser has no WebGL2: the view is drawn from the server's tiles"
+      : `draw the view here with the GPU path's shaders (unticked: the server's tiles)${software
+        ? `; ${renderer} is a software rasteriser, slower than the server's tiles` : ""}`;
+    box.innerHTML = `<input id="view-webgl" type="checkbox"${!gl ? " disabled" : software ? "" : " checked"}> WebGL2`;
+    document.getElementById("view-info").before(box);
+    box.firstChild.addEventListener("change", changed);
+  }
+
+  // The view of family `name` for the form values `values` (URL-encoded JSON): fetch its shaders
+  // (if it has some) and compile them. Resolves when known; until then draw() draws nothing.
+  async function configure(name, values) {
+    const seq = ++state.seq;
+    state.wall = null; state.error = "";
+    const box = document.getElementById("view-webgl");
+    if (!gl || (box && !box.checked)) return;
+    state.pending = true;
+    try {
+      const r = await fetch(`/api/webgl/${name}?values=${values}`), doc = await r.json();
+      if (seq !== state.seq) return;
+      if (r.ok && doc.kind === "wall") {
+        state.wall = made = made || new Wall(gl);
+        state.wall.use(doc);
+      }
+    } catch (e) {
+      if (seq === state.seq) { state.error = e.message; state.wall = null; }
+    } finally {
+      if (seq === state.seq) state.pending = false;
+    }
+  }
+
+  // Draw studio.js's view (x, y: its top-left in CSS px at zoom 1, `cell` px a cell; w x h CSS
+  // px, dpr device px each) with whole device pixels per cell. False: draw the server's tiles.
+  function draw(view, cell, w, h, dpr) {
+    const cv = canvas();
+    if (state.pending) return true;
+    if (!state.wall) { cv.style.display = "none"; return false; }
+    const W = Math.round(w * dpr), H = Math.round(h * dpr);
+    if (cv.width !== W || cv.height !== H) { cv.width = W; cv.height = H; }
+    // device pixel (GX + px, GY + py) of the plane, y down; cell x = floor(gx / cpx), y = -floor(gy / cpx) - 1
+    const cpx = Math.max(1, Math.round(cell * view.zoom * dpr));
+    const GX = Math.round(view.x * cpx / cell), GY = Math.round(view.y * cpx / cell), M = -GY - H;
+    const x0 = Math.floor(GX / cpx), y0 = Math.floor(M / cpx);
+    try {
+      state.wall.draw(x0, y0, GX - x0 * cpx, M - y0 * cpx, cpx, W, H);
+    } catch (e) {
+      state.error = e.message; state.wall = null; cv.style.display = "none"; return false;
+    }
+    cv.style.display = "block";
+    state.drawn = { x0, y0, ox: GX - x0 * cpx, oy: M - y0 * cpx, cellPx: cpx, width: W, height: H };
+    return true;
+  }
+
+  return { state, setup, configure, draw, gl, renderer, Wall };
+})();
