@@ -9,6 +9,7 @@
 * :mod:`.wall` -- the procedural wall of 004 (§4.2-4.3, App. B, §5.2) as a shader: edge colours
   by the FNV/xorshift hashes and the 2x2 solver, bit for bit as :mod:`tilesolve.constructive.walls`,
   then per fragment the brick, the distance to its edge, its UV and a colour; multisampled.
+  The same GLSL, as GLSL ES 3.00 (:func:`.wall.webgl_wall`), draws the studio's WebGL2 view.
 
 Nothing outside this package imports moderngl, so the CPU routes work without GL.
 """
