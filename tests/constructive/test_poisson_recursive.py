@@ -116,3 +116,18 @@ def test_progressive_order_puts_spread_out_points_first():
     first = pts[order[:20]]
     gaps = np.hypot(*(first[:, None] - first[None]).transpose(2, 0, 1)) + np.eye(20)
     assert gaps.min() > 0.1  # 20 random points would have a pair closer than that
+
+
+def test_the_far_from_kernel_agrees_with_a_kd_tree_on_both_paths():
+    from scipy.spatial import cKDTree
+
+    from tilesolve.constructive import _poisson_recursive_kernels as k
+
+    rng = np.random.default_rng(5)
+    kept, pts = rng.random((300, 2)) * [3, 2], rng.random((2000, 2)) * [3, 2]
+    reach = 0.05
+    gap, _ = cKDTree(kept).query(pts)
+    want = gap >= reach
+    for ns in (k.KERNELS.plain(), k.KERNELS.compiled()):
+        got = ns.far_from(kept, pts, reach, 0.1, 30, 20, np.empty(len(pts), bool))
+        assert (got == want).all()

@@ -106,7 +106,8 @@ def _ramp(text: str):
     try:
         lo, hi = (float(v) for v in text.split(","))
     except ValueError:
-        raise InvalidProblem(f"cannot read --ramp {text!r}: expected D0,D1 (points a unit area, west to east)") from None
+        raise InvalidProblem(f"cannot read --ramp {text!r}: expected D0,D1 (points a unit area, west to east)") \
+            from None
     return np.linspace(lo, hi, RAMP_STEPS)[None, :]
 
 

@@ -19,10 +19,10 @@ The level-0 lattice of the window and a margin of one tile is coloured by the di
 tiling (§3.3.1, random access); the lattice of depth ``k + 1`` is the depth-``k`` lattice with
 every tile replaced by its rule. Level by level, the tile set's points are placed on the
 depth-``k`` lattice (scaled by ``n^-k``) and kept where they are at least ``d_k`` from the
-points already kept (a KD-tree, ``scipy.spatial.cKDTree``). The margin holds every point that
-can decide a point of the window (they lie within ``d_0 + d_1 + ... < 1`` of it), so any window
-gives the same points where windows overlap. Last, a density keeps the points whose rank fits
-it, and the window is cut out.
+points already kept (a grid search, :mod:`._poisson_recursive_kernels`). The margin holds every
+point that can decide a point of the window (they lie within ``d_0 + d_1 + ... < 1`` of it),
+so any window gives the same points where windows overlap. Last, a density keeps the points
+whose rank fits it, and the window is cut out.
 
 Examples
 --------
@@ -40,6 +40,7 @@ from __future__ import annotations
 import numpy as np
 
 from tilesolve._random import rng_from_seed
+from tilesolve.constructive import _poisson_recursive_kernels as _k
 from tilesolve.constructive.poisson import build_tiles, corner_lattice, place_tiles
 from tilesolve.constructive.stochastic import direct_corner
 from tilesolve.errors import InvalidProblem
@@ -140,6 +141,17 @@ def _density_at(grid: np.ndarray, local: np.ndarray, width: int, height: int) ->
     return grid[row, col]
 
 
+def _far_from(kept: np.ndarray, pts: np.ndarray, reach: float, width: float, height: float) -> np.ndarray:
+    """Whether each of ``pts`` is at least ``reach`` from all of ``kept`` (both in ``[0, width)
+    x [0, height)``): a grid of at most 2048 x 2048 cells of side at least ``reach``."""
+    side = max(reach, width / 2048, height / 2048)
+    nx, ny = max(1, int(width / side)), max(1, int(height / side))
+    side = max(width / nx, height / ny)
+    keep = np.empty(len(pts), bool)
+    return _k.KERNELS.pick(len(pts)).far_from(np.ascontiguousarray(kept), np.ascontiguousarray(pts), reach, side,
+                                               nx, ny, keep)
+
+
 def _mix(z: np.ndarray) -> np.ndarray:
     """splitmix64's finaliser (Steele, Lea and Flood 2014), on uint64 arrays (wrapping)."""
     z = (z ^ (z >> np.uint64(30))) * np.uint64(0xBF58476D1CE4E5B9)
@@ -191,11 +203,8 @@ def sample_window(problem: RecursiveWindowProblem, *, seed=None) -> RecursiveWin
         jitter = _placement_hash(offsets[inside], (w.x0 - 1) * n**k, (w.y0 - 1) * n**k, k, seed)
         pts, rank = pts[inside], (index[inside] + jitter) / size[inside]
         if len(kept):
-            from scipy.spatial import cKDTree
-
-            reach = p.distance_at(k) * (1 + SLACK)
-            gap, _ = cKDTree(kept).query(pts, distance_upper_bound=reach)
-            pts, rank = pts[gap >= reach], rank[gap >= reach]
+            far = _far_from(kept, pts, p.distance_at(k) * (1 + SLACK), bw, bh)
+            pts, rank = pts[far], rank[far]
         kept = np.vstack([kept, pts])
         points.append(pts)
         levels.append(np.full(len(pts), k, np.int8))
@@ -209,5 +218,5 @@ def sample_window(problem: RecursiveWindowProblem, *, seed=None) -> RecursiveWin
         lo = np.where(level == 0, 0.0, hi / (n * n))
         keep &= rank < (d - lo) / (hi - lo)
     local, level, rank = local[keep], level[keep], rank[keep]
-    order = np.lexsort((local[:, 1], local[:, 0], rank, level))
+    order = np.argsort(level + rank, kind="stable")  # level, then rank (rank < 1); ties: placement order
     return RecursiveWindow(w, np.ascontiguousarray(local[order]), level[order], rank[order], p.distance, n)
