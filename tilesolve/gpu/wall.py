@@ -308,9 +308,10 @@ def webgl_wall(*, colors: int = 3, max_line: int | None = None, seed: int = 0, m
     dict
         ``vertex``, and the fragment shaders ``cells`` (first pass), ``colour`` and ``data``
         (second pass, as :class:`WallRenderer` draws them with one sample per pixel): this
-        module's GLSL behind :data:`_ES_HEADER`. ``uniforms``: ``u_basis`` (the four streams'
-        FNV-1a states as eight 32-bit words, low word first), ``u_nc``, ``u_p``, ``u_fixed``,
-        ``u_mortar``. ``margin``: the cells a pass reaches south-west of the picture.
+        module's GLSL behind a ``#version 300 es`` header and the precisions ES asks for.
+        ``uniforms``: ``u_basis`` (the four streams' FNV-1a states as eight 32-bit words, low
+        word first), ``u_nc``, ``u_p``, ``u_fixed``, ``u_mortar``. ``margin``: the cells a pass
+        reaches south-west of the picture.
 
     Examples
     --------
