@@ -58,6 +58,21 @@ def _done(ctx, outs: Outputs) -> None:
     ctx.exit(0)
 
 
+def _write_set(ctx, outs: Outputs, output: str, problem, sol, text) -> None:
+    """Write a built tile set (``text()``, its JSON) to ``output`` (``-``: stdout) and say what was built."""
+    from tilesolve.io.atomic import write_text_atomic
+
+    with outs.commit(sol):
+        if output == "-":
+            click.echo(text(), nl=False)
+        else:
+            write_text_atomic(output, text())
+    short = sol.stats["short"]
+    say(f"{sol.status.value}: {problem.describe()}, {sol.stats['points']:,} points, seed {sol.seed}, "
+        f"in {sol.time_s:.2f} s" + (f"; interior tiles lack {short} points in all" if short else ""))
+    _done(ctx, outs)
+
+
 def _load_set(path: str):
     from tilesolve.io.jsonio import load_document
     from tilesolve.io.poisson_json import TILES_FORMAT, VERSIONS, tiles_from_dict
@@ -91,23 +106,13 @@ def build(ctx, colors, points, rho, lloyd, seed, output) -> None:
       tilesolve sample poisson-tiles build -C 3 -N 32 --rho 0.7 --lloyd 4 --seed 2 -o set3.json
     """
     from tilesolve.families.poisson import solve
-    from tilesolve.io.atomic import write_text_atomic
     from tilesolve.io.poisson_json import dump, tiles_to_dict
     from tilesolve.model.poisson import PoissonTilesProblem
 
     problem = PoissonTilesProblem(colors, points, rho, lloyd)
     outs = Outputs(output)
     sol = solve(problem, method="dart", seed=seed)
-    with outs.commit(sol):
-        text = dump(tiles_to_dict(problem, sol))
-        if output == "-":
-            click.echo(text, nl=False)
-        else:
-            write_text_atomic(output, text)
-    short = sol.stats["short"]
-    say(f"{sol.status.value}: {problem.describe()}, {sol.stats['points']:,} points, seed {sol.seed}, "
-        f"in {sol.time_s:.2f} s" + (f"; interior tiles lack {short} points in all" if short else ""))
-    _done(ctx, outs)
+    _write_set(ctx, outs, output, problem, sol, lambda: dump(tiles_to_dict(problem, sol)))
 
 
 def _set_and_region(command):
@@ -308,23 +313,13 @@ def spheres_build(ctx, colors, points, rho, seed, output) -> None:
       tilesolve sample poisson-spheres build -C 1 -N 100 --rho 0.6 -o one.json
     """
     from tilesolve.families.poisson_sphere import solve
-    from tilesolve.io.atomic import write_text_atomic
     from tilesolve.io.poisson_sphere_json import dump, tiles_to_dict
     from tilesolve.model.poisson_sphere import PoissonSphereTilesProblem
 
     problem = PoissonSphereTilesProblem(colors, points, rho)
     outs = Outputs(output)
     sol = solve(problem, method="dart", seed=seed)
-    with outs.commit(sol):
-        text = dump(tiles_to_dict(problem, sol))
-        if output == "-":
-            click.echo(text, nl=False)
-        else:
-            write_text_atomic(output, text)
-    short = sol.stats["short"]
-    say(f"{sol.status.value}: {problem.describe()}, {sol.stats['points']:,} points, seed {sol.seed}, "
-        f"in {sol.time_s:.2f} s" + (f"; interior tiles lack {short} points in all" if short else ""))
-    _done(ctx, outs)
+    _write_set(ctx, outs, output, problem, sol, lambda: dump(tiles_to_dict(problem, sol)))
 
 
 @poisson_spheres.command("window", context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP,

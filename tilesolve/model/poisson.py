@@ -54,6 +54,7 @@ __all__ = [
     "PoissonWindowProblem",
     "PoissonTileSet",
     "PoissonWindow",
+    "check_tiles",
     "r_max",
     "MAX_COLORS",
     "MAX_POINTS",
@@ -104,6 +105,25 @@ def _int(v, name: str, lo: int, hi: int) -> int:
     return int(v)
 
 
+def check_tiles(colors, points, rho, max_colors: int, fits, section: str) -> tuple[int, int, float]:
+    """``(C, N, rho)`` of a corner-based tile set, checked: ranges, and ``fits(N, rho)``, that
+    the corner regions leave the distance between them (``section`` of the notes says so; the
+    message gives the fewest points that fit)."""
+    colors, points = _int(colors, "colors", 1, max_colors), _int(points, "points a tile", 1, MAX_POINTS)
+    if isinstance(rho, bool) or not isinstance(rho, (int, float, np.floating)) or not math.isfinite(rho):
+        raise InvalidProblem(f"rho must be a number, got {rho!r}")
+    lo, hi = RHO_RANGE
+    if not lo <= float(rho) <= hi:
+        raise InvalidProblem(f"rho must be within {lo}..{hi} (relaxation dart throwing reaches about {hi}), "
+                             f"got {rho}")
+    rho = float(rho)
+    if not fits(points, rho):
+        fewest = next((n for n in range(points, MAX_POINTS + 1) if fits(n, rho)), MAX_POINTS)
+        raise InvalidProblem(f"{points} points a tile at rho {rho} leave no room between the corner "
+                             f"regions ({section} needs 1 - 2a >= 2r): use at least {fewest} points a tile")
+    return colors, points, rho
+
+
 class PoissonProblem:
     """Either question of the ``poisson`` family: build a tile set, or a window of points."""
 
@@ -138,21 +158,10 @@ class PoissonTilesProblem(PoissonProblem):
     lloyd: int = 0
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "colors", _int(self.colors, "colors", 1, MAX_COLORS))
-        object.__setattr__(self, "points", _int(self.points, "points a tile", 1, MAX_POINTS))
+        values = check_tiles(self.colors, self.points, self.rho, MAX_COLORS, _fits, "§4.3")
+        for name, v in zip(("colors", "points", "rho"), values):
+            object.__setattr__(self, name, v)
         object.__setattr__(self, "lloyd", _int(self.lloyd, "Lloyd steps", 0, 100))
-        rho = self.rho
-        if isinstance(rho, bool) or not isinstance(rho, (int, float, np.floating)) or not math.isfinite(rho):
-            raise InvalidProblem(f"rho must be a number, got {rho!r}")
-        lo, hi = RHO_RANGE
-        if not lo <= float(rho) <= hi:
-            raise InvalidProblem(f"rho must be within {lo}..{hi} (relaxation dart throwing reaches about {hi}), "
-                                 f"got {rho}")
-        object.__setattr__(self, "rho", float(rho))
-        if not _fits(self.points, self.rho):
-            fewest = next((n for n in range(self.points, MAX_POINTS + 1) if _fits(n, self.rho)), MAX_POINTS)
-            raise InvalidProblem(f"{self.points} points a tile at rho {self.rho} leave no room between the corner "
-                                 f"regions (§4.3 needs 1 - 2a >= 2r): use at least {fewest} points a tile")
 
     @property
     def n_tiles(self) -> int:

@@ -55,7 +55,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from tilesolve.errors import InvalidProblem
-from tilesolve.model.poisson import RHO_RANGE, SLACK, _int
+from tilesolve.model.poisson import SLACK, check_tiles
 from tilesolve.model.window import MAX_COORDINATE
 
 __all__ = [
@@ -146,19 +146,9 @@ class PoissonSphereTilesProblem(PoissonSphereProblem):
     rho: float
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "colors", _int(self.colors, "colors", 1, MAX_COLORS))
-        object.__setattr__(self, "points", _int(self.points, "points a tile", 1, MAX_POINTS))
-        rho = self.rho
-        if isinstance(rho, bool) or not isinstance(rho, (int, float, np.floating)) or not math.isfinite(rho):
-            raise InvalidProblem(f"rho must be a number, got {rho!r}")
-        lo, hi = RHO_RANGE
-        if not lo <= float(rho) <= hi:
-            raise InvalidProblem(f"rho must be within {lo}..{hi}, got {rho}")
-        object.__setattr__(self, "rho", float(rho))
-        if not _fits(self.points, self.rho):
-            fewest = next((n for n in range(self.points, MAX_POINTS + 1) if _fits(n, self.rho)), MAX_POINTS)
-            raise InvalidProblem(f"{self.points} points a tile at rho {self.rho} leave no room between the corner "
-                                 f"regions (§4.4.3 needs 1 - 2a >= 2r): use at least {fewest} points a tile")
+        values = check_tiles(self.colors, self.points, self.rho, MAX_COLORS, _fits, "§4.4.3")
+        for name, v in zip(("colors", "points", "rho"), values):
+            object.__setattr__(self, name, v)
 
     @property
     def n_tiles(self) -> int:
