@@ -68,6 +68,8 @@ def close_pairs3(points: np.ndarray, distance: float) -> np.ndarray:
         a, b = np.triu_indices(len(members), 1)
         found.append(np.stack([members[a], members[b]], axis=1))
     keep = np.repeat(count <= _CELL_MAX, count)
+    sp = points[order]  # in cell order: neighbours lie close in memory
+    reach = (distance * (1 + 1e-9)) ** 2  # a first cut without square roots; the exact one follows
     for dx, dy, dz in _OFFSETS:
         target = skey + (dx * dims[1] + dy) * dims[2] + dz
         if total <= 16 * n + (1 << 22):
@@ -83,9 +85,9 @@ def close_pairs3(points: np.ndarray, distance: float) -> np.ndarray:
         j = start[np.repeat(at[src], reps)] + (np.arange(reps.sum()) - np.repeat(np.cumsum(reps) - reps, reps))
         if (dx, dy, dz) == (0, 0, 0):
             i, j = i[i < j], j[i < j]
-        pi, pj = order[i], order[j]
-        close = np.linalg.norm(points[pi] - points[pj], axis=1) < distance
-        found.append(np.stack([pi[close], pj[close]], axis=1))
+        diff = sp[i] - sp[j]
+        close = np.einsum("ij,ij->i", diff, diff) < reach
+        found.append(np.stack([order[i[close]], order[j[close]]], axis=1))
     pairs = np.sort(np.concatenate(found), axis=1)
     if len(pairs) == 0:
         return pairs
