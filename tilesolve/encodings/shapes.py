@@ -146,7 +146,7 @@ def _exactly_one(cs: ClauseSet, lits: list[int], top: int, label: str) -> int:
 
 def _at_most_one(cs: ClauseSet, lits: list[int], top: int, label: str) -> int:
     if len(lits) <= PAIRWISE_MAX:
-        cs.add_lists([[-a, -b] for i, a in enumerate(lits) for b in lits[i + 1:]], f"{label}: at most one")
+        cs.add_array(_pairs([[-a, -b] for i, a in enumerate(lits) for b in lits[i + 1:]]), f"{label}: at most one")
         return top
     clauses = cardinality("atmost", lits, 1, top_id=top, encoding=1)  # sequential counter
     cs.add_lists(clauses, f"{label}: at most one", grid_only=False)
@@ -334,58 +334,87 @@ def encode_coronas(problem: ShapesProblem, levels: int, blocked=()) -> CoronaEnc
     """
     g = problem.geometry
     shape = problem.shapes[0].cells
+    base = _corona_base(g, shape, problem.reflections, levels)
+    enc = CoronaEncoding(g, shape, levels)
+    enc.candidates = [list(c) for c in base.candidates]
+    enc.var, enc.cellvar = base.var, base.cellvar
+    enc.hard.blocks = list(base.blocks)
+    blocks = []
+    if blocked:
+        index = {(lv, c): i for lv, cands in enumerate(enc.candidates, 1) for i, c in enumerate(cands)}
+    for tiles, cells in blocked:
+        clause = [-enc.var[(lv, index[(lv, tuple(map(tuple, c)))])] for lv, c in tiles]
+        clause += [y for c in cells for y in base.covered_up_to(tuple(c), levels)]
+        blocks.append(clause)
+    if blocks:
+        enc.hard.add_lists(blocks, "no hole (H_c): these tiles absent or the hole's cells covered")
+    enc.n_vars = base.n_vars
+    return enc
+
+
+@dataclass(frozen=True)
+class _CoronaBase:
+    """The clauses of ``levels`` coronas without blocked holes, shared by every encoding of
+    that level (a level is encoded again for each hole found in its models)."""
+
+    candidates: tuple
+    var: dict
+    cellvar: dict
+    blocks: tuple
+    n_vars: int
+
+    def covered_up_to(self, c, level) -> list[int]:
+        return [self.cellvar[(j, c)] for j in range(1, level + 1) if (j, c) in self.cellvar]
+
+
+def _pairs(clauses: list) -> np.ndarray:
+    return np.asarray(clauses, dtype=np.int64).reshape(-1, 2)
+
+
+@functools.lru_cache(maxsize=8)
+def _corona_base(g: Grid, shape: tuple, reflections: bool, levels: int) -> _CoronaBase:
     S = set(shape)
     halo_s = _halo(g, shape)
-    enc = CoronaEncoding(g, shape, levels)
-    enc.candidates = [list(c) for c in _corona_candidates(g, shape, problem.reflections, levels)]
+    candidates = _corona_candidates(g, shape, reflections, levels)
+    var: dict = {}
     top = 0
-    for level, cands in enumerate(enc.candidates, 1):
+    for level, cands in enumerate(candidates, 1):
         for i in range(len(cands)):
             top += 1
-            enc.var[(level, i)] = top
+            var[(level, i)] = top
     covering: dict = {}
-    for (level, i), v in enc.var.items():
-        for c in enc.candidates[level - 1][i]:
+    for (level, i), v in var.items():
+        for c in candidates[level - 1][i]:
             covering.setdefault((level, c), []).append(v)
+    cellvar: dict = {}
     for key in sorted(covering):
         top += 1
-        enc.cellvar[key] = top
-    cs = enc.hard
+        cellvar[key] = top
+    cs = ClauseSet()
     # y[j, c] <-> some corona-j tile covers c
-    cs.add_lists([[-y] + covering[key] for key, y in sorted(enc.cellvar.items())], "cell of a corona: some tile")
-    cs.add_lists([[-v, enc.cellvar[(level, c)]] for (level, i), v in sorted(enc.var.items())
-                  for c in enc.candidates[level - 1][i]], "tile covers its cells")
+    cs.add_lists([[-y] + covering[key] for key, y in sorted(cellvar.items())], "cell of a corona: some tile")
+    cs.add_array(_pairs([[-v, cellvar[(level, c)]] for (level, i), v in sorted(var.items())
+                         for c in candidates[level - 1][i]]), "tile covers its cells")
     by_cell: dict = {}
     for (level, c), lits in covering.items():
         by_cell.setdefault(c, []).extend(lits)
     for c in sorted(by_cell):
         top = _at_most_one(cs, by_cell[c], top, "tiles disjoint")
-
-    def covered_up_to(c, level):
-        return [enc.cellvar[(j, c)] for j in range(1, level + 1) if (j, c) in enc.cellvar]
-
+    base = _CoronaBase(candidates, var, cellvar, (), top)
+    covered_up_to = base.covered_up_to
     cs.add_lists([covered_up_to(c, 1) for c in sorted(halo_s)], "the shape is surrounded by corona 1")
     adjacency, lower, surround = [], [], []
-    for (level, i), v in sorted(enc.var.items()):
-        halo = sorted(_halo(g, enc.candidates[level - 1][i]) - S)
+    for (level, i), v in sorted(var.items()):
+        halo = sorted(_halo(g, candidates[level - 1][i]) - S)
         if level >= 2:
-            adjacency.append([-v] + [enc.cellvar[(level - 1, c)] for c in halo if (level - 1, c) in enc.cellvar])
-            lower += [[-v, -enc.cellvar[(j, c)]] for j in range(1, level - 1) for c in halo if (j, c) in enc.cellvar]
+            adjacency.append([-v] + [cellvar[(level - 1, c)] for c in halo if (level - 1, c) in cellvar])
+            lower += [[-v, -cellvar[(j, c)]] for j in range(1, level - 1) for c in halo if (j, c) in cellvar]
         if level < levels:
             surround += [[-v] + covered_up_to(c, level + 1) for c in halo]
     cs.add_lists(adjacency, "a corona-j tile touches corona j-1")
-    cs.add_lists(lower, "a corona-j tile touches no lower corona")
+    cs.add_array(_pairs(lower), "a corona-j tile touches no lower corona")
     cs.add_lists(surround, "corona j+1 surrounds corona j")
-    blocks = []
-    for tiles, cells in blocked:
-        index = {(lv, c): i for lv, cands in enumerate(enc.candidates, 1) for i, c in enumerate(cands)}
-        clause = [-enc.var[(lv, index[(lv, tuple(map(tuple, c)))])] for lv, c in tiles]
-        clause += [y for c in cells for y in covered_up_to(tuple(c), levels)]
-        blocks.append(clause)
-    if blocks:
-        cs.add_lists(blocks, "no hole (H_c): these tiles absent or the hole's cells covered")
-    enc.n_vars = max(top, 1)
-    return enc
+    return _CoronaBase(candidates, var, cellvar, tuple(cs.blocks), max(top, 1))
 
 
 #: Cell codes of the surround encoding: ``(x + _OFF) * _W + (y + _OFF)`` (cells of a polyform of up
@@ -427,9 +456,12 @@ class SurroundEncoding:
         The point group used (:func:`point_group`).
     m, t : numpy.ndarray
         Per candidate transform ``i``: its matrix's index ``m[i]`` and translation ``t[i]``
-        (cell coordinates); sorted by :func:`_codes` key.
+        (cell coordinates).
+    var : numpy.ndarray
+        Per candidate transform, its variable: ``T`` and ``T^-1`` share one (a closed surround
+        holds both or neither).
     clauses : list of list of int
-        The CNF (variables ``1..len(m)``).
+        The CNF.
     """
 
     grid: Grid
@@ -439,15 +471,41 @@ class SurroundEncoding:
     inverse: np.ndarray
     m: np.ndarray
     t: np.ndarray
+    var: np.ndarray
     clauses: list = field(default_factory=list)
 
     @property
     def n_vars(self) -> int:
-        return len(self.m)
+        return int(self.var.max(initial=0))
 
     def decode(self, model) -> list[int]:
         """The indices of the used transforms."""
-        return [v - 1 for v in model if 0 < v <= len(self.m)]
+        true = np.zeros(self.n_vars + 1, dtype=bool)
+        lits = np.asarray(model, dtype=np.int64)
+        true[lits[(lits > 0) & (lits <= self.n_vars)]] = True
+        return np.flatnonzero(true[self.var]).tolist()
+
+    def block(self, used: list[int]) -> list[int]:
+        """The clause "not all of these transforms"."""
+        return (-np.unique(self.var[used])).tolist()
+
+
+def _rows(*cols: np.ndarray) -> list:
+    """Clauses from literal columns: repeated literals and clauses left out, tautologies dropped."""
+    a = np.sort(np.stack(cols, axis=1), axis=1)
+    base = 2 * int(np.abs(a).max(initial=0)) + 1
+    key = np.zeros(len(a), dtype=np.int64)
+    for c in range(a.shape[1]):
+        key = key * base + a[:, c] + base // 2
+    a = a[np.unique(key, return_index=True)[1]]
+    taut = np.zeros(len(a), dtype=bool)
+    repeat = np.zeros(len(a), dtype=bool)
+    for c in range(a.shape[1]):
+        for d in range(c + 1, a.shape[1]):
+            taut |= a[:, c] == -a[:, d]
+            repeat |= a[:, c] == a[:, d]
+    out = a[~taut & ~repeat].tolist()
+    return out + [sorted(set(r)) for r in a[~taut & repeat].tolist()]
 
 
 def encode_surround(problem: ShapesProblem) -> SurroundEncoding:
@@ -460,8 +518,8 @@ def encode_surround(problem: ShapesProblem) -> SurroundEncoding:
     --------
     >>> from tilesolve.model.shapes import parse_ascii
     >>> enc = encode_surround(ShapesProblem("classify", (parse_ascii("#", "omino"),)))
-    >>> enc.n_vars  # the 8 neighbours of a square, each under the 8 symmetries
-    64
+    >>> len(enc.m), enc.n_vars  # the 8 neighbours of a square under 8 symmetries; T and T^-1 paired
+    (64, 36)
     """
     g = problem.geometry
     shape = problem.shapes[0].cells
@@ -493,22 +551,17 @@ def encode_surround(problem: ShapesProblem) -> SurroundEncoding:
     rest = cand % (_W * _W)
     t = np.stack((rest // _W - _OFF, rest % _W - _OFF), axis=1)
     k = len(m)
-    enc = SurroundEncoding(g, shape, mats, product, inverse, m, t)
-    clauses: list = []
-    # the cells around S are covered (each grid element's translations came sorted, as ``cand``)
-    codes = np.concatenate(cells_of)
-    for h in h_codes:
-        clauses.append((np.flatnonzero((codes == h).any(axis=1)) + 1).tolist())
-    # T -> T^-1
+    # T^-1 of each candidate (a candidate too: T(S) touches S iff S touches T^-1(S)); a pair shares a variable
     inv_m = inverse[m]
     minv = mats[inv_m]
-    ti = -np.einsum("kab,kb->ka", minv, t)
-    pos = np.searchsorted(cand, inv_m * _W * _W + _codes(ti))
-    pos[pos >= k] = 0
-    has = cand[pos] == inv_m * _W * _W + _codes(ti)
-    a = np.arange(k)
-    clauses += np.stack((-(a[has] + 1), pos[has] + 1), axis=1).tolist()
-    clauses += [[-(v + 1)] for v in a[~has].tolist()]
+    ikey = inv_m * _W * _W + _codes(-np.einsum("kab,kb->ka", minv, t))
+    inv_pos = np.searchsorted(cand, ikey)
+    first = np.minimum(np.arange(k), inv_pos)
+    var = np.unique(first, return_inverse=True)[1].reshape(-1) + 1
+    enc = SurroundEncoding(g, shape, mats, product, inverse, m, t, var)
+    # the cells around S are covered (each grid element's translations came sorted, as ``cand``)
+    codes = np.concatenate(cells_of)
+    clauses = [np.unique(var[(codes == h).any(axis=1)]).tolist() for h in h_codes]
     # every pair i < j: u = T_i^-1 T_j overlapping S (the tiles overlap) or touching it (closure)
     i, j = np.triu_indices(k, 1)
     dx, dy = t[j, 0] - t[i, 0], t[j, 1] - t[i, 1]
@@ -520,9 +573,9 @@ def encode_surround(problem: ShapesProblem) -> SurroundEncoding:
     pos[pos >= len(allkeys)] = 0
     found = allkeys[pos]
     over = found == ukey + 1
-    clauses += np.stack((-(i[over] + 1), -(j[over] + 1)), axis=1).tolist()
+    clauses += _rows(-var[i[over]], -var[j[over]])
     touch = found == ukey
-    upos = np.searchsorted(cand, ukey[touch] // 2)
-    clauses += np.stack((-(i[touch] + 1), -(j[touch] + 1), upos + 1), axis=1).tolist()
+    u = var[np.searchsorted(cand, ukey[touch] // 2)]
+    clauses += _rows(-var[i[touch]], -var[j[touch]], u)
     enc.clauses = clauses
     return enc
