@@ -91,9 +91,18 @@ def test_a_density_keeps_points_by_level_and_rank_and_grows_continuously(ts):
 
 
 def test_a_ramp_is_sparse_in_the_west_and_dense_in_the_east(ts):
-    w = _window(ts, (0, 0, 8, 2), 1, density=np.linspace(10, 250, 64)[None, :])
+    from scipy.spatial import cKDTree
+
+    problem = RecursiveWindowProblem(ts, (0, 0, 8, 2), density=np.linspace(10, 250, 64)[None, :])
+    # the deeper levels only where the density needs them (block cells, the window's x 0 is block x 1)
+    assert [b[:3] for b in problem.boxes()] == [(0, 0, 10), (0, 0, 10), (1, 0, 9)]
+    w = sample_window(problem, seed=1)
+    assert window_violations(w) == []
     west, east = (w.local[:, 0] < 2).sum(), (w.local[:, 0] >= 6).sum()
     assert 5 * west < east
+    full = _window(ts, (0, 0, 8, 2), 1, level=2)  # the same points as the whole window at the deepest level
+    gap, k = cKDTree(full.local).query(w.local)
+    assert gap.max() < 1e-12 and (full.level[k] == w.level).all() and np.allclose(full.rank[k], w.rank)
 
 
 def test_subdivision_keeps_a_lattice_colouring_across_neighbouring_tiles():

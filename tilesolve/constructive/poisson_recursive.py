@@ -17,7 +17,9 @@ Windows
 -------
 The level-0 lattice of the window and a margin of one tile is coloured by the direct corner
 tiling (§3.3.1, random access); the lattice of depth ``k + 1`` is the depth-``k`` lattice with
-every tile replaced by its rule. Level by level, the tile set's points are placed on the
+every tile replaced by its rule, only over the tiles whose density needs level ``k + 1`` and a
+margin of one tile (:meth:`~tilesolve.model.poisson_recursive.RecursiveWindowProblem.boxes`):
+the cost follows the density (Kopf et al. §5). Level by level, the tile set's points are placed on the
 depth-``k`` lattice (scaled by ``n^-k``) and kept where they are at least ``d_k`` from the
 points already kept (a grid search, :mod:`._poisson_recursive_kernels`). The margin holds every
 point that can decide a point of the window (they lie within ``d_0 + d_1 + ... < 1`` of it),
@@ -190,20 +192,26 @@ def sample_window(problem: RecursiveWindowProblem, *, seed=None) -> RecursiveWin
     ts, w = problem.tileset, problem.window
     p = ts.problem
     c, n = p.colors, p.subdivision
-    bw, bh = w.width + 2, w.height + 2  # the window and a margin of one tile
+    boxes = problem.boxes()
+    bw, bh = boxes[0][2], boxes[0][3]  # the block: the window and a margin of one tile
     lat = corner_lattice(direct_corner(w.x0 - 1, w.y0 - 1, bw, bh, colors=c, seed=seed, hash=problem.hash), c)
     kept = np.zeros((0, 2))
     points, levels, ranks = [], [], []
-    for k in range(problem.level + 1):
-        if k:
-            lat = subdivide(lat, ts.rules, c)
+    for k, (bx, by, wk, hk) in enumerate(boxes):
+        if k:  # the previous level's lattice, cut to this level's box, subdivided
+            m, (px, py) = n ** (k - 1), boxes[k - 1][:2]
+            lat = subdivide(lat[(by - py) * m:(by - py + hk) * m + 1, (bx - px) * m:(bx - px + wk) * m + 1],
+                            ts.rules, c)
         offsets, frame, index, size = place_tiles(ts.base, lat)
         pts = (offsets + frame) / float(n**k)
-        inside = (pts[:, 0] >= 0) & (pts[:, 0] < bw) & (pts[:, 1] >= 0) & (pts[:, 1] < bh)
-        jitter = _placement_hash(offsets[inside], (w.x0 - 1) * n**k, (w.y0 - 1) * n**k, k, seed)
-        pts, rank = pts[inside], (index[inside] + jitter) / size[inside]
+        inside = (pts[:, 0] >= 0) & (pts[:, 0] < wk) & (pts[:, 1] >= 0) & (pts[:, 1] < hk)
+        jitter = _placement_hash(offsets[inside], (w.x0 - 1 + bx) * n**k, (w.y0 - 1 + by) * n**k, k, seed)
+        pts, rank = pts[inside] + [bx, by], (index[inside] + jitter) / size[inside]
         if len(kept):
-            far = _far_from(kept, pts, p.distance_at(k) * (1 + SLACK), bw, bh)
+            reach = p.distance_at(k) * (1 + SLACK)
+            near = ((kept[:, 0] >= bx - reach) & (kept[:, 0] < bx + wk + reach) & (kept[:, 1] >= by - reach)
+                    & (kept[:, 1] < by + hk + reach))
+            far = _far_from(kept[near] - [bx, by], pts - [bx, by], reach, wk, hk)
             pts, rank = pts[far], rank[far]
         kept = np.vstack([kept, pts])
         points.append(pts)

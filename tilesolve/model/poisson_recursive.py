@@ -239,14 +239,49 @@ class RecursiveWindowProblem(RecursiveProblem, OnWindow):
         object.__setattr__(self, "level", check_level(self.level))
         if self.hash not in ("long", "table"):
             raise InvalidProblem(f"unknown hash {self.hash!r}; choose long or table")
-        n = (window.width + 2) * (window.height + 2) * p.density_at(self.level)
+        if (window.width + 2) * (window.height + 2) * p.points > MAX_CANDIDATES:  # before any work
+            self._too_many((window.width + 2) * (window.height + 2) * p.points)
+        n = sum(bw * bh * p.density_at(k) for k, (_, _, bw, bh) in enumerate(self.boxes()))
         if n > MAX_CANDIDATES:
-            raise InvalidProblem(f"a {window.width}x{window.height} window at level {self.level} holds about "
-                                 f"{n:,.0f} candidate points; tilesolve builds at most {MAX_CANDIDATES:,} at once: "
-                                 "ask for a smaller window or a lower level or density")
+            self._too_many(n)
         if not self.label:
             object.__setattr__(self, "label", f"level {self.level}" if grid is None else
                                f"density up to {float(grid.max()):g} a unit area")
+
+    def _too_many(self, n: float) -> None:
+        w = self.window
+        raise InvalidProblem(f"a {w.width}x{w.height} window at level {self.level} holds about {n:,.0f} candidate "
+                             f"points; tilesolve builds at most {MAX_CANDIDATES:,} at once: ask for a smaller "
+                             "window or a lower level or density")
+
+    def level_map(self) -> np.ndarray:
+        """``(height, width)``: the deepest level each cell of the window needs (row 0 at the
+        top): the least level whose ``hi_l`` reaches the cell's largest density."""
+        w, p = self.window, self.tileset.problem
+        if self.density is None:
+            return np.full((w.height, w.width), self.level, np.int64)
+        rows, cols = self.density.shape
+        # the density cells a window cell meets: those of its nearest-cell lookups
+        c0, c1 = (np.arange(w.width) * cols) // w.width, -((-(np.arange(1, w.width + 1)) * cols) // w.width)
+        r0, r1 = (np.arange(w.height) * rows) // w.height, -((-(np.arange(1, w.height + 1)) * rows) // w.height)
+        by_col = np.stack([self.density[:, a:b].max(axis=1) for a, b in zip(c0, c1)], axis=1)
+        top = np.stack([by_col[a:b].max(axis=0) for a, b in zip(r0, r1)])
+        return sum((top > p.density_at(k)).astype(np.int64) for k in range(MAX_LEVEL))
+
+    def boxes(self) -> list[tuple[int, int, int, int]]:
+        """For each level ``0..level``, the cells ``(x, y, width, height)`` of the *block* (the
+        window and a margin of one cell, ``(x0 - 1, y0 - 1)`` its cell ``(0, 0)``, y north)
+        whose candidates a window computes: the cells that need the level, with a margin of one
+        cell, as a rectangle (a level needs the levels above it wherever it needs itself)."""
+        w = self.window
+        need = self.level_map()[::-1]  # row j: y0 + j
+        out = [(0, 0, w.width + 2, w.height + 2)]
+        for k in range(1, self.level + 1):
+            js, iis = np.nonzero(need >= k)
+            if len(js) == 0:
+                break
+            out.append((int(iis.min()), int(js.min()), int(iis.max() - iis.min()) + 3, int(js.max() - js.min()) + 3))
+        return out
 
     @property
     def distance(self) -> float:
