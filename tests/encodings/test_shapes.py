@@ -72,12 +72,12 @@ def test_the_point_group_table_is_a_group_of_the_grids_matrices(grid, reflection
 
 
 @pytest.mark.parametrize("grid, art", [("omino", "#"), ("hex", "##"), ("iamond", "##")])
-def test_every_surround_candidate_touches_the_shape_without_overlapping_it(grid, art):
+def test_every_surround_candidate_shares_an_edge_with_the_shape_without_overlapping_it(grid, art):
     p = ShapesProblem("classify", (parse_ascii(art, grid),))
     enc = encode_surround(p)
     g = GRIDS[grid]
     shape = set(enc.shape)
-    around = {n for c in shape for n in g.touching(c)} - shape
+    around = {n for c in shape for n in g.neighbours(c)} - shape
     for m, t in zip(enc.m.tolist(), enc.t.tolist()):
         cells = {tuple(int(v) for v in enc.mats[m] @ c + t) for c in enc.shape}
         assert cells.isdisjoint(shape) and cells & around and all(g.is_cell(c) for c in cells)

@@ -22,6 +22,20 @@ Coronas (:func:`encode_coronas`)
     those of coronas ``0..j-1``: the patch has ``k`` coronas. ``blocked`` holes (a set of
     uncovered cells and the tiles around it, found in an earlier model) add a clause "one of
     these tiles is absent or one of these cells is covered" (the ``H_c`` variant: no holes).
+
+Closed surrounds (:func:`encode_surround`)
+    The neighbours of an isohedral tiling seen from one tile (Kaplan's heesch-sat checks
+    isohedral tilings the same way). A *transform* ``T = (M, t)`` maps a cell ``x`` to
+    ``M x + t`` (``M`` in the point group, ``t`` a grid translation). The candidates are the
+    transforms whose image of ``S`` is *adjacent* to ``S`` (disjoint from it, sharing an edge);
+    a shape with symmetries has several transforms per placement. ``T`` and ``T^-1`` share one
+    variable (``T(S)`` is a neighbour of ``S`` iff ``S`` is one of ``T(S)``). Clauses: the cells
+    sharing an edge with ``S`` are covered; two neighbours that overlap are not both used; and
+    two used neighbours ``T_i(S)``, ``T_j(S)`` adjacent to each other imply ``T_i^-1 T_j`` used
+    (mapped back by ``T_i^-1`` they are ``S`` and a neighbour of it). In an isohedral tiling
+    whose symmetries move each tile onto each other tile in one way, the neighbours of ``S``
+    satisfy all of these; a model is only a candidate, and the group its transforms generate
+    is checked to tile (:mod:`tilesolve.engine.shapes`).
 """
 
 from __future__ import annotations
@@ -512,23 +526,23 @@ def encode_surround(problem: ShapesProblem) -> SurroundEncoding:
     """The CNF "``S`` has a closed surround" (module docstring).
 
     Every pair of candidates is classified at once from ``T_i^-1 T_j`` (whether its image of
-    ``S`` overlaps ``S``, touches it or lies apart), with integer arrays.
+    ``S`` overlaps ``S``, is adjacent to it or neither), with integer arrays.
 
     Examples
     --------
     >>> from tilesolve.model.shapes import parse_ascii
     >>> enc = encode_surround(ShapesProblem("classify", (parse_ascii("#", "omino"),)))
-    >>> len(enc.m), enc.n_vars  # the 8 neighbours of a square under 8 symmetries; T and T^-1 paired
-    (64, 36)
+    >>> len(enc.m), enc.n_vars  # the 4 edge neighbours of a square under 8 symmetries; T and T^-1 paired
+    (32, 20)
     """
     g = problem.geometry
     shape = problem.shapes[0].cells
     mats, product, inverse = point_group(g, problem.reflections)
     x = np.asarray(shape, dtype=np.int64)
-    halo = np.asarray(sorted(_halo(g, shape)), dtype=np.int64)
+    halo = np.asarray(sorted({n for c in shape for n in g.neighbours(c)} - set(shape)), dtype=np.int64)
     p = g.period
     images = np.einsum("gab,nb->gna", mats, x)  # (G, n, 2): M_g S
-    # translations putting a cell of M_g S on a cell of S or of its halo
+    # translations putting a cell of M_g S on a cell of S or on a cell sharing an edge with S
     near = np.concatenate((x, halo))
     t = (near[None, :, None, :] - images[:, None, :, :]).reshape(len(mats), -1, 2)
     keys, cells_of = [], []
@@ -539,19 +553,19 @@ def encode_surround(problem: ShapesProblem) -> SurroundEncoding:
         tg = np.stack((tc // _W - _OFF, tc % _W - _OFF), axis=1)
         c = _codes(images[gi][None, :, :] + tg[:, None, :])
         overlap = np.isin(c, s_codes).any(axis=1)
-        touch = np.isin(c, h_codes).any(axis=1)
-        # overlapping transforms (the identity too) get key parity 1, touching ones 0
-        kind = np.where(overlap, 1, np.where(touch, 0, -1))
+        adjacent = np.isin(c, h_codes).any(axis=1)
+        # overlapping transforms (the identity too) get key parity 1, adjacent ones 0
+        kind = np.where(overlap, 1, np.where(adjacent, 0, -1))
         keep = kind >= 0
         keys.append(((gi * _W * _W + tc) * 2 + kind)[keep])
         cells_of.append(c[keep & ~overlap])
     allkeys = np.sort(np.concatenate(keys))
-    cand = allkeys[allkeys % 2 == 0] // 2  # touching transforms, sorted
+    cand = allkeys[allkeys % 2 == 0] // 2  # adjacent transforms, sorted
     m = cand // (_W * _W)
     rest = cand % (_W * _W)
     t = np.stack((rest // _W - _OFF, rest % _W - _OFF), axis=1)
     k = len(m)
-    # T^-1 of each candidate (a candidate too: T(S) touches S iff S touches T^-1(S)); a pair shares a variable
+    # T^-1 of each candidate (a candidate too: T(S) is adjacent to S iff S is to T^-1(S)); a pair shares a variable
     inv_m = inverse[m]
     minv = mats[inv_m]
     ikey = inv_m * _W * _W + _codes(-np.einsum("kab,kb->ka", minv, t))
@@ -559,10 +573,10 @@ def encode_surround(problem: ShapesProblem) -> SurroundEncoding:
     first = np.minimum(np.arange(k), inv_pos)
     var = np.unique(first, return_inverse=True)[1].reshape(-1) + 1
     enc = SurroundEncoding(g, shape, mats, product, inverse, m, t, var)
-    # the cells around S are covered (each grid element's translations came sorted, as ``cand``)
+    # the cells sharing an edge with S are covered (each grid element's translations came sorted, as ``cand``)
     codes = np.concatenate(cells_of)
     clauses = [np.unique(var[(codes == h).any(axis=1)]).tolist() for h in h_codes]
-    # every pair i < j: u = T_i^-1 T_j overlapping S (the tiles overlap) or touching it (closure)
+    # every pair i < j: u = T_i^-1 T_j overlapping S (the tiles overlap) or adjacent to it (closure)
     i, j = np.triu_indices(k, 1)
     dx, dy = t[j, 0] - t[i, 0], t[j, 1] - t[i, 1]
     mi = minv[i]
@@ -574,8 +588,8 @@ def encode_surround(problem: ShapesProblem) -> SurroundEncoding:
     found = allkeys[pos]
     over = found == ukey + 1
     clauses += _rows(-var[i[over]], -var[j[over]])
-    touch = found == ukey
-    u = var[np.searchsorted(cand, ukey[touch] // 2)]
-    clauses += _rows(-var[i[touch]], -var[j[touch]], u)
+    adjacent = found == ukey
+    u = var[np.searchsorted(cand, ukey[adjacent] // 2)]
+    clauses += _rows(-var[i[adjacent]], -var[j[adjacent]], u)
     enc.clauses = clauses
     return enc
