@@ -19,6 +19,7 @@ def folder(tmp_path_factory):
     return d
 
 
+@pytest.mark.slow
 def test_build_is_deterministic_and_verifies(folder):
     r = run("sample", "poisson-spheres", "build", "-C", "1", "-N", "100", "--rho", "0.6", "--seed", "1", "-o",
             "again.json", cwd=folder)
@@ -30,6 +31,7 @@ def test_build_is_deterministic_and_verifies(folder):
     assert v.returncode == 0 and "ok" in v.stdout + v.stderr
 
 
+@pytest.mark.slow
 def test_window_writes_points_and_far_boxes_verify(folder):
     r = run("sample", "poisson-spheres", "window", "set.json", "--region", "-3,4,-1,3x2x2", "--seed", "2", "-o",
             "pts.npy", cwd=folder)
@@ -45,6 +47,7 @@ def test_window_writes_points_and_far_boxes_verify(folder):
     assert run("verify", "far.json", cwd=folder).returncode == 0
 
 
+@pytest.mark.slow
 def test_verify_catches_a_forged_set_and_a_forged_box(folder):
     doc = json.loads((folder / "set.json").read_text())
     x, y, z = doc["tiles"]["interior"][0][0]

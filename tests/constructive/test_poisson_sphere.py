@@ -30,6 +30,7 @@ def test_the_set_is_complete_and_verified(two):
     assert two.stats["short"] == 0
 
 
+@pytest.mark.slow
 def test_same_seed_same_points(two):
     again = build_tiles(two.problem, seed=1)
     assert all(np.array_equal(a, b) for k in two.tiles for a, b in zip(two.tiles[k], again.tiles[k]))
