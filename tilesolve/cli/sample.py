@@ -372,8 +372,13 @@ def spheres_window(ctx, tileset, region, hash_, seed, output) -> None:
     _done(ctx, outs)
 
 
-def _density_options(command):
-    """The IMAGE argument and the options shared by the importance-sampling commands."""
+def _density_options(lloyd: int, jitter: bool):
+    """The IMAGE argument and the options shared by the importance-sampling commands (with the
+    command's defaults of --lloyd and --jitter)."""
+    return lambda command: _with_density_options(command, lloyd, jitter)
+
+
+def _with_density_options(command, lloyd: int, jitter: bool):
     for option in reversed((
         click.argument("image", required=False, type=click.Path(dir_okay=False), metavar="[IMAGE.png]"),
         click.option("--test-image", type=click.Choice(["radial", "gradient", "flat"]), default=None,
@@ -384,9 +389,9 @@ def _density_options(command):
                      default="x-pentomino", show_default=True,
                      help="The polyomino method's self-similar tile: the X pentomino of base 2 + i (rep-5, each "
                           "level turned by atan(1/2)) or a rep-4 polyomino."),
-        click.option("--lloyd", type=click.IntRange(0, 50), default=0, show_default=True, metavar="K",
-                     help="Density-weighted Lloyd steps after sampling (penrose, polyomino)."),
-        click.option("--jitter/--no-jitter", default=False, show_default=True,
+        click.option("--lloyd", type=click.IntRange(0, 50), default=lloyd, show_default=True, metavar="K",
+                     help="Density-weighted Lloyd steps after sampling."),
+        click.option("--jitter/--no-jitter", default=jitter, show_default=True,
                      help="Each sample at a random point of its tile, not its centroid (penrose, polyomino)."),
     )):
         command = option(command)
@@ -395,8 +400,8 @@ def _density_options(command):
 
 @sample.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP,
                 short_help="Stipple an image: samples whose density follows its darkness (Parts IV-V).")
-@_density_options
-@click.option("--method", type=click.Choice(["penrose", "polyomino", "rejection"]), default="polyomino",
+@_density_options(lloyd=4, jitter=True)
+@click.option("--method", type=click.Choice(["penrose", "polyomino", "rejection"]), default="penrose",
               show_default=True, help="The sampler.")
 @opt.seed_opt
 @click.option("-o", "--output", type=OutputFile("svg", allow_dash=False), required=True, metavar="OUT.svg",
@@ -411,16 +416,18 @@ def stipple(ctx, image, test_image, points, tile, lloyd, jitter, method, seed, o
     Penrose tiling's Robinson triangles (Ostromoukhov, Donohue, Jodoin 2004) or a self-similar
     polyomino (Ostromoukhov 2007) subdivided where the image needs more than one sample a tile,
     each tile's sample kept by a threshold on its structural index; or plain rejection sampling.
-    The papers' correction vectors are not tabulated: --jitter and --lloyd stand in for them.
-    The samples are checked before anything is written: inside the image, and the counts of 2 x 2
-    and 4 x 4 blocks near their share of the image's darkness (exit 1 if not). Without IMAGE, a
-    built-in radial ramp. The same seed gives the same files, byte for byte.
+    The papers' correction vectors are not tabulated: --jitter and --lloyd stand in for them (the
+    defaults, Penrose with both, draw the picture without the tilings' patterns; --no-jitter
+    --lloyd 0 shows the raw structure, `sample importance-spectrum` measures it). The samples are
+    checked before anything is written: inside the image, and the counts of 2 x 2 and 4 x 4
+    blocks near their share of the image's darkness (exit 1 if not). Without IMAGE, a built-in
+    radial ramp. The same seed gives the same files, byte for byte.
 
     \b
     Examples:
       tilesolve sample stipple --points 3000 --seed 1 -o radial.svg
-      tilesolve sample stipple --test-image gradient --method penrose --points 3000 --seed 1 -o g.svg --png g.png
-      tilesolve sample stipple --points 3000 --jitter --lloyd 4 --seed 1 -o smooth.svg --csv smooth.csv
+      tilesolve sample stipple --test-image gradient --points 3000 --seed 1 -o g.svg --png g.png
+      tilesolve sample stipple --method polyomino --no-jitter --lloyd 0 --points 3000 --seed 1 -o raw.svg --csv raw.csv
     """
     from tilesolve.families.importance import density_of
     from tilesolve.families.importance import stipple as run_stipple
@@ -457,7 +464,7 @@ def stipple(ctx, image, test_image, points, tile, lloyd, jitter, method, seed, o
 
 @sample.command("importance-spectrum", context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP,
                 short_help="Penrose and polyomino sampling against rejection: speed, discrepancy, spectra.")
-@_density_options
+@_density_options(lloyd=0, jitter=False)
 @click.option("--runs", type=click.IntRange(1, 32), default=4, show_default=True,
               help="Seeds whose flat-image periodograms are averaged.")
 @click.option("--spectrum-points", type=click.IntRange(64, 16384), default=4096, show_default=True, metavar="M",

@@ -446,7 +446,7 @@ def sample(problem: ImportanceProblem, *, seed=None) -> np.ndarray:
     the border bias the count by a few percent)."""
     d, n = problem.density, problem.points
     if problem.method == "rejection":
-        return rejection_points(d, n, seed=seed)
+        return lloyd(rejection_points(d, n, seed=seed), d, problem.lloyd)
     if problem.method == "penrose":
         def run(target, s):
             return penrose_points(d, target, jitter=problem.jitter, seed=s)
