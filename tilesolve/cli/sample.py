@@ -25,9 +25,10 @@ __all__ = ["sample"]
 
 
 @click.group(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP,
-             short_help="Tile-based sampling: corner-based Poisson disk tiles (class notes ch. 4).")
+             short_help="Tile-based sampling: Poisson disk tiles, importance sampling, stippling (ch. 4, Parts IV-V).")
 def sample() -> None:
-    """Tile-based sampling: point distributions of any size from a small precomputed tile set."""
+    """Tile-based sampling: point distributions of any size from a small precomputed tile set,
+    and samples whose density follows an image (Penrose and polyomino sampling, stippling)."""
 
 
 sample.add_command(recursive_wang)
