@@ -6,7 +6,7 @@ import pytest
 from pysat.solvers import Solver
 
 from tilesolve.encodings.shapes import (encode_coronas, encode_surround, encode_tiling, lattice_basis, point_group,
-                                        torus_reducer)
+                                        sequential_at_most_one, torus_reducer)
 from tilesolve.model.shapes import GRIDS, ShapesProblem, parse_ascii, parse_cells
 
 
@@ -89,3 +89,15 @@ def test_every_surround_candidate_shares_an_edge_with_the_shape_without_overlapp
                                             ([(0, 0), (5, 0)], None), ([(-2, -1), (4, 0)], ((4, 0), (2, 1)))])
 def test_lattice_basis_is_the_hermite_form(vectors, basis):
     assert lattice_basis(vectors) == basis
+
+
+@pytest.mark.parametrize("n", [3, 4, 9, 10, 17, 40])
+def test_the_sequential_counter_is_pysats_clause_for_clause(n):
+    import random
+
+    from pysat.card import CardEnc
+
+    rnd = random.Random(n)
+    lits = [v * rnd.choice((1, -1)) for v in rnd.sample(range(1, 200), n)]
+    top = 200 + rnd.randrange(50)
+    assert sequential_at_most_one(lits, top).tolist() == CardEnc.atmost(lits, bound=1, top_id=top, encoding=1).clauses

@@ -46,11 +46,12 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from tilesolve.encodings import ClauseSet, cardinality
+from tilesolve.encodings import ClauseSet
 from tilesolve.model.shapes import Grid, ShapesProblem
 
 __all__ = ["PAIRWISE_MAX", "TilingEncoding", "CoronaEncoding", "SurroundEncoding", "encode_tiling", "encode_coronas",
-           "encode_surround", "torus_reducer", "lattice_basis", "orientations", "placements_at", "point_group"]
+           "encode_surround", "torus_reducer", "lattice_basis", "orientations", "placements_at", "point_group",
+           "sequential_at_most_one"]
 
 #: Cells covered by at most this many placements get a pairwise at-most-one.
 PAIRWISE_MAX = 8
@@ -162,9 +163,27 @@ def _at_most_one(cs: ClauseSet, lits: list[int], top: int, label: str) -> int:
     if len(lits) <= PAIRWISE_MAX:
         cs.add_array(_pairs([[-a, -b] for i, a in enumerate(lits) for b in lits[i + 1:]]), f"{label}: at most one")
         return top
-    clauses = cardinality("atmost", lits, 1, top_id=top, encoding=1)  # sequential counter
-    cs.add_lists(clauses, f"{label}: at most one", grid_only=False)
-    return max(top, max(map(max, clauses)), -min(map(min, clauses)))
+    clauses = sequential_at_most_one(lits, top)
+    cs.add_array(clauses, f"{label}: at most one", grid_only=False)
+    return max(top, int(np.abs(clauses).max()))
+
+
+def sequential_at_most_one(lits, top: int) -> np.ndarray:
+    """Sinz's sequential counter "at most one of ``lits``" (three or more) with auxiliary
+    variables ``top + 1 .. top + n - 1``, as rows of two literals: the clauses of PySAT's
+    ``CardEnc.atmost(lits, 1, top_id=top, encoding=1)`` in its order, built with numpy.
+
+    Examples
+    --------
+    >>> sequential_at_most_one([1, 2, 3], 3).tolist()
+    [[-1, 4], [-4, 5], [-2, -4], [-2, 5], [-3, -5]]
+    """
+    x = np.asarray(lits, dtype=np.int64)
+    n = len(x)
+    aux = top + 1 + np.arange(n - 1, dtype=np.int64)
+    mid = np.stack((np.stack((-aux[:-1], aux[1:]), axis=1), np.stack((-x[1:-1], -aux[:-1]), axis=1),
+                    np.stack((-x[1:-1], aux[1:]), axis=1)), axis=1).reshape(-1, 2)
+    return np.concatenate(([[-x[0], aux[0]]], mid, [[-x[-1], -aux[-1]]])).astype(np.int64)
 
 
 @dataclass
@@ -311,8 +330,16 @@ class CoronaEncoding:
 def _halo(g: Grid, cells: tuple) -> frozenset:
     """The cells outside ``cells`` that share a corner with one of them (cached: a candidate
     tile's halo is asked for at every level of every corona encoding)."""
+    offsets = _touching_offsets(g)
     s = set(cells)
-    return frozenset(n for c in s for n in g.touching(c)) - s
+    return frozenset((x + dx, y + dy) for x, y in s for dx, dy in offsets[g.cell_type((x, y))]) - s
+
+
+@functools.lru_cache(maxsize=8)
+def _touching_offsets(g: Grid) -> dict:
+    """Per cell type, the offsets of the cells sharing a corner with a cell of that type."""
+    types = [(0, 0)] if g.period == 1 else [(1, 1), (2, 2)]
+    return {t: tuple((x - t[0], y - t[1]) for x, y in g.touching(t)) for t in types}
 
 
 @functools.lru_cache(maxsize=64)
