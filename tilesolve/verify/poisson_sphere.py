@@ -38,6 +38,8 @@ __all__ = ["point_violations3", "tileset_violations3", "close_pairs3"]
 MAX_LISTED = 20
 #: A d-cube holds at most 8 points pairwise d apart (its eight half-side cubes hold one each).
 _CELL_MAX = 8
+#: Pairs of tiles searched at once by :func:`tileset_violations3`.
+_BATCH = 1024
 #: The cell itself and the 13 neighbours that come after it: each pair of cells once.
 _OFFSETS = [(0, 0, 0)] + [o for o in itertools.product((-1, 0, 1), repeat=3) if o > (0, 0, 0)]
 
@@ -220,7 +222,11 @@ def tileset_violations3(ts: PoissonSphereTileSet, *, max_colourings: int = 4096,
         i2 = colourings[:, [place[p] for p in c2]] @ weights(c2)
         combos = np.unique(np.stack([i1, i2], axis=1), axis=0)
         same = k1 == k2 and not any(off)
-        bad = _first_close(ts.tiles[k1], None if same else ts.tiles[k2], combos, np.array(off, float), d)
+        for at in range(0, len(combos), _BATCH):  # bounded memory: a batch of combinations at a time
+            bad = _first_close(ts.tiles[k1], None if same else ts.tiles[k2], combos[at:at + _BATCH],
+                               np.array(off, float), d)
+            if bad is not None:
+                break
         if bad is not None:
             (t1, t2, gap), sides = bad
             where = [f"{k1} tile {t1} at (0, 0, 0)", f"{k2} tile {t2} at {off}"]
