@@ -41,7 +41,7 @@ import numpy as np
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.atomic import write_bytes_atomic, write_text_atomic
 from tilesolve.io.jsonio import check_document
-from tilesolve.io.poisson_json import FLOAT_RANGE, POINT_FORMATS
+from tilesolve.io.poisson_json import FLOAT_RANGE, POINT_FORMATS, read_seed
 from tilesolve.model.poisson_sphere import (
     KINDS,
     MAX_WINDOW_POINTS,
@@ -103,13 +103,6 @@ def _read_problem(doc: dict, source: str) -> PoissonSphereTilesProblem:
     return problem
 
 
-def _seed(doc: dict, source: str) -> int | None:
-    seed = doc.get("seed")
-    if seed is None or (type(seed) is int and 0 <= seed < 2**63):
-        return seed
-    raise InvalidProblem(f"{source}: 'seed' must be an integer from 0 to 2**63 - 1, got {seed!r}")
-
-
 def tiles_from_dict(doc: dict, source: str = "<document>") -> tuple[PoissonSphereTilesProblem, Solution]:
     """Read :func:`tiles_to_dict`'s document; one-line errors naming ``source`` and the field."""
     check_document(doc, source, {TILES_FORMAT: VERSIONS}, fields=_TILES_KEYS, required=("tiles",))
@@ -126,7 +119,7 @@ def tiles_from_dict(doc: dict, source: str = "<document>") -> tuple[PoissonSpher
     stats = doc.get("stats", {})
     if not isinstance(stats, dict):
         raise InvalidProblem(f"{source}: 'stats' must be an object")
-    seed = _seed(doc, source)
+    seed = read_seed(doc, source)
     ts = PoissonSphereTileSet(problem, arrays, seed=seed, stats=dict(stats))
     method = doc.get("method", "dart")
     return problem, Solution(Status.SAT, ts, method=method if isinstance(method, str) else "dart", seed=seed,
@@ -147,7 +140,7 @@ def window_from_dict(doc: dict, source: str = "<document>") -> tuple[PoissonSphe
     box = Box.from_dict(doc["box"])
     local = _points3(doc["local"], "local", source, MAX_WINDOW_POINTS)
     return problem, Solution(Status.SAT, PoissonSphereWindow(box, local, problem.distance), method="window",
-                             seed=_seed(doc, source))
+                             seed=read_seed(doc, source))
 
 
 def dump(doc: dict) -> str:
