@@ -55,7 +55,7 @@ from tilesolve.model.solution import Solution, Status
 from tilesolve.model.window import Window
 
 __all__ = ["TILES_FORMAT", "WINDOW_FORMAT", "VERSIONS", "tiles_to_dict", "tiles_from_dict", "window_to_dict",
-           "window_from_dict", "read_problem", "read_seed", "dump", "write_points", "check_point_output",
+           "window_from_dict", "read_problem", "read_seed", "read_points", "dump", "write_points", "check_point_output",
            "POINT_FORMATS", "FLOAT_RANGE"]
 
 TILES_FORMAT = "tilesolve/poisson-tiles"
@@ -83,14 +83,17 @@ def tiles_to_dict(problem: PoissonTilesProblem, solution: Solution) -> dict:
             "tiles": {k: [a.tolist() for a in ts.tiles[k]] for k in KINDS}}
 
 
-def _points(value: Any, what: str, source: str, limit: int) -> np.ndarray:
+def read_points(value: Any, what: str, source: str, limit: int, dim: int = 2) -> np.ndarray:
+    """Field ``what`` of a document: a list of at most ``limit`` points of ``dim`` (2 or 3) finite
+    numbers, as an ``(n, dim)`` float64 array; one-line errors naming ``source`` and the field."""
+    shape, noun = ("[x, y]", "pair") if dim == 2 else ("[x, y, z]", "triple")
     if not isinstance(value, list) or len(value) > limit:
-        raise InvalidProblem(f"{source}: {what!r} must be a list of at most {limit:,} [x, y] points")
+        raise InvalidProblem(f"{source}: {what!r} must be a list of at most {limit:,} {shape} points")
     for p in value:
-        if not (isinstance(p, list) and len(p) == 2 and all(isinstance(v, (int, float)) and not isinstance(v, bool)
-                                                             and math.isfinite(v) for v in p)):
-            raise InvalidProblem(f"{source}: {what!r} holds {p!r}, not an [x, y] pair of numbers")
-    return np.array(value, dtype=np.float64).reshape(-1, 2)
+        if not (isinstance(p, list) and len(p) == dim and all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                                                               and math.isfinite(v) for v in p)):
+            raise InvalidProblem(f"{source}: {what!r} holds {p!r}, not an {shape} {noun} of numbers")
+    return np.array(value, dtype=np.float64).reshape(-1, dim)
 
 
 def read_problem(doc: dict, source: str) -> PoissonTilesProblem:
@@ -134,7 +137,7 @@ def tiles_from_dict(doc: dict, source: str = "<document>") -> tuple[PoissonTiles
     for kind in KINDS:
         if not isinstance(tiles[kind], list) or len(tiles[kind]) != want[kind]:
             raise InvalidProblem(f"{source}: a set over {c} colours has {want[kind]} {kind} tiles")
-        arrays[kind] = [_points(t, f"tiles.{kind}[{i}]", source, 4 * n + 16) for i, t in enumerate(tiles[kind])]
+        arrays[kind] = [read_points(t, f"tiles.{kind}[{i}]", source, 4 * n + 16) for i, t in enumerate(tiles[kind])]
     stats = doc.get("stats", {})
     if not isinstance(stats, dict):
         raise InvalidProblem(f"{source}: 'stats' must be an object")
@@ -159,7 +162,7 @@ def window_from_dict(doc: dict, source: str = "<document>") -> tuple[PoissonTile
     check_document(doc, source, {WINDOW_FORMAT: VERSIONS}, fields=_WINDOW_KEYS, required=("window", "local"))
     problem = read_problem(doc, source)
     window = Window.from_dict(doc["window"])
-    local = _points(doc["local"], "local", source, MAX_WINDOW_POINTS)
+    local = read_points(doc["local"], "local", source, MAX_WINDOW_POINTS)
     seed = read_seed(doc, source)
     return problem, Solution(Status.SAT, PoissonWindow(window, local, problem.distance),
                              method=str(doc.get("tiling", "direct")), seed=seed, window=window)

@@ -34,14 +34,13 @@ import io
 import json
 import math
 import os
-from typing import Any
 
 import numpy as np
 
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.atomic import write_bytes_atomic, write_text_atomic
 from tilesolve.io.jsonio import check_document
-from tilesolve.io.poisson_json import FLOAT_RANGE, POINT_FORMATS, read_seed
+from tilesolve.io.poisson_json import FLOAT_RANGE, POINT_FORMATS, read_points, read_seed
 from tilesolve.model.poisson_sphere import (
     KINDS,
     MAX_WINDOW_POINTS,
@@ -77,16 +76,6 @@ def tiles_to_dict(problem: PoissonSphereTilesProblem, solution: Solution) -> dic
             "tiles": {k: [a.tolist() for a in ts.tiles[k]] for k in KINDS}}
 
 
-def _points3(value: Any, what: str, source: str, limit: int) -> np.ndarray:
-    if not isinstance(value, list) or len(value) > limit:
-        raise InvalidProblem(f"{source}: {what!r} must be a list of at most {limit:,} [x, y, z] points")
-    for p in value:
-        if not (isinstance(p, list) and len(p) == 3 and all(isinstance(v, (int, float)) and not isinstance(v, bool)
-                                                             and math.isfinite(v) for v in p)):
-            raise InvalidProblem(f"{source}: {what!r} holds {p!r}, not an [x, y, z] triple of numbers")
-    return np.array(value, dtype=np.float64).reshape(-1, 3)
-
-
 def _read_problem(doc: dict, source: str) -> PoissonSphereTilesProblem:
     missing = [k for k in _PROBLEM if k not in doc]
     if missing:
@@ -114,7 +103,7 @@ def tiles_from_dict(doc: dict, source: str = "<document>") -> tuple[PoissonSpher
     for kind, n in problem.counts().items():
         if not isinstance(tiles[kind], list) or len(tiles[kind]) != n:
             raise InvalidProblem(f"{source}: a set over {problem.colors} colours has {n} {kind} tiles")
-        arrays[kind] = [_points3(t, f"tiles.{kind}[{i}]", source, 4 * problem.points + 16)
+        arrays[kind] = [read_points(t, f"tiles.{kind}[{i}]", source, 4 * problem.points + 16, 3)
                         for i, t in enumerate(tiles[kind])]
     stats = doc.get("stats", {})
     if not isinstance(stats, dict):
@@ -138,7 +127,7 @@ def window_from_dict(doc: dict, source: str = "<document>") -> tuple[PoissonSphe
     check_document(doc, source, {WINDOW_FORMAT: VERSIONS}, fields=_WINDOW_KEYS, required=("box", "local"))
     problem = _read_problem(doc, source)
     box = Box.from_dict(doc["box"])
-    local = _points3(doc["local"], "local", source, MAX_WINDOW_POINTS)
+    local = read_points(doc["local"], "local", source, MAX_WINDOW_POINTS, 3)
     return problem, Solution(Status.SAT, PoissonSphereWindow(box, local, problem.distance), method="window",
                              seed=read_seed(doc, source))
 
