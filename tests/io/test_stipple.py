@@ -47,7 +47,8 @@ def test_dots_are_larger_where_it_is_dark():
 def test_pictures(tmp_path):
     d = builtin_density("radial", 16)
     pts = np.array([[0.5, 0.5], [0.1, 0.9]])
-    assert stipple_svg(pts, d, "two").count("<circle") == 2
+    text = stipple_svg(pts, d, "two")
+    assert text.count("<path") == 1 and text.split(' d="', 1)[1].split('"', 1)[0].count("M") == 2
     write_stipple(tmp_path / "s.png", pts, d, "two", "png")
     with Image.open(tmp_path / "s.png") as img:
         assert img.size == (800, 820)

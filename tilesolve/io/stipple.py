@@ -11,7 +11,7 @@ periodogram pictures written (class notes Part V, stippling; Part IV, spectra).
 >>> import numpy as np
 >>> from tilesolve.model.importance import builtin_density
 >>> text = stipple_svg(np.array([[0.5, 0.5]]), builtin_density("flat", 4), "one dot")
->>> text.startswith("<svg") and text.count("<circle") == 1
+>>> text.startswith("<svg") and text.count("<path") == 1 and text.count("M") == 1
 True
 """
 
@@ -83,10 +83,14 @@ def stipple_svg(points: np.ndarray, density: DensityMap, caption: str) -> str:
     w, h = density.width * px, density.height * px
     dwg = svgwrite.Drawing(size=(f"{w:.0f}", f"{h + 24:.0f}"), profile="full", debug=False)
     dwg.add(dwg.rect((0, 0), (w, h + 24), fill="white"))
-    dots = dwg.g(fill="black")
-    for (x, y), r in zip(points.tolist(), (dot_radii(points, density) * px).tolist()):
-        dots.add(dwg.circle((round(x * px, 2), round(h - y * px, 2)), round(r, 2)))
-    dwg.add(dots)
+    if len(points):
+        # the dots as one path of circles (two arcs each): svgwrite builds one element instead of
+        # one per dot, 20 times faster for the 200,000 dots a picture may hold
+        r = np.round(dot_radii(points, density) * px, 2)
+        x, y = np.round(points[:, 0] * px - r, 2), np.round(h - points[:, 1] * px, 2)
+        d = "".join(f"M{a:g},{b:g}a{c:g},{c:g} 0 1,0 {2 * c:g},0a{c:g},{c:g} 0 1,0 {-2 * c:g},0"
+                    for a, b, c in zip(x.tolist(), y.tolist(), r.tolist()))
+        dwg.add(dwg.path(d=d, fill="black"))
     dwg.add(dwg.text(caption, insert=(4, h + 17), font_size="12px", font_family="sans-serif", fill="#333333"))
     return dwg.tostring()
 
