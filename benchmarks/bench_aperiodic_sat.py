@@ -14,9 +14,13 @@ Tori (every p x q, 1 <= p, q <= ``--max-period``)
     ``whole`` each torus's tile-selection CNF with its DRAT proof checked; ``per-torus bands``
     each torus through its own bands (:func:`tilesolve.engine.aperiodic.decide`: the route
     before shared bands). A capped baseline is compared in tori refuted per CPU second.
-Squares (a witness for each n in ``--sizes``)
-    ``plain`` (capped) beside :func:`tilesolve.engine.aperiodic.square_scan` (the route is
-    unchanged by bands: a square has no band to refute it).
+Squares (a witness for each n in ``--sizes``, each seed of ``--seeds``)
+    :func:`tilesolve.engine.aperiodic.square_scan` with its search ``phase`` (the default: the
+    full formula, CaDiCaL's initial phase false and its saved phases; the seed changes nothing)
+    beside its search ``portfolio`` (the route before: full and guided formulas on two
+    processes, the seed's random phases) and ``plain`` (the one-hot colour encoding, one run),
+    every run capped at ``--cap`` s; median and max CPU by route, and each route's CPU over
+    ``phase``'s on the same seed.
 
 CPU seconds count this process and its finished children (the sweep's workers).
 
@@ -24,6 +28,7 @@ Usage::
 
     python benchmarks/bench_aperiodic_sat.py                        # tori up to 12, no squares
     python benchmarks/bench_aperiodic_sat.py --max-period 24 --cap 300 --sizes 100 200
+    python benchmarks/bench_aperiodic_sat.py --max-period 0 --sizes 100 200 400 --cap 600
 """
 
 from __future__ import annotations
@@ -115,25 +120,52 @@ def tori(ws, max_p: int, workers: int, cap: float, proof_dir: str) -> None:
           f"({time.perf_counter() - t:.1f} s)")
 
 
-def squares(ws, sizes, cap: float, seeds) -> None:
-    print(f"\nSquares: a Jeandel-Rao witness for n x n, seeds {list(seeds)} (each capped at {cap:.0f} s)")
-    print(f"{'n':>5} {'plain s':>12} {'plain cpu':>10} {'route s by seed':>24} {'route cpu by seed':>24} "
-          f"{'median s':>9} {'median cpu':>11} {'max RSS MiB':>12}")
+def square_run(ws, n: int, seed: int, cap: float, route: str) -> tuple[float, float]:
+    """One capped witness search for the ``n x n`` square: wall and CPU seconds (wall ``inf``
+    when capped). ``route``: ``plain`` the one-hot colour encoding (seed 1's random phases),
+    else :func:`tilesolve.engine.aperiodic.square_scan` with that search; a witness is
+    checked by the board verifier."""
+    t, c = time.perf_counter(), cpu()
+    if route == "plain":
+        st = plain(ws, Board.rect(n, n), cap)[0]
+        ok = st is Status.SAT
+    else:
+        certs, largest = square_scan(ws, n, RunOptions(seed=seed, deadline=Deadline(cap)), search=route)
+        ok = largest == n
+        if ok:
+            assert not board_violations(BoardProblem(Board.rect(n, n), ws), leg_colours(ws, certs[-1].tiling))
+    return (time.perf_counter() - t if ok else float("inf")), cpu() - c
+
+
+def _cell(xs: list[float], cap: float) -> str:
+    return " ".join(f"{x:.1f}" if x != float("inf") else f">{cap:.0f}" for x in xs)
+
+
+def squares(ws, sizes, cap: float, seeds, routes) -> None:
+    """Every route of ``routes`` on every size and seed (``plain`` once per size: its seed is
+    fixed), capped at ``cap`` s; the paired ratio is a route's CPU over ``phase``'s on the same
+    seed (a capped run's CPU is a lower bound: ``>``)."""
+    print(f"\nSquares: a Jeandel-Rao witness for n x n, seeds {list(seeds)}, each run capped at {cap:.0f} s "
+          "(CPU: this process and its finished workers)")
+    print(f"{'n':>5} {'route':>10} {'wall s by seed':>28} {'cpu s by seed':>28} {'median cpu':>11} {'max cpu':>9} "
+          f"{'max wall':>9} {'cpu / phase':>12} {'max RSS MiB':>12}")
     for n in sizes:
-        st, tp, cp = plain(ws, Board.rect(n, n), cap)
-        walls, cpus = [], []
-        for seed in seeds:
-            t, c = time.perf_counter(), cpu()
-            certs, largest = square_scan(ws, n, RunOptions(seed=seed, deadline=Deadline(cap)))
-            walls.append(time.perf_counter() - t if largest == n else float("inf"))
-            cpus.append(cpu() - c)
-            if largest == n:
-                assert not board_violations(BoardProblem(Board.rect(n, n), ws), leg_colours(ws, certs[-1].tiling))
-        shown = " ".join(f"{w:.1f}" if w != float("inf") else f">{cap:.0f}" for w in walls)
-        med = sorted(walls)[len(walls) // 2]
-        print(f"{n:>5} {fmt(st, tp, cap):>12} {cp:>10.2f} {shown:>24} {' '.join(f'{x:.1f}' for x in cpus):>24} "
-              f"{med if med != float('inf') else float('nan'):>9.2f} {sorted(cpus)[len(cpus) // 2]:>11.2f} "
-              f"{rss_mib():>12.0f}", flush=True)
+        base: list[tuple[float, float]] = []
+        for route in routes:
+            runs = [square_run(ws, n, seed, cap, route) for seed in (seeds if route != "plain" else seeds[:1])]
+            walls, cpus = [w for w, _ in runs], [c for _, c in runs]
+            if route == "phase":
+                base = runs
+            ratio = "-"
+            if base and route != "phase":
+                r = sorted(c / b[1] for (_, c), b in zip(runs, base))
+                capped = any(w == float("inf") for w in walls)
+                ratio = f"{'>' if capped else ''}{r[len(r) // 2]:.1f}x"
+            mw = max(walls)
+            print(f"{n:>5} {route:>10} {_cell(walls, cap):>28} {_cell(cpus, 1e9):>28} "
+                  f"{sorted(cpus)[len(cpus) // 2]:>11.1f} {max(cpus):>9.1f} "
+                  f"{(f'{mw:.1f}' if mw != float('inf') else f'>{cap:.0f}'):>9} {ratio:>12} {rss_mib():>12.0f}",
+                  flush=True)
 
 
 def main() -> None:
@@ -143,13 +175,15 @@ def main() -> None:
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--cap", type=float, default=120.0, help="seconds for each baseline (and each square)")
     ap.add_argument("--seeds", type=int, nargs="*", default=[1, 2, 3], help="the squares' seeds")
+    ap.add_argument("--routes", nargs="*", default=["phase", "portfolio", "plain"],
+                    choices=["phase", "portfolio", "plain"], help="the squares' routes, phase first (the ratios' base)")
     args = ap.parse_args()
     ws, _ = load("jeandel-rao")
     if args.max_period:
         with tempfile.TemporaryDirectory() as proof_dir:
             tori(ws, args.max_period, args.workers, args.cap, proof_dir)
     if args.sizes:
-        squares(ws, args.sizes, args.cap, args.seeds)
+        squares(ws, args.sizes, args.cap, args.seeds, args.routes)
 
 
 if __name__ == "__main__":

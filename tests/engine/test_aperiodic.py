@@ -7,8 +7,9 @@ import numpy as np
 import pytest
 
 from tilesolve.engine import aperiodic
-from tilesolve.engine.aperiodic import _stacked, board_problem, decide
+from tilesolve.engine.aperiodic import _stacked, board_problem, decide, square_scan
 from tilesolve.engine.certificates import recheck_unsat, writing_proofs
+from tilesolve.errors import InvalidProblem
 from tilesolve.io.builtin_tilesets import load
 from tilesolve.model.aperiodic import board_of, leg_colours
 from tilesolve.model.board import BoardProblem, WangTileSet
@@ -60,3 +61,40 @@ def test_small_tori_are_solved_whole():
     ws, _ = load("jeandel-rao")
     cert = decide(ws, "torus 3x6", RunOptions(seed=1))
     assert cert.status == "refuted" and "the proof refutes" not in cert.evidence["reason"]
+
+
+def _square_witness_holds(ws, n, cert) -> bool:
+    return cert.status == "tiles" and cert.tiling.shape == (n, n) and not board_violations(
+        BoardProblem(board_of(f"square {n}x{n}"), ws), leg_colours(ws, cert.tiling))
+
+
+def test_the_phase_search_tiles_a_jeandel_rao_square_above_the_portfolio_side_in_this_process():
+    ws, _ = load("jeandel-rao")
+    n = aperiodic.DIRECT_SIDE + 4  # the portfolio's side: "phase" still solves it here, on one process
+    certs, largest = square_scan(ws, n, RunOptions(seed=1, workers=1))
+    assert largest == n and [c.board for c in certs] == [f"square {n}x{n}"]
+    assert _square_witness_holds(ws, n, certs[0])
+
+
+def test_the_phase_search_gives_the_same_witness_for_a_seed_and_for_any_seed():
+    ws, _ = load("jeandel-rao")
+    runs = [square_scan(ws, 24, RunOptions(seed=seed))[0][-1].tiling for seed in (1, 1, 7)]
+    assert np.array_equal(runs[0], runs[1]) and np.array_equal(runs[0], runs[2])
+
+
+@pytest.mark.slow
+def test_the_phase_search_refutes_a_square_only_with_a_checked_proof(tmp_path):
+    ws, _ = load("finite-jv7")
+    certs, largest = square_scan(ws, 20, RunOptions(seed=1), proof_dir=tmp_path)
+    refuted = [c for c in certs if c.status == "refuted"]
+    assert largest is not None and largest < 20 and refuted[-1].board == f"square {largest + 1}x{largest + 1}"
+    for c in refuted:
+        assert c.evidence["checker"] == "tilesolve.verify.drat" and c.evidence["encoding"]
+        check = recheck_unsat(board_problem(ws, c.board), c.evidence, tmp_path)
+        assert check.ok, check.lines
+    assert _square_witness_holds(ws, largest, next(c for c in certs if c.board == f"square {largest}x{largest}"))
+
+
+def test_an_unknown_square_search_is_refused():
+    with pytest.raises(InvalidProblem, match="unknown square search 'strips'"):
+        square_scan(STAIRS, 3, RunOptions(seed=1), search="strips")

@@ -52,6 +52,11 @@ def aperiodic() -> None:
                    "refutations are kept in FILE.proofs/. A later run uses a cached verdict only once re-checked (a "
                    "witness by the verifier, a refutation's proof against the re-derived CNF); others are decided "
                    "again [default: REPORT.cache.jsonl next to -o].")
+@click.option("--square-search", type=click.Choice(["phase", "portfolio"]), default="phase", show_default=True,
+              help="How squares are searched. phase: the full formula in one process, CaDiCaL's first value of "
+                   "every tile false and its saved phases (the seed changes nothing); portfolio: squares above 40 "
+                   "on two processes, the full formula and one guided by a 30x30 tiling, with the seed's random "
+                   "phases (the route before). A refutation has its checked proof either way.")
 @click.option("--every-board", is_flag=True,
               help="Decide every lattice up to --max-period; by default the sweep stops at the first tiled torus "
                    "(it decides the verdict) and the lattices left are undecided.")
@@ -61,7 +66,7 @@ def aperiodic() -> None:
               help="Write the report JSON here ('-' for stdout).")
 @click.pass_context
 def check(ctx, tiles, tiles_path, tiles_format, builtin, method, max_square, max_period, shears, workers, cluster,
-          proof_dir, cache, every_board, time_limit, seed, output) -> None:
+          proof_dir, cache, square_search, every_board, time_limit, seed, output) -> None:
     """Check a tile set's squares and periods; write a report of certificates.
 
     The tile set is a file (TILES or --tiles, in any format of --format, as every Wang command
@@ -103,7 +108,8 @@ def check(ctx, tiles, tiles_path, tiles_format, builtin, method, max_square, max
     if cache is None and output and output != "-":
         cache = output + ".cache.jsonl"
     sol = facade.solve(problem, method=method, seed=seed, time_limit=time_limit, progress=progress_wanted(), workers=workers,
-                       cluster=cluster, options={"proof_dir": proof_dir, "cache": cache, "every_board": every_board})
+                       cluster=cluster, options={"proof_dir": proof_dir, "cache": cache, "every_board": every_board,
+                                                 "square_search": square_search})
     with outs.commit(sol):
         if output:
             write_solution(output, problem, sol)

@@ -11,11 +11,17 @@ Squares (:func:`square_scan`)
     ``n <= N`` is found by bisection: ``N`` first (a witness ends the scan), then halving
     between a tiled and a refuted size; the scan ends with a witness at ``n`` and a checked
     refutation at ``n + 1``, which proves that the set tiles no plane (Extension Theorem).
-    Squares above :data:`DIRECT_SIDE` run as a portfolio of two processes (both cores): the
-    full formula, and a *guided* restricted formula in which only the pairs of neighbouring
-    tiles that occur in the interior of a smaller tiling (:data:`GUIDE_SIDE`) are allowed. The
-    first witness wins; a restricted "unsat" proves nothing, so only the full formula refutes.
-    Solving times of both are heavy-tailed (benchmarks/bench_aperiodic.py).
+    Each square is the full formula, solved by default (search ``"phase"``) in one process
+    with CaDiCaL's initial phase "no tile here" and the phases it saves
+    (:data:`WITNESS_OPTIONS`), not with random phases drawn from the seed: CaDiCaL holds such
+    phases above the ones it saves, and Jeandel-Rao's 100x100 square took 4-34 s CPU by seed
+    with them (6k-62k conflicts), 1.5-1.8 s and 549 conflicts without
+    (benchmarks/bench_aperiodic_sat.py). The search before it, ``"portfolio"``: squares above
+    :data:`DIRECT_SIDE` as a portfolio of two processes (both cores), the full formula and a
+    *guided* restricted formula in which only the pairs of neighbouring tiles that occur in the
+    interior of a smaller tiling (:data:`GUIDE_SIDE`) are allowed, both with the seed's random
+    phases; the first witness wins, and a restricted "unsat" proves nothing, so only the full
+    formula refutes. Either way a witness is verified and a refutation's proof checked.
 
 Periods (:func:`sweep`)
     One SAT run per :class:`~tilesolve.model.aperiodic.Lattice`, on local worker processes
@@ -66,7 +72,7 @@ from tilesolve.model.run import RunOptions
 from tilesolve.model.solution import Solution, Status
 
 __all__ = ["decide", "square_scan", "sweep", "tileset_digest", "read_cache", "cache_proof_dir", "board_problem",
-           "board_encoding", "GUIDE_SIDE", "DEFAULT_SOLVER"]
+           "board_encoding", "GUIDE_SIDE", "DEFAULT_SOLVER", "SQUARE_SEARCHES", "WITNESS_OPTIONS"]
 
 #: Side of the square whose interior guides large witnesses (its border rows are dropped).
 GUIDE_SIDE = 30
@@ -86,6 +92,15 @@ CYLINDER_LAPS = 6
 #: elimination, subsumption, probing, vivification), which a satisfiable tiling formula pays
 #: for and seldom uses (JR 100x100: 6.4 s instead of 18 s wall, the same conflicts).
 SEARCH_OPTIONS = {"elim": 0, "subsume": 0, "probe": 0, "vivify": 0}
+#: CaDiCaL's settings for a square's search ``"phase"``: every variable's first value is false
+#: ("not this tile here"), and the solver's saved phases steer it from then on (no random phases
+#: are drawn from the seed, which CaDiCaL would hold above them). Inprocessing stays on: it costs
+#: little here (JR 100x100: 549 conflicts either way, 1.5 s CPU with it, 1.8 s without).
+WITNESS_OPTIONS = {"phase": 0}
+#: How :func:`square_scan` searches: ``"phase"`` (the default: the full formula with
+#: :data:`WITNESS_OPTIONS`, one process) or ``"portfolio"`` (the route before it: squares above
+#: :data:`DIRECT_SIDE` as the full formula and a guided one on two processes, seeded random phases).
+SQUARE_SEARCHES = ("phase", "portfolio")
 #: The SAT solver (CaDiCaL logs DRAT proofs).
 DEFAULT_SOLVER = "cadical153"
 
@@ -133,11 +148,14 @@ def board_encoding(tileset: WangTileSet, name: str, *, allowed=None, deadline: D
     return encode_tiles(board_of(name), tileset, allowed=allowed, deadline=deadline)
 
 
-def decide(tileset: WangTileSet, name: str, run: RunOptions, *, allowed=None, bands: bool = True) -> Certificate:
+def decide(tileset: WangTileSet, name: str, run: RunOptions, *, allowed=None, bands: bool = True,
+           phase_search: bool = False) -> Certificate:
     """Decide whether ``tileset`` tiles the board called ``name`` (``"square 5x5"``,
     ``"torus 3x4 shear 1"``) with the SAT route; ``allowed`` pairs make a guided
     (restricted) search whose unsat is reported undecided. ``bands=False`` skips a torus's
-    bands (a sweep has tried them already) but still looks for its witness on a cylinder."""
+    bands (a sweep has tried them already) but still looks for its witness on a cylinder.
+    ``phase_search`` solves with CaDiCaL's :data:`WITNESS_OPTIONS` instead of the seed's random
+    phases (a refutation still carries its checked proof)."""
     from tilesolve.deadline import TimeLimitReached
     from tilesolve.engine.routes import sat_route
 
@@ -151,7 +169,9 @@ def decide(tileset: WangTileSet, name: str, run: RunOptions, *, allowed=None, ba
         cert = _by_bands(tileset, name, enc, run, t0, bands)
         if cert is not None:
             return cert
-    sol = sat_route(enc, run, solver=run.solver or DEFAULT_SOLVER, t0=t0)
+    solver = run.solver or DEFAULT_SOLVER
+    options = _cadical_options(WITNESS_OPTIONS, solver) if phase_search else None
+    sol = sat_route(enc, run, solver=solver, t0=t0, options=options, seeded_phases=not phase_search)
     return _certificate(name, sol, "sat guided" if allowed is not None else "sat")
 
 
@@ -197,11 +217,11 @@ def _by_bands(tileset: WangTileSet, name: str, enc, run: RunOptions, t0: float, 
     return None
 
 
-def _search_options(solver: str) -> dict | None:
-    """:data:`SEARCH_OPTIONS` for CaDiCaL, none for other solvers."""
+def _cadical_options(options: dict, solver: str) -> dict | None:
+    """``options`` (CaDiCaL's settings) for CaDiCaL, none for other solvers."""
     from tilesolve.engine.sat import canonical_solver_name
 
-    return SEARCH_OPTIONS if canonical_solver_name(solver).startswith("cadical") else None
+    return options if canonical_solver_name(solver).startswith("cadical") else None
 
 
 def _stacked(grid: np.ndarray, tiles: np.ndarray, rows: int) -> np.ndarray | None:
@@ -233,7 +253,7 @@ def _cylinder_witness(tileset: WangTileSet, name: str, run: RunOptions, t0: floa
     height = CYLINDER_LAPS * p + 2
     enc = encode_tiles(Board.grid(np.ones((height, q), bool), wrap_cols="plain"), tileset, deadline=run.deadline)
     solver = run.solver or DEFAULT_SOLVER
-    r = solve_cnf(enc.hard, solver=solver, deadline=run.deadline, options=_search_options(solver))
+    r = solve_cnf(enc.hard, solver=solver, deadline=run.deadline, options=_cadical_options(SEARCH_OPTIONS, solver))
     grid = _stacked(enc.decode(r.model), np.asarray(tileset.tiles), p) if r.status is Status.SAT else None
     if grid is None:
         return None
@@ -273,18 +293,22 @@ def _square_task(tiles: list, n_colors: int, n: int, deadline: Deadline, solver:
         return sat_route(enc, run, method=method, solver=solver or DEFAULT_SOLVER, t0=t0)
 
 
-def square_scan(tileset: WangTileSet, max_n: int, run: RunOptions, *,
-                proof_dir: str | os.PathLike | None = None) -> tuple[list[Certificate], int | None]:
+def square_scan(tileset: WangTileSet, max_n: int, run: RunOptions, *, proof_dir: str | os.PathLike | None = None,
+                search: str = "phase") -> tuple[list[Certificate], int | None]:
     """The largest ``n <= max_n`` for which ``tileset`` tiles an ``n x n`` square.
 
-    Squares above :data:`DIRECT_SIDE` go to a portfolio of two runs on ``run.workers`` local
-    processes (default 2): the full formula and the guided one; the first decisive answer wins
-    (a witness from either; a refutation only from the full formula, with its checked proof).
-    Returns the certificates decided (in the order decided) and that ``n`` (``None`` when
-    undecided). ``run.progress`` shows the squares decided and the bounds known.
+    ``search`` (:data:`SQUARE_SEARCHES`): ``"phase"`` decides every square in this process with
+    :data:`WITNESS_OPTIONS` (the seed changes nothing); ``"portfolio"`` sends squares above
+    :data:`DIRECT_SIDE` to a portfolio of two runs on ``run.workers`` local processes (default
+    2), the full formula and the guided one, where the first decisive answer wins (a witness
+    from either; a refutation only from the full formula, with its checked proof). Returns the
+    certificates decided (in the order decided) and that ``n`` (``None`` when undecided).
+    ``run.progress`` shows the squares decided and the bounds known.
     """
     from tilesolve.engine.portfolio import run_portfolio
 
+    if search not in SQUARE_SEARCHES:
+        raise InvalidProblem(f"unknown square search {search!r}: one of {', '.join(SQUARE_SEARCHES)}")
     certs: list[Certificate] = []
     known_sat, known_unsat = 0, max_n + 1
     proof_dir = None if proof_dir is None else os.fspath(proof_dir)
@@ -293,11 +317,11 @@ def square_scan(tileset: WangTileSet, max_n: int, run: RunOptions, *,
         name = f"square {n}x{n}"
         bar.note(f"deciding {name}; " + (f"tiles {known_sat}x{known_sat}, " if known_sat else "")
                  + (f"not {known_unsat}x{known_unsat}" if known_unsat <= max_n else "no bound above"))
-        if n <= DIRECT_SIDE or (run.workers or 2) < 2:
+        if search == "phase" or n <= DIRECT_SIDE or (run.workers or 2) < 2:
             from tilesolve.engine.certificates import writing_proofs
 
             with writing_proofs(proof_dir):
-                return decide(tileset, name, run)
+                return decide(tileset, name, run, phase_search=search == "phase")
         task = functools.partial(_square_task, tileset.tiles.tolist(), int(tileset.n_colors), n, run.deadline,
                                  run.solver, proof_dir, run.seed)
         sol = run_portfolio(task, [0, 1], workers=2, deadline=run.deadline, progress=run.progress, label=name)

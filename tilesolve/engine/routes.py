@@ -19,7 +19,7 @@ run's deadline and turns the backend's :class:`~tilesolve.engine.result.Result` 
 from __future__ import annotations
 
 import time
-from typing import Any, Sequence
+from typing import Any, Mapping, Sequence
 
 from tilesolve.model.solution import Solution, Status
 
@@ -41,6 +41,8 @@ def sat_route(
     phases: Sequence[int] | None = None,
     proof: bool = True,
     notes: tuple[str, ...] = (),
+    options: Mapping[str, int] | None = None,
+    seeded_phases: bool = True,
 ) -> Solution:
     """Decide ``encoding`` with a PySAT solver within ``run``'s deadline.
 
@@ -63,6 +65,12 @@ def sat_route(
         Log a DRAT proof (checked on unsat). A restricted formula never logs one.
     notes : tuple of str
         Notes to attach to the Solution.
+    options : mapping of str to int, optional
+        The solver's own settings (CaDiCaL's, e.g. ``{"phase": 0}``).
+    seeded_phases : bool
+        Let the seed draw random preferred phases (:func:`tilesolve.engine.sat.seeded_phases`).
+        CaDiCaL holds such phases for the whole search, above the phases it saves; False keeps
+        the solver's own phase heuristics (``options`` and ``phases`` still apply).
     """
     from tilesolve.engine.certificates import unsat_solution
     from tilesolve.engine.sat import solve_cnf
@@ -74,7 +82,7 @@ def sat_route(
                         reason=f"time limit of {run.deadline.time_limit:.3g} s reached while encoding",
                         notes=notes, stats=stats)
     r = solve_cnf(encoding.hard, solver=solver, deadline=run.deadline, with_proof=proof and not restricted,
-                  seed=run.seed, phases=phases)
+                  seed=run.seed if seeded_phases else None, phases=phases, options=options)
     stats["solve_s"] = round(r.runtime, 6)
     stats.update({k: r.stats[k] for k in ("conflicts", "decisions", "propagations", "restarts") if k in r.stats})
     notes = notes + tuple(r.stats.get("notes", ()))

@@ -98,14 +98,16 @@ def sat(problem: AperiodicProblem, run: RunOptions) -> Solution:
     """The SAT route (:mod:`tilesolve.engine.aperiodic`): squares by bisection, periods swept in
     parallel; ``run.options``: ``proof_dir`` (CNF + DRAT of every refutation), ``cache`` (a
     results file: decided lattices are read from it and added to it), ``every_board`` (decide
-    every lattice, not only up to the first tiled torus)."""
+    every lattice, not only up to the first tiled torus), ``square_search`` (how squares are
+    searched: :data:`tilesolve.engine.aperiodic.SQUARE_SEARCHES`, default ``"phase"``)."""
     from tilesolve.engine.aperiodic import square_scan, sweep
 
     proof_dir = run.option("proof_dir")
     squares, largest = [], None
     if problem.max_square:
         try:
-            squares, largest = square_scan(problem.tileset, problem.max_square, run, proof_dir=proof_dir)
+            squares, largest = square_scan(problem.tileset, problem.max_square, run, proof_dir=proof_dir,
+                                           search=run.option("square_search", "phase"))
         except KeyboardInterrupt:
             return Solution(Status.UNKNOWN, None, "sat", None, run.seed, run.deadline.elapsed(),
                             reason="interrupted (Ctrl-C) while scanning squares")
