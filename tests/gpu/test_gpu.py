@@ -17,7 +17,8 @@ from tilesolve.constructive.walls import orientation, wall_window
 from tilesolve.errors import InvalidProblem
 from tilesolve.gpu.context import gpu_info
 from tilesolve.gpu.texture import Atlas, TextureMapper, corner_packing, synthesize_atlas
-from tilesolve.gpu.wall import WallRenderer, allowed_samples
+from tilesolve.gpu import wall as wall_module
+from tilesolve.gpu.wall import WallRenderer, allowed_samples, webgl_wall
 
 HUGE = 2**61 + 12345
 
@@ -146,6 +147,23 @@ def test_wall_bricks_distance_and_uv_equal_the_cpu_wall_maps(per_fragment, max_l
     cols = d["colour"][inner].astype(np.int64) @ np.array([1, 256, 65536, 0])
     for k in np.unique(ids)[:50]:
         assert len(np.unique(cols[ids == k])) == 1
+
+
+@pytest.mark.parametrize("colors,max_line,seed,origin", [(3, 3, 0, (0, 0)), (4, None, 5, (HUGE, -HUGE)),
+                                                      (5, 2, 9, (-37, 11)), (3, 1, 2, (123456789, -987654321))])
+def test_the_webgl2_sources_run_as_glsl_es_give_the_cpu_wall(monkeypatch, colors, max_line, seed, origin):
+    # the studio's shaders (GLSL ES 3.00: products from 16-bit halves, no umulExtended), run by llvmpipe
+    es = webgl_wall(colors=colors, max_line=max_line, seed=seed)
+    monkeypatch.setattr(wall_module, "_HEADER", wall_module._ES_HEADER)
+    monkeypatch.setattr(wall_module, "_VERTEX", es["vertex"])
+    assert wall_module._fragment("cells") == es["cells"] and wall_module._fragment("data") == es["data"]
+    cell, w, h = 9, 21, 11
+    r = WallRenderer(colors=colors, max_line=max_line, seed=seed, origin=origin, cell_px=cell)
+    cpu = wall_window(origin[0] - 1, origin[1] - 1, w + 2, h + 2, colors=colors, max_line=max_line, seed=seed)
+    assert np.array_equal(r.cell_legs(w, h), cpu[1:-1, 1:-1])
+    d, m = r.data(w * cell, h * cell), wall_maps(cpu, colors, cell, origin=origin)
+    assert np.array_equal(d["brick"][..., 0] + np.int64(origin[0]), m.vx)
+    assert np.array_equal(d["brick"][..., 1] + np.int64(origin[1]), m.vy)
 
 
 def test_multisampling_as_far_as_the_context_allows():

@@ -4,11 +4,11 @@ Edge colours
 ------------
 The GLSL function ``wall_tile`` is :class:`tilesolve.constructive.walls` ``_ScalarWall.tile``
 written out for the GPU: the FNV-1a/xorshift64* hashes of 004 §4.2 on 64-bit integers (kept
-as pairs of 32-bit words, products from 16-bit halves, so that one source serves OpenGL 4.5 and
-WebGL2; the paper fell back to float hashes for lack of integers, §5.2), the multiply-shift
-reductions, procedural dappling (§4.3) and the 2x2 block
-solver of App. B (its table, :data:`~tilesolve.constructive.walls.APPENDIX_B`, compiled into the
-shader). Every cell's leg colours ``(N, E, S, W)`` equal
+as pairs of 32-bit words so that one source serves OpenGL 4.5 and WebGL2, products by
+``umulExtended`` or, in GLSL ES 3.00, from 16-bit halves; the paper fell back to float hashes
+for lack of integers, §5.2), the multiply-shift reductions, procedural dappling (§4.3) and the
+2x2 block solver of App. B (its table, :data:`~tilesolve.constructive.walls.APPENDIX_B`,
+compiled into the shader). Every cell's leg colours ``(N, E, S, W)`` equal
 :func:`~tilesolve.constructive.walls.wall_window` bit for bit, anywhere on the 63-bit lattice:
 coordinates are the picture's origin (64-bit, from the CPU) plus small non-negative offsets,
 so every modulo the shader takes is of a non-negative 32-bit number.
@@ -90,14 +90,20 @@ uniform int u_dres;          // (I0 - J0) % P + P * pad, so that u_dres + i - j 
 
 """ + _option_glsl() + """
 // FNV-1a over the 32-bit words of x and y, then xorshift64* (004 §4.2); the high 32 bits.
-// 64-bit values are (lo, hi) word pairs and 32 x 32-bit products are made of 16-bit halves, so
-// that the same source compiles as GLSL 4.50 and as GLSL ES 3.00 (WebGL2, which has neither
-// 64-bit integers nor umulExtended); uint arithmetic wraps modulo 2**32 in both.
+// 64-bit values are (lo, hi) word pairs, so that the same source compiles as GLSL 4.50 and as
+// GLSL ES 3.00 (WebGL2, which has no 64-bit integers); ES 3.00 has no umulExtended either, so
+// there 32 x 32-bit products are made of 16-bit halves. uint arithmetic wraps modulo 2**32 in both.
 uvec2 mul32(uint a, uint b) {   // a * b as (lo, hi)
+#ifdef GL_ES
     uint a0 = a & 0xFFFFu, a1 = a >> 16, b0 = b & 0xFFFFu, b1 = b >> 16;
     uint p00 = a0 * b0, p01 = a0 * b1, p10 = a1 * b0;
     uint mid = (p00 >> 16) + (p01 & 0xFFFFu) + (p10 & 0xFFFFu);
     return uvec2((mid << 16) | (p00 & 0xFFFFu), a1 * b1 + (p01 >> 16) + (p10 >> 16) + (mid >> 16));
+#else
+    uint hi, lo;
+    umulExtended(a, b, hi, lo);
+    return uvec2(lo, hi);
+#endif
 }
 
 uvec2 mul64(uvec2 a, uvec2 b) { uvec2 p = mul32(a.x, b.x); return uvec2(p.x, p.y + a.x * b.y + a.y * b.x); }
@@ -277,8 +283,10 @@ void main() {
 """
 
 
-def _fragment(kind: str, *, per_fragment: bool = False, samples: bool = False, header: str = _HEADER) -> str:
-    """The fragment shader of a pass: ``cells`` (first pass), ``colour`` or ``data`` (second)."""
+def _fragment(kind: str, *, per_fragment: bool = False, samples: bool = False, header: str | None = None) -> str:
+    """The fragment shader of a pass: ``cells`` (first pass), ``colour`` or ``data`` (second),
+    behind ``header`` (by default :data:`_HEADER`, GLSL 4.50)."""
+    header = _HEADER if header is None else header
     if kind == "cells":
         return header + DIV_GLSL + WALL_GLSL + _CELLS_GLSL
     defines = "#define PER_FRAGMENT\n" if per_fragment else ""
