@@ -321,6 +321,17 @@ class CoronaEncoding:
             used.add((int(rows[0, 1]), tuple(sorted(map(tuple, rows[:, 2:].tolist())))))
         return [v if (lv, self.candidates[lv - 1][i]) in used else -v for (lv, i), v in sorted(self.var.items())]
 
+    def hole_clauses(self, blocked) -> list[list[int]]:
+        """The clauses "no hole" of ``blocked`` holes (:func:`encode_coronas`), in their order."""
+        index = {(lv, c): i for lv, cands in enumerate(self.candidates, 1) for i, c in enumerate(cands)} if blocked else {}
+        out = []
+        for tiles, cells in blocked:
+            clause = [-self.var[(lv, index[(lv, tuple(map(tuple, c)))])] for lv, c in tiles]
+            clause += [self.cellvar[(j, tuple(c))] for c in cells for j in range(1, self.levels + 1)
+                       if (j, tuple(c)) in self.cellvar]
+            out.append(clause)
+        return out
+
     def header(self) -> list[str]:
         return [f"tilesolve coronas: {self.levels} corona(s) around a {self.grid.name} polyform of {len(self.shape)} "
                 "cells", "x[j, p]: placement p is a tile of corona j; y[j, c]: a corona-j tile covers cell c"]
@@ -380,15 +391,7 @@ def encode_coronas(problem: ShapesProblem, levels: int, blocked=()) -> CoronaEnc
     enc.candidates = [list(c) for c in base.candidates]
     enc.var, enc.cellvar = base.var, base.cellvar
     enc.hard.blocks = list(base.blocks)
-    blocks = []
-    if blocked:
-        index = {(lv, c): i for lv, cands in enumerate(enc.candidates, 1) for i, c in enumerate(cands)}
-    for tiles, cells in blocked:
-        clause = [-enc.var[(lv, index[(lv, tuple(map(tuple, c)))])] for lv, c in tiles]
-        clause += [y for c in cells for y in base.covered_up_to(tuple(c), levels)]
-        blocks.append(clause)
-    if blocks:
-        enc.hard.add_lists(blocks, "no hole (H_c): these tiles absent or the hole's cells covered")
+    enc.hard.add_lists(enc.hole_clauses(blocked), "no hole (H_c): these tiles absent or the hole's cells covered")
     enc.n_vars = base.n_vars
     return enc
 

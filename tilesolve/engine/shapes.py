@@ -247,7 +247,7 @@ def _surround_search(problem: ShapesProblem, deadline: Deadline, solver: str, se
             found = surround_tiling(enc, used)
             if found is not None:
                 return ("isohedral", *found), tried
-            s.add_clause([-(i + 1) for i in used])
+            s.add_clause(enc.block(used))
     return None, tried
 
 
@@ -270,35 +270,49 @@ def _holes_of(g: Grid, patch: np.ndarray) -> list:
 
 
 def _coronas(problem: ShapesProblem, deadline: Deadline, solver: str, seed, t0: float, progress):
-    """Heesch search: ``(heesch, patch, refutation stats or None, reason)``."""
+    """Heesch search: ``(heesch, patch, refutation stats or None, reason)``.
+
+    A level's models with holes are blocked in the same solver (the level's clauses are loaded
+    once); a level found unsatisfiable after blocks is solved again from its named encoding
+    with a proof, so that the proof refutes exactly the CNF that ``tilesolve verify`` rebuilds.
+    """
     from tilesolve.encodings.registry import encode
     from tilesolve.engine.certificates import unsat_solution
+    from tilesolve.engine.sat import SatSession
 
     g = problem.geometry
     patch = np.asarray([(0, 0, x, y) for x, y in problem.shapes[0].cells], dtype=np.int64)
     heesch = 0
     for level in range(1, problem.max_level + 1):
         blocked: list = []
-        while True:
-            enc = encode("shapes-corona-cnf", problem, {"levels": level, "blocked": blocked}, deadline=deadline)
-            r = solve_cnf(enc.hard, solver=solver, with_proof=True, seed=seed, deadline=deadline)
-            if r.status is Status.SAT:
+        enc = encode("shapes-corona-cnf", problem, {"levels": level, "blocked": blocked}, deadline=deadline)
+        with SatSession(enc.hard, solver=solver, with_proof=True, seed=seed, deadline=deadline) as s:
+            while True:
+                r = s.solve(deadline=deadline)
+                if r.status is not Status.SAT:
+                    break
                 found = enc.decode(r.model)
                 holes = [] if problem.holes else _holes_of(g, found)
-                if holes:
-                    blocked += holes
-                    continue
-                patch, heesch = found, level
-                progress.note(f"{level} corona(s)")
-                break
-            if r.status is Status.UNSAT:
-                sol = unsat_solution(enc.hard, r, method="sat", seed=seed, t0=t0, stats={}, deadline=deadline,
-                                     encoding=enc.named)
-                if sol.status is Status.UNSAT:
-                    sol.stats["level"] = level
-                    return heesch, patch, sol.stats, sol.reason
-                return heesch, patch, None, sol.reason
-            return heesch, patch, None, r.reason or "stopped"
+                if not holes:
+                    break
+                for clause in enc.hole_clauses(holes):
+                    s.add_clause(clause)
+                blocked += holes
+        if r.status is Status.SAT:
+            patch, heesch = found, level
+            progress.note(f"{level} corona(s)")
+            continue
+        if r.status is Status.UNSAT and blocked:
+            enc = encode("shapes-corona-cnf", problem, {"levels": level, "blocked": blocked}, deadline=deadline)
+            r = solve_cnf(enc.hard, solver=solver, with_proof=True, seed=seed, deadline=deadline)
+        if r.status is Status.UNSAT:
+            sol = unsat_solution(enc.hard, r, method="sat", seed=seed, t0=t0, stats={}, deadline=deadline,
+                                 encoding=enc.named)
+            if sol.status is Status.UNSAT:
+                sol.stats["level"] = level
+                return heesch, patch, sol.stats, sol.reason
+            return heesch, patch, None, sol.reason
+        return heesch, patch, None, r.reason or "stopped"
     return heesch, patch, None, f"{problem.max_level} corona(s) possible (the most tried)"
 
 
