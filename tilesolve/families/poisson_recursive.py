@@ -144,9 +144,22 @@ def _draw(problem: RecursiveProblem, sol: Solution, path, fmt: str, *, title: st
                          title or f"{answer.n_points:,} points, {answer.window.caption()}", fmt)
 
 
+def _ramp_demo() -> RecursiveWindowProblem:
+    """A density ramp, 16 to 2,048 points a tile, over 8 x 2 tiles of a set built with seed 1."""
+    import numpy as np
+
+    from tilesolve.constructive.poisson_recursive import build_recursive
+
+    ts = build_recursive(RecursiveTilesProblem(2, 16, 0.7, 4), seed=1)
+    return RecursiveWindowProblem(ts, Window(0, 0, 8, 2), density=np.linspace(16, 2048, 1024)[None, :],
+                                  label="a ramp from 16 to 2,048 points a tile")
+
+
 DEMOS = (
     Demo("recursive-wang", "recursive Wang tiles: C = 2, N = 16, rho = 0.7, 4x4 subdivision (Kopf et al. 2006)",
          lambda: RecursiveTilesProblem(2, 16, 0.7, 4), method="build"),
+    Demo("recursive-wang-ramp", "recursive Wang tiles: 16 to 2,048 points a tile, west to east (levels 0-2)",
+         _ramp_demo, method="window"),
 )
 
 FAMILY = register(Family(
