@@ -25,7 +25,7 @@ malformed values in one line naming the file and field; whether the geometry is 
 stated type is the verifier's question (``tilesolve verify``).
 
 Pictures: SVG (the prototile once, as a path in ``<defs>``, and one ``<use>`` per tile with its
-motion: small files) and PNG (Pillow polygons), the region ``width x scale`` by
+motion, clipped to the region: small files) and PNG (Pillow polygons), the region ``width x scale`` by
 ``height x scale`` pixels, tiles filled by colour and outlined.
 """
 
@@ -196,7 +196,9 @@ def svg_text(problem: IsohedralProblem, tiling: IsohedralTiling) -> str:
              f'<rect x="0" y="0" width="{W}" height="{H}" fill="{BACKGROUND}"/>',
              f'<text x="4" y="{hp + 14}" font-family="sans-serif" font-size="12" fill="{CAPTION_COLOUR}">'
              f'{escape(caption)}</text>',
-             f'<defs><path id="tile" d="{path}"/></defs>',
+             f'<defs><path id="tile" d="{path}"/>'
+             f'<clipPath id="region-clip"><rect x="0" y="0" width="{wp}" height="{hp}"/></clipPath></defs>',
+             '<g clip-path="url(#region-clip)">',  # tiles that cross the region's edge stop there, off the caption
              f'<g transform="matrix({_f(s)} 0 0 {_f(-s)} {_f(-x0 * s)} {_f((y0 + h) * s)})" '
              f'stroke="{STROKE}" stroke-width="{_f(1.0 / s)}" stroke-linejoin="round">']
     T = tiling.translations
@@ -205,7 +207,7 @@ def svg_text(problem: IsohedralProblem, tiling: IsohedralTiling) -> str:
         e, f = m[:, 2] + i * T[0] + j * T[1]
         lines.append(f'<use xlink:href="#tile" fill="{COLOURS[c % len(COLOURS)]}" '
                      f'transform="matrix({_f(m[0, 0])} {_f(m[1, 0])} {_f(m[0, 1])} {_f(m[1, 1])} {_f(e)} {_f(f)})"/>')
-    lines += ["</g>", "</svg>"]
+    lines += ["</g>", "</g>", "</svg>"]
     return "\n".join(lines) + "\n"
 
 
