@@ -121,11 +121,14 @@ def test_help_examples_run_as_written_in_an_empty_folder(tmp_path):
 
 # --- sample stipple, sample importance-spectrum (Penrose and polyomino sampling, Part IV-V) ---
 
-@pytest.mark.parametrize("method", ["penrose", "polyomino", "rejection"])
-def test_stipple_same_seed_same_bytes(tmp_path, method):
+@pytest.mark.parametrize("method,more", [
+    ("penrose", ["--lloyd", "0"]), ("polyomino", ["--no-jitter", "--lloyd", "0"]), ("rejection", ["--lloyd", "0"]),
+    pytest.param("penrose", [], marks=pytest.mark.slow),  # the defaults: jitter and 4 Lloyd steps
+])
+def test_stipple_same_seed_same_bytes(tmp_path, method, more):
     for name in ("a", "b"):
-        r = run("sample", "stipple", "--test-image", "gradient", "--method", method, "--points", "1500", "--seed", "4",
-                "-o", f"{name}.svg", "--png", f"{name}.png", "--csv", f"{name}.csv", cwd=tmp_path)
+        r = run("sample", "stipple", "--test-image", "gradient", "--method", method, *more, "--points", "1500",
+                "--seed", "4", "-o", f"{name}.svg", "--png", f"{name}.png", "--csv", f"{name}.csv", cwd=tmp_path)
         assert r.returncode == 0, r.stderr
         assert r.stderr.startswith("ok: ")
     for ext in ("svg", "png", "csv"):
@@ -136,6 +139,7 @@ def test_stipple_same_seed_same_bytes(tmp_path, method):
     assert (pts[:, 0] >= 0.5).mean() > 0.6  # the gradient is darker on the right
 
 
+@pytest.mark.slow
 def test_stipple_of_a_picture_follows_its_darkness(tmp_path):
     from PIL import Image
 
@@ -172,7 +176,7 @@ def test_stipple_bad_input_is_one_line_and_no_file(tmp_path, args, message):
 
 
 def test_importance_spectrum_prints_the_table_and_draws(tmp_path):
-    r = run("sample", "importance-spectrum", "--points", "3000", "--spectrum-points", "256", "--runs", "2", "--seed",
+    r = run("sample", "importance-spectrum", "--points", "1000", "--spectrum-points", "256", "--runs", "1", "--seed",
             "1", "--svg", "s.svg", "--png", "s.png", "--periodogram", "p.png", cwd=tmp_path)
     assert r.returncode == 0, r.stderr
     rows = [ln.split() for ln in r.stdout.splitlines()[1:]]
