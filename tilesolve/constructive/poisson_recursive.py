@@ -6,10 +6,10 @@ Building
 --------
 1. The corner-based Poisson disk tiles of the set's ``C``, ``N``, ``rho`` (§4.3,
    :func:`tilesolve.constructive.poisson.build_tiles`).
-2. Each region's points put in progressive order (Kopf et al. §3): farthest-point order, from
+2. Each region's points put in progressive order (Kopf et al.): farthest-point order, from
    the point nearest the region's centroid, each next point the one farthest from those taken,
    so that every prefix is spread out; a point's rank is its place in that order.
-3. The subdivision rules (Kopf et al. §4): one random sequence of ``n - 1`` sub-colours for
+3. The subdivision rules (Kopf et al.): one random sequence of ``n - 1`` sub-colours for
    each ordered pair of end colours of a horizontal edge, one for a vertical edge, the
    parent's corner colours at the sub-lattice corners, and random colours inside each tile.
 
@@ -19,12 +19,14 @@ The level-0 lattice of the window and a margin of one tile is coloured by the di
 tiling (§3.3.1, random access); the lattice of depth ``k + 1`` is the depth-``k`` lattice with
 every tile replaced by its rule, only over the tiles whose density needs level ``k + 1`` and a
 margin of one tile (:meth:`~tilesolve.model.poisson_recursive.RecursiveWindowProblem.boxes`):
-the cost follows the density (Kopf et al. §5). Level by level, the tile set's points are placed on the
-depth-``k`` lattice (scaled by ``n^-k``) and kept where they are at least ``d_k`` from the
-points already kept (a grid search, :mod:`._poisson_recursive_kernels`). The margin holds every
-point that can decide a point of the window (they lie within ``d_0 + d_1 + ... < 1`` of it),
-so any window gives the same points where windows overlap. Last, a density keeps the points
-whose rank fits it, and the window is cut out.
+the cost follows the density box by box (Part V's slides: "cost ~ integral over density"; here
+a level costs its whole box at the level's full density, whatever the ranks then keep). Level
+by level, the tile set's points are placed on the depth-``k`` lattice (scaled by ``n^-k``) and
+kept where they are at least ``d_k`` from the points already kept (a grid search,
+:mod:`._poisson_recursive_kernels`). The margin holds every point that can decide a point of
+the window (they lie within ``d_0 + d_1 + ... < 1`` of it), so any window gives the same points
+where windows overlap. Last, a density keeps the points whose rank fits it, and the window is
+cut out.
 
 Examples
 --------
