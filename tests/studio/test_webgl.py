@@ -29,7 +29,7 @@ import pytest
 from tests.studio.browsing import pan_view
 from tilesolve.constructive.wall_maps import wall_maps
 from tilesolve.constructive.walls import orientation, wall_window
-from tilesolve.gpu.wall import webgl_wall
+from tilesolve.gpu.wall import WallRenderer, webgl_wall
 
 #: Every test here drives Chromium: slow.
 pytestmark = pytest.mark.slow
@@ -75,17 +75,6 @@ READ = """([config, x0, y0, cellPx, w, h]) => {
 def _array(doc, key, dtype, w, h) -> np.ndarray:
     """A read-back array as ``(h, w, 4)``, row 0 at the top."""
     return np.frombuffer(base64.b64decode(doc[key]), dtype=dtype).reshape(h, w, 4)[::-1]
-
-
-def _desktop_colour(w: int, h: int, **kw):
-    """The same window drawn by the desktop GPU path (Mesa llvmpipe), or None without one."""
-    from tilesolve.gpu.context import GpuUnavailable
-    from tilesolve.gpu.wall import WallRenderer
-
-    try:
-        return WallRenderer(**kw).image(w, h)
-    except GpuUnavailable:
-        return None
 
 
 @pytest.fixture(scope="module")
@@ -142,11 +131,11 @@ def test_the_browser_draws_the_cpu_wall(gl_page, colors, max_line, seed, origin,
     assert np.allclose(geom[..., 0], m.distance, atol=1e-5)
     assert np.allclose(geom[..., 1], m.u, atol=1e-5) and np.allclose(geom[..., 2], m.v, atol=1e-5)
     colour = _array(doc, "colour", np.uint8, w, h)
-    desktop = _desktop_colour(w, h, colors=colors, max_line=max_line, seed=seed, origin=origin, cell_px=cell)
-    if desktop is not None:
-        diff = np.abs(colour.astype(int) - desktop.astype(int)).max(axis=2)
-        print(f"\nWebGL2 vs llvmpipe colours: {np.count_nonzero(diff)} of {diff.size} pixels differ, by at most {diff.max()}")
-        assert diff.max() <= 1
+    # the desktop GPU path (Mesa llvmpipe in CI, as in tests/gpu)
+    desktop = WallRenderer(colors=colors, max_line=max_line, seed=seed, origin=origin, cell_px=cell).image(w, h)
+    diff = np.abs(colour.astype(int) - desktop.astype(int)).max(axis=2)
+    print(f"\nWebGL2 vs llvmpipe colours: {np.count_nonzero(diff)} of {diff.size} pixels differ, by at most {diff.max()}")
+    assert diff.max() <= 1
 
 
 def test_the_studio_view_is_drawn_by_webgl_and_is_the_wall(gl_page):
@@ -176,10 +165,8 @@ def test_the_studio_view_is_drawn_by_webgl_and_is_the_wall(gl_page):
         return btoa(s); }""")
     colour = _array({"c": pixels}, "c", np.uint8, w, h)
     # the board form's view: the wall of its colours, lines of at most 3 (the form's default), its seed
-    desktop = _desktop_colour(w + ox, h + oy, colors=4, max_line=3, seed=9, origin=(drawn["x0"], drawn["y0"]),
-                              cell_px=drawn["cellPx"])
-    if desktop is None:
-        pytest.skip("no desktop GPU path to draw the reference colours")
+    desktop = WallRenderer(colors=4, max_line=3, seed=9, origin=(drawn["x0"], drawn["y0"]),
+                           cell_px=drawn["cellPx"]).image(w + ox, h + oy)
     diff = np.abs(colour.astype(int) - desktop[:h, ox:ox + w].astype(int)).max(axis=2)
     print(f"\nstudio view {w}x{h} px, {drawn['cellPx']} px a cell: {np.count_nonzero(diff)} pixels differ, "
           f"by at most {diff.max()}")
