@@ -142,3 +142,19 @@ def test_check_refuses_a_tile_set_given_twice_or_misdescribed(tmp_path, args, ms
     (tmp_path / "d.tiles").write_text(_diagonal_in("nswe")[1])
     err = one_line_error(run("aperiodic", "check", *args, "--max-square", "2", "-o", "r.json", cwd=tmp_path))
     assert msg in err and not (tmp_path / "r.json").exists(), err
+
+
+@pytest.mark.parametrize("search", ["phase", "portfolio"])
+def test_check_searches_squares_either_way_and_its_witness_verifies(tmp_path, search):
+    p = run("aperiodic", "check", "--builtin", "jeandel-rao", "--max-square", "12", "--square-search", search,
+            "--seed", "1", "-o", "r.json", cwd=tmp_path)
+    assert p.returncode == 0, p.stderr
+    assert json.loads((tmp_path / "r.json").read_text())["largest_square"] == 12
+    p = run("verify", "r.json", cwd=tmp_path)
+    assert p.returncode == 0 and p.stdout.startswith("ok: r.json is a valid aperiodicity report"), p.stdout
+
+
+def test_check_refuses_an_unknown_square_search(tmp_path):
+    err = one_line_error(run("aperiodic", "check", "--builtin", "jeandel-rao", "--max-square", "2",
+                             "--square-search", "strips", "-o", "r.json", cwd=tmp_path))
+    assert "--square-search" in err and not (tmp_path / "r.json").exists(), err
