@@ -238,6 +238,11 @@ def _surround_search(problem: ShapesProblem, deadline: Deadline, solver: str, se
     enc = encode_surround(problem)
     tried = 0
     with SatSession(enc.clauses, solver=solver, seed=seed, deadline=deadline) as s:
+        # neighbours by translations and half-turns first: a group of few point parts has few
+        # tiles per period (a cheaper witness to check)
+        mats = enc.mats[enc.m]
+        plain = (np.abs(mats[:, 0, 1]) + np.abs(mats[:, 1, 0]) == 0) & (mats[:, 0, 0] == mats[:, 1, 1])
+        s.set_phases(np.where(plain, enc.var, -enc.var).tolist())
         while tried < SURROUNDS:
             r = s.solve(deadline=deadline)
             if r.status is not Status.SAT:
