@@ -7,8 +7,8 @@ Squares (a witness for the n x n square)
     ``plain``: the board family's one-hot colour encoding
     (:func:`tilesolve.encodings.wang.encode_wang`) solved by CaDiCaL, capped at ``--cap`` s;
     ``aperiodic``: :func:`tilesolve.engine.aperiodic.square_scan` with ``max_n = n`` (the
-    tile-selection CNF with support clauses; guided search above 40), which ends at the first
-    verified witness. Both include encoding and loading the solver; the witness is checked
+    tile-selection CNF with support clauses, its default search: CaDiCaL's initial phase
+    false), which ends at the first verified witness. Both include encoding and loading the solver; the witness is checked
     with the board verifier. CPU seconds are printed beside wall seconds: on a shared machine
     they are the better measure of the work.
 Tori (every p x q, 1 <= p, q <= ``--max-period``)

@@ -14,8 +14,8 @@ literature.
 Routes
 ------
 ``sat``
-    :mod:`tilesolve.engine.aperiodic`: squares by bisection (guided search for large
-    witnesses), periods as a parallel sweep (local processes or a Dask cluster), resumable
+    :mod:`tilesolve.engine.aperiodic`: squares by bisection (CaDiCaL's initial phase false
+    by default; ``square_search`` "portfolio": a guided search for large witnesses), periods as a parallel sweep (local processes or a Dask cluster), resumable
     through a cache file (``options={"cache": PATH, "proof_dir": DIR}``) whose lines are used
     only once re-checked: a witness by the verifier, a refutation by its kept proof against
     the CNF re-derived from the tile set and board.
