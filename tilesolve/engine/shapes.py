@@ -1,33 +1,31 @@
 """Polyform questions decided by SAT (class notes Part II §3; Kaplan, "Heesch numbers of
 unmarked polyforms", 2022, whose program heesch-sat classifies polyforms the same way).
 
-:func:`classify` answers, for one shape:
+:func:`classify` answers, for one shape, in stages, cheapest first; the first witness or
+refutation ends the search:
 
-1. *Tiler?* In three stages, cheapest first, each ending the search with its witness:
+1. *Lattice tilings*: every sublattice ``L`` of the translations of index ``n / t`` (``n``
+   cells, ``t`` cell types; Hermite forms ``(A, 0), (B, D)``, :func:`lattices`), the exact cover
+   of the torus ``Z^2 / L`` by one copy (:func:`tilesolve.encodings.shapes.encode_tiling`).
+2. *Isohedral tilings, any number of copies per period*: closed surrounds of the shape
+   (:func:`tilesolve.encodings.shapes.encode_surround`), the neighbours of an isohedral tiling
+   seen from one tile; the transforms of a model generate a group whose orbit of the shape is
+   checked to be a torus tiling (:func:`surround_tiling`), else the model is blocked (at most
+   :data:`SURROUNDS`). An isohedral tiling may need as many copies per period as the point
+   group has elements (4 for some 7-ominoes), which no torus bound guesses.
+3. *Coronas* ``1 .. EARLY_LEVELS`` (:func:`tilesolve.encodings.shapes.encode_coronas`): a level
+   that is unsatisfiable refutes the shape as a tiler, certified by a checked DRAT proof; without
+   ``holes`` a model whose patch has a hole is blocked and the level solved again (the blocked
+   holes are part of the refuted CNF's named encoding, so ``tilesolve verify`` re-derives it).
+4. *Periodic tilings*: for ``k = 2, ..., max_copies`` copies per period, the exact cover of
+   every torus of index ``k * n / t``. A torus tiling is kept as ``isohedral`` when a symmetry
+   of it maps tile 0 onto each tile (:func:`is_isohedral`); tilings that are not are blocked and
+   the search goes on (at most :data:`TILINGS_PER_TORUS` per torus), the first one kept as a
+   ``periodic`` witness.
+5. *Coronas* up to ``max_level``: the Heesch number of a non-tiler, or ``inconclusive``.
 
-   a. *Lattice tilings*: every sublattice ``L`` of the translations of index ``n / t`` (``n``
-      cells, ``t`` cell types; Hermite forms ``(A, 0), (B, D)``, :func:`lattices`), the exact
-      cover of the torus ``Z^2 / L`` by one copy (:func:`tilesolve.encodings.shapes.encode_tiling`).
-   b. *Isohedral tilings, any number of copies per period*: closed surrounds of the shape
-      (:func:`tilesolve.encodings.shapes.encode_surround`), the neighbours of an isohedral
-      tiling seen from one tile; the transforms of a model generate a group whose orbit of the
-      shape is checked to be a torus tiling (:func:`surround_tiling`), else the model is
-      blocked (at most :data:`SURROUNDS`). An isohedral tiling may need as many copies per
-      period as the point group has elements (4 for some 7-ominoes), which no torus bound
-      guesses.
-   c. *Periodic tilings*: for ``k = 2, ..., max_copies`` copies per period, the exact cover of
-      every torus of index ``k * n / t``. A torus tiling is kept as ``isohedral`` when a
-      symmetry of it maps tile 0 onto each tile (:func:`is_isohedral`); tilings that are not
-      are blocked and the search goes on (at most :data:`TILINGS_PER_TORUS` per torus), the
-      first one kept as a ``periodic`` witness.
-
-   Unsatisfiable tori and surrounds prove nothing here and are not certified. A shape with a
-   periodic tiling is a tiler (Heesch number infinite): no coronas are tried.
-2. Else its *Heesch number*: coronas ``1, 2, ...``
-   (:func:`tilesolve.encodings.shapes.encode_coronas`) until a level is unsatisfiable, that
-   refutation certified by a checked DRAT proof; without ``holes`` a model whose patch has a
-   hole is blocked and the level solved again (the blocked holes are part of the refuted CNF's
-   named encoding, so ``tilesolve verify`` re-derives it).
+Unsatisfiable tori and surrounds prove nothing here and are not certified; a shape with a
+periodic tiling is a tiler (Heesch number infinite), whatever coronas were found before.
 """
 
 from __future__ import annotations
@@ -44,12 +42,15 @@ from tilesolve.errors import InvalidProblem
 from tilesolve.model.shapes import Grid, ShapesProblem, ShapesReport, enclosed
 from tilesolve.model.solution import Solution, Status
 
-__all__ = ["SHAPES_SAT_SOLVER", "TILINGS_PER_TORUS", "SURROUNDS", "MAX_LITERALS", "lattices", "is_isohedral",
+__all__ = ["SHAPES_SAT_SOLVER", "TILINGS_PER_TORUS", "SURROUNDS", "EARLY_LEVELS", "MAX_LITERALS", "lattices", "is_isohedral",
            "classify", "check_size", "surround_tiling"]
 
 SHAPES_SAT_SOLVER = "cadical153"
 #: Torus tilings tried per torus before the next torus (tilings that are not isohedral).
 TILINGS_PER_TORUS = 20
+#: Corona levels tried before the tori of 2 or more copies (a non-tiler refuted at these levels
+#: needs no torus; a tiler with no isohedral tiling pays for them before its torus witness).
+EARLY_LEVELS = 2
 #: Closed surrounds tried (each whose group does not tile is blocked) before the isohedral search gives up.
 SURROUNDS = 20
 #: The largest tiling CNF built (an estimate of its literals, checked before building).
@@ -274,8 +275,11 @@ def _holes_of(g: Grid, patch: np.ndarray) -> list:
     return out
 
 
-def _coronas(problem: ShapesProblem, deadline: Deadline, solver: str, seed, t0: float, progress):
-    """Heesch search: ``(heesch, patch, refutation stats or None, reason)``.
+def _coronas(problem: ShapesProblem, levels: range, found: tuple, deadline: Deadline, solver: str, seed, t0: float,
+             progress):
+    """Heesch search over ``levels``, ``found`` the ``(heesch, patch)`` of the levels below:
+    ``(heesch, patch, refutation stats or None, reason)``, ``reason`` None when every level of
+    ``levels`` is possible.
 
     A level's models with holes are blocked in the same solver (the level's clauses are loaded
     once); a level found unsatisfiable after blocks is solved again from its named encoding
@@ -286,9 +290,8 @@ def _coronas(problem: ShapesProblem, deadline: Deadline, solver: str, seed, t0: 
     from tilesolve.engine.sat import SatSession
 
     g = problem.geometry
-    patch = np.asarray([(0, 0, x, y) for x, y in problem.shapes[0].cells], dtype=np.int64)
-    heesch = 0
-    for level in range(1, problem.max_level + 1):
+    heesch, patch = found
+    for level in levels:
         blocked: list = []
         enc = encode("shapes-corona-cnf", problem, {"levels": level, "blocked": blocked}, deadline=deadline)
         with SatSession(enc.hard, solver=solver, with_proof=True, seed=seed, deadline=deadline) as s:
@@ -318,7 +321,7 @@ def _coronas(problem: ShapesProblem, deadline: Deadline, solver: str, seed, t0: 
                 return heesch, patch, sol.stats, sol.reason
             return heesch, patch, None, sol.reason
         return heesch, patch, None, r.reason or "stopped"
-    return heesch, patch, None, f"{problem.max_level} corona(s) possible (the most tried)"
+    return heesch, patch, None, None
 
 
 def classify(problem: ShapesProblem, *, solver: str = SHAPES_SAT_SOLVER, seed=None, deadline: Deadline = NO_LIMIT,
@@ -329,7 +332,22 @@ def classify(problem: ShapesProblem, *, solver: str = SHAPES_SAT_SOLVER, seed=No
     progress = as_progress(progress)
     t0 = time.perf_counter()
     stats = {"tori": 0}
-    for stage in ("lattice", "surround", "tori"):
+    early = range(1, min(EARLY_LEVELS, problem.max_level) + 1)
+    coronas = (0, np.asarray([(0, 0, x, y) for x, y in problem.shapes[0].cells], dtype=np.int64))
+    for stage in ("lattice", "surround", "coronas", "tori", "coronas"):
+        if stage == "coronas":
+            levels = range(coronas[0] + 1, problem.max_level + 1) if coronas[0] else early
+            with progress.task("coronas", total=problem.max_level, unit="level") as task:
+                heesch, patch, refutation, reason = _coronas(problem, levels, coronas, deadline, solver, seed, t0,
+                                                             task)
+            coronas = (heesch, patch)
+            if refutation is not None:
+                report = ShapesReport("non-tiler", heesch=heesch, patch=patch, refutation=refutation,
+                                      holes=problem.holes)
+                return _done(report, solver, seed, t0, stats, reason)
+            if reason is not None:
+                break
+            continue
         with progress.task(stage, total=None, unit="model") as task:
             if stage == "surround":
                 found, stats["surrounds"] = _surround_search(problem, deadline, solver, seed)
@@ -342,11 +360,9 @@ def classify(problem: ShapesProblem, *, solver: str = SHAPES_SAT_SOLVER, seed=No
             verdict, copies, lattice, tiling = found
             report = ShapesReport(verdict, copies=copies, lattice=lattice, tiling=tiling, holes=problem.holes)
             return _done(report, solver, seed, t0, stats)
-    with progress.task("coronas", total=problem.max_level, unit="level") as task:
-        heesch, patch, refutation, reason = _coronas(problem, deadline, solver, seed, t0, task)
-    if refutation is not None:
-        report = ShapesReport("non-tiler", heesch=heesch, patch=patch, refutation=refutation, holes=problem.holes)
-        return _done(report, solver, seed, t0, stats, reason)
+    else:
+        reason = f"{problem.max_level} corona(s) possible (the most tried)"
+    heesch, patch = coronas
     return _done(ShapesReport("inconclusive", heesch=heesch, patch=patch, holes=problem.holes), solver, seed, t0,
                  stats, reason)
 
