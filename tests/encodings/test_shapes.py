@@ -101,3 +101,11 @@ def test_the_sequential_counter_is_pysats_clause_for_clause(n):
     lits = [v * rnd.choice((1, -1)) for v in rnd.sample(range(1, 200), n)]
     top = 200 + rnd.randrange(50)
     assert sequential_at_most_one(lits, top).tolist() == CardEnc.atmost(lits, bound=1, top_id=top, encoding=1).clauses
+
+
+def test_the_half_turn_surround_holds_only_translations_and_half_turns():
+    p = ShapesProblem("classify", (parse_ascii("###\n#..", "omino"),))
+    full, half = encode_surround(p), encode_surround(p, half_turns=True)
+    kept = {(m, tuple(t)) for m, t in zip(full.m.tolist(), full.t.tolist()) if m in (0, 2)}  # I and the half-turn
+    assert {(m, tuple(t)) for m, t in zip(half.m.tolist(), half.t.tolist())} == kept
+    assert (full.mats[2] == -full.mats[0]).all()

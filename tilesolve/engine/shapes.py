@@ -11,7 +11,8 @@ refutation ends the search:
    (:func:`tilesolve.encodings.shapes.encode_surround`), the neighbours of an isohedral tiling
    seen from one tile; the transforms of a model generate a group whose orbit of the shape is
    checked to be a torus tiling (:func:`surround_tiling`), else the model is blocked (at most
-   :data:`SURROUNDS`). An isohedral tiling may need as many copies per period as the point
+   :data:`SURROUNDS`), neighbours by translations and half-turns alone first (Conway's
+   criterion), then all. An isohedral tiling may need as many copies per period as the point
    group has elements (4 for some 7-ominoes), which no torus bound guesses.
 3. *Coronas* ``1 .. EARLY_LEVELS`` (:func:`tilesolve.encodings.shapes.encode_coronas`): a level
    that is unsatisfiable refutes the shape as a tiler, certified by a checked DRAT proof; without
@@ -51,7 +52,7 @@ TILINGS_PER_TORUS = 20
 #: Corona levels tried before the tori of 2 or more copies (a non-tiler refuted at these levels
 #: needs no torus; a tiler with no isohedral tiling pays for them before its torus witness).
 EARLY_LEVELS = 2
-#: Closed surrounds tried (each whose group does not tile is blocked) before the isohedral search gives up.
+#: Closed surrounds tried (each whose group does not tile is blocked) before a surround search gives up.
 SURROUNDS = 20
 #: The largest tiling CNF built (an estimate of its literals, checked before building).
 MAX_LITERALS = 10_000_000
@@ -233,27 +234,32 @@ def _surround_search(problem: ShapesProblem, deadline: Deadline, solver: str, se
     """``(found, surrounds tried)``: ``found`` an isohedral torus tiling from a closed surround
     (:func:`tilesolve.encodings.shapes.encode_surround`, :func:`surround_tiling`) as
     ``("isohedral", copies, lattice, tiling)``, else ``None``: no closed surround, or
-    :data:`SURROUNDS` of them whose groups do not tile, or the deadline."""
+    :data:`SURROUNDS` of them whose groups do not tile, or the deadline.
+
+    Neighbours by translations and half-turns are tried first, alone (a small CNF, and a group
+    with few tiles per period, a cheap witness to check), then every transform, the solver
+    preferring translations and half-turns."""
     from tilesolve.engine.sat import SatSession
 
-    enc = encode_surround(problem)
     tried = 0
-    with SatSession(enc.clauses, solver=solver, seed=seed, deadline=deadline) as s:
-        # neighbours by translations and half-turns first: a group of few point parts has few
-        # tiles per period (a cheaper witness to check)
-        mats = enc.mats[enc.m]
-        plain = (np.abs(mats[:, 0, 1]) + np.abs(mats[:, 1, 0]) == 0) & (mats[:, 0, 0] == mats[:, 1, 1])
-        s.set_phases(np.where(plain, enc.var, -enc.var).tolist())
-        while tried < SURROUNDS:
-            r = s.solve(deadline=deadline)
-            if r.status is not Status.SAT:
-                break
-            tried += 1
-            used = enc.decode(r.model)
-            found = surround_tiling(enc, used)
-            if found is not None:
-                return ("isohedral", *found), tried
-            s.add_clause(enc.block(used))
+    for half_turns in (True, False):
+        if deadline.expired():
+            break
+        enc = encode_surround(problem, half_turns)
+        with SatSession(enc.clauses, solver=solver, seed=seed, deadline=deadline) as s:
+            mats = enc.mats[enc.m]
+            plain = (mats[:, 0, 1] == 0) & (mats[:, 1, 0] == 0) & (mats[:, 0, 0] == mats[:, 1, 1])
+            s.set_phases(np.where(plain, enc.var, -enc.var).tolist())
+            for _ in range(SURROUNDS):
+                r = s.solve(deadline=deadline)
+                if r.status is not Status.SAT:
+                    break
+                tried += 1
+                used = enc.decode(r.model)
+                found = surround_tiling(enc, used)
+                if found is not None:
+                    return ("isohedral", *found), tried
+                s.add_clause(enc.block(used))
     return None, tried
 
 
