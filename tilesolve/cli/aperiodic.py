@@ -36,9 +36,12 @@ def aperiodic() -> None:
               help="Find the largest n <= N with a tiled n x n square (free boundary).")
 @click.option("--max-period", type=click.IntRange(0), default=0, show_default=True, metavar="N",
               help="Check every torus p x q, 1 <= p, q <= N.")
-@click.option("--method", type=click.Choice(["auto", "sat", "transducer"]), default="auto", show_default=True,
+@click.option("--method", type=click.Choice(["auto", "sat", "transducer", "lattice"]), default="auto",
+              show_default=True,
               help="sat: squares by bisection and every (sheared) torus by SAT; transducer: Jeandel-Rao "
-                   "transducers T^k up to k = max period (or max square), emptiness certified by SAT. auto: sat.")
+                   "transducers T^k up to k = max period (or max square), emptiness certified by SAT; lattice: "
+                   "every lattice of periods of index (cells of one period) <= max period, smallest first, until "
+                   "one is tiled (witnesses only). auto: sat.")
 @click.option("--shears", is_flag=True, help="Also every sheared torus: the horizontal wrap shifted by s rows, 0 < s < p.")
 @click.option("--workers", type=click.IntRange(1, 256), default=None, metavar="K",
               help="Local worker processes of the period sweep [default: 2, both cores].")
@@ -84,6 +87,7 @@ def check(ctx, tiles, tiles_path, tiles_format, builtin, method, max_square, max
       tilesolve aperiodic check --builtin jeandel-rao --max-square 20 --max-period 3 --seed 1 -o jr.json
       tilesolve aperiodic check --builtin periodic-7-30 --max-period 2 --shears --workers 1 -o p.json --proof-dir proofs
       tilesolve aperiodic check --builtin finite-jv7 --method transducer --max-square 12 -o t.json
+      tilesolve aperiodic check --builtin periodic-10-35 --method lattice --max-period 35 -o p35.json
       tilesolve verify jr.json
     """
     from tilesolve.families import aperiodic as facade

@@ -26,6 +26,11 @@ tile set and board name (:func:`refutations`) and checks the proof against it.
 ``transducer``
     :mod:`tilesolve.constructive.transducer` (Jeandel and Rao §2-3), its emptiness verdicts
     certified by the SAT route.
+``lattice``
+    :mod:`tilesolve.constructive.periods`: every lattice of periods of index (cells of one
+    period) at most ``max_period``, smallest first, by a bounded backtracking search that stops
+    at the first one tiled. It finds witnesses only (``periodic-10-35``'s one-row period of 35
+    tiles, which the other routes reach in minutes); it refutes nothing.
 
 Examples
 --------
@@ -51,7 +56,7 @@ from tilesolve.model.aperiodic import AperiodicProblem, AperiodicReport, Certifi
 from tilesolve.model.solution import Solution, Status
 from tilesolve.verify.aperiodic import aperiodic_violations, witness_violations
 
-__all__ = ["AperiodicProblem", "AperiodicReport", "Certificate", "solve", "sat", "transducer", "build_report",
+__all__ = ["AperiodicProblem", "AperiodicReport", "Certificate", "solve", "sat", "transducer", "lattice", "build_report",
            "refutations", "witness", "tiling", "FAMILY"]
 
 
@@ -157,6 +162,42 @@ def transducer(problem: AperiodicProblem, run: RunOptions) -> Solution:
     reason = report.conclusion if report.verdict == "undecided" else None
     return Solution(report.status, None, "transducer", None, run.seed, run.deadline.elapsed(), reason=reason,
                     stats={"transducer_verdict": verdict}, report=report)
+
+
+def lattice(problem: AperiodicProblem, run: RunOptions) -> Solution:
+    """The lattice route (:mod:`tilesolve.constructive.periods`): the lattices of periods of index
+    at most ``max_period``, smallest first, until one is tiled. Its witness is the plain torus the
+    lattice repeats to when both its sides are at most ``max_period``, else the sheared torus
+    itself; the family's verifier checks it on its board. The search refutes nothing: without a
+    witness every lattice of the check is undecided. Periods only (no squares)."""
+    from tilesolve.constructive.periods import NODE_BUDGET, rectangle, search
+    from tilesolve.model.aperiodic import Lattice
+
+    if problem.max_square:
+        raise InvalidProblem("the lattice route looks for periods only: check squares with --method sat")
+    try:
+        found = search(problem.tileset, problem.max_period, deadline=run.deadline)
+    except KeyboardInterrupt:
+        return Solution(Status.UNKNOWN, None, "lattice", None, run.seed, run.deadline.elapsed(),
+                        reason="interrupted (Ctrl-C) while searching the lattices")
+    stats = {"lattices_searched": found.tried, "over_budget": found.over_budget, "node_budget": NODE_BUDGET}
+    if found.lattice is not None:
+        grid, board = found.tiling, found.lattice.name()
+        rect = rectangle(found.lattice, grid)
+        if max(rect.shape) <= problem.max_period:
+            grid, board = rect, Lattice(*rect.shape).name()
+        periods = [Certificate(board, "tiles", grid, "lattice", {**stats, "lattice": found.lattice.name(),
+                                                                 "index": found.index}, round(found.seconds, 6))]
+        note = (f"the lattice search tried {found.tried:,} lattices ({found.over_budget:,} left at the node budget): "
+                f"{found.reason}" + ("" if board == found.lattice.name() else f", which repeats to the {board}"))
+    else:
+        why = f"the lattice search finds witnesses only: {found.reason}"
+        periods = [Certificate(lat.name(), "undecided", None, "lattice", {"why": why}) for lat in problem.lattices()]
+        note = why
+    report = build_report(problem, (), None, periods)
+    return Solution(report.status, None, "lattice", None, run.seed, run.deadline.elapsed(),
+                    reason=None if found.lattice is not None else found.reason, notes=(note,), stats=stats,
+                    report=report)
 
 
 def refutations(problem: AperiodicProblem, sol: Solution) -> list[tuple[str, object, dict]]:
@@ -293,7 +334,7 @@ FAMILY = register(Family(
     name="aperiodic",
     title="aperiodicity checks of Wang tile sets: squares, tori and lattice periods, with certificates",
     problem_type=AperiodicProblem,
-    routes={"sat": sat, "transducer": transducer},
+    routes={"sat": sat, "transducer": transducer, "lattice": lattice},
     auto=lambda problem: "sat",
     verify=_violations,
     codecs=(Codec(APERIODIC_REPORT, VERSIONS, report_from_dict, report_to_dict),),
@@ -305,5 +346,7 @@ FAMILY = register(Family(
     route_help={"sat": "squares by bisection and (sheared) tori swept in parallel; witnesses verified, "
                        "refutations with checked DRAT proofs (class notes Part II §8.2)",
                 "transducer": "Jeandel-Rao transducers T^k: a periodic cycle gives a torus witness, an empty T_k a "
-                              "rectangle refuted by SAT with a checked proof"},
+                              "rectangle refuted by SAT with a checked proof",
+                "lattice": "every lattice of periods of index (cells of one period) up to the max period, smallest "
+                           "first, by bounded backtracking: a verified torus witness or nothing (refutes nothing)"},
 ))
