@@ -340,7 +340,19 @@ class CoronaEncoding:
 @functools.lru_cache(maxsize=1 << 16)
 def _halo(g: Grid, cells: tuple) -> frozenset:
     """The cells outside ``cells`` that share a corner with one of them (cached: a candidate
-    tile's halo is asked for at every level of every corona encoding)."""
+    tile's halo is asked for at every level of every corona encoding), translated from the
+    halo of the same cells moved to the origin (the tiles of a corona are few shapes, many
+    places)."""
+    p = g.period
+    x0, y0 = cells[0][0] // p * p, cells[0][1] // p * p
+    if not (x0 or y0):
+        return _halo_at_origin(g, cells)
+    at_origin = _halo_at_origin(g, tuple((x - x0, y - y0) for x, y in cells))
+    return frozenset((x + x0, y + y0) for x, y in at_origin)
+
+
+@functools.lru_cache(maxsize=1 << 12)
+def _halo_at_origin(g: Grid, cells: tuple) -> frozenset:
     offsets = _touching_offsets(g)
     s = set(cells)
     return frozenset((x + dx, y + dy) for x, y in s for dx, dy in offsets[g.cell_type((x, y))]) - s
