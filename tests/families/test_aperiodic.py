@@ -333,3 +333,29 @@ def test_studio_form_poses_the_cli_check():
         form.values({"max_square": 41})
     with pytest.raises(InvalidProblem, match="tile set"):
         form.values({"tileset": "nope"})
+
+
+def test_lattice_route_reports_the_plain_torus_of_the_first_lattice_tiled():
+    from tilesolve.families.aperiodic import FAMILY
+
+    problem = AperiodicProblem(DIAGONAL, 0, 3)
+    s = solve(problem, method="lattice", seed=1)
+    assert (s.verdict, s.status, s.method) == ("periodic", Status.SAT, "lattice")
+    (cert,) = s.report.periods
+    assert (cert.board, cert.status, cert.method) == ("torus 3x3", "tiles", "lattice")
+    assert cert.evidence["lattice"] == "torus 3x1 shear 1" and cert.evidence["index"] == 3
+    assert not witness_violations(problem, cert) and not FAMILY.verify(problem, s.report)
+    assert "torus 3x1 shear 1 is tiled, which repeats to the torus 3x3" in s.notes[0]
+
+
+def test_lattice_route_without_a_witness_leaves_every_lattice_undecided():
+    from tilesolve.families.aperiodic import FAMILY
+
+    problem = AperiodicProblem(DIAGONAL, 0, 2, shears=True)  # its lattices of index <= 2 are not tiled
+    s = solve(problem, method="lattice", seed=1)
+    assert (s.verdict, s.status) == ("undecided", Status.UNKNOWN)
+    assert [c.board for c in s.report.periods] == [lat.name() for lat in problem.lattices()]
+    assert all(c.status == "undecided" and "finds witnesses only" in c.evidence["why"] for c in s.report.periods)
+    assert not FAMILY.verify(problem, s.report)
+    with pytest.raises(InvalidProblem, match="periods only"):
+        solve(AperiodicProblem(DIAGONAL, 3, 3), method="lattice")

@@ -167,11 +167,10 @@ def transducer(problem: AperiodicProblem, run: RunOptions) -> Solution:
 def lattice(problem: AperiodicProblem, run: RunOptions) -> Solution:
     """The lattice route (:mod:`tilesolve.constructive.periods`): the lattices of periods of index
     at most ``max_period``, smallest first, until one is tiled. Its witness is the plain torus the
-    lattice repeats to when both its sides are at most ``max_period``, else the sheared torus
-    itself; the family's verifier checks it on its board. The search refutes nothing: without a
-    witness every lattice of the check is undecided. Periods only (no squares)."""
+    lattice repeats to (both sides at most its index, so a torus of the check); the family's
+    verifier checks it on its board. The search refutes nothing: without a witness every lattice
+    of the check is undecided. Periods only (no squares)."""
     from tilesolve.constructive.periods import NODE_BUDGET, rectangle, search
-    from tilesolve.model.aperiodic import Lattice
 
     if problem.max_square:
         raise InvalidProblem("the lattice route looks for periods only: check squares with --method sat")
@@ -181,11 +180,9 @@ def lattice(problem: AperiodicProblem, run: RunOptions) -> Solution:
         return Solution(Status.UNKNOWN, None, "lattice", None, run.seed, run.deadline.elapsed(),
                         reason="interrupted (Ctrl-C) while searching the lattices")
     stats = {"lattices_searched": found.tried, "over_budget": found.over_budget, "node_budget": NODE_BUDGET}
-    if found.lattice is not None:
-        grid, board = found.tiling, found.lattice.name()
-        rect = rectangle(found.lattice, grid)
-        if max(rect.shape) <= problem.max_period:
-            grid, board = rect, Lattice(*rect.shape).name()
+    if found.lattice is not None:  # its plain torus: rows p <= index, columns q p / gcd(p, s) <= index
+        grid = rectangle(found.lattice, found.tiling)
+        board = f"torus {grid.shape[0]}x{grid.shape[1]}"
         periods = [Certificate(board, "tiles", grid, "lattice", {**stats, "lattice": found.lattice.name(),
                                                                  "index": found.index}, round(found.seconds, 6))]
         note = (f"the lattice search tried {found.tried:,} lattices ({found.over_budget:,} left at the node budget): "
