@@ -56,8 +56,8 @@ from tilesolve.model.aperiodic import AperiodicProblem, AperiodicReport, Certifi
 from tilesolve.model.solution import Solution, Status
 from tilesolve.verify.aperiodic import aperiodic_violations, witness_violations
 
-__all__ = ["AperiodicProblem", "AperiodicReport", "Certificate", "solve", "sat", "transducer", "lattice", "build_report",
-           "refutations", "witness", "tiling", "FAMILY"]
+__all__ = ["AperiodicProblem", "AperiodicReport", "Certificate", "solve", "sat", "transducer", "lattice",
+           "build_report", "refutations", "witness", "tiling", "FAMILY"]
 
 
 def build_report(problem: AperiodicProblem, squares, largest: int | None, periods) -> AperiodicReport:
