@@ -18,7 +18,8 @@ Squares (a witness for each n in ``--sizes``, each seed of ``--seeds``)
     :func:`tilesolve.engine.aperiodic.square_scan` with its search ``phase`` (the default: the
     full formula, CaDiCaL's initial phase false and its saved phases; the seed changes nothing)
     beside its search ``portfolio`` (the route before: full and guided formulas on two
-    processes, the seed's random phases) and ``plain`` (the one-hot colour encoding, one run),
+    processes, the seed's random phases), ``race`` (that portfolio, its full formula searched
+    as ``phase``) and ``plain`` (the one-hot colour encoding, one run),
     every run capped at ``--cap`` s; median and max CPU by route, and each route's CPU over
     ``phase``'s on the same seed.
 
@@ -176,7 +177,7 @@ def main() -> None:
     ap.add_argument("--cap", type=float, default=120.0, help="seconds for each baseline (and each square)")
     ap.add_argument("--seeds", type=int, nargs="*", default=[1, 2, 3], help="the squares' seeds")
     ap.add_argument("--routes", nargs="*", default=["phase", "portfolio", "plain"],
-                    choices=["phase", "portfolio", "plain"], help="the squares' routes, phase first (the ratios' base)")
+                    choices=["phase", "portfolio", "race", "plain"], help="the squares' routes, phase first (the ratios' base)")
     args = ap.parse_args()
     ws, _ = load("jeandel-rao")
     if args.max_period:

@@ -76,6 +76,14 @@ def test_the_phase_search_tiles_a_jeandel_rao_square_above_the_portfolio_side_in
     assert _square_witness_holds(ws, n, certs[0])
 
 
+@pytest.mark.slow
+def test_the_race_tiles_a_jeandel_rao_square_on_two_processes():
+    ws, _ = load("jeandel-rao")
+    n = aperiodic.DIRECT_SIDE + 4
+    certs, largest = square_scan(ws, n, RunOptions(seed=1, workers=2), search="race")
+    assert largest == n and _square_witness_holds(ws, n, certs[-1])
+
+
 def test_the_phase_search_gives_the_same_witness_for_a_seed_and_for_any_seed():
     ws, _ = load("jeandel-rao")
     runs = [square_scan(ws, 24, RunOptions(seed=seed))[0][-1].tiling for seed in (1, 1, 7)]

@@ -55,11 +55,13 @@ def aperiodic() -> None:
                    "refutations are kept in FILE.proofs/. A later run uses a cached verdict only once re-checked (a "
                    "witness by the verifier, a refutation's proof against the re-derived CNF); others are decided "
                    "again [default: REPORT.cache.jsonl next to -o].")
-@click.option("--square-search", type=click.Choice(["phase", "portfolio"]), default="phase", show_default=True,
+@click.option("--square-search", type=click.Choice(["phase", "portfolio", "race"]), default="phase",
+              show_default=True,
               help="How squares are searched. phase: the full formula in one process, CaDiCaL's first value of "
                    "every tile false and its saved phases (the seed changes nothing); portfolio: squares above 40 "
                    "on two processes, the full formula and one guided by a 30x30 tiling, with the seed's random "
-                   "phases (the route before). A refutation has its checked proof either way.")
+                   "phases (the route before); race: that portfolio with its full formula searched as phase "
+                   "does. A refutation has its checked proof in every case.")
 @click.option("--every-board", is_flag=True,
               help="Decide every lattice up to --max-period; by default the sweep stops at the first tiled torus "
                    "(it decides the verdict) and the lattices left are undecided.")

@@ -100,8 +100,9 @@ SEARCH_OPTIONS = {"elim": 0, "subsume": 0, "probe": 0, "vivify": 0}
 WITNESS_OPTIONS = {"phase": 0}
 #: How :func:`square_scan` searches: ``"phase"`` (the default: the full formula with
 #: :data:`WITNESS_OPTIONS`, one process) or ``"portfolio"`` (the route before it: squares above
-#: :data:`DIRECT_SIDE` as the full formula and a guided one on two processes, seeded random phases).
-SQUARE_SEARCHES = ("phase", "portfolio")
+#: :data:`DIRECT_SIDE` as the full formula and a guided one on two processes, seeded random phases)
+#: or ``"race"`` (that portfolio with the full formula searched as ``"phase"`` does).
+SQUARE_SEARCHES = ("phase", "portfolio", "race")
 #: The SAT solver (CaDiCaL logs DRAT proofs).
 DEFAULT_SOLVER = "cadical153"
 
@@ -274,8 +275,9 @@ def _guide(grid: np.ndarray, m: int) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _square_task(tiles: list, n_colors: int, n: int, deadline: Deadline, solver: str | None,
-                 proof_dir: str | None, seed0: int, *, seed: int):
-    """One run of the square portfolio: ``seed`` 0 decides the full formula, 1 searches the
+                 proof_dir: str | None, seed0: int, phase: bool, *, seed: int):
+    """One run of the square portfolio: ``seed`` 0 decides the full formula (with
+    :data:`WITNESS_OPTIONS` when ``phase``, else the seed's random phases), 1 searches the
     guided one (its guide from a :data:`GUIDE_SIDE` square); returns a Solution."""
     from tilesolve.engine.certificates import writing_proofs
     from tilesolve.engine.routes import sat_route
@@ -290,8 +292,11 @@ def _square_task(tiles: list, n_colors: int, n: int, deadline: Deadline, solver:
         allowed, method = _guide(g.tiling, len(tileset)), "sat guided"
     t0 = time.perf_counter()
     enc = board_encoding(tileset, f"square {n}x{n}", allowed=allowed, deadline=run.deadline)
+    solver = solver or DEFAULT_SOLVER
+    phase = phase and seed == 0
     with writing_proofs(proof_dir):
-        return sat_route(enc, run, method=method, solver=solver or DEFAULT_SOLVER, t0=t0)
+        return sat_route(enc, run, method=method, solver=solver, t0=t0, seeded_phases=not phase,
+                         options=_cadical_options(WITNESS_OPTIONS, solver) if phase else None)
 
 
 def square_scan(tileset: WangTileSet, max_n: int, run: RunOptions, *, proof_dir: str | os.PathLike | None = None,
@@ -302,8 +307,9 @@ def square_scan(tileset: WangTileSet, max_n: int, run: RunOptions, *, proof_dir:
     :data:`WITNESS_OPTIONS` (the seed changes nothing); ``"portfolio"`` sends squares above
     :data:`DIRECT_SIDE` to a portfolio of two runs on ``run.workers`` local processes (default
     2), the full formula and the guided one, where the first decisive answer wins (a witness
-    from either; a refutation only from the full formula, with its checked proof). Returns the
-    certificates decided (in the order decided) and that ``n`` (``None`` when undecided).
+    from either; a refutation only from the full formula, with its checked proof); ``"race"``
+    is that portfolio with its full formula searched as ``"phase"`` does (and ``"phase"`` where
+    the portfolio does not run). Returns the certificates decided (in the order decided) and that ``n`` (``None`` when undecided).
     ``run.progress`` shows the squares decided and the bounds known.
     """
     from tilesolve.engine.portfolio import run_portfolio
@@ -322,9 +328,9 @@ def square_scan(tileset: WangTileSet, max_n: int, run: RunOptions, *, proof_dir:
             from tilesolve.engine.certificates import writing_proofs
 
             with writing_proofs(proof_dir):
-                return decide(tileset, name, run, phase_search=search == "phase")
+                return decide(tileset, name, run, phase_search=search != "portfolio")
         task = functools.partial(_square_task, tileset.tiles.tolist(), int(tileset.n_colors), n, run.deadline,
-                                 run.solver, proof_dir, run.seed)
+                                 run.solver, proof_dir, run.seed, search == "race")
         sol = run_portfolio(task, [0, 1], workers=2, deadline=run.deadline, progress=run.progress, label=name)
         return _certificate(name, sol, sol.method or "sat")
 
