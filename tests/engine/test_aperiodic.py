@@ -71,7 +71,7 @@ def _square_witness_holds(ws, n, cert) -> bool:
 def test_the_phase_search_tiles_a_jeandel_rao_square_above_the_portfolio_side_in_this_process():
     ws, _ = load("jeandel-rao")
     n = aperiodic.DIRECT_SIDE + 4  # the portfolio's side: "phase" still solves it here, on one process
-    certs, largest = square_scan(ws, n, RunOptions(seed=1, workers=1))
+    certs, largest = square_scan(ws, n, RunOptions(seed=1, workers=2), search="phase")
     assert largest == n and [c.board for c in certs] == [f"square {n}x{n}"]
     assert _square_witness_holds(ws, n, certs[0])
 
@@ -86,14 +86,14 @@ def test_the_race_tiles_a_jeandel_rao_square_on_two_processes():
 
 def test_the_phase_search_gives_the_same_witness_for_a_seed_and_for_any_seed():
     ws, _ = load("jeandel-rao")
-    runs = [square_scan(ws, 24, RunOptions(seed=seed))[0][-1].tiling for seed in (1, 1, 7)]
+    runs = [square_scan(ws, 24, RunOptions(seed=seed), search="phase")[0][-1].tiling for seed in (1, 1, 7)]
     assert np.array_equal(runs[0], runs[1]) and np.array_equal(runs[0], runs[2])
 
 
 @pytest.mark.slow
 def test_the_phase_search_refutes_a_square_only_with_a_checked_proof(tmp_path):
     ws, _ = load("finite-jv7")
-    certs, largest = square_scan(ws, 20, RunOptions(seed=1), proof_dir=tmp_path)
+    certs, largest = square_scan(ws, 20, RunOptions(seed=1), proof_dir=tmp_path, search="phase")
     refuted = [c for c in certs if c.status == "refuted"]
     assert largest is not None and largest < 20 and refuted[-1].board == f"square {largest + 1}x{largest + 1}"
     for c in refuted:

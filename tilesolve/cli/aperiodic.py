@@ -55,7 +55,7 @@ def aperiodic() -> None:
                    "refutations are kept in FILE.proofs/. A later run uses a cached verdict only once re-checked (a "
                    "witness by the verifier, a refutation's proof against the re-derived CNF); others are decided "
                    "again [default: REPORT.cache.jsonl next to -o].")
-@click.option("--square-search", type=click.Choice(["phase", "portfolio", "race"]), default="phase",
+@click.option("--square-search", type=click.Choice(["phase", "portfolio", "race"]), default="race",
               show_default=True,
               help="How squares are searched. phase: the full formula in one process, CaDiCaL's first value of "
                    "every tile false and its saved phases (the seed changes nothing); portfolio: squares above 40 "

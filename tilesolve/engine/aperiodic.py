@@ -11,7 +11,7 @@ Squares (:func:`square_scan`)
     ``n <= N`` is found by bisection: ``N`` first (a witness ends the scan), then halving
     between a tiled and a refuted size; the scan ends with a witness at ``n`` and a checked
     refutation at ``n + 1``, which proves that the set tiles no plane (Extension Theorem).
-    Each square is the full formula, solved by default (search ``"phase"``) in one process
+    Each square is the full formula, solved (search ``"phase"``) in one process
     with CaDiCaL's initial phase "no tile here" and the phases it saves
     (:data:`WITNESS_OPTIONS`), not with random phases drawn from the seed: CaDiCaL holds such
     phases above the ones it saves, and Jeandel-Rao's 100x100 square took 4-34 s CPU by seed
@@ -22,7 +22,10 @@ Squares (:func:`square_scan`)
     *guided* restricted formula in which only the pairs of neighbouring tiles that occur in the
     interior of a smaller tiling (:data:`GUIDE_SIDE`) are allowed, both with the seed's random
     phases; the first witness wins, and a restricted "unsat" proves nothing, so only the full
-    formula refutes. Either way a witness is verified and a refutation's proof checked.
+    formula refutes. The default, ``"race"``, is that portfolio with its full formula searched as
+    ``"phase"`` does: the phase search's time jumps with the size (JR 90: 11 s CPU, 100: 1.3 s)
+    and the guided run often beats it. Every way a witness is verified and a refutation's proof
+    checked.
 
 Periods (:func:`sweep`)
     One SAT run per :class:`~tilesolve.model.aperiodic.Lattice`, on local worker processes
@@ -98,10 +101,12 @@ SEARCH_OPTIONS = {"elim": 0, "subsume": 0, "probe": 0, "vivify": 0}
 #: are drawn from the seed, which CaDiCaL would hold above them). Inprocessing stays on: it costs
 #: little here (JR 100x100: 549 conflicts either way, 1.5 s CPU with it, 1.8 s without).
 WITNESS_OPTIONS = {"phase": 0}
-#: How :func:`square_scan` searches: ``"phase"`` (the default: the full formula with
-#: :data:`WITNESS_OPTIONS`, one process) or ``"portfolio"`` (the route before it: squares above
+#: How :func:`square_scan` searches: ``"phase"`` (the full formula with
+#: :data:`WITNESS_OPTIONS`, one process), ``"portfolio"`` (the route before it: squares above
 #: :data:`DIRECT_SIDE` as the full formula and a guided one on two processes, seeded random phases)
-#: or ``"race"`` (that portfolio with the full formula searched as ``"phase"`` does).
+#: or ``"race"`` (the default: that portfolio with the full formula searched as ``"phase"`` does;
+#: JR 90-120 squares in 4.1-12.3 s wall, 2.8-15.1 s CPU, where ``"phase"`` alone took 1.1-15.3 s
+#: CPU, fast at 100 and slow at 90, 110 and 120).
 SQUARE_SEARCHES = ("phase", "portfolio", "race")
 #: The SAT solver (CaDiCaL logs DRAT proofs).
 DEFAULT_SOLVER = "cadical153"
@@ -300,7 +305,7 @@ def _square_task(tiles: list, n_colors: int, n: int, deadline: Deadline, solver:
 
 
 def square_scan(tileset: WangTileSet, max_n: int, run: RunOptions, *, proof_dir: str | os.PathLike | None = None,
-                search: str = "phase") -> tuple[list[Certificate], int | None]:
+                search: str = "race") -> tuple[list[Certificate], int | None]:
     """The largest ``n <= max_n`` for which ``tileset`` tiles an ``n x n`` square.
 
     ``search`` (:data:`SQUARE_SEARCHES`): ``"phase"`` decides every square in this process with

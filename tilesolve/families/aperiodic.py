@@ -14,8 +14,8 @@ literature.
 Routes
 ------
 ``sat``
-    :mod:`tilesolve.engine.aperiodic`: squares by bisection (CaDiCaL's initial phase false
-    by default; ``square_search`` "portfolio": a guided search for large witnesses), periods as a parallel sweep (local processes or a Dask cluster), resumable
+    :mod:`tilesolve.engine.aperiodic`: squares by bisection (the full formula with CaDiCaL's
+    initial phase false, raced against a guided search for large witnesses), periods as a parallel sweep (local processes or a Dask cluster), resumable
     through a cache file (``options={"cache": PATH, "proof_dir": DIR}``) whose lines are used
     only once re-checked: a witness by the verifier, a refutation by its kept proof against
     the CNF re-derived from the tile set and board.
@@ -104,7 +104,7 @@ def sat(problem: AperiodicProblem, run: RunOptions) -> Solution:
     parallel; ``run.options``: ``proof_dir`` (CNF + DRAT of every refutation), ``cache`` (a
     results file: decided lattices are read from it and added to it), ``every_board`` (decide
     every lattice, not only up to the first tiled torus), ``square_search`` (how squares are
-    searched: :data:`tilesolve.engine.aperiodic.SQUARE_SEARCHES`, default ``"phase"``)."""
+    searched: :data:`tilesolve.engine.aperiodic.SQUARE_SEARCHES`, default ``"race"``)."""
     from tilesolve.engine.aperiodic import square_scan, sweep
 
     proof_dir = run.option("proof_dir")
@@ -112,7 +112,7 @@ def sat(problem: AperiodicProblem, run: RunOptions) -> Solution:
     if problem.max_square:
         try:
             squares, largest = square_scan(problem.tileset, problem.max_square, run, proof_dir=proof_dir,
-                                           search=run.option("square_search", "phase"))
+                                           search=run.option("square_search", "race"))
         except KeyboardInterrupt:
             return Solution(Status.UNKNOWN, None, "sat", None, run.seed, run.deadline.elapsed(),
                             reason="interrupted (Ctrl-C) while scanning squares")
