@@ -16,7 +16,7 @@ Squares (:func:`square_scan`)
     (:data:`WITNESS_OPTIONS`), not with random phases drawn from the seed: CaDiCaL holds such
     phases above the ones it saves, and Jeandel-Rao's 100x100 square took 4-34 s CPU by seed
     with them (6k-62k conflicts), 1.3-1.8 s and 549 conflicts without; its 60 to 120 squares
-    take 0.7-12.5 s CPU, 140x140 and 200x200 were not tiled within 160 s CPU
+    take 0.7-12.5 s CPU, 140x140 194 s, and 200x200 was not tiled in 450 s CPU
     (benchmarks/bench_aperiodic_sat.py). The search before it, ``"portfolio"``: squares above
     :data:`DIRECT_SIDE` as a portfolio of two processes (both cores), the full formula and a
     *guided* restricted formula in which only the pairs of neighbouring tiles that occur in the
