@@ -151,9 +151,8 @@ def lattice_tiling(col, rows, cols, shear, max_nodes, out):
         queued[a] = True
 
 
-#: Cells of lattices searched from which the compiled kernel pays: a plain search of a
-#: 35-cell lattice takes about a tenth of a second, importing numba and loading the cached
-#: kernel 1-3 s on the loaded 2-core machine.
+#: Cells of lattices searched from which the compiled kernel pays: below it, a plain search
+#: costs less than importing numba and loading the cached kernel.
 THRESHOLD = 2_000
 
 KERNELS = Kernels(globals(), THRESHOLD)

@@ -12,9 +12,9 @@ tiled.
 A tile set whose period is long in both directions may still have a lattice of small index:
 ``periodic-10-35`` tiles the 35 x 35 torus and no smaller rectangle, but its rows repeat with
 a shift, so one row of 35 tiles is a whole period (the sheared torus 35 x 1, shear 8, index
-35). The transducer route reaches its 35 x 35 torus at ``k = 35`` through ``T_15``'s 2.5 million
-transitions (51 s CPU, 2.2 GB), and the SAT sweep of the tori up to 35 x 35 found it in none of
-the times tried; this search tries the 981 lattices of index at most 35 in under a second.
+35). The transducer route reaches its 35 x 35 torus at ``k = 35`` only through ``T_15``'s 2.5
+million transitions, and the SAT sweep of the tori up to 35 x 35 found it in none of the times
+tried; this search tries the 981 lattices of index at most 35 (benchmarks/bench_aperiodic_lattice.py).
 
 The search only finds witnesses. A lattice left at the budget is not known to be untileable,
 and one that the search exhausts is not reported as refuted either: refutations come from the
@@ -50,8 +50,8 @@ __all__ = ["LatticeSearch", "lattices_by_index", "search", "rectangle", "NODE_BU
 
 #: Tiles the search of one lattice may fix before it leaves the lattice. The lattices that the
 #: built-in periodic sets tile are found after 2-21 fixed tiles, 114 for periodic-10-127's; some
-#: untileable ones of index above 60 need tens of thousands (periodic-9-73: 21 s for its 4,385
-#: lattices with 100,000, 3.9 s with 200, the same witness).
+#: untileable ones of index above 60 need tens of thousands, so a larger budget costs far more
+#: time on them and, on the built-in sets, finds no other witness.
 NODE_BUDGET = 256
 
 

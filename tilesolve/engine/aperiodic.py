@@ -14,18 +14,16 @@ Squares (:func:`square_scan`)
     Each square is the full formula, solved (search ``"phase"``) in one process
     with CaDiCaL's initial phase "no tile here" and the phases it saves
     (:data:`WITNESS_OPTIONS`), not with random phases drawn from the seed: CaDiCaL holds such
-    phases above the ones it saves, and Jeandel-Rao's 100x100 square took 4-34 s CPU by seed
-    with them (6k-62k conflicts), 1.3-1.8 s and 549 conflicts without; its 60 to 120 squares
-    take 0.7-12.5 s CPU, 140x140 194 s, and 200x200 was not tiled in 450 s CPU
-    (benchmarks/bench_aperiodic_sat.py). The search before it, ``"portfolio"``: squares above
-    :data:`DIRECT_SIDE` as a portfolio of two processes (both cores), the full formula and a
-    *guided* restricted formula in which only the pairs of neighbouring tiles that occur in the
-    interior of a smaller tiling (:data:`GUIDE_SIDE`) are allowed, both with the seed's random
-    phases; the first witness wins, and a restricted "unsat" proves nothing, so only the full
-    formula refutes. The default, ``"race"``, is that portfolio with its full formula searched as
-    ``"phase"`` does: the phase search's time jumps with the size (JR 90: 11 s CPU, 100: 1.3 s)
-    and the guided run often beats it. Every way a witness is verified and a refutation's proof
-    checked.
+    phases above the ones it saves, which made Jeandel-Rao's squares heavy-tailed over seeds
+    (benchmarks/bench_aperiodic_sat.py measures both). The search before it, ``"portfolio"``:
+    squares above :data:`DIRECT_SIDE` as a portfolio of two processes (both cores), the full
+    formula and a *guided* restricted formula in which only the pairs of neighbouring tiles
+    that occur in the interior of a smaller tiling (:data:`GUIDE_SIDE`) are allowed, both with
+    the seed's random phases; the first witness wins, and a restricted "unsat" proves nothing,
+    so only the full formula refutes. The default, ``"race"``, is that portfolio with its full
+    formula searched as ``"phase"`` does: the phase search's time jumps with the size, and the
+    guided run often beats it where it is slow. Every way a witness is verified and a
+    refutation's proof checked.
 
 Periods (:func:`sweep`)
     One SAT run per :class:`~tilesolve.model.aperiodic.Lattice`, on local worker processes
@@ -98,15 +96,14 @@ CYLINDER_LAPS = 6
 SEARCH_OPTIONS = {"elim": 0, "subsume": 0, "probe": 0, "vivify": 0}
 #: CaDiCaL's settings for a square's search ``"phase"``: every variable's first value is false
 #: ("not this tile here"), and the solver's saved phases steer it from then on (no random phases
-#: are drawn from the seed, which CaDiCaL would hold above them). Inprocessing stays on: it costs
-#: little here (JR 100x100: 549 conflicts either way, 1.5 s CPU with it, 1.8 s without).
+#: are drawn from the seed, which CaDiCaL would hold above them). Inprocessing stays on: on
+#: Jeandel-Rao squares it changes the conflicts little.
 WITNESS_OPTIONS = {"phase": 0}
 #: How :func:`square_scan` searches: ``"phase"`` (the full formula with
 #: :data:`WITNESS_OPTIONS`, one process), ``"portfolio"`` (the route before it: squares above
 #: :data:`DIRECT_SIDE` as the full formula and a guided one on two processes, seeded random phases)
-#: or ``"race"`` (the default: that portfolio with the full formula searched as ``"phase"`` does;
-#: JR 90-120 squares in 4.1-12.3 s wall, 2.8-15.1 s CPU, where ``"phase"`` alone took 1.1-15.3 s
-#: CPU, fast at 100 and slow at 90, 110 and 120).
+#: or ``"race"`` (the default: that portfolio with the full formula searched as ``"phase"`` does,
+#: which covers the sizes where ``"phase"`` alone is slow).
 SQUARE_SEARCHES = ("phase", "portfolio", "race")
 #: The SAT solver (CaDiCaL logs DRAT proofs).
 DEFAULT_SOLVER = "cadical153"
