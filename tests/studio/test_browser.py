@@ -449,7 +449,11 @@ def test_fields_that_do_not_apply_are_hidden(page):
 
 def drag_handle(page, index: int, dx: float, dy: float, *, release: bool = True) -> None:
     """Drag the ``index``-th point of the edge editor by ``(dx, dy)`` CSS px."""
-    box = page.locator("#edge-editor circle.handle").nth(index).bounding_box()
+    handle = page.locator("#edge-editor circle.handle").nth(index)
+    box = None
+    while box is None:  # the editor is redrawn when a re-solve ends: wait for the handle to be back
+        handle.wait_for(state="visible")
+        box = handle.bounding_box()
     x, y = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
     page.mouse.move(x, y)
     page.mouse.down()

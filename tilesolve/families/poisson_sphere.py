@@ -33,6 +33,7 @@ from tilesolve.family import Codec, Demo, Family, RunOptions, register
 from tilesolve.family import solve as _solve
 from tilesolve.io.poisson_sphere_json import TILES_FORMAT, VERSIONS, WINDOW_FORMAT
 from tilesolve.model.poisson_sphere import (
+    Box,
     PoissonSphereProblem,
     PoissonSphereTilesProblem,
     PoissonSphereTileSet,
@@ -124,6 +125,28 @@ def _read_window(doc: dict, source: str):
     return window_from_dict(doc, source)
 
 
+def _draw(problem: PoissonSphereProblem, sol: Solution, path, fmt: str, *, title: str | None = None,
+          **_ignored) -> None:
+    """The points of a box's bottom slab, one distance thick, seen along z (a thicker slab's
+    projected points would cover the picture); a set is drawn as the 6 x 6 x 1 box at the origin,
+    seed 0."""
+    from tilesolve.io.poisson_plots import write_points_picture
+    from tilesolve.model.window import Window
+
+    answer = sol.tiling
+    if isinstance(answer, PoissonSphereTileSet):
+        from tilesolve.constructive.poisson_sphere import window_points
+
+        answer = window_points(answer, Box(0, 0, 0, 6, 6, 1), seed=0)
+    if not isinstance(answer, PoissonSphereWindow):
+        raise InvalidProblem("nothing drawn: the solution holds no Poisson sphere points")
+    b, d = answer.box, answer.distance
+    slab = answer.local[answer.local[:, 2] < d]
+    caption = title or (f"{len(slab):,} points of the box {b.width}x{b.height}x{b.depth} at ({b.x0}, {b.y0}, "
+                        f"{b.z0}) within {d:.3g} of its floor, seen along z")
+    write_points_picture(path, slab[:, :2], Window(b.x0, b.y0, b.width, b.height), d, caption, fmt)
+
+
 FAMILY = register(Family(
     name="poisson-sphere",
     title="corner-based Poisson sphere tiles: build a 3-D set, sample any box of space (class notes §4.4)",
@@ -134,6 +157,7 @@ FAMILY = register(Family(
     codecs=(Codec(TILES_FORMAT, VERSIONS, _read_tiles, _write), Codec(WINDOW_FORMAT, VERSIONS, _read_window)),
     demos=(Demo("poisson-spheres", "corner-based Poisson sphere tiles: C = 1, N = 100, rho = 0.6 (§4.4)",
                 lambda: PoissonSphereTilesProblem(1, 100, 0.6), method="dart"),),
+    draw=_draw,
     commands=("tilesolve.cli.sample:sample",),
     route_help={
         "dart": "build the C + 3C^2 + 3C^4 + C^8 corner, edge, face and interior tiles by 3-D relaxation dart "
