@@ -94,3 +94,21 @@ def test_plain_dart_throwing3_is_a_poisson_sphere_distribution():
     pts = dart_throwing3(300, 0.15, seed=2)
     assert point_violations3(pts, 0.15, (1, 1, 1)) == []
     assert len(pts) > 100
+
+
+def test_plain_and_compiled_kernels_throw_the_same_darts():
+    from tilesolve.constructive import _poisson_sphere_kernels as kern
+
+    fixed = np.array([[0.5, 0.5, 0.5], [0.2, 0.8, 0.3]])
+    allow = np.array([[0.0, 1.0, 0.0, 1.0, 0.0, 0.6], [0.0, 0.4, 0.6, 1.0, 0.6, 1.0]])
+    forbid = np.array([[0.4, 0.6, 0.4, 0.6, 0.4, 0.6]])
+    outs = []
+    for ns in (kern.KERNELS.plain(), kern.KERNELS.compiled()):
+        out = np.empty((12, 3))
+        n, r = ns.dart_fill3(fixed, allow, forbid, 12, 0.3, 0.1, 0.9, 50, 400, False, 7, out)
+        outs.append((n, r, out[:n].copy()))
+    assert outs[0][0] == outs[1][0] > 0 and outs[0][1] == outs[1][1]
+    assert np.array_equal(outs[0][2], outs[1][2])
+    pts = np.vstack([fixed, outs[0][2]])
+    gaps = np.linalg.norm(pts[:, None] - pts[None], axis=2)[np.triu_indices(len(pts), 1)]
+    assert gaps.min() >= outs[0][1] - 1e-12
