@@ -55,7 +55,7 @@ from tilesolve.model.solution import Solution, Status
 from tilesolve.model.window import Window
 
 __all__ = ["TILES_FORMAT", "WINDOW_FORMAT", "VERSIONS", "tiles_to_dict", "tiles_from_dict", "window_to_dict",
-           "window_from_dict", "read_problem", "read_seed", "read_points", "dump", "write_points", "check_point_output",
+           "window_from_dict", "read_problem", "read_seed", "read_points", "built_set", "dump", "write_points", "check_point_output",
            "POINT_FORMATS", "FLOAT_RANGE"]
 
 TILES_FORMAT = "tilesolve/poisson-tiles"
@@ -138,14 +138,19 @@ def tiles_from_dict(doc: dict, source: str = "<document>") -> tuple[PoissonTiles
         if not isinstance(tiles[kind], list) or len(tiles[kind]) != want[kind]:
             raise InvalidProblem(f"{source}: a set over {c} colours has {want[kind]} {kind} tiles")
         arrays[kind] = [read_points(t, f"tiles.{kind}[{i}]", source, 4 * n + 16) for i, t in enumerate(tiles[kind])]
+    return problem, built_set(doc, source, lambda seed, stats: PoissonTileSet(problem, arrays, seed=seed, stats=stats))
+
+
+def built_set(doc: dict, source: str, make) -> Solution:
+    """The solution of a built tile set's document (2-D or 3-D): its ``stats``, seed and method
+    read from ``doc``, the set made by ``make(seed, stats)``."""
     stats = doc.get("stats", {})
     if not isinstance(stats, dict):
         raise InvalidProblem(f"{source}: 'stats' must be an object")
     seed = read_seed(doc, source)
-    ts = PoissonTileSet(problem, arrays, seed=seed, stats=dict(stats))
     method = doc.get("method", "dart")
-    return problem, Solution(Status.SAT, ts, method=method if isinstance(method, str) else "dart", seed=seed,
-                             stats=dict(stats))
+    return Solution(Status.SAT, make(seed, dict(stats)), method=method if isinstance(method, str) else "dart",
+                    seed=seed, stats=dict(stats))
 
 
 def window_to_dict(problem: PoissonWindowProblem, solution: Solution) -> dict:

@@ -40,7 +40,7 @@ import numpy as np
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.atomic import write_bytes_atomic, write_text_atomic
 from tilesolve.io.jsonio import check_document
-from tilesolve.io.poisson_json import FLOAT_RANGE, POINT_FORMATS, read_points, read_seed
+from tilesolve.io.poisson_json import FLOAT_RANGE, POINT_FORMATS, built_set, read_points, read_seed
 from tilesolve.model.poisson_sphere import (
     KINDS,
     MAX_WINDOW_POINTS,
@@ -105,14 +105,8 @@ def tiles_from_dict(doc: dict, source: str = "<document>") -> tuple[PoissonSpher
             raise InvalidProblem(f"{source}: a set over {problem.colors} colours has {n} {kind} tiles")
         arrays[kind] = [read_points(t, f"tiles.{kind}[{i}]", source, 4 * problem.points + 16, 3)
                         for i, t in enumerate(tiles[kind])]
-    stats = doc.get("stats", {})
-    if not isinstance(stats, dict):
-        raise InvalidProblem(f"{source}: 'stats' must be an object")
-    seed = read_seed(doc, source)
-    ts = PoissonSphereTileSet(problem, arrays, seed=seed, stats=dict(stats))
-    method = doc.get("method", "dart")
-    return problem, Solution(Status.SAT, ts, method=method if isinstance(method, str) else "dart", seed=seed,
-                             stats=dict(stats))
+    return problem, built_set(doc, source,
+                              lambda seed, stats: PoissonSphereTileSet(problem, arrays, seed=seed, stats=stats))
 
 
 def window_to_dict(problem: PoissonSphereWindowProblem, solution: Solution) -> dict:
