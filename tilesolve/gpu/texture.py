@@ -56,7 +56,7 @@ from tilesolve.errors import InvalidProblem
 from tilesolve.gpu.context import gpu_context, max_render_size, release
 from tilesolve.gpu.picture import assemble_bands, pass_layout
 
-__all__ = ["MAX_COLORS", "MAX_ATLAS", "Atlas", "check_atlas", "corner_packing", "synthesize_atlas", "graph_cut",
+__all__ = ["MAX_COLORS", "MAX_ATLAS", "HASH_GLSL", "hash_tables", "row_table", "Atlas", "check_atlas", "corner_packing", "synthesize_atlas", "graph_cut",
            "read_example", "example_patches", "diamond_mask", "PassRenderer", "TextureMapper"]
 
 #: Largest ``C`` of an atlas (``C**4 = 4096`` tiles).
@@ -175,6 +175,43 @@ void main() {
     f_colour = lookup(texelFetch(u_places, t - u_first, 0).xy, p - t * u_tile_px, u_tile_px);
 }
 """
+
+
+# ------------------------------------------------------------------------------------ hash tables
+def hash_tables(colors: int, seed, hash: str = "long"):
+    """What :data:`HASH_GLSL` reads of the lattice hash of ``colors`` colours (§3.4).
+
+    Returns
+    -------
+    (tables, perm, red)
+        ``tables``: eight int64 permutation tables (unused slots hold a table of size 1, always
+        0, so the shader sums eight fetches); ``perm``: ``(8, 2 max N_i)`` uint32, each table
+        written twice (``u_perm``); ``red``: uint32 ``(s % N_j) % C`` for every sum ``s`` of
+        table entries (``u_red``).
+    """
+    hsh = make_hash(hash, colors, seed)
+    found = getattr(hsh, "tables", None) or (hsh.table,)
+    if len(found) > 8:
+        raise InvalidProblem("the shader takes at most 8 permutation tables")
+    tables = [np.asarray(t, dtype=np.int64) for t in found] + [np.zeros(1, np.int64)] * (8 - len(found))
+    sizes = [int(t.size) for t in tables]
+    perm = np.zeros((8, 2 * max(sizes)), dtype=np.uint32)
+    for i, t in enumerate(tables):
+        perm[i, :2 * t.size] = np.concatenate([t, t])
+    red = (np.arange(sum(sizes) + 1) % int(hsh.range) % colors).astype(np.uint32)
+    return tables, perm, red
+
+
+def row_table(tables, base: int, count: int, x_axis: bool) -> np.ndarray:
+    """``(2, count, 4)`` uint32 row tables of the lattice columns (``x_axis``: ``P_i[(base + k) % N_i]``,
+    ``u_px``) or rows (``(base + k) % N_i``, ``u_ym``) ``base .. base + count - 1``, tables 0-3 in
+    row 0 and 4-7 in row 1; ``base`` anywhere on the 63-bit lattice (Python integers)."""
+    k = np.arange(count, dtype=np.int64)
+    out = np.empty((2, count, 4), dtype=np.uint32)
+    for i, t in enumerate(tables):
+        res = (base % t.size + k) % t.size
+        out[i // 4, :, i % 4] = t[res] if x_axis else res
+    return out
 
 
 # ------------------------------------------------------------------------------------ atlas
@@ -611,18 +648,8 @@ class TextureMapper(PassRenderer):
         self.x0, self.y0, _, _ = check_window(x0, y0, 1, 1)
         self.tile_px = check_int(tile_px if tile_px is not None else (atlas.tile if atlas else 1), "tile size", 1)
         self.two_pass = bool(two_pass)
-        hsh = make_hash(hash, self.colors, seed)
-        tables = getattr(hsh, "tables", None) or (hsh.table,)
-        if len(tables) > 8:
-            raise InvalidProblem("the shader takes at most 8 permutation tables")
-        # Unused slots hold a table of size 1 (always 0), so the shader sums eight fetches.
-        self.tables = [np.asarray(t, dtype=np.int64) for t in tables] + [np.zeros(1, np.int64)] * (8 - len(tables))
+        self.tables, perm, red = hash_tables(self.colors, seed, hash)
         self.sizes = [int(t.size) for t in self.tables]
-        rng = int(hsh.range)
-        perm = np.zeros((8, 2 * max(self.sizes)), dtype=np.uint32)
-        for i, t in enumerate(self.tables):
-            perm[i, :2 * t.size] = np.concatenate([t, t])
-        red = (np.arange(sum(self.sizes) + 1) % rng % self.colors).astype(np.uint32)
         self._setup()
         self._perm = self._int_texture(perm, 1)
         self._red = self._int_texture(red[None, :], 1)
@@ -647,12 +674,7 @@ class TextureMapper(PassRenderer):
                     tex.release()
                 self._rows.clear()
             base = (self.x0 if x_axis else self.y0) + first
-            k = np.arange(count, dtype=np.int64)
-            out = np.empty((2, count, 4), dtype=np.uint32)
-            for i, t in enumerate(self.tables):
-                res = (base % t.size + k) % t.size
-                out[i // 4, :, i % 4] = t[res] if x_axis else res
-            self._rows[key] = self._int_texture(out, 4)
+            self._rows[key] = self._int_texture(row_table(self.tables, base, count, x_axis), 4)
         return self._rows[key]
 
     def _program(self, kind: str):
