@@ -224,23 +224,31 @@ def spectrum(ctx, tileset, size, runs, seed, svg, png) -> None:
               help="The object drawn in every Poisson disk (transparent pixels show the background); "
                    "default: shaded disks coloured by the point's id.")
 @opt.seed_opt
+@click.option("--gpu", is_flag=True,
+              help="Evaluate the function in a fragment shader (OpenGL 4.5 through EGL: the gpu extra; Mesa's "
+                   "llvmpipe without a GPU): the same PNG, byte for byte.")
 @click.option("--png", type=OutputFile("png", allow_dash=False), required=True, metavar="T.png",
               help="Write the texture here.")
 @click.pass_context
-def texture(ctx, tileset, region, px, image, seed, png) -> None:
+def texture(ctx, tileset, region, px, image, seed, gpu, png) -> None:
     """Scatter objects over a texture with the procedural object distribution function (class
     notes §6.6.2): each pixel is evaluated on its own (random access through the direct corner
     tiling), finds its closest point of the tiled Poisson disk distribution, and draws the
     object of that point's disk in the disk's own coordinates, or the background. Disks never
-    overlap, so neither do the objects.
+    overlap, so neither do the objects. --gpu evaluates the pixels in a fragment shader, each
+    one equal to the CPU's.
 
     \b
     Examples:
       tilesolve sample poisson-tiles build -C 2 -N 16 --rho 0.75 --seed 1 -o set.json
       tilesolve sample poisson-tiles texture set.json --region 0,0,6x4 --px 48 --seed 2 --png texture.png
       tilesolve sample poisson-tiles texture set.json --region 0,0,3x2 --px 64 --image texture.png --png again.png
+      tilesolve sample poisson-tiles texture set.json --region 1099511627776,-5,6x4 --px 48 --seed 2 --gpu --png far.png
     """
-    from tilesolve.families.poisson import objects
+    if gpu:
+        from tilesolve.gpu.objects import objects
+    else:
+        from tilesolve.families.poisson import objects
     from tilesolve.io.poisson_plots import MAX_TEXTURE_PIXELS, write_texture_png
     from tilesolve.model.window import parse_region
 
