@@ -63,8 +63,9 @@ def check_run(fam: family.Family, method: Any, time_limit: Any) -> tuple[str, fl
 
 
 def command_line(fam: family.Family, values: Mapping, method: str, seed: int, time_limit: float | None = None) -> str:
-    """The shell line that reproduces a result: the files the command reads, then ``tilesolve``
-    with the form's options, method, time limit (where the command takes one,
+    """The shell line that reproduces a result: the files the command reads (written by
+    ``printf``, or by the ``tilesolve`` command a file's entry names as a list of words), then
+    ``tilesolve`` with the form's options, method, time limit (where the command takes one,
     :attr:`~tilesolve.family.Form.time_limit`), seed and ``-o solution.json``."""
     words, files = fam.form.command(values)
     words = ["tilesolve", *words]
@@ -73,7 +74,8 @@ def command_line(fam: family.Family, values: Mapping, method: str, seed: int, ti
     if time_limit is not None and fam.form.time_limit:
         words += ["--time-limit", f"{time_limit:g}"]
     words += ["--seed", str(seed), "-o", "solution.json"]
-    parts = [f"printf %s {shlex.quote(text)} > {shlex.quote(name)}" for name, text in files.items()]
+    parts = [f"printf %s {shlex.quote(made)} > {shlex.quote(name)}" if isinstance(made, str)
+             else shlex.join(["tilesolve", *made]) for name, made in files.items()]
     return " && ".join(parts + [shlex.join(words)])
 
 

@@ -800,6 +800,7 @@ const PRESETS = [
   { label: "Penrose rhombs", f: "substitution", v: { kind: "p3", seed: 1 } },
   { label: "Pentomino tiling", f: "shapes", v: { seed: 1 } },
   { label: "Isohedral IH41", f: "isohedral", v: { seed: 1 } },
+  { label: "Poisson disk tiles C = 2", f: "poisson", v: { seed: 1 } },
 ];
 
 function buildGallery() {
