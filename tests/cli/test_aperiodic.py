@@ -144,7 +144,7 @@ def test_check_refuses_a_tile_set_given_twice_or_misdescribed(tmp_path, args, ms
     assert msg in err and not (tmp_path / "r.json").exists(), err
 
 
-@pytest.mark.parametrize("search", ["phase", "portfolio", "race"])
+@pytest.mark.parametrize("search", ["phase", "portfolio", "race", "markov"])
 def test_check_searches_squares_every_way_and_its_witness_verifies(tmp_path, search):
     p = run("aperiodic", "check", "--builtin", "jeandel-rao", "--max-square", "12", "--square-search", search,
             "--seed", "1", "-o", "r.json", cwd=tmp_path)
@@ -152,6 +152,24 @@ def test_check_searches_squares_every_way_and_its_witness_verifies(tmp_path, sea
     assert json.loads((tmp_path / "r.json").read_text())["largest_square"] == 12
     p = run("verify", "r.json", cwd=tmp_path)
     assert p.returncode == 0 and p.stdout.startswith("ok: r.json is a valid aperiodicity report"), p.stdout
+
+
+@pytest.mark.slow
+def test_check_says_which_run_of_the_markov_race_found_the_witness(tmp_path):
+    p = run("aperiodic", "check", "--builtin", "jeandel-rao", "--max-square", "44", "--square-search", "markov",
+            "--seed", "1", "-o", "r.json", cwd=tmp_path)
+    assert p.returncode == 0, p.stderr
+    doc = json.loads((tmp_path / "r.json").read_text())
+    method = doc["squares"][-1]["method"]
+    assert method in ("sat", "sat markov-phased")
+    assert ("phased by the constructive route's window" in p.stdout) == (method == "sat markov-phased"), p.stdout
+    assert run("verify", "r.json", cwd=tmp_path).returncode == 0
+
+
+def test_check_refuses_the_markov_search_for_a_set_without_a_partition(tmp_path):
+    err = one_line_error(run("aperiodic", "check", "--builtin", "kari-14", "--max-square", "2",
+                             "--square-search", "markov", "-o", "r.json", cwd=tmp_path))
+    assert "Markov partition" in err and not (tmp_path / "r.json").exists(), err
 
 
 def test_check_refuses_an_unknown_square_search(tmp_path):

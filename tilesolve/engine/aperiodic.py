@@ -103,8 +103,10 @@ WITNESS_OPTIONS = {"phase": 0}
 #: :data:`WITNESS_OPTIONS`, one process), ``"portfolio"`` (the route before it: squares above
 #: :data:`DIRECT_SIDE` as the full formula and a guided one on two processes, seeded random phases)
 #: or ``"race"`` (the default: that portfolio with the full formula searched as ``"phase"`` does,
-#: which covers the sizes where ``"phase"`` alone is slow).
-SQUARE_SEARCHES = ("phase", "portfolio", "race")
+#: which covers the sizes where ``"phase"`` alone is slow), or ``"markov"`` (the race with the
+#: guided run replaced by the full formula phased by a window of a known tiling, the constructive
+#: route's for the sets with a Markov partition: :mod:`tilesolve.engine.aperiodic_square`).
+SQUARE_SEARCHES = ("phase", "portfolio", "race", "markov")
 #: The SAT solver (CaDiCaL logs DRAT proofs).
 DEFAULT_SOLVER = "cadical153"
 
@@ -277,32 +279,43 @@ def _guide(grid: np.ndarray, m: int) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _square_task(tiles: list, n_colors: int, n: int, deadline: Deadline, solver: str | None,
-                 proof_dir: str | None, seed0: int, phase: bool, *, seed: int):
+                 proof_dir: str | None, seed0: int, search: str, window=None, *, seed: int):
     """One run of the square portfolio: ``seed`` 0 decides the full formula (with
-    :data:`WITNESS_OPTIONS` when ``phase``, else the seed's random phases), 1 searches the
-    guided one (its guide from a :data:`GUIDE_SIDE` square); returns a Solution."""
+    :data:`WITNESS_OPTIONS` unless ``search`` is ``"portfolio"``, else the seed's random phases),
+    1 searches the guided one (its guide from a :data:`GUIDE_SIDE` square), or with ``search``
+    ``"markov"`` the full formula phased by ``window(n)``
+    (:func:`tilesolve.engine.aperiodic_square.window_phases`); returns a Solution."""
     from tilesolve.engine.certificates import writing_proofs
     from tilesolve.engine.routes import sat_route
 
     tileset = WangTileSet(np.asarray(tiles, dtype=np.int64), n_colors)
     run = RunOptions(seed=seed0, deadline=deadline, solver=solver)  # the run's deadline, in this worker
-    allowed, method = None, "sat"
-    if seed == 1:
+    allowed, method, phases = None, "sat", None
+    if seed == 1 and search == "markov":
+        from tilesolve.engine.aperiodic_square import METHOD
+
+        method = METHOD
+    elif seed == 1:
         g = decide(tileset, f"square {GUIDE_SIDE}x{GUIDE_SIDE}", run)
         if g.status != "tiles":
             return Solution(Status.UNKNOWN, None, "sat guided", solver, seed0, 0.0, reason="no guide")
         allowed, method = _guide(g.tiling, len(tileset)), "sat guided"
     t0 = time.perf_counter()
     enc = board_encoding(tileset, f"square {n}x{n}", allowed=allowed, deadline=run.deadline)
+    if seed == 1 and search == "markov":
+        from tilesolve.engine.aperiodic_square import window_phases
+
+        phases = window_phases(enc, window(n))
     solver = solver or DEFAULT_SOLVER
-    phase = phase and seed == 0
+    phase = search != "portfolio" and allowed is None
     with writing_proofs(proof_dir):
-        return sat_route(enc, run, method=method, solver=solver, t0=t0, seeded_phases=not phase,
+        return sat_route(enc, run, method=method, solver=solver, t0=t0, seeded_phases=not phase, phases=phases,
                          options=_cadical_options(WITNESS_OPTIONS, solver) if phase else None)
 
 
 def square_scan(tileset: WangTileSet, max_n: int, run: RunOptions, *, proof_dir: str | os.PathLike | None = None,
-                search: str = "race") -> tuple[list[Certificate], int | None]:
+                search: str = "race", window: Callable[[int], np.ndarray] | None = None
+                ) -> tuple[list[Certificate], int | None]:
     """The largest ``n <= max_n`` for which ``tileset`` tiles an ``n x n`` square.
 
     ``search`` (:data:`SQUARE_SEARCHES`): ``"phase"`` decides every square in this process with
@@ -311,13 +324,18 @@ def square_scan(tileset: WangTileSet, max_n: int, run: RunOptions, *, proof_dir:
     2), the full formula and the guided one, where the first decisive answer wins (a witness
     from either; a refutation only from the full formula, with its checked proof); ``"race"``
     is that portfolio with its full formula searched as ``"phase"`` does (and ``"phase"`` where
-    the portfolio does not run). Returns the certificates decided (in the order decided) and that ``n`` (``None`` when undecided).
+    the portfolio does not run); ``"markov"`` is the race with the full formula phased by
+    ``window(n)`` (an ``n x n`` tiling known otherwise, e.g. the constructive route's: it
+    pickles, for the worker) in place of the guided run
+    (:mod:`tilesolve.engine.aperiodic_square`; its witnesses' method says which run found them). Returns the certificates decided (in the order decided) and that ``n`` (``None`` when undecided).
     ``run.progress`` shows the squares decided and the bounds known.
     """
     from tilesolve.engine.portfolio import run_portfolio
 
     if search not in SQUARE_SEARCHES:
         raise InvalidProblem(f"unknown square search {search!r}: one of {', '.join(SQUARE_SEARCHES)}")
+    if search == "markov" and window is None:
+        raise InvalidProblem("the square search 'markov' needs a window of a known tiling to steer it")
     certs: list[Certificate] = []
     known_sat, known_unsat = 0, max_n + 1
     proof_dir = None if proof_dir is None else os.fspath(proof_dir)
@@ -332,7 +350,7 @@ def square_scan(tileset: WangTileSet, max_n: int, run: RunOptions, *, proof_dir:
             with writing_proofs(proof_dir):
                 return decide(tileset, name, run, phase_search=search != "portfolio")
         task = functools.partial(_square_task, tileset.tiles.tolist(), int(tileset.n_colors), n, run.deadline,
-                                 run.solver, proof_dir, run.seed, search == "race")
+                                 run.solver, proof_dir, run.seed, search, window)
         sol = run_portfolio(task, [0, 1], workers=2, deadline=run.deadline, progress=run.progress, label=name)
         return _certificate(name, sol, sol.method or "sat")
 

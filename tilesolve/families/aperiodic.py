@@ -76,8 +76,13 @@ def build_report(problem: AperiodicProblem, squares, largest: int | None, period
                         f"proof), so by the Extension Theorem no tiling of the plane exists; the largest tiled "
                         f"square is {largest}x{largest} (verified witness).")
         else:
+            from tilesolve.engine.aperiodic_square import METHOD
+
+            top = next((c for c in squares if c.board == f"square {largest}x{largest}"), None)
+            steered = ", found by the run phased by the constructive route's window" \
+                if top is not None and top.method == METHOD else ""
             said.append(f"The set tiles every square up to {largest}x{largest} (verified witness at "
-                        f"{largest}x{largest}).")
+                        f"{largest}x{largest}{steered}).")
     if problem.max_period and not tiled:
         refuted = sum(c.status == "refuted" for c in periods)
         undecided = len(periods) - refuted
@@ -110,9 +115,15 @@ def sat(problem: AperiodicProblem, run: RunOptions) -> Solution:
     proof_dir = run.option("proof_dir")
     squares, largest = [], None
     if problem.max_square:
+        search = run.option("square_search", "race")
+        window = None
+        if search == "markov":
+            from tilesolve.families.aperiodic_square import steering
+
+            window = steering(problem.tileset, run.seed)
         try:
             squares, largest = square_scan(problem.tileset, problem.max_square, run, proof_dir=proof_dir,
-                                           search=run.option("square_search", "race"))
+                                           search=search, window=window)
         except KeyboardInterrupt:
             return Solution(Status.UNKNOWN, None, "sat", None, run.seed, run.deadline.elapsed(),
                             reason="interrupted (Ctrl-C) while scanning squares")
