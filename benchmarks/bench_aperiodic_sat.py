@@ -19,7 +19,9 @@ Squares (a witness for each n in ``--sizes``, each seed of ``--seeds``)
     full formula, CaDiCaL's initial phase false and its saved phases; the seed changes nothing)
     beside its search ``portfolio`` (the route before: full and guided formulas on two
     processes, the seed's random phases), ``race`` (that portfolio, its full formula searched
-    as ``phase``) and ``plain`` (the one-hot colour encoding, one run),
+    as ``phase``), ``markov`` (the race with the guided run replaced by the full formula phased
+    by the constructive route's window: steered, not unguided; its ``won by`` column says which
+    run found each witness) and ``plain`` (the one-hot colour encoding, one run),
     every run capped at ``--cap`` s; median and max CPU by route, and each route's CPU over
     ``phase``'s on the same seed.
 
@@ -30,6 +32,8 @@ Usage::
     python benchmarks/bench_aperiodic_sat.py                        # tori up to 12, no squares
     python benchmarks/bench_aperiodic_sat.py --max-period 24 --cap 300 --sizes 100 200
     python benchmarks/bench_aperiodic_sat.py --max-period 0 --sizes 100 200 400 --cap 600
+    python benchmarks/bench_aperiodic_sat.py --max-period 0 --sizes 200 400 --cap 150 --seeds 1 \
+        --routes phase race markov plain
 """
 
 from __future__ import annotations
@@ -45,6 +49,7 @@ from tilesolve.deadline import Deadline
 from tilesolve.engine.aperiodic import board_encoding, board_problem, decide, square_scan, sweep
 from tilesolve.engine.certificates import recheck_unsat
 from tilesolve.engine.routes import sat_route
+from tilesolve.families.aperiodic_square import steering
 from tilesolve.io.builtin_tilesets import load
 from tilesolve.model.aperiodic import board_of, leg_colours
 from tilesolve.model.board import Board, BoardProblem
@@ -121,21 +126,26 @@ def tori(ws, max_p: int, workers: int, cap: float, proof_dir: str) -> None:
           f"({time.perf_counter() - t:.1f} s)")
 
 
-def square_run(ws, n: int, seed: int, cap: float, route: str) -> tuple[float, float]:
+def square_run(ws, n: int, seed: int, cap: float, route: str) -> tuple[float, float, str]:
     """One capped witness search for the ``n x n`` square: wall and CPU seconds (wall ``inf``
-    when capped). ``route``: ``plain`` the one-hot colour encoding (seed 1's random phases),
-    else :func:`tilesolve.engine.aperiodic.square_scan` with that search; a witness is
-    checked by the board verifier."""
+    when capped) and the method of the witness. ``route``: ``plain`` the one-hot colour
+    encoding (seed 1's random phases), else :func:`tilesolve.engine.aperiodic.square_scan` with
+    that search (``markov`` steered by the seed's window); a witness is checked by the board
+    verifier."""
     t, c = time.perf_counter(), cpu()
+    method = "-"
     if route == "plain":
         st = plain(ws, Board.rect(n, n), cap)[0]
         ok = st is Status.SAT
     else:
-        certs, largest = square_scan(ws, n, RunOptions(seed=seed, deadline=Deadline(cap)), search=route)
+        window = steering(ws, seed) if route == "markov" else None
+        certs, largest = square_scan(ws, n, RunOptions(seed=seed, deadline=Deadline(cap)), search=route,
+                                     window=window)
         ok = largest == n
         if ok:
             assert not board_violations(BoardProblem(Board.rect(n, n), ws), leg_colours(ws, certs[-1].tiling))
-    return (time.perf_counter() - t if ok else float("inf")), cpu() - c
+            method = certs[-1].method
+    return (time.perf_counter() - t if ok else float("inf")), cpu() - c, method
 
 
 def _cell(xs: list[float], cap: float) -> str:
@@ -149,23 +159,24 @@ def squares(ws, sizes, cap: float, seeds, routes) -> None:
     print(f"\nSquares: a Jeandel-Rao witness for n x n, seeds {list(seeds)}, each run capped at {cap:.0f} s "
           "(CPU: this process and its finished workers)")
     print(f"{'n':>5} {'route':>10} {'wall s by seed':>28} {'cpu s by seed':>28} {'median cpu':>11} {'max cpu':>9} "
-          f"{'max wall':>9} {'cpu / phase':>12} {'max RSS MiB':>12}")
+          f"{'max wall':>9} {'cpu / phase':>12} {'max RSS MiB':>12}  won by")
     for n in sizes:
-        base: list[tuple[float, float]] = []
+        base: list[tuple[float, float, str]] = []
         for route in routes:
             runs = [square_run(ws, n, seed, cap, route) for seed in (seeds if route != "plain" else seeds[:1])]
-            walls, cpus = [w for w, _ in runs], [c for _, c in runs]
+            walls, cpus = [w for w, _, _ in runs], [c for _, c, _ in runs]
             if route == "phase":
                 base = runs
             ratio = "-"
             if base and route != "phase":
-                r = sorted(c / b[1] for (_, c), b in zip(runs, base))
+                r = sorted(c / b[1] for (_, c, _), b in zip(runs, base))
                 capped = any(w == float("inf") for w in walls)
                 ratio = f"{'>' if capped else ''}{r[len(r) // 2]:.1f}x"
             mw = max(walls)
             print(f"{n:>5} {route:>10} {_cell(walls, cap):>28} {_cell(cpus, 1e9):>28} "
                   f"{sorted(cpus)[len(cpus) // 2]:>11.1f} {max(cpus):>9.1f} "
-                  f"{(f'{mw:.1f}' if mw != float('inf') else f'>{cap:.0f}'):>9} {ratio:>12} {rss_mib():>12.0f}",
+                  f"{(f'{mw:.1f}' if mw != float('inf') else f'>{cap:.0f}'):>9} {ratio:>12} {rss_mib():>12.0f}  "
+                  f"{', '.join(m for _, _, m in runs)}",
                   flush=True)
 
 
@@ -177,7 +188,7 @@ def main() -> None:
     ap.add_argument("--cap", type=float, default=120.0, help="seconds for each baseline (and each square)")
     ap.add_argument("--seeds", type=int, nargs="*", default=[1, 2, 3], help="the squares' seeds")
     ap.add_argument("--routes", nargs="*", default=["phase", "portfolio", "plain"],
-                    choices=["phase", "portfolio", "race", "plain"], help="the squares' routes, phase first (the ratios' base)")
+                    choices=["phase", "portfolio", "race", "markov", "plain"], help="the squares' routes, phase first (the ratios' base)")
     args = ap.parse_args()
     ws, _ = load("jeandel-rao")
     if args.max_period:
