@@ -9,13 +9,13 @@ import pytest
 
 from tilesolve.deadline import NO_LIMIT
 from tilesolve.engine.aperiodic import board_problem, sweep
-from tilesolve.engine.aperiodic_bands import _text, band_refutation, covers, refute_band, trim
+from tilesolve.engine.aperiodic_bands import band_refutation, covers, refute_band, trim
 from tilesolve.engine.certificates import recheck_unsat
 from tilesolve.engine.sat import solve_cnf
 from tilesolve.io.builtin_tilesets import load
 from tilesolve.model.board import WangTileSet
 from tilesolve.model.run import RunOptions
-from tilesolve.verify.drat import check_drat
+from tilesolve.verify.drat import check_drat, drat_bytes
 
 
 @pytest.fixture(scope="module")
@@ -84,7 +84,7 @@ def test_trim_keeps_the_used_lemmas_and_a_proof_that_checks():
     r = solve_cnf(f, with_proof=True)
     chk = check_drat(f, r.proof)
     lits, sizes, dels = trim(f, r.proof, chk.used)
-    again = check_drat(f, _text(lits, sizes, dels))
+    again = check_drat(f, drat_bytes(lits, sizes, dels))
     assert again.verified and again.lemmas == int((dels == 0).sum()) <= chk.lemmas
     assert sizes[-1] == 0  # the empty clause ends it
 

@@ -104,7 +104,7 @@ def trim(formula, proof, used: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.n
     f_lits, f_sizes, _ = formula_arrays(formula)
     p_lits, p_sizes, p_del = proof_arrays(proof)
     fkeys, pkeys = _keys(f_lits, f_sizes), _keys(p_lits, p_sizes)
-    live: dict[bytes, list[int]] = {}
+    live: dict[int, list[int]] = {}
     for key in fkeys:
         live.setdefault(key, []).append(-1)  # a formula clause: kept
     is_used = np.zeros(p_sizes.size, bool)
@@ -125,29 +125,22 @@ def trim(formula, proof, used: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.n
     return lits, np.append(p_sizes[steps], 0), np.append(p_del[steps], 0).astype(np.int8)
 
 
-def _keys(lits: np.ndarray, sizes: np.ndarray) -> list[bytes]:
-    """Each clause's literals, sorted, as bytes (the identity of a clause, as a deletion names it)."""
-    out = []
-    at = 0
-    for n in sizes.tolist():
-        out.append(np.sort(lits[at:at + n]).tobytes())
-        at += n
-    return out
+def _keys(lits: np.ndarray, sizes: np.ndarray) -> list[int]:
+    """Each clause's identity as a deletion names it (its literals in any order): a 64-bit hash
+    of its literals. Two clauses that collide can only mismatch a deletion, which the check of
+    the trimmed proof then catches.
 
-
-def _text(lits: np.ndarray, sizes: np.ndarray, dels: np.ndarray) -> bytes:
-    """DRAT text of the steps, one a line (the bytes ``drat_sha256`` hashes).
-
-    >>> _text(np.array([1, -2, 3]), np.array([2, 1, 0]), np.array([0, 1, 0]))
-    b'1 -2 0\\nd 3 0\\n0\\n'
+    >>> k = _keys(np.array([1, -2, -2, 1, 3]), np.array([2, 2, 1]))
+    >>> k[0] == k[1], k[0] == k[2]
+    (True, False)
     """
-    zeros = np.cumsum(sizes) + np.arange(sizes.size)  # where each step's 0 lands
-    words = list(map(str, np.insert(lits, np.cumsum(sizes), 0).tolist()))
-    for z in zeros.tolist():
-        words[z] = "0\n"
-    for first in (zeros[:-1] + 1)[dels[1:] != 0].tolist() + ([0] if dels.size and dels[0] else []):
-        words[first] = "d " + words[first]
-    return " ".join(words).replace("\n ", "\n").encode("ascii")
+    if lits.size == 0:
+        return [0] * sizes.size
+    x = (np.abs(lits) * 2 + (lits < 0)).astype(np.uint64)
+    x = (x * np.uint64(0x9E3779B97F4A7C15)) ^ ((x >> np.uint64(7)) * np.uint64(0xC2B2AE3D27D4EB4F))
+    starts = np.concatenate(([0], np.cumsum(sizes)[:-1]))
+    h = np.add.reduceat(x, np.minimum(starts, x.size - 1))
+    return np.where(sizes > 0, h + sizes.astype(np.uint64), 0).tolist()
 
 
 def refute_band(tileset: WangTileSet, axis: str, length: int, max_width: int, *, solver: str, seed: int | None,
@@ -156,7 +149,7 @@ def refute_band(tileset: WangTileSet, axis: str, length: int, max_width: int, *,
     trimmed proof; ``None`` when every band up to ``max_width`` is tiled, or when the deadline,
     a proof that does not check, or a lemma accepted only by RAT stops it."""
     from tilesolve.engine.sat import solve_cnf
-    from tilesolve.verify.drat import check_drat
+    from tilesolve.verify.drat import check_drat, drat_bytes
 
     for width in range(1, max_width + 1):
         if deadline.expired():
@@ -177,7 +170,7 @@ def refute_band(tileset: WangTileSet, axis: str, length: int, max_width: int, *,
         if not chk.verified or chk.rat_lemmas:
             return None
         lits, sizes, dels = trim(part, proof, chk.used)
-        again = check_drat(part, (_text(lits, sizes, dels)), time_limit=deadline.remaining())
+        again = check_drat(part, (drat_bytes(lits, sizes, dels)), time_limit=deadline.remaining())
         if not again.verified or again.rat_lemmas:
             return None
         stats = {"solver": r.solver, "band_solve_s": round(solve_s, 6), "proof_lines": len(proof),
@@ -207,7 +200,7 @@ def band_refutation(tileset: WangTileSet, name: str, band: BandProof, *, deadlin
     proof are written to each ``(directory, with CNF)`` of ``proof_dirs``."""
     from tilesolve.engine.aperiodic import board_encoding
     from tilesolve.engine.certificates import proof_name, write_proof_files
-    from tilesolve.verify.drat import dimacs_bytes
+    from tilesolve.verify.drat import dimacs_bytes, drat_bytes
 
     t0 = time.perf_counter()
     rows, cols, _ = parse_board_name(name)
@@ -228,7 +221,7 @@ def band_refutation(tileset: WangTileSet, name: str, band: BandProof, *, deadlin
     if want.keys() != got.keys() or any(not np.array_equal(want[k], got[k]) for k in want):
         return None
     lits = np.sign(band.lits) * ren[np.abs(band.lits)]
-    drat = _text(lits, band.sizes, band.dels)
+    drat = drat_bytes(lits, band.sizes, band.dels)
     cnf = dimacs_bytes(enc.hard)
     ev = {"encoding": dict(enc.named), "cnf_sha256": hashlib.sha256(cnf).hexdigest(),
           "drat_sha256": hashlib.sha256(drat).hexdigest(), "clauses": len(enc.hard), "variables": enc.n_vars,

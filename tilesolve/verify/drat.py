@@ -68,7 +68,7 @@ import numpy as np
 from tilesolve.verify import _drat_kernels as K
 
 __all__ = ["DratResult", "check_drat", "parse_drat", "proof_arrays", "dimacs_bytes", "cnf_sha256", "formula_arrays",
-           "read_dimacs",
+           "read_dimacs", "drat_bytes",
            "check_proof_files",
            "COMPILE_FROM", "COLD_COMPILE_FROM", "PROOF_WEIGHT", "ENGINES"]
 
@@ -221,10 +221,24 @@ def dimacs_bytes(formula) -> bytes:
     """
     lits, sizes, _ = formula_arrays(formula)
     n_vars = int(np.abs(lits).max()) if lits.size else 0
-    head = f"p cnf {n_vars} {len(sizes)}\n".encode("ascii")
+    return f"p cnf {n_vars} {len(sizes)}\n".encode("ascii") + _lines_bytes(lits, sizes)
+
+
+def drat_bytes(lits: np.ndarray, sizes: np.ndarray, dels: np.ndarray) -> bytes:
+    """DRAT text of proof steps (as :func:`proof_arrays` gives them), one a line, a deletion's
+    line starting with ``d``: the text :func:`proof_arrays` reads back.
+
+    >>> drat_bytes(np.array([1, -2, 3]), np.array([2, 1, 0]), np.array([0, 1, 0]))
+    b'1 -2 0\\nd 3 0\\n0\\n'
+    """
+    return _lines_bytes(np.asarray(lits, np.int64), np.asarray(sizes, np.int64), np.asarray(dels) != 0)
+
+
+def _lines_bytes(lits: np.ndarray, sizes: np.ndarray, dels: np.ndarray | None = None) -> bytes:
+    """One line per clause, its literals and ``0`` (``d`` first where ``dels``), in ASCII."""
     tok = np.insert(lits, np.cumsum(sizes), 0)  # each clause ends in 0
     if tok.size == 0:
-        return head
+        return b""
     # decimal digits written with numpy: one pass per digit position
     neg = tok < 0
     v = np.abs(tok)
@@ -233,16 +247,21 @@ def dimacs_bytes(formula) -> bytes:
     while x.any():
         nd += x > 0
         x //= 10
+    pre = np.zeros(tok.size, np.int64)  # "d " before a deletion's first token
+    if dels is not None and dels.any():
+        pre[(np.cumsum(sizes + 1) - sizes - 1)[dels]] = 2
     off = np.zeros(tok.size + 1, np.int64)
-    np.cumsum(neg + nd + 1, out=off[1:])
+    np.cumsum(pre + neg + nd + 1, out=off[1:])
     buf = np.empty(int(off[-1]), np.uint8)
-    buf[off[:-1][neg]] = ord("-")
-    first = off[:-1] + neg
+    at = off[:-1][pre > 0]
+    buf[at], buf[at + 1] = ord("d"), ord(" ")
+    first = off[:-1] + pre + neg
+    buf[(first - 1)[neg]] = ord("-")
     for k in range(int(nd.max())):
         m = nd > k
         buf[first[m] + nd[m] - 1 - k] = 48 + (v[m] // 10**k) % 10
     buf[off[1:] - 1] = np.where(tok == 0, ord("\n"), ord(" "))
-    return head + buf.tobytes()
+    return buf.tobytes()
 
 
 def read_dimacs(data: bytes) -> tuple[np.ndarray, np.ndarray]:
