@@ -33,6 +33,7 @@ from typing import Any
 from tilesolve.errors import InvalidProblem, MethodNotApplicable
 from tilesolve.family import Codec, Demo, Family, RunOptions, register
 from tilesolve.family import solve as _solve
+from tilesolve.families.sampling_forms import POISSON_FORM
 from tilesolve.io.poisson_json import TILES_FORMAT, VERSIONS, WINDOW_FORMAT
 from tilesolve.model.poisson import (
     PoissonProblem,
@@ -199,6 +200,7 @@ FAMILY = register(Family(
     draw=_draw,
     demos=DEMOS,
     commands=("tilesolve.cli.sample:sample",),
+    form=POISSON_FORM,
     route_help={
         "dart": "build the C + 2C^2 + C^4 modified-region tiles by relaxation dart throwing (+ Lloyd) (§4.3)",
         "window": "the points of any window, the lattice coloured by the direct or scanline corner tiling",

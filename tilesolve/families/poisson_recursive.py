@@ -33,6 +33,7 @@ from typing import Any
 from tilesolve.errors import InvalidProblem, MethodNotApplicable
 from tilesolve.family import Codec, Demo, Family, RunOptions, register
 from tilesolve.family import solve as _solve
+from tilesolve.families.sampling_forms import RECURSIVE_FORM
 from tilesolve.io.poisson_recursive_json import (
     TILES_FORMAT,
     VERSIONS,
@@ -174,6 +175,7 @@ FAMILY = register(Family(
     draw=_draw,
     demos=DEMOS,
     commands=("tilesolve.cli.sample:sample",),
+    form=RECURSIVE_FORM,
     route_help={
         "build": "corner-based Poisson disk tiles in progressive order, with n x n subdivision rules (Kopf et al.)",
         "window": "the points of any window at a level or a density (uniform, a ramp, an image)",

@@ -31,6 +31,7 @@ from typing import Any
 from tilesolve.errors import InvalidProblem, MethodNotApplicable
 from tilesolve.family import Codec, Demo, Family, RunOptions, register
 from tilesolve.family import solve as _solve
+from tilesolve.families.sampling_forms import SPHERE_FORM
 from tilesolve.io.poisson_sphere_json import TILES_FORMAT, VERSIONS, WINDOW_FORMAT
 from tilesolve.model.poisson_sphere import (
     Box,
@@ -159,6 +160,7 @@ FAMILY = register(Family(
                 lambda: PoissonSphereTilesProblem(1, 100, 0.6), method="dart"),),
     draw=_draw,
     commands=("tilesolve.cli.sample:sample",),
+    form=SPHERE_FORM,
     route_help={
         "dart": "build the C + 3C^2 + 3C^4 + C^8 corner, edge, face and interior tiles by 3-D relaxation dart "
                 "throwing (§4.4.3)",

@@ -86,7 +86,9 @@ class Form:
     command : callable
         ``command(values) -> (words, files)``: the words of the ``tilesolve`` command (after
         ``tilesolve``) that poses the same problem, without seed, method and output options,
-        and the files it reads (``{name: text}``, e.g. painted cells as a text grid).
+        and the files it reads (``{name: text}``, e.g. painted cells as a text grid, or
+        ``{name: words}``: the ``tilesolve`` command that writes the file, e.g. a tile set's
+        ``build`` before the window command that reads it).
     window : callable, optional
         Families with an infinite plane: ``window(values, w) -> (problem, method, options)``,
         the problem of the window ``w`` (a :class:`~tilesolve.model.window.Window`, y growing
