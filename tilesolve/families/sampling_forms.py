@@ -98,22 +98,24 @@ def _set_for_window(problem, values) -> Any:
     return built_set(problem, values["set_seed"])
 
 
-def _window_points(n: float) -> None:
+def _check_points(n: float) -> None:
     if n > WINDOW_BUDGET:
         raise InvalidProblem(f"this window holds about {n:,.0f} points; the studio shows at most "
                              f"{WINDOW_BUDGET:,}: ask for a smaller window")
 
 
-def _form(fields: tuple[Field, ...], set_problem: Callable, window_problem: Callable, set_words: Callable,
-          window_words: Callable) -> Form:
+def _form(fields: tuple[Field, ...], set_problem: Callable, set_words: Callable, window_points: Callable,
+          window_problem: Callable, window_words: Callable) -> Form:
     """A sampling family's form: the set question ``set_problem(values)`` and its build command
-    ``set_words(values)``, the window question ``window_problem(values, tileset)`` and its window
-    command ``window_words(values)`` (it reads :data:`SET_FILE`)."""
+    ``set_words(values)``; the window question, about ``window_points(values)`` points (checked
+    before the set is built), ``window_problem(values, tileset)`` and its window command
+    ``window_words(values)`` (it reads :data:`SET_FILE`)."""
 
     def build(values):
         problem = set_problem(values)
         if values["show"] == "set":
             return problem, {}
+        _check_points(window_points(values))
         return window_problem(values, _set_for_window(problem, values)), {}
 
     def command(values) -> tuple[list[str], dict[str, Any]]:
@@ -139,10 +141,10 @@ def _poisson_set(values) -> PoissonTilesProblem:
     return PoissonTilesProblem(values["colors"], values["points"], values["rho"], values["lloyd"])
 
 
-def _poisson_window(values, tileset) -> PoissonWindowProblem:
-    w = _window(values)
-    _window_points(w.width * w.height * values["points"])
-    return PoissonWindowProblem(tileset, w, tiling=values["tiling"])
+def _cells(values) -> int:
+    """Tiles (cells) of the window's ``size``."""
+    rows, cols = form_size(values["size"])
+    return rows * cols
 
 
 POISSON_FORM = _form(
@@ -161,9 +163,10 @@ POISSON_FORM = _form(
               when=(_WINDOW,)),
     ),
     _poisson_set,
-    _poisson_window,
     lambda v: ["sample", "poisson-tiles", "build", "-C", str(v["colors"]), "-N", str(v["points"]), "--rho",
                str(v["rho"]), "--lloyd", str(v["lloyd"])],
+    lambda v: _cells(v) * v["points"],
+    lambda v, tileset: PoissonWindowProblem(tileset, _window(v), tiling=v["tiling"]),
     lambda v: ["sample", "poisson-tiles", "window", SET_FILE, _region(v), "--tiling", v["tiling"]],
 )
 
@@ -175,7 +178,6 @@ def _sphere_set(values) -> PoissonSphereTilesProblem:
 
 def _sphere_window(values, tileset) -> PoissonSphereWindowProblem:
     w = _window(values)
-    _window_points(w.width * w.height * values["depth"] * values["points"])
     return PoissonSphereWindowProblem(tileset, Box(w.x0, w.y0, values["z0"], w.width, w.height, values["depth"]))
 
 
@@ -195,9 +197,10 @@ SPHERE_FORM = _form(
               when=(_WINDOW,)),
     ),
     _sphere_set,
-    _sphere_window,
     lambda v: ["sample", "poisson-spheres", "build", "-C", str(v["colors"]), "-N", str(v["points"]), "--rho",
                str(v["rho"])],
+    lambda v: _cells(v) * v["depth"] * v["points"],
+    _sphere_window,
     lambda v: ["sample", "poisson-spheres", "window", SET_FILE,
                f"--region={v['x0']},{v['y0']},{v['z0']},{v['size']}x{v['depth']}"],
 )
@@ -209,12 +212,16 @@ def _recursive_set(values) -> RecursiveTilesProblem:
                                  values["lloyd"])
 
 
+def _recursive_points(values) -> float:
+    if values["by"] == "level":
+        return _cells(values) * values["points"] * values["subdivision"] ** (2 * values["level"])
+    return _cells(values) * values["density"]
+
+
 def _recursive_window(values, tileset) -> RecursiveWindowProblem:
     w = _window(values)
     if values["by"] == "level":
-        _window_points(w.width * w.height * values["points"] * values["subdivision"] ** (2 * values["level"]))
         return RecursiveWindowProblem(tileset, w, level=values["level"])
-    _window_points(w.width * w.height * values["density"])
     return RecursiveWindowProblem(tileset, w, density=values["density"], label=f"density {values['density']:g}")
 
 
@@ -242,9 +249,10 @@ RECURSIVE_FORM = _form(
               high=1e9, option="--density", when=_BY_DENSITY),
     ),
     _recursive_set,
-    _recursive_window,
     lambda v: ["sample", "recursive-wang", "build", "-C", str(v["colors"]), "-N", str(v["points"]), "--rho",
                str(v["rho"]), "-n", str(v["subdivision"]), "--lloyd", str(v["lloyd"])],
+    _recursive_points,
+    _recursive_window,
     lambda v: ["sample", "recursive-wang", "window", SET_FILE, _region(v),
                *(["--level", str(v["level"])] if v["by"] == "level" else ["--density", str(v["density"])])],
 )
