@@ -186,3 +186,50 @@ def test_importance_spectrum_prints_the_table_and_draws(tmp_path):
     assert (tmp_path / "s.svg").read_text().count("<polyline") == 6
     for name in ("s.png", "p.png"):
         assert (tmp_path / name).read_bytes()[:4] == b"\x89PNG"
+
+
+# --- window files bind their seed: forgeries `verify` finds (exit 1) or refuses (exit 2) ---
+
+@pytest.fixture(scope="module")
+def window_doc(folder):
+    r = run("sample", "poisson-tiles", "window", "set.json", "--region", "-2,3,3x3", "--seed", "4", "-o", "w2.json",
+            cwd=folder)
+    assert r.returncode == 0, r.stderr
+    v = run("verify", "w2.json", cwd=folder)
+    assert v.returncode == 0 and v.stdout.startswith("ok: "), v.stdout + v.stderr
+    return json.loads((folder / "w2.json").read_text())
+
+
+def _version_1(d):
+    d.pop("tileset")
+    d["version"] = 1
+
+
+@pytest.mark.parametrize("forge, code, words", [
+    (lambda d: d.update(local=d["local"][:-5]), 1, "5 point(s) the direct corner tiling of seed 4 gives are missing"),
+    (lambda d: d["local"][0].__setitem__(0, d["local"][0][0] + 1e-9), 1, "1 point(s) of the file are not among"),
+    (lambda d: d["local"].append([2.999, 2.999]), 1, "1 point(s) of the file are not among"),
+    (lambda d: d.update(seed=5), 1, "seed 5 gives are missing"),
+    (lambda d: d.update(tiling="scanline"), 1, "the scanline corner tiling of seed 4"),
+    (lambda d: d["tileset"]["tiles"]["corner"][0].append([0.0, 0.01]), 1, "the file's tile set: "),
+    (lambda d: d["tileset"]["tiles"]["corner"][0].append([0.9, 0.0]), 1, "the file's tile set: corner tile 0"),
+    (_version_1, 1, "NOT confirmed"),
+    (lambda d: d["tileset"].update(points=32), 2, "'distance' is"),
+    (lambda d: d["tileset"]["tiles"].pop("interior"), 2, "w.json (tileset): 'tiles'"),
+    (lambda d: d.pop("tileset"), 2, "missing field 'tileset'"),
+])
+def test_verify_binds_a_window_to_its_set_and_seed(folder, window_doc, forge, code, words):
+    doc = json.loads(json.dumps(window_doc))
+    forge(doc)
+    (folder / "w.json").write_text(json.dumps(doc))
+    r = run("verify", "w.json", cwd=folder)
+    if code == 2:
+        assert words in one_line_error(r)
+    else:
+        assert r.returncode == 1 and words in r.stdout, r.stdout + r.stderr
+
+
+def test_verify_refuses_a_truncated_window_file(folder, window_doc):
+    text = json.dumps(window_doc)
+    (folder / "cut.json").write_text(text[:len(text) // 2])
+    assert "cut.json" in one_line_error(run("verify", "cut.json", cwd=folder))

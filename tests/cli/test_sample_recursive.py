@@ -107,3 +107,60 @@ def test_bad_input_is_one_line_and_writes_nothing(folder, args):
     before = snapshot(folder)
     one_line_error(run("sample", "recursive-wang", *shlex.split(args), cwd=folder))
     assert snapshot(folder) == before
+
+
+# --- window files bind their seed: forgeries `verify` finds (exit 1) or refuses (exit 2) ---
+
+@pytest.fixture(scope="module")
+def window_doc(folder):
+    r = run("sample", "recursive-wang", "window", "rset.json", "--region", "5,-2,2x1", "--ramp", "16,600", "--seed", "3",
+            "-o", "w2.json", cwd=folder)
+    assert r.returncode == 0, r.stderr
+    v = run("verify", "w2.json", cwd=folder)
+    assert v.returncode == 0 and v.stdout.startswith("ok: "), v.stdout + v.stderr
+    doc = json.loads((folder / "w2.json").read_text())
+    assert doc["version"] == 2 and len(doc["local"]) > 60 and len(doc["density_grid"][0]) == 1024
+    return doc
+
+
+def _version_1(d):
+    for key in ("tileset", "density_grid"):
+        d.pop(key)
+    d["version"] = 1
+
+
+def _swap_rule_colour(d):
+    rule = d["tileset"]["rules"][0]
+    rule[0][1] = 1 - rule[0][1]
+
+
+@pytest.mark.parametrize("forge, code, words", [
+    (lambda d: d.update(local=d["local"][:-50]), 1, "50 point(s) the window of seed 3 gives are missing"),
+    (lambda d: d["local"][-1].__setitem__(1, d["local"][-1][1] + 1e-9), 1, "1 point(s) of the file are not among"),
+    (lambda d: d["local"][-1].__setitem__(3, 0.0), 1, "1 point(s) of the file are not among"),
+    (lambda d: d["local"].append([1.999, 0.999, 1, 0.5]), 1, "1 point(s) of the file are not among"),
+    (lambda d: d.update(seed=4), 1, "the window of seed 4 gives are missing"),
+    (lambda d: d.update(density_grid=[[v / 2 for v in d["density_grid"][0]]]), 1, "of the file are not among"),
+    (lambda d: d["tileset"]["base"]["tiles"]["corner"][0].append([0.0, 0.01]), 1, "the file's tile set: "),
+    (_swap_rule_colour, 1, "the file's tile set: tile"),
+    (_version_1, 1, "NOT confirmed"),
+    (lambda d: d.update(density_grid=[[-1.0]]), 2, "'density_grid'"),
+    (lambda d: d.update(density_grid=None), 1, "gives are missing from the file"),  # all of level 2
+    (lambda d: d["tileset"].update(subdivision=2), 2, "(tileset): 'rules'"),
+    (lambda d: d.pop("tileset"), 2, "missing field 'tileset'"),
+])
+def test_verify_binds_a_window_to_its_set_density_and_seed(folder, window_doc, forge, code, words):
+    doc = json.loads(json.dumps(window_doc))
+    forge(doc)
+    (folder / "w.json").write_text(json.dumps(doc))
+    r = run("verify", "w.json", cwd=folder)
+    if code == 2:
+        assert words in one_line_error(r)
+    else:
+        assert r.returncode == 1 and words in r.stdout, r.stdout + r.stderr
+
+
+def test_verify_refuses_a_truncated_window_file(folder, window_doc):
+    text = json.dumps(window_doc)
+    (folder / "cut.json").write_text(text[:len(text) // 2])
+    assert "cut.json" in one_line_error(run("verify", "cut.json", cwd=folder))

@@ -9,7 +9,15 @@ import pytest
 
 from tilesolve.constructive.poisson import build_tiles, window_points
 from tilesolve.errors import InvalidProblem
-from tilesolve.io.poisson_json import dump, tiles_from_dict, tiles_to_dict, window_from_dict, window_to_dict, write_points
+from tilesolve.io.poisson_json import (
+    SeededWindow,
+    dump,
+    tiles_from_dict,
+    tiles_to_dict,
+    window_from_dict,
+    window_to_dict,
+    write_points,
+)
 from tilesolve.model.poisson import PoissonTilesProblem, PoissonWindowProblem
 from tilesolve.model.solution import Solution, Status
 
@@ -35,7 +43,12 @@ def test_a_window_round_trips_exactly(built, tmp_path):
     w = window_points(sol.tiling, wp.window, seed=1)
     doc = json.loads(dump(window_to_dict(wp, Solution(Status.SAT, w, method="window", seed=1))))
     q, back = window_from_dict(doc, "w.json")
-    assert q == p and back.tiling.window == wp.window and np.array_equal(back.tiling.local, w.local)
+    assert doc["version"] == 2 and doc["tileset"]["format"] == "tilesolve/poisson-tiles"
+    assert q.tileset.problem == p and (q.tiling, q.variant, q.hash, q.window) == ("direct", "complete", "long", wp.window)
+    assert all(np.array_equal(a, b) for k in sol.tiling.tiles for a, b in zip(sol.tiling.tiles[k], q.tileset.tiles[k]))
+    assert isinstance(back.tiling, SeededWindow) and back.tiling.seed == back.seed == 1
+    assert back.tiling.window == wp.window and np.array_equal(back.tiling.local, w.local)
+    assert dump(window_to_dict(q, back)) == dump(doc)
     with pytest.raises(InvalidProblem, match="beyond"):
         write_points(tmp_path / "w.csv", wp, Solution(Status.SAT, w, method="window", seed=1))
     assert not (tmp_path / "w.csv").exists()
@@ -70,3 +83,35 @@ def test_bad_set_files_are_one_line_errors(built, edit, words):
     edit(doc)
     with pytest.raises(InvalidProblem, match=words):
         tiles_from_dict(doc, "s.json")
+
+
+@pytest.fixture(scope="module")
+def window_doc(built):
+    wp = PoissonWindowProblem(built[1].tiling, (-4, 9, 2, 2))
+    w = window_points(built[1].tiling, wp.window, seed=3)
+    return json.loads(dump(window_to_dict(wp, Solution(Status.SAT, w, method="window", seed=3))))
+
+
+def test_a_version_1_window_is_read_as_points_of_the_set_alone(built, window_doc):
+    doc = {k: v for k, v in window_doc.items() if k != "tileset"}
+    doc["version"] = 1
+    q, back = window_from_dict(doc, "w1.json")
+    assert q == built[0] and not isinstance(back.tiling, SeededWindow) and len(back.tiling.local) == len(doc["local"])
+
+
+@pytest.mark.parametrize("edit, words", [
+    (lambda d: d.pop("tileset"), "missing field 'tileset'"),
+    (lambda d: d.update(seed=None), "seed"),
+    (lambda d: d.update(version=1), "unknown field 'tileset'"),
+    (lambda d: d["tileset"].update(rho=0.6, distance=None) or d["tileset"].pop("distance"), "but its tileset is"),
+    (lambda d: d["tileset"]["tiles"].pop("hedge"), r"w.json \(tileset\): 'tiles'"),
+    (lambda d: d["tileset"].update(format="tilesolve/poisson-window"), "tileset"),
+    (lambda d: d.update(tiling="diagonal"), "corner tiling"),
+    (lambda d: d.update(set="compact"), "compact"),
+])
+def test_bad_version_2_windows_are_one_line_errors(window_doc, edit, words):
+    doc = json.loads(json.dumps(window_doc))
+    edit(doc)
+    with pytest.raises(InvalidProblem, match=words) as exc:
+        window_from_dict(doc, "w.json")
+    assert "\n" not in str(exc.value)

@@ -10,6 +10,7 @@ import pytest
 from tilesolve.constructive.poisson_recursive import build_recursive, sample_window
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.poisson_recursive_json import (
+    SeededRecursiveWindow,
     dump,
     set_from_dict,
     set_to_dict,
@@ -46,10 +47,22 @@ def test_a_window_round_trips_to_the_same_bytes(window):
     text = dump(window_to_dict(problem, sol))
     p, back = window_from_dict(json.loads(text), "w.json")
     w = back.tiling
-    assert p == problem.tileset.problem and w.window == problem.window
+    assert json.loads(text)["version"] == 2 and p.tileset.problem == problem.tileset.problem
+    assert (p.tileset.rules == problem.tileset.rules).all() and np.array_equal(p.density, problem.density)
+    assert (p.level, p.label, p.hash, p.window) == (problem.level, problem.label, problem.hash, problem.window)
+    assert isinstance(w, SeededRecursiveWindow) and w.seed == 1 and w.window == problem.window
     assert (w.local == sol.tiling.local).all() and (w.level == sol.tiling.level).all()
     assert (w.rank == sol.tiling.rank).all()
-    assert dump(window_to_dict(problem, Solution(Status.SAT, w, method="window", seed=1))) == text
+    assert dump(window_to_dict(p, Solution(Status.SAT, w, method="window", seed=1))) == text
+
+
+def test_a_version_1_window_is_read_as_points_of_the_set_alone(window):
+    doc = json.loads(dump(window_to_dict(*window)))
+    for key in ("tileset", "density_grid"):
+        doc.pop(key)
+    doc["version"] = 1
+    p, back = window_from_dict(doc, "w1.json")
+    assert p == window[0].tileset.problem and not isinstance(back.tiling, SeededRecursiveWindow)
 
 
 def test_csv_and_npy_hold_plane_coordinates_level_and_rank(tmp_path, built):
@@ -88,6 +101,16 @@ def test_bad_set_documents_are_refused_in_one_line(built, change, words):
     (lambda d: d.update(level=13), "level"),
     (lambda d: d.update(distance=1.0), "distance"),
     (lambda d: d.pop("subdivision"), "subdivision"),
+    (lambda d: d.pop("tileset"), "missing field 'tileset'"),
+    (lambda d: d.update(seed=None), "seed"),
+    (lambda d: d.update(density_grid=[[30.0], [1.0, 2.0]]), "density_grid"),
+    (lambda d: d.update(density_grid=[[-1.0]]), "density_grid"),
+    (lambda d: d.update(density_grid=[[True]]), "density_grid"),
+    (lambda d: d.update(density_grid=[[30.0] * 8] * 8, level=2), "needs level 1"),
+    (lambda d: d["tileset"]["base"].update(lloyd=1), "but its tileset is"),
+    (lambda d: d["tileset"].update(subdivision=3), "(tileset): 'rules'"),
+    (lambda d: d["tileset"].pop("rules"), "w.json (tileset): missing field 'rules'"),
+    (lambda d: d.update(hash="short"), "hash"),
 ])
 def test_bad_window_documents_are_refused_in_one_line(window, change, words):
     doc = json.loads(dump(window_to_dict(*window)))

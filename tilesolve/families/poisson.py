@@ -12,7 +12,12 @@ Two questions (:mod:`tilesolve.model.poisson`):
 * :class:`~tilesolve.model.poisson.PoissonWindowProblem`: the points of a window of the
   plane tiled by a stochastic corner tiling (direct or scanline); route ``window``. The answer,
   a :class:`~tilesolve.model.poisson.PoissonWindow`, is checked by
-  :func:`tilesolve.verify.poisson.point_violations` (a grid search over the window).
+  :func:`tilesolve.verify.poisson.point_violations` (a grid search over the window). A window
+  read from a file (version 2, :class:`~tilesolve.io.poisson_json.SeededWindow`) is bound to
+  its seed: its embedded set is checked (:func:`~tilesolve.verify.poisson.tileset_violations`)
+  and its points re-derived from the set and the lattice the seed's corner tiling colours
+  (:func:`~tilesolve.verify.poisson.placed_points`, not the builder's placement) and compared
+  exactly (:func:`~tilesolve.verify.poisson.match_violations`).
 
 Examples
 --------
@@ -34,7 +39,14 @@ from tilesolve.errors import InvalidProblem, MethodNotApplicable
 from tilesolve.family import Codec, Demo, Family, RunOptions, register
 from tilesolve.family import solve as _solve
 from tilesolve.families.sampling_forms import POISSON_FORM
-from tilesolve.io.poisson_json import TILES_FORMAT, VERSIONS, WINDOW_FORMAT
+from tilesolve.io.poisson_json import (
+    TILES_FORMAT,
+    UNBOUND,
+    VERSIONS,
+    WINDOW_FORMAT,
+    WINDOW_VERSIONS,
+    SeededWindow,
+)
 from tilesolve.model.poisson import (
     PoissonProblem,
     PoissonTilesProblem,
@@ -47,7 +59,7 @@ from tilesolve.model.window import Window
 from tilesolve.progress import Progress
 from tilesolve.verify.dappled import Violation
 
-__all__ = ["FAMILY", "SOLVERS", "solve", "dart", "window", "poisson_violations", "auto_method", "spectra", "objects"]
+__all__ = ["FAMILY", "SOLVERS", "solve", "dart", "window", "poisson_violations", "rederived_violations", "auto_method", "spectra", "objects"]
 
 
 def dart(problem: PoissonTilesProblem, run: RunOptions) -> Solution:
@@ -87,7 +99,8 @@ def auto_method(problem: PoissonProblem) -> str:
 def poisson_violations(problem: PoissonProblem, answer: Any) -> list[Violation]:
     """A set: :func:`~tilesolve.verify.poisson.tileset_violations` and that it is the set the
     problem asks for; a window: :func:`~tilesolve.verify.poisson.point_violations` at the
-    problem's distance (a window file's problem is the set it was drawn from)."""
+    problem's distance, and for a window read from a file, :func:`rederived_violations` (version
+    2) or the violation :data:`UNBOUND` (version 1, whose problem is the set's only)."""
     from tilesolve.verify.poisson import point_violations, tileset_violations
 
     if isinstance(answer, PoissonTileSet):
@@ -95,11 +108,36 @@ def poisson_violations(problem: PoissonProblem, answer: Any) -> list[Violation]:
             return [Violation("shape", "the tile set is not the one the problem asks for")]
         return tileset_violations(answer)
     if isinstance(answer, PoissonWindow):
-        distance = problem.distance
         if isinstance(problem, PoissonWindowProblem) and answer.window != problem.window:
             return [Violation("window", "the points are of another window")]
-        return point_violations(answer.local, distance, answer.window.width, answer.window.height)
+        out = point_violations(answer.local, problem.distance, answer.window.width, answer.window.height)
+        if not isinstance(problem, PoissonWindowProblem):
+            return out + [Violation("unbound", UNBOUND.format(what="tile set"))]
+        if isinstance(answer, SeededWindow):
+            return out + rederived_violations(problem, answer)
+        return out
     return [Violation("shape", "the answer is neither a Poisson tile set nor a window of points")]
+
+
+def rederived_violations(problem: PoissonWindowProblem, answer: SeededWindow) -> list[Violation]:
+    """A window file's claim that its points are the window of its set and seed: the set is
+    checked (:func:`~tilesolve.verify.poisson.tileset_violations`), the lattice of the window
+    coloured by the problem's corner tiling with the answer's seed, the set's tiles placed on it
+    by :func:`~tilesolve.verify.poisson.placed_points` and the points inside the window compared
+    with the file's, exactly (:func:`~tilesolve.verify.poisson.match_violations`)."""
+    from tilesolve.constructive.poisson import corner_lattice
+    from tilesolve.constructive.stochastic import stochastic_window
+    from tilesolve.verify.poisson import match_violations, placed_points, tileset_violations
+
+    ts, w = problem.tileset, problem.window
+    bad = tileset_violations(ts)
+    if bad:
+        return [Violation(v.kind, f"the file's tile set: {v.message}") for v in bad]
+    grid = stochastic_window("corner", problem.tiling, (w.x0, w.y0, w.width, w.height), colors=ts.problem.colors,
+                             seed=answer.seed, variant=problem.variant, hash=problem.hash)
+    pts = placed_points(ts, corner_lattice(grid, ts.problem.colors))
+    pts = pts[(pts[:, 0] >= 0) & (pts[:, 0] < w.width) & (pts[:, 1] >= 0) & (pts[:, 1] < w.height)]
+    return match_violations(answer.local, pts, f"the {problem.tiling} corner tiling of seed {answer.seed}")
 
 
 def spectra(ts: PoissonTileSet, size: int, *, seed: int | None = None, runs: int = 4) -> list[dict]:
@@ -196,7 +234,7 @@ FAMILY = register(Family(
     routes=SOLVERS,
     auto=auto_method,
     verify=poisson_violations,
-    codecs=(Codec(TILES_FORMAT, VERSIONS, _read_tiles, _write_tiles), Codec(WINDOW_FORMAT, VERSIONS, _read_window)),
+    codecs=(Codec(TILES_FORMAT, VERSIONS, _read_tiles, _write_tiles), Codec(WINDOW_FORMAT, WINDOW_VERSIONS, _read_window)),
     draw=_draw,
     demos=DEMOS,
     commands=("tilesolve.cli.sample:sample",),

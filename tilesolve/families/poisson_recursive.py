@@ -11,7 +11,10 @@ Two questions (:mod:`tilesolve.model.poisson_recursive`):
 * :class:`~tilesolve.model.poisson_recursive.RecursiveWindowProblem`: the points of a window
   at a level or a density; route ``window``. The answer is checked by
   :func:`tilesolve.verify.poisson_recursive.window_violations`: every level a Poisson disk
-  distribution at its own distance.
+  distribution at its own distance. A window read from a file (version 2,
+  :class:`~tilesolve.io.poisson_recursive_json.SeededRecursiveWindow`) is bound to its seed:
+  its embedded set is checked and its points re-derived from the set, the density and the seed
+  and compared exactly, levels and ranks too (:func:`rederived_violations`).
 
 Examples
 --------
@@ -34,10 +37,13 @@ from tilesolve.errors import InvalidProblem, MethodNotApplicable
 from tilesolve.family import Codec, Demo, Family, RunOptions, register
 from tilesolve.family import solve as _solve
 from tilesolve.families.sampling_forms import RECURSIVE_FORM
+from tilesolve.io.poisson_json import UNBOUND
 from tilesolve.io.poisson_recursive_json import (
     TILES_FORMAT,
     VERSIONS,
     WINDOW_FORMAT,
+    WINDOW_VERSIONS,
+    SeededRecursiveWindow,
     set_from_dict,
     set_to_dict,
     window_from_dict,
@@ -55,7 +61,7 @@ from tilesolve.model.window import Window
 from tilesolve.progress import Progress
 from tilesolve.verify.dappled import Violation
 
-__all__ = ["FAMILY", "SOLVERS", "solve", "build", "window", "recursive_violations", "auto_method",
+__all__ = ["FAMILY", "SOLVERS", "solve", "build", "window", "recursive_violations", "rederived_violations", "auto_method",
            "picture_distance"]
 
 
@@ -108,8 +114,34 @@ def recursive_violations(problem: RecursiveProblem, answer: Any) -> list[Violati
             return [Violation("window", "the points are of another window")]
         if (answer.distance, answer.subdivision) != (p.distance, p.subdivision):
             return [Violation("shape", "the points' distances are not the set's")]
-        return window_violations(answer)
+        out = window_violations(answer)
+        if not isinstance(problem, RecursiveWindowProblem):
+            return out + [Violation("unbound", UNBOUND.format(what="tile set or density"))]
+        if isinstance(answer, SeededRecursiveWindow):
+            return out + rederived_violations(problem, answer)
+        return out
     return [Violation("shape", "the answer is neither a recursive Wang tile set nor a window of points")]
+
+
+def rederived_violations(problem: RecursiveWindowProblem, answer: SeededRecursiveWindow) -> list[Violation]:
+    """A window file's claim that its points are the window of its set, density and seed: the
+    set is checked (:func:`~tilesolve.verify.poisson_recursive.tileset_violations`), the window
+    sampled again with the answer's seed and its points, levels and ranks compared with the
+    file's, exactly (:func:`~tilesolve.verify.poisson.match_violations`). The sampling is the
+    builder's (:func:`~tilesolve.constructive.poisson_recursive.sample_window`): it binds the
+    seed, while every level's spacing is checked independently."""
+    import numpy as np
+
+    from tilesolve.constructive.poisson_recursive import sample_window
+    from tilesolve.verify.poisson import match_violations
+    from tilesolve.verify.poisson_recursive import tileset_violations
+
+    bad = tileset_violations(problem.tileset)
+    if bad:
+        return [Violation(v.kind, f"the file's tile set: {v.message}") for v in bad]
+    w = sample_window(problem, seed=answer.seed)
+    return match_violations(np.column_stack([answer.local, answer.level, answer.rank]),
+                            np.column_stack([w.local, w.level, w.rank]), f"the window of seed {answer.seed}")
 
 
 def picture_distance(w: RecursiveWindow) -> float:
@@ -171,7 +203,7 @@ FAMILY = register(Family(
     routes=SOLVERS,
     auto=auto_method,
     verify=recursive_violations,
-    codecs=(Codec(TILES_FORMAT, VERSIONS, set_from_dict, _write), Codec(WINDOW_FORMAT, VERSIONS, window_from_dict)),
+    codecs=(Codec(TILES_FORMAT, VERSIONS, set_from_dict, _write), Codec(WINDOW_FORMAT, WINDOW_VERSIONS, window_from_dict)),
     draw=_draw,
     demos=DEMOS,
     commands=("tilesolve.cli.sample:sample",),

@@ -13,16 +13,23 @@
                 "interior": [...]}                # by eq. 2.5 (NE, SE, SW, NW)
     }
 
-``tilesolve/poisson-window`` (version 1), the points of a window::
+``tilesolve/poisson-window`` (version 2), the points of a window::
 
     {
-      "format": "tilesolve/poisson-window", "version": 1,
+      "format": "tilesolve/poisson-window", "version": 2,
       "colors": 2, "points": 64, "rho": 0.75, "lloyd": 0,   # the set the tiling used
       "window": {"x0": 0, "y0": 0, "width": 8, "height": 8, "y_up": true},
       "tiling": "direct", "set": "complete", "hash": "long", "seed": 1,
       "distance": 0.1007...,
+      "tileset": {...},           # that set: a tilesolve/poisson-tiles document
       "local": [[x, y], ...]      # points relative to (x0, y0): x0 + x, y0 + y in the plane
     }
+
+A version 2 file binds its points to the seed: it holds everything they are made from (the set,
+the corner tiling, its hash and seed, the window), so that ``tilesolve verify`` re-derives them
+and compares (:class:`SeededWindow`). Version 1 files (the same without ``tileset``) are still
+read; their points can only be checked for their spacing, and ``verify`` says so and does not
+confirm them (exit 1): sample the window again to write version 2.
 
 Coordinates are tile units, y north. Writes are deterministic (no timings): the same seed
 gives the same bytes. :func:`write_points` also writes a window as CSV (``x,y`` header) or NPY
@@ -36,6 +43,7 @@ import io
 import json
 import math
 import os
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -46,6 +54,7 @@ from tilesolve.io.jsonio import check_document
 from tilesolve.model.poisson import (
     KINDS,
     MAX_WINDOW_POINTS,
+    PoissonProblem,
     PoissonTilesProblem,
     PoissonTileSet,
     PoissonWindow,
@@ -54,13 +63,15 @@ from tilesolve.model.poisson import (
 from tilesolve.model.solution import Solution, Status
 from tilesolve.model.window import Window
 
-__all__ = ["TILES_FORMAT", "WINDOW_FORMAT", "VERSIONS", "tiles_to_dict", "tiles_from_dict", "window_to_dict",
-           "window_from_dict", "read_problem", "read_seed", "read_points", "built_set", "dump", "write_points", "check_point_output",
-           "POINT_FORMATS", "FLOAT_RANGE"]
+__all__ = ["TILES_FORMAT", "WINDOW_FORMAT", "VERSIONS", "WINDOW_VERSIONS", "UNBOUND", "SeededWindow", "tiles_to_dict",
+           "tiles_from_dict", "window_to_dict", "window_from_dict", "read_problem", "read_seed", "read_points",
+           "built_set", "dump", "write_points", "check_point_output", "POINT_FORMATS", "FLOAT_RANGE"]
 
 TILES_FORMAT = "tilesolve/poisson-tiles"
 WINDOW_FORMAT = "tilesolve/poisson-window"
 VERSIONS = frozenset({1})
+#: Versions of window files read: 2 holds its tile set, 1 (spacing only) does not.
+WINDOW_VERSIONS = frozenset({1, 2})
 #: Output formats of a window's points, by file suffix.
 POINT_FORMATS = ("json", "csv", "npy")
 #: CSV and NPY hold plane coordinates: windows within this bound only.
@@ -68,7 +79,21 @@ FLOAT_RANGE = 1 << 31
 
 _PROBLEM = ("colors", "points", "rho", "lloyd")
 _TILES_KEYS = {"format", "version", *_PROBLEM, "distance", "method", "seed", "stats", "tiles"}
-_WINDOW_KEYS = {"format", "version", *_PROBLEM, "window", "tiling", "set", "hash", "seed", "distance", "local"}
+#: What ``verify`` says of a version 1 window file (``what``: the kind of set it does not hold).
+UNBOUND = ("a version 1 window file holds no {what}, so its points cannot be re-derived from its seed: only their "
+           "spacing was checked, and it is NOT confirmed that they are the window of the set and seed it names; "
+           "sample the window again to write version 2")
+_WINDOW_KEYS = {"format", "version", *_PROBLEM, "window", "tiling", "set", "hash", "seed", "distance", "local",
+                "tileset"}
+
+
+@dataclass(frozen=True, eq=False)
+class SeededWindow(PoissonWindow):
+    """A window's points as a version 2 file states them, with the ``seed`` of the corner
+    tiling they claim to come from: ``tilesolve verify`` re-derives them from it and the
+    file's problem (:class:`~tilesolve.model.poisson.PoissonWindowProblem`, its set embedded)."""
+
+    seed: int = 0
 
 
 def _problem(p: PoissonTilesProblem) -> dict:
@@ -153,24 +178,49 @@ def built_set(doc: dict, source: str, make) -> Solution:
                     seed=seed, stats=dict(stats))
 
 
+def _set_solution(ts: PoissonTileSet) -> Solution:
+    """A built set as the solution :func:`tiles_to_dict` writes (its seed and shortfall)."""
+    return Solution(Status.SAT, ts, method="dart", seed=ts.seed, stats={"short": ts.stats.get("short", 0)})
+
+
 def window_to_dict(problem: PoissonWindowProblem, solution: Solution) -> dict:
-    """The document of a window (``solution.tiling`` is the :class:`PoissonWindow`)."""
-    w = solution.tiling
-    return {"format": WINDOW_FORMAT, "version": 1, **_problem(problem.tileset.problem),
+    """The version 2 document of a window (``solution.tiling`` is the :class:`PoissonWindow`),
+    its set embedded."""
+    w, ts = solution.tiling, problem.tileset
+    return {"format": WINDOW_FORMAT, "version": 2, **_problem(ts.problem),
             "window": problem.window.to_dict(), "tiling": problem.tiling, "set": problem.variant,
-            "hash": problem.hash, "seed": solution.seed, "local": w.local}
+            "hash": problem.hash, "seed": solution.seed, "tileset": tiles_to_dict(ts.problem, _set_solution(ts)),
+            "local": w.local}
 
 
-def window_from_dict(doc: dict, source: str = "<document>") -> tuple[PoissonTilesProblem, Solution]:
-    """Read :func:`window_to_dict`'s document: the set's problem, and the window as the answer
-    (checked against the problem's distance by :func:`tilesolve.verify.poisson.point_violations`)."""
-    check_document(doc, source, {WINDOW_FORMAT: VERSIONS}, fields=_WINDOW_KEYS, required=("window", "local"))
+def window_from_dict(doc: dict, source: str = "<document>") -> tuple[PoissonProblem, Solution]:
+    """Read :func:`window_to_dict`'s document. Version 2: the window's problem (its set read
+    from ``tileset``) and a :class:`SeededWindow`; version 1: the set's problem and the points
+    (spacing alone can be checked, :func:`tilesolve.verify.poisson.point_violations`)."""
+    v2 = isinstance(doc, dict) and doc.get("version") == 2
+    fields = _WINDOW_KEYS if v2 else _WINDOW_KEYS - {"tileset"}
+    check_document(doc, source, {WINDOW_FORMAT: WINDOW_VERSIONS}, fields=fields,
+                   required=("window", "local", "tileset", "seed") if v2 else ("window", "local"))
     problem = read_problem(doc, source)
     window = Window.from_dict(doc["window"])
     local = read_points(doc["local"], "local", source, MAX_WINDOW_POINTS)
     seed = read_seed(doc, source)
-    return problem, Solution(Status.SAT, PoissonWindow(window, local, problem.distance),
-                             method=str(doc.get("tiling", "direct")), seed=seed, window=window)
+    if not v2:
+        return problem, Solution(Status.SAT, PoissonWindow(window, local, problem.distance),
+                                 method=str(doc.get("tiling", "direct")), seed=seed, window=window)
+    if seed is None:
+        raise InvalidProblem(f"{source}: a version 2 window file states the seed of its tiling, not null")
+    set_problem, built = tiles_from_dict(doc["tileset"], f"{source} (tileset)")
+    if set_problem != problem:
+        raise InvalidProblem(f"{source}: the window states {problem.describe()}, but its tileset is "
+                             f"{set_problem.describe()}")
+    try:
+        wp = PoissonWindowProblem(built.tiling, window, doc.get("tiling", "direct"), doc.get("set", "complete"),
+                                  doc.get("hash", "long"))
+    except InvalidProblem as exc:
+        raise InvalidProblem(f"{source}: {exc}") from None
+    return wp, Solution(Status.SAT, SeededWindow(window, local, problem.distance, seed), method="window", seed=seed,
+                        window=window)
 
 
 def _line(rows) -> str:
@@ -178,10 +228,12 @@ def _line(rows) -> str:
 
 
 def dump(doc: dict) -> str:
-    """JSON text: a tile's points on one line, a window's one point a line (floats written to
-    round-trip exactly)."""
-    head = {k: v for k, v in doc.items() if k not in ("tiles", "local")}
+    """JSON text: a tile's points on one line, a window's one point a line, its embedded set as
+    a set is written (floats written to round-trip exactly)."""
+    head = {k: v for k, v in doc.items() if k not in ("tiles", "tileset", "local")}
     text = json.dumps(head, indent=2)[:-2]
+    if "tileset" in doc:
+        text += ',\n  "tileset": ' + dump(doc["tileset"]).rstrip("\n").replace("\n", "\n  ")
     if "tiles" in doc:
         kinds = [f'    "{k}": [\n' + ",\n".join("      " + _line(t) for t in doc["tiles"][k]) + "\n    ]"
                  for k in KINDS]

@@ -10,16 +10,25 @@
       "base": {...}                      # the corner tiles: a tilesolve/poisson-tiles document,
     }                                    # each region's points in progressive order
 
-``tilesolve/recursive-wang-window`` (version 1), the points of a window::
+``tilesolve/recursive-wang-window`` (version 2), the points of a window::
 
     {
-      "format": "tilesolve/recursive-wang-window", "version": 1,
+      "format": "tilesolve/recursive-wang-window", "version": 2,
       "colors": 2, "points": 16, "rho": 0.7, "lloyd": 0, "subdivision": 4,   # the set
       "distance": 0.047...,     # d of level 0 (2 rho r_max(N)); level l: d / n^l
       "window": {"x0": 0, "y0": 0, "width": 8, "height": 8, "y_up": true},
       "level": 2, "density": "level 2", "hash": "long", "seed": 1,
+      "density_grid": null,     # or the density, points a unit area: rows (the top first) of
+                                # numbers stretched over the window (a --density, --ramp, --image)
+      "tileset": {...},         # the set: a tilesolve/recursive-wang-tiles document
       "local": [[x, y, level, rank], ...]   # relative to (x0, y0); coarsest level first
     }
+
+A version 2 file holds everything its points are made from (the set, the density, the hash and
+seed, the window): ``tilesolve verify`` re-derives them and compares
+(:class:`SeededRecursiveWindow`). Version 1 files (without ``density_grid`` and ``tileset``)
+are still read; only the spacing of their levels can be checked, and ``verify`` says so and
+does not confirm them (exit 1).
 
 Writes are deterministic: the same seed gives the same bytes. :func:`write_points` writes a
 window as JSON, CSV (``x,y,level,rank``, plane coordinates) or NPY (an ``(n, 4)`` float64
@@ -32,6 +41,7 @@ import io
 import json
 import math
 import os
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -43,6 +53,7 @@ from tilesolve.io.poisson_json import dump as dump_base
 from tilesolve.io.poisson_json import tiles_from_dict, tiles_to_dict
 from tilesolve.model.poisson_recursive import (
     MAX_CANDIDATES,
+    RecursiveProblem,
     RecursiveTilesProblem,
     RecursiveTileSet,
     RecursiveWindow,
@@ -52,16 +63,32 @@ from tilesolve.model.poisson_recursive import (
 from tilesolve.model.solution import Solution, Status
 from tilesolve.model.window import Window
 
-__all__ = ["TILES_FORMAT", "WINDOW_FORMAT", "VERSIONS", "set_to_dict", "set_from_dict", "window_to_dict",
-           "window_from_dict", "dump", "write_points"]
+__all__ = ["TILES_FORMAT", "WINDOW_FORMAT", "VERSIONS", "WINDOW_VERSIONS", "MAX_GRID",
+           "SeededRecursiveWindow", "set_to_dict", "set_from_dict", "window_to_dict", "window_from_dict", "dump",
+           "write_points"]
 
 TILES_FORMAT = "tilesolve/recursive-wang-tiles"
 WINDOW_FORMAT = "tilesolve/recursive-wang-window"
 VERSIONS = frozenset({1})
+#: Versions of window files read: 2 holds its set and density, 1 (spacing only) does not.
+WINDOW_VERSIONS = frozenset({1, 2})
+#: Most numbers a window file's density grid holds (as many as an image's pixels, ``--image``).
+MAX_GRID = 1 << 22
 
 _TILES_KEYS = {"format", "version", "subdivision", "seed", "rules", "base"}
 _WINDOW_KEYS = {"format", "version", "colors", "points", "rho", "lloyd", "subdivision", "distance", "window", "level",
-                "density", "hash", "seed", "local"}
+                "density", "hash", "seed", "local", "density_grid", "tileset"}
+_V2_ONLY = {"density_grid", "tileset"}
+
+
+@dataclass(frozen=True, eq=False)
+class SeededRecursiveWindow(RecursiveWindow):
+    """A window's points as a version 2 file states them, with the ``seed`` of the corner
+    tiling they claim to come from: ``tilesolve verify`` re-derives them from it and the
+    file's problem (a :class:`~tilesolve.model.poisson_recursive.RecursiveWindowProblem`, its
+    set and density embedded)."""
+
+    seed: int = 0
 
 
 def _subdivision(doc: dict, source: str) -> int:
@@ -104,28 +131,34 @@ def set_from_dict(doc: dict, source: str = "<document>") -> tuple[RecursiveTiles
 
 
 def window_to_dict(problem: RecursiveWindowProblem, solution: Solution) -> dict:
-    """The document of a window (``solution.tiling`` is the :class:`RecursiveWindow`)."""
-    w, p = solution.tiling, problem.tileset.problem
-    return {"format": WINDOW_FORMAT, "version": 1, "colors": p.colors, "points": p.points, "rho": p.rho,
+    """The version 2 document of a window (``solution.tiling`` is the :class:`RecursiveWindow`),
+    its set and density embedded."""
+    w, ts = solution.tiling, problem.tileset
+    p = ts.problem
+    built = Solution(Status.SAT, ts, method="build", seed=ts.seed)
+    return {"format": WINDOW_FORMAT, "version": 2, "colors": p.colors, "points": p.points, "rho": p.rho,
             "lloyd": p.lloyd, "subdivision": p.subdivision, "distance": p.distance,
             "window": problem.window.to_dict(), "level": problem.level, "density": problem.label,
-            "hash": problem.hash, "seed": solution.seed,
-            "local": np.column_stack([w.local, w.level, w.rank])}
+            "hash": problem.hash, "seed": solution.seed, "density_grid": problem.density,
+            "tileset": set_to_dict(p, built), "local": np.column_stack([w.local, w.level, w.rank])}
 
 
-def window_from_dict(doc: dict, source: str = "<document>") -> tuple[RecursiveTilesProblem, Solution]:
-    """Read :func:`window_to_dict`'s document: the set's problem, and the window as the answer
-    (checked level by level by :func:`tilesolve.verify.poisson_recursive.window_violations`)."""
-    check_document(doc, source, {WINDOW_FORMAT: VERSIONS}, fields=_WINDOW_KEYS,
-                   required=("window", "local", "level", "subdivision"))
-    base = read_problem(doc, source)
-    try:
-        problem = RecursiveTilesProblem(base.colors, base.points, base.rho, _subdivision(doc, source), base.lloyd)
-        level = check_level(doc["level"])
-    except InvalidProblem as exc:
-        raise InvalidProblem(f"{source}: {exc}") from None
-    window = Window.from_dict(doc["window"])
-    rows = doc["local"]
+def _grid(value, source: str):
+    """A file's ``density_grid``: ``None``, or rows of non-negative numbers, as an array."""
+    if value is None:
+        return None
+    if not (isinstance(value, list) and value and isinstance(value[0], list) and value[0]
+            and len(value) * len(value[0]) <= MAX_GRID and all(
+                isinstance(r, list) and len(r) == len(value[0]) and all(
+                    isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and v >= 0
+                    for v in r) for r in value)):
+        raise InvalidProblem(f"{source}: 'density_grid' must be null or equal rows of non-negative numbers, "
+                             f"{MAX_GRID:,} at most")
+    return np.array(value, dtype=np.float64)
+
+
+def _local(rows, level: int, source: str) -> np.ndarray:
+    """A file's ``local`` rows as an ``(n, 4)`` array, levels within ``0..level``."""
     if not isinstance(rows, list) or len(rows) > MAX_CANDIDATES:
         raise InvalidProblem(f"{source}: 'local' must be a list of at most {MAX_CANDIDATES:,} [x, y, level, rank] rows")
     for r in rows:
@@ -136,10 +169,47 @@ def window_from_dict(doc: dict, source: str = "<document>") -> tuple[RecursiveTi
     lv = arr[:, 2]
     if ((lv != np.round(lv)) | (lv < 0) | (lv > level)).any():
         raise InvalidProblem(f"{source}: a point's level must be an integer within 0..{level} (the window's level)")
+    return arr
+
+
+def window_from_dict(doc: dict, source: str = "<document>") -> tuple[RecursiveProblem, Solution]:
+    """Read :func:`window_to_dict`'s document. Version 2: the window's problem (its set read
+    from ``tileset``, its density from ``density_grid``) and a :class:`SeededRecursiveWindow`;
+    version 1: the set's problem and the points (each level's spacing alone can be checked,
+    :func:`tilesolve.verify.poisson_recursive.window_violations`)."""
+    v2 = isinstance(doc, dict) and doc.get("version") == 2
+    fields = _WINDOW_KEYS if v2 else _WINDOW_KEYS - _V2_ONLY
+    check_document(doc, source, {WINDOW_FORMAT: WINDOW_VERSIONS}, fields=fields,
+                   required=("window", "local", "level", "subdivision") + (("tileset", "seed") if v2 else ()))
+    base = read_problem(doc, source)
+    try:
+        problem = RecursiveTilesProblem(base.colors, base.points, base.rho, _subdivision(doc, source), base.lloyd)
+        level = check_level(doc["level"])
+    except InvalidProblem as exc:
+        raise InvalidProblem(f"{source}: {exc}") from None
+    window = Window.from_dict(doc["window"])
+    arr = _local(doc["local"], level, source)
     seed = read_seed(doc, source)
-    w = RecursiveWindow(window, np.ascontiguousarray(arr[:, :2]), lv.astype(np.int8), arr[:, 3].copy(),
-                        problem.distance, problem.subdivision)
-    return problem, Solution(Status.SAT, w, method="window", seed=seed, window=window)
+    parts = (window, np.ascontiguousarray(arr[:, :2]), arr[:, 2].astype(np.int8), arr[:, 3].copy(), problem.distance,
+             problem.subdivision)
+    if not v2:
+        return problem, Solution(Status.SAT, RecursiveWindow(*parts), method="window", seed=seed, window=window)
+    if seed is None:
+        raise InvalidProblem(f"{source}: a version 2 window file states the seed of its tiling, not null")
+    set_problem, built = set_from_dict(doc["tileset"], f"{source} (tileset)")
+    if set_problem != problem:
+        raise InvalidProblem(f"{source}: the window states {problem.describe()}, but its tileset is "
+                             f"{set_problem.describe()}")
+    grid, label = _grid(doc.get("density_grid"), source), doc.get("density", "")
+    try:
+        wp = RecursiveWindowProblem(built.tiling, window, None if grid is not None else level, grid,
+                                    label if isinstance(label, str) else "", doc.get("hash", "long"))
+    except InvalidProblem as exc:
+        raise InvalidProblem(f"{source}: {exc}") from None
+    if wp.level != level:
+        raise InvalidProblem(f"{source}: 'level' is {level}, but its density needs level {wp.level}")
+    return wp, Solution(Status.SAT, SeededRecursiveWindow(*parts, seed=seed), method="window", seed=seed,
+                        window=window)
 
 
 def _rows(rows) -> str:
@@ -149,8 +219,14 @@ def _rows(rows) -> str:
 def dump(doc: dict) -> str:
     """JSON text: one rule a line, the base set as :func:`tilesolve.io.poisson_json.dump` writes
     it, a window's one point a line (floats written to round-trip exactly)."""
-    head = {k: v for k, v in doc.items() if k not in ("rules", "base", "local")}
+    head = {k: v for k, v in doc.items() if k not in ("rules", "base", "density_grid", "tileset", "local")}
     text = json.dumps(head, indent=2)[:-2]
+    if "density_grid" in doc:
+        grid = doc["density_grid"]
+        text += ',\n  "density_grid": ' + ("null" if grid is None else "[" + ",".join(
+            "\n    [" + ", ".join(repr(v) for v in row) + "]" for row in np.asarray(grid).tolist()) + "\n  ]")
+    if "tileset" in doc:
+        text += ',\n  "tileset": ' + dump(doc["tileset"]).rstrip("\n").replace("\n", "\n  ")
     if "rules" in doc:
         text += ',\n  "rules": [' + ",".join(f"\n    {_rows(r)}" for r in doc["rules"]) + "\n  ]"
         text += ',\n  "base": ' + dump_base(doc["base"]).rstrip("\n").replace("\n", "\n  ")

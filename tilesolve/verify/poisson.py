@@ -12,6 +12,10 @@ Written from the definitions, sharing no code with the builder
   Poisson disk distribution: any two points closer than ``d < 1/2`` lie in a common 2 x 2
   block, so checking all ``C^9`` colourings of its 3 x 3 lattice points checks every tiling.
   Sets with more than ``max_blocks`` colourings are checked on that many random ones.
+* :func:`placed_points`: the points a coloured lattice of corner tiles places, from the
+  regions' definition (a window file's points are re-derived with it from its set and the
+  lattice its seed colours), and :func:`match_violations`: the points a file holds against
+  those re-derived, compared exactly (a point deleted, added or moved is found).
 * :func:`relative_radius` (eq. 4.2-4.3) and :func:`radial_spectrum` (the periodogram, its
   radial average and anisotropy, Ulichney 1987; §4.2.2).
 
@@ -30,7 +34,7 @@ import numpy as np
 from tilesolve.model.poisson import PoissonTileSet, r_max
 from tilesolve.verify.dappled import Violation
 
-__all__ = ["point_violations", "tileset_violations", "min_distance", "relative_radius", "radial_spectrum",
+__all__ = ["point_violations", "tileset_violations", "placed_points", "match_violations", "min_distance", "relative_radius", "radial_spectrum",
            "periodogram"]
 
 #: Violations listed at most (the count is always given).
@@ -145,21 +149,48 @@ def _regions(ts: PoissonTileSet):
             "interior": (d, 1 - d, d, 1 - d, corners)}
 
 
-def _block(ts: PoissonTileSet, colors: np.ndarray) -> np.ndarray:
-    """The points of the 2 x 2 cells ``[0, 2)^2`` whose lattice ``(i, j)`` has colour ``colors[j, i]``."""
+def placed_points(ts: PoissonTileSet, lat) -> np.ndarray:
+    """Every point the tiles of a coloured lattice place (§4.3, from the regions' definition):
+    ``lat[j, i]`` is the colour of lattice point ``(i, j)`` (y north); its corner tile sits at
+    ``(i, j)``, the edge tiles of its east and north edges and the interior tile of the cell
+    ``[i, i + 1) x [j, j + 1)`` start there too. A point ``(x, y)`` of a tile is placed at
+    ``(i + x, j + y)``; points are grouped by tile, not cropped."""
     c, t = ts.problem.colors, ts.tiles
-    parts = []
-    for j in range(3):
-        for i in range(3):
-            parts.append(t["corner"][colors[j, i]] + (i, j))
-            if i < 2:
-                parts.append(t["hedge"][colors[j, i] * c + colors[j, i + 1]] + (i, j))
-            if j < 2:
-                parts.append(t["vedge"][colors[j, i] * c + colors[j + 1, i]] + (i, j))
-            if i < 2 and j < 2:
-                ne, se, sw, nw = colors[j + 1, i + 1], colors[j, i + 1], colors[j, i], colors[j + 1, i]
-                parts.append(t["interior"][((ne * c + se) * c + sw) * c + nw] + (i, j))
+    lat = np.asarray(lat, dtype=np.int64)
+    sw, se, ne, nw = lat[:-1, :-1], lat[:-1, 1:], lat[1:, 1:], lat[1:, :-1]
+    groups = (("corner", lat), ("hedge", lat[:, :-1] * c + lat[:, 1:]), ("vedge", lat[:-1, :] * c + lat[1:, :]),
+              ("interior", ((ne * c + se) * c + sw) * c + nw))
+    parts = [np.zeros((0, 2))]
+    for kind, index in groups:
+        for k in np.unique(index):
+            j, i = np.nonzero(index == k)
+            at = np.stack([i, j], axis=1).astype(np.float64)
+            parts.append((at[:, None, :] + t[kind][k][None, :, :]).reshape(-1, 2))
     return np.concatenate(parts)
+
+
+def match_violations(claimed, rebuilt, what: str) -> list[Violation]:
+    """Every way the rows of ``claimed`` (points, with any further columns) differ from those of
+    ``rebuilt``, compared exactly and as multisets: rows missing from ``claimed``, rows that are
+    not among ``rebuilt`` (a row moved is both). ``what`` names where ``rebuilt`` came from."""
+    a, b = (np.ascontiguousarray(np.asarray(x, dtype=np.float64).reshape(len(x), -1)) for x in (claimed, rebuilt))
+    if a.shape == b.shape and np.array_equal(a[np.lexsort(a.T[::-1])], b[np.lexsort(b.T[::-1])]):
+        return []
+    if a.shape[1] != b.shape[1]:
+        return [Violation("seed", f"rows of {a.shape[1]} numbers, but {what} gives rows of {b.shape[1]}")]
+    from collections import Counter
+
+    have, want = Counter(map(bytes, a)), Counter(map(bytes, b))
+    out = []
+    for rows, says in ((want - have, f"{{n:,}} point(s) {what} gives are missing from the file"),
+                       (have - want, f"{{n:,}} point(s) of the file are not among those {what} gives")):
+        if rows:
+            first = np.frombuffer(next(iter(rows)), dtype=np.float64)
+            out.append(Violation("seed", says.format(n=sum(rows.values()))
+                                 + f", e.g. ({', '.join(f'{v:.9g}' for v in first)})"))
+    if not out:
+        out.append(Violation("seed", f"{len(a):,} points in the file, {len(b):,} from {what}"))
+    return out
 
 
 def tileset_violations(ts: PoissonTileSet, *, max_blocks: int = 4096, seed: int = 0) -> list[Violation]:
@@ -184,7 +215,7 @@ def tileset_violations(ts: PoissonTileSet, *, max_blocks: int = 4096, seed: int 
     else:
         colourings = np.random.default_rng(seed).integers(c, size=(max_blocks, 9))
     for col in colourings:
-        pts = _block(ts, col.reshape(3, 3))
+        pts = placed_points(ts, col.reshape(3, 3))
         pairs = _close_pairs(pts, ts.problem.distance)
         if len(pairs):
             i, j = pairs[0]
