@@ -10,6 +10,9 @@
   by the FNV/xorshift hashes and the 2x2 solver, bit for bit as :mod:`tilesolve.constructive.walls`,
   then per fragment the brick, the distance to its edge, its UV and a colour; multisampled.
   The same GLSL, as GLSL ES 3.00 (:func:`.wall.webgl_wall`), draws the studio's WebGL2 view.
+* :mod:`.objects` -- the procedural object distribution function of Poisson disk tiles (§6.6.2)
+  as a fragment shader: per pixel the closest point of the tiled distribution, its id, disk and
+  local coordinates, equal to :func:`tilesolve.constructive.poisson.object_distribution`'s.
 
 Nothing outside this package imports moderngl, so the CPU routes work without GL.
 """
