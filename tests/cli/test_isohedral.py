@@ -45,7 +45,7 @@ def test_list_shows_every_type(tmp_path):
     rows = {line.split()[0]: line for line in lines[1:]}
     assert list(rows) == [f"IH{n:02d}" for n in range(1, 94)]
     assert rows["IH41"].split()[1:4] == ["2", "1", "0:J"]
-    assert "marked: outline of IH20" in rows["IH19"]
+    assert "marked, p3m1: outline of IH20" in rows["IH19"]
 
 
 def test_a_drawing_is_written_verified_and_the_same_twice(tmp_path):
@@ -83,12 +83,35 @@ def test_verify_reports_a_forged_tiling(tmp_path):
     assert proc.returncode == 1 and "translation vectors are not IH01's" in proc.stdout + proc.stderr
 
 
-def test_a_marked_type_draws_as_its_outline_twin(tmp_path):
-    proc = run("isohedral", "draw", "--type", "IH92", "-o", "t.json", cwd=tmp_path)
+def test_a_marked_type_draws_its_markings_and_a_flipped_marking_is_caught(tmp_path):
+    proc = run("isohedral", "draw", "--type", "IH92", "-o", "t.json", "--svg", "t.svg", "--png", "t.png", cwd=tmp_path)
     assert proc.returncode == 0, proc.stderr
+    assert "6 aspects, marked (p6m)" in proc.stderr + proc.stdout
     doc = json.loads((tmp_path / "t.json").read_text())
-    assert doc["type"] == "IH92" and doc["outline_of"] == "IH93"
+    assert doc["type"] == "IH92" and doc["outline_of"] == "IH93" and doc["version"] == 2
+    marks = doc["marking"]["marks"]
+    assert isinstance(marks, list) and len(marks) == len(doc["placements"]) and len(set(marks)) == 3
+    svg = (tmp_path / "t.svg").read_text()
+    assert svg.count('<path id="mark"') == 1 and svg.count('xlink:href="#mark"') == len(marks)
     assert run("verify", "t.json", cwd=tmp_path).returncode == 0
+    # Flip one tile's marking: the prototile's symmetries are its rotations (0-2) then its reflections
+    # (3-5); IH92's stabilizer is the identity and reflection 3 (vertex 0 fixed), so reflection 4
+    # turns a tile's pair of flags over.
+    k = next(k for k, m in enumerate(marks) if m == 0)
+    marks[k] = 4
+    (tmp_path / "f.json").write_text(json.dumps(doc))
+    proc = run("verify", "f.json", cwd=tmp_path)
+    assert proc.returncode == 1 and "markings are not mirror images" in proc.stdout + proc.stderr
+
+
+def test_a_version_1_file_of_a_marked_type_reads_and_fails_verification(tmp_path):
+    assert run("isohedral", "draw", "--type", "IH48", "--region", "3x2", "-o", "t.json", cwd=tmp_path).returncode == 0
+    doc = json.loads((tmp_path / "t.json").read_text())
+    del doc["marking"]
+    doc["version"] = 1
+    (tmp_path / "old.json").write_text(json.dumps(doc))
+    proc = run("verify", "old.json", cwd=tmp_path)
+    assert proc.returncode == 1 and "must carry markings" in proc.stdout + proc.stderr
 
 
 @pytest.mark.parametrize("args, message", [

@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from tilesolve.constructive.isohedral import edge_path, layout, prototile
+from tilesolve.constructive.isohedral import edge_path, layout, prototile, symmetries
 from tilesolve.errors import InvalidProblem
-from tilesolve.model.isohedral import BEZIER_CHORDS, EdgeShape, IsohedralProblem, isohedral_type
+from tilesolve.model.isohedral import MARKINGS, BEZIER_CHORDS, EdgeShape, IsohedralProblem, isohedral_type
 
 
 def test_edge_paths_run_from_0_0_to_1_0():
@@ -51,3 +51,19 @@ def test_the_tiles_meet_the_region_and_are_coloured():
         poly = t.tile(k)
         assert poly[:, 0].max() > 2 and poly[:, 0].min() < 8 and poly[:, 1].max() > -3 and poly[:, 1].min() < 1
     assert set(t.colours.tolist()) == {0, 1, 2}
+
+
+@pytest.mark.parametrize("n", sorted(MARKINGS), ids=lambda n: f"IH{n:02d}")
+def test_a_marked_types_tiles_carry_the_motif_moved_onto_them(n):
+    t = layout(IsohedralProblem(n, region=(-2, -2, 6, 5)))
+    verts = t.outline[list(t.corners)]
+    assert len(t.symmetries) == len(symmetries(verts)) and np.allclose(t.symmetries[0], np.eye(2, 3))
+    for k in range(t.n_tiles):
+        m = t.mark_motion(k)
+        assert _rows(t.outline @ m[:, :2].T + m[:, 2]) == _rows(t.tile(k))  # a motion onto the tile
+    # The marks take every coset of the stabilizer that the type's aspects need.
+    assert len(set(t.marks.tolist())) * t.aspects.shape[0] >= MARKINGS[n].aspects
+
+
+def _rows(points) -> list:
+    return sorted(np.round(points, 9).tolist())

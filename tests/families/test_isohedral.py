@@ -82,3 +82,10 @@ def test_the_forms_sketch_maps_each_class_onto_the_prototiles_sides():
             outline.extend((pts[::-1] if side["reverse"] else pts)[:-1])
         want, _ = prototile(problem.template, problem.params, problem.edges)
         assert np.allclose(outline, want, atol=1e-9), problem.template.name
+
+
+def test_a_marked_types_drawing_and_stats_are_the_marked_ones():
+    svg = facade.draw("IH63", region=(0, 0, 3, 2))
+    assert svg.count('xlink:href="#mark"') == 6  # one motif per tile
+    sol = facade.solve(facade.problem("IH63", region=(0, 0, 3, 2)))
+    assert sol.stats["aspects"] == 2 and sol.tiling.aspects.shape[0] == 1  # p4g: 2 aspects, the square's 1

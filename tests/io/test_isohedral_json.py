@@ -1,4 +1,5 @@
-"""The tilesolve/isohedral-tiling file (version 1) and its pictures (tilesolve.io.isohedral_json)."""
+"""The tilesolve/isohedral-tiling file (version 2, and version 1 read) and its pictures
+(tilesolve.io.isohedral_json)."""
 
 from __future__ import annotations
 
@@ -25,7 +26,7 @@ def drawn():
 
 def test_round_trip(drawn):
     problem, sol, doc = drawn
-    assert doc["format"] == "tilesolve/isohedral-tiling" and doc["version"] == 1 and doc["type"] == "IH21"
+    assert doc["format"] == "tilesolve/isohedral-tiling" and doc["version"] == 2 and doc["type"] == "IH21"
     assert "time_s" not in doc and doc["edge_kinds"] == ["S", "J", "J"]
     p2, s2 = tiling_from_dict(doc, "t.json")
     assert p2 == problem and s2.status == sol.status
@@ -56,7 +57,8 @@ def forged(doc, **changes):
 
 
 @pytest.mark.parametrize("changes, message", [
-    ({"version": 2}, "version 2 is not supported"),
+    ({"version": 3}, "version 3 is not supported"),
+    ({"marking": {"motif": []}}, "'marking' must be null or an object"),
     ({"colour": 1}, "unknown field 'colour'"),
     ({"type": KeyError}, "missing|'type'"),
     ({"type": "IH99"}, "unknown isohedral type"),
@@ -110,3 +112,33 @@ def test_a_picture_too_large_is_refused():
     sol = facade.solve(problem)
     with pytest.raises(InvalidProblem, match="at most 8192 a side"):
         svg_text(problem, sol.tiling)
+
+
+def test_a_marked_types_markings_round_trip_and_are_drawn():
+    problem = facade.problem("IH89", region=(0, 0, 3, 2), scale=60)
+    sol = facade.solve(problem)
+    doc = json.loads(solution_text(problem, sol))
+    p, s = tiling_from_dict(doc, "t.json")
+    t = s.tiling
+    assert np.array_equal(t.marks, sol.tiling.marks) and len(t.motif) == 3
+    assert np.allclose(t.symmetries, sol.tiling.symmetries, atol=1e-12)
+    assert facade.FAMILY.verify(p, t) == []
+    svg = svg_text(p, t)
+    assert svg.count('<path id="mark"') == 1 and svg.count('xlink:href="#mark"') == t.n_tiles
+    plain = png_bytes(p, type(t)(*(getattr(t, f) for f in ("type", "outline", "corners", "aspects", "translations",
+                                                           "placements", "colours"))))
+    assert png_bytes(p, t) != plain  # the flags are drawn
+    doc["marking"]["marks"][0] = len(doc["marking"]["symmetries"])
+    with pytest.raises(InvalidProblem, match="one index into 'marking.symmetries' per placement"):
+        tiling_from_dict(doc, "t.json")
+    doc["marking"] = None
+    assert tiling_from_dict(doc, "t.json")[1].tiling.marks is None  # read; the verifier's to refuse
+
+
+def test_a_version_1_file_is_read():
+    problem = facade.problem("IH41", region=(0, 0, 2, 2))
+    doc = json.loads(solution_text(problem, facade.solve(problem)))
+    doc["version"] = 1
+    del doc["marking"]
+    p, s = tiling_from_dict(doc, "t.json")
+    assert facade.FAMILY.verify(p, s.tiling) == []

@@ -8,6 +8,7 @@ import pytest
 from tilesolve.errors import InvalidProblem
 from tilesolve.model.isohedral import (
     MARKED,
+    MARKINGS,
     TYPES,
     EdgeShape,
     IsohedralProblem,
@@ -107,3 +108,17 @@ def test_problem_defaults_and_refusals():
         IsohedralProblem(41, region=(0, 0, 0, 5))
     with pytest.raises(InvalidProblem, match="finite"):
         IsohedralProblem(41, params=(float("nan"), 0.5))
+
+
+def test_the_12_marked_types_markings():
+    """Each marked type keeps a subgroup H of its twin's prototile symmetries; its group's point
+    group has H's order times its aspects; the three that force the square take no parameter."""
+    order = {"p3m1": 6, "p31m": 6, "pmm": 4, "cmm": 4, "p4m": 8, "p4g": 8, "p6m": 12}
+    assert sorted(MARKINGS) == sorted(MARKED)
+    for n, m in MARKINGS.items():
+        t = isohedral_type(n)
+        assert t.marking is m and len(set(m.stabilizer)) == len(m.stabilizer) and (0, False) in m.stabilizer
+        assert order[m.group] == m.aspects * len(m.stabilizer)
+        assert t.n_params == (0 if m.square or isohedral_type(m.twin).n_params == 0 else 1)
+    assert sorted(n for n, m in MARKINGS.items() if m.square) == [63, 70, 75]
+    assert [MARKINGS[n].group for n in (87, 89, 92)] == ["p3m1", "p31m", "p6m"]

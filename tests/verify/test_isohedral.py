@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from tilesolve.constructive.isohedral import layout
-from tilesolve.model.isohedral import TYPES, EdgeShape, IsohedralProblem, isohedral_type
+from tilesolve.model.isohedral import MARKINGS, TYPES, EdgeShape, IsohedralProblem, isohedral_type
 from tilesolve.verify import isohedral as verifier
 from tilesolve.verify.isohedral import tiling_violations
 
@@ -124,3 +124,55 @@ def test_any_parameters_are_refused_in_one_line_or_draw_a_verified_tiling():
         assert tiling_violations(problem, tiling) == [], (n, params)
         outcomes.add("verified")
     assert outcomes == {"refused", "verified"}
+
+
+@pytest.mark.parametrize("n", sorted(MARKINGS), ids=lambda n: f"IH{n:02d}")
+def test_every_marked_type_draws_its_markings_and_a_flipped_one_is_caught(n):
+    problem = IsohedralProblem(n, region=(-1, -1, 5, 4))
+    tiling = layout(problem)
+    assert tiling.marks is not None and len(tiling.motif) == len(MARKINGS[n].stabilizer)
+    assert tiling_violations(problem, tiling) == []
+    # Flip the marking of a tile in the middle: after a reflection of the prototile outside the
+    # stabilizer the tile's motif is the mirror image of the right one.
+    keep = {tuple(h) for h in MARKINGS[n].stabilizer}
+    verts = tiling.outline[list(tiling.corners)]
+    flips = [s for s, m in enumerate(tiling.symmetries) if np.linalg.det(m[:, :2]) < 0 and
+             not any(np.allclose(m, _vertex_map(verts, h)) for h in keep)]
+    centre = np.array([1.5, 1.0])
+    k = int(np.argmin([np.abs(tiling.tile(k).mean(axis=0) - centre).max() for k in range(tiling.n_tiles)]))
+    s, r = tiling.symmetries[tiling.marks[k]], tiling.symmetries[flips[0]]
+    flipped = np.hstack([s[:, :2] @ r[:, :2], s[:, :2] @ r[:, 2:] + s[:, 2:]])
+    marks = tiling.marks.copy()
+    marks[k] = next(i for i, m in enumerate(tiling.symmetries) if np.allclose(m, flipped))
+    forged = dataclasses.replace(tiling, marks=marks)
+    assert not np.allclose(_mark_points(forged, k), _mark_points(tiling, k))
+    assert kinds(tiling_violations(problem, forged)) == {"marking"}
+
+
+def _vertex_map(verts, h):
+    """The motion of the vertex map (k, reflected), fitted here for the test."""
+    k, reflected = h
+    n = len(verts)
+    target = verts[[(k - i if reflected else k + i) % n for i in range(n)]]
+    return np.linalg.lstsq(np.hstack([verts, np.ones((n, 1))]), target, rcond=None)[0].T
+
+
+def _mark_points(tiling, k):
+    m = tiling.mark_motion(k)
+    pts = np.round(np.concatenate([p @ m[:, :2].T + m[:, 2] for p in tiling.motif]), 9)
+    return pts[np.lexsort(pts.T[::-1])]
+
+
+def test_the_motif_must_keep_exactly_the_stabilizer_and_unmarked_types_carry_none():
+    problem = IsohedralProblem(65, region=(0, 0, 3, 2))
+    tiling = layout(problem)
+    one_flag = dataclasses.replace(tiling, motif=tiling.motif[:1])  # H = 1's motif: IH48's, not IH65's
+    assert "keep its motif are [(0, False)]" in tiling_violations(problem, one_flag)[0].message
+    unmarked = dataclasses.replace(tiling, marks=None, symmetries=None, motif=())
+    assert "must carry markings" in tiling_violations(problem, unmarked)[0].message
+    square = IsohedralProblem(72, region=(0, 0, 3, 2))
+    plain = layout(square)
+    marked = dataclasses.replace(plain, motif=tiling.motif, symmetries=tiling.symmetries, marks=np.zeros(plain.n_tiles, int))
+    assert kinds(tiling_violations(square, marked)) == {"marking"}
+    outside = dataclasses.replace(tiling, motif=tuple(p + 5 for p in tiling.motif))
+    assert "leaves the prototile" in tiling_violations(problem, outside)[0].message

@@ -119,8 +119,10 @@ def draw(ctx, type_, params, edges, region, scale, output, svg, png) -> None:
             if path:
                 draw_solution(path, problem, sol, fmt=fmt)
     t = problem.template
-    say(f"{sol.status.value}: {problem.describe()}: {sol.tiling.n_tiles:,} tiles, {t.n_aspects} aspect"
-        f"{'s' if t.n_aspects != 1 else ''}, {t.n_colours} colours, verified, in {sol.time_s:.2f} s")
+    aspects = t.marking.aspects if t.marking else t.n_aspects
+    marked = f", marked ({t.marking.group})" if t.marking else ""
+    say(f"{sol.status.value}: {problem.describe()}: {sol.tiling.n_tiles:,} tiles, {aspects} aspect"
+        f"{'s' if aspects != 1 else ''}{marked}, {t.n_colours} colours, verified, in {sol.time_s:.2f} s")
     if outs.files:
         say(f"  wrote {', '.join(outs.files)}")
     ctx.exit(sol.status.exit_code)
@@ -133,8 +135,8 @@ def list_types() -> None:
     (their kinds, numbered as --edge takes them).
 
     Twelve types (IH19, 35, 48, 60, 63, 65, 70, 75, 80, 87, 89, 92) need marked tiles: their
-    edges are straight and their outlines are those of another type, which is drawn (the
-    markings are not).
+    edges are straight, their outlines are those of another type, and each tile carries a
+    marking (a motif of flags) that gives the tiling the type's smaller symmetry group.
 
     \b
     Example:
@@ -148,5 +150,5 @@ def list_types() -> None:
         classes = " ".join(f"{k}:{kind}" for k, kind in enumerate(t.edge_kinds))
         note = ",".join(f"{p:.6g}" for p in t.default_params) or "-"
         if t.outline_of:
-            note += f"  (marked: outline of IH{t.outline_of:02d})"
+            note += f"  (marked, {t.marking.group}: outline of IH{t.outline_of:02d})"
         click.echo(f"{t.name:<6}{t.n_params:>7}  {t.n_aspects:>7}  {classes:<24}{note}")

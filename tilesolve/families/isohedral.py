@@ -4,9 +4,9 @@ A problem (:class:`~tilesolve.model.isohedral.IsohedralProblem`) names one of th
 types, its tiling-vertex parameters, one edge shape per edge class (J free, U mirror-symmetric,
 S symmetric by a half-turn, I straight) and a region; the answer is an
 :class:`~tilesolve.model.isohedral.IsohedralTiling` (the prototile, the translational unit, the
-coloured tiles that meet the region), checked by the independent verifier
-:mod:`tilesolve.verify.isohedral` (the type's template, congruence, a tiling of the torus by
-area and edge matching, the drawing's cover and colours).
+coloured tiles that meet the region, and a marked type's markings), checked by the independent
+verifier :mod:`tilesolve.verify.isohedral` (the type's template, congruence, a tiling of the torus
+by area and edge matching, the drawing's cover and colours, and the markings' symmetry).
 
 Route
 -----
@@ -58,8 +58,9 @@ def template(problem: IsohedralProblem, run: RunOptions) -> Solution:
 
     t0 = time.perf_counter()
     tiling = layout(problem)
+    marking = problem.template.marking
     return Solution(Status.SAT, tiling, method="template", time_s=time.perf_counter() - t0,
-                    stats={"tiles": tiling.n_tiles, "aspects": int(len(tiling.aspects)),
+                    stats={"tiles": tiling.n_tiles, "aspects": marking.aspects if marking else int(len(tiling.aspects)),
                            "outline_points": int(len(tiling.outline))})
 
 

@@ -1,9 +1,10 @@
-"""The ``tilesolve/isohedral-tiling`` file (version 1) and its pictures: a region of an isohedral tiling.
+"""The ``tilesolve/isohedral-tiling`` file (version 2; version 1 is read) and its pictures: a region
+of an isohedral tiling.
 
 ::
 
     {
-      "format": "tilesolve/isohedral-tiling", "version": 1,
+      "format": "tilesolve/isohedral-tiling", "version": 2,
       "type": "IH41",                       # IH01..IH93
       "outline_of": null,                   # a marked type's outline twin ("IH20"), else null
       "params": [0.23, 0.5],                # the tiling-vertex parameters
@@ -16,9 +17,16 @@
       "translations": [[x, y], [x, y]],     # T1, T2
       "placements": [[i, j, aspect], ...],  # the tiles that meet the region
       "colours": [...], "counts": {...},
+      "marking": null,                      # a marked type's: {"motif": [[[x, y], ...], ...],
+                                            #   "symmetries": [[[a, b, c], [d, e, f]], ...], "marks": [...]}
       "status": "sat", "method": "template", "seed": null, "solver": null,
       "reason": null, "notes": [], "stats": {}
     }
+
+Version 2 adds ``marking``: a marked type's motif (polylines in the prototile's frame), the
+prototile's symmetries, and per placed tile the symmetry after which its aspect's motion carries
+the motif onto it (:meth:`~tilesolve.model.isohedral.IsohedralTiling.mark_motion`). A version 1
+file has none; a marked type read from one fails verification (its tiles carry no marking).
 
 No time is recorded: the same command writes the same bytes. Readers refuse unknown fields and
 malformed values in one line naming the file and field; whether the geometry is a tiling of the
@@ -26,7 +34,9 @@ stated type is the verifier's question (``tilesolve verify``).
 
 Pictures: SVG (the prototile once, as a path in ``<defs>``, and one ``<use>`` per tile with its
 motion, clipped to the region: small files) and PNG (Pillow polygons), the region ``width x scale`` by
-``height x scale`` pixels, tiles filled by colour and outlined.
+``height x scale`` pixels, tiles filled by colour and outlined; a marked type's motif drawn in
+every tile, moved by that tile's marking motion (SVG: the motif once in ``<defs>``, one ``<use>``
+per tile).
 """
 
 from __future__ import annotations
@@ -60,7 +70,12 @@ __all__ = ["TILING_FORMAT", "VERSIONS", "COLOURS", "MAX_PX", "tiling_to_dict", "
            "png_bytes", "write_svg", "write_png"]
 
 TILING_FORMAT = "tilesolve/isohedral-tiling"
-VERSIONS = frozenset({1})
+VERSIONS = frozenset({1, 2})
+#: Stroke colour of the markings.
+MARK_COLOUR = "#111111"
+#: Most polylines and points per polyline in a motif, and most prototile symmetries.
+MAX_MOTIF = 64
+MAX_SYMMETRIES = 12
 #: Fill colours of the colouring's classes (at most 4 are used by any type).
 COLOURS = ("#E8B04B", "#3E7CB1", "#D1495B", "#66A182")
 #: Stroke colour of the tiles' outlines.
@@ -69,7 +84,7 @@ STROKE = "#1F1F1F"
 MAX_PX = 8192
 
 _FIELDS = {"format", "version", "type", "outline_of", "params", "edge_kinds", "edges", "region", "scale", "outline",
-           "corners", "aspects", "translations", "placements", "colours", "counts", "status", "method", "solver",
+           "corners", "aspects", "translations", "placements", "colours", "counts", "marking", "status", "method", "solver",
            "seed", "time_s", "reason", "notes", "stats", "created_by", "comment"}
 
 
@@ -80,7 +95,7 @@ def _floats(a) -> list:
 def tiling_to_dict(problem: IsohedralProblem, solution: Solution) -> dict:
     """The JSON document of a drawing (no time: the same problem gives the same bytes)."""
     t = problem.template
-    doc = {"format": TILING_FORMAT, "version": 1, "type": t.name,
+    doc = {"format": TILING_FORMAT, "version": 2, "type": t.name,
            "outline_of": f"IH{t.outline_of:02d}" if t.outline_of else None, "params": list(problem.params),
            "edge_kinds": list(t.edge_kinds), "edges": [e.text() for e in problem.edges],
            "region": list(problem.region), "scale": problem.scale}
@@ -92,7 +107,11 @@ def tiling_to_dict(problem: IsohedralProblem, solution: Solution) -> dict:
                    translations=_floats(tiling.translations),
                    placements=encode_array(placed) if placed.size > COMPACT_MIN_CELLS else placed,
                    colours=encode_array(colours) if colours.size > COMPACT_MIN_CELLS else colours,
-                   counts=tiling.counts())
+                   counts=tiling.counts(), marking=None)
+        if tiling.marks is not None:
+            marks = np.asarray(tiling.marks, np.int64)
+            doc["marking"] = {"motif": [_floats(p) for p in tiling.motif], "symmetries": _floats(tiling.symmetries),
+                              "marks": encode_array(marks) if marks.size > COMPACT_MIN_CELLS else marks}
     prov = provenance_to_dict(solution)
     del prov["time_s"]
     doc.update(prov)
@@ -156,8 +175,26 @@ def tiling_from_dict(doc: dict, source: str) -> tuple[IsohedralProblem, Solution
             raise InvalidProblem(f"{source}: 'placements' must be at most {MAX_TILES:,} rows i, j, aspect and "
                                  "'colours' one per row")
         tiling = IsohedralTiling(number, outline, tuple(corners), aspects, trans, placed.astype(np.int64),
-                                 colours.astype(np.int64))
+                                 colours.astype(np.int64), *_marking(doc.get("marking"), len(placed), source))
     return problem, solution_from_provenance(doc, source, tiling, what="outline")
+
+
+def _marking(value, n_tiles: int, source: str) -> tuple:
+    """Motif, symmetries and marks of a ``marking`` field (``()``: none)."""
+    if value is None:
+        return ()
+    if not isinstance(value, dict) or set(value) != {"motif", "symmetries", "marks"}:
+        raise InvalidProblem(f"{source}: 'marking' must be null or an object with motif, symmetries and marks")
+    if not isinstance(value["motif"], list) or not 1 <= len(value["motif"]) <= MAX_MOTIF:
+        raise InvalidProblem(f"{source}: 'marking.motif' must be a list of 1..{MAX_MOTIF} polylines")
+    motif = tuple(_number_array(p, "marking.motif", source, (-1, 2), MAX_MOTIF) for p in value["motif"])
+    if any(len(p) < 2 for p in motif):
+        raise InvalidProblem(f"{source}: 'marking.motif' polylines have at least 2 points")
+    syms = _number_array(value["symmetries"], "marking.symmetries", source, (-1, 2, 3), MAX_SYMMETRIES)
+    marks = decode_array(value["marks"], "marking.marks", source, ndim=1)
+    if marks.shape != (n_tiles,) or (n_tiles and (marks.min() < 0 or marks.max() >= len(syms))):
+        raise InvalidProblem(f"{source}: 'marking.marks' must be one index into 'marking.symmetries' per placement")
+    return motif, syms, marks.astype(np.int64)
 
 
 def _size(problem: IsohedralProblem) -> tuple[int, int]:
@@ -171,6 +208,15 @@ def _size(problem: IsohedralProblem) -> tuple[int, int]:
 
 def _f(v: float) -> str:
     return f"{v:.6f}".rstrip("0").rstrip(".") if v != 0 else "0"
+
+
+def _motif_def(tiling: IsohedralTiling, scale: float) -> str:
+    """The motif as ``<path id="mark">`` (nothing for an unmarked type)."""
+    if tiling.marks is None:
+        return ""
+    d = " ".join("M" + " L".join(f"{_f(x)} {_f(y)}" for x, y in p) for p in tiling.motif)
+    return (f'<path id="mark" d="{d}" fill="none" stroke="{MARK_COLOUR}" stroke-width="{_f(2.0 / scale)}" '
+            'stroke-linecap="round" stroke-linejoin="round"/>')
 
 
 def svg_text(problem: IsohedralProblem, tiling: IsohedralTiling) -> str:
@@ -196,7 +242,7 @@ def svg_text(problem: IsohedralProblem, tiling: IsohedralTiling) -> str:
              f'<rect x="0" y="0" width="{W}" height="{H}" fill="{BACKGROUND}"/>',
              f'<text x="4" y="{hp + 14}" font-family="sans-serif" font-size="12" fill="{CAPTION_COLOUR}">'
              f'{escape(caption)}</text>',
-             f'<defs><path id="tile" d="{path}"/>'
+             f'<defs><path id="tile" d="{path}"/>{_motif_def(tiling, s)}'
              f'<clipPath id="region-clip"><rect x="0" y="0" width="{wp}" height="{hp}"/></clipPath></defs>',
              '<g clip-path="url(#region-clip)">',  # tiles that cross the region's edge stop there, off the caption
              f'<g transform="matrix({_f(s)} 0 0 {_f(-s)} {_f(-x0 * s)} {_f((y0 + h) * s)})" '
@@ -207,6 +253,11 @@ def svg_text(problem: IsohedralProblem, tiling: IsohedralTiling) -> str:
         e, f = m[:, 2] + i * T[0] + j * T[1]
         lines.append(f'<use xlink:href="#tile" fill="{COLOURS[c % len(COLOURS)]}" '
                      f'transform="matrix({_f(m[0, 0])} {_f(m[1, 0])} {_f(m[0, 1])} {_f(m[1, 1])} {_f(e)} {_f(f)})"/>')
+    if tiling.marks is not None:
+        for k in range(tiling.n_tiles):
+            m = tiling.mark_motion(k)
+            lines.append(f'<use xlink:href="#mark" transform="matrix({_f(m[0, 0])} {_f(m[1, 0])} {_f(m[0, 1])} '
+                         f'{_f(m[1, 1])} {_f(m[0, 2])} {_f(m[1, 2])})"/>')
     lines += ["</g>", "</g>", "</svg>"]
     return "\n".join(lines) + "\n"
 
@@ -226,6 +277,13 @@ def png_bytes(problem: IsohedralProblem, tiling: IsohedralTiling) -> bytes:
     px = np.stack([(xy[..., 0] - x0) * s, (y0 + h - xy[..., 1]) * s], axis=-1).reshape(len(placed), -1)
     for flat, c in zip(px.tolist(), tiling.colours.tolist()):
         draw.polygon(flat, fill=COLOURS[c % len(COLOURS)], outline=STROKE)
+    if tiling.marks is not None:
+        for k in range(tiling.n_tiles):
+            m = tiling.mark_motion(k)
+            for p in tiling.motif:
+                q = p @ m[:, :2].T + m[:, 2]
+                draw.line([((x - x0) * s, (y0 + h - y) * s) for x, y in q.tolist()], fill=MARK_COLOUR,
+                          width=max(1, round(s / 20)))
     from tilesolve.io.png import captioned
 
     buf = io.BytesIO()

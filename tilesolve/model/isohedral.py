@@ -12,14 +12,32 @@ package's 81 records were compared field by field with tactile-js's ``src/tiling
 commit fd58ec372a4398e3dfc22663d120da186790834e when the dependency was chosen: identical.
 
 Twelve types (IH19, 35, 48, 60, 63, 65, 70, 75, 80, 87, 89, 92) have no table: they "can only be
-represented with marked tiles" (Grünbaum and Shephard, Fig. 6.2.5), their edges are all straight,
-and their tiles' outlines form the tiling of an unmarked all-I type of the same topological type,
-its *outline twin* (:data:`MARKED`). tilesolve draws and verifies a marked type as its twin's
-outlines and does not draw the markings. The twins are our derivation (an I edge stays I in a
-larger symmetry group, so the outline tiling is an all-I type; each topological type has one
-all-I type, except 4^4 with the rectangle IH72 and the square IH76): for the six 4^4 marked types
-the rectangle IH72 is used, whose default parameter (0.9/3.9) gives the square; which of the six
-force a square is not established here.
+represented with marked tiles" (Grünbaum and Shephard, Fig. 6.2.5; class notes Part II §7.1), their
+edges are all straight, and their tiles' outlines form the tiling of an unmarked all-I type of the
+same topological type, its *outline twin* (:data:`MARKED`), whose tables give the outlines. A marked
+type's tiles carry a *marking* (:class:`MarkedType`), and its symmetry group is smaller than the
+twin's. The derivation is the project's own, from the definitions (Grünbaum and Shephard §6.2, the
+notes §7.1): the outline twin is the all-I type of the topological type (an I edge stays I in a
+larger group; each topological type has one all-I type but 4^4, with the rectangle IH72 and the
+square IH76); every edge of the twin lies on a mirror of its tiling, so the reflections in the
+tiles' edge lines generate a group R that maps the tiling to itself and acts on its tiles simply
+transitively up to the stabilizer R_P of the prototile P. A group G with R <= G <= Sym(twin) is
+tile-transitive and its edges stay on mirrors (straight, so no edge can be deformed): G = R.H with
+H = G_P, a subgroup of the prototile's symmetries that contains R_P. The types other than the
+twin's own are the marked ones: for 3^6 (hexagon, R_P = D3 through vertices) one, p3m1; for
+3.6.3.6 (rhombus, R_P = the mirror in the short diagonal) one, p3m1; for 4.8^2 (IH82's triangle,
+R_P trivial) one, p4m; for 6^3 (the equilateral triangle, R_P trivial) H = 1, C3, D1; for 4^4
+(R_P trivial) the subgroups of D4 but D2 through edge midpoints (IH72) and D4 (IH76): 1, C2, D1
+through edge midpoints, D1 along a diagonal, C4, D2 along the diagonals; 12 in all, G&S's count.
+Which IH number is which H (:data:`MARKINGS`) follows G&S's order of Table 6.2.1 within a
+topological type (by the tile's induced group, then by symmetry group), checked against the
+unmarked neighbours' groups; Table 6.2.1 itself was not at hand to compare. Three 4^4 types (C4
+and the diagonal mirrors: IH63, 70, 75) force the square: they take no parameter; the other three
+keep IH72's rectangle.
+
+A marked tile carries the motif of :func:`tilesolve.constructive.isohedral.motif`: H's images of an asymmetric flag, so the marked
+prototile's symmetry group is exactly H; tile X = g(P) for g in G carries g(motif), and a tile's
+neighbour across an edge is its mirror image in that edge, motif included.
 
 Coordinates: the tables' own (y up; a tiling edge is about one unit long). An edge shape lives in
 its edge's unit frame: a path from (0, 0) to (1, 0) (§7.4.2), a polyline or a chain of cubic Bézier
@@ -28,8 +46,8 @@ curves, drawn as :data:`BEZIER_CHORDS` chords per cubic.
 >>> t = isohedral_type(41)
 >>> t.name, t.n_params, t.edge_kinds, t.n_aspects
 ('IH41', 2, ('J', 'J'), 1)
->>> isohedral_type(19).outline_of
-20
+>>> isohedral_type(19).outline_of, isohedral_type(19).marking.group
+(20, 'p3m1')
 >>> EdgeShape.parse("bezier:0.3,0.2/0.7,-0.2").text()
 'bezier:0.3,0.2/0.7,-0.2'
 """
@@ -46,14 +64,63 @@ import numpy as np
 from tilesolve.errors import InvalidProblem
 
 __all__ = [
-    "KINDS", "MARKED", "TYPES", "BEZIER_CHORDS", "MAX_EDGE_POINTS", "MAX_TILES", "MAX_OUTLINE", "IsohedralType", "isohedral_type",
+    "KINDS", "MARKED", "MARKINGS", "MarkedType", "FLAG", "TYPES", "BEZIER_CHORDS", "MAX_EDGE_POINTS", "MAX_TILES", "MAX_OUTLINE", "IsohedralType", "isohedral_type",
     "parse_type", "EdgeShape", "STRAIGHT", "IsohedralProblem", "IsohedralTiling",
 ]
 
 #: The four edge constraints (§7.3.1): J free, U mirror-symmetric, S symmetric by a half-turn, I straight.
 KINDS = ("J", "U", "S", "I")
+
+
+@dataclass(frozen=True)
+class MarkedType:
+    """A marked type's marking (see the module docstring).
+
+    Attributes
+    ----------
+    twin : int
+        The outline twin, whose tables give the tiles' outlines.
+    group : str
+        The tiling's symmetry group (a wallpaper group).
+    stabilizer : tuple of (int, bool)
+        H, the symmetries of the prototile kept by the marking, each as a map of its tiling
+        vertices: ``(k, False)`` takes vertex ``i`` to ``k + i``, ``(k, True)`` to ``k - i`` (mod n).
+    aspects : int
+        Tiles per translational unit of the marked tiling: the point group's order over ``|H|``.
+    square : bool
+        The marking forces IH72's rectangle to be the square (no parameter).
+    """
+
+    twin: int
+    group: str
+    stabilizer: tuple[tuple[int, bool], ...]
+    aspects: int
+    square: bool = False
+
+
+_ID = ((0, False),)
+#: The twelve marked types (the project's derivation: see the module docstring).
+MARKINGS = {
+    19: MarkedType(20, "p3m1", ((0, False), (2, False), (4, False), (0, True), (2, True), (4, True)), 1),
+    35: MarkedType(37, "p3m1", ((0, False), (0, True)), 3),
+    48: MarkedType(72, "pmm", _ID, 4),
+    60: MarkedType(72, "cmm", ((0, False), (2, False)), 2),
+    63: MarkedType(72, "p4g", ((0, False), (1, False), (2, False), (3, False)), 2, square=True),
+    65: MarkedType(72, "pmm", ((0, False), (1, True)), 2),
+    70: MarkedType(72, "p4m", ((0, False), (0, True)), 4, square=True),
+    75: MarkedType(72, "p4m", ((0, False), (2, False), (0, True), (2, True)), 2, square=True),
+    80: MarkedType(82, "p4m", _ID, 8),
+    87: MarkedType(93, "p3m1", _ID, 6),
+    89: MarkedType(93, "p31m", ((0, False), (1, False), (2, False)), 2),
+    92: MarkedType(93, "p6m", ((0, False), (0, True)), 6),
+}
 #: Marked types -> their outline twin (see the module docstring).
-MARKED = {19: 20, 35: 37, 48: 72, 60: 72, 63: 72, 65: 72, 70: 72, 75: 72, 80: 82, 87: 93, 89: 93, 92: 93}
+MARKED = {n: m.twin for n, m in MARKINGS.items()}
+#: IH72's parameter that makes its rectangle the square.
+_SQUARE = (0.9 / 3.9,)
+#: The marking's asymmetric flag, a polyline in units of the prototile's inradius about its centroid
+#: (a pole and a pennant, off every axis of the tile): :func:`motif` places H's images of it.
+FLAG = ((-0.08, 0.4), (-0.1, 0.82), (-0.36, 0.72), (-0.09, 0.62))
 #: Every type number.
 TYPES = tuple(range(1, 94))
 #: Chords per cubic Bézier piece when an edge is drawn (part of the file format: the verifier samples alike).
@@ -100,6 +167,8 @@ class IsohedralType:
         of colours (§7.4.1, Fig. 20).
     outline_of : int or None
         For a marked type, its outline twin (whose tables these are).
+    marking : MarkedType or None
+        For a marked type, its marking.
     """
 
     number: int
@@ -115,6 +184,7 @@ class IsohedralType:
     aspect_coeffs: np.ndarray = field(repr=False, compare=False)
     colouring: tuple[int, ...] = field(repr=False)
     outline_of: int | None = None
+    marking: MarkedType | None = field(default=None, repr=False)
 
     @property
     def name(self) -> str:
@@ -153,24 +223,34 @@ def isohedral_type(number: int) -> IsohedralType:
     number = parse_type(number)
     from tactile.tiling_data import TilingTypeData  # the one reader of the package's tables
 
-    twin = MARKED.get(number)
+    marking = MARKINGS.get(number)
+    twin = marking.twin if marking else None
     d = TilingTypeData.get_data(twin or number)
     p1 = d.num_params + 1
     eo = list(d.edge_orientations)
+    vertex = np.asarray(d.vertex_coeffs, float).reshape(d.num_vertices, 2, p1)
+    translation = np.asarray(d.translation_coeffs, float).reshape(2, 2, p1)
+    aspect = np.asarray(d.aspect_coeffs, float).reshape(d.num_aspects, 2, 3, p1)
+    n_params, defaults = d.num_params, tuple(float(p) for p in d.default_params)
+    if marking and marking.square:  # the parameter folded into the constant terms
+        vertex, translation, aspect = (c[..., -1:] + c[..., :-1] @ np.array(_SQUARE)[:, None]
+                                       for c in (vertex, translation, aspect))
+        n_params, defaults = 0, ()
     return IsohedralType(
         number=number,
-        n_params=d.num_params,
+        n_params=n_params,
         n_aspects=d.num_aspects,
         n_vertices=d.num_vertices,
         edge_kinds=tuple(e.name for e in d.edge_shapes),
         edge_classes=tuple(int(i) for i in d.edge_shape_ids),
         orientations=tuple((bool(eo[2 * k]), bool(eo[2 * k + 1])) for k in range(d.num_vertices)),
-        default_params=tuple(float(p) for p in d.default_params),
-        vertex_coeffs=np.asarray(d.vertex_coeffs, float).reshape(d.num_vertices, 2, p1),
-        translation_coeffs=np.asarray(d.translation_coeffs, float).reshape(2, 2, p1),
-        aspect_coeffs=np.asarray(d.aspect_coeffs, float).reshape(d.num_aspects, 2, 3, p1),
+        default_params=defaults,
+        vertex_coeffs=vertex,
+        translation_coeffs=translation,
+        aspect_coeffs=aspect,
         colouring=tuple(int(c) for c in d.coloring),
         outline_of=twin,
+        marking=marking,
     )
 
 
@@ -355,6 +435,13 @@ class IsohedralTiling:
         ``(k, 3)`` int: tile ``(i, j, a)`` is aspect ``a`` moved by ``i T1 + j T2``.
     colours : numpy.ndarray
         ``(k,)`` the colour of each placed tile (0 .. colours - 1).
+    motif : tuple of numpy.ndarray
+        A marked type's marking: polylines ``(m, 2)`` in the prototile's frame (empty: unmarked).
+    symmetries : numpy.ndarray or None
+        A marked type's ``(s, 2, 3)`` symmetries of the prototile's outline (the first the identity).
+    marks : numpy.ndarray or None
+        A marked type's ``(k,)`` index into ``symmetries`` per placed tile: tile ``k`` carries
+        the motif moved by :meth:`mark_motion`.
     """
 
     type: int
@@ -364,6 +451,9 @@ class IsohedralTiling:
     translations: np.ndarray
     placements: np.ndarray
     colours: np.ndarray
+    motif: tuple[np.ndarray, ...] = ()
+    symmetries: np.ndarray | None = None
+    marks: np.ndarray | None = None
 
     @property
     def n_tiles(self) -> int:
@@ -375,6 +465,14 @@ class IsohedralTiling:
         i, j, a = (int(v) for v in self.placements[k])
         m = self.aspects[a]
         return self.outline @ m[:, :2].T + m[:, 2] + i * self.translations[0] + j * self.translations[1]
+
+    def mark_motion(self, k: int) -> np.ndarray:
+        """The motion ``(2, 3)`` that carries the prototile and its motif onto placed tile ``k``
+        (its aspect's motion after the prototile symmetry ``marks[k]``)."""
+        i, j, a = (int(v) for v in self.placements[k])
+        m, s = self.aspects[a], self.symmetries[int(self.marks[k])]
+        return np.hstack([m[:, :2] @ s[:, :2], m[:, :2] @ s[:, 2:] + m[:, 2:]
+                          + (i * self.translations[0] + j * self.translations[1])[:, None]])
 
     def counts(self) -> dict[str, int]:
         """Tiles per colour."""
