@@ -24,8 +24,9 @@ The passes
    lattice; 32-bit integers only).
 2. One fragment per pixel: its own cell, then the four beside it and the four diagonal ones,
    each skipped when the pixel lies farther from it than the closest point so far (the notes'
-   largest empty circle, §6.6.2.1, measured per pixel); the search ends at a point closer than
-   the disk radius (no other can be closer, §6.6.2.1). Distances in double precision (OpenGL
+   largest empty circle, §6.6.2.1, measured per pixel); a cell's scan ends at the first point
+   farther east than the closest so far (the points sorted lexicographically, §6.6.2.1), and
+   the search at a point closer than the disk radius (no other can be closer, §6.6.2.1). Distances in double precision (OpenGL
    4.0's ``double``, which llvmpipe has), so the closest point is the CPU's. The pixel's
    position in its cell comes per column and per row from the CPU, as the float64 bits the CPU
    evaluates at.
@@ -90,6 +91,7 @@ void main() {
             uint o = texelFetch(u_org, ivec2(i, cfg), 0).r;
             dvec2 p = dvec2(d + ivec2(int(o & 1u), int(o >> 1))) + dvec2(packDouble2x32(w.xy), packDouble2x32(w.zw));
             dvec2 e = f - p;
+            if (e.x < 0.0LF && e.x * e.x >= best) break;  // sorted by x: the rest lie farther east
             double d2 = e.x * e.x + e.y * e.y;
             if (d2 < best) {
                 best = d2;
