@@ -16,7 +16,7 @@ from tilesolve.constructive.wall_maps import wall_maps
 from tilesolve.constructive.walls import orientation, wall_window
 from tilesolve.errors import InvalidProblem
 from tilesolve.gpu.context import gpu_info
-from tilesolve.gpu.texture import Atlas, TextureMapper, corner_packing, synthesize_atlas
+from tilesolve.gpu.texture import Atlas, TextureMapper, corner_packing, synthesis_scale, synthesize_atlas
 from tilesolve.gpu import wall as wall_module
 from tilesolve.gpu.wall import WallRenderer, allowed_samples, webgl_wall
 
@@ -85,21 +85,40 @@ def test_pictures_larger_than_a_pass_are_drawn_in_passes(atlas):
     assert np.array_equal(w.image(150, 110), whole)
 
 
-def test_the_atlas_is_a_packing_with_borders_set_by_the_corners():
+def _chequerboard() -> np.ndarray:
+    """Squares of 16 px, with noise: a structure too large for 16 px tiles (synthesised at 32)."""
+    board = np.repeat(np.repeat(np.indices((6, 6)).sum(axis=0) % 2, 16, 0), 16, 1) * 200
+    noise = np.random.default_rng(2).integers(0, 56, (96, 96, 3))
+    return (board[..., None] + noise).astype(np.uint8)
+
+
+@pytest.mark.parametrize("example,scale", [
+    (np.random.default_rng(1).integers(0, 256, (40, 40, 3), dtype=np.uint8), 1),
+    (_chequerboard(), 2),
+])
+def test_the_atlas_is_a_packing_with_borders_set_by_the_corners(example, scale):
     c, t = 2, 16
     grid = corner_packing(c, seed=3)
     assert sorted(grid.ravel().tolist()) == list(range(c**4))
     assert grid.shape == (c * c, c * c)
-    ex = np.random.default_rng(1).integers(0, 256, (40, 40, 3), dtype=np.uint8)
-    img = synthesize_atlas(ex, grid, c, tile=t, seed=4)
+    assert synthesis_scale(example, t) == scale
+    img = synthesize_atlas(example, grid, c, tile=t, seed=4)
     tiles = {int(k): img[r * t:(r + 1) * t, q * t:(q + 1) * t] for (r, q), k in np.ndenumerate(grid)}
     # eq. 2.5: k = ((NE c + SE) c + SW) c + NW; a tile's east column depends on NE and SE only,
     # so every tile that can stand west of a given tile shows it the same texels (seamless).
+    # Likewise the north row depends on NE and NW only.
+    def east(k):
+        return k // c**3, (k // c**2) % c
+
+    def north(k):
+        return k // c**3, k % c
+
     for k, tile in tiles.items():
-        ne, se = k // c**3, (k // c**2) % c
         for k2, other in tiles.items():
-            if (k2 // c**3, (k2 // c**2) % c) == (ne, se):
+            if east(k2) == east(k):
                 assert np.array_equal(tile[:, -1], other[:, -1])
+            if north(k2) == north(k):
+                assert np.array_equal(tile[0], other[0])
     # the atlas wraps: the packing's east neighbour of the last column is the first column
     for r in range(c * c):
         a, b = int(grid[r, -1]), int(grid[r, 0])

@@ -1,8 +1,12 @@
-"""The corner-tile atlas's synthesis (class notes §5.3): the graph cut of the new patch."""
+"""The corner-tile atlas's synthesis (class notes §5.3): the graph cut of the new patch, and the
+texture of a wall against the wall."""
 
 from __future__ import annotations
 
 import numpy as np
+import pytest
+from clitools import run
+from PIL import Image
 
 from tilesolve.gpu.texture import _cut_regions, graph_cut
 
@@ -22,3 +26,35 @@ def test_the_cut_runs_where_the_patches_agree_and_keeps_the_border():
     # cut along the ring, and around the ends of the cross it must cover
     assert inside[radius < 10].all() and not inside[(radius > 12) & ~cover].any()
     assert np.array_equal(graph_cut(old, new, keep, cover), inside)  # the same cut every time
+
+
+def _mortar(img: np.ndarray) -> np.ndarray:
+    """The light texels of a wall picture: luminance above the middle of its mean and its maximum."""
+    luma = img[..., :3].astype(np.float64) @ np.array([0.299, 0.587, 0.114])
+    return luma > (luma.mean() + luma.max()) / 2
+
+
+def _run_length(mask: np.ndarray) -> float:
+    """The mean length of the vertical runs of ``mask``, each texel weighting its own run."""
+    edges = np.diff(np.pad(mask.astype(np.int8), ((1, 1), (0, 0))), axis=0)
+    lengths = np.flatnonzero(edges.T.ravel() == -1) - np.flatnonzero(edges.T.ravel() == 1)
+    return float((lengths.astype(np.float64) ** 2).sum() / lengths.sum())
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("tile", [32, 64])
+def test_a_texture_from_a_wall_has_the_wall_s_mortar_lines(tmp_path, tile):
+    """`render texture` from a wall (the help's example): mortar runs as long across as down,
+    relative to the wall's (tall stripes, a tile's corner patches sharing one straight line, fail),
+    no longer than the wall's and at least a quarter of them (the example at its size or half),
+    and as much mortar as the wall has."""
+    proc = run("render", "wall", "--size", "256x256", "--seed", "5", "-o", "bricks.png", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    proc = run("render", "texture", "--example", "bricks.png", "--colors", "3", "--tile", str(tile),
+               "--size", "640x480", "-o", "t.png", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    wall, texture = (_mortar(np.asarray(Image.open(tmp_path / f))) for f in ("bricks.png", "t.png"))
+    down, across = _run_length(texture) / _run_length(wall), _run_length(texture.T) / _run_length(wall.T)
+    assert 2 / 3 < down / across < 3 / 2, (down, across)
+    assert 1 / 4 < down < 2 and 1 / 4 < across < 2, (down, across)
+    assert 0.8 < texture.mean() / wall.mean() < 1.25

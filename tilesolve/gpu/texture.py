@@ -17,9 +17,12 @@ cross-shaped seam covered by a new diamond-shaped patch of the example inside th
 inscribed circle (Fig. 5.1 d), its border optimised by a graph cut (Kwatra et al. 2003,
 :func:`graph_cut`: the minimum-error boundary between the new patch and the quarters). Each
 patch is placed where it fits best, as image quilting places its blocks (Efros & Freeman 2001):
-a corner patch where its edges continue the others' across the tiles' middle lines, the new
-patch where it matches the quarters around the seam (a random one of the close fits, so tiles
-differ). The border of each tile is untouched, which is what makes the tiles fit.
+a corner patch where its edges continue the others' where the tiles' middle lines reach their
+borders, the new patch where it matches the quarters around the seam (a random one of the close
+fits, so tiles differ). The border of each tile is untouched, which is what makes the tiles fit.
+A tile must hold a few of the example's structures (bricks, :func:`structure_size`): a smaller one
+is synthesised at twice or four times its size and averaged down (:func:`synthesis_scale`), so
+the texture shows the example smaller rather than stripes and broken mortar.
 
 The shader
 ----------
@@ -57,7 +60,7 @@ from tilesolve.gpu.context import gpu_context, max_render_size, release
 from tilesolve.gpu.picture import assemble_bands, pass_layout
 
 __all__ = ["MAX_COLORS", "MAX_ATLAS", "HASH_GLSL", "hash_tables", "row_table", "Atlas", "check_atlas", "corner_packing", "synthesize_atlas", "graph_cut",
-           "read_example", "example_patches", "diamond_mask", "PassRenderer", "TextureMapper"]
+           "structure_size", "synthesis_scale", "read_example", "example_patches", "diamond_mask", "PassRenderer", "TextureMapper"]
 
 #: Largest ``C`` of an atlas (``C**4 = 4096`` tiles).
 MAX_COLORS = 8
@@ -275,7 +278,8 @@ def synthesize_atlas(example, grid, colors: int, *, tile: int = 64, seed: int = 
     grid : array_like
         A corner packing (:func:`corner_packing`), eq. 2.5 tile numbers, row 0 at the top.
     tile : int
-        Tile side in pixels (even, at least 8).
+        Tile side in pixels (even, at least 8); synthesised at :func:`synthesis_scale` times
+        that and averaged down.
     seed : int
         Chooses the corner patches and the centre patches.
 
@@ -301,25 +305,90 @@ def synthesize_atlas(example, grid, colors: int, *, tile: int = 64, seed: int = 
     ex = np.dstack([ex, np.full(ex.shape[:2], 255, np.float32)]) if ex.shape[2] == 3 else ex
     rng = rng_from_seed(seed)
     g = np.asarray(grid, dtype=np.int64)
-    corner = _corner_patches(ex, c, t, rng)
-    h = t // 2
-    keep, cover = _cut_regions(t)
-    best_patch = _patch_matcher(ex, t, ~(keep | cover))
+    s = synthesis_scale(example, t)
+    big = t * s  # the tiles are synthesised at this size, then each block of s x s texels averaged
+    corner = _corner_patches(ex, c, big, rng)
+    h = big // 2
+    keep, cover = _cut_regions(big, border=s)  # a texel of the tile's border: s x s kept ones
+    best_patch = _patch_matcher(ex, big, ~(keep | cover))
     atlas = np.empty((g.shape[0] * t, g.shape[1] * t, 4), dtype=np.uint8)
     for (r, q), k in np.ndenumerate(g):
         nw, sw, se, ne = k % c, (k // c) % c, (k // c**2) % c, k // c**3
-        img = np.empty((t, t, 4), dtype=np.float32)
+        img = np.empty((big, big, 4), dtype=np.float32)
         img[:h, :h] = corner[nw][h:, h:]  # the patch centred on each corner, cut by the tile
         img[:h, h:] = corner[ne][h:, :h]
         img[h:, :h] = corner[sw][:h, h:]
         img[h:, h:] = corner[se][:h, :h]
         new = best_patch(img, rng)
         inside = graph_cut(img, new, keep, cover)
-        # the cut's pixels themselves: the mean of the two patches, one pixel wide
-        alpha = (inside[..., None] + _shifted_mean(inside)[..., None]) / 2
-        img = img * (1.0 - alpha) + new * alpha
+        # the cut's pixels themselves: the mean of the two patches, one pixel wide, never the border
+        alpha = np.where(keep, 0.0, (inside + _shifted_mean(inside)) / 2)[..., None]
+        img = (img * (1.0 - alpha) + new * alpha).reshape(t, s, t, s, 4).mean(axis=(1, 3))
         atlas[r * t:(r + 1) * t, q * t:(q + 1) * t] = np.rint(img).astype(np.uint8)
     return atlas
+
+
+#: The autocorrelation of an example's luminance below which two texels are taken as
+#: unrelated (:func:`structure_size`).
+_UNRELATED = 0.25
+#: How many structure sizes a synthesised tile spans at least (:func:`synthesis_scale`): with
+#: fewer, a tile holds about one brick, and the four corner patches and the new patch cannot
+#: join their mortar lines inside it (stripes and broken fragments).
+STRUCTURES_PER_TILE = 3
+#: The largest side a tile is synthesised at when it is enlarged (:func:`synthesis_scale`).
+MAX_SYNTHESIS_TILE = 128
+
+
+def structure_size(example) -> int:
+    """The size of the example's structure in pixels (the bricks of a wall): the least lag at
+    which the autocorrelation of its luminance, the mean of the x and y directions (circular),
+    falls below :data:`_UNRELATED` (1 for noise).
+
+    Examples
+    --------
+    >>> noise = np.random.default_rng(0).integers(0, 256, (64, 64, 3), dtype=np.uint8)
+    >>> structure_size(noise)
+    1
+    >>> stripes = np.repeat(np.repeat(np.indices((8, 8)).sum(axis=0) % 2, 16, 0), 16, 1) * 255
+    >>> # a chequerboard of 16 px squares: the autocorrelation 1 - lag / 8 is 1/4 at lag 6
+    >>> structure_size(np.dstack([stripes] * 3).astype(np.uint8)) in (6, 7)
+    True
+    """
+    ex = np.asarray(example, dtype=np.float64)
+    luma = ex[..., :3] @ np.array([0.299, 0.587, 0.114])
+    luma -= luma.mean()
+    power = np.abs(np.fft.rfft2(luma)) ** 2
+    ac = np.fft.irfft2(power, s=luma.shape)
+    if ac[0, 0] <= 0:
+        return 1  # a flat example
+    n = min(luma.shape) // 2
+    mean = (ac[0, :n] + ac[:n, 0]) / (2 * ac[0, 0])
+    below = np.flatnonzero(mean < _UNRELATED)
+    return int(below[0]) if below.size else n
+
+
+def synthesis_scale(example, tile: int) -> int:
+    """The factor ``s`` (a power of two) by which a tile of ``tile`` texels is synthesised larger
+    and then averaged down: the least with ``tile * s`` at least :data:`STRUCTURES_PER_TILE`
+    times :func:`structure_size`, within :data:`MAX_SYNTHESIS_TILE` (or ``tile``, if larger) and
+    the example's size. With ``s > 1`` the texture shows the example at ``1 / s`` of its size.
+
+    Examples
+    --------
+    >>> noise = np.random.default_rng(0).integers(0, 256, (64, 64, 3), dtype=np.uint8)
+    >>> synthesis_scale(noise, 16)
+    1
+    >>> stripes = np.repeat(np.repeat(np.indices((8, 8)).sum(axis=0) % 2, 16, 0), 16, 1) * 255
+    >>> synthesis_scale(np.dstack([stripes] * 3).astype(np.uint8), 16)  # 3 x 6 px > 16
+    2
+    """
+    ex = np.asarray(example)
+    most = min(max(tile, MAX_SYNTHESIS_TILE), ex.shape[0], ex.shape[1])
+    need = STRUCTURES_PER_TILE * structure_size(ex)
+    s = 1
+    while tile * s < need and tile * s * 2 <= most:
+        s *= 2
+    return s
 
 
 #: How close to the best a patch position must fit to be chosen, as a share of the way from the
@@ -342,40 +411,50 @@ def _pick(cost: np.ndarray, rng, avoid=()) -> tuple[int, int]:
     return int(r), int(q)
 
 
-def _columns_cost(ex: np.ndarray, t: int, column: np.ndarray, at: int) -> np.ndarray:
+def _columns_cost(ex: np.ndarray, t: int, column: np.ndarray, at: int, band: slice) -> np.ndarray:
     """For every ``t x t`` patch position ``(r, q)`` of ``ex``: the squared RGB difference of
-    ``column`` (``(t, 3)``) and the patch's column ``at``."""
+    ``column`` (``(t, 3)``) and the patch's column ``at``, over the patch's rows ``band``."""
     from numpy.lib.stride_tricks import sliding_window_view
 
     rows = ex.shape[0] - t + 1
     cols = ex.shape[1] - t + 1
-    win = sliding_window_view(ex[:, at:at + cols, :3], t, axis=0)  # (rows, cols, 3, t)
-    return ((win - column.T[None, None]) ** 2).sum(axis=(2, 3))[:rows]
+    win = sliding_window_view(ex[:, at:at + cols, :3], t, axis=0)[..., band]  # (rows, cols, 3, band)
+    return ((win - column[band].T[None, None]) ** 2).sum(axis=(2, 3))[:rows]
+
+
+#: Half the rows of a corner patch's edge columns (and columns of its edge rows) matched against
+#: the other patches: the new patch covers the tile's middle lines but for their ends at the tile's
+#: border, so only the few texels about a corner patch's middle row (the tile's edge) stay exposed.
+EXPOSED = 3
 
 
 def _corner_patches(example: np.ndarray, colors: int, t: int, rng) -> list[np.ndarray]:
     """One ``t x t`` patch per corner colour, each placed where it best fits the patches chosen
     before it and itself where two corner patches meet: a tile's quarters abut across its
     middle lines, so that the east column of one patch lies beside the west column of any other,
-    and the south row above the north row. An example with a structure (mortar lines) then gets
-    patches whose structure continues across those lines, as image quilting places its blocks
-    (Efros & Freeman 2001)."""
+    and the south row above the north row. The new patch covers those lines (:func:`_cut_regions`)
+    except where they reach the tile's border, at a patch's middle row and column, so the fit is
+    measured there (:data:`EXPOSED` texels each side): an example with a structure (mortar lines)
+    then gets patches whose structure continues across the tiles' edges, as image quilting places
+    its blocks (Efros & Freeman 2001), and the patches are free to differ inside, which they must
+    for the texture to vary (a fit over whole columns prefers patches that repeat themselves: a
+    straight mortar line through every patch, stripes in the texture)."""
+    from numpy.lib.stride_tricks import sliding_window_view
+
     ex = _structure(example)
     exT = np.ascontiguousarray(ex.transpose(1, 0, 2))
-    own = ((ex[:, t - 1:, :3] - ex[:, :ex.shape[1] - t + 1, :3]) ** 2).sum(axis=2)
-    own_rows = ((ex[t - 1:, :, :3] - ex[:ex.shape[0] - t + 1, :, :3]) ** 2).sum(axis=2)
-    rows, cols = ex.shape[0] - t + 1, ex.shape[1] - t + 1
-    self_cost = (np.cumsum(np.pad(own, ((1, 0), (0, 0))), axis=0)[t:] - np.cumsum(np.pad(own, ((1, 0), (0, 0))),
-                                                                                    axis=0)[:-t])[:rows, :cols]
-    self_cost += (np.cumsum(np.pad(own_rows, ((0, 0), (1, 0))), axis=1)[:, t:]
-                  - np.cumsum(np.pad(own_rows, ((0, 0), (1, 0))), axis=1)[:, :-t])[:rows, :cols]
+    band = slice(t // 2 - EXPOSED, t // 2 + EXPOSED)
+    win = sliding_window_view(ex[..., :3], (t, t), axis=(0, 1))  # (rows, cols, 3, t, t)
+    self_cost = (((win[..., band, -1] - win[..., band, 0]) ** 2).sum(axis=(2, 3))
+                 + ((win[..., -1, band] - win[..., 0, band]) ** 2).sum(axis=(2, 3)))
     chosen: list[np.ndarray] = []
     places: list[tuple[int, int, int]] = []
     for _ in range(colors):
         cost = self_cost.copy()
         for p in chosen:
-            cost += _columns_cost(ex, t, p[:, -1, :3], 0) + _columns_cost(ex, t, p[:, 0, :3], t - 1)
-            cost += (_columns_cost(exT, t, p[-1, :, :3], 0) + _columns_cost(exT, t, p[0, :, :3], t - 1)).T
+            cost += _columns_cost(ex, t, p[:, -1, :3], 0, band) + _columns_cost(ex, t, p[:, 0, :3], t - 1, band)
+            cost += (_columns_cost(exT, t, p[-1, :, :3], 0, band)
+                     + _columns_cost(exT, t, p[0, :, :3], t - 1, band)).T
         r, q = _pick(cost, rng, places)
         places.append((r, q, t))
         chosen.append(ex[r:r + t, q:q + t].copy())
@@ -414,37 +493,43 @@ def _structure(ex: np.ndarray) -> np.ndarray:
     return np.repeat(luma[..., None], 3, axis=2)
 
 
-def _cut_regions(t: int) -> tuple[np.ndarray, np.ndarray]:
+def _cut_regions(t: int, border: int = 1) -> tuple[np.ndarray, np.ndarray]:
     """``(keep, cover)`` boolean ``(t, t)`` masks of a tile: ``keep`` lies outside the circle
-    inscribed in the tile (its border, set by the corner colours alone, §5.3), ``cover`` is the
-    cross where the four quarter patches meet and a disc at the centre, which the new patch
-    must cover (Ng et al., Fig. 5.1 d)."""
+    inscribed in the tile, ``border`` texels deep at the middle of each edge (the tile's border,
+    set by the corner colours alone, §5.3), ``cover`` is the cross where the four quarter patches
+    meet and a disc at the centre, which the new patch must cover (Ng et al., Fig. 5.1 d)."""
     h = t / 2
     yy, xx = np.mgrid[0:t, 0:t].astype(np.float32) + 0.5
     radius = np.hypot(yy - h, xx - h)
-    keep = radius > h - 1.0
+    keep = radius > h - border
     cross = (np.abs(yy - h) < 1.0) | (np.abs(xx - h) < 1.0)
-    cover = ((cross & (radius < h - 3.0)) | (radius < 0.2 * t)) & ~keep
+    cover = ((cross & (radius < h - border - 2.0)) | (radius < 0.2 * t)) & ~keep
     return keep, cover
 
 
 def graph_cut(old: np.ndarray, new: np.ndarray, keep: np.ndarray, cover: np.ndarray) -> np.ndarray:
     """Where the ``new`` patch goes over ``old``: the minimum-error boundary of Kwatra et al.
     (2003), the ``(t, t)`` boolean mask, true on ``cover`` and false on ``keep``, whose boundary
-    has the least cost, a pair of neighbouring pixels ``s, u`` cut apart costing
-    ``|old(s) - new(s)| + |old(u) - new(u)|`` (RGB, L1): a minimum s-t cut
-    (:func:`scipy.sparse.csgraph.maximum_flow`; integer capacities, so the same cut everywhere).
+    has the least cost: a pair of neighbouring pixels ``s, u`` cut apart costs
+    ``|old(s) - new(s)| + |old(u) - new(u)|`` (RGB, L1) divided by the edge strength between them,
+    ``|old(s) - old(u)| + |new(s) - new(u)|`` plus a constant (Kwatra et al., §3.3: seams hide
+    along edges, a cut runs beside a mortar line rather than across a brick's face); a minimum
+    s-t cut (:func:`scipy.sparse.csgraph.maximum_flow`; integer capacities, so the same cut
+    everywhere).
     """
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import breadth_first_order, maximum_flow
 
     t = old.shape[0]
     n = t * t
-    err = np.abs(old[..., :3] - new[..., :3]).sum(axis=2).ravel()
+    o, w = old[..., :3].reshape(n, 3), new[..., :3].reshape(n, 3)
+    err = np.abs(o - w).sum(axis=1)
     ids = np.arange(n).reshape(t, t)
     a = np.concatenate([ids[:, :-1].ravel(), ids[:-1, :].ravel()])
     b = np.concatenate([ids[:, 1:].ravel(), ids[1:, :].ravel()])
-    cap = (np.rint(err[a] + err[b]) + 1).astype(np.int32)  # + 1: the shortest of equal cuts
+    edge = np.abs(o[a] - o[b]).sum(axis=1) + np.abs(w[a] - w[b]).sum(axis=1)
+    # + 1: the shortest of equal cuts
+    cap = (np.rint(_CUT_SCALE * (err[a] + err[b]) / (edge + _CUT_SCALE)) + 1).astype(np.int32)
     source, sink, big = n, n + 1, np.int32(1 << 28)
     src = np.flatnonzero(cover.ravel())
     snk = np.flatnonzero(keep.ravel())
@@ -460,6 +545,11 @@ def graph_cut(old: np.ndarray, new: np.ndarray, keep: np.ndarray, cover: np.ndar
     inside = np.zeros(n + 2, dtype=bool)
     inside[reached] = True
     return inside[:n].reshape(t, t)
+
+
+#: The edge strength (RGB, L1, 0-255 a channel) at which a seam's cost is halved
+#: (:func:`graph_cut`); also the costs' fixed-point scale.
+_CUT_SCALE = 16.0
 
 
 def _shifted_mean(mask: np.ndarray) -> np.ndarray:
