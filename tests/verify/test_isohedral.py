@@ -176,3 +176,13 @@ def test_the_motif_must_keep_exactly_the_stabilizer_and_unmarked_types_carry_non
     assert kinds(tiling_violations(square, marked)) == {"marking"}
     outside = dataclasses.replace(tiling, motif=tuple(p + 5 for p in tiling.motif))
     assert "leaves the prototile" in tiling_violations(problem, outside)[0].message
+
+
+def test_the_point_group_must_be_the_stated_groups(monkeypatch):
+    problem = IsohedralProblem(89, region=(0, 0, 3, 2))
+    tiling = layout(problem)
+    t = isohedral_type(89)
+    for group, aspects, message in (("p6m", 2, "p6m's has 12"), ("p31m", 4, "4 aspects of a stabilizer of 3 need 12")):
+        wrong = dataclasses.replace(t, marking=dataclasses.replace(t.marking, group=group, aspects=aspects))
+        monkeypatch.setattr(verifier, "isohedral_type", lambda n, wrong=wrong: wrong)
+        assert message in tiling_violations(problem, tiling)[0].message

@@ -286,12 +286,13 @@ def marks(verts: np.ndarray, syms, stabilizer, aspects: np.ndarray, trans: np.nd
     that carries the prototile onto that tile (the least index of its coset modulo ``stabilizer``).
 
     Walks from the prototile (cell 0, 0, aspect 0, the identity) to neighbours across edges, each
-    the reflection of the last in their common edge, over cells -6..6.
+    the reflection of the last in their common edge, over cells -3..3 (every residue modulo 6, and 3 twice).
 
     Raises
     ------
     RuntimeError
-        The walk meets a tile twice with motions that differ by more than ``stabilizer`` (a bug).
+        The walk meets a tile twice with motions that differ by more than ``stabilizer``, or
+        misses one (a bug).
     """
     n_aspects, n = len(aspects), len(verts)
     inv = np.linalg.inv(trans)
@@ -317,7 +318,9 @@ def marks(verts: np.ndarray, syms, stabilizer, aspects: np.ndarray, trans: np.nd
             ij = (centre - centres) @ inv
             a2 = int(np.argmin(np.abs(ij - np.round(ij)).max(axis=1)))
             i2, j2 = (int(v) for v in np.round(ij[a2]))
-            if max(abs(i2), abs(j2)) <= _PERIOD and (i2, j2, a2) not in seen:
+            if max(abs(i2), abs(j2)) <= _PERIOD // 2 and (i2, j2, a2) not in seen:
                 seen.add((i2, j2, a2))
                 todo.append(((i2, j2, a2), g2))
+    if (table < 0).any():
+        raise RuntimeError("the marking walk missed a tile of the period")
     return table
