@@ -29,9 +29,11 @@ twin's own are the marked ones: for 3^6 (hexagon, R_P = D3 through vertices) one
 R_P trivial) one, p4m; for 6^3 (the equilateral triangle, R_P trivial) H = 1, C3, D1; for 4^4
 (R_P trivial) the subgroups of D4 but D2 through edge midpoints (IH72) and D4 (IH76): 1, C2, D1
 through edge midpoints, D1 along a diagonal, C4, D2 along the diagonals; 12 in all, G&S's count.
-Which IH number is which H (:data:`MARKINGS`) follows G&S's order of Table 6.2.1 within a
-topological type (by the tile's induced group, then by symmetry group), checked against the
-unmarked neighbours' groups; Table 6.2.1 itself was not at hand to compare. Three 4^4 types (C4
+Which IH number is which H (:data:`MARKINGS`) is inferred from the order of G&S's Table 6.2.1
+within a topological type (by the tile's induced group: c1, c2, c3, c4, d1, d2, ...; then by
+symmetry group), as the unmarked neighbours in the tables follow it (e.g. IH87 between IH86 and
+IH88, whose tiles have no symmetry; IH64, pm with a d1 tile); Table 6.2.1 itself was not at hand
+to compare, so this numbering is the part of the derivation least checked. Three 4^4 types (C4
 and the diagonal mirrors: IH63, 70, 75) force the square: they take no parameter; the other three
 keep IH72's rectangle.
 
