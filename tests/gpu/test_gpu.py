@@ -168,6 +168,34 @@ def test_wall_bricks_distance_and_uv_equal_the_cpu_wall_maps(per_fragment, max_l
         assert len(np.unique(cols[ids == k])) == 1
 
 
+@pytest.mark.parametrize("colors,max_line,seed,origin,cell", [
+    (3, 3, 0, (0, 0), 24),           # the studio's view tiles: 24, 16 and 8 px a cell
+    (4, None, 5, (HUGE, -HUGE), 16),
+    (5, 2, 9, (-37, 11), 8),
+    (3, 4, 2, (-7, 3), 6),           # edges on half pixels (1.5, 3, 4.5 px), rounded half to even
+    (7, 1, 1, (5, -2), 15),          # mortar lines of round(1.5) = 2 px
+    (3, None, 4, (2, 2), 1),         # one pixel a cell: all mortar, as the board pictures draw it
+])
+def test_the_board_look_is_the_board_pictures(colors, max_line, seed, origin, cell):
+    w, h = 13, 9
+    gpu = WallRenderer(colors=colors, max_line=max_line, seed=seed, origin=origin, cell_px=cell,
+                       look="board").image(w * cell, h * cell)
+    assert np.array_equal(gpu, _board_picture(colors, max_line, seed, origin, w, h, cell))
+
+
+def _board_picture(colors, max_line, seed, origin, w, h, cell) -> np.ndarray:
+    """RGBA of the board picture (:func:`brick_image`: the studio's view tiles, `tilesolve board
+    --png`) of the wall's ``w x h`` window at ``origin``, ``cell`` px a cell."""
+    from tilesolve.io.board_png import brick_image
+    from tilesolve.model.board import Board, BoardProblem, WangTileSet
+    from tilesolve.model.window import Window
+
+    legs = wall_window(origin[0], origin[1], w, h, colors=colors, max_line=max_line, seed=seed)
+    img = brick_image(BoardProblem(Board.rect(w, h), WangTileSet.brick(colors)), legs.reshape(-1, 4),
+                      window=Window(origin[0], origin[1], w, h), scale=cell)
+    return np.asarray(img.convert("RGBA"))
+
+
 @pytest.mark.parametrize("colors,max_line,seed,origin", [(3, 3, 0, (0, 0)), (4, None, 5, (HUGE, -HUGE)),
                                                       (5, 2, 9, (-37, 11)), (3, 1, 2, (123456789, -987654321))])
 def test_the_webgl2_sources_run_as_glsl_es_give_the_cpu_wall(monkeypatch, colors, max_line, seed, origin):
@@ -175,22 +203,28 @@ def test_the_webgl2_sources_run_as_glsl_es_give_the_cpu_wall(monkeypatch, colors
     es = webgl_wall(colors=colors, max_line=max_line, seed=seed)
     monkeypatch.setattr(wall_module, "_HEADER", wall_module._ES_HEADER)
     monkeypatch.setattr(wall_module, "_VERTEX", es["vertex"])
-    assert wall_module._fragment("cells") == es["cells"] and wall_module._fragment("data") == es["data"]
+    assert wall_module._fragment("cells") == es["cells"]
+    assert wall_module._fragment("colour", look="board") == es["colour"]
+    assert wall_module._fragment("data", look="board") == es["data"]
     cell, w, h = 9, 21, 11
-    r = WallRenderer(colors=colors, max_line=max_line, seed=seed, origin=origin, cell_px=cell)
+    r = WallRenderer(colors=colors, max_line=max_line, seed=seed, origin=origin, cell_px=cell, look="board")
     cpu = wall_window(origin[0] - 1, origin[1] - 1, w + 2, h + 2, colors=colors, max_line=max_line, seed=seed)
     assert np.array_equal(r.cell_legs(w, h), cpu[1:-1, 1:-1])
     d, m = r.data(w * cell, h * cell), wall_maps(cpu, colors, cell, origin=origin)
     assert np.array_equal(d["brick"][..., 0] + np.int64(origin[0]), m.vx)
     assert np.array_equal(d["brick"][..., 1] + np.int64(origin[1]), m.vy)
+    assert np.array_equal(r.image(w * cell, h * cell), _board_picture(colors, max_line, seed, origin, w, h, cell))
 
 
-def test_multisampling_as_far_as_the_context_allows():
+@pytest.mark.parametrize("look", wall_module.LOOKS)
+def test_multisampling_as_far_as_the_context_allows(look):
     allowed = allowed_samples()
     assert allowed[0] == 1 and set(allowed) <= {1, 2, 4, 8, 16, 32}
-    one = WallRenderer(max_line=4, seed=3, cell_px=20).image(120, 80).astype(int)
+    # 5 colours put the edges at sixths of 20 px, between pixels (with whole-pixel edges, as 3
+    # colours and 20 px give, the board look has no sample on another side than its pixel's centre)
+    one = WallRenderer(colors=5, max_line=4, seed=3, cell_px=20, look=look).image(120, 80).astype(int)
     for s in allowed[1:]:
-        many = WallRenderer(max_line=4, seed=3, cell_px=20, samples=s).image(120, 80).astype(int)
+        many = WallRenderer(colors=5, max_line=4, seed=3, cell_px=20, samples=s, look=look).image(120, 80).astype(int)
         diff = np.abs(many - one).max(axis=2)
         assert 0 < (diff > 0).mean() < 0.5  # only pixels on brick borders change
     too_many = [s for s in (1, 2, 4, 8, 16, 32) if s not in allowed]
@@ -199,3 +233,8 @@ def test_multisampling_as_far_as_the_context_allows():
             WallRenderer(samples=s)
     with pytest.raises(InvalidProblem, match="one of"):
         WallRenderer(samples=3)
+
+
+def test_an_unknown_look_is_refused():
+    with pytest.raises(InvalidProblem, match="look must be one of brick, board"):
+        WallRenderer(look="photo")

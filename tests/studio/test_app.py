@@ -434,12 +434,15 @@ def test_the_window_form_offers_every_set_with_a_constructive_route():
 
 
 def test_the_wall_view_sends_its_shaders_for_webgl2(client):
+    from tilesolve.io.wall_png import brick_palette
+
     r = client.get(f"/api/webgl/board?values={json.dumps({'seed': 7, 'colors': 4, 'max_h': 2})}")
     assert r.status_code == 200
     doc = r.json()
     assert doc["kind"] == "wall" and doc["uniforms"]["u_nc"] == 4
     assert doc["uniforms"]["u_basis"] == [w for k in range(4) for w in divmod(FnvXorshift(7, k).basis, 1 << 32)[::-1]]
     assert all(doc[k].startswith("#version 300 es\n") for k in ("vertex", "cells", "colour", "data"))
+    assert doc["palette"] == [list(rgb) for rgb in brick_palette()]  # the view tiles' colours
     assert client.get("/api/webgl/stochastic").json() == {"kind": None}  # its view is the server's tiles
     r = client.get("/api/webgl/dappled")
     assert r.status_code == 400 and "no infinite view" in r.json()["error"]

@@ -7,10 +7,13 @@ What is compared, read back from the browser with ``gl.readPixels``:
   :func:`tilesolve.constructive.walls.wall_window`, exactly, at small and at 2**61 origins;
 * every pixel's brick (the lattice point whose brick it lies in) and tile orientation: equal to
   :func:`tilesolve.constructive.wall_maps.wall_maps`, exactly; distance and UV within 1e-5 cells;
-* the colours: those of the same shaders run by the desktop GPU path (:class:`WallRenderer`,
-  Mesa llvmpipe), pixel for pixel within one level of 255 (two float rasterisers may round
-  the mortar's smoothstep apart) -- and in the studio's own view, after a pan, the window the
-  page says it drew.
+* the colours: the board pictures' look (the studio's view tiles: their palette, a colour per
+  brick and dark mortar, and their geometry), the same as the desktop GPU path's in that look
+  (:class:`WallRenderer`, Mesa llvmpipe) pixel for pixel -- and in the studio's own view, after
+  a pan, the window the page says it drew; at 24 px a cell (the server's tiles at one device
+  pixel a pixel) the same pixels as the view drawn from the server's tiles;
+* a lost WebGL context (``WEBGL_lose_context``): the view falls back to the server's tiles under
+  a note, and is drawn by WebGL2 again, the same pixels, once the context is restored.
 
 The test browser's WebGL2 is SwiftShader, a software rasteriser, on which the page starts with
 the "WebGL2" box unticked (the server's tiles come sooner); the tests tick it. Without WebGL2
@@ -132,10 +135,9 @@ def test_the_browser_draws_the_cpu_wall(gl_page, colors, max_line, seed, origin,
     assert np.allclose(geom[..., 1], m.u, atol=1e-5) and np.allclose(geom[..., 2], m.v, atol=1e-5)
     colour = _array(doc, "colour", np.uint8, w, h)
     # the desktop GPU path (Mesa llvmpipe in CI, as in tests/gpu)
-    desktop = WallRenderer(colors=colors, max_line=max_line, seed=seed, origin=origin, cell_px=cell).image(w, h)
-    diff = np.abs(colour.astype(int) - desktop.astype(int)).max(axis=2)
-    print(f"\nWebGL2 vs llvmpipe colours: {np.count_nonzero(diff)} of {diff.size} pixels differ, by at most {diff.max()}")
-    assert diff.max() <= 1
+    desktop = WallRenderer(colors=colors, max_line=max_line, seed=seed, origin=origin, cell_px=cell,
+                           look="board").image(w, h)
+    assert np.array_equal(colour, desktop)
 
 
 def test_the_studio_view_is_drawn_by_webgl_and_is_the_wall(gl_page):
@@ -158,19 +160,85 @@ def test_the_studio_view_is_drawn_by_webgl_and_is_the_wall(gl_page):
     assert json.loads(values)["seed"] == 9 and json.loads(values)["colors"] == 4
     assert drawn["ox"] or drawn["oy"]
     w, h, ox, oy = drawn["width"], drawn["height"], drawn["ox"], drawn["oy"]
-    pixels = page.evaluate("""() => { const gl = studioWebGL.gl, out = new Uint8Array(gl.drawingBufferWidth *
-        gl.drawingBufferHeight * 4); gl.bindFramebuffer(gl.FRAMEBUFFER, null);
-        gl.readPixels(0, 0, gl.drawingBufferWidth, gl.drawingBufferHeight, gl.RGBA, gl.UNSIGNED_BYTE, out);
-        let s = ""; for (let i = 0; i < out.length; i += 8192) s += String.fromCharCode(...out.subarray(i, i + 8192));
-        return btoa(s); }""")
-    colour = _array({"c": pixels}, "c", np.uint8, w, h)
+    colour = _gl_view(page)
+    assert colour.shape == (h, w, 4)
     # the board form's view: the wall of its colours, lines of at most 3 (the form's default), its seed
     desktop = WallRenderer(colors=4, max_line=3, seed=9, origin=(drawn["x0"], drawn["y0"]),
-                           cell_px=drawn["cellPx"]).image(w + ox, h + oy)
-    diff = np.abs(colour.astype(int) - desktop[:h, ox:ox + w].astype(int)).max(axis=2)
-    print(f"\nstudio view {w}x{h} px, {drawn['cellPx']} px a cell: {np.count_nonzero(diff)} pixels differ, "
-          f"by at most {diff.max()}")
-    assert diff.max() <= 1
+                           cell_px=drawn["cellPx"], look="board").image(w + ox, h + oy)
+    assert np.array_equal(colour, desktop[:h, ox:ox + w])
+
+
+def _gl_view(page) -> np.ndarray:
+    """The studio's WebGL2 view as drawn, ``(h, w, 4)`` RGBA, row 0 at the top."""
+    doc = page.evaluate("""() => { const gl = studioWebGL.gl, w = gl.drawingBufferWidth, h = gl.drawingBufferHeight,
+        out = new Uint8Array(w * h * 4); gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+        gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, out);
+        let s = ""; for (let i = 0; i < out.length; i += 8192) s += String.fromCharCode(...out.subarray(i, i + 8192));
+        return { w, h, c: btoa(s) }; }""")
+    return _array(doc, "c", np.uint8, doc["w"], doc["h"])
+
+
+def _tiles_view(page) -> np.ndarray:
+    """The studio's view as drawn from the server's tiles (its 2D canvas), ``(h, w, 4)`` RGBA."""
+    doc = page.evaluate("""() => { const cv = document.getElementById("view-canvas"),
+        d = cv.getContext("2d").getImageData(0, 0, cv.width, cv.height);
+        let s = ""; for (let i = 0; i < d.data.length; i += 8192) s += String.fromCharCode(...d.data.subarray(i, i + 8192));
+        return { w: cv.width, h: cv.height, c: btoa(s) }; }""")
+    return np.frombuffer(base64.b64decode(doc["c"]), dtype=np.uint8).reshape(doc["h"], doc["w"], 4)
+
+
+#: Every server tile the view wants is drawn.
+TILES_DRAWN = "studio.view.wanted.length > 0 && studio.view.missing === 0 && studio.view.inflight === 0"
+#: The view is drawn by WebGL2.
+GL_DRAWN = ("studioWebGL.state.drawn && !studioWebGL.state.pending && "
+            "document.getElementById('view-info').textContent.includes('drawn by WebGL2')")
+
+
+def _board_view_at_24_px(page, box: bool) -> None:
+    """The board's view (5 colours, seed 4) at zoom 3: 24 px a cell, the server's level-0 tiles
+    (24 px a cell) drawn one pixel a pixel; ``box``: the "WebGL2" box ticked."""
+    page.select_option("#family", "board")
+    page.fill("#field-colors", "5")
+    page.dispatch_event("#field-colors", "change")
+    page.fill("#seed", "4")
+    page.dispatch_event("#seed", "change")
+    page.set_checked("#view-webgl", box)
+    page.locator("#viewport").scroll_into_view_if_needed()
+    assert page.evaluate("window.devicePixelRatio") == 1
+    page.evaluate("Object.assign(studio.view, { x: -301, y: 97, zoom: 3 }); drawView()")
+
+
+def test_the_webgl2_view_is_the_server_tiles_view_pixel_for_pixel(gl_page):
+    page = gl_page
+    _board_view_at_24_px(page, box=False)
+    page.wait_for_function(TILES_DRAWN)
+    assert page.evaluate("studio.view.level") == 0 and page.is_hidden("#view-gl")
+    tiles = _tiles_view(page)
+    page.check("#view-webgl")
+    page.wait_for_function(GL_DRAWN)
+    assert page.evaluate("studioWebGL.state.drawn.cellPx") == 24
+    gl = _gl_view(page)
+    assert gl.shape == tiles.shape
+    differ = np.any(gl != tiles, axis=2)
+    print(f"\nWebGL2 view vs the server's tiles, {gl.shape[1]}x{gl.shape[0]} px: {np.count_nonzero(differ)} differ")
+    assert not differ.any()
+
+
+def test_a_lost_context_falls_back_to_the_server_tiles_until_it_is_restored(gl_page):
+    page = gl_page
+    _board_view_at_24_px(page, box=True)
+    page.wait_for_function(GL_DRAWN)
+    before = _gl_view(page)
+    assert page.is_hidden("#view-webgl-lost")
+    page.evaluate("window.loseContext = studioWebGL.gl.getExtension('WEBGL_lose_context'); loseContext.loseContext()")
+    page.wait_for_function(f"studioWebGL.state.lost && {TILES_DRAWN}")
+    assert page.is_visible("#view-webgl-lost") and "context lost" in page.text_content("#view-webgl-lost")
+    assert page.is_hidden("#view-gl") and "-cell tiles" in page.text_content("#view-info")
+    assert np.array_equal(_tiles_view(page), before)  # the same picture, from the server
+    page.evaluate("loseContext.restoreContext()")
+    page.wait_for_function(f"!studioWebGL.state.lost && {GL_DRAWN}")
+    assert page.is_hidden("#view-webgl-lost") and page.is_visible("#view-gl")
+    assert np.array_equal(_gl_view(page), before)
 
 
 def test_the_box_switches_between_webgl2_and_the_server_tiles(gl_page):

@@ -20,19 +20,29 @@ of it (as :mod:`tilesolve.io.svg_board` draws walls): a horizontal tile (``W = E
 horizontal mortar line across the cell and two half vertical ones, a vertical tile the converse.
 Each brick holds exactly one lattice point (the corners of the four cells around it), which
 serves as the brick's id; its rectangle is fixed by the four edges that meet at that point,
-two of them legs of the fragment's cell and two of the cell diagonally across the point. Per
-fragment the shader writes the brick, the distance to the brick's border (in cells), the UV of
-the fragment in the brick's rectangle (004 Fig. 10, Cartesian) and a colour: mortar near the
-border, otherwise a brick colour varied by a fourth hash stream of the brick id (004 Fig. 9 b).
+two of them legs of the fragment's cell and two of the cell diagonally across the point. The
+``data`` pass writes per fragment the brick, the distance to the brick's border (in cells) and
+the UV of the fragment in the brick's rectangle (004 Fig. 10, Cartesian).
+
+Two looks (:data:`LOOKS`) colour the bricks. ``brick`` (the default) is 004's: mortar near the
+border, otherwise a red brick varied by a fourth hash stream of the brick id (004 Fig. 9 b),
+bevelled. ``board`` is the look of every other wall picture, the board pictures of
+:func:`tilesolve.io.board_png.brick_image` (the studio's view tiles among them), pixel for pixel
+at one sample a pixel: their palette, :func:`tilesolve.io.wall_png.brick_palette` (a colour per
+brick, dark mortar; its one home), as a 256 x 1 texture (``u_palette``), and their geometry:
+each edge at its position rounded to a whole pixel (half to even, kept inside the cell), mortar
+lines ``max(1, round(cell_px / 10))`` pixels wide, a brick's colour their hash of the cell at
+its top-left corner. With several samples a pixel, each sample is shaded at its own position,
+against edges nudged 1/256 px from their exact place towards the rounded one (so that every
+pixel centre falls where the board picture puts it).
 
 Passes
 ------
 ``per_fragment=False`` (default): a first pass computes, one fragment per cell, each cell's legs
-(an RGBA8UI texture) and, for the cell's SW lattice point, the four edges that meet there and
-the point's colour hash (an RG32UI texture); the second pass shades each pixel from two
-fetches, its cell's legs and its brick's point. ``per_fragment=True``
-evaluates ``wall_tile`` in every fragment (twice: the cell and its diagonal neighbour), as 004
-§5.2 describes. Both give the same picture. Multisampling renders into a multisample target
+(an RGBA8UI texture) and, for the cell's SW lattice point, the four edges that meet there (an
+R32UI texture); the second pass shades each pixel from its cell's legs (and, for the ``data``
+pass, its brick's point). ``per_fragment=True`` evaluates ``wall_tile`` in every fragment (the
+``data`` pass twice: the cell and its diagonal neighbour), as 004 §5.2 describes. Both give the same picture. Multisampling renders into a multisample target
 with per-sample shading and resolves it; the sample counts are those the context allows
 (Mesa llvmpipe: 1, 2, 4).
 
@@ -40,7 +50,7 @@ In the browser
 --------------
 :func:`webgl_wall` hands the studio (``static/webgl.js``) these very shaders as GLSL ES 3.00
 (WebGL2): the same source behind a ``#version 300 es`` header with the precisions ES asks for,
-and the uniforms of a seed and colouring. The page places the window itself (``u_origin``,
+the uniforms of a seed and colouring, and the palette. The page places the window itself (``u_origin``,
 ``u_local0``, ``u_dres``, ``u_offset`` and ``u_first``, computed as :class:`WallRenderer` does).
 """
 
@@ -54,13 +64,21 @@ from tilesolve.errors import InvalidProblem
 from tilesolve.gpu.context import gpu_context, max_render_size, release
 from tilesolve.gpu.texture import DIV_GLSL
 from tilesolve.gpu.picture import assemble_bands, pass_layout
+from tilesolve.io.wall_png import MORTAR, N_BRICK_COLOURS, brick_palette
 
-__all__ = ["SAMPLE_COUNTS", "WallRenderer", "allowed_samples", "webgl_wall"]
+__all__ = ["LOOKS", "SAMPLE_COUNTS", "WallRenderer", "allowed_samples", "webgl_wall"]
 
+#: How the bricks are coloured: ``brick`` (004 Fig. 9 b: red bricks varied by a hash of the brick,
+#: light mortar, a bevel; the default of ``tilesolve render wall``) or ``board`` (the board
+#: pictures, :func:`tilesolve.io.board_png.brick_image`: a colour of
+#: :func:`~tilesolve.io.wall_png.brick_palette` per brick, dark mortar; the studio's).
+LOOKS = ("brick", "board")
 #: The sample counts of 004 Table 1 (and 4, which llvmpipe offers).
 SAMPLE_COUNTS = (1, 2, 4, 8, 16, 32)
 #: Extra cells around a pass: the dappling neighbours two cells away and the brick's diagonal cell.
 _MARGIN = 4
+#: Texture units of the second pass: the first pass's two targets, the palette.
+_UNITS = {"u_cells": 0, "u_points": 1, "u_palette": 2}
 
 
 def _option_glsl() -> str:
@@ -78,7 +96,8 @@ def _option_glsl() -> str:
 
 _HEADER = "#version 450\n"
 #: The same shaders as GLSL ES 3.00 (WebGL2): ES has no default precision for these.
-_ES_HEADER = "#version 300 es\nprecision highp float;\nprecision highp int;\nprecision highp usampler2D;\n"
+_ES_HEADER = ("#version 300 es\nprecision highp float;\nprecision highp int;\nprecision highp usampler2D;\n"
+              "precision highp sampler2D;\n")
 
 WALL_GLSL = """
 uniform uvec2 u_basis[4];    // FNV-1a states after seed and stream (streams 0 H, 1 V, 2 option, 3 colour)
@@ -200,14 +219,75 @@ void main() {
 }
 """
 
-#: Second pass (or the only one, with PER_FRAGMENT): the bricks, per fragment or per sample.
+
+def _picture_glsl() -> str:
+    """The board pictures' colours (:func:`tilesolve.io.board_png.brick_image`) as GLSL: their
+    brick hash (``_mix``, splitmix64's finaliser on 32-bit word pairs) reduced to a palette index,
+    and their edges and mortar lines in pixels."""
+    n = N_BRICK_COLOURS
+    return f"const uint N_BRICK = {n}u, WORD_MOD = {(1 << 32) % n}u;   // colours; 2**32 % N_BRICK\n" \
+           f"const int MORTAR = {MORTAR};\n" + """
+uvec2 shr64(uvec2 h, int k) { return uvec2((h.x >> k) | (h.y << (32 - k)), h.y >> k); }   // 0 < k < 32
+
+// The board pictures' colour of the brick whose top-left corner lies in local cell (i, j): its
+// plane position mixed (x 0x9E3779B97F4A7C15 ^ y 0xC2B2AE3D27D4EB4F, then splitmix64's
+// finaliser), modulo N_BRICK.
+uint brick_index(int i, int j) {
+    uvec2 h = mul64(add64(u_origin[0], i), uvec2(0x7F4A7C15u, 0x9E3779B9u))
+            ^ mul64(add64(u_origin[1], j), uvec2(0x27D4EB4Fu, 0xC2B2AE3Du));
+    h ^= shr64(h, 31);
+    h = mul64(h, uvec2(0x133111EBu, 0x94D049BBu));
+    h ^= shr64(h, 29);
+    return ((h.y % N_BRICK) * WORD_MOD + h.x % N_BRICK) % N_BRICK;
+}
+
+int round_half_even(int num, int den) {   // num / den rounded half to even (num >= 0, den > 0)
+    int q = num / den, twice = 2 * (num - q * den);
+    return q + ((twice > den || (twice == den && (q & 1) == 1)) ? 1 : 0);
+}
+
+// Where leg colour c puts its brick edge on a side of s pixels, counted from the side's start:
+// (c + 1) s / (nc + 1) rounded to a whole pixel r (half to even) and kept in [1, s - 1] as the
+// board pictures place it, as a position strictly within half a pixel of r, 1/256 px from the
+// exact one towards r: so a pixel centre lies before it exactly when its pixel lies before r.
+float edge_px(uint c, int s) {
+    int den = int(u_nc) + 1, num = (int(c) + 1) * s, r = round_half_even(num, den);
+    float e = float(r) + float(num - r * den) / float(den) * (255.0 / 256.0);
+    return min(max(e, 1.0), float(s - 1));
+}
+
+// The palette index of the point `at` (pixels from the top-left corner) of local cell c, legs t,
+// in a cell of s pixels: mortar on a line, else the colour of its brick.
+int picture_index(uvec4 t, ivec2 c, vec2 at, int s) {
+    int th = max(1, round_half_even(s, 10));
+    float lo = float(th / 2), hi = float(th - th / 2);
+    vec4 e = vec4(edge_px(t.x, s), edge_px(t.y, s), edge_px(t.z, s), edge_px(t.w, s));   // N, E, S, W
+    bvec4 on = bvec4(at.x >= e.x - lo && at.x < e.x + hi, at.y >= e.y - lo && at.y < e.y + hi,
+                     at.x >= e.z - lo && at.x < e.z + hi, at.y >= e.w - lo && at.y < e.w + hi);
+    bool top, left, mortar;
+    if (t.w == t.y) {   // horizontal tile: a line across at W = E, half lines at N (above) and S
+        top = at.y < e.w;
+        left = top ? at.x < e.x : at.x < e.z;
+        mortar = on.w || (top ? on.x : on.z);
+    } else {            // vertical tile: a line down at N = S, half lines at W (left) and E
+        left = at.x < e.x;
+        top = left ? at.y < e.w : at.y < e.y;
+        mortar = on.x || (left ? on.w : on.y);
+    }
+    return mortar ? MORTAR : int(brick_index(c.x - int(left), c.y + int(top)));
+}
+"""
+
+#: Second pass (or the only one, with PER_FRAGMENT): the bricks, per fragment or per sample, in
+#: the look of 004 or, with BOARD, of the board pictures.
 _SHADE_GLSL = """
 uniform int u_cell_px;       // pixels per cell side
 uniform ivec2 u_offset;      // this pass's lower-left pixel in the picture
 uniform ivec2 u_local0;      // local cell of the picture's SW cell
-uniform float u_mortar;      // half width of the mortar, in cells
+uniform float u_mortar;      // half width of the mortar, in cells (004's look)
 uniform usampler2D u_cells;  // first pass: legs of local cells u_first + texel
 uniform usampler2D u_points; // first pass: edges and colour hash of the lattice point u_first + texel
+uniform sampler2D u_palette; // 256 x 1: brick_palette (tilesolve.io.wall_png; the board pictures' look)
 uniform ivec2 u_first;
 layout(location = 0) out vec4 f_colour;
 #ifdef DATA
@@ -231,7 +311,8 @@ void main() {
 #else
     vec2 sub = vec2(0.5);
 #endif
-    vec2 f = (vec2(p - cell * u_cell_px) + sub) / float(u_cell_px);   // in the cell, from its SW corner
+    ivec2 in_cell = p - cell * u_cell_px;
+    vec2 f = (vec2(in_cell) + sub) / float(u_cell_px);   // in the cell, from its SW corner
     ivec2 c = cell + u_local0;
     uvec4 t = legs(c);
     float k = float(u_nc + 1u);
@@ -270,11 +351,16 @@ void main() {
     vec2 uv = (q - lo) / (hi - lo);
     float dist = min(min(q.x - lo.x, hi.x - q.x), min(q.y - lo.y, hi.y - q.y));
     ivec2 brick = c + corner - u_local0;
+#ifdef BOARD
+    vec2 at = vec2(float(in_cell.x) + sub.x, float(u_cell_px - in_cell.y) - sub.y);   // from the top-left, px
+    f_colour = texelFetch(u_palette, ivec2(picture_index(t, c, at, u_cell_px), 0), 0);
+#else
     vec3 base = vec3(0.60, 0.27, 0.17) * (0.75 + 0.45 * float(shade >> 24) / 255.0)
               + vec3(0.06, 0.03, 0.0) * float((shade >> 16) & 255u) / 255.0;
     float edge = smoothstep(u_mortar, u_mortar + 0.06, dist);
     vec3 mortar = vec3(0.78, 0.76, 0.72);
     f_colour = vec4(mix(mortar, base * (0.8 + 0.2 * smoothstep(0.0, 0.25, dist)), edge), 1.0);
+#endif
 #ifdef DATA
     f_brick = brick;
     f_geom = vec4(dist, uv, horizontal ? 1.0 : 0.0);
@@ -283,9 +369,10 @@ void main() {
 """
 
 
-def _fragment(kind: str, *, per_fragment: bool = False, samples: bool = False, header: str | None = None) -> str:
-    """The fragment shader of a pass: ``cells`` (first pass), ``colour`` or ``data`` (second),
-    behind ``header`` (by default :data:`_HEADER`, GLSL 4.50)."""
+def _fragment(kind: str, *, per_fragment: bool = False, samples: bool = False, look: str = "brick",
+              header: str | None = None) -> str:
+    """The fragment shader of a pass: ``cells`` (first pass), ``colour`` or ``data`` (second) in
+    the ``look`` of :data:`LOOKS`, behind ``header`` (by default :data:`_HEADER`, GLSL 4.50)."""
     header = _HEADER if header is None else header
     if kind == "cells":
         return header + DIV_GLSL + WALL_GLSL + _CELLS_GLSL
@@ -294,6 +381,8 @@ def _fragment(kind: str, *, per_fragment: bool = False, samples: bool = False, h
         defines += "#define DATA\n"
     if kind == "colour" and samples:
         defines += "#define SAMPLES\n"
+    if look == "board":
+        return header + defines + "#define BOARD\n" + DIV_GLSL + WALL_GLSL + _picture_glsl() + _SHADE_GLSL
     return header + defines + DIV_GLSL + WALL_GLSL + _SHADE_GLSL
 
 
@@ -308,8 +397,15 @@ def _wall_params(colors, max_line, seed) -> tuple[int, int, bool, int]:
     return nc, dappling_period(max_line), max_line is not None and int(max_line) % 2 == 1, seed
 
 
-def webgl_wall(*, colors: int = 3, max_line: int | None = None, seed: int = 0, mortar: float = 0.04) -> dict:
-    """The wall's shaders as GLSL ES 3.00 for WebGL2, and the uniforms that hold for every window.
+def _palette() -> np.ndarray:
+    """``(1, 256, 4)`` uint8 RGBA of the ``u_palette`` texture: :func:`~tilesolve.io.wall_png.brick_palette`."""
+    rgb = np.asarray(brick_palette(), dtype=np.uint8)
+    return np.concatenate([rgb, np.full((len(rgb), 1), 255, np.uint8)], axis=1)[None]
+
+
+def webgl_wall(*, colors: int = 3, max_line: int | None = None, seed: int = 0) -> dict:
+    """The wall's shaders as GLSL ES 3.00 for WebGL2, in the board pictures' look (the studio's
+    view tiles), and the uniforms that hold for every window.
 
     Returns
     -------
@@ -318,8 +414,9 @@ def webgl_wall(*, colors: int = 3, max_line: int | None = None, seed: int = 0, m
         (second pass, as :class:`WallRenderer` draws them with one sample per pixel): this
         module's GLSL behind a ``#version 300 es`` header and the precisions ES asks for.
         ``uniforms``: ``u_basis`` (the four streams' FNV-1a states as eight 32-bit words, low
-        word first), ``u_nc``, ``u_p``, ``u_fixed``, ``u_mortar``. ``margin``: the cells a pass
-        reaches south-west of the picture.
+        word first), ``u_nc``, ``u_p``, ``u_fixed``. ``palette``: the 256 ``[r, g, b]`` texels
+        of ``u_palette`` (:func:`~tilesolve.io.wall_png.brick_palette`, the board pictures'
+        colours). ``margin``: the cells a pass reaches south-west of the picture.
 
     Examples
     --------
@@ -330,9 +427,9 @@ def webgl_wall(*, colors: int = 3, max_line: int | None = None, seed: int = 0, m
     nc, period, fixed, seed = _wall_params(colors, max_line, seed)
     basis = [w for k in range(4) for w in _uvec2(FnvXorshift(seed, k).basis)]
     return {"vertex": _ES_HEADER + _VERTEX.removeprefix(_HEADER),
-            **{kind: _fragment(kind, header=_ES_HEADER) for kind in ("cells", "colour", "data")},
-            "uniforms": {"u_basis": basis, "u_nc": nc, "u_p": period, "u_fixed": fixed, "u_mortar": float(mortar)},
-            "margin": _MARGIN}
+            **{kind: _fragment(kind, look="board", header=_ES_HEADER) for kind in ("cells", "colour", "data")},
+            "uniforms": {"u_basis": basis, "u_nc": nc, "u_p": period, "u_fixed": fixed},
+            "palette": _palette()[0, :, :3].tolist(), "margin": _MARGIN}
 
 
 def allowed_samples(ctx=None) -> tuple[int, ...]:
@@ -362,13 +459,16 @@ class WallRenderer:
     """
 
     def __init__(self, *, colors: int = 3, max_line: int | None = None, seed: int = 0, origin=(0, 0),
-                 cell_px: int = 32, samples: int = 1, per_fragment: bool = False, mortar: float = 0.04) -> None:
+                 cell_px: int = 32, samples: int = 1, per_fragment: bool = False, look: str = "brick",
+                 mortar: float = 0.04) -> None:
         self.nc, self.period, self.fixed, self.seed = _wall_params(colors, max_line, seed)
         x0, y0 = origin
         self.x0, self.y0, _, _ = check_window(x0, y0, 1, 1, what="wall window")
         self.cell_px = check_int(cell_px, "cell size", 1)
         self.per_fragment = bool(per_fragment)
-        self.mortar = float(mortar)
+        if look not in LOOKS:
+            raise InvalidProblem(f"look must be one of {', '.join(LOOKS)}, got {look!r}")
+        self.look, self.mortar = look, float(mortar)
         self.ctx = gpu_context()
         self.max_pass = max_render_size(self.ctx)
         s = check_int(samples, "samples", 1)
@@ -387,11 +487,13 @@ class WallRenderer:
         if self.x0 + (1 << 31) >= 1 << 62 or self.y0 + (1 << 31) >= 1 << 62:
             raise InvalidProblem("the wall picture must stay inside |cell coordinates| < 2**62")
         self._quad = self.ctx.buffer(np.array([-1, -1, 1, -1, -1, 1, 1, 1], dtype="f4").tobytes())
+        self._palette = self.ctx.texture((256, 1), 4, _palette().tobytes())
+        self._palette.filter = (self.ctx.NEAREST, self.ctx.NEAREST)
         self._programs: dict = {}
 
     def _program(self, kind: str):
         if kind not in self._programs:
-            src = _fragment(kind, per_fragment=self.per_fragment, samples=self.samples > 1)
+            src = _fragment(kind, per_fragment=self.per_fragment, samples=self.samples > 1, look=self.look)
             prog = self.ctx.program(vertex_shader=_VERTEX, fragment_shader=src)
             if "u_basis" in prog:  # the compiler drops what a pass does not use (streams, uniforms)
                 basis = prog["u_basis"]
@@ -399,8 +501,7 @@ class WallRenderer:
             p = max(self.period, 1)
             values = {"u_origin": [_uvec2(self.i0), _uvec2(self.j0)], "u_nc": self.nc, "u_p": self.period,
                       "u_fixed": self.fixed, "u_dres": (self.i0 - self.j0) % p + p * -(-(1 << 16) // p),
-                      "u_cell_px": self.cell_px, "u_local0": self.local0, "u_mortar": self.mortar, "u_cells": 0,
-                      "u_points": 1}
+                      "u_cell_px": self.cell_px, "u_local0": self.local0, "u_mortar": self.mortar, **_UNITS}
             for name, value in values.items():
                 if name in prog:
                     prog[name].value = value
@@ -447,8 +548,9 @@ class WallRenderer:
         first = (ox // self.cell_px + self.local0[0] - 1, oy // self.cell_px + self.local0[1] - 1)
         if cells_fbo is not None:
             self._cells(cells_fbo, first)
-            cells_fbo.color_attachments[0].use(0)
-            cells_fbo.color_attachments[1].use(1)
+            cells_fbo.color_attachments[0].use(_UNITS["u_cells"])
+            cells_fbo.color_attachments[1].use(_UNITS["u_points"])
+        self._palette.use(_UNITS["u_palette"])
         prog["u_offset"].value = (ox, oy)
         if "u_first" in prog:
             prog["u_first"].value = first

@@ -75,8 +75,9 @@ class Views:
 
     def webgl(self, name: str, raw: str) -> dict:
         """How the page draws family ``name``'s view itself for the form values ``raw``: the
-        wall's GLSL ES shaders and uniforms (:func:`tilesolve.gpu.wall.webgl_wall`, ``kind``
-        ``"wall"``) when the view is the procedural wall, else ``{"kind": None}`` (server tiles)."""
+        wall's GLSL ES shaders, uniforms and palette (:func:`tilesolve.gpu.wall.webgl_wall`, in
+        the look of :meth:`png`'s tiles; ``kind`` ``"wall"``) when the view is the procedural
+        wall, else ``{"kind": None}`` (server tiles)."""
         from tilesolve.gpu.wall import webgl_wall
 
         fam, vals = _posed(name, raw)

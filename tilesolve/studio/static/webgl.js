@@ -1,15 +1,18 @@
 // tilesolve studio: the infinite view of the procedural wall drawn on the page's own GPU by the
 // GPU path's shaders (tilesolve/gpu/wall.py, served as GLSL ES 3.00 by GET /api/webgl/{family}).
 // Their integer hashes are the CPU's (tilesolve/constructive/walls.py), so every cell's edge
-// colours, and with them every brick, are those of the server's wall. studio.js draws the
-// server's view tiles instead when WebGL2 is missing, when the view has no shader, when a
-// shader fails, or when the "WebGL2" box is unticked. The box starts unticked on a software
+// colours, and with them every brick, are those of the server's wall; the shaders colour the
+// bricks as the server's view tiles do (the board pictures' palette, served with them as a
+// texture, and their geometry), so both views of one region are the same pixels. studio.js draws
+// the server's view tiles instead when WebGL2 is missing, when the view has no shader, when a
+// shader fails, while the page's WebGL context is lost (a note says so; the view comes back
+// with the context), or when the "WebGL2" box is unticked. The box starts unticked on a software
 // rasteriser (SwiftShader, llvmpipe: headless browsers, machines without a GPU driver), where
 // the server's tiles come sooner: there the first frame waits seconds for the shaders to
 // compile, and a zoomed-out frame (a cell a pixel) takes seconds more.
 "use strict";
 window.studioWebGL = (() => {
-  const state = { wall: null, seq: 0, pending: false, error: "", drawn: null };
+  const state = { wall: null, seq: 0, pending: false, error: "", drawn: null, lost: false };
   let made = null;                             // the one Wall of the page's context
 
   const mod = (a, n) => ((a % n) + n) % n;     // floor modulo (BigInt or Number)
@@ -28,20 +31,21 @@ window.studioWebGL = (() => {
     return p;
   }
 
-  function texture(gl, internal, format, type, w, h) {
+  function texture(gl, internal, format, type, w, h, data = null) {
     const t = gl.createTexture();
     gl.bindTexture(gl.TEXTURE_2D, t);
     gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST);   // integer textures: NEAREST or incomplete
     gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST);
-    gl.texImage2D(gl.TEXTURE_2D, 0, internal, w, h, 0, format, type, null);
+    gl.texImage2D(gl.TEXTURE_2D, 0, internal, w, h, 0, format, type, data);
     return t;
   }
 
   // The two passes of WallRenderer (tilesolve/gpu/wall.py) on one WebGL2 context: ``cells`` (a
-  // fragment per cell: its legs, RGBA8UI, and its SW lattice point, RG32UI), then a pass per pixel.
+  // fragment per cell: its legs, RGBA8UI, and its SW lattice point, RG32UI), then a pass per pixel
+  // coloured from the palette (256 x 1 RGBA8).
   class Wall {
     constructor(gl) {
-      this.gl = gl; this.config = null; this.programs = {}; this.cells = null;
+      this.gl = gl; this.config = null; this.programs = {}; this.cells = null; this.palette = null;
       gl.bindVertexArray(gl.createVertexArray());
       gl.bindBuffer(gl.ARRAY_BUFFER, gl.createBuffer());
       gl.bufferData(gl.ARRAY_BUFFER, new Float32Array([-1, -1, 1, -1, -1, 1, 1, 1]), gl.STATIC_DRAW);
@@ -50,7 +54,12 @@ window.studioWebGL = (() => {
 
     // A new seed or colouring: the served shaders, compiled now so that a failure shows at once.
     use(config) {
-      for (const p of Object.values(this.programs)) this.gl.deleteProgram(p);
+      const gl = this.gl, rgba = new Uint8Array(256 * 4).fill(255);
+      for (const p of Object.values(this.programs)) gl.deleteProgram(p);
+      if (this.palette) gl.deleteTexture(this.palette);
+      config.palette.forEach((rgb, k) => rgba.set(rgb, 4 * k));
+      this.palette = texture(gl, gl.RGBA8, gl.RGBA, gl.UNSIGNED_BYTE, 256, 1, rgba);
+      gl.bindTexture(gl.TEXTURE_2D, null);
       this.config = config; this.programs = {};
       this.program("cells"); this.program("colour");
     }
@@ -62,7 +71,7 @@ window.studioWebGL = (() => {
         gl.useProgram(p);
         gl.uniform2uiv(at("u_basis"), new Uint32Array(u.u_basis));
         gl.uniform1ui(at("u_nc"), u.u_nc); gl.uniform1i(at("u_p"), u.u_p); gl.uniform1i(at("u_fixed"), u.u_fixed ? 1 : 0);
-        gl.uniform1f(at("u_mortar"), u.u_mortar); gl.uniform1i(at("u_cells"), 0); gl.uniform1i(at("u_points"), 1);
+        gl.uniform1i(at("u_cells"), 0); gl.uniform1i(at("u_points"), 1); gl.uniform1i(at("u_palette"), 2);
         this.programs[kind] = p;
       }
       return this.programs[kind];
@@ -115,9 +124,10 @@ window.studioWebGL = (() => {
       gl.viewport(0, 0, w, h);
       gl.activeTexture(gl.TEXTURE0); gl.bindTexture(gl.TEXTURE_2D, cells.legs);
       gl.activeTexture(gl.TEXTURE1); gl.bindTexture(gl.TEXTURE_2D, cells.points);
+      gl.activeTexture(gl.TEXTURE2); gl.bindTexture(gl.TEXTURE_2D, this.palette);
       place(this.program(kind));
       gl.drawArrays(gl.TRIANGLE_STRIP, 0, 4);
-      gl.bindTexture(gl.TEXTURE_2D, null); gl.activeTexture(gl.TEXTURE0); gl.bindTexture(gl.TEXTURE_2D, null);
+      for (const unit of [gl.TEXTURE2, gl.TEXTURE1, gl.TEXTURE0]) { gl.activeTexture(unit); gl.bindTexture(gl.TEXTURE_2D, null); }
     }
   }
 
@@ -137,7 +147,10 @@ window.studioWebGL = (() => {
   const renderer = gl ? gl.getParameter(info ? info.UNMASKED_RENDERER_WEBGL : gl.RENDERER) : "";
   const software = /SwiftShader|llvmpipe|softpipe|software/i.test(renderer);
 
-  // The "WebGL2" box of the view panel: `changed` (studio.js's resetView) when it is ticked or not.
+  // The "WebGL2" box of the view panel: `changed` (studio.js's resetView) when it is ticked or
+  // not, and when the context is lost or restored. A lost context loses every program, texture
+  // and framebuffer: the view is the server's tiles, under a note, until the browser restores
+  // the context; then the shaders are fetched and compiled again.
   function setup(changed) {
     const box = document.createElement("label");
     box.id = "view-webgl-label";
@@ -145,21 +158,34 @@ window.studioWebGL = (() => {
       : `draw the view here with the GPU path's shaders (unticked: the server's tiles)${software
         ? `; ${renderer} is a software rasteriser, slower than the server's tiles` : ""}`;
     box.innerHTML = `<input id="view-webgl" type="checkbox"${!gl ? " disabled" : software ? "" : " checked"}> WebGL2`;
+    const note = document.createElement("span");
+    note.id = "view-webgl-lost"; note.setAttribute("role", "status"); note.hidden = true;
+    note.style.cssText = "position: absolute; left: .6em; top: .6em; background: #fff4d6; color: #5c4100; " +
+      "border: 1px solid #e0b84a; padding: .25em .7em; border-radius: 6px; font-size: .88em";
+    note.textContent = "WebGL2 context lost: showing the server's tiles until the browser restores it";
     document.getElementById("view-info").before(box);
+    document.getElementById("viewport").append(note);
     box.firstChild.addEventListener("change", changed);
+    if (!gl) return;
+    canvas().addEventListener("webglcontextlost", (e) => {
+      e.preventDefault();                      // ask the browser to restore it
+      state.lost = true; state.wall = made = null; state.pending = false;
+      changed();
+    });
+    canvas().addEventListener("webglcontextrestored", () => { state.lost = false; changed(); });
   }
 
   // The view of family `name` for the form values `values` (URL-encoded JSON): fetch its shaders
   // (if it has some) and compile them. Resolves when known; until then draw() draws nothing.
   async function configure(name, values) {
     const seq = ++state.seq;
-    state.wall = null; state.error = "";
+    state.wall = null; state.error = ""; state.pending = false;
     const box = document.getElementById("view-webgl");
-    if (!gl || (box && !box.checked)) return;
+    if (!gl || state.lost || (box && !box.checked)) return;
     state.pending = true;
     try {
       const r = await fetch(`/api/webgl/${name}?values=${values}`), doc = await r.json();
-      if (seq !== state.seq) return;
+      if (seq !== state.seq || gl.isContextLost()) return;
       if (r.ok && doc.kind === "wall") {
         state.wall = made = made || new Wall(gl);
         state.wall.use(doc);
@@ -174,7 +200,8 @@ window.studioWebGL = (() => {
   // Draw studio.js's view (x, y: its top-left in CSS px at zoom 1, `cell` px a cell; w x h CSS
   // px, dpr device px each) with whole device pixels per cell. False: draw the server's tiles.
   function draw(view, cell, w, h, dpr) {
-    const cv = canvas();
+    const cv = canvas(), box = document.getElementById("view-webgl"), note = document.getElementById("view-webgl-lost");
+    if (note) note.hidden = !(state.lost && box && box.checked);
     if (state.pending) return true;
     if (!state.wall) { cv.style.display = "none"; return false; }
     const W = Math.round(w * dpr), H = Math.round(h * dpr);
