@@ -121,13 +121,36 @@ def folder(tmp_path_factory, sets):
 @pytest.mark.parametrize("region,more", [("-9,4,3x2", ["--image", "star.png"]), ("-9,4,3x2", []),
                                          ("1099511627776,-1099511627777,2x2", ["--image", "star.png"])])
 def test_gpu_flag_writes_the_cpu_png(folder, more, region):
-    """The example image scattered over the texture (or the default disks): the same file."""
+    """The example image scattered over the shaded background (or the default disks): the same file."""
     args = ["sample", "poisson-tiles", "texture", "set.json", "--region", region, "--px", "20", "--seed", "3", *more]
     cpu = run(*args, "--png", "cpu.png", cwd=folder)
     gpu = run(*args, "--gpu", "--png", "gpu.png", cwd=folder)
     assert cpu.returncode == 0 and gpu.returncode == 0, (cpu.stderr, gpu.stderr)
     assert (folder / "gpu.png").read_bytes() == (folder / "cpu.png").read_bytes()
     assert gpu.stderr.splitlines()[0] == cpu.stderr.splitlines()[0]  # "ok: ... pixels inside a Poisson disk"
+
+
+@pytest.mark.slow
+def test_objects_scattered_over_a_wall(folder, sets):
+    """--background: the wall shows where no object is, the object where it is opaque; the GPU's file is the CPU's."""
+    from PIL import Image
+
+    assert run("render", "wall", "--size", "50x30", "--seed", "4", "-o", "wall.png", cwd=folder).returncode == 0
+    args = ["sample", "poisson-tiles", "texture", "set.json", "--region", "-9,4,3x2", "--px", "20", "--seed", "3",
+            "--image", "star.png", "--background", "wall.png"]
+    assert run(*args, "--png", "cpu.png", cwd=folder).returncode == 0
+    assert run(*args, "--gpu", "--png", "gpu.png", cwd=folder).returncode == 0
+    assert (folder / "gpu.png").read_bytes() == (folder / "cpu.png").read_bytes()
+    picture = np.asarray(Image.open(folder / "cpu.png"))
+    wall = np.asarray(Image.open(folder / "wall.png"))[..., :3]
+    ev = cpu_objects(sets[2], Window(-9, 4, 3, 2), 20, seed=3)
+    under = wall[np.arange(40) % 30][:, np.arange(60) % 50]  # repeated from the top-left corner
+    assert np.array_equal(picture[~ev["inside"]], under[~ev["inside"]])
+    star = np.asarray(Image.open(folder / "star.png"))
+    col = np.clip(((ev["local"][..., 0] + 1) / 2 * 24).astype(int), 0, 23)
+    row = np.clip(((1 - ev["local"][..., 1]) / 2 * 24).astype(int), 0, 23)
+    opaque = ev["inside"] & (star[row, col, 3] == 255)
+    assert opaque.any() and np.array_equal(picture[opaque], star[row, col, :3][opaque])
 
 
 def test_gpu_flag_without_opengl_is_one_line_and_no_file(folder, monkeypatch):
@@ -137,4 +160,12 @@ def test_gpu_flag_without_opengl_is_one_line_and_no_file(folder, monkeypatch):
     r = run("sample", "poisson-tiles", "texture", "set.json", "--region", "0,0,2x2", "--px", "8", "--gpu",
             "--png", "none.png", cwd=folder)
     assert "OpenGL" in one_line_error(r, 2)
+    assert not (folder / "none.png").exists()
+
+
+@pytest.mark.parametrize("background", ["missing.png", "set.json"])
+def test_an_unreadable_background_is_one_line_and_no_file(folder, background):
+    r = run("sample", "poisson-tiles", "texture", "set.json", "--region", "0,0,2x2", "--px", "8", "--gpu",
+            "--background", background, "--png", "none.png", cwd=folder)
+    assert background in one_line_error(r, 2)
     assert not (folder / "none.png").exists()

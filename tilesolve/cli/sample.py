@@ -223,6 +223,10 @@ def spectrum(ctx, tileset, size, runs, seed, svg, png) -> None:
 @click.option("--image", type=click.Path(dir_okay=False, exists=False), metavar="IMG.png",
               help="The object drawn in every Poisson disk (transparent pixels show the background); "
                    "default: shaded disks coloured by the point's id.")
+@click.option("--background", type=click.Path(dir_okay=False, exists=False), metavar="BG.png",
+              help="The picture the objects are scattered over, repeated from the top-left corner (a wall from "
+                   "`tilesolve render wall`, a texture from `tilesolve render texture`); default: a shade by the "
+                   "distance to the closest point.")
 @opt.seed_opt
 @click.option("--gpu", is_flag=True,
               help="Evaluate the function in a fragment shader (OpenGL 4.5 through EGL: the gpu extra; Mesa's "
@@ -230,7 +234,7 @@ def spectrum(ctx, tileset, size, runs, seed, svg, png) -> None:
 @click.option("--png", type=OutputFile("png", allow_dash=False), required=True, metavar="T.png",
               help="Write the texture here.")
 @click.pass_context
-def texture(ctx, tileset, region, px, image, seed, gpu, png) -> None:
+def texture(ctx, tileset, region, px, image, background, seed, gpu, png) -> None:
     """Scatter objects over a texture with the procedural object distribution function (class
     notes §6.6.2): each pixel is evaluated on its own (random access through the direct corner
     tiling), finds its closest point of the tiled Poisson disk distribution, and draws the
@@ -244,6 +248,8 @@ def texture(ctx, tileset, region, px, image, seed, gpu, png) -> None:
       tilesolve sample poisson-tiles texture set.json --region 0,0,6x4 --px 48 --seed 2 --png texture.png
       tilesolve sample poisson-tiles texture set.json --region 0,0,3x2 --px 64 --image texture.png --png again.png
       tilesolve sample poisson-tiles texture set.json --region 1099511627776,-5,6x4 --px 48 --seed 2 --gpu --png far.png
+      tilesolve render wall --size 288x192 --seed 4 -o wall.png
+      tilesolve sample poisson-tiles texture set.json --region 0,0,6x4 --px 48 --seed 2 --image again.png --background wall.png --png on-wall.png
     """
     if gpu:
         from tilesolve.gpu.objects import objects
@@ -258,10 +264,11 @@ def texture(ctx, tileset, region, px, image, seed, gpu, png) -> None:
         raise InvalidProblem(f"a texture of {window.width * px:,} x {window.height * px:,} pixels is more than "
                              f"{MAX_TEXTURE_PIXELS:,}: ask for fewer tiles or pixels")
     picture = _read_image(image) if image else None
+    under = _read_image(background) if background else None
     _, ts = _load_set(tileset)
     evaluation = objects(ts, window, px, seed=seed)
     with outs.commit():
-        write_texture_png(png, evaluation, picture)
+        write_texture_png(png, evaluation, picture, under)
     say(f"ok: {int(evaluation['inside'].sum()):,} of {evaluation['inside'].size:,} pixels inside a Poisson disk, "
         f"{window.caption()}")
     _done(ctx, outs)

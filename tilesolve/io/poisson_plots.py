@@ -149,14 +149,21 @@ def write_spectrum_plot(path: str | os.PathLike, series: Sequence[tuple[str, np.
         img.save(fh, format="PNG")
 
 
-def texture_image(evaluation: dict, image=None) -> np.ndarray:
+def texture_image(evaluation: dict, image=None, background=None) -> np.ndarray:
     """An RGB texture (§6.6.2, figure 6.6) from the object distribution function evaluated at
     every pixel (:func:`tilesolve.families.poisson.objects`): inside a Poisson disk, the object
     (``image``, an RGBA array drawn in the disk's square ``[-1, 1]^2``, or a shaded disk coloured
-    by the point's id); outside, a background shaded by the distance to the closest point."""
+    by the point's id); outside, the ``background`` picture (an RGB or RGBA array, repeated from
+    the top-left corner: a wall, a texture), or a background shaded by the distance to the
+    closest point."""
     inside, local, ident, dist = evaluation["inside"], evaluation["local"], evaluation["id"], evaluation["distance"]
-    shade = np.clip(1.0 - 0.35 * np.minimum(dist / max(float(dist.max()), 1e-12), 1.0), 0, 1)
-    out = (np.array([236.0, 230.0, 214.0]) * shade[..., None])
+    if background is None:
+        shade = np.clip(1.0 - 0.35 * np.minimum(dist / max(float(dist.max()), 1e-12), 1.0), 0, 1)
+        out = (np.array([236.0, 230.0, 214.0]) * shade[..., None])
+    else:
+        bg = np.asarray(background, dtype=np.float64)[..., :3]
+        rows, cols = inside.shape
+        out = bg[np.arange(rows) % bg.shape[0]][:, np.arange(cols) % bg.shape[1]]
     palette = np.array([[int(c[i:i + 2], 16) for i in (1, 3, 5)] for c in _SERIES], dtype=np.float64)
     if image is None:
         mix = (ident[..., 0] * 73856093 ^ ident[..., 1] * 19349663 ^ ident[..., 2] * 83492791) % len(palette)
@@ -174,9 +181,9 @@ def texture_image(evaluation: dict, image=None) -> np.ndarray:
     return np.clip(out + 0.5, 0, 255).astype(np.uint8)
 
 
-def write_texture_png(path: str | os.PathLike, evaluation: dict, image=None) -> None:
+def write_texture_png(path: str | os.PathLike, evaluation: dict, image=None, background=None) -> None:
     """:func:`texture_image` as a PNG."""
     from PIL import Image
 
     with atomic_write(path, "wb", encoding=None) as f:
-        Image.fromarray(texture_image(evaluation, image), "RGB").save(f, format="PNG")
+        Image.fromarray(texture_image(evaluation, image, background), "RGB").save(f, format="PNG")
