@@ -182,7 +182,8 @@ def _tiles_view(page) -> np.ndarray:
     """The studio's view as drawn from the server's tiles (its 2D canvas), ``(h, w, 4)`` RGBA."""
     doc = page.evaluate("""() => { const cv = document.getElementById("view-canvas"),
         d = cv.getContext("2d").getImageData(0, 0, cv.width, cv.height);
-        let s = ""; for (let i = 0; i < d.data.length; i += 8192) s += String.fromCharCode(...d.data.subarray(i, i + 8192));
+        let s = "";
+        for (let i = 0; i < d.data.length; i += 8192) s += String.fromCharCode(...d.data.subarray(i, i + 8192));
         return { w: cv.width, h: cv.height, c: btoa(s) }; }""")
     return np.frombuffer(base64.b64decode(doc["c"]), dtype=np.uint8).reshape(doc["h"], doc["w"], 4)
 

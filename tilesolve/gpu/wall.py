@@ -39,19 +39,21 @@ pixel centre falls where the board picture puts it).
 Passes
 ------
 ``per_fragment=False`` (default): a first pass computes, one fragment per cell, each cell's legs
-(an RGBA8UI texture) and, for the cell's SW lattice point, the four edges that meet there (an
-R32UI texture); the second pass shades each pixel from its cell's legs (and, for the ``data``
-pass, its brick's point). ``per_fragment=True`` evaluates ``wall_tile`` in every fragment (the
-``data`` pass twice: the cell and its diagonal neighbour), as 004 §5.2 describes. Both give the same picture. Multisampling renders into a multisample target
-with per-sample shading and resolves it; the sample counts are those the context allows
-(Mesa llvmpipe: 1, 2, 4).
+(an RGBA8UI texture) and, for the cell's SW lattice point, the four edges that meet there and
+the point's colour hash (an RG32UI texture); the second pass shades each pixel from two
+fetches, its cell's legs and its brick's point (the ``board`` look's colours need the legs
+only). ``per_fragment=True`` evaluates ``wall_tile`` in every fragment (twice: the cell and
+its diagonal neighbour), as 004 §5.2 describes. Both give the same picture. Multisampling
+renders into a multisample target with per-sample shading and resolves it; the sample counts
+are those the context allows (Mesa llvmpipe: 1, 2, 4).
 
 In the browser
 --------------
 :func:`webgl_wall` hands the studio (``static/webgl.js``) these very shaders as GLSL ES 3.00
-(WebGL2): the same source behind a ``#version 300 es`` header with the precisions ES asks for,
-the uniforms of a seed and colouring, and the palette. The page places the window itself (``u_origin``,
-``u_local0``, ``u_dres``, ``u_offset`` and ``u_first``, computed as :class:`WallRenderer` does).
+(WebGL2) in the ``board`` look: the same source behind a ``#version 300 es`` header with the
+precisions ES asks for, the uniforms of a seed and colouring, and the palette. The page places
+the window itself (``u_origin``, ``u_local0``, ``u_dres``, ``u_offset`` and ``u_first``,
+computed as :class:`WallRenderer` does).
 """
 
 from __future__ import annotations

@@ -127,7 +127,9 @@ window.studioWebGL = (() => {
       gl.activeTexture(gl.TEXTURE2); gl.bindTexture(gl.TEXTURE_2D, this.palette);
       place(this.program(kind));
       gl.drawArrays(gl.TRIANGLE_STRIP, 0, 4);
-      for (const unit of [gl.TEXTURE2, gl.TEXTURE1, gl.TEXTURE0]) { gl.activeTexture(unit); gl.bindTexture(gl.TEXTURE_2D, null); }
+      for (const unit of [gl.TEXTURE2, gl.TEXTURE1, gl.TEXTURE0]) {
+        gl.activeTexture(unit); gl.bindTexture(gl.TEXTURE_2D, null);
+      }
     }
   }
 
