@@ -233,3 +233,54 @@ def test_verify_refuses_a_truncated_window_file(folder, window_doc):
     text = json.dumps(window_doc)
     (folder / "cut.json").write_text(text[:len(text) // 2])
     assert "cut.json" in one_line_error(run("verify", "cut.json", cwd=folder))
+
+
+# --- stipple files: the density, the settings and the seed embedded; verify re-checks and re-samples ---
+
+@pytest.fixture(scope="module")
+def stipple_doc(tmp_path_factory):
+    d = tmp_path_factory.mktemp("stipple")
+    for name in ("s.json", "t.json"):
+        r = run("sample", "stipple", "--test-image", "gradient", "--method", "polyomino", "--lloyd", "0", "--points",
+                "800", "--seed", "6", "-o", name, "--svg", "s.svg", cwd=d)
+        assert r.returncode == 0, r.stderr
+    assert (d / "s.json").read_bytes() == (d / "t.json").read_bytes()
+    v = run("verify", "s.json", cwd=d)
+    assert v.returncode == 0 and v.stdout.startswith("ok: "), v.stdout + v.stderr
+    doc = json.loads((d / "s.json").read_text())
+    assert (doc["format"], doc["version"], doc["seed"], len(doc["density"])) == ("tilesolve/stipple", 1, 6, 256)
+    assert (d / "s.svg").read_text().split(' d="', 1)[1].split('"', 1)[0].count("M") == len(doc["samples"])
+    return d, doc
+
+
+@pytest.mark.parametrize("forge, code, words", [
+    (lambda d: d.update(samples=d["samples"][:-5]), 1, "5 point(s) polyomino sampling with seed 6 gives are missing"),
+    (lambda d: d["samples"][0].__setitem__(1, d["samples"][0][1] * (1 - 1e-12)), 1, "1 point(s) of the file are not"),
+    (lambda d: d["samples"].append([0.5, 0.5]), 1, "1 point(s) of the file are not among"),
+    (lambda d: d.update(seed=7), 1, "polyomino sampling with seed 7"),
+    (lambda d: d.update(density=[r[::-1] for r in d["density"]]), 1, "its share of the density"),
+    (lambda d: d.update(method="rejection"), 1, "rejection sampling with seed 6"),
+    (lambda d: d["samples"].append([1.5, 0.5]), 1, "outside the domain"),
+    (lambda d: d.update(jitter="yes"), 2, "'jitter'"),
+    (lambda d: d["density"][0].__setitem__(0, -1), 2, "'density'"),
+    (lambda d: d.update(density=[[0.0]]), 2, "zero everywhere"),
+    (lambda d: d.update(seed=None), 2, "seed"),
+    (lambda d: d.pop("samples"), 2, "missing field 'samples'"),
+])
+def test_verify_re_checks_a_stipple_file(stipple_doc, forge, code, words):
+    folder, good = stipple_doc
+    doc = json.loads(json.dumps(good))
+    forge(doc)
+    (folder / "f.json").write_text(json.dumps(doc))
+    r = run("verify", "f.json", cwd=folder)
+    if code == 2:
+        assert words in one_line_error(r)
+    else:
+        assert r.returncode == 1 and words in r.stdout, r.stdout + r.stderr
+
+
+def test_verify_refuses_a_truncated_stipple_file(stipple_doc):
+    folder, good = stipple_doc
+    text = json.dumps(good)
+    (folder / "cut.json").write_text(text[:len(text) // 3])
+    assert "cut.json" in one_line_error(run("verify", "cut.json", cwd=folder))

@@ -55,3 +55,24 @@ def test_pictures(tmp_path):
         assert np.asarray(img).min() == 0  # a black dot
     write_periodograms_png(tmp_path / "p.png", [("a", np.ones((9, 9))), ("b", np.ones((9, 9)))], "t")
     assert (tmp_path / "p.png").read_bytes()[:4] == b"\x89PNG"
+
+
+def test_a_stipple_file_round_trips_to_the_same_bytes():
+    import json
+
+    from tilesolve.io.stipple import Samples, dump, stipple_from_dict, stipple_to_dict
+    from tilesolve.model.importance import ImportanceProblem
+    from tilesolve.model.solution import Solution, Status
+
+    p = ImportanceProblem(builtin_density("radial", 8), 30, "penrose", "chair", 2, True)
+    pts = np.array([[0.1, 0.2], [1 / 3, 0.9]])
+    text = dump(stipple_to_dict(p, Solution(Status.SAT, Samples(pts), seed=5)))
+    q, sol = stipple_from_dict(json.loads(text), "s.json")
+    assert (q.method, q.points, q.tile, q.lloyd, q.jitter, q.density.name) == ("penrose", 30, "chair", 2, True, "radial")
+    assert np.array_equal(q.density.values, p.density.values) and np.array_equal(sol.tiling.points, pts)
+    assert sol.tiling.seed == sol.seed == 5
+    assert dump(stipple_to_dict(q, sol)) == text
+    doc = json.loads(text)
+    doc["density"] = [[1.0, 2.0], [3.0]]
+    with pytest.raises(InvalidProblem, match="'density' must be equal rows"):
+        stipple_from_dict(doc, "s.json")

@@ -420,13 +420,15 @@ def _with_density_options(command, lloyd: int, jitter: bool):
 @click.option("--method", type=click.Choice(["penrose", "polyomino", "rejection"]), default="penrose",
               show_default=True, help="The sampler.")
 @opt.seed_opt
-@click.option("-o", "--output", type=OutputFile("svg", allow_dash=False), required=True, metavar="OUT.svg",
-              help="Write the stippled picture here.")
-@click.option("--png", type=OutputFile("png", allow_dash=False), metavar="OUT.png", help="Also as PNG.")
+@click.option("-o", "--output", type=OutputFile("svg", "json", allow_dash=False), required=True,
+              metavar="OUT.svg|OUT.json", help="Write the stippled picture (.svg) or the stipple file (.json: the "
+              "settings, the density, the seed and the samples, which `tilesolve verify` re-checks) here.")
+@click.option("--svg", type=OutputFile("svg", allow_dash=False), metavar="OUT.svg", help="Also the picture as SVG.")
+@click.option("--png", type=OutputFile("png", allow_dash=False), metavar="OUT.png", help="Also the picture as PNG.")
 @click.option("--csv", "csv_", type=OutputFile("csv", allow_dash=False), metavar="PTS.csv",
               help="Also the samples: x, y (y up, the image's longer side 1).")
 @click.pass_context
-def stipple(ctx, image, test_image, points, tile, lloyd, jitter, method, seed, output, png, csv_) -> None:
+def stipple(ctx, image, test_image, points, tile, lloyd, jitter, method, seed, output, svg, png, csv_) -> None:
     """Stipple an image (class notes Part V): about N samples whose density follows the image's
     darkness (1 - grey / 255), drawn as dots sized by it. The samplers are hierarchical: a
     Penrose tiling's Robinson triangles (Ostromoukhov, Donohue, Jodoin 2004) or a self-similar
@@ -437,23 +439,32 @@ def stipple(ctx, image, test_image, points, tile, lloyd, jitter, method, seed, o
     --lloyd 0 shows the raw structure, `sample importance-spectrum` measures it). The samples are
     checked before anything is written: inside the image, and the counts of 2 x 2 and 4 x 4
     blocks near their share of the image's darkness (exit 1 if not). Without IMAGE, a built-in
-    radial ramp. The same seed gives the same files, byte for byte.
+    radial ramp. The same seed gives the same files, byte for byte. A stipple file (-o OUT.json,
+    tilesolve/stipple) holds the settings, the density sampled, the seed and the samples:
+    `tilesolve verify` re-checks the counts against that density and samples it again with the
+    seed, and the samples must be the same (a point deleted, added or moved is found).
 
     \b
     Examples:
       tilesolve sample stipple --points 3000 --seed 1 -o radial.svg
       tilesolve sample stipple --test-image gradient --points 3000 --seed 1 -o g.svg --png g.png
       tilesolve sample stipple --method polyomino --no-jitter --lloyd 0 --points 3000 --seed 1 -o raw.svg --csv raw.csv
+      tilesolve sample stipple --test-image gradient --points 2000 --seed 1 -o g.json --svg g.svg
+      tilesolve verify g.json
     """
     from tilesolve.families.importance import density_of
     from tilesolve.families.importance import stipple as run_stipple
-    from tilesolve.io.stipple import MAX_STIPPLE_POINTS, write_stipple
+    from tilesolve.family import draw_seed
+    from tilesolve.io.atomic import write_text_atomic
+    from tilesolve.io.stipple import MAX_STIPPLE_POINTS, Samples, dump, stipple_to_dict, write_stipple
     from tilesolve.model.importance import ImportanceProblem
+    from tilesolve.model.solution import Solution, Status
 
-    outs = Outputs(output, png, csv_)
+    outs = Outputs(output, svg, png, csv_)
     if points > MAX_STIPPLE_POINTS:
         raise InvalidProblem(f"a stippled picture draws at most {MAX_STIPPLE_POINTS:,} points, not {points:,}")
     problem = ImportanceProblem(density_of(image, test_image), points, method, tile, lloyd, jitter)
+    seed = draw_seed() if seed is None else seed  # a stipple file records the seed it was sampled with
     r = run_stipple(problem, seed=seed)
     pts = r["points"]
     status = "violations" if r["violations"] else "ok"
@@ -461,13 +472,16 @@ def stipple(ctx, image, test_image, points, tile, lloyd, jitter, method, seed, o
         say(f"  {v.kind}: {v.message}")
     caption = f"{len(pts):,} points, {problem.describe().split(', ', 1)[1]}"
     with outs.commit():
-        write_stipple(output, pts, problem.density, caption, "svg")
+        if output.lower().endswith(".json"):
+            write_text_atomic(output, dump(stipple_to_dict(problem, Solution(Status.SAT, Samples(pts), seed=seed))))
+        else:
+            write_stipple(output, pts, problem.density, caption, "svg")
+        if svg:
+            write_stipple(svg, pts, problem.density, caption, "svg")
         if png:
             write_stipple(png, pts, problem.density, caption, "png")
         if csv_:
             import numpy as np
-
-            from tilesolve.io.atomic import write_text_atomic
 
             rows = "".join(f"{x!r},{y!r}\n" for x, y in np.asarray(pts, dtype=float).tolist())
             write_text_atomic(csv_, "x,y\n" + rows)

@@ -1,5 +1,11 @@
 """Importance sampling and stippling end to end (class notes Part IV: Penrose and polyomino
-sampling; Part V: stippling): sample, verify, measure.
+sampling; Part V: stippling): sample, verify, measure; the ``stipple`` family.
+
+The family's question is an :class:`~tilesolve.model.importance.ImportanceProblem`; its one
+route, ``sample``, runs the problem's sampler; its answer, a
+:class:`~tilesolve.io.stipple.Samples`, is checked by :func:`stipple_violations`. Its file,
+``tilesolve/stipple`` (:mod:`tilesolve.io.stipple`), embeds the density and the seed, so that
+``tilesolve verify`` re-checks a stipple with no other file.
 
 * :func:`stipple`: the samples of an :class:`~tilesolve.model.importance.ImportanceProblem`
   (:func:`tilesolve.constructive.importance.sample`), checked by
@@ -23,12 +29,17 @@ Examples
 from __future__ import annotations
 
 import time
+from typing import Any
 
 import numpy as np
 
+from tilesolve.family import Codec, Demo, Family, RunOptions, register
+from tilesolve.io.stipple import FORMAT, VERSIONS, Samples, stipple_from_dict, stipple_to_dict
 from tilesolve.model.importance import DensityMap, ImportanceProblem, builtin_density
+from tilesolve.model.solution import Solution, Status
+from tilesolve.verify.dappled import Violation
 
-__all__ = ["stipple", "compare", "density_of", "VARIANTS"]
+__all__ = ["FAMILY", "stipple", "compare", "density_of", "VARIANTS", "sample_route", "stipple_violations"]
 
 #: The rows of :func:`compare`: label, method.
 VARIANTS = (("penrose", "penrose"), ("polyomino", "polyomino"), ("rejection", "rejection"))
@@ -102,3 +113,70 @@ def density_of(image: str | None, test_image: str | None) -> DensityMap:
 
         return read_density(image)
     return builtin_density(test_image or "radial", 256)
+
+
+def sample_route(problem: ImportanceProblem, run: RunOptions) -> Solution:
+    """The samples of the problem's sampler (:func:`tilesolve.constructive.importance.sample`)."""
+    from tilesolve.constructive.importance import sample
+
+    t0 = time.perf_counter()
+    pts = sample(problem, seed=run.seed)
+    return Solution(Status.SAT, Samples(pts), method="sample", seed=run.seed, time_s=time.perf_counter() - t0,
+                    stats={"points": len(pts)})
+
+
+def stipple_violations(problem: ImportanceProblem, answer: Any) -> list[Violation]:
+    """The samples against the density (:func:`tilesolve.verify.importance.importance_violations`:
+    inside the domain, the total and the counts of 2 x 2 and 4 x 4 blocks near their shares);
+    samples that state a seed (a file's) are sampled again with it and compared exactly
+    (:func:`tilesolve.verify.poisson.match_violations`): the sampling is the sampler's, it binds
+    the seed, while the counts are checked independently."""
+    from tilesolve.verify.importance import importance_violations
+
+    if not isinstance(problem, ImportanceProblem) or not isinstance(answer, Samples):
+        return [Violation("shape", "the answer is no set of samples of an importance problem")]
+    out = importance_violations(answer.points, problem.density.values, expected=problem.points)
+    if answer.seed is None or any(v.kind == "bounds" for v in out):
+        return out
+    from tilesolve.constructive.importance import sample
+    from tilesolve.verify.poisson import match_violations
+
+    return out + match_violations(answer.points, sample(problem, seed=answer.seed),
+                                  f"{problem.method} sampling with seed {answer.seed}")
+
+
+def auto_method(problem: ImportanceProblem) -> str:
+    """``sample``: the one route (the problem names its sampler)."""
+    return "sample"
+
+
+def _draw(problem: ImportanceProblem, sol: Solution, path, fmt: str, *, title: str | None = None,
+          **_ignored) -> None:
+    """The stippled picture (:func:`tilesolve.io.stipple.write_stipple`)."""
+    from tilesolve.io.stipple import write_stipple
+
+    pts = sol.tiling.points
+    write_stipple(path, pts, problem.density, title or f"{len(pts):,} points, {problem.describe().split(', ', 1)[1]}",
+                  fmt)
+
+
+def _demo() -> ImportanceProblem:
+    return ImportanceProblem(builtin_density("radial", 128), 3000, "penrose", lloyd=4, jitter=True)
+
+
+FAMILY = register(Family(
+    name="stipple",
+    title="importance sampling and stippling: samples whose density follows an image (Penrose, polyomino, "
+          "rejection; class notes Parts IV-V)",
+    problem_type=ImportanceProblem,
+    routes={"sample": sample_route},
+    auto=auto_method,
+    verify=stipple_violations,
+    codecs=(Codec(FORMAT, VERSIONS, stipple_from_dict, stipple_to_dict),),
+    draw=_draw,
+    demos=(Demo("stipple", "stippling: about 3,000 Penrose samples of the radial ramp, jittered, 4 Lloyd steps",
+                _demo, method="sample"),),
+    commands=("tilesolve.cli.sample:sample",),
+    route_help={"sample": "the problem's sampler: Penrose or polyomino subdivision (Ostromoukhov 2004, 2007) or "
+                          "plain rejection, then its Lloyd steps"},
+))

@@ -7,6 +7,22 @@ periodogram pictures written (class notes Part V, stippling; Part IV, spectra).
   density where they sit (SVG with svgwrite, PNG with Pillow).
 * :func:`write_periodograms_png`: 2-D periodograms side by side, log scale, the spectra in
   which a tiling's structure shows as peaks.
+* :func:`stipple_to_dict` / :func:`stipple_from_dict` / :func:`dump`: the samples as a file,
+  ``tilesolve/stipple`` (version 1), with everything they are made from::
+
+      {
+        "format": "tilesolve/stipple", "version": 1,
+        "method": "penrose", "points": 20000,       # the sampler, about how many samples
+        "tile": "x-pentomino", "lloyd": 4, "jitter": true, "seed": 1,
+        "image": "radial",                          # the density's name, for people
+        "density": [[v, ...], ...],                 # the density sampled: a value a pixel,
+                                                    # rows from the top (darkness, 0 white)
+        "samples": [[x, y], ...]                    # y up, the image's longer side 1
+      }
+
+  ``tilesolve verify`` checks the samples against the embedded density (counts of blocks,
+  :func:`tilesolve.verify.importance.importance_violations`) and samples it again with the
+  seed: the file's samples must be those, exactly (:class:`Samples`).
 
 >>> import numpy as np
 >>> from tilesolve.model.importance import builtin_density
@@ -17,16 +33,36 @@ True
 
 from __future__ import annotations
 
+import json
+import math
 import os
+from dataclasses import dataclass
 
 import numpy as np
 
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.atomic import atomic_write
-from tilesolve.model.importance import MAX_PIXELS, DensityMap
+from tilesolve.io.jsonio import check_document
+from tilesolve.io.poisson_json import read_points, read_seed
+from tilesolve.model.importance import MAX_PIXELS, MAX_POINTS, DensityMap, ImportanceProblem
+from tilesolve.model.solution import Solution, Status
 
-__all__ = ["MAX_STIPPLE_POINTS", "read_density", "dot_radii", "stipple_svg", "write_stipple",
-           "write_periodograms_png"]
+__all__ = ["MAX_STIPPLE_POINTS", "FORMAT", "VERSIONS", "Samples", "read_density", "dot_radii", "stipple_svg",
+           "write_stipple", "write_periodograms_png", "stipple_to_dict", "stipple_from_dict", "dump"]
+
+FORMAT = "tilesolve/stipple"
+VERSIONS = frozenset({1})
+_KEYS = {"format", "version", "method", "points", "tile", "lloyd", "jitter", "seed", "image", "density", "samples"}
+
+
+@dataclass(frozen=True, eq=False)
+class Samples:
+    """The samples of an importance problem: ``points``, ``(n, 2)`` (y up, the image's longer
+    side 1), and the ``seed`` they claim to be sampled with (``None``: no claim; a file states
+    one, and ``tilesolve verify`` samples again with it)."""
+
+    points: np.ndarray
+    seed: int | None = None
 
 #: Most dots a stippled picture draws (an SVG of more is too slow to open).
 MAX_STIPPLE_POINTS = 200_000
@@ -139,3 +175,56 @@ def write_periodograms_png(path: str | os.PathLike, panels: list[tuple[str, np.n
         draw.text((10 + i * (size + 10), size + 28), label, fill=0)
     with atomic_write(path, "wb", encoding=None) as f:
         img.save(f, format="PNG")
+
+
+def stipple_to_dict(problem: ImportanceProblem, solution: Solution) -> dict:
+    """The document of a stipple (``solution.tiling`` is the :class:`Samples`; the seed is the
+    solution's)."""
+    return {"format": FORMAT, "version": 1, "method": problem.method, "points": problem.points, "tile": problem.tile,
+            "lloyd": problem.lloyd, "jitter": bool(problem.jitter), "seed": solution.seed,
+            "image": problem.density.name, "density": problem.density.values,
+            "samples": np.asarray(solution.tiling.points, dtype=np.float64).reshape(-1, 2)}
+
+
+def _density(value, name, source: str) -> DensityMap:
+    if not (isinstance(value, list) and value and isinstance(value[0], list) and value[0]
+            and len(value) * len(value[0]) <= MAX_PIXELS and all(
+                isinstance(r, list) and len(r) == len(value[0]) and all(
+                    isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and v >= 0
+                    for v in r) for r in value)):
+        raise InvalidProblem(f"{source}: 'density' must be equal rows of non-negative numbers, {MAX_PIXELS:,} at most")
+    try:
+        return DensityMap(np.array(value, dtype=np.float64), name if isinstance(name, str) else "image")
+    except InvalidProblem as exc:
+        raise InvalidProblem(f"{source}: {exc}") from None
+
+
+def stipple_from_dict(doc: dict, source: str = "<document>") -> tuple[ImportanceProblem, Solution]:
+    """Read :func:`stipple_to_dict`'s document: the problem (its density embedded) and the
+    :class:`Samples` with their seed; one-line errors naming ``source`` and the field."""
+    check_document(doc, source, {FORMAT: VERSIONS}, fields=_KEYS,
+                   required=("method", "points", "density", "samples", "seed"))
+    if not isinstance(doc.get("jitter", False), bool):
+        raise InvalidProblem(f"{source}: 'jitter' must be true or false, got {doc['jitter']!r}")
+    density = _density(doc["density"], doc.get("image", "image"), source)
+    try:
+        problem = ImportanceProblem(density, doc["points"], doc["method"], doc.get("tile", "chair"),
+                                    doc.get("lloyd", 0), doc.get("jitter", False))
+    except InvalidProblem as exc:
+        raise InvalidProblem(f"{source}: {exc}") from None
+    seed = read_seed(doc, source)
+    if seed is None:
+        raise InvalidProblem(f"{source}: a stipple file states the seed it was sampled with, not null")
+    points = read_points(doc["samples"], "samples", source, 2 * MAX_POINTS)
+    return problem, Solution(Status.SAT, Samples(points, seed), method=problem.method, seed=seed)
+
+
+def dump(doc: dict) -> str:
+    """JSON text: a row of the density a line, a sample a line (floats written to round-trip exactly)."""
+    head = {k: v for k, v in doc.items() if k not in ("density", "samples")}
+    text = json.dumps(head, indent=2)[:-2]
+    rows = np.asarray(doc["density"], dtype=np.float64).tolist()
+    text += ',\n  "density": [' + ",".join("\n    [" + ", ".join(map(repr, r)) + "]" for r in rows) + "\n  ]"
+    pts = np.asarray(doc["samples"], dtype=np.float64).reshape(-1, 2).tolist()
+    text += ',\n  "samples": [' + ",".join(f"\n    [{x!r}, {y!r}]" for x, y in pts) + ("\n  ]" if pts else "]")
+    return text + "\n}\n"
