@@ -15,12 +15,9 @@ from tests.clitools import SCRIPT
 from tests.studio.browsing import fill, pick, solve as solve_on_page
 from tests.studio.test_app import solve
 from tests.studio.test_screenshots import compare, open_link
-from tilesolve.families.sampling_forms import POISSON_FORM, RECURSIVE_FORM, SET_BUDGET, SPHERE_FORM
+from tilesolve.families.sampling_forms import POISSON_FORM, RECURSIVE_FORM, SET_BUDGETS, SPHERE_FORM
 from tilesolve.errors import InvalidProblem
 from tilesolve.studio.app import create_app
-
-FAMILIES = ("poisson", "poisson-sphere", "recursive-wang")
-
 
 @pytest.fixture(scope="module")
 def client():
@@ -32,15 +29,15 @@ def test_a_windows_command_builds_its_set_first():
     vals = SPHERE_FORM.values({"seed": 4, "x0": -3, "z0": 2, "depth": 2, "set_seed": 9})
     words, files = SPHERE_FORM.command(vals)
     assert words == ["sample", "poisson-spheres", "window", "set.json", "--region=-3,0,2,6x6x2"]
-    assert files == {"set.json": ["sample", "poisson-spheres", "build", "-C", "1", "-N", "100", "--rho", "0.6",
+    assert files == {"set.json": ["sample", "poisson-spheres", "build", "-C", "2", "-N", "64", "--rho", "0.6",
                                   "--seed", "9", "-o", "set.json"]}
     # the set question is the build alone, its seed the run's
     assert SPHERE_FORM.command(SPHERE_FORM.values({"seed": 4, "show": "set"})) == (
-        ["sample", "poisson-spheres", "build", "-C", "1", "-N", "100", "--rho", "0.6"], {})
+        ["sample", "poisson-spheres", "build", "-C", "2", "-N", "64", "--rho", "0.6"], {})
 
 
 def test_a_windows_set_and_points_are_bounded_before_anything_is_built():
-    with pytest.raises(InvalidProblem, match=f"at most {SET_BUDGET:,} points over its tiles here, this one has "
+    with pytest.raises(InvalidProblem, match=f"at most {SET_BUDGETS['poisson']:,} points over its tiles here, this one has "
                                              "3,264 .102 tiles x 32.; build it with show = set"):
         POISSON_FORM.build(POISSON_FORM.values({"colors": 3, "seed": 1}))
     with pytest.raises(InvalidProblem, match="about 1,048,576 points; the studio shows at most 20,000"):

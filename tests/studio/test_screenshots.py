@@ -53,6 +53,9 @@ PROBLEMS = {
     # a tiling with one solution: a SAT solver's choice among many would change with the encoding
     "shapes": {"grid": "omino", "shape": "XX/XX", "where": "region", "size": "6x4"},
     "isohedral": {"region": "6x4", "scale": 30},
+    "poisson": {"size": "8x6"},
+    "poisson-sphere": {},
+    "recursive-wang": {},
 }
 
 

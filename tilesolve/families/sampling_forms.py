@@ -10,7 +10,7 @@ set's ``build`` (the file the window command reads, :attr:`tilesolve.family.Form
 then its ``window``.
 
 A window's set is built while the form is checked, so its size is bounded here
-(:data:`SET_BUDGET`); the ``set`` question builds larger sets as a solve, which can be
+(:data:`SET_BUDGETS`); the ``set`` question builds larger sets as a solve, which can be
 cancelled. Windows are bounded in points (:data:`WINDOW_BUDGET`), so that their pictures stay
 light.
 
@@ -39,12 +39,13 @@ from tilesolve.model.poisson_recursive import RecursiveTilesProblem, RecursiveWi
 from tilesolve.model.poisson_sphere import Box, PoissonSphereTilesProblem, PoissonSphereWindowProblem
 from tilesolve.model.window import Window
 
-__all__ = ["POISSON_FORM", "SPHERE_FORM", "RECURSIVE_FORM", "built_set", "SET_BUDGET", "WINDOW_BUDGET", "SET_FILE"]
+__all__ = ["POISSON_FORM", "SPHERE_FORM", "RECURSIVE_FORM", "built_set", "SET_BUDGETS", "WINDOW_BUDGET", "SET_FILE"]
 
-#: Most points over all the tiles of a set a window's form builds (tiles x points a tile): a
-#: 2-D set of C = 2 at N = 64 (26 tiles) builds and verifies in about 2 s; the ``set`` question
-#: builds larger sets.
-SET_BUDGET = 26 * 64
+#: Most points over all the tiles of a set a window's form builds (tiles x points a tile), by
+#: family; each builds and verifies in a few seconds: a 2-D set of C = 2 at N = 64 (26 tiles), a
+#: sphere set of C = 2 at N = 64 (318 tiles), a recursive set of C = 2 at N = 32 (16 tiles). The
+#: ``set`` question builds larger sets.
+SET_BUDGETS = {"poisson": 26 * 64, "poisson-sphere": 318 * 64, "recursive-wang": 16 * 32}
 #: Most points a window shows.
 WINDOW_BUDGET = 20_000
 #: The file the copied command writes the set to, and its window command reads.
@@ -88,11 +89,11 @@ def _region_fields(size: str, high: int, what: str) -> tuple[Field, ...]:
     )
 
 
-def _set_for_window(problem, values) -> Any:
-    """The built set a window's problem samples, within :data:`SET_BUDGET`."""
+def _set_for_window(problem, values, budget: int) -> Any:
+    """The built set a window's problem samples, within ``budget`` (:data:`SET_BUDGETS`)."""
     work = problem.n_tiles * problem.points
-    if work > SET_BUDGET:
-        raise InvalidProblem(f"a window's set is built while the form is checked: at most {SET_BUDGET:,} points "
+    if work > budget:
+        raise InvalidProblem(f"a window's set is built while the form is checked: at most {budget:,} points "
                              f"over its tiles here, this one has {work:,} ({problem.n_tiles} tiles x "
                              f"{problem.points}); build it with show = set, or with the command line")
     return built_set(problem, values["set_seed"])
@@ -104,9 +105,9 @@ def _check_points(n: float) -> None:
                              f"{WINDOW_BUDGET:,}: ask for a smaller window")
 
 
-def _form(fields: tuple[Field, ...], set_problem: Callable, set_words: Callable, window_points: Callable,
+def _form(name: str, fields: tuple[Field, ...], set_problem: Callable, set_words: Callable, window_points: Callable,
           window_problem: Callable, window_words: Callable) -> Form:
-    """A sampling family's form: the set question ``set_problem(values)`` and its build command
+    """Family ``name``'s form: the set question ``set_problem(values)`` and its build command
     ``set_words(values)``; the window question, about ``window_points(values)`` points (checked
     before the set is built), ``window_problem(values, tileset)`` and its window command
     ``window_words(values)`` (it reads :data:`SET_FILE`)."""
@@ -116,7 +117,7 @@ def _form(fields: tuple[Field, ...], set_problem: Callable, set_words: Callable,
         if values["show"] == "set":
             return problem, {}
         _check_points(window_points(values))
-        return window_problem(values, _set_for_window(problem, values)), {}
+        return window_problem(values, _set_for_window(problem, values, SET_BUDGETS[name])), {}
 
     def command(values) -> tuple[list[str], dict[str, Any]]:
         if values["show"] == "set":
@@ -148,6 +149,7 @@ def _cells(values) -> int:
 
 
 POISSON_FORM = _form(
+    "poisson",
     (
         _show_field(),
         Field("colors", "int", "colours C", 2, "corner colours: C + 2C^2 + C^4 tiles", low=1, high=8, option="-C"),
@@ -182,11 +184,12 @@ def _sphere_window(values, tileset) -> PoissonSphereWindowProblem:
 
 
 SPHERE_FORM = _form(
+    "poisson-sphere",
     (
         _show_field(),
-        Field("colors", "int", "colours C", 1, "corner colours: C + 3C^2 + 3C^4 + C^8 tiles", low=1, high=4,
+        Field("colors", "int", "colours C", 2, "corner colours: C + 3C^2 + 3C^4 + C^8 tiles", low=1, high=4,
               option="-C"),
-        Field("points", "int", "points a cell N", 100, "points a unit cell", low=1, high=4096, option="-N"),
+        Field("points", "int", "points a cell N", 64, "points a unit cell", low=1, high=4096, option="-N"),
         Field("rho", "float", "relative radius rho", 0.6, "no two points closer than 2 rho r_max(N) (eq. 4.6)",
               low=0.05, high=0.85, option="--rho"),
         _set_seed_field(),
@@ -228,6 +231,7 @@ def _recursive_window(values, tileset) -> RecursiveWindowProblem:
 _BY_LEVEL, _BY_DENSITY = ({"show": ("window",), "by": ("level",)},), ({"show": ("window",), "by": ("density",)},)
 
 RECURSIVE_FORM = _form(
+    "recursive-wang",
     (
         _show_field(),
         Field("colors", "int", "colours C", 2, "corner colours: C^4 Wang tiles", low=1, high=8, option="-C"),
