@@ -10,6 +10,7 @@ import pytest
 from tilesolve.constructive.markov import BLOCK, markov_window
 from tilesolve.errors import InvalidProblem
 from tilesolve.families.aperiodic_window import tiling
+from tilesolve.gpu.texture import synthesis_scale
 from tilesolve.gpu.wang_texture import SINGLE_CELLS, WangAtlas, WangTexture, WangTextureMapper
 from tilesolve.io.builtin_tilesets import load
 from tilesolve.model.window import Window
@@ -97,17 +98,27 @@ def test_the_same_seed_gives_the_same_picture_and_another_seed_another(name):
     assert not np.array_equal(pictures[0], pictures[2])
 
 
-def test_matching_edges_show_one_diamond():
-    """Away from the corners (the feather, FEATHER = 0.1 of a side), a border of a tile depends
-    on that edge's colour only, and the N/S and E/W colours have diamonds of their own."""
+#: Squares of 32 px with noise: structures too large for tiles of 20 texels (synthesised at 80).
+SQUARES = (np.repeat(np.repeat(np.indices((3, 3)).sum(axis=0) % 2, 32, 0), 32, 1)[..., None] * 200
+           + np.random.default_rng(6).integers(0, 56, (96, 96, 3))).astype(np.uint8)
+
+
+@pytest.mark.parametrize("example,scale", [(EXAMPLE, 1), (SQUARES, 4)])
+def test_matching_edges_show_one_diamond(example, scale):
+    """Away from the corners (where two diamonds meet), a border of a tile depends on that edge's
+    colour only, and the N/S and E/W colours have diamonds of their own; so too when the tiles
+    are synthesised larger and averaged down."""
     tiles = load("jeandel-rao")[0].tiles
-    at = WangAtlas.from_example(EXAMPLE, tiles, tile=20, seed=9)
+    assert synthesis_scale(example, 20) == scale
+    at = WangAtlas.from_example(example, tiles, tile=20, seed=9)
     mid = slice(2, 18)
     borders = {"N": lambda b: b[0, mid], "E": lambda b: b[mid, -1], "S": lambda b: b[-1, mid], "W": lambda b: b[mid, 0]}
     for side, (axis, border) in enumerate(borders.items()):
         for i, j in [(i, j) for i in range(len(tiles)) for j in range(len(tiles))]:
             same = np.array_equal(border(at.block(i)), border(at.block(j)))
             assert same == (tiles[i, side] == tiles[j, side]), (axis, i, j)
+    if scale > 1:
+        return
     # across an edge the texture goes on: the texels on either side are neighbouring pixels of the example
     for side, other in ((2, 0), (1, 3)):  # tile 0's S edge against an N edge, its E edge against a W edge
         k = next(k for k in range(len(tiles)) if tiles[k, other] == tiles[0, side])
@@ -127,6 +138,6 @@ def test_refusals():
     with pytest.raises(InvalidProblem, match="even"):
         WangAtlas.from_example(EXAMPLE, [[0, 0, 0, 0]], tile=15)
     with pytest.raises(InvalidProblem, match="smaller than a diamond"):
-        WangAtlas.from_example(EXAMPLE[:19], [[0, 0, 0, 0]], tile=16)
+        WangAtlas.from_example(EXAMPLE[:15], [[0, 0, 0, 0]], tile=16)
     with pytest.raises(InvalidProblem, match="16384"):
         WangAtlas.from_example(EXAMPLE, [[0, 0, 0, 0]] * 19, tile=4096)

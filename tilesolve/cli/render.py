@@ -77,8 +77,7 @@ def render() -> None:
 @render.command("texture", context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP,
                 short_help="Tile-based texture mapping: corner tiles (class notes §5.3-5.4) or aperiodic Wang sets.")
 @click.option("--example", required=True, type=click.Path(dir_okay=True), metavar="IMG",
-              help="The example texture (any image Pillow reads), at least one tile in each direction (with "
-                   "--aperiodic 1.2 tiles: a diamond and its feather).")
+              help="The example texture (any image Pillow reads), at least one tile in each direction.")
 @click.option("--colors", type=click.IntRange(2, 8), default=3, show_default=True, metavar="C",
               help="Corner colours: the atlas packs the C^4 corner tiles in a C^2 x C^2 tile packing.")
 @click.option("--aperiodic", default=None, metavar="NAME",

@@ -60,7 +60,7 @@ from tilesolve.gpu.context import gpu_context, max_render_size, release
 from tilesolve.gpu.picture import assemble_bands, pass_layout
 
 __all__ = ["MAX_COLORS", "MAX_ATLAS", "HASH_GLSL", "hash_tables", "row_table", "Atlas", "check_atlas", "corner_packing", "synthesize_atlas", "graph_cut",
-           "structure_size", "synthesis_scale", "read_example", "example_patches", "diamond_mask", "PassRenderer", "TextureMapper"]
+           "structure_size", "synthesis_scale", "read_example", "example_patches", "Quilter", "PassRenderer", "TextureMapper"]
 
 #: Largest ``C`` of an atlas (``C**4 = 4096`` tiles).
 MAX_COLORS = 8
@@ -301,16 +301,11 @@ def synthesize_atlas(example, grid, colors: int, *, tile: int = 64, seed: int = 
     """
     c, t = check_atlas(colors, tile)
     example_patches(example, t, seed)  # checks the example
-    ex = np.asarray(example, dtype=np.float32)
-    ex = np.dstack([ex, np.full(ex.shape[:2], 255, np.float32)]) if ex.shape[2] == 3 else ex
     rng = rng_from_seed(seed)
     g = np.asarray(grid, dtype=np.int64)
-    s = synthesis_scale(example, t)
-    big = t * s  # the tiles are synthesised at this size, then each block of s x s texels averaged
-    corner = _corner_patches(ex, c, big, rng)
-    h = big // 2
-    keep, cover = _cut_regions(big, border=s)  # a texel of the tile's border: s x s kept ones
-    best_patch = _patch_matcher(ex, big, ~(keep | cover))
+    quilt = Quilter(example, t, _cut_regions)
+    big, h = quilt.big, quilt.big // 2
+    corner = _corner_patches(quilt.example, c, big, rng)
     atlas = np.empty((g.shape[0] * t, g.shape[1] * t, 4), dtype=np.uint8)
     for (r, q), k in np.ndenumerate(g):
         nw, sw, se, ne = k % c, (k // c) % c, (k // c**2) % c, k // c**3
@@ -319,13 +314,40 @@ def synthesize_atlas(example, grid, colors: int, *, tile: int = 64, seed: int = 
         img[:h, h:] = corner[ne][h:, :h]
         img[h:, :h] = corner[sw][:h, h:]
         img[h:, h:] = corner[se][:h, :h]
-        new = best_patch(img, rng)
-        inside = graph_cut(img, new, keep, cover)
-        # the cut's pixels themselves: the mean of the two patches, one pixel wide, never the border
-        alpha = np.where(keep, 0.0, (inside + _shifted_mean(inside)) / 2)[..., None]
-        img = (img * (1.0 - alpha) + new * alpha).reshape(t, s, t, s, 4).mean(axis=(1, 3))
-        atlas[r * t:(r + 1) * t, q * t:(q + 1) * t] = np.rint(img).astype(np.uint8)
+        atlas[r * t:(r + 1) * t, q * t:(q + 1) * t] = quilt(img, rng)
     return atlas
+
+
+class Quilter:
+    """The last step of a tile's synthesis from ``example`` (RGB or RGBA uint8), shared by the
+    corner tiles and the Wang tiles (:mod:`tilesolve.gpu.wang_texture`): a tile of ``tile``
+    texels is put together at :attr:`big` ``= tile * scale`` texels (:func:`synthesis_scale`)
+    from patches that meet along seams; calling the quilter covers the seams with a new patch of
+    the example, the one that best matches the tile between its border and the seams
+    (:func:`_patch_matcher`), cut in by :func:`graph_cut` and blended one texel wide, never on
+    the border; then it averages each ``scale x scale`` block, giving the ``(tile, tile, 4)``
+    uint8 tile.
+
+    ``regions(big, border=scale)`` gives the ``(keep, cover)`` masks: the border the new patch
+    must leave (``scale`` texels deep, one texel of the tile) and the seams it must cover.
+    """
+
+    def __init__(self, example, tile: int, regions) -> None:
+        ex = np.asarray(example, dtype=np.float32)
+        self.example = np.dstack([ex, np.full(ex.shape[:2], 255, np.float32)]) if ex.shape[2] == 3 else ex
+        self.tile = tile
+        self.scale = synthesis_scale(example, tile)
+        self.big = tile * self.scale
+        self.keep, self.cover = regions(self.big, border=self.scale)
+        self._best = _patch_matcher(self.example, self.big, ~(self.keep | self.cover))
+
+    def __call__(self, img: np.ndarray, rng) -> np.ndarray:
+        new = self._best(img, rng)
+        inside = graph_cut(img, new, self.keep, self.cover)
+        # the cut's pixels themselves: the mean of the two patches, one pixel wide, never the border
+        alpha = np.where(self.keep, 0.0, (inside + _shifted_mean(inside)) / 2)[..., None]
+        t, s = self.tile, self.scale
+        return np.rint((img * (1.0 - alpha) + new * alpha).reshape(t, s, t, s, 4).mean(axis=(1, 3))).astype(np.uint8)
 
 
 #: The autocorrelation of an example's luminance below which two texels are taken as
@@ -580,16 +602,6 @@ def example_patches(example, size: int, seed, *, what: str = "one tile"):
         return ex[r:r + n, q:q + n].astype(np.float32)
 
     return patch
-
-
-def diamond_mask(tile: int, centre, edge: float, width: float) -> np.ndarray:
-    """``(tile, tile, 1)`` float32 weights of a feathered diamond (an L1 disc) centred at
-    ``centre = (row, col)`` in tile coordinates (pixel ``(r, q)`` has its centre at
-    ``(r + 0.5, q + 0.5)``): 1 inside L1 radius ``edge - width``, falling linearly to 0 at ``edge``.
-    """
-    yy, xx = np.mgrid[0:tile, 0:tile].astype(np.float32) + 0.5
-    radius = np.abs(yy - centre[0]) + np.abs(xx - centre[1])
-    return np.clip((edge - radius) / width, 0.0, 1.0)[..., None]
 
 
 class Atlas:

@@ -8,11 +8,14 @@ generation*, SIGGRAPH 2003; class notes §5.3, Fig. 5.4 a): every edge colour ge
 diamond-shaped sample of the example, a diamond per colour of the horizontal (N, S) edges and
 one per colour of the vertical (E, W) edges, and a tile is the four diamonds of its N, E, S, W
 colours, each centred on the midpoint of its edge and cut by the tile. The diamonds meet along
-the tile's diagonals, where they are blended with the feathered masks of the corner-tile atlas
-(:func:`tilesolve.gpu.texture.diamond_mask`; the notes' Cohen et al. cut a seam there instead).
-A texel of a tile's border away from its corners comes from its edge's diamond alone, and the
-tile across that edge shows the other half of the same diamond, so matching edges meet without a
-seam; near a corner two diamonds mix (the corner problem of Wang tiles, §2.6).
+the tile's diagonals, which a new patch of the example covers, cut in by a graph cut as the
+corner tiles' centre patch is (:class:`tilesolve.gpu.texture.Quilter`: the patch that best
+matches the diamonds between the tile's border and the diagonals, its border the minimum-error
+cut; Kwatra et al. 2003), and a tile smaller than a few of the example's structures is
+synthesised larger and averaged down (:func:`tilesolve.gpu.texture.synthesis_scale`). A texel
+of a tile's border away from its corners comes from its edge's diamond alone, and the tile
+across that edge shows the other half of the same diamond, so matching edges meet without a
+seam; at a corner two diamonds meet (the corner problem of Wang tiles, §2.6).
 
 The tiling
 ----------
@@ -45,10 +48,11 @@ import math
 
 import numpy as np
 
+from tilesolve._random import rng_from_seed
 from tilesolve.constructive._markov_kernels import FLAG
 from tilesolve.constructive.hashes import check_int, check_window
 from tilesolve.errors import InvalidProblem
-from tilesolve.gpu.texture import DIV_GLSL, MAX_ATLAS, PassRenderer, diamond_mask, example_patches
+from tilesolve.gpu.texture import DIV_GLSL, MAX_ATLAS, PassRenderer, Quilter, example_patches
 
 __all__ = ["WangAtlas", "check_tile", "check_aperiodic", "texel_of_pixel", "window_tiles", "WangTexture",
            "WangTextureMapper"]
@@ -60,8 +64,17 @@ SINGLE_CELLS = 32
 #: Pixels of one band of the CPU picture.
 BAND_PIXELS = 1 << 22
 
-#: Feather of the diamonds' blend across the diagonals, as a fraction of the tile side (each side).
-FEATHER = 0.1
+def _cut_regions(t: int, border: int = 1) -> tuple[np.ndarray, np.ndarray]:
+    """``(keep, cover)`` boolean ``(t, t)`` masks of a Wang tile: ``keep`` is its border,
+    ``border`` texels deep (set by the edge colours alone), ``cover`` the diagonals where the
+    four diamonds meet, short of the border, and a disc at the centre, which the new patch must
+    cover (:class:`tilesolve.gpu.texture.Quilter`)."""
+    yy, xx = np.mgrid[0:t, 0:t].astype(np.float32) + 0.5
+    inset = np.minimum(np.minimum(yy, t - yy), np.minimum(xx, t - xx))
+    keep = inset < border
+    diagonals = (np.abs(yy - xx) < 1.0) | (np.abs(yy + xx - t) < 1.0)
+    cover = ((diagonals & (inset > border + 2.0)) | (np.hypot(yy - t / 2, xx - t / 2) < 0.2 * t)) & ~keep
+    return keep, cover
 
 
 def check_tile(tile, n_tiles: int) -> int:
@@ -144,26 +157,26 @@ class WangAtlas:
             raise InvalidProblem(f"Wang tiles are rows of 4 colours N, E, S, W (>= 0), got shape {tl.shape}")
         t = check_tile(tile, len(tl))
         cols = math.isqrt(len(tl) - 1) + 1
-        e = math.ceil(FEATHER * t)
-        n = t + 2 * e  # a diamond and its feather: L1 radius t / 2 + e around the sample's centre
-        patch = example_patches(example, n, seed, what="a diamond sample of one tile with its feather")
+        example_patches(example, t, seed, what="a diamond sample (one tile)")  # checks the example
+        quilt = Quilter(example, t, _cut_regions)
+        n, h = quilt.big, quilt.big // 2
+        patch = example_patches(example, n, seed, what="a diamond sample (one tile)")
         k = int(tl.max()) + 1
         horizontal = [patch(n) for _ in range(k)]  # N and S edges
         vertical = [patch(n) for _ in range(k)]  # E and W edges
-        h = t / 2
-        # (diamonds, centre of the diamond in tile coordinates, first row and column of the tile in the sample)
-        sides = ((horizontal, (0, h), (n // 2, e)), (vertical, (h, t), (e, n // 2 - t)),
-                 (horizontal, (t, h), (n // 2 - t, e)), (vertical, (h, 0), (e, n // 2)))
-        weights = [diamond_mask(t, c, h + e, 2 * e) for _, c, _ in sides]
-        total = sum(weights)  # >= 1/2 everywhere: every point is within t / 2 of some edge's midpoint
-        idx = np.arange(t)
-        cut = [(np.clip(r + idx, 0, n - 1), np.clip(q + idx, 0, n - 1)) for _, _, (r, q) in sides]
+        # each texel in the triangle of its nearest edge (ties: N, E, S, W), from that edge's
+        # diamond: a sample of n x n texels centred on the edge's midpoint
+        yy, xx = np.mgrid[0:n, 0:n] + 0.5
+        side = np.argmin(np.stack([yy, n - xx, n - yy, xx]), axis=0)[..., None]
+        rng = rng_from_seed(seed)
         rows = -(-len(tl) // cols)
         image = np.zeros((rows * t, cols * t, 4), dtype=np.uint8)
-        for i, colours in enumerate(tl):
-            img = sum(w * d[c][ry][:, qx] for w, (d, _, _), c, (ry, qx) in zip(weights, sides, colours, cut))
+        for i, (north, east, south, west) in enumerate(tl):
+            img = np.select([side == 0, side == 1, side == 2],
+                            [np.roll(horizontal[north], -h, axis=0), np.roll(vertical[east], h, axis=1),
+                             np.roll(horizontal[south], h, axis=0)], np.roll(vertical[west], -h, axis=1))
             r, q = divmod(i, cols)
-            image[r * t:(r + 1) * t, q * t:(q + 1) * t] = np.rint(img / total).astype(np.uint8)
+            image[r * t:(r + 1) * t, q * t:(q + 1) * t] = quilt(img.astype(np.float32), rng)
         return cls(tl, image)
 
     def block(self, k: int) -> np.ndarray:
