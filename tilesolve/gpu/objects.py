@@ -24,9 +24,10 @@ The passes
    lattice; 32-bit integers only).
 2. One fragment per pixel: its own cell, then the four beside it and the four diagonal ones,
    each skipped when the pixel lies farther from it than the closest point so far (the notes'
-   largest empty circle, §6.6.2.1, measured per pixel); a cell's scan ends at the first point
-   farther east than the closest so far (the points sorted lexicographically, §6.6.2.1), and
-   the search at a point closer than the disk radius (no other can be closer, §6.6.2.1). Distances in double precision (OpenGL
+   largest empty circle, §6.6.2.1, measured per pixel); in a cell, whose points are sorted
+   lexicographically (§6.6.2.1), a binary search finds the pixel's x, and the scan goes east and
+   then west from there, each way until a point lies farther in x than the closest so far; the
+   search ends at a point closer than the disk radius (no other can be closer, §6.6.2.1). Distances in double precision (OpenGL
    4.0's ``double``, which llvmpipe has), so the closest point is the CPU's. The pixel's
    position in its cell comes per column and per row from the CPU, as the float64 bits the CPU
    evaluates at.
@@ -68,6 +69,13 @@ layout(location = 3) out uvec4 o_offset;   // the pixel less the closest point x
 const ivec2 ORDER[9] = ivec2[9](ivec2(0, 0), ivec2(-1, 0), ivec2(1, 0), ivec2(0, -1), ivec2(0, 1),
                                 ivec2(-1, -1), ivec2(1, -1), ivec2(-1, 1), ivec2(1, 1));
 
+// Point i of configuration cfg in the frame of the pixel's cell, its cell at d from the pixel's.
+dvec2 point(int i, int cfg, ivec2 d) {
+    uvec4 w = texelFetch(u_frame, ivec2(i, cfg), 0);
+    uint o = texelFetch(u_org, ivec2(i, cfg), 0).r;
+    return dvec2(d + ivec2(int(o & 1u), int(o >> 1))) + dvec2(packDouble2x32(w.xy), packDouble2x32(w.zw));
+}
+
 double gap(int d, double f) { return d < 0 ? f : (d > 0 ? 1.0LF - f : 0.0LF); }
 
 void main() {
@@ -86,19 +94,23 @@ void main() {
         if (gx * gx + gy * gy >= best) continue;
         int cfg = int(texelFetch(u_cells, k + d, 0).r);
         int cnt = int(texelFetch(u_count, ivec2(cfg, 0), 0).r);
-        for (int i = 0; i < cnt; i++) {
-            uvec4 w = texelFetch(u_frame, ivec2(i, cfg), 0);
-            uint o = texelFetch(u_org, ivec2(i, cfg), 0).r;
-            dvec2 p = dvec2(d + ivec2(int(o & 1u), int(o >> 1))) + dvec2(packDouble2x32(w.xy), packDouble2x32(w.zw));
-            dvec2 e = f - p;
-            if (e.x < 0.0LF && e.x * e.x >= best) break;  // sorted by x: the rest lie farther east
-            double d2 = e.x * e.x + e.y * e.y;
-            if (d2 < best) {
-                best = d2;
-                bp = p;
-                bcell = d;
-                brank = i;
-                if (d2 < r2) break;  // within the disk: the closest point (§6.6.2.1)
+        int lo = 0, hi = cnt;  // the first point not west of the pixel: the points are sorted by x
+        while (lo < hi) {
+            int mid = (lo + hi) >> 1;
+            if (point(mid, cfg, d).x < f.x) lo = mid + 1; else hi = mid;
+        }
+        // from there east, then west, each way until a point lies farther in x than the closest so far
+        for (int step = 1; step >= -1; step -= 2) {
+            for (int i = step > 0 ? lo : lo - 1; i >= 0 && i < cnt && best >= r2; i += step) {
+                dvec2 p = point(i, cfg, d), e = f - p;
+                if (e.x * e.x >= best) break;
+                double d2 = e.x * e.x + e.y * e.y;
+                if (d2 < best) {  // below r2: within the disk, the closest point (§6.6.2.1)
+                    best = d2;
+                    bp = p;
+                    bcell = d;
+                    brank = i;
+                }
             }
         }
     }
