@@ -22,7 +22,10 @@ Squares (:func:`square_scan`)
     the seed's random phases; the first witness wins, and a restricted "unsat" proves nothing,
     so only the full formula refutes. The default, ``"race"``, is that portfolio with its full
     formula searched as ``"phase"`` does: the phase search's time jumps with the size, and the
-    guided run often beats it where it is slow. Every way a witness is verified and a
+    guided run often beats it where it is slow. ``"markov"`` is the race with the guided run
+    replaced by the full formula phased by a window of a known tiling (the constructive
+    route's, for Jeandel-Rao and U19: :mod:`tilesolve.engine.aperiodic_square`), steered and
+    labelled so (its witnesses' method). Every way a witness is verified and a
     refutation's proof checked.
 
 Periods (:func:`sweep`)
