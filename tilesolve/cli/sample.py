@@ -230,7 +230,8 @@ def spectrum(ctx, tileset, size, runs, seed, svg, png) -> None:
 @opt.seed_opt
 @click.option("--gpu", is_flag=True,
               help="Evaluate the function in a fragment shader (OpenGL 4.5 through EGL: the gpu extra; Mesa's "
-                   "llvmpipe without a GPU): the same PNG, byte for byte.")
+                   "llvmpipe without a GPU): every pixel's point and id the CPU's, and on llvmpipe the same PNG, "
+                   "byte for byte.")
 @click.option("--png", type=OutputFile("png", allow_dash=False), required=True, metavar="T.png",
               help="Write the texture here.")
 @click.pass_context
