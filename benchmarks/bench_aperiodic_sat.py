@@ -31,6 +31,7 @@ Usage::
 
     python benchmarks/bench_aperiodic_sat.py                        # tori up to 12, no squares
     python benchmarks/bench_aperiodic_sat.py --max-period 24 --cap 300 --sizes 100 200
+    python benchmarks/bench_aperiodic_sat.py --max-period 24 --cap 300 --baselines plain
     python benchmarks/bench_aperiodic_sat.py --max-period 0 --sizes 100 200 400 --cap 600
     python benchmarks/bench_aperiodic_sat.py --max-period 0 --sizes 200 400 --cap 150 --seeds 1 \
         --routes phase race markov plain
@@ -56,6 +57,10 @@ from tilesolve.model.board import Board, BoardProblem
 from tilesolve.model.run import RunOptions
 from tilesolve.model.solution import Status
 from tilesolve.verify.board import board_violations
+
+
+#: The tori's baselines (each one process, capped).
+BASELINES = ("plain", "whole", "per-torus bands")
 
 
 def baseline(ws, names, cap: float, how: str) -> tuple[int, float, float]:
@@ -85,7 +90,7 @@ def baseline(ws, names, cap: float, how: str) -> tuple[int, float, float]:
     return done, time.perf_counter() - t, cpu() - c
 
 
-def tori(ws, max_p: int, workers: int, cap: float, proof_dir: str) -> None:
+def tori(ws, max_p: int, workers: int, cap: float, proof_dir: str, baselines=BASELINES) -> None:
     names = [f"torus {p}x{q}" for p in range(1, max_p + 1) for q in range(1, max_p + 1)]
     print(f"\nTori p x q, 1 <= p, q <= {max_p} ({len(names)} tori); baselines capped at {cap:.0f} s")
     t, c = time.perf_counter(), cpu()
@@ -101,8 +106,7 @@ def tori(ws, max_p: int, workers: int, cap: float, proof_dir: str) -> None:
     kept = sorted(int(x.evidence.get("proof_lemmas", 0)) for x in bands.values())
     rows = [(f"shared bands + proofs, {workers} workers", refuted, ta, ca,
              f"{len(shared)} by {len(bands)} / {check:.1f}")]
-    rows += [(f"{how}, 1 proc", *baseline(ws, names, cap, how), "-")
-             for how in ("plain", "whole", "per-torus bands")]
+    rows += [(f"{how}, 1 proc", *baseline(ws, names, cap, how), "-") for how in baselines]
     print(f"{'route':>36} {'refuted':>8} {'wall s':>10} {'cpu s':>8} {'tori/s':>7} {'max RSS MiB':>12} "
           f"{'tori by bands / check s':>24}")
     for label, done, wall, cp, extra in rows:
@@ -187,13 +191,15 @@ def main() -> None:
     ap.add_argument("--workers", type=int, default=2)
     ap.add_argument("--cap", type=float, default=120.0, help="seconds for each baseline (and each square)")
     ap.add_argument("--seeds", type=int, nargs="*", default=[1, 2, 3], help="the squares' seeds")
+    ap.add_argument("--baselines", nargs="*", default=list(BASELINES), choices=BASELINES,
+                    help="the tori's baselines, each capped at --cap s")
     ap.add_argument("--routes", nargs="*", default=["phase", "portfolio", "plain"],
                     choices=["phase", "portfolio", "race", "markov", "plain"], help="the squares' routes, phase first (the ratios' base)")
     args = ap.parse_args()
     ws, _ = load("jeandel-rao")
     if args.max_period:
         with tempfile.TemporaryDirectory() as proof_dir:
-            tori(ws, args.max_period, args.workers, args.cap, proof_dir)
+            tori(ws, args.max_period, args.workers, args.cap, proof_dir, args.baselines)
     if args.sizes:
         squares(ws, args.sizes, args.cap, args.seeds, args.routes)
 

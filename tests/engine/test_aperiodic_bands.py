@@ -77,6 +77,13 @@ def test_a_tiled_band_refutes_nothing():
     assert band is not None and band.width == 1
 
 
+def test_a_wide_band_past_its_budget_is_not_used(jr):
+    # widths above 0 get no time: the band stage gives up (the tori stay for the sweep), refutes nothing
+    assert refute_band(jr, "cols", 4, 6, solver="cadical153", seed=1, deadline=NO_LIMIT, budget=(0, 0.0)) is None
+    band = refute_band(jr, "cols", 4, 6, solver="cadical153", seed=1, deadline=NO_LIMIT, budget=(6, 0.0))
+    assert band is not None and band.length == 4
+
+
 def test_trim_keeps_the_used_lemmas_and_a_proof_that_checks():
     # x1..x3 pigeons in 2 holes (variables p(i, h) = 2 * i + h + 1): unsat, with a real proof
     f = [[2 * i + 1, 2 * i + 2] for i in range(3)]

@@ -326,3 +326,16 @@ def test_a_tiny_proof_after_install_compiles_nothing(tmp_path):
     assert proc.returncode == 1, proc.stderr
     assert "DRAT proof checked by tilesolve.verify.drat" in proc.stdout + proc.stderr
     assert not list(cache.rglob("_drat_kernels.*"))
+
+
+@given(st.lists(st.tuples(st.booleans(), st.lists(st.integers(-10**6, 10**6).filter(bool), min_size=1, max_size=6)),
+                max_size=20))
+@settings(max_examples=60, deadline=None)
+def test_drat_bytes_reads_back_as_written(steps):
+    steps = steps + [(False, [])]  # the empty clause ends a proof
+    sizes = np.array([len(c) for _, c in steps], np.int64)
+    lits = np.array([x for _, c in steps for x in c], np.int64)
+    dels = np.array([d for d, _ in steps], np.int8)
+    text = D.drat_bytes(lits, sizes, dels)
+    assert parse_drat(text) == [(d, c) for d, c in steps]
+    assert text.endswith(b"0\n") and b"\n\n" not in text

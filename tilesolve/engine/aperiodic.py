@@ -91,6 +91,14 @@ BAND_MIN_CELLS = 300
 #: wide band of a periodic set can be slow to tile (periodic-10-30: 30 rows by 13 columns,
 #: 50 s CPU, where bands up to 12 take 2.3 s together).
 BAND_MAX = 12
+#: The widest band a sweep shares between tori; each band wider than :data:`BAND_MAX` is
+#: solved within :data:`WIDE_BAND_S` seconds or not used (a wide band of a periodic set can be
+#: slow to tile). Jeandel-Rao's tori with p, q <= 24 need bands up to 16 wide (18 rows need 15
+#: columns; 20 and 23 columns need 16 rows) to leave only small tori and a few that no band of
+#: either axis refutes (23 rows by 13, 16, 21 or 24 columns; 14 rows by 16 to 24 columns).
+SHARED_BAND_MAX = 16
+#: Seconds a band wider than :data:`BAND_MAX` may take to solve in a sweep.
+WIDE_BAND_S = 30.0
 #: A cylinder searched for a torus witness is this many times the torus's height (plus 2 rows).
 CYLINDER_LAPS = 6
 #: CaDiCaL's settings for a search whose answer is a witness: no inprocessing (variable
@@ -488,7 +496,7 @@ def _band_job(tiles: list, n_colors: int, specs: Sequence[tuple[str, int, int]],
     out = []
     try:
         band = refute_band(tileset, axis, length, widest, solver=solver or DEFAULT_SOLVER, seed=seed0,
-                           deadline=deadline)
+                           deadline=deadline, budget=(BAND_MAX, WIDE_BAND_S))
         for name in names if band is not None else ():
             if covers(band, name) and not deadline.expired():
                 cert = band_refutation(tileset, name, band, deadline=deadline, proof_dirs=proof_dirs(proof_dir, store))
@@ -501,8 +509,8 @@ def _band_job(tiles: list, n_colors: int, specs: Sequence[tuple[str, int, int]],
 
 def _band_specs(names: Sequence[str], axis: str) -> list[tuple[str, int, int]]:
     """The bands a sweep tries for ``names``: for every torus height (``axis`` "cols") or
-    unsheared torus width ("rows"), bands up to :data:`BAND_MAX` and narrower than the largest
-    torus that could hold them; the tallest first."""
+    unsheared torus width ("rows"), bands up to :data:`SHARED_BAND_MAX` and narrower than the
+    largest torus that could hold them; the tallest first."""
     widest: dict[int, int] = {}
     for name in names:
         rows, cols, shear = parse_board_name(name)
@@ -510,7 +518,7 @@ def _band_specs(names: Sequence[str], axis: str) -> list[tuple[str, int, int]]:
             widest[rows] = max(widest.get(rows, 0), cols - 1)
         elif shear == 0:
             widest[cols] = max(widest.get(cols, 0), rows - 1)
-    return [(axis, n, min(w, BAND_MAX)) for n, w in sorted(widest.items(), reverse=True) if w >= 1]
+    return [(axis, n, min(w, SHARED_BAND_MAX)) for n, w in sorted(widest.items(), reverse=True) if w >= 1]
 
 
 def sweep(tileset: WangTileSet, names: Sequence[str], run: RunOptions, *, cache: str | os.PathLike | None = None,
