@@ -87,7 +87,7 @@ DIRECT_SIDE = 40
 #: solved whole (smaller ones are solved whole faster: JR 16x16 2.9 s by bands, 2.2 s whole;
 #: 20x20 7.5 s and 16 s CPU).
 BAND_MIN_CELLS = 300
-#: The widest band tried. Jeandel-Rao's tori with p, q <= 24 need bands at most 10 wide; a
+#: The widest band a torus decided on its own tries (:data:`SHARED_BAND_MAX` in a sweep); a
 #: wide band of a periodic set can be slow to tile (periodic-10-30: 30 rows by 13 columns,
 #: 50 s CPU, where bands up to 12 take 2.3 s together).
 BAND_MAX = 12
@@ -207,9 +207,9 @@ def _by_bands(tileset: WangTileSet, name: str, enc, run: RunOptions, t0: float, 
 
     A band's clauses are a subset of the torus's formula (:meth:`TileEncoding.part`), so the
     band's DRAT proof is checked against the torus's whole formula and, once it passes, is the
-    torus's certificate like any other (the named encoding's CNF, re-derivable). Jeandel-Rao's
-    tori fall to bands a few cells wide: no horizontally periodic strip of height ``p <= 24``
-    is wider than 10 columns (benchmarks/bench_aperiodic_sat.py).
+    torus's certificate like any other (the named encoding's CNF, re-derivable). Most of
+    Jeandel-Rao's tori fall to bands a few cells wide, not all: a vertically periodic strip of
+    period 23 tiles at every width up to 23 (:data:`SHARED_BAND_MAX`).
     """
     from tilesolve.engine.certificates import unsat_solution
     from tilesolve.engine.sat import solve_cnf
