@@ -3,9 +3,12 @@
 Per pixel, as :func:`tilesolve.constructive.poisson.object_distribution` does on the CPU: the
 closest point of the tiled Poisson disk distribution (direct stochastic corner tiling, §3.3.1,
 random access), whether the pixel lies within its Poisson disk, the pixel in the disk's frame,
-the point's id and the distance to it. Every pixel equals the CPU's: the same id (cell and
-rank) and ``inside``; ``local``, ``closest`` and ``distance`` computed with the CPU's double
-precision operations in the same order (an ulp at most apart, from the square root).
+the point's id and the distance to it. Every pixel equals the CPU's: the same closest point,
+id (cell and rank); ``local`` and ``closest`` computed with the CPU's double precision
+operations in the same order (bit for bit on llvmpipe; OpenGL promises IEEE double division
+nowhere), and ``distance`` (hence ``inside``) numpy's ``hypot`` of the pixel's offset from the
+point, which the shader returns (GLSL has no ``hypot``, and ``sqrt(x*x + y*y)`` is an ulp off
+it at times).
 
 The cells
 ---------
