@@ -43,3 +43,27 @@ def one_line_error(proc: subprocess.CompletedProcess, code: int = 2) -> str:
 def snapshot(folder: Path) -> dict[str, bytes]:
     """Every file under ``folder`` (hidden ones included) with its bytes."""
     return {str(p.relative_to(folder)): p.read_bytes() for p in sorted(folder.rglob("*")) if p.is_file()}
+
+
+def cut(doc: dict) -> str:
+    """A forgery for :func:`verify_forgery`: the first half of the document's JSON text."""
+    import json
+
+    text = json.dumps(doc)
+    return text[:len(text) // 2]
+
+
+def verify_forgery(folder: Path, doc: dict, forge, code: int, words: str) -> None:
+    """Write a copy of ``doc`` (a parsed file) changed by ``forge`` (which edits it, or returns the
+    text to write instead) to ``folder/forged.json``, run ``tilesolve verify`` on it and assert the
+    verdict: ``code`` 1 with ``words`` in its report, or 2 with ``words`` in its one-line error."""
+    import json
+
+    copy = json.loads(json.dumps(doc))
+    text = forge(copy)
+    (folder / "forged.json").write_text(text if isinstance(text, str) else json.dumps(copy))
+    r = run("verify", "forged.json", cwd=folder)
+    if code == 2:
+        assert words in one_line_error(r)
+    else:
+        assert r.returncode == code and words in r.stdout, r.stdout + r.stderr

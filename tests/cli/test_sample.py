@@ -7,7 +7,7 @@ import shlex
 
 import numpy as np
 import pytest
-from clitools import one_line_error, run, snapshot
+from clitools import cut, one_line_error, run, snapshot, verify_forgery
 
 
 @pytest.fixture(scope="module")
@@ -215,24 +215,12 @@ def _version_1(d):
     (lambda d: d["tileset"]["tiles"]["corner"][0].append([0.9, 0.0]), 1, "the file's tile set: corner tile 0"),
     (_version_1, 1, "NOT confirmed"),
     (lambda d: d["tileset"].update(points=32), 2, "'distance' is"),
-    (lambda d: d["tileset"]["tiles"].pop("interior"), 2, "w.json (tileset): 'tiles'"),
+    (lambda d: d["tileset"]["tiles"].pop("interior"), 2, "forged.json (tileset): 'tiles'"),
     (lambda d: d.pop("tileset"), 2, "missing field 'tileset'"),
+    (cut, 2, "forged.json: malformed JSON"),
 ])
 def test_verify_binds_a_window_to_its_set_and_seed(folder, window_doc, forge, code, words):
-    doc = json.loads(json.dumps(window_doc))
-    forge(doc)
-    (folder / "w.json").write_text(json.dumps(doc))
-    r = run("verify", "w.json", cwd=folder)
-    if code == 2:
-        assert words in one_line_error(r)
-    else:
-        assert r.returncode == 1 and words in r.stdout, r.stdout + r.stderr
-
-
-def test_verify_refuses_a_truncated_window_file(folder, window_doc):
-    text = json.dumps(window_doc)
-    (folder / "cut.json").write_text(text[:len(text) // 2])
-    assert "cut.json" in one_line_error(run("verify", "cut.json", cwd=folder))
+    verify_forgery(folder, window_doc, forge, code, words)
 
 
 # --- stipple files: the density, the settings and the seed embedded; verify re-checks and re-samples ---
@@ -266,21 +254,7 @@ def stipple_doc(tmp_path_factory):
     (lambda d: d.update(density=[[0.0]]), 2, "zero everywhere"),
     (lambda d: d.update(seed=None), 2, "seed"),
     (lambda d: d.pop("samples"), 2, "missing field 'samples'"),
+    (cut, 2, "forged.json: malformed JSON"),
 ])
 def test_verify_re_checks_a_stipple_file(stipple_doc, forge, code, words):
-    folder, good = stipple_doc
-    doc = json.loads(json.dumps(good))
-    forge(doc)
-    (folder / "f.json").write_text(json.dumps(doc))
-    r = run("verify", "f.json", cwd=folder)
-    if code == 2:
-        assert words in one_line_error(r)
-    else:
-        assert r.returncode == 1 and words in r.stdout, r.stdout + r.stderr
-
-
-def test_verify_refuses_a_truncated_stipple_file(stipple_doc):
-    folder, good = stipple_doc
-    text = json.dumps(good)
-    (folder / "cut.json").write_text(text[:len(text) // 3])
-    assert "cut.json" in one_line_error(run("verify", "cut.json", cwd=folder))
+    verify_forgery(*stipple_doc, forge, code, words)

@@ -18,6 +18,15 @@ import click
 from tilesolve.cli import options as opt
 from tilesolve.cli.common import say
 from tilesolve.cli.outputs import OutputFile, Outputs
+from tilesolve.cli.sample_common import (
+    done,
+    hash_option,
+    point_outputs,
+    read_image,
+    set_and_region,
+    write_set,
+    write_window,
+)
 from tilesolve.cli.sample_recursive import recursive_wang
 from tilesolve.errors import InvalidProblem
 
@@ -51,27 +60,6 @@ def poisson_tiles() -> None:
       tilesolve sample poisson-tiles texture set.json --region 0,0,6x4 --px 48 --seed 2 --png texture.png
       tilesolve verify set.json
     """
-
-
-def _done(ctx, outs: Outputs) -> None:
-    if outs.files:
-        say(f"  wrote {', '.join(outs.files)}")
-    ctx.exit(0)
-
-
-def _write_set(ctx, outs: Outputs, output: str, problem, sol, text) -> None:
-    """Write a built tile set (``text()``, its JSON) to ``output`` (``-``: stdout) and say what was built."""
-    from tilesolve.io.atomic import write_text_atomic
-
-    with outs.commit(sol):
-        if output == "-":
-            click.echo(text(), nl=False)
-        else:
-            write_text_atomic(output, text())
-    short = sol.stats["short"]
-    say(f"{sol.status.value}: {problem.describe()}, {sol.stats['points']:,} points, seed {sol.seed}, "
-        f"in {sol.time_s:.2f} s" + (f"; interior tiles lack {short} points in all" if short else ""))
-    _done(ctx, outs)
 
 
 def _load_set(path: str):
@@ -113,32 +101,19 @@ def build(ctx, colors, points, rho, lloyd, seed, output) -> None:
     problem = PoissonTilesProblem(colors, points, rho, lloyd)
     outs = Outputs(output)
     sol = solve(problem, method="dart", seed=seed)
-    _write_set(ctx, outs, output, problem, sol, lambda: dump(tiles_to_dict(problem, sol)))
-
-
-def _set_and_region(command):
-    """The SET.json argument and the --region option of the commands that lay out a window."""
-    command = click.option("--region", required=True, metavar="X0,Y0,WxH",
-                           help="W x H tiles whose SW tile is (X0, Y0); y points north, coordinates may be "
-                                "negative.")(command)
-    return click.argument("tileset", type=click.Path(dir_okay=False), metavar="SET.json")(command)
+    write_set(ctx, outs, output, problem, sol, lambda: dump(tiles_to_dict(problem, sol)))
 
 
 @poisson_tiles.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP,
                        short_help="The points of a window of the plane tiled with a set.")
-@_set_and_region
+@set_and_region("tiles")
 @click.option("--tiling", type=click.Choice(["direct", "scanline"]), default="direct", show_default=True,
               help="The stochastic corner tiling that colours the lattice (§3.3.1 direct, §3.2.2 scanline).")
 @click.option("--set", "variant", type=click.Choice(["complete", "compact"]), default="complete", show_default=True,
               help="Corner tile set of the tiling (compact: scanline only).")
-@click.option("--hash", "hash_", type=click.Choice(["long", "table"]), default="long", show_default=True,
-              help="Lattice hash (§3.4).")
+@hash_option
 @opt.seed_opt
-@click.option("-o", "--output", type=OutputFile("json", "csv", "npy", allow_dash=False), metavar="PTS.csv|npy|json",
-              help="Write the points: JSON (relative to the window's corner, any window), CSV or NPY (plane "
-                   "coordinates).")
-@click.option("--svg", type=OutputFile("svg", allow_dash=False), metavar="PTS.svg", help="Draw the points as SVG.")
-@click.option("--png", type=OutputFile("png", allow_dash=False), metavar="PTS.png", help="Draw the points as PNG.")
+@point_outputs("the points")
 @click.pass_context
 def window(ctx, tileset, region, tiling, variant, hash_, seed, output, svg, png) -> None:
     """Sample a window: place the set's tiles on a stochastic corner tiling and keep the points
@@ -154,7 +129,6 @@ def window(ctx, tileset, region, tiling, variant, hash_, seed, output, svg, png)
     """
     from tilesolve.families.poisson import solve
     from tilesolve.io.poisson_json import check_point_output, write_points
-    from tilesolve.io.poisson_plots import write_points_picture
     from tilesolve.model.poisson import PoissonWindowProblem
     from tilesolve.model.window import parse_region
 
@@ -166,14 +140,7 @@ def window(ctx, tileset, region, tiling, variant, hash_, seed, output, svg, png)
     sol = solve(problem, method="window", seed=seed)
     w = sol.tiling
     caption = f"{w.n_points:,} points, rho {ts.problem.rho:g}, {w.window.caption()}"
-    with outs.commit(sol):
-        if output:
-            write_points(output, problem, sol)
-        for path, fmt in ((svg, "svg"), (png, "png")):
-            if path:
-                write_points_picture(path, w.local, w.window, w.distance, caption, fmt)
-    say(f"{sol.status.value}: {w.n_points:,} points, {problem.describe()}, seed {sol.seed}, in {sol.time_s:.2f} s")
-    _done(ctx, outs)
+    write_window(ctx, outs, (output, svg, png), problem, sol, write_points, w.distance, caption)
 
 
 @poisson_tiles.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP,
@@ -213,12 +180,12 @@ def spectrum(ctx, tileset, size, runs, seed, svg, png) -> None:
         for path, fmt in ((svg, "svg"), (png, "png")):
             if path:
                 write_spectrum_plot(path, series, title, fmt)
-    _done(ctx, outs)
+    done(ctx, outs)
 
 
 @poisson_tiles.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP,
                        short_help="Objects scattered without overlaps: the procedural object distribution (§6.6.2).")
-@_set_and_region
+@set_and_region("tiles")
 @click.option("--px", type=click.IntRange(1, 512), default=32, show_default=True, help="Pixels a tile side.")
 @click.option("--image", type=click.Path(dir_okay=False, exists=False), metavar="IMG.png",
               help="The object drawn in every Poisson disk (transparent pixels show the background); "
@@ -264,29 +231,15 @@ def texture(ctx, tileset, region, px, image, background, seed, gpu, png) -> None
     if window.width * window.height * px * px > MAX_TEXTURE_PIXELS:
         raise InvalidProblem(f"a texture of {window.width * px:,} x {window.height * px:,} pixels is more than "
                              f"{MAX_TEXTURE_PIXELS:,}: ask for fewer tiles or pixels")
-    picture = _read_image(image) if image else None
-    under = _read_image(background) if background else None
+    picture = read_image(image) if image else None
+    under = read_image(background) if background else None
     _, ts = _load_set(tileset)
     evaluation = objects(ts, window, px, seed=seed)
     with outs.commit():
         write_texture_png(png, evaluation, picture, under)
     say(f"ok: {int(evaluation['inside'].sum()):,} of {evaluation['inside'].size:,} pixels inside a Poisson disk, "
         f"{window.caption()}")
-    _done(ctx, outs)
-
-
-def _read_image(path: str):
-    """An RGBA array of a picture file, or a one-line error."""
-    import numpy as np
-    from PIL import Image, UnidentifiedImageError
-
-    try:
-        with Image.open(path) as img:
-            if img.width * img.height > 1 << 22:
-                raise InvalidProblem(f"{path}: the object picture has more than {1 << 22:,} pixels")
-            return np.asarray(img.convert("RGBA"))
-    except (OSError, UnidentifiedImageError) as exc:
-        raise InvalidProblem(f"cannot read the picture {path}: {exc.__class__.__name__}") from None
+    done(ctx, outs)
 
 
 @sample.group("poisson-spheres", context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP,
@@ -336,7 +289,7 @@ def spheres_build(ctx, colors, points, rho, seed, output) -> None:
     problem = PoissonSphereTilesProblem(colors, points, rho)
     outs = Outputs(output)
     sol = solve(problem, method="dart", seed=seed)
-    _write_set(ctx, outs, output, problem, sol, lambda: dump(tiles_to_dict(problem, sol)))
+    write_set(ctx, outs, output, problem, sol, lambda: dump(tiles_to_dict(problem, sol)))
 
 
 @poisson_spheres.command("window", context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP,
@@ -344,8 +297,7 @@ def spheres_build(ctx, colors, points, rho, seed, output) -> None:
 @click.argument("tileset", type=click.Path(dir_okay=False), metavar="SET.json")
 @click.option("--region", required=True, metavar="X0,Y0,Z0,WxHxD",
               help="W x H x D cells whose least cell is (X0, Y0, Z0); coordinates may be negative.")
-@click.option("--hash", "hash_", type=click.Choice(["long", "table"]), default="long", show_default=True,
-              help="Lattice hash of the direct corner tiling (§3.4).")
+@hash_option
 @opt.seed_opt
 @click.option("-o", "--output", type=OutputFile("json", "csv", "npy", allow_dash=False), metavar="PTS.npy|csv|json",
               help="Write the points: JSON (relative to the box's least corner, any box), CSV or NPY (coordinates "
@@ -386,7 +338,7 @@ def spheres_window(ctx, tileset, region, hash_, seed, output) -> None:
             write_points3(output, problem, sol)
     say(f"{sol.status.value}: {sol.tiling.n_points:,} points, {problem.describe()}, seed {sol.seed}, "
         f"in {sol.time_s:.2f} s")
-    _done(ctx, outs)
+    done(ctx, outs)
 
 
 def _density_options(lloyd: int, jitter: bool):
@@ -490,7 +442,7 @@ def stipple(ctx, image, test_image, points, tile, lloyd, jitter, method, seed, o
         f"sampled in {r['time_s']:.2f} s")
     if r["violations"]:
         ctx.exit(1)
-    _done(ctx, outs)
+    done(ctx, outs)
 
 
 @sample.command("importance-spectrum", context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP,
@@ -549,4 +501,4 @@ def importance_spectrum(ctx, image, test_image, points, tile, lloyd, jitter, run
     if bad:
         say(f"violations: the samples of {', '.join(bad)} do not follow the image's density")
         ctx.exit(1)
-    _done(ctx, outs)
+    done(ctx, outs)

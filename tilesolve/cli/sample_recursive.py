@@ -14,8 +14,8 @@ from __future__ import annotations
 import click
 
 from tilesolve.cli import options as opt
-from tilesolve.cli.common import say
 from tilesolve.cli.outputs import OutputFile, Outputs
+from tilesolve.cli.sample_common import hash_option, point_outputs, read_image, set_and_region, write_set, write_window
 from tilesolve.errors import InvalidProblem
 
 __all__ = ["recursive_wang"]
@@ -80,24 +80,14 @@ def build(ctx, colors, points, rho, subdivision, lloyd, seed, output) -> None:
       tilesolve sample recursive-wang build -C 2 -N 16 --rho 0.7 -n 4 --seed 1 -o rset.json
       tilesolve sample recursive-wang build -C 2 -N 32 --rho 0.75 -n 2 --seed 3 -o rset2.json
     """
-    from tilesolve.cli.sample import _done
     from tilesolve.families.poisson_recursive import solve
-    from tilesolve.io.atomic import write_text_atomic
     from tilesolve.io.poisson_recursive_json import dump, set_to_dict
     from tilesolve.model.poisson_recursive import RecursiveTilesProblem
 
     problem = RecursiveTilesProblem(colors, points, rho, subdivision, lloyd)
     outs = Outputs(output)
     sol = solve(problem, method="build", seed=seed)
-    with outs.commit(sol):
-        text = dump(set_to_dict(problem, sol))
-        if output == "-":
-            click.echo(text, nl=False)
-        else:
-            write_text_atomic(output, text)
-    say(f"{sol.status.value}: {problem.describe()}, {sol.stats['points']:,} points, seed {sol.seed}, "
-        f"in {sol.time_s:.2f} s")
-    _done(ctx, outs)
+    write_set(ctx, outs, output, problem, sol, lambda: dump(set_to_dict(problem, sol)))
 
 
 def _ramp(text: str):
@@ -115,9 +105,7 @@ def _image_density(path: str, top: float):
     """Density ``top * (1 - luminance)`` of a picture (transparent pixels: no points)."""
     import numpy as np
 
-    from tilesolve.cli.sample import _read_image
-
-    rgba = _read_image(path).astype(np.float64) / 255.0
+    rgba = read_image(path).astype(np.float64) / 255.0
     lum = rgba[..., :3] @ np.array([0.299, 0.587, 0.114])
     return top * (1.0 - lum) * rgba[..., 3]
 
@@ -141,23 +129,16 @@ def _density(level, density, ramp, image, max_density):
 
 @recursive_wang.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP,
                         short_help="The points of a window at a level, a density, a ramp or an image.")
-@click.argument("tileset", type=click.Path(dir_okay=False), metavar="SET.json")
-@click.option("--region", required=True, metavar="X0,Y0,WxH",
-              help="W x H level-0 tiles whose SW tile is (X0, Y0); y points north, coordinates may be negative.")
+@set_and_region("level-0 tiles")
 @click.option("--level", type=int, default=None, metavar="L", help="Every point of level L.")
 @click.option("--density", type=float, default=None, metavar="D", help="D points a unit area (a tile), uniform.")
 @click.option("--ramp", default=None, metavar="D0,D1", help="A density growing from D0 (west) to D1 (east).")
 @click.option("--image", type=click.Path(dir_okay=False), default=None, metavar="IMG.png",
               help="A density from a picture stretched over the window: dark is dense.")
 @click.option("--max-density", type=float, default=None, metavar="D", help="With --image: the density of black.")
-@click.option("--hash", "hash_", type=click.Choice(["long", "table"]), default="long", show_default=True,
-              help="Lattice hash of the direct corner tiling (§3.4).")
+@hash_option
 @opt.seed_opt
-@click.option("-o", "--output", type=OutputFile("json", "csv", "npy", allow_dash=False), metavar="PTS.csv|npy|json",
-              help="Write the points with their level and rank: JSON (relative to the window's corner, any "
-                   "window), CSV or NPY (plane coordinates).")
-@click.option("--svg", type=OutputFile("svg", allow_dash=False), metavar="PTS.svg", help="Draw the points as SVG.")
-@click.option("--png", type=OutputFile("png", allow_dash=False), metavar="PTS.png", help="Draw the points as PNG.")
+@point_outputs("the points with their level and rank")
 @click.pass_context
 def window(ctx, tileset, region, level, density, ramp, image, max_density, hash_, seed, output, svg, png) -> None:
     """Sample a window: subdivide the direct corner tiling of the region down to the level the
@@ -173,10 +154,8 @@ def window(ctx, tileset, region, level, density, ramp, image, max_density, hash_
       tilesolve sample recursive-wang window rset.json --region 1000000000000,-7,2x2 --density 900 -o far.json
       tilesolve verify far.json
     """
-    from tilesolve.cli.sample import _done
     from tilesolve.families.poisson_recursive import picture_distance, solve
     from tilesolve.io.poisson_json import check_point_output
-    from tilesolve.io.poisson_plots import write_points_picture
     from tilesolve.io.poisson_recursive_json import write_points
     from tilesolve.model.poisson_recursive import RecursiveWindowProblem
     from tilesolve.model.window import parse_region
@@ -191,11 +170,4 @@ def window(ctx, tileset, region, level, density, ramp, image, max_density, hash_
     sol = solve(problem, method="window", seed=seed)
     w = sol.tiling
     caption = f"{w.n_points:,} points, {problem.label}, {w.window.caption()}"
-    with outs.commit(sol):
-        if output:
-            write_points(output, problem, sol)
-        for path, fmt in ((svg, "svg"), (png, "png")):
-            if path:
-                write_points_picture(path, w.local, w.window, picture_distance(w), caption, fmt)
-    say(f"{sol.status.value}: {w.n_points:,} points, {problem.describe()}, seed {sol.seed}, in {sol.time_s:.2f} s")
-    _done(ctx, outs)
+    write_window(ctx, outs, (output, svg, png), problem, sol, write_points, picture_distance(w), caption)

@@ -64,8 +64,8 @@ from tilesolve.model.solution import Solution, Status
 from tilesolve.model.window import Window
 
 __all__ = ["TILES_FORMAT", "WINDOW_FORMAT", "VERSIONS", "WINDOW_VERSIONS", "UNBOUND", "SeededWindow", "tiles_to_dict",
-           "tiles_from_dict", "window_to_dict", "window_from_dict", "read_problem", "read_seed", "read_points",
-           "built_set", "dump", "write_points", "check_point_output", "POINT_FORMATS", "FLOAT_RANGE"]
+           "tiles_from_dict", "window_to_dict", "window_from_dict", "embedded_set", "read_problem", "read_seed",
+           "read_points", "built_set", "dump", "write_points", "check_point_output", "POINT_FORMATS", "FLOAT_RANGE"]
 
 TILES_FORMAT = "tilesolve/poisson-tiles"
 WINDOW_FORMAT = "tilesolve/poisson-window"
@@ -208,19 +208,26 @@ def window_from_dict(doc: dict, source: str = "<document>") -> tuple[PoissonProb
     if not v2:
         return problem, Solution(Status.SAT, PoissonWindow(window, local, problem.distance),
                                  method=str(doc.get("tiling", "direct")), seed=seed, window=window)
-    if seed is None:
-        raise InvalidProblem(f"{source}: a version 2 window file states the seed of its tiling, not null")
-    set_problem, built = tiles_from_dict(doc["tileset"], f"{source} (tileset)")
-    if set_problem != problem:
-        raise InvalidProblem(f"{source}: the window states {problem.describe()}, but its tileset is "
-                             f"{set_problem.describe()}")
+    tileset = embedded_set(doc, source, problem, tiles_from_dict)
     try:
-        wp = PoissonWindowProblem(built.tiling, window, doc.get("tiling", "direct"), doc.get("set", "complete"),
+        wp = PoissonWindowProblem(tileset, window, doc.get("tiling", "direct"), doc.get("set", "complete"),
                                   doc.get("hash", "long"))
     except InvalidProblem as exc:
         raise InvalidProblem(f"{source}: {exc}") from None
     return wp, Solution(Status.SAT, SeededWindow(window, local, problem.distance, seed), method="window", seed=seed,
                         window=window)
+
+
+def embedded_set(doc: dict, source: str, problem, read):
+    """The tile set a version 2 window file embeds (``read(doc["tileset"], ...)``, a set's
+    reader), which must be of the window's ``problem``; the file's seed must be stated."""
+    if doc.get("seed") is None:
+        raise InvalidProblem(f"{source}: a version 2 window file states the seed of its tiling, not null")
+    set_problem, built = read(doc["tileset"], f"{source} (tileset)")
+    if set_problem != problem:
+        raise InvalidProblem(f"{source}: the window states {problem.describe()}, but its tileset is "
+                             f"{set_problem.describe()}")
+    return built.tiling
 
 
 def _line(rows) -> str:

@@ -48,7 +48,7 @@ import numpy as np
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.atomic import write_bytes_atomic, write_text_atomic
 from tilesolve.io.jsonio import check_document
-from tilesolve.io.poisson_json import check_point_output, read_problem, read_seed
+from tilesolve.io.poisson_json import check_point_output, embedded_set, read_problem, read_seed
 from tilesolve.io.poisson_json import dump as dump_base
 from tilesolve.io.poisson_json import tiles_from_dict, tiles_to_dict
 from tilesolve.model.poisson_recursive import (
@@ -194,15 +194,10 @@ def window_from_dict(doc: dict, source: str = "<document>") -> tuple[RecursivePr
              problem.subdivision)
     if not v2:
         return problem, Solution(Status.SAT, RecursiveWindow(*parts), method="window", seed=seed, window=window)
-    if seed is None:
-        raise InvalidProblem(f"{source}: a version 2 window file states the seed of its tiling, not null")
-    set_problem, built = set_from_dict(doc["tileset"], f"{source} (tileset)")
-    if set_problem != problem:
-        raise InvalidProblem(f"{source}: the window states {problem.describe()}, but its tileset is "
-                             f"{set_problem.describe()}")
+    tileset = embedded_set(doc, source, problem, set_from_dict)
     grid, label = _grid(doc.get("density_grid"), source), doc.get("density", "")
     try:
-        wp = RecursiveWindowProblem(built.tiling, window, None if grid is not None else level, grid,
+        wp = RecursiveWindowProblem(tileset, window, None if grid is not None else level, grid,
                                     label if isinstance(label, str) else "", doc.get("hash", "long"))
     except InvalidProblem as exc:
         raise InvalidProblem(f"{source}: {exc}") from None
