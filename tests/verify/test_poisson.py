@@ -95,3 +95,27 @@ def test_averaged_periodograms_of_white_noise_lose_anisotropy_as_ulichney_says()
     _, p, aniso = radial_spectrum(runs, 4.0, k_max=32)
     assert 0.8 < float(p[8:].mean()) < 1.2
     assert -7.5 < float(aniso[8:].mean()) < -4.5  # 10 log10(1/4) = -6 dB
+
+
+def test_the_verifiers_placement_gives_the_builders_points_exactly(ts):
+    from tilesolve.constructive.poisson import place_tiles
+    from tilesolve.verify.poisson import match_violations, placed_points
+
+    lat = np.random.default_rng(3).integers(2, size=(5, 7))
+    offsets, frame, _, _ = place_tiles(ts, lat)
+    mine = placed_points(ts, lat)
+    assert len(mine) == len(offsets) and match_violations(mine, offsets + frame, "the builder") == []
+
+
+def test_match_violations_finds_points_missing_added_and_moved():
+    from tilesolve.verify.poisson import match_violations
+
+    pts = np.array([[0.1, 0.2], [0.3, 0.4], [0.5, 0.6]])
+    assert match_violations(pts[::-1], pts, "x") == []
+    assert [v.message.split(",")[0] for v in match_violations(pts[:2], pts, "x")] == \
+        ["1 point(s) x gives are missing from the file"]
+    moved = pts.copy()
+    moved[1, 0] = np.nextafter(moved[1, 0], 1)
+    assert len(match_violations(moved, pts, "x")) == 2
+    assert match_violations(np.vstack([pts, pts[:1]]), pts, "x")[0].message.startswith("1 point(s) of the file")
+    assert match_violations(np.c_[pts, pts[:, :1]], pts, "x")[0].kind == "seed"
