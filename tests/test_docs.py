@@ -159,3 +159,27 @@ def test_site_reference_lists_every_command_and_ships_the_man_page(site):
     assert (site / "man" / "tilesolve.1").read_text(encoding="utf-8").startswith(".TH TILESOLVE 1 ")
     api = (site / "api" / "families.html").read_text(encoding="utf-8")
     assert "tilesolve.families.dappled" in api
+
+
+def test_gallery_sections_are_families_or_more():
+    import yaml
+
+    extra = yaml.safe_load((ROOT / "docs" / "hooks" / "gallery.yml").read_text(encoding="utf-8"))
+    assert set(extra) - {"more"} <= {f.name for f in families()}
+    for section in extra["more"].values():
+        assert section["about"] and all({"file", "caption", "command"} <= set(item) for item in section["items"])
+
+
+@pytest.mark.slow
+def test_gallery_shows_poisson_disks_a_stippled_image_and_the_spectra(site):
+    sections = _sections((site / "gallery.html").read_text(encoding="utf-8"))
+    shown = {name: re.findall(r'<img[^>]* src="gallery/([^"]+)"', sections[name])
+             for name in ("poisson", "importance-sampling-and-stippling")}
+    assert {"poisson-window.svg", "poisson-spectrum.svg"} <= set(shown["poisson"])
+    assert {"stipple.svg", "importance-spectrum.svg"} <= set(shown["importance-sampling-and-stippling"])
+    for name in ("poisson-window.svg", "stipple.svg"):  # thousands of dots
+        assert (site / "gallery" / name).stat().st_size > 50_000, name
+    for name in ("poisson-spectrum.svg", "importance-spectrum.svg"):  # the curves
+        assert (site / "gallery" / name).read_text(encoding="utf-8").count("<polyline") >= 4, name
+    page = (site / "tutorials" / "stippling.html").read_text(encoding="utf-8")
+    assert "$ tilesolve sample stipple " in unescape(re.sub(r"<[^>]+>", "", page))

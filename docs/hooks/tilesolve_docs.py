@@ -12,8 +12,10 @@ built, so that every command shown runs as written and every picture is the one 
   order, at ``tutorials/<family>.md``; a family without a written page gets one made from its
   demos and its commands' ``--help``. Other pages in ``tutorials/`` follow.
 - **Gallery.** ``tilesolve demo`` draws every family's demos; ``hooks/gallery.yml`` adds
-  commands for the families that need more (or have no demo). A family of the registry without
-  a picture fails the build.
+  commands for the families that need more (or have no demo), and under ``more`` sections of
+  their own for commands that are no family's (stippling, spectra), after the families. A
+  family of the registry without a picture, or a key of ``gallery.yml`` that is neither a family
+  nor ``more``, fails the build.
 - **Docstrings.** The docstrings' reStructuredText roles (``:class:`~tilesolve.family.Family```)
   are shown as code (``Family``), in the API pages and everywhere else.
 - **Reference.** The command-line reference (``cli.md``) and the man page (``man/tilesolve.1``)
@@ -188,23 +190,45 @@ def _gallery(files: Files, config) -> None:
         "and checked by the family's verifier on the way. One section a family of the registry.",
         "",
     ]
+    unknown = sorted(set(extra) - {f.name for f in _families()} - {"more"})
+    if unknown:
+        raise PluginError(f"gallery.yml: {unknown[0]!r} is no family of the registry (nor 'more')")
     for fam in _families():
         items = [(f"{d.name}.svg", d.caption, f"tilesolve demo --family {fam.name}") for d in fam.demos]
-        for item in extra.get(fam.name, []):
-            run_commands([item["command"]], folder, f"gallery ({fam.name})")
-            items.append((item["file"], item["caption"], item["command"]))
+        items += _run_items(extra.get(fam.name, []), folder, fam.name)
         items = [item for item in items if (folder / item[0]).is_file()]
         if not items:
             raise PluginError(f"gallery: family {fam.name!r} has no picture (no demo and nothing in gallery.yml)")
-        out += [f"## {fam.name}", "", f"{fam.title[:1].upper()}{fam.title[1:]}. "
-                f"[Tutorial](tutorials/{fam.name}.md).", "", '<div class="gallery" markdown>', ""]
-        for name, caption, command in items:
-            _add(files, config, f"gallery/{name}", path=folder / name)
-            out += ['<figure markdown>', "", f"![{caption}](gallery/{name})", "",
-                    f"<figcaption>{caption}<br><code>{_html(command)}</code></figcaption>", "", "</figure>", ""]
-        out += ["</div>", ""]
+        out += _section(files, config, fam.name, f"{fam.title[:1].upper()}{fam.title[1:]}. "
+                        f"[Tutorial](tutorials/{fam.name}.md).", items, folder)
+    for heading, section in (extra.get("more") or {}).items():
+        out += _section(files, config, heading, section["about"], _run_items(section["items"], folder, heading),
+                        folder)
     _add(files, config, "gallery.md", content="\n".join(out))
     log.info("gallery: %d families drawn in %.1f s", len(_families()), time.perf_counter() - started)
+
+
+def _run_items(items: list[dict], folder: Path, where: str) -> list[tuple[str, str, str]]:
+    """Run the commands of ``gallery.yml``'s ``items`` in ``folder``; ``(file, caption, command)``
+    of each (a command that does not write its file fails the build)."""
+    out = []
+    for item in items:
+        run_commands([item["command"]], folder, f"gallery ({where})")
+        if not (folder / item["file"]).is_file():
+            raise PluginError(f"gallery ({where}): `{item['command']}` did not write {item['file']}")
+        out.append((item["file"], item["caption"], item["command"]))
+    return out
+
+
+def _section(files: Files, config, heading: str, about: str, items: list[tuple[str, str, str]],
+             folder: Path) -> list[str]:
+    """The gallery's section ``heading``: ``about``, then each picture with its caption and command."""
+    out = [f"## {heading}", "", about, "", '<div class="gallery" markdown>', ""]
+    for name, caption, command in items:
+        _add(files, config, f"gallery/{name}", path=folder / name)
+        out += ['<figure markdown>', "", f"![{caption}](gallery/{name})", "",
+                f"<figcaption>{caption}<br><code>{_html(command)}</code></figcaption>", "", "</figure>", ""]
+    return out + ["</div>", ""]
 
 
 def _html(text: str) -> str:
