@@ -8,7 +8,7 @@ import dataclasses
 import pytest
 
 from tilesolve.deadline import NO_LIMIT
-from tilesolve.engine.aperiodic import board_problem, sweep
+from tilesolve.engine.aperiodic import board_problem, decide, sweep
 from tilesolve.engine.aperiodic_bands import band_refutation, covers, refute_band, trim
 from tilesolve.engine.certificates import recheck_unsat
 from tilesolve.engine.sat import solve_cnf
@@ -104,3 +104,11 @@ def test_a_sweep_refutes_jeandel_rao_tori_through_shared_bands(tmp_path, jr):
     assert any("shear" in c.board for c in banded) and len({c.evidence["band"] for c in banded}) < len(banded)
     for c in certs:
         assert recheck_unsat(board_problem(jr, c.board), c.evidence, tmp_path).ok, c.board
+
+
+def test_a_torus_whose_cylinder_is_refuted_is_solved_whole():
+    stairs = WangTileSet([[i, 0, (i + 1) % 3, 0] for i in range(3)], 3)  # tori p x q tiled when 3 divides p
+    run = RunOptions(seed=1)
+    assert decide(stairs, "torus 3x100", run, bands=False).method == "sat cylinder"
+    cert = decide(stairs, "torus 3x100", run, bands=False, cylinder=False)
+    assert cert.status == "tiles" and cert.method == "sat"

@@ -166,11 +166,12 @@ def board_encoding(tileset: WangTileSet, name: str, *, allowed=None, deadline: D
 
 
 def decide(tileset: WangTileSet, name: str, run: RunOptions, *, allowed=None, bands: bool = True,
-           phase_search: bool = False) -> Certificate:
+           phase_search: bool = False, cylinder: bool = True) -> Certificate:
     """Decide whether ``tileset`` tiles the board called ``name`` (``"square 5x5"``,
     ``"torus 3x4 shear 1"``) with the SAT route; ``allowed`` pairs make a guided
     (restricted) search whose unsat is reported undecided. ``bands=False`` skips a torus's
-    bands (a sweep has tried them already) but still looks for its witness on a cylinder.
+    bands (a sweep has tried them already) but still looks for its witness on a cylinder, unless
+    ``cylinder`` is False (a sweep refuted a band of the cylinder's rows).
     ``phase_search`` solves with CaDiCaL's :data:`WITNESS_OPTIONS` instead of the seed's random
     phases (a refutation still carries its checked proof)."""
     from tilesolve.deadline import TimeLimitReached
@@ -183,7 +184,7 @@ def decide(tileset: WangTileSet, name: str, run: RunOptions, *, allowed=None, ba
         return Certificate(name, "undecided", None, "sat", {"why": str(exc)}, round(time.perf_counter() - t0, 6))
     rows, cols, shear = parse_board_name(name)
     if allowed is None and shear >= 0 and rows * cols >= BAND_MIN_CELLS:
-        cert = _by_bands(tileset, name, enc, run, t0, bands)
+        cert = _by_bands(tileset, name, enc, run, t0, bands, cylinder)
         if cert is not None:
             return cert
     solver = run.solver or DEFAULT_SOLVER
@@ -201,7 +202,8 @@ def _bands(labels: np.ndarray, rows: int, cols: int) -> list[tuple[int, np.ndarr
     return sorted(out, key=lambda b: b[0])
 
 
-def _by_bands(tileset: WangTileSet, name: str, enc, run: RunOptions, t0: float, bands: bool) -> Certificate | None:
+def _by_bands(tileset: WangTileSet, name: str, enc, run: RunOptions, t0: float, bands: bool,
+              cylinder: bool = True) -> Certificate | None:
     """A torus refuted through one of its bands (:func:`_bands`), smallest first, or a witness
     read off a cylinder (:func:`_cylinder_witness`); ``None`` when neither settles it.
 
@@ -229,7 +231,7 @@ def _by_bands(tileset: WangTileSet, name: str, enc, run: RunOptions, t0: float, 
             return None  # a proof that does not carry over: the whole torus decides
         if r.status is not Status.SAT:
             return None
-    if shear == 0:
+    if shear == 0 and cylinder:
         return _cylinder_witness(tileset, name, run, t0)
     return None
 
@@ -458,11 +460,12 @@ def _cells(name: str) -> int:
     return rows * cols
 
 
-def _job(tiles: list, n_colors: int, names: Sequence[str], cached: dict, tried: frozenset, deadline: Deadline,
+def _job(tiles: list, n_colors: int, names: Sequence[str], cached: dict, tried: dict, deadline: Deadline,
          solver: str | None, proof_dir: str | None, store: str | None, seed0: int, *, seed: int) -> Certificate:
     """One lattice of a sweep (``seed`` is its index in ``names``), in a worker process: its
     cached refutation re-checked (``cached``), else decided by SAT (its bands skipped when it is
-    in ``tried``: the sweep's band stage tried them)."""
+    in ``tried``: the sweep's band stage tried them; its cylinder too where ``tried`` says True:
+    the band stage refuted a band of the cylinder's rows)."""
     from tilesolve.engine.certificates import writing_proofs
 
     tileset = WangTileSet(np.asarray(tiles, dtype=np.int64), n_colors)
@@ -474,7 +477,7 @@ def _job(tiles: list, n_colors: int, names: Sequence[str], cached: dict, tried: 
             return cert
     run = RunOptions(seed=seed0, deadline=deadline, solver=solver)  # the run's deadline, in this worker
     with writing_proofs(proof_dir), writing_proofs(store, cnf=False):
-        cert = decide(tileset, name, run, bands=name not in tried)
+        cert = decide(tileset, name, run, bands=name not in tried, cylinder=not tried.get(name, False))
     if rejected is None:
         return cert
     why = f"its cached refutation was not used: {rejected}"
@@ -483,17 +486,19 @@ def _job(tiles: list, n_colors: int, names: Sequence[str], cached: dict, tried: 
 
 def _band_job(tiles: list, n_colors: int, specs: Sequence[tuple[str, int, int]], names: Sequence[str],
               deadline: Deadline, solver: str | None, proof_dir: str | None, store: str | None, seed0: int, *,
-              seed: int) -> list[Certificate]:
+              seed: int) -> tuple[int | None, list[Certificate]]:
     """Band ``specs[seed]`` (``(axis, length, widest)``) of a sweep, in a worker process: the
-    narrowest refuted band (:func:`~tilesolve.engine.aperiodic_bands.refute_band`) and the
-    refutations of every torus of ``names`` it holds in (none when every band is tiled). The
-    time limit ends it with the refutations made so far: the other tori stay for the sweep."""
+    width of the narrowest refuted band (:func:`~tilesolve.engine.aperiodic_bands.refute_band`;
+    ``None`` when every band is tiled) and the refutations of every torus of ``names`` it holds
+    in. The time limit ends it with the refutations made so far: the other tori stay for the
+    sweep."""
     from tilesolve.deadline import TimeLimitReached
     from tilesolve.engine.aperiodic_bands import band_refutation, covers, proof_dirs, refute_band
 
     tileset = WangTileSet(np.asarray(tiles, dtype=np.int64), n_colors)
     axis, length, widest = specs[seed]
     out = []
+    band = None
     try:
         band = refute_band(tileset, axis, length, widest, solver=solver or DEFAULT_SOLVER, seed=seed0,
                            deadline=deadline, budget=(BAND_MAX, WIDE_BAND_S))
@@ -504,7 +509,7 @@ def _band_job(tiles: list, n_colors: int, specs: Sequence[tuple[str, int, int]],
                     out.append(cert)
     except TimeLimitReached:
         pass
-    return out
+    return (None if band is None else band.width), out
 
 
 def _band_specs(names: Sequence[str], axis: str) -> list[tuple[str, int, int]]:
@@ -581,10 +586,21 @@ def sweep(tileset: WangTileSet, names: Sequence[str], run: RunOptions, *, cache:
             return True
         return cert.status == "undecided" and str(cert.evidence.get("why", "")).startswith("interrupted")
 
-    def take_band(_: int, certs: list[Certificate]) -> bool:
+    refuted_bands: dict[tuple[str, int], int] = {}  # (axis, length) -> the narrowest refuted band's width
+
+    def take_band(i: int, payload: tuple[int | None, list[Certificate]]) -> bool:
+        width, certs = payload
+        if width is not None:
+            refuted_bands[specs[i][:2]] = width
         for cert in certs:
             take(cert.board, cert)
         return False
+
+    def cylinder_refuted(name: str) -> bool:
+        """True when a refuted band of rows shows that the cylinder of :func:`_cylinder_witness`
+        cannot be tiled (its first rows hold the band)."""
+        rows, cols, shear = parse_board_name(name)
+        return shear == 0 and refuted_bands.get(("rows", cols), CYLINDER_LAPS * rows + 3) <= CYLINDER_LAPS * rows + 2
 
     with run.progress.task(label, total=len(names), unit="board") as bar:
         def show() -> None:  # boards decided or cached, of all
@@ -606,7 +622,8 @@ def sweep(tileset: WangTileSet, names: Sequence[str], run: RunOptions, *, cache:
             # largest such is the likeliest (periodic-10-30: its 30x30 torus, through a cylinder)
             left = [n for n in todo if n not in result]
             if not interrupted and not (stop_at_witness and counts["tiles"]):
-                task = functools.partial(_job, tiles, n_colors, tuple(left), refutations, frozenset(tried), *common)
+                skip = {n: cylinder_refuted(n) for n in tried}
+                task = functools.partial(_job, tiles, n_colors, tuple(left), refutations, skip, *common)
                 interrupted = dispatch(task, len(left), run, lambda i, cert: take(left[i], cert), show)
         except KeyboardInterrupt:
             interrupted = True
