@@ -21,7 +21,9 @@ Squares (a witness for each n in ``--sizes``, each seed of ``--seeds``)
     processes, the seed's random phases), ``race`` (that portfolio, its full formula searched
     as ``phase``), ``markov`` (the race with the guided run replaced by the full formula phased
     by the constructive route's window: steered, not unguided; its ``won by`` column says which
-    run found each witness) and ``plain`` (the one-hot colour encoding, one run),
+    run found each witness), ``grams`` (the race with the guided run restricted to the short runs
+    of a 100x100 witness of ``phase``: unguided by any outside tiling) and ``plain`` (the one-hot
+    colour encoding, one run),
     every run capped at ``--cap`` s; median and max CPU by route, and each route's CPU over
     ``phase``'s on the same seed.
 
@@ -34,7 +36,7 @@ Usage::
     python benchmarks/bench_aperiodic_sat.py --max-period 24 --cap 300 --baselines plain
     python benchmarks/bench_aperiodic_sat.py --max-period 0 --sizes 100 200 400 --cap 600
     python benchmarks/bench_aperiodic_sat.py --max-period 0 --sizes 200 400 --cap 150 --seeds 1 \
-        --routes phase race markov plain
+        --routes phase race grams markov plain
 """
 
 from __future__ import annotations
@@ -194,7 +196,7 @@ def main() -> None:
     ap.add_argument("--baselines", nargs="*", default=list(BASELINES), choices=BASELINES,
                     help="the tori's baselines, each capped at --cap s")
     ap.add_argument("--routes", nargs="*", default=["phase", "portfolio", "plain"],
-                    choices=["phase", "portfolio", "race", "markov", "plain"], help="the squares' routes, phase first (the ratios' base)")
+                    choices=["phase", "portfolio", "race", "markov", "grams", "plain"], help="the squares' routes, phase first (the ratios' base)")
     args = ap.parse_args()
     ws, _ = load("jeandel-rao")
     if args.max_period:

@@ -144,7 +144,7 @@ def test_check_refuses_a_tile_set_given_twice_or_misdescribed(tmp_path, args, ms
     assert msg in err and not (tmp_path / "r.json").exists(), err
 
 
-@pytest.mark.parametrize("search", ["phase", "portfolio", "race", "markov"])
+@pytest.mark.parametrize("search", ["phase", "portfolio", "race", "markov", "grams"])
 def test_check_searches_squares_every_way_and_its_witness_verifies(tmp_path, search):
     p = run("aperiodic", "check", "--builtin", "jeandel-rao", "--max-square", "12", "--square-search", search,
             "--seed", "1", "-o", "r.json", cwd=tmp_path)

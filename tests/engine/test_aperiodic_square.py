@@ -1,4 +1,5 @@
-"""The square search's run phased by a window of a known tiling (search ``"markov"``)."""
+"""The square searches' steered runs: phased by a window of a known tiling (search ``"markov"``),
+restricted to a smaller witness's short runs (search ``"grams"``)."""
 
 from __future__ import annotations
 
@@ -10,7 +11,8 @@ import pytest
 from tilesolve.deadline import Deadline
 from tilesolve.engine import aperiodic
 from tilesolve.engine.aperiodic import _square_task, board_encoding, square_scan
-from tilesolve.engine.aperiodic_square import METHOD, window_phases
+from tilesolve.engine import aperiodic_square
+from tilesolve.engine.aperiodic_square import GRAMS_METHOD, METHOD, gram_encoding, grams, window_phases
 from tilesolve.errors import InvalidProblem
 from tilesolve.families.aperiodic_square import square_window
 from tilesolve.io.builtin_tilesets import load
@@ -56,3 +58,28 @@ def test_the_markov_race_tiles_a_square_and_names_the_run_that_did():
 def test_the_markov_search_needs_a_window():
     with pytest.raises(InvalidProblem, match="needs a window"):
         square_scan(load("jeandel-rao")[0], 3, RunOptions(seed=1), search="markov")
+
+
+def test_a_tiling_keeps_to_its_own_runs_and_a_grid_that_breaks_them_does_not():
+    ws, _ = load("jeandel-rao")
+    grid = square_window("jeandel-rao", 3, 12)
+    enc = board_encoding(ws, "square 12x12")
+    restricted = gram_encoding(enc, grams(grid))
+    assert restricted.restricted and len(restricted.hard) > len(enc.hard)
+
+    def broken(g) -> int:
+        values = np.zeros(enc.n_vars + 1, dtype=bool)
+        values[enc.literals(g)] = True
+        return sum(len(rows) for _, rows in restricted.hard.falsified(values))
+
+    assert broken(grid) == 0
+    assert broken(grid[::-1, ::-1]) > 0  # the same tiles turned round: its runs are not the window's
+
+
+@pytest.mark.slow
+def test_the_gram_guided_run_tiles_a_square_from_a_smaller_witness(monkeypatch):
+    ws, _ = load("jeandel-rao")
+    monkeypatch.setattr(aperiodic_square, "GRAM_SIDE", 60)
+    n = 64
+    sol = _square_task(ws.tiles.tolist(), int(ws.n_colors), n, Deadline(None), None, None, 1, "grams", seed=1)
+    assert sol.status is Status.SAT and sol.method == GRAMS_METHOD and _holds(ws, n, sol.tiling)

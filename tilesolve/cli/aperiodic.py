@@ -55,7 +55,7 @@ def aperiodic() -> None:
                    "refutations are kept in FILE.proofs/. A later run uses a cached verdict only once re-checked (a "
                    "witness by the verifier, a refutation's proof against the re-derived CNF); others are decided "
                    "again [default: REPORT.cache.jsonl next to -o].")
-@click.option("--square-search", type=click.Choice(["phase", "portfolio", "race", "markov"]), default="race",
+@click.option("--square-search", type=click.Choice(["phase", "portfolio", "race", "markov", "grams"]), default="race",
               show_default=True,
               help="How squares are searched. phase: the full formula in one process, CaDiCaL's first value of "
                    "every tile false and its saved phases (the seed changes nothing); portfolio: squares above 40 "
@@ -63,7 +63,10 @@ def aperiodic() -> None:
                    "phases (the route before); race: that portfolio with its full formula searched as phase "
                    "does; markov (jeandel-rao and labbe-u19 only): the race with the guided run replaced by the "
                    "full formula phased by the constructive route's window (the witness's method says which run "
-                   "found it: sat or sat markov-phased). A refutation has its checked proof in every case.")
+                   "found it: sat or sat markov-phased); grams: the race with the guided run restricted to the "
+                   "runs of up to 4 tiles along the rows and columns of a 100x100 witness of the phase search "
+                   "(squares above 100; the witness's method: sat or sat gram-guided). A refutation has its "
+                   "checked proof in every case.")
 @click.option("--every-board", is_flag=True,
               help="Decide every lattice up to --max-period; by default the sweep stops at the first tiled torus "
                    "(it decides the verdict) and the lattices left are undecided.")

@@ -116,8 +116,10 @@ WITNESS_OPTIONS = {"phase": 0}
 #: or ``"race"`` (the default: that portfolio with the full formula searched as ``"phase"`` does,
 #: which covers the sizes where ``"phase"`` alone is slow), or ``"markov"`` (the race with the
 #: guided run replaced by the full formula phased by a window of a known tiling, the constructive
-#: route's for the sets with a Markov partition: :mod:`tilesolve.engine.aperiodic_square`).
-SQUARE_SEARCHES = ("phase", "portfolio", "race", "markov")
+#: route's for the sets with a Markov partition: :mod:`tilesolve.engine.aperiodic_square`), or
+#: ``"grams"`` (the race with the guided run restricted to the short runs along rows and columns
+#: of a :data:`~tilesolve.engine.aperiodic_square.GRAM_SIDE` witness found by ``"phase"``).
+SQUARE_SEARCHES = ("phase", "portfolio", "race", "markov", "grams")
 #: The SAT solver (CaDiCaL logs DRAT proofs).
 DEFAULT_SOLVER = "cadical153"
 
@@ -297,17 +299,25 @@ def _square_task(tiles: list, n_colors: int, n: int, deadline: Deadline, solver:
     :data:`WITNESS_OPTIONS` unless ``search`` is ``"portfolio"``, else the seed's random phases),
     1 searches the guided one (its guide from a :data:`GUIDE_SIDE` square), or with ``search``
     ``"markov"`` the full formula phased by ``window(n)``
-    (:func:`tilesolve.engine.aperiodic_square.window_phases`); returns a Solution."""
+    (:func:`tilesolve.engine.aperiodic_square.window_phases`), or with ``"grams"`` (squares above
+    :data:`~tilesolve.engine.aperiodic_square.GRAM_SIDE`) the formula restricted to the short runs
+    of a smaller witness's interior (:func:`tilesolve.engine.aperiodic_square.gram_encoding`);
+    returns a Solution."""
+    from tilesolve.engine import aperiodic_square as steer
     from tilesolve.engine.certificates import writing_proofs
     from tilesolve.engine.routes import sat_route
 
     tileset = WangTileSet(np.asarray(tiles, dtype=np.int64), n_colors)
     run = RunOptions(seed=seed0, deadline=deadline, solver=solver)  # the run's deadline, in this worker
-    allowed, method, phases = None, "sat", None
+    allowed, method, phases, gram_guide = None, "sat", None, None
     if seed == 1 and search == "markov":
-        from tilesolve.engine.aperiodic_square import METHOD
-
-        method = METHOD
+        method = steer.METHOD
+    elif seed == 1 and search == "grams" and n > steer.GRAM_SIDE:
+        g = decide(tileset, f"square {steer.GRAM_SIDE}x{steer.GRAM_SIDE}", run, phase_search=True)
+        if g.status != "tiles":
+            return Solution(Status.UNKNOWN, None, steer.GRAMS_METHOD, solver, seed0, 0.0, reason="no guide")
+        b = steer.GRAM_SIDE // 10
+        method, gram_guide = steer.GRAMS_METHOD, g.tiling[b:-b, b:-b]
     elif seed == 1:
         g = decide(tileset, f"square {GUIDE_SIDE}x{GUIDE_SIDE}", run)
         if g.status != "tiles":
@@ -316,9 +326,9 @@ def _square_task(tiles: list, n_colors: int, n: int, deadline: Deadline, solver:
     t0 = time.perf_counter()
     enc = board_encoding(tileset, f"square {n}x{n}", allowed=allowed, deadline=run.deadline)
     if seed == 1 and search == "markov":
-        from tilesolve.engine.aperiodic_square import window_phases
-
-        phases = window_phases(enc, window(n))
+        phases = steer.window_phases(enc, window(n))
+    elif gram_guide is not None:
+        enc = steer.gram_encoding(enc, steer.grams(gram_guide))
     solver = solver or DEFAULT_SOLVER
     phase = search != "portfolio" and allowed is None
     with writing_proofs(proof_dir):
@@ -340,7 +350,11 @@ def square_scan(tileset: WangTileSet, max_n: int, run: RunOptions, *, proof_dir:
     the portfolio does not run); ``"markov"`` is the race with the full formula phased by
     ``window(n)`` (an ``n x n`` tiling known otherwise, e.g. the constructive route's: it
     pickles, for the worker) in place of the guided run
-    (:mod:`tilesolve.engine.aperiodic_square`; its witnesses' method says which run found them). Returns the certificates decided (in the order decided) and that ``n`` (``None`` when undecided).
+    (:mod:`tilesolve.engine.aperiodic_square`; its witnesses' method says which run found them);
+    ``"grams"`` is the race whose guided run is restricted to the runs of at most
+    :data:`~tilesolve.engine.aperiodic_square.GRAM_LENGTH` cells along the rows and columns of a
+    :data:`~tilesolve.engine.aperiodic_square.GRAM_SIDE` witness of the phase search (no outside
+    tiling: unguided by anything but SAT; a restricted "unsat" proves nothing). Returns the certificates decided (in the order decided) and that ``n`` (``None`` when undecided).
     ``run.progress`` shows the squares decided and the bounds known.
     """
     from tilesolve.engine.portfolio import run_portfolio
