@@ -6,7 +6,7 @@ import json
 
 import numpy as np
 import pytest
-from clitools import one_line_error, run, snapshot
+from clitools import cut, one_line_error, run, snapshot, verify_forgery
 
 
 @pytest.fixture(scope="module")
@@ -89,3 +89,65 @@ def test_a_window_of_another_format_is_refused(folder):
                               "x.npy", cwd=folder))
     assert "poisson-sphere-tiles" in line
     assert snapshot(folder) == before
+
+
+# --- box files bind their seed: forgeries `verify` finds (exit 1) or refuses (exit 2) ---
+# (a verdict of exit 1 checks the embedded set, about a second of CPU: most are in the slow tier)
+
+@pytest.fixture(scope="module")
+def box_doc(tmp_path_factory):
+    """A box of a small valid C = 2 set, written and verified by the console script. The set
+    (written here: building one takes seconds) has one point a tile, at its slot's middle
+    moved along x by its index, so that tiles of other colours differ and every tiling keeps
+    its points 0.4 apart."""
+    from tilesolve.io.poisson_sphere_json import dump, tiles_to_dict
+    from tilesolve.model.poisson_sphere import PoissonSphereTilesProblem, PoissonSphereTileSet
+    from tilesolve.model.solution import Solution, Status
+
+    d = tmp_path_factory.mktemp("bound")
+    p = PoissonSphereTilesProblem(2, 100, 0.6)
+    middle = {"corner": (0, 0, 0), "xedge": (.5, 0, 0), "yedge": (0, .5, 0), "zedge": (0, 0, .5),
+              "xface": (0, .5, .5), "yface": (.5, 0, .5), "zface": (.5, .5, 0), "interior": (.5, .5, .5)}
+    ts = PoissonSphereTileSet(p, {k: [np.array([middle[k]]) + [0.05 * i / n, 0, 0] for i in range(n)]
+                                  for k, n in p.counts().items()}, seed=0)
+    (d / "set.json").write_text(dump(tiles_to_dict(p, Solution(Status.SAT, ts, method="dart", seed=0))))
+    r = run("sample", "poisson-spheres", "window", "set.json", "--region", "-2,5,1000000,3x2x2", "--seed", "4", "-o",
+            "box.json", cwd=d)
+    assert r.returncode == 0, r.stderr
+    v = run("verify", "box.json", cwd=d)
+    assert v.returncode == 0 and v.stdout.startswith("ok: "), v.stdout + v.stderr
+    doc = json.loads((d / "box.json").read_text())
+    assert doc["version"] == 2 and doc["tileset"] == json.loads((d / "set.json").read_text())
+    return d, doc
+
+
+def _version_1(d):
+    d.pop("tileset")
+    d["version"] = 1
+
+
+def _moved(d):
+    d["local"][0][2] += 1e-9
+
+
+@pytest.mark.parametrize("forge, code, words", [
+    (lambda d: d.update(local=d["local"][:-3]), 1, "3 point(s) the direct corner tiling of seed 4 gives are missing"),
+    pytest.param(_moved, 1, "1 point(s) of the file are not among those the direct corner tiling of seed 4 gives",
+                 marks=pytest.mark.slow),
+    pytest.param(lambda d: d["local"].append([0.25, 0.25, 0.25]), 1, "1 point(s) of the file are not among",
+                 marks=pytest.mark.slow),
+    (lambda d: d.update(seed=5), 1, "seed 5 gives are missing"),
+    pytest.param(lambda d: d.update(hash="table"), 1, "seed 4 gives are missing", marks=pytest.mark.slow),
+    pytest.param(lambda d: d["tileset"]["tiles"]["corner"][1].__setitem__(0, [0.45, 0.0, 0.0]), 1,
+                 "the file's tile set: corner tile 1: 1 points outside its region", marks=pytest.mark.slow),
+    pytest.param(lambda d: d["tileset"]["tiles"]["interior"][7].append([0.5, 0.5, 0.55]), 1,
+                 "the file's tile set: interior", marks=pytest.mark.slow),
+    (_version_1, 1, "NOT confirmed"),
+    (lambda d: d["tileset"].update(points=120), 2, "forged.json (tileset): 'distance' is"),
+    (lambda d: d.update(rho=0.5, distance=None) or d.pop("distance"), 2, "but its tileset is"),
+    (lambda d: d.pop("tileset"), 2, "missing field 'tileset'"),
+    (lambda d: d.update(seed=None), 2, "states the seed of its tiling, not null"),
+    (cut, 2, "forged.json: malformed JSON"),
+])
+def test_verify_binds_a_box_to_its_set_and_seed(box_doc, forge, code, words):
+    verify_forgery(*box_doc, forge, code, words)

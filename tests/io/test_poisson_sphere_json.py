@@ -9,6 +9,7 @@ import pytest
 
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.poisson_sphere_json import (
+    SeededBox,
     check_point_output3,
     dump,
     tiles_from_dict,
@@ -82,9 +83,15 @@ def test_windows_round_trip_and_files(built, tmp_path):
     problem = PoissonSphereWindowProblem(sol.tiling, box)
     w = PoissonSphereWindow(box, np.array([[0.25, 0.5, 0.75], [0.1, 0.2, 0.3]]), p.distance)
     wsol = Solution(Status.SAT, w, method="window", seed=3)
-    doc = json.loads(dump(window_to_dict(problem, wsol)))
+    text = dump(window_to_dict(problem, wsol))
+    doc = json.loads(text)
+    assert doc["version"] == 2 and doc["tileset"] == json.loads(dump(tiles_to_dict(p, sol)))
     q, back = window_from_dict(doc, "w.json")
-    assert q == p and back.tiling.box == box and np.array_equal(back.tiling.local, w.local)
+    assert q.tileset.problem == p and (q.box, q.hash) == (box, "long")
+    assert all(np.array_equal(a, b) for k in sol.tiling.tiles for a, b in zip(sol.tiling.tiles[k], q.tileset.tiles[k]))
+    assert isinstance(back.tiling, SeededBox) and back.tiling.seed == back.seed == 3
+    assert back.tiling.box == box and np.array_equal(back.tiling.local, w.local)
+    assert dump(window_to_dict(q, back)) == text  # same bytes again
     with pytest.raises(InvalidProblem, match="beyond"):
         check_point_output3(tmp_path / "w.npy", box)
     with pytest.raises(InvalidProblem, match="cannot tell the format"):
@@ -97,3 +104,38 @@ def test_windows_round_trip_and_files(built, tmp_path):
     assert np.array_equal(np.load(tmp_path / "w.npy"), w.local + [-1, 2, 3])
     assert np.allclose(np.loadtxt(tmp_path / "w.csv", delimiter=",", skiprows=1), w.local + [-1, 2, 3])
     assert (tmp_path / "w.csv").read_text().startswith("x,y,z\n")
+
+
+@pytest.fixture(scope="module")
+def box_doc(built):
+    p, sol = built
+    box = Box(-4, 9, 2**40, 1, 2, 1)
+    w = PoissonSphereWindow(box, np.array([[0.25, 0.5, 0.75]]), p.distance)
+    return json.loads(dump(window_to_dict(PoissonSphereWindowProblem(sol.tiling, box, "table"),
+                                          Solution(Status.SAT, w, method="window", seed=6))))
+
+
+def test_a_version_1_box_is_read_as_points_of_the_set_alone(built, box_doc):
+    doc = {k: v for k, v in box_doc.items() if k != "tileset"}
+    doc["version"] = 1
+    q, back = window_from_dict(doc, "w1.json")
+    assert q == built[0] and not isinstance(back.tiling, SeededBox) and back.seed == 6
+    assert np.array_equal(back.tiling.local, [[0.25, 0.5, 0.75]])
+
+
+@pytest.mark.parametrize("edit, words", [
+    (lambda d: d.pop("tileset"), "missing field 'tileset'"),
+    (lambda d: d.pop("seed"), "missing field 'seed'"),
+    (lambda d: d.update(seed=None), "states the seed of its tiling, not null"),
+    (lambda d: d.update(version=1), "unknown field 'tileset'"),
+    (lambda d: d.update(rho=0.5, distance=None) or d.pop("distance"), "but its tileset is"),
+    (lambda d: d["tileset"]["tiles"].pop("zface"), r"w.json \(tileset\): 'tiles'"),
+    (lambda d: d["tileset"].update(format="tilesolve/poisson-sphere-window"), "tileset"),
+    (lambda d: d.update(hash="md5"), "w.json: unknown hash 'md5'"),
+    (lambda d: d["box"].update(width=10**6), "w.json: a 1000000x2x1 box holds about"),
+])
+def test_bad_version_2_boxes_are_one_line_errors(box_doc, edit, words):
+    doc = json.loads(json.dumps(box_doc))
+    edit(doc)
+    with pytest.raises(InvalidProblem, match=words):  # one line: the console script's forgeries check it
+        window_from_dict(doc, "w.json")

@@ -120,3 +120,26 @@ def test_edges_meeting_at_a_corner_cannot_come_too_close(good):
 
 def test_random_colourings_above_the_budget(good):
     assert tileset_violations3(good, max_colourings=16, seed=3) == []
+
+
+@pytest.mark.parametrize("hash_", ["long", "table"])
+def test_the_verifiers_placement_gives_the_builders_points_exactly(hash_):
+    """Made-up tiles of several points each, some reaching past their slot's cell (the
+    placement does not care where a set's points lie): the verifier's placement on the lattice
+    a far box's seed colours, cropped to the box, is the builder's box, point for point."""
+    from tilesolve.constructive.poisson_sphere import lattice_colors, window_points
+    from tilesolve.verify.poisson import match_violations
+    from tilesolve.verify.poisson_sphere import placed_points3
+
+    p = PoissonSphereTilesProblem(2, 100, 0.6)
+    rng = np.random.default_rng(8)
+    ts = PoissonSphereTileSet(p, {k: [rng.random((int(rng.integers(1, 5)), 3)) * 1.4 - 0.2 for _ in range(n)]
+                                  for k, n in p.counts().items()})
+    box = (2**40 + 3, -17, 5, 4, 3, 2)
+    built = window_points(ts, box, hash=hash_, seed=11)
+    lat = lattice_colors(built.box, 2, seed=11, hash=hash_)
+    inside = lambda pts: pts[((pts >= 0) & (pts < [4, 3, 2])).all(axis=1)]  # noqa: E731
+    mine = placed_points3(ts, lat)
+    assert 0 < len(inside(mine)) < len(mine)  # uncropped: tiles reach past the box
+    assert match_violations(built.local, inside(mine), "the verifier") == []
+    assert match_violations(built.local, inside(placed_points3(ts, 1 - lat)), "another colouring") != []

@@ -10,7 +10,12 @@ Two questions (:mod:`tilesolve.model.poisson_sphere`):
   colourings a pair above).
 * :class:`~tilesolve.model.poisson_sphere.PoissonSphereWindowProblem`: the points of a box of
   space tiled by the direct 3-D corner tiling; route ``window``, checked by
-  :func:`tilesolve.verify.poisson_sphere.point_violations3` (a grid search).
+  :func:`tilesolve.verify.poisson_sphere.point_violations3` (a grid search). A box read from a
+  file (version 2, :class:`~tilesolve.io.poisson_sphere_json.SeededBox`) is bound to its seed:
+  its embedded set is checked (:func:`~tilesolve.verify.poisson_sphere.tileset_violations3`)
+  and its points re-derived from the set and the lattice the seed's hash colours
+  (:func:`~tilesolve.verify.poisson_sphere.placed_points3`, not the builder's placement) and
+  compared exactly (:func:`~tilesolve.verify.poisson.match_violations`).
 
 Examples
 --------
@@ -32,7 +37,8 @@ from tilesolve.errors import InvalidProblem, MethodNotApplicable
 from tilesolve.family import Codec, Demo, Family, RunOptions, register
 from tilesolve.family import solve as _solve
 from tilesolve.families.sampling_forms import SPHERE_FORM
-from tilesolve.io.poisson_sphere_json import TILES_FORMAT, VERSIONS, WINDOW_FORMAT
+from tilesolve.io.poisson_json import UNBOUND
+from tilesolve.io.poisson_sphere_json import TILES_FORMAT, VERSIONS, WINDOW_FORMAT, WINDOW_VERSIONS, SeededBox
 from tilesolve.model.poisson_sphere import (
     Box,
     PoissonSphereProblem,
@@ -45,7 +51,8 @@ from tilesolve.model.solution import Solution, Status
 from tilesolve.progress import Progress
 from tilesolve.verify.dappled import Violation
 
-__all__ = ["FAMILY", "SOLVERS", "solve", "dart", "window", "sphere_violations", "auto_method"]
+__all__ = ["FAMILY", "SOLVERS", "solve", "dart", "window", "sphere_violations", "rederived_violations3",
+           "auto_method"]
 
 
 def dart(problem: PoissonSphereTilesProblem, run: RunOptions) -> Solution:
@@ -84,7 +91,9 @@ def auto_method(problem: PoissonSphereProblem) -> str:
 def sphere_violations(problem: PoissonSphereProblem, answer: Any) -> list[Violation]:
     """A set: :func:`~tilesolve.verify.poisson_sphere.tileset_violations3` and that it is the set
     the problem asks for; a box: :func:`~tilesolve.verify.poisson_sphere.point_violations3` at
-    the problem's distance (a box file's problem is the set it was drawn from)."""
+    the problem's distance, and for a box read from a file, :func:`rederived_violations3`
+    (version 2) or the violation :data:`~tilesolve.io.poisson_json.UNBOUND` (version 1, whose
+    problem is the set's only)."""
     from tilesolve.verify.poisson_sphere import point_violations3, tileset_violations3
 
     if isinstance(answer, PoissonSphereTileSet):
@@ -94,8 +103,34 @@ def sphere_violations(problem: PoissonSphereProblem, answer: Any) -> list[Violat
     if isinstance(answer, PoissonSphereWindow):
         if isinstance(problem, PoissonSphereWindowProblem) and answer.box != problem.box:
             return [Violation("shape", "the points are of another box than the problem's")]
-        return point_violations3(answer.local, problem.distance, answer.box.size)
+        out = point_violations3(answer.local, problem.distance, answer.box.size)
+        if not isinstance(problem, PoissonSphereWindowProblem):
+            return out + [Violation("unbound", UNBOUND.format(what="tile set"))]
+        if isinstance(answer, SeededBox):
+            return out + rederived_violations3(problem, answer)
+        return out
     return [Violation("shape", "the answer is neither a Poisson sphere tile set nor a box of points")]
+
+
+def rederived_violations3(problem: PoissonSphereWindowProblem, answer: SeededBox) -> list[Violation]:
+    """A box file's claim that its points are the box of its set and seed: the set is checked
+    (:func:`~tilesolve.verify.poisson_sphere.tileset_violations3`), the lattice of the box
+    coloured by the problem's hash with the answer's seed, the set's tiles placed on it by
+    :func:`~tilesolve.verify.poisson_sphere.placed_points3` and the points inside the box
+    compared with the file's, exactly (:func:`~tilesolve.verify.poisson.match_violations`)."""
+    import numpy as np
+
+    from tilesolve.constructive.poisson_sphere import lattice_colors
+    from tilesolve.verify.poisson import match_violations
+    from tilesolve.verify.poisson_sphere import placed_points3, tileset_violations3
+
+    ts, box = problem.tileset, problem.box
+    bad = tileset_violations3(ts)
+    if bad:
+        return [Violation(v.kind, f"the file's tile set: {v.message}") for v in bad]
+    pts = placed_points3(ts, lattice_colors(box, ts.problem.colors, seed=answer.seed, hash=problem.hash))
+    pts = pts[((pts >= 0) & (pts < np.array(box.size, dtype=np.float64))).all(axis=1)]
+    return match_violations(answer.local, pts, f"the direct corner tiling of seed {answer.seed}")
 
 
 def solve(problem: PoissonSphereProblem, *, method: str | Any = "auto", seed: int | None = None,
@@ -155,7 +190,7 @@ FAMILY = register(Family(
     routes=SOLVERS,
     auto=auto_method,
     verify=sphere_violations,
-    codecs=(Codec(TILES_FORMAT, VERSIONS, _read_tiles, _write), Codec(WINDOW_FORMAT, VERSIONS, _read_window)),
+    codecs=(Codec(TILES_FORMAT, VERSIONS, _read_tiles, _write), Codec(WINDOW_FORMAT, WINDOW_VERSIONS, _read_window)),
     demos=(Demo("poisson-spheres", "corner-based Poisson sphere tiles: C = 1, N = 100, rho = 0.6 (§4.4)",
                 lambda: PoissonSphereTilesProblem(1, 100, 0.6), method="dart"),),
     draw=_draw,

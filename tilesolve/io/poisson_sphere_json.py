@@ -13,15 +13,22 @@
 
 (tile order as in :class:`tilesolve.model.poisson_sphere.PoissonSphereTileSet`).
 
-``tilesolve/poisson-sphere-window`` (version 1), the points of a box::
+``tilesolve/poisson-sphere-window`` (version 2), the points of a box::
 
     {
-      "format": "tilesolve/poisson-sphere-window", "version": 1,
+      "format": "tilesolve/poisson-sphere-window", "version": 2,
       "colors": 2, "points": 128, "rho": 0.65, "distance": 0.14...,
       "box": {"x0": 0, "y0": 0, "z0": 0, "width": 4, "height": 4, "depth": 4},
       "hash": "long", "seed": 1,
+      "tileset": {...},           # the set: a tilesolve/poisson-sphere-tiles document
       "local": [[x, y, z], ...]   # relative to (x0, y0, z0)
     }
+
+A version 2 file binds its points to the seed: it holds everything they are made from (the set,
+the hash and its seed, the box), so that ``tilesolve verify`` re-derives them and compares
+(:class:`SeededBox`). Version 1 files (the same without ``tileset``) are still read; their
+points can only be checked for their spacing, and ``verify`` says so and does not confirm them
+(exit 1): sample the box again to write version 2.
 
 Writes are deterministic (no timings): the same seed gives the same bytes. :func:`write_points3`
 also writes a box as CSV (``x,y,z`` header) or NPY (an ``(n, 3)`` float64 array) of coordinates
@@ -34,17 +41,19 @@ import io
 import json
 import math
 import os
+from dataclasses import dataclass
 
 import numpy as np
 
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.atomic import write_bytes_atomic, write_text_atomic
 from tilesolve.io.jsonio import check_document
-from tilesolve.io.poisson_json import FLOAT_RANGE, POINT_FORMATS, built_set, read_points, read_seed
+from tilesolve.io.poisson_json import FLOAT_RANGE, POINT_FORMATS, built_set, embedded_set, read_points, read_seed
 from tilesolve.model.poisson_sphere import (
     KINDS,
     MAX_WINDOW_POINTS,
     Box,
+    PoissonSphereProblem,
     PoissonSphereTilesProblem,
     PoissonSphereTileSet,
     PoissonSphereWindow,
@@ -52,16 +61,28 @@ from tilesolve.model.poisson_sphere import (
 )
 from tilesolve.model.solution import Solution, Status
 
-__all__ = ["TILES_FORMAT", "WINDOW_FORMAT", "VERSIONS", "tiles_to_dict", "tiles_from_dict", "window_to_dict",
-           "window_from_dict", "dump", "write_points3", "check_point_output3"]
+__all__ = ["TILES_FORMAT", "WINDOW_FORMAT", "VERSIONS", "WINDOW_VERSIONS", "SeededBox", "tiles_to_dict",
+           "tiles_from_dict", "window_to_dict", "window_from_dict", "dump", "write_points3", "check_point_output3"]
 
 TILES_FORMAT = "tilesolve/poisson-sphere-tiles"
 WINDOW_FORMAT = "tilesolve/poisson-sphere-window"
 VERSIONS = frozenset({1})
+#: Versions of box files read: 2 holds its tile set, 1 (spacing only) does not.
+WINDOW_VERSIONS = frozenset({1, 2})
 
 _PROBLEM = ("colors", "points", "rho")
 _TILES_KEYS = {"format", "version", *_PROBLEM, "distance", "method", "seed", "stats", "tiles"}
-_WINDOW_KEYS = {"format", "version", *_PROBLEM, "distance", "box", "hash", "seed", "local"}
+_WINDOW_KEYS = {"format", "version", *_PROBLEM, "distance", "box", "hash", "seed", "local", "tileset"}
+
+
+@dataclass(frozen=True, eq=False)
+class SeededBox(PoissonSphereWindow):
+    """A box's points as a version 2 file states them, with the ``seed`` of the lattice hash
+    they claim to come from: ``tilesolve verify`` re-derives them from it and the file's
+    problem (:class:`~tilesolve.model.poisson_sphere.PoissonSphereWindowProblem`, its set
+    embedded)."""
+
+    seed: int = 0
 
 
 def _problem(p: PoissonSphereTilesProblem) -> dict:
@@ -110,29 +131,48 @@ def tiles_from_dict(doc: dict, source: str = "<document>") -> tuple[PoissonSpher
 
 
 def window_to_dict(problem: PoissonSphereWindowProblem, solution: Solution) -> dict:
-    """The document of a box (``solution.tiling`` is the :class:`PoissonSphereWindow`)."""
-    return {"format": WINDOW_FORMAT, "version": 1, **_problem(problem.tileset.problem),
+    """The version 2 document of a box (``solution.tiling`` is the :class:`PoissonSphereWindow`),
+    its set embedded."""
+    ts = problem.tileset
+    return {"format": WINDOW_FORMAT, "version": 2, **_problem(ts.problem),
             "box": problem.box.to_dict(), "hash": problem.hash, "seed": solution.seed,
+            "tileset": tiles_to_dict(ts.problem, Solution(Status.SAT, ts, method="dart", seed=ts.seed)),
             "local": solution.tiling.local}
 
 
-def window_from_dict(doc: dict, source: str = "<document>") -> tuple[PoissonSphereTilesProblem, Solution]:
-    """Read :func:`window_to_dict`'s document: the set's problem, and the box as the answer."""
-    check_document(doc, source, {WINDOW_FORMAT: VERSIONS}, fields=_WINDOW_KEYS, required=("box", "local"))
+def window_from_dict(doc: dict, source: str = "<document>") -> tuple[PoissonSphereProblem, Solution]:
+    """Read :func:`window_to_dict`'s document. Version 2: the box's problem (its set read from
+    ``tileset``) and a :class:`SeededBox`; version 1: the set's problem and the points (spacing
+    alone can be checked, :func:`tilesolve.verify.poisson_sphere.point_violations3`)."""
+    v2 = isinstance(doc, dict) and doc.get("version") == 2
+    fields = _WINDOW_KEYS if v2 else _WINDOW_KEYS - {"tileset"}
+    check_document(doc, source, {WINDOW_FORMAT: WINDOW_VERSIONS}, fields=fields,
+                   required=("box", "local", "tileset", "seed") if v2 else ("box", "local"))
     problem = _read_problem(doc, source)
     box = Box.from_dict(doc["box"])
     local = read_points(doc["local"], "local", source, MAX_WINDOW_POINTS, 3)
-    return problem, Solution(Status.SAT, PoissonSphereWindow(box, local, problem.distance), method="window",
-                             seed=read_seed(doc, source))
+    seed = read_seed(doc, source)
+    if not v2:
+        return problem, Solution(Status.SAT, PoissonSphereWindow(box, local, problem.distance), method="window",
+                                 seed=seed)
+    tileset = embedded_set(doc, source, problem, tiles_from_dict)
+    try:
+        wp = PoissonSphereWindowProblem(tileset, box, doc.get("hash", "long"))
+    except InvalidProblem as exc:
+        raise InvalidProblem(f"{source}: {exc}") from None
+    return wp, Solution(Status.SAT, SeededBox(box, local, problem.distance, seed), method="window", seed=seed)
 
 
 def dump(doc: dict) -> str:
-    """JSON text: a tile's points on one line, a box's one point a line (floats round-trip)."""
+    """JSON text: a tile's points on one line, a box's one point a line, its embedded set as a
+    set is written (floats round-trip)."""
     def line(rows) -> str:
         return "[" + ", ".join(f"[{x!r}, {y!r}, {z!r}]" for x, y, z in rows) + "]"
 
-    head = {k: v for k, v in doc.items() if k not in ("tiles", "local")}
+    head = {k: v for k, v in doc.items() if k not in ("tiles", "tileset", "local")}
     text = json.dumps(head, indent=2)[:-2]
+    if "tileset" in doc:
+        text += ',\n  "tileset": ' + dump(doc["tileset"]).rstrip("\n").replace("\n", "\n  ")
     if "tiles" in doc:
         kinds = [f'    "{k}": [\n' + ",\n".join("      " + line(t) for t in doc["tiles"][k]) + "\n    ]"
                  for k in KINDS]

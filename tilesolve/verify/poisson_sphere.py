@@ -16,6 +16,9 @@ Written from the definitions, sharing no code with the builder
   tiling, and every 2 x 2 x 2 block of cells in particular. A pair with more than
   ``max_colourings`` colourings is checked on that many random ones (C = 2 never needs it:
   at most ``2^8`` colourings a pair, since overlapping slots share corners).
+* :func:`placed_points3`: the points a coloured lattice of corner cubes places, from the
+  regions' definition (a box file's points are re-derived with it from its set and the lattice
+  its seed colours, and compared exactly by :func:`tilesolve.verify.poisson.match_violations`).
 
 >>> import numpy as np
 >>> pts = np.array([[0.1, 0.1, 0.1], [0.3, 0.1, 0.1], [0.35, 0.12, 0.1]])
@@ -32,7 +35,7 @@ import numpy as np
 from tilesolve.model.poisson_sphere import PoissonSphereTileSet
 from tilesolve.verify.dappled import Violation
 
-__all__ = ["point_violations3", "tileset_violations3", "close_pairs3"]
+__all__ = ["point_violations3", "tileset_violations3", "close_pairs3", "placed_points3"]
 
 #: Violations listed at most (the count is always given).
 MAX_LISTED = 20
@@ -166,6 +169,30 @@ def _corners(spans, offset) -> list[tuple[int, int, int]]:
             p[ax] += s
         out.append(tuple(p))
     return out
+
+
+def placed_points3(ts: PoissonSphereTileSet, lat) -> np.ndarray:
+    """Every point the tiles of a coloured lattice place (§4.4.2-4.4.3, from the regions'
+    definition): ``lat[i, j, k]`` is the colour of lattice point ``(i, j, k)``. A slot (a lattice
+    point, or an edge, face or cell whose least lattice point is ``p``) lying wholly in the
+    lattice carries the tile whose index has its corners' colours as digits (:func:`_corners`'
+    order); a point ``t`` of that tile is placed at ``p + t``. Points are grouped by tile, not
+    cropped."""
+    c, lat = ts.problem.colors, np.asarray(lat, dtype=np.int64)
+    parts = [np.zeros((0, 3))]
+    for kind, spans in _SLOTS:
+        corners = _corners(spans, (0, 0, 0))
+        ext = [n - 1 if ax in spans else n for ax, n in enumerate(lat.shape)]
+        index = np.zeros(ext, np.int64)
+        for x, y, z in corners:
+            index = index * c + lat[x:x + ext[0], y:y + ext[1], z:z + ext[2]]
+        index = index.ravel()
+        at = np.stack(np.unravel_index(np.arange(index.size), ext), axis=1).astype(np.float64)
+        order = np.argsort(index, kind="stable")
+        tiles, first = np.unique(index[order], return_index=True)
+        for k, group in zip(tiles, np.split(order, first[1:])):
+            parts.append((at[group][:, None, :] + ts.tiles[kind][k][None, :, :]).reshape(-1, 3))
+    return np.concatenate(parts)
 
 
 def _gap(lo1, hi1, lo2, hi2) -> float:
