@@ -1,6 +1,7 @@
 """The studio's forms of the sampling families (tilesolve.families.sampling_forms): the poisson,
-poisson-sphere and recursive-wang pages solve, verify and export; their copied commands (the
-set's build, then the window) reproduce the file through the console script; a window's set is
+poisson-sphere, recursive-wang and stipple pages solve, verify and export; their copied commands
+(the set's build, then the window; the stipple command) reproduce the file through the console
+script; a window's set is
 bounded while the form is checked; the Poisson disk preset of the page's gallery."""
 
 from __future__ import annotations
@@ -62,6 +63,8 @@ def test_the_check_says_why_a_window_is_refused(client):
     {"family": "recursive-wang", "values": {"x0": -2, "y0": 3, "size": "2x2", "level": 2, "seed": 8}},
     {"family": "recursive-wang", "values": {"by": "density", "density": 300.5, "size": "3x2", "seed": 8}},
     {"family": "recursive-wang", "values": {"show": "set", "colors": 1, "subdivision": 2, "seed": 9}},
+    {"family": "stipple", "values": {"image": "gradient", "method": "polyomino", "tile": "chair", "points": 1500,
+                                     "lloyd": 0, "jitter": False, "seed": 2}},
 ], ids=lambda b: f"{b['family']}-{b['values'].get('show', 'window')}-{b['values']['seed']}")
 def test_the_copied_command_reproduces_the_file(client, body, tmp_path):
     state = solve(client, body, wait=300)
@@ -69,7 +72,8 @@ def test_the_copied_command_reproduces_the_file(client, body, tmp_path):
     assert res["status"] == "sat", state
     assert res["verdict"][0].startswith("ok: solution.json is a valid "), res["verdict"]
     line = res["command"].replace("tilesolve ", SCRIPT + " ")
-    assert line.count(SCRIPT) == (1 if body["values"].get("show") == "set" else 2)
+    windows = body["family"] != "stipple" and body["values"].get("show") != "set"
+    assert line.count(SCRIPT) == (2 if windows else 1)
     run = subprocess.run(["bash", "-c", line], cwd=tmp_path, capture_output=True, text=True)
     assert run.returncode == 0, (line, run.stderr)
     # the files hold no timings: the same document, point for point

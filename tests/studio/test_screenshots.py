@@ -56,6 +56,7 @@ PROBLEMS = {
     "poisson": {"size": "8x6"},
     "poisson-sphere": {},
     "recursive-wang": {},
+    "stipple": {"image": "gradient", "points": 2000},
 }
 
 

@@ -34,6 +34,7 @@ from typing import Any
 import numpy as np
 
 from tilesolve.family import Codec, Demo, Family, RunOptions, register
+from tilesolve.families.sampling_forms import STIPPLE_FORM
 from tilesolve.io.stipple import FORMAT, VERSIONS, Samples, stipple_from_dict, stipple_to_dict
 from tilesolve.model.importance import DensityMap, ImportanceProblem, builtin_density
 from tilesolve.model.solution import Solution, Status
@@ -177,6 +178,7 @@ FAMILY = register(Family(
     demos=(Demo("stipple", "stippling: about 3,000 Penrose samples of the radial ramp, jittered, 4 Lloyd steps",
                 _demo, method="sample"),),
     commands=("tilesolve.cli.sample:sample",),
+    form=STIPPLE_FORM,
     route_help={"sample": "the problem's sampler: Penrose or polyomino subdivision (Ostromoukhov 2004, 2007) or "
                           "plain rejection, then its Lloyd steps"},
 ))

@@ -1,6 +1,8 @@
 """The studio's forms of the sampling families: corner-based Poisson disk tiles
-(:mod:`tilesolve.families.poisson`), Poisson sphere tiles (:mod:`tilesolve.families.poisson_sphere`)
-and recursive Wang tiles (:mod:`tilesolve.families.poisson_recursive`).
+(:mod:`tilesolve.families.poisson`), Poisson sphere tiles (:mod:`tilesolve.families.poisson_sphere`),
+recursive Wang tiles (:mod:`tilesolve.families.poisson_recursive`) and stippling
+(:mod:`tilesolve.families.importance`: :data:`STIPPLE_FORM`, a built-in test image stippled by
+``tilesolve sample stipple``).
 
 Each form builds a tile set and either shows a window of the plane (a box of space) tiled with
 it, or the set itself (``show``). A window's set is built first, verified, from its own seed
@@ -34,12 +36,13 @@ from typing import Any, Callable, Mapping
 
 from tilesolve.errors import InvalidProblem
 from tilesolve.family.forms import Field, Form, form_size
+from tilesolve.model.importance import ImportanceProblem, builtin_density
 from tilesolve.model.poisson import PoissonTilesProblem, PoissonWindowProblem
 from tilesolve.model.poisson_recursive import RecursiveTilesProblem, RecursiveWindowProblem
 from tilesolve.model.poisson_sphere import Box, PoissonSphereTilesProblem, PoissonSphereWindowProblem
 from tilesolve.model.window import Window
 
-__all__ = ["POISSON_FORM", "SPHERE_FORM", "RECURSIVE_FORM", "built_set", "SET_BUDGETS", "WINDOW_BUDGET", "SET_FILE"]
+__all__ = ["POISSON_FORM", "SPHERE_FORM", "RECURSIVE_FORM", "STIPPLE_FORM", "built_set", "SET_BUDGETS", "WINDOW_BUDGET", "SET_FILE"]
 
 #: Most points over all the tiles of a set a window's form builds (tiles x points a tile), by
 #: family; each builds and verifies in a few seconds: a 2-D set of C = 2 at N = 64 (26 tiles), a
@@ -261,3 +264,40 @@ RECURSIVE_FORM = _form(
                *(["--level", str(v["level"])] if v["by"] == "level" else ["--density", str(v["density"])])],
 )
 
+
+
+# ----------------------------------------------------------------------------- stippling
+_TILES = ("x-pentomino", "chair", "l-tetromino", "p-pentomino")
+
+
+def _stipple_problem(values) -> ImportanceProblem:
+    """The CLI's ``--test-image`` (its default side) stippled with the form's settings."""
+    return ImportanceProblem(builtin_density(values["image"]), values["points"], values["method"], values["tile"],
+                             values["lloyd"], values["jitter"])
+
+
+def _stipple_words(values) -> tuple[list[str], dict[str, Any]]:
+    return ["sample", "stipple", "--test-image", values["image"], "--points", str(values["points"]), "--method",
+            values["method"], "--tile", values["tile"], "--lloyd", str(values["lloyd"]),
+            "--jitter" if values["jitter"] else "--no-jitter"], {}
+
+
+STIPPLE_FORM = Form(
+    fields=(
+        Field("image", "choice", "test image", "radial", "a built-in 256 x 256 picture: dark is dense",
+              choices=("radial", "gradient", "flat"), option="--test-image"),
+        Field("points", "int", "points", 3000, "about how many samples", low=1, high=50_000, option="--points"),
+        Field("method", "choice", "sampler", "penrose", "Penrose tilings' Robinson triangles (Ostromoukhov, Donohue, "
+              "Jodoin 2004), a self-similar polyomino (Ostromoukhov 2007) or plain rejection sampling",
+              choices=("penrose", "polyomino", "rejection"), option="--method"),
+        Field("tile", "choice", "polyomino", "x-pentomino", "polyomino: the self-similar tile", choices=_TILES,
+              option="--tile", when=({"method": ("polyomino",)},)),
+        Field("lloyd", "int", "Lloyd steps", 4, "density-weighted Lloyd steps after sampling", low=0, high=50,
+              option="--lloyd"),
+        Field("jitter", "bool", "jitter", True, "each sample at a random point of its tile, not its centroid "
+              "(penrose, polyomino)", option="--jitter"),
+    ),
+    build=lambda v: (_stipple_problem(v), {}),
+    command=_stipple_words,
+    time_limit=False,
+)

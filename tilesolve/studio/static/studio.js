@@ -801,6 +801,7 @@ const PRESETS = [
   { label: "Pentomino tiling", f: "shapes", v: { seed: 1 } },
   { label: "Isohedral IH41", f: "isohedral", v: { seed: 1 } },
   { label: "Poisson disk tiles C = 2", f: "poisson", v: { seed: 1 } },
+  { label: "Stippled ramp", f: "stipple", v: { seed: 1 } },
 ];
 
 function buildGallery() {
