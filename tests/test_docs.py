@@ -161,25 +161,23 @@ def test_site_reference_lists_every_command_and_ships_the_man_page(site):
     assert "tilesolve.families.dappled" in api
 
 
-def test_gallery_sections_are_families_or_more():
+def test_gallery_sections_are_families():
     import yaml
 
     extra = yaml.safe_load((ROOT / "docs" / "hooks" / "gallery.yml").read_text(encoding="utf-8"))
-    assert set(extra) - {"more"} <= {f.name for f in families()}
-    for section in extra["more"].values():
-        assert section["about"] and all({"file", "caption", "command"} <= set(item) for item in section["items"])
+    assert set(extra) <= {f.name for f in families()}
+    assert all({"file", "caption", "command"} <= set(item) for items in extra.values() for item in items)
 
 
 @pytest.mark.slow
 def test_gallery_shows_poisson_disks_a_stippled_image_and_the_spectra(site):
     sections = _sections((site / "gallery.html").read_text(encoding="utf-8"))
-    shown = {name: re.findall(r'<img[^>]* src="gallery/([^"]+)"', sections[name])
-             for name in ("poisson", "importance-sampling-and-stippling")}
+    shown = {name: re.findall(r'<img[^>]* src="gallery/([^"]+)"', sections[name]) for name in ("poisson", "stipple")}
     assert {"poisson-window.svg", "poisson-spectrum.svg"} <= set(shown["poisson"])
-    assert {"stipple.svg", "importance-spectrum.svg"} <= set(shown["importance-sampling-and-stippling"])
-    for name in ("poisson-window.svg", "stipple.svg"):  # thousands of dots
+    assert {"stipple.svg", "stipple-gradient.svg", "importance-spectrum.svg"} <= set(shown["stipple"])
+    for name in ("poisson-window.svg", "stipple-gradient.svg"):  # thousands of dots
         assert (site / "gallery" / name).stat().st_size > 50_000, name
     for name in ("poisson-spectrum.svg", "importance-spectrum.svg"):  # the curves
         assert (site / "gallery" / name).read_text(encoding="utf-8").count("<polyline") >= 4, name
-    page = (site / "tutorials" / "stippling.html").read_text(encoding="utf-8")
+    page = (site / "tutorials" / "stipple.html").read_text(encoding="utf-8")
     assert "$ tilesolve sample stipple " in unescape(re.sub(r"<[^>]+>", "", page))

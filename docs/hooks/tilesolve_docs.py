@@ -12,10 +12,8 @@ built, so that every command shown runs as written and every picture is the one 
   order, at ``tutorials/<family>.md``; a family without a written page gets one made from its
   demos and its commands' ``--help``. Other pages in ``tutorials/`` follow.
 - **Gallery.** ``tilesolve demo`` draws every family's demos; ``hooks/gallery.yml`` adds
-  commands for the families that need more (or have no demo), and under ``more`` sections of
-  their own for commands that are no family's (stippling, spectra), after the families. A
-  family of the registry without a picture, or a key of ``gallery.yml`` that is neither a family
-  nor ``more``, fails the build.
+  commands for the families that need more (or have no demo). A family of the registry without
+  a picture, or a key of ``gallery.yml`` that is no family, fails the build.
 - **Docstrings.** The docstrings' reStructuredText roles (``:class:`~tilesolve.family.Family```)
   are shown as code (``Family``), in the API pages and everywhere else.
 - **Reference.** The command-line reference (``cli.md``) and the man page (``man/tilesolve.1``)
@@ -190,9 +188,9 @@ def _gallery(files: Files, config) -> None:
         "and checked by the family's verifier on the way. One section a family of the registry.",
         "",
     ]
-    unknown = sorted(set(extra) - {f.name for f in _families()} - {"more"})
+    unknown = sorted(set(extra) - {f.name for f in _families()})
     if unknown:
-        raise PluginError(f"gallery.yml: {unknown[0]!r} is no family of the registry (nor 'more')")
+        raise PluginError(f"gallery.yml: {unknown[0]!r} is no family of the registry")
     for fam in _families():
         items = [(f"{d.name}.svg", d.caption, f"tilesolve demo --family {fam.name}") for d in fam.demos]
         items += _run_items(extra.get(fam.name, []), folder, fam.name)
@@ -201,9 +199,6 @@ def _gallery(files: Files, config) -> None:
             raise PluginError(f"gallery: family {fam.name!r} has no picture (no demo and nothing in gallery.yml)")
         out += _section(files, config, fam.name, f"{fam.title[:1].upper()}{fam.title[1:]}. "
                         f"[Tutorial](tutorials/{fam.name}.md).", items, folder)
-    for heading, section in (extra.get("more") or {}).items():
-        out += _section(files, config, heading, section["about"], _run_items(section["items"], folder, heading),
-                        folder)
     _add(files, config, "gallery.md", content="\n".join(out))
     log.info("gallery: %d families drawn in %.1f s", len(_families()), time.perf_counter() - started)
 
