@@ -91,9 +91,14 @@ def write_points_picture(path: str | os.PathLike, local: np.ndarray, window: Win
         img.save(f, format="PNG")
 
 
-def _layout(series, key: int, lo: float | None, hi: float | None):
+def _layout(series, key: int, lo: float | None, hi: float | None, step: float | None = None):
+    """The panel's value range: ``lo``/``hi`` where given, else the data's; with ``step``, the
+    given range widened in steps of ``step`` until it holds every value, so nothing is clipped."""
     ys = np.concatenate([np.asarray(s[key]) for s in series])
     ys = ys[np.isfinite(ys)]
+    if step is not None and ys.size:
+        lo = min(lo, step * np.floor(float(ys.min()) / step))
+        hi = max(hi, step * np.ceil(float(ys.max()) / step))
     return (lo if lo is not None else float(ys.min())), (hi if hi is not None else float(ys.max()) * 1.05)
 
 
@@ -102,11 +107,11 @@ def write_spectrum_plot(path: str | os.PathLike, series: Sequence[tuple[str, np.
     """Two panels (radial power, anisotropy in dB) of ``series``: ``(label, frequency, power,
     anisotropy)`` each; as ``fmt`` (``"svg"`` or ``"png"``); ``xlabel`` names the frequency's unit."""
     W, H, M = 720, 260, 50
-    panels = [("radial power", 1, 0.0, None), ("anisotropy (dB)", 2, -10.0, 10.0)]
+    panels = [("radial power", 1, 0.0, None, None), ("anisotropy (dB)", 2, -10.0, 10.0, 5.0)]
     fmax = max(float(np.max(s[1])) for s in series)
     lines, texts, axes = [], [(M, 20, title)], []
-    for p, (name, key, lo, hi) in enumerate(panels):
-        lo, hi = _layout(series, key + 1, lo, hi)
+    for p, (name, key, lo, hi, step) in enumerate(panels):
+        lo, hi = _layout(series, key + 1, lo, hi, step)
         top = 40 + p * (H + 40)
         axes.append((M, top, W - 20, top + H))
         texts += [(M + 4, top + 14, name), (M - 46, top + 10, f"{hi:.3g}"), (M - 46, top + H, f"{lo:.3g}")]
