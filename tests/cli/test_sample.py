@@ -234,7 +234,8 @@ def stipple_doc(tmp_path_factory):
         assert r.returncode == 0, r.stderr
     assert (d / "s.json").read_bytes() == (d / "t.json").read_bytes()
     v = run("verify", "s.json", cwd=d)
-    assert v.returncode == 0 and v.stdout.startswith("ok: "), v.stdout + v.stderr
+    assert v.returncode == 0 and v.stdout.startswith("ok: s.json is a valid point set of 800 points"), \
+        v.stdout + v.stderr
     doc = json.loads((d / "s.json").read_text())
     assert (doc["format"], doc["version"], doc["seed"], len(doc["density"])) == ("tilesolve/stipple", 1, 6, 256)
     assert (d / "s.svg").read_text().split(' d="', 1)[1].split('"', 1)[0].count("M") == len(doc["samples"])

@@ -90,7 +90,7 @@ def test_the_poisson_preset_shows_a_verified_window(page, tmp_path):
                            "&& studio.job === null", timeout=120_000)
     res = page.evaluate("studio.result")
     assert res["family"] == "poisson" and res["status"] == "sat" and res["seed"] == 1
-    assert "ok: solution.json is a valid tiling of Poisson disk window x 0..7, y 0..7" in page.text_content("#verdict")
+    assert "ok: solution.json is a valid point set of Poisson disk window x 0..7, y 0..7" in page.text_content("#verdict")
     assert page.locator("#picture svg").count() == 1
     command = page.text_content("#command")
     assert command.startswith("tilesolve sample poisson-tiles build -C 2 -N 32 --rho 0.75 --lloyd 0 --seed 1 "

@@ -181,4 +181,5 @@ FAMILY = register(Family(
     form=STIPPLE_FORM,
     route_help={"sample": "the problem's sampler: Penrose or polyomino subdivision (Ostromoukhov 2004, 2007) or "
                           "plain rejection, then its Lloyd steps"},
+    answer="point set",
 ))

@@ -243,4 +243,5 @@ FAMILY = register(Family(
         "dart": "build the C + 2C^2 + C^4 modified-region tiles by relaxation dart throwing (+ Lloyd) (§4.3)",
         "window": "the points of any window, the lattice coloured by the direct or scanline corner tiling",
     },
+    answer="point set",
 ))

@@ -212,4 +212,5 @@ FAMILY = register(Family(
         "build": "corner-based Poisson disk tiles in progressive order, with n x n subdivision rules (Kopf et al.)",
         "window": "the points of any window at a level or a density (uniform, a ramp, an image)",
     },
+    answer="point set",
 ))

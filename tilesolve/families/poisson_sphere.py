@@ -201,4 +201,5 @@ FAMILY = register(Family(
                 "throwing (§4.4.3)",
         "window": "the points of any box of space, the lattice coloured by the direct 3-D corner tiling (§3.4 hash)",
     },
+    answer="point set",
 ))

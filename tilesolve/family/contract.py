@@ -113,6 +113,9 @@ class Family:
     warm : callable or None
         ``warm()`` makes the family's later solves fast in a long-lived process (the studio's
         server and its forkserver call it once at start): e.g. loads compiled kernels.
+    answer : str
+        What one answer of the family is called in reports (``ok: FILE is a valid ANSWER of
+        ...``): ``"tiling"``, or ``"point set"`` for the sampling families.
     """
 
     name: str
@@ -134,6 +137,7 @@ class Family:
     refutations: Callable[[Any, Solution], Sequence[tuple[str, Any, Mapping[str, Any]]]] | None = None
     pictures: tuple[str, ...] = ("svg", "png")
     warm: Callable[[], None] | None = None
+    answer: str = "tiling"
 
     @property
     def methods(self) -> tuple[str, ...]:

@@ -172,7 +172,7 @@ def verify_document(doc: dict, source: str = "<document>", proof_dir: str | os.P
         elif sol.objective != value:
             false.append(f"recorded objective {sol.objective}, but the tiling's value is {value}")
     return _claims_checked(fam, problem, sol, source, proof_dir, workers, max_cnf, progress, false,
-                           f"ok: {source} is a valid tiling of {what}")
+                           f"ok: {source} is a valid {fam.answer} of {what}")
 
 
 def _violations_report(source: str, what: str, violations: Sequence, false: Sequence[str]) -> FileReport:
