@@ -32,7 +32,7 @@ Examples
 from __future__ import annotations
 
 import functools
-from typing import Any, Callable, Mapping
+from typing import Any, Callable
 
 from tilesolve.errors import InvalidProblem
 from tilesolve.family.forms import Field, Form, form_size
