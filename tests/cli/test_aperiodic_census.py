@@ -82,3 +82,29 @@ def test_ctrl_c_keeps_the_records_and_says_so(tmp_path):
     assert err.strip().splitlines()[-1] == ("tilesolve: interrupted: the records decided so far are kept in c.jsonl; "
                                             "--resume continues")
     assert (tmp_path / "c.jsonl").read_text().count("\n") >= 1
+
+
+def test_an_error_that_follows_ctrl_c_keeps_the_records_too(monkeypatch, tmp_path, capsys):
+    """A Ctrl-C that surfaces as another exception (numpy turns one into a TypeError) still
+    ends the census with its own message: the records are kept, --resume continues."""
+    import os
+    import signal
+    import time
+
+    from tilesolve.cli import group
+    from tilesolve.families import aperiodic_census
+
+    def census(*args, **kwargs):
+        try:
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(60)
+        except KeyboardInterrupt:
+            raise TypeError("Cannot compare structured arrays unless they have a common dtype") from None
+
+    monkeypatch.setattr(aperiodic_census, "census", census)
+    monkeypatch.chdir(tmp_path)
+    assert group.run(["aperiodic", "census", "--tiles", "2", "--colors", "2", "-o", "c.jsonl"]) == 130
+    assert capsys.readouterr().err.strip().splitlines()[-1] == (
+        "tilesolve: interrupted: the records decided so far are kept in c.jsonl; --resume continues")
+    monkeypatch.setattr(aperiodic_census, "census", lambda *a, **k: 1 / 0)  # without a signal: a bug, exit 70
+    assert group.run(["aperiodic", "census", "--tiles", "2", "--colors", "2", "-o", "c.jsonl"]) == 70

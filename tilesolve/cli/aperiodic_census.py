@@ -12,7 +12,7 @@ import click
 
 from tilesolve.cli import options as opt
 from tilesolve.cli.common import progress_wanted, say
-from tilesolve.cli.outputs import OutputFile, interruption
+from tilesolve.cli.outputs import OutputFile, interrupt_received, interruption
 from tilesolve.errors import InvalidProblem
 
 __all__ = ["census"]
@@ -70,6 +70,10 @@ def census(ctx, n_tiles, colours, max_square, max_period, workers, cluster, resu
         result = run_census(n_tiles, colours, run, output, max_square=max_square, max_period=max_period,
                             resume=resume, proof_dir=proof_dir)
     except KeyboardInterrupt:  # caught outside the census's own check for it
+        _kept(ctx, output)
+    except Exception:  # noqa: BLE001 - the consequence of a Ctrl-C (numpy, for one, turns it into a TypeError)
+        if not interrupt_received():
+            raise
         _kept(ctx, output)
     if result.interrupted:
         _kept(ctx, output)
