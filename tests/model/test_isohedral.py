@@ -7,6 +7,7 @@ import pytest
 
 from tilesolve.errors import InvalidProblem
 from tilesolve.model.isohedral import (
+    GS_TABLE_5_2_3,
     MARKED,
     MARKINGS,
     TYPES,
@@ -122,3 +123,24 @@ def test_the_12_marked_types_markings():
         assert t.n_params == (0 if m.square or isohedral_type(m.twin).n_params == 0 else 1)
     assert sorted(n for n, m in MARKINGS.items() if m.square) == [63, 70, 75]
     assert [MARKINGS[n].group for n in (87, 89, 92)] == ["p3m1", "p31m", "p6m"]
+
+
+def _induced(stabilizer):
+    """H's name in G&S's notation: c_n (rotations only) or d_n (n rotations and n reflections)."""
+    rotations = sum(1 for _, flip in stabilizer if not flip)
+    return f"{'d' if len(stabilizer) > rotations else 'c'}{rotations}"
+
+
+def test_the_marked_types_numbers_agree_with_gs_table_5_2_3():
+    """Every marked type's tiling group and tile stabilizer H are its row of Grünbaum and Shephard's
+    Table 5.2.3 (S(P), S(P|M)); in 4^4 the d1 through edge midpoints is pmm (IH65), the diagonal
+    one p4m (IH70)."""
+    assert sorted(GS_TABLE_5_2_3) == sorted(MARKINGS)
+    for n, m in MARKINGS.items():
+        assert (m.group, _induced(m.stabilizer)) == GS_TABLE_5_2_3[n], f"IH{n}"
+    # the two 4^4 mirrors: i -> 1 - i swaps the ends of edge 0 (midpoints), i -> -i fixes vertex 0 (diagonal)
+    assert (1, True) in MARKINGS[65].stabilizer and (0, True) in MARKINGS[70].stabilizer
+    # within a topological type (one outline twin) no two marked types share a row
+    for twin in set(MARKED.values()):
+        rows = [GS_TABLE_5_2_3[n] for n, t in MARKED.items() if t == twin]
+        assert len(rows) == len(set(rows))

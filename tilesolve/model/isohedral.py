@@ -29,11 +29,16 @@ twin's own are the marked ones: for 3^6 (hexagon, R_P = D3 through vertices) one
 R_P trivial) one, p4m; for 6^3 (the equilateral triangle, R_P trivial) H = 1, C3, D1; for 4^4
 (R_P trivial) the subgroups of D4 but D2 through edge midpoints (IH72) and D4 (IH76): 1, C2, D1
 through edge midpoints, D1 along a diagonal, C4, D2 along the diagonals; 12 in all, G&S's count.
-Which IH number is which H (:data:`MARKINGS`) is inferred from the order of G&S's Table 6.2.1
-within a topological type (by the tile's induced group: c1, c2, c3, c4, d1, d2, ...; then by
-symmetry group), as the unmarked neighbours in the tables follow it (e.g. IH87 between IH86 and
-IH88, whose tiles have no symmetry; IH64, pm with a d1 tile); Table 6.2.1 itself was not at hand
-to compare, so this numbering is the part of the derivation least checked. Three 4^4 types (C4
+Which IH number is which H (:data:`MARKINGS`) is confirmed by Grünbaum and Shephard's Table 5.2.3
+(the 51 pattern types: for each, the tiling's symmetry group S(P), the group S(P|M) the tiling
+induces on a tile, and its IH types), as transcribed in github.com/usnistgov/escherized-colloids,
+``design/table.py`` at commit 68befdc17581f65a112da28f01fbc2c5a93d6c72 (:data:`GS_TABLE_5_2_3`,
+its rows for the twelve): each marked type's (group, H) is the row that lists its number, and
+within a topological type no two marked types share a row, so the table settles every number. In
+4^4 the two d1 rows differ by group: pmm (IH65, the mirror through edge midpoints) and p4m (IH70,
+the mirror along a diagonal, which forces the square and quarter-turns at its vertices). The class
+notes give no such table (their Figures 16-17 are missing from the text) and tactile-js has no
+record for the twelve; the transcription is a third party's, not G&S's page. Three 4^4 types (C4
 and the diagonal mirrors: IH63, 70, 75) force the square: they take no parameter; the other three
 keep IH72's rectangle.
 
@@ -66,7 +71,7 @@ import numpy as np
 from tilesolve.errors import InvalidProblem
 
 __all__ = [
-    "KINDS", "MARKED", "MARKINGS", "MarkedType", "FLAG", "TYPES", "BEZIER_CHORDS", "MAX_EDGE_POINTS", "MAX_TILES", "MAX_OUTLINE", "IsohedralType", "isohedral_type",
+    "KINDS", "GS_TABLE_5_2_3", "MARKED", "MARKINGS", "MarkedType", "FLAG", "TYPES", "BEZIER_CHORDS", "MAX_EDGE_POINTS", "MAX_TILES", "MAX_OUTLINE", "IsohedralType", "isohedral_type",
     "parse_type", "EdgeShape", "STRAIGHT", "IsohedralProblem", "IsohedralTiling",
 ]
 
@@ -100,8 +105,19 @@ class MarkedType:
     square: bool = False
 
 
+#: Grünbaum and Shephard's Table 5.2.3, the rows of the twelve marked types: IH number -> (symmetry
+#: group S(P), induced group S(P|M) of the tile). Transcribed from github.com/usnistgov/escherized-colloids
+#: ``design/table.py`` at commit 68befdc17581f65a112da28f01fbc2c5a93d6c72 (its rows PP14, 15, 18,
+#: 24, 27, 28, 29, 34, 37, 39, 40, 47). :data:`MARKINGS` agrees with it (a test checks).
+GS_TABLE_5_2_3 = {
+    19: ("p3m1", "d3"), 35: ("p3m1", "d1"), 48: ("pmm", "c1"), 60: ("cmm", "c2"),
+    63: ("p4g", "c4"), 65: ("pmm", "d1"), 70: ("p4m", "d1"), 75: ("p4m", "d2"),
+    80: ("p4m", "c1"), 87: ("p3m1", "c1"), 89: ("p31m", "c3"), 92: ("p6m", "d1"),
+}
+
 _ID = ((0, False),)
-#: The twelve marked types (the project's derivation: see the module docstring).
+#: The twelve marked types: H derived from the definitions, the numbers checked against
+#: :data:`GS_TABLE_5_2_3` (see the module docstring).
 MARKINGS = {
     19: MarkedType(20, "p3m1", ((0, False), (2, False), (4, False), (0, True), (2, True), (4, True)), 1),
     35: MarkedType(37, "p3m1", ((0, False), (0, True)), 3),
