@@ -55,3 +55,22 @@ def test_a_large_board_png_from_the_cli_is_bricks(tmp_path):
     with Image.open(tmp_path / "b.png") as img:
         assert img.mode == "P" and img.width >= 4 * 200
         assert 0.05 < (np.asarray(img) == MORTAR).mean() < 0.5
+
+
+@pytest.mark.parametrize("origin", [(0, 0), (-37, 11), (2**61 + 5, -(2**61))])
+def test_the_board_picture_and_the_id_map_colour_each_brick_alike(origin):
+    # one brick hash (tilesolve.model.brick_colour): a wall window's board picture gives every
+    # brick the colour of the wall-map id map's brick (away from the edges, which the board
+    # picture rounds to whole pixels)
+    from tilesolve.constructive.wall_maps import id_colour_index, wall_maps
+    from tilesolve.constructive.walls import wall_window
+    from tilesolve.io.wall_png import N_BRICK_COLOURS
+
+    w, h, colors = 11, 7, 4
+    halo = wall_window(origin[0] - 1, origin[1] - 1, w + 2, h + 2, colors=colors, max_line=3, seed=6)
+    p = BoardProblem(Board.rect(w, h), WangTileSet.brick(colors))
+    img = np.asarray(brick_image(p, halo[1:-1, 1:-1].reshape(-1, 4), window=Window(*origin, w, h), scale=S))
+    m = wall_maps(halo, colors, S, origin=origin)
+    inside = m.distance > 2.0 / S
+    assert inside.mean() > 0.3
+    assert np.array_equal(img[inside], id_colour_index(m.vx, m.vy, N_BRICK_COLOURS)[inside])

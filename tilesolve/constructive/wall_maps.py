@@ -24,7 +24,8 @@ a large wall can be computed one at a time (:func:`tilesolve.families.wall_rende
 
 Brick ids are the absolute lattice coordinates ``(X, Y)`` of the brick's vertex (``Y`` grows
 north, as the wall's ``j``): the same brick has the same id, and so the same colour, in every
-window of the wall (Fig. 9 (b), "a color based on the brick id").
+window of the wall (Fig. 9 (b), "a color based on the brick id";
+:func:`tilesolve.model.brick_colour.brick_colour_index`, which the board pictures share).
 
 Examples
 --------
@@ -43,6 +44,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from tilesolve.errors import InvalidProblem
+# The brick colour hash has one home, shared with the board pictures (tilesolve.io.board_png):
+# id_colour_index is that function, under the name this module's callers use.
+from tilesolve.model.brick_colour import brick_colour_index as id_colour_index
 
 __all__ = ["WallMaps", "wall_maps", "id_colour_index", "MAPS"]
 
@@ -141,18 +145,3 @@ def wall_maps(legs, colors: int, ppc: int, *, origin: tuple[int, int] = (0, 0)) 
     vy = np.int64(y0 + rows) - ai
     out = [q.reshape(rows * ppc, cols * ppc) for q in np.broadcast_arrays(vx, vy, dist, u, v)]
     return WallMaps(*out)
-
-
-def id_colour_index(vx, vy, n: int) -> np.ndarray:
-    """A colour index ``0 .. n-1`` per brick id (vertex coordinates), the same in every window.
-
-    A 64-bit mix of the two coordinates (the splitmix64 finaliser, Steele et al. 2014),
-    reduced to ``n`` with a multiply-shift; neighbouring bricks get unrelated colours.
-    """
-    with np.errstate(over="ignore"):
-        z = (np.asarray(vx, dtype=np.int64).astype(np.uint64) * np.uint64(0x9E3779B97F4A7C15)
-             ^ np.asarray(vy, dtype=np.int64).astype(np.uint64) * np.uint64(0xC2B2AE3D27D4EB4F))
-        z = (z ^ (z >> np.uint64(30))) * np.uint64(0xBF58476D1CE4E5B9)
-        z = (z ^ (z >> np.uint64(27))) * np.uint64(0x94D049BB133111EB)
-        z ^= z >> np.uint64(31)
-    return ((z >> np.uint64(32)) * np.uint64(n) >> np.uint64(32)).astype(np.int64)

@@ -31,8 +31,8 @@ bevelled. ``board`` is the look of every other wall picture, the board pictures 
 at one sample a pixel: their palette, :func:`tilesolve.io.wall_png.brick_palette` (a colour per
 brick, dark mortar; its one home), as a 256 x 1 texture (``u_palette``), and their geometry:
 each edge at its position rounded to a whole pixel (half to even, kept inside the cell), mortar
-lines ``max(1, round(cell_px / 10))`` pixels wide, a brick's colour their hash of the cell at
-its top-left corner. With several samples a pixel, each sample is shaded at its own position,
+lines ``max(1, round(cell_px / 10))`` pixels wide, a brick's colour the bricks' one hash
+(:func:`tilesolve.model.brick_colour.brick_colour_index`) of its id. With several samples a pixel, each sample is shaded at its own position,
 against edges nudged 1/256 px from their exact place towards the rounded one (so that every
 pixel centre falls where the board picture puts it).
 
@@ -224,23 +224,24 @@ void main() {
 
 def _picture_glsl() -> str:
     """The board pictures' colours (:func:`tilesolve.io.board_png.brick_image`) as GLSL: their
-    brick hash (``_mix``, splitmix64's finaliser on 32-bit word pairs) reduced to a palette index,
+    brick hash (:func:`tilesolve.model.brick_colour.brick_colour_index`, on 32-bit word pairs) as a palette index,
     and their edges and mortar lines in pixels."""
     n = N_BRICK_COLOURS
-    return f"const uint N_BRICK = {n}u, WORD_MOD = {(1 << 32) % n}u;   // colours; 2**32 % N_BRICK\n" \
+    return f"const uint N_BRICK = {n}u;   // colours\n" \
            f"const int MORTAR = {MORTAR};\n" + """
 uvec2 shr64(uvec2 h, int k) { return uvec2((h.x >> k) | (h.y << (32 - k)), h.y >> k); }   // 0 < k < 32
 
-// The board pictures' colour of the brick whose top-left corner lies in local cell (i, j): its
-// plane position mixed (x 0x9E3779B97F4A7C15 ^ y 0xC2B2AE3D27D4EB4F, then splitmix64's
-// finaliser), modulo N_BRICK.
+// The board pictures' colour of the brick whose top-left corner lies in local cell (i, j): the
+// bricks' one hash (tilesolve.model.brick_colour.brick_colour_index) of its id, the lattice point
+// (i + 1, j): x 0x9E3779B97F4A7C15 ^ y 0xC2B2AE3D27D4EB4F, splitmix64's finaliser, then the
+// multiply-shift of the high word onto N_BRICK colours.
 uint brick_index(int i, int j) {
-    uvec2 h = mul64(add64(u_origin[0], i), uvec2(0x7F4A7C15u, 0x9E3779B9u))
+    uvec2 h = mul64(add64(u_origin[0], i + 1), uvec2(0x7F4A7C15u, 0x9E3779B9u))
             ^ mul64(add64(u_origin[1], j), uvec2(0x27D4EB4Fu, 0xC2B2AE3Du));
+    h = mul64(h ^ shr64(h, 30), uvec2(0x1CE4E5B9u, 0xBF58476Du));
+    h = mul64(h ^ shr64(h, 27), uvec2(0x133111EBu, 0x94D049BBu));
     h ^= shr64(h, 31);
-    h = mul64(h, uvec2(0x133111EBu, 0x94D049BBu));
-    h ^= shr64(h, 29);
-    return ((h.y % N_BRICK) * WORD_MOD + h.x % N_BRICK) % N_BRICK;
+    return reduce(h.y, N_BRICK);
 }
 
 int round_half_even(int num, int den) {   // num / den rounded half to even (num >= 0, den > 0)

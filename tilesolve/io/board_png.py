@@ -6,8 +6,10 @@ tile the converse (the geometry of :mod:`tilesolve.io.svg_board`: colour ``c`` o
 ``(c + 1) / (#C + 1)`` of the side). The junction is the top-left corner of exactly one brick,
 so every brick is the four corner regions that meet around it: the cell's bottom-right region,
 its right neighbour's bottom-left, the cell below's top-right and the one below-right's top-left.
-A brick is coloured by a hash of its corner cell's position in the plane (the window's
-coordinates when the tiling is a window of the plane), so neighbouring windows of one wall agree.
+A brick is coloured by its id, the lattice point at that junction, with the bricks' one colour hash
+(:func:`tilesolve.model.brick_colour.brick_colour_index`, the same as the wall maps' ``id`` map), in
+the plane's coordinates when the tiling is a window of the plane, so neighbouring windows of one
+wall agree.
 No union-find: every pixel finds its brick from its cell and corner region, in numpy.
 
 Examples
@@ -25,6 +27,7 @@ from __future__ import annotations
 import numpy as np
 
 from tilesolve.io.wall_png import MORTAR, N_BRICK_COLOURS, brick_palette
+from tilesolve.model.brick_colour import brick_colour_index
 from tilesolve.model.window import Window
 
 __all__ = ["brick_image", "brick_scale", "HOLE"]
@@ -39,17 +42,6 @@ def brick_scale(rows: int, cols: int) -> int:
     """Pixels per cell of a ``rows x cols`` brick picture: the picture about 1,024 px wide,
     each cell at least 4 px (a brick and its mortar stay visible) and at most 24."""
     return int(min(24, max(4, _TARGET_PX // max(rows, cols, 1))))
-
-
-def _mix(x: np.ndarray, y: np.ndarray) -> np.ndarray:
-    """A 64-bit mix of two integer coordinates (splitmix64's finaliser), as uint64."""
-    with np.errstate(over="ignore"):
-        h = x.astype(np.int64).astype(np.uint64) * np.uint64(0x9E3779B97F4A7C15)
-        h ^= y.astype(np.int64).astype(np.uint64) * np.uint64(0xC2B2AE3D27D4EB4F)
-        h ^= h >> np.uint64(31)
-        h *= np.uint64(0x94D049BB133111EB)
-        h ^= h >> np.uint64(29)
-    return h
 
 
 def _patterns(legs: np.ndarray, k: int, s: int) -> np.ndarray:
@@ -103,7 +95,9 @@ def brick_image(problem, tiling, *, window: Window | None = None, scale: int | N
         x, y = window.x0 + acol, (window.y0 + window.height - 1 - arow if window.y_up else window.y0 + arow)
     else:
         x, y = acol, -arow
-    colour = (_mix(x, y) % np.uint64(N_BRICK_COLOURS)).astype(np.uint8)  # (n, 4)
+    # the brick's id: the lattice point at that cell's SE corner (y north, as the wall's), the SW
+    # corner of cell (x + 1, y)
+    colour = brick_colour_index(x + 1, y, N_BRICK_COLOURS).astype(np.uint8)  # (n, 4)
     colour = np.concatenate([colour, np.full((len(t), 1), MORTAR, np.uint8)], axis=1)
     region = patterns[tile_of.reshape(-1)]
     idx = np.take_along_axis(colour, region.reshape(len(t), -1), axis=1).reshape(region.shape)
