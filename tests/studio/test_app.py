@@ -434,7 +434,7 @@ def test_the_window_form_offers_every_set_with_a_constructive_route():
 
 
 def test_the_wall_view_sends_its_shaders_for_webgl2(client):
-    from tilesolve.io.wall_png import brick_palette
+    from tilesolve.io.board_png import picture_palette
 
     r = client.get(f"/api/webgl/board?values={json.dumps({'seed': 7, 'colors': 4, 'max_h': 2})}")
     assert r.status_code == 200
@@ -442,8 +442,38 @@ def test_the_wall_view_sends_its_shaders_for_webgl2(client):
     assert doc["kind"] == "wall" and doc["uniforms"]["u_nc"] == 4
     assert doc["uniforms"]["u_basis"] == [w for k in range(4) for w in divmod(FnvXorshift(7, k).basis, 1 << 32)[::-1]]
     assert all(doc[k].startswith("#version 300 es\n") for k in ("vertex", "cells", "colour", "data"))
-    assert doc["palette"] == [list(rgb) for rgb in brick_palette()]  # the view tiles' colours
+    assert doc["palette"] == [list(rgb) for rgb in picture_palette()]  # the view tiles' colours
     assert client.get("/api/webgl/stochastic").json() == {"kind": None}  # its view is the server's tiles
     r = client.get("/api/webgl/dappled")
     assert r.status_code == 400 and "no infinite view" in r.json()["error"]
     assert client.get("/api/webgl/board?values={\"colors\": 2}").status_code == 400
+
+
+def test_a_chosen_palette_colours_the_wall_views_tiles_and_shaders(client):
+    import io
+
+    from PIL import Image
+
+    from tilesolve.io.board_png import picture_palette
+    from tilesolve.io.wall_png import MORTAR, N_BRICK_COLOURS
+
+    values = json.dumps({"seed": 3, "colors": 4})
+    chosen = [(0x44, 0x01, 0x54), (0x21, 0x90, 0x8C), (0xFD, 0xE7, 0x25)]
+    param = ",".join(f"{r:02X}{g:02X}{b:02X}" for r, g, b in chosen)
+    own = client.get(f"/api/view/board.png?values={values}&x=-8&y=4&n=16")
+    mine = client.get(f"/api/view/board.png?values={values}&x=-8&y=4&n=16&palette={param}")
+    assert own.status_code == mine.status_code == 200
+    a, b = Image.open(io.BytesIO(own.content)), Image.open(io.BytesIO(mine.content))
+    # the same pixels (palette indices), the bricks in the chosen colours taken in turn, mortar kept
+    assert np.array_equal(np.asarray(a), np.asarray(b))
+    used = set(np.unique(np.asarray(b)).tolist())
+    assert MORTAR in used and len(used - {MORTAR}) > 10
+    rgb = {tuple(c) for c in np.asarray(b.convert("RGB")).reshape(-1, 3).tolist()}
+    assert rgb == set(chosen) | {picture_palette()[MORTAR]}
+    # the shaders' palette texture is the tiles' palette
+    doc = client.get(f"/api/webgl/board?values={values}&palette={param}").json()
+    assert doc["palette"][:N_BRICK_COLOURS] == [list(chosen[i % 3]) for i in range(N_BRICK_COLOURS)]
+    assert doc["palette"] == [list(c) for c in picture_palette(chosen)]
+    for bad in ("12345", "GG0000", ",".join(["000000"] * 257)):
+        r = client.get(f"/api/view/board.png?values={values}&x=0&y=0&n=8&palette={bad}")
+        assert r.status_code == 400 and "palette" in r.json()["error"]

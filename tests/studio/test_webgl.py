@@ -272,3 +272,43 @@ def test_without_webgl2_the_view_is_the_server_tiles(playwright_, server):
         assert page.evaluate("studio.view.wanted.every(t => t.state === 'ready' && t.img.naturalWidth > 0)")
     finally:
         b.close()
+
+
+def test_a_chosen_palette_colours_the_wall_view_in_both_paths(gl_page):
+    # issue 22: one palette everywhere. A preset chosen on the page recolours the wall view as
+    # drawn from the server's tiles and as drawn by WebGL2: the same pixels in both, every brick
+    # the chosen colour of its index (brick colour i -> preset[i % 8]), the mortar kept.
+    from tilesolve.io.board_png import picture_palette
+    from tilesolve.io.wall_png import MORTAR, N_BRICK_COLOURS
+
+    page = gl_page
+    _board_view_at_24_px(page, box=False)
+    page.wait_for_function(TILES_DRAWN)
+    own = _tiles_view(page)
+    try:
+        page.select_option("#palette-preset", "viridis")
+        chosen = [tuple(int(c[i:i + 2], 16) for i in (1, 3, 5)) for c in page.evaluate("studio.colours.slice(0, 8)")]
+        assert page.evaluate("studio.view.palette") == ",".join("%02X%02X%02X" % c for c in chosen)
+        page.wait_for_function(TILES_DRAWN)
+        tiles = _tiles_view(page)
+        # the pictures' own brick colours, each mapped to the preset's colour of its index
+        pal = picture_palette()
+        assert len(set(pal[:N_BRICK_COLOURS])) == N_BRICK_COLOURS
+        lut = {pal[i]: chosen[i % len(chosen)] for i in range(N_BRICK_COLOURS)}
+        lut[pal[MORTAR]] = pal[MORTAR]
+        key = lambda a: a[..., 0].astype(np.int64) << 16 | a[..., 1].astype(np.int64) << 8 | a[..., 2]  # noqa: E731
+        src, dst = np.array([key(np.array(k)) for k in lut]), np.array([key(np.array(v)) for v in lut.values()])
+        own_key = key(own)
+        assert np.isin(own_key, src).all()
+        order = np.argsort(src)
+        want = dst[order][np.searchsorted(src[order], own_key)]
+        assert np.array_equal(key(tiles), want)
+        used = {tuple(c) for c in tiles[..., :3].reshape(-1, 3).tolist()}
+        assert used == set(chosen) | {pal[MORTAR]}
+        page.check("#view-webgl")
+        page.wait_for_function(GL_DRAWN)
+        gl = _gl_view(page)
+        assert gl.shape == tiles.shape and np.array_equal(gl, tiles)
+    finally:
+        page.select_option("#palette-preset", index=0)
+        page.uncheck("#view-webgl")

@@ -66,7 +66,8 @@ from tilesolve.errors import InvalidProblem
 from tilesolve.gpu.context import gpu_context, max_render_size, release
 from tilesolve.gpu.texture import DIV_GLSL
 from tilesolve.gpu.picture import assemble_bands, pass_layout
-from tilesolve.io.wall_png import MORTAR, N_BRICK_COLOURS, brick_palette
+from tilesolve.io.board_png import picture_palette
+from tilesolve.io.wall_png import MORTAR, N_BRICK_COLOURS
 
 __all__ = ["LOOKS", "SAMPLE_COUNTS", "WallRenderer", "allowed_samples", "webgl_wall"]
 
@@ -290,7 +291,7 @@ uniform ivec2 u_local0;      // local cell of the picture's SW cell
 uniform float u_mortar;      // half width of the mortar, in cells (004's look)
 uniform usampler2D u_cells;  // first pass: legs of local cells u_first + texel
 uniform usampler2D u_points; // first pass: edges and colour hash of the lattice point u_first + texel
-uniform sampler2D u_palette; // 256 x 1: brick_palette (tilesolve.io.wall_png; the board pictures' look)
+uniform sampler2D u_palette; // 256 x 1: the board pictures' palette (tilesolve.io.board_png.picture_palette)
 uniform ivec2 u_first;
 layout(location = 0) out vec4 f_colour;
 #ifdef DATA
@@ -400,13 +401,14 @@ def _wall_params(colors, max_line, seed) -> tuple[int, int, bool, int]:
     return nc, dappling_period(max_line), max_line is not None and int(max_line) % 2 == 1, seed
 
 
-def _palette() -> np.ndarray:
-    """``(1, 256, 4)`` uint8 RGBA of the ``u_palette`` texture: :func:`~tilesolve.io.wall_png.brick_palette`."""
-    rgb = np.asarray(brick_palette(), dtype=np.uint8)
+def _palette(colours=None) -> np.ndarray:
+    """``(1, 256, 4)`` uint8 RGBA of the ``u_palette`` texture: the board pictures' palette
+    (:func:`tilesolve.io.board_png.picture_palette`, their bricks in ``colours`` when given)."""
+    rgb = np.asarray(picture_palette(colours), dtype=np.uint8)
     return np.concatenate([rgb, np.full((len(rgb), 1), 255, np.uint8)], axis=1)[None]
 
 
-def webgl_wall(*, colors: int = 3, max_line: int | None = None, seed: int = 0) -> dict:
+def webgl_wall(*, colors: int = 3, max_line: int | None = None, seed: int = 0, colours=None) -> dict:
     """The wall's shaders as GLSL ES 3.00 for WebGL2, in the board pictures' look (the studio's
     view tiles), and the uniforms that hold for every window.
 
@@ -418,8 +420,9 @@ def webgl_wall(*, colors: int = 3, max_line: int | None = None, seed: int = 0) -
         module's GLSL behind a ``#version 300 es`` header and the precisions ES asks for.
         ``uniforms``: ``u_basis`` (the four streams' FNV-1a states as eight 32-bit words, low
         word first), ``u_nc``, ``u_p``, ``u_fixed``. ``palette``: the 256 ``[r, g, b]`` texels
-        of ``u_palette`` (:func:`~tilesolve.io.wall_png.brick_palette`, the board pictures'
-        colours). ``margin``: the cells a pass reaches south-west of the picture.
+        of ``u_palette`` (:func:`tilesolve.io.board_png.picture_palette` of ``colours``: the board
+        pictures' colours, their bricks in ``colours`` when given, as the studio's view tiles in
+        a chosen palette). ``margin``: the cells a pass reaches south-west of the picture.
 
     Examples
     --------
@@ -432,7 +435,7 @@ def webgl_wall(*, colors: int = 3, max_line: int | None = None, seed: int = 0) -
     return {"vertex": _ES_HEADER + _VERTEX.removeprefix(_HEADER),
             **{kind: _fragment(kind, look="board", header=_ES_HEADER) for kind in ("cells", "colour", "data")},
             "uniforms": {"u_basis": basis, "u_nc": nc, "u_p": period, "u_fixed": fixed},
-            "palette": _palette()[0, :, :3].tolist(), "margin": _MARGIN}
+            "palette": _palette(colours)[0, :, :3].tolist(), "margin": _MARGIN}
 
 
 def allowed_samples(ctx=None) -> tuple[int, ...]:

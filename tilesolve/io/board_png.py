@@ -30,7 +30,7 @@ from tilesolve.io.wall_png import MORTAR, N_BRICK_COLOURS, brick_palette
 from tilesolve.model.brick_colour import brick_colour_index
 from tilesolve.model.window import Window
 
-__all__ = ["brick_image", "brick_scale", "HOLE"]
+__all__ = ["brick_image", "brick_scale", "picture_palette", "HOLE"]
 
 #: Palette index of holes (pixels of no cell).
 HOLE = N_BRICK_COLOURS
@@ -42,6 +42,28 @@ def brick_scale(rows: int, cols: int) -> int:
     """Pixels per cell of a ``rows x cols`` brick picture: the picture about 1,024 px wide,
     each cell at least 4 px (a brick and its mortar stay visible) and at most 24."""
     return int(min(24, max(4, _TARGET_PX // max(rows, cols, 1))))
+
+
+def picture_palette(colours=None) -> list[tuple[int, int, int]]:
+    """The 256 RGB entries of a brick picture's palette: brick colours ``0 .. N_BRICK_COLOURS - 1``,
+    :data:`HOLE`, mortar.
+
+    ``colours`` (a list of ``(r, g, b)``, e.g. a palette chosen in the studio) replaces the brick
+    colours: brick colour ``i`` becomes ``colours[i % len(colours)]``; without it they are
+    :func:`tilesolve.io.wall_png.brick_palette`'s. Holes and mortar keep their colours.
+
+    >>> pal = picture_palette([(1, 2, 3), (4, 5, 6)])
+    >>> pal[0], pal[1], pal[2], pal[HOLE], len(pal)
+    ((1, 2, 3), (4, 5, 6), (1, 2, 3), (244, 244, 244), 256)
+    """
+    palette = brick_palette()
+    if colours is not None:
+        colours = [tuple(int(c) for c in rgb) for rgb in colours]
+        if not colours:
+            raise ValueError("a brick palette needs at least one colour")
+        palette[:N_BRICK_COLOURS] = [colours[i % len(colours)] for i in range(N_BRICK_COLOURS)]
+    palette[HOLE] = _HOLE_RGB
+    return palette
 
 
 def _patterns(legs: np.ndarray, k: int, s: int) -> np.ndarray:
@@ -61,7 +83,7 @@ def _patterns(legs: np.ndarray, k: int, s: int) -> np.ndarray:
     return np.where(mortar, 4, 2 * ~top + ~left).astype(np.uint8)  # ~ on bools is not
 
 
-def brick_image(problem, tiling, *, window: Window | None = None, scale: int | None = None):
+def brick_image(problem, tiling, *, window: Window | None = None, scale: int | None = None, colours=None):
     """A palette :class:`PIL.Image.Image` of a brick tiling of ``problem.board``.
 
     Parameters
@@ -74,6 +96,8 @@ def brick_image(problem, tiling, *, window: Window | None = None, scale: int | N
         Where the tiling lies in the plane: bricks are coloured by their plane position.
     scale : int, optional
         Pixels per cell (:func:`brick_scale` by default).
+    colours : list of (int, int, int), optional
+        The bricks' colours (:func:`picture_palette`); by default the wall pictures' own.
     """
     from PIL import Image
 
@@ -104,7 +128,6 @@ def brick_image(problem, tiling, *, window: Window | None = None, scale: int | N
     pixels = np.full((rows, s, cols, s), HOLE, dtype=np.uint8)
     pixels[lab[:, 0], :, lab[:, 1], :] = idx
     img = Image.fromarray(pixels.reshape(rows * s, cols * s))
-    palette = brick_palette()
-    palette[HOLE] = _HOLE_RGB
+    palette = picture_palette(colours)
     img.putpalette([c for rgb in palette for c in rgb])
     return img

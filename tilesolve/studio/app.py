@@ -18,10 +18,12 @@ message>"}``):
                                     the last one when it has ended
 ``POST /api/jobs/{id}/cancel``      end a running solve
 ``GET /api/jobs/{id}/solution.json|picture.svg|picture.png``  the exports (the CLI's files)
-``GET /api/view/{family}.png?values=JSON&x=&y=&n=``  one n x n window of an infinite
-                                    procedural view (pan and zoom), x/y its bottom-left cell
-``GET /api/webgl/{family}?values=JSON``  the shaders with which the page draws that view itself
-                                    (WebGL2; the procedural wall), or ``{"kind": null}``
+``GET /api/view/{family}.png?values=JSON&x=&y=&n=&palette=``  one n x n window of an infinite
+                                    procedural view (pan and zoom), x/y its bottom-left cell;
+                                    ``palette`` (``RRGGBB,...``, optional): the page's chosen colours
+``GET /api/webgl/{family}?values=JSON&palette=``  the shaders with which the page draws that
+                                    view itself (WebGL2; the procedural wall), in those colours,
+                                    or ``{"kind": null}``
 
 The page sends values, never paths: no endpoint reads or writes a file named by a request.
 Only requests addressed to the server's own socket are answered, and only the studio's own
@@ -290,8 +292,30 @@ async def view(request: Request) -> Response:
     if not 1 <= n <= MAX_VIEW_CELLS:
         raise InvalidProblem(f"a view window is 1..{MAX_VIEW_CELLS} cells wide, got {n}")
     raw = _view_values(request)
-    data = await anyio.to_thread.run_sync(request.app.state.views.png, request.path_params["family"], raw, x, y, n)
+    data = await anyio.to_thread.run_sync(request.app.state.views.png, request.path_params["family"], raw, x, y, n,
+                                          _view_colours(request))
     return Response(data, media_type="image/png", headers={"Cache-Control": "max-age=3600"})
+
+
+#: Most colours of a view's chosen palette (``palette=RRGGBB,RRGGBB,...``).
+MAX_VIEW_COLOURS = 256
+
+
+def _view_colours(request: Request) -> list[tuple[int, int, int]] | None:
+    """The palette chosen on the page for a view (``palette``: comma-separated ``RRGGBB``), or None."""
+    raw = request.query_params.get("palette", "")
+    if not raw:
+        return None
+    items = raw.split(",")
+    if len(items) > MAX_VIEW_COLOURS:
+        raise InvalidProblem(f"a view palette has at most {MAX_VIEW_COLOURS} colours, got {len(items)}")
+    out = []
+    for item in items:
+        item = item.strip().removeprefix("#")
+        if len(item) != 6 or any(c not in "0123456789abcdefABCDEF" for c in item):
+            raise InvalidProblem(f"palette colours are RRGGBB hex, got {item[:20]!r}")
+        out.append((int(item[0:2], 16), int(item[2:4], 16), int(item[4:6], 16)))
+    return out
 
 
 def _view_values(request: Request) -> str:
@@ -304,7 +328,8 @@ def _view_values(request: Request) -> str:
 
 @_guard
 async def webgl(request: Request) -> Response:
-    return JSONResponse(request.app.state.views.webgl(request.path_params["family"], _view_values(request)))
+    return JSONResponse(request.app.state.views.webgl(request.path_params["family"], _view_values(request),
+                                                      _view_colours(request)))
 
 
 # ----------------------------------------------------------------------------- the app

@@ -1,7 +1,8 @@
 // tilesolve studio page: every form is built from the family's fields (GET /api/families),
 // no family is special-cased here. The tile colours come from the server (the palette of the SVG
 // and PNG writers, tilesolve/io/svg.py); a palette chosen here recolours the editor, the picture
-// and the exported pictures alike.
+// and the exported pictures alike, and the infinite view: its server tiles and its WebGL2 wall
+// are asked for in the chosen colours (`palette=`), the wall's bricks taking them in turn.
 "use strict";
 const $ = (id) => document.getElementById(id);
 const studio = window.studio = { timings: {}, families: [], fam: null, extents: {}, grids: {}, cells: null,
@@ -34,9 +35,13 @@ function setPalette(list) {
   const base = studio.palette.tiles;
   studio.colours = base.map((c, k) => (list && k < list.length ? list[k] : c).toUpperCase());
   drawSwatches(); drawGrid(); recolourPicture();
+  if (studio.fam && viewPalette() !== view.palette) resetView();
 }
 const tileColour = (k) => (k < 0 ? studio.palette.free : studio.colours[k % studio.colours.length]);
 const recoloured = () => studio.colours.some((c, k) => c !== studio.palette.tiles[k].toUpperCase());
+
+// The view's colours: the swatches' (RRGGBB,...) when a palette is chosen, "" for the pictures' own.
+const viewPalette = () => (recoloured() ? studio.colours.slice(0, SWATCHES).map(c => c.slice(1)).join(",") : "");
 
 function drawSwatches() {
   const box = $("swatches"); box.innerHTML = "";
@@ -821,7 +826,7 @@ function buildGallery() {
 // loading sign counts what is on its way. Every tile is drawn at the same scale, edges rounded
 // to whole pixels, so no band differs and no gap opens.
 const view = studio.view = { x: 0, y: 0, zoom: 1, cache: new Map(), inflight: 0, values: "", gen: 0,
-                             missing: 0, rects: [], failed: 0 };
+                             missing: 0, rects: [], failed: 0, palette: "" };
 const MAX_INFLIGHT = 4;
 
 function resetView() {
@@ -831,7 +836,8 @@ function resetView() {
     ([k]) => !studio.fam.fields.some(f => f.name === k && f.kind === "cells")));
   values.seed = values.seed === undefined ? 0 : values.seed;   // one seed for every window
   view.values = encodeURIComponent(JSON.stringify(values));
-  if (window.studioWebGL) studioWebGL.configure(studio.fam.name, view.values).then(() => requestAnimationFrame(drawView));
+  view.palette = viewPalette();
+  if (window.studioWebGL) studioWebGL.configure(studio.fam.name, view.values, view.palette).then(() => requestAnimationFrame(drawView));
   requestAnimationFrame(drawView);
 }
 
@@ -858,7 +864,8 @@ function fetchTile(t) {
     if (t.state === "failed") { view.failed++; $("view-info").textContent = "a view tile failed: check the form"; }
     setTimeout(() => { pump(); drawView(); }, 300 * t.tries);
   };
-  img.src = `/api/view/${studio.fam.name}.png?x=${t.i * n}&y=${-(t.j + 1) * n}&n=${n}&values=${view.values}`;
+  img.src = `/api/view/${studio.fam.name}.png?x=${t.i * n}&y=${-(t.j + 1) * n}&n=${n}&values=${view.values}` +
+            (view.palette ? `&palette=${view.palette}` : "");
 }
 
 function pump() {

@@ -53,13 +53,17 @@ window.studioWebGL = (() => {
     }
 
     // A new seed or colouring: the served shaders, compiled now so that a failure shows at once.
+    // A new palette alone (the page's chosen colours) only replaces the palette texture.
     use(config) {
       const gl = this.gl, rgba = new Uint8Array(256 * 4).fill(255);
-      for (const p of Object.values(this.programs)) gl.deleteProgram(p);
+      const same = this.config && ["vertex", "cells", "colour", "data"].every(k => this.config[k] === config[k]) &&
+                   JSON.stringify(this.config.uniforms) === JSON.stringify(config.uniforms);
       if (this.palette) gl.deleteTexture(this.palette);
       config.palette.forEach((rgb, k) => rgba.set(rgb, 4 * k));
       this.palette = texture(gl, gl.RGBA8, gl.RGBA, gl.UNSIGNED_BYTE, 256, 1, rgba);
       gl.bindTexture(gl.TEXTURE_2D, null);
+      if (same) { this.config = config; return; }
+      for (const p of Object.values(this.programs)) gl.deleteProgram(p);
       this.config = config; this.programs = {};
       this.program("cells"); this.program("colour");
     }
@@ -177,16 +181,18 @@ window.studioWebGL = (() => {
     canvas().addEventListener("webglcontextrestored", () => { state.lost = false; changed(); });
   }
 
-  // The view of family `name` for the form values `values` (URL-encoded JSON): fetch its shaders
-  // (if it has some) and compile them. Resolves when known; until then draw() draws nothing.
-  async function configure(name, values) {
+  // The view of family `name` for the form values `values` (URL-encoded JSON) in the colours
+  // `palette` (RRGGBB,...; "" for the pictures' own): fetch its shaders (if it has some) and
+  // compile them. Resolves when known; until then draw() draws nothing.
+  async function configure(name, values, palette = "") {
     const seq = ++state.seq;
     state.wall = null; state.error = ""; state.pending = false;
     const box = document.getElementById("view-webgl");
     if (!gl || state.lost || (box && !box.checked)) return;
     state.pending = true;
     try {
-      const r = await fetch(`/api/webgl/${name}?values=${values}`), doc = await r.json();
+      const r = await fetch(`/api/webgl/${name}?values=${values}${palette ? `&palette=${palette}` : ""}`);
+      const doc = await r.json();
       if (seq !== state.seq || gl.isContextLost()) return;
       if (r.ok && doc.kind === "wall") {
         state.wall = made = made || new Wall(gl);
