@@ -68,3 +68,51 @@ def test_a_texture_from_a_wall_has_the_wall_s_mortar_lines(tmp_path, tile, optio
         top = wall.max() - wall.mean()
         between = (texture > wall.mean() + top / 4) & (texture < wall.mean() + 3 * top / 4)
         assert between.mean() < 0.01
+
+
+# ------------------------------------------------------------------- the CPU's and the browser's texture
+def _atlas(colors: int = 3, tile: int = 24, seed: int = 2):
+    from tilesolve.gpu.texture import Atlas
+
+    ex = np.random.default_rng(0).integers(0, 256, (60, 60, 3), dtype=np.uint8)
+    return Atlas.from_example(ex, colors, tile=tile, seed=seed)
+
+
+@pytest.mark.parametrize("origin", [(0, 0), (-37, 11), (2**61 + 5, -(2**61))])
+def test_the_cpu_texture_is_the_gpus_at_one_texel_a_pixel(origin):
+    # the studio's server tiles (texture_window) and TextureMapper, both passes: the same pixels
+    from tilesolve.gpu.texture import TextureMapper, texture_window
+
+    at = _atlas()
+    cpu = texture_window(at, origin[0], origin[1], 7, 5, seed=2)
+    for two_pass in (True, False):
+        gpu = TextureMapper(at, seed=2, origin=origin, two_pass=two_pass).image(7 * 24, 5 * 24)
+        assert np.array_equal(gpu, cpu)
+    # a tile's image is its place in the packing: the tiles are direct_corner's
+    from tilesolve.constructive.stochastic import direct_corner
+
+    tiles = direct_corner(origin[0], origin[1], 7, 5, colors=3, seed=2)
+    assert np.array_equal(cpu[24:48, 48:72], texture_window(at, origin[0] + 2, origin[1] + 3, 1, 1, seed=2))
+    assert len(np.unique(tiles)) > 5
+
+
+def test_the_webgl2_texture_shaders_run_as_glsl_es_give_the_cpu_texture(monkeypatch):
+    # the studio's shaders (GLSL ES 3.00), run by llvmpipe in place of the desktop ones
+    from tilesolve.constructive.stochastic import direct_corner
+    from tilesolve.gpu import texture as tex
+
+    at = _atlas()
+    es = tex.webgl_texture(at, seed=2)
+    assert all(es[k].startswith("#version 300 es\n") for k in ("vertex", "colour", "ids"))
+    monkeypatch.setattr(tex, "_VERTEX", es["vertex"])
+    monkeypatch.setattr(tex, "_FRAGMENT_DIRECT", es["colour"])
+    monkeypatch.setattr(tex, "_FRAGMENT_IDS", es["ids"])
+    origin = (-123456789, 987654321)
+    m = tex.TextureMapper(at, seed=2, origin=origin, two_pass=False)
+    assert np.array_equal(m.image(9 * 24, 4 * 24), tex.texture_window(at, *origin, 9, 4, seed=2))
+    ids = tex.TextureMapper(colors=3, seed=2, origin=origin, tile_px=5).tile_ids(9 * 5, 4 * 5)
+    want = direct_corner(*origin, 9, 4, colors=3, seed=2)
+    assert np.array_equal(ids, np.repeat(np.repeat(want, 5, 0), 5, 1))
+    tables, perm, red = tex.hash_tables(3, 2)
+    assert es["perm"] == perm.tolist() and es["red"] == red.tolist() and es["tables"] == [t.tolist() for t in tables]
+    assert es["where"] == at.where().tolist() and es["tile"] == 24 and es["colors"] == 3

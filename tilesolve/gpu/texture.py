@@ -44,6 +44,16 @@ written); both draw the same pixels.
 
 Pictures larger than one render pass (the context's maximum viewport) are drawn band by band
 and streamed to the PNG file.
+
+In the browser and on the CPU
+-----------------------------
+:func:`webgl_texture` hands the studio (``static/webgl.js``) the one-pass shader (and the tile-id
+shader) as GLSL ES 3.00 for WebGL2, with the hash tables, the packing and the atlas; the page
+builds the row tables of each pass itself, as :func:`row_table` does. :func:`texture_window`
+draws a window on the CPU (the studio's server tiles, the fallback): each tile the atlas's tile
+image, one texel a pixel when ``tile_px`` is the atlas's tile, which is what the shader samples
+there (mip level 0, texel centres); at other sizes each tile image is box-filtered, where the GPU
+filters the atlas's mipmaps trilinearly (the same tiles, colours within the filters' difference).
 """
 
 from __future__ import annotations
@@ -60,7 +70,8 @@ from tilesolve.gpu.context import gpu_context, max_render_size, release
 from tilesolve.gpu.picture import assemble_bands, pass_layout
 
 __all__ = ["MAX_COLORS", "MAX_ATLAS", "HASH_GLSL", "hash_tables", "row_table", "Atlas", "check_atlas", "corner_packing", "synthesize_atlas", "graph_cut",
-           "structure_size", "synthesis_scale", "read_example", "example_patches", "Quilter", "PassRenderer", "TextureMapper"]
+           "structure_size", "synthesis_scale", "read_example", "example_patches", "Quilter", "PassRenderer", "TextureMapper",
+           "texture_window", "webgl_texture"]
 
 #: Largest ``C`` of an atlas (``C**4 = 4096`` tiles).
 MAX_COLORS = 8
@@ -850,3 +861,92 @@ class TextureMapper(PassRenderer):
         t = self.tile_px
         n = (min(self.max_pass, (w - 1) // t + 2), min(self.max_pass, (h - 1) // t + 2))
         return self.ctx.framebuffer(color_attachments=[self.ctx.texture(n, 2, dtype="u4")])
+
+
+# ------------------------------------------------------------------------------------ browser, CPU
+#: The shaders as GLSL ES 3.00 (WebGL2): ES has no default precision for these.
+_ES_HEADER = ("#version 300 es\nprecision highp float;\nprecision highp int;\nprecision highp usampler2D;\n"
+              "precision highp sampler2D;\n")
+
+
+def _es(source: str) -> str:
+    """A shader of this module (``#version 450``) as GLSL ES 3.00: the same source behind :data:`_ES_HEADER`."""
+    body = source.lstrip("\n")
+    assert body.startswith("#version 450\n")
+    return _ES_HEADER + body.removeprefix("#version 450\n")
+
+
+def webgl_texture(atlas: Atlas, *, seed=0, hash: str = "long") -> dict:
+    """The one-pass texture shader (:class:`TextureMapper` with ``two_pass=False``) as GLSL ES 3.00
+    for WebGL2, and what it reads, for the studio's view (``static/webgl.js``).
+
+    Returns
+    -------
+    dict
+        ``vertex``; fragment shaders ``colour`` (the picture) and ``ids`` (each pixel's tile,
+        eq. 2.5, into an R32UI target); ``tables`` (the eight permutation tables, from which the
+        page builds ``u_px`` and ``u_ym`` for each pass as :func:`row_table` does), ``perm`` and
+        ``red`` (:func:`hash_tables`), ``where`` (:meth:`Atlas.where`), ``atlas`` (the atlas
+        image as base64 PNG, row 0 at the top), ``tile`` (texels a tile side), ``colors``.
+
+    Examples
+    --------
+    >>> ex = np.random.default_rng(0).integers(0, 256, (40, 40, 3), dtype=np.uint8)
+    >>> at = Atlas(corner_packing(2), synthesize_atlas(ex, corner_packing(2), 2, tile=8), 2)
+    >>> w = webgl_texture(at, seed=4)
+    >>> w["colour"].splitlines()[0], w["tile"], len(w["tables"]), len(w["where"])
+    ('#version 300 es', 8, 8, 16)
+    """
+    import base64
+    import io
+
+    from PIL import Image
+
+    tables, perm, red = hash_tables(atlas.colors, seed, hash)
+    buf = io.BytesIO()
+    Image.fromarray(atlas.image, "RGBA").save(buf, format="PNG")
+    return {"vertex": _es(_VERTEX), "colour": _es(_FRAGMENT_DIRECT), "ids": _es(_FRAGMENT_IDS),
+            "tables": [t.tolist() for t in tables], "perm": perm.tolist(), "red": red.tolist(),
+            "where": atlas.where().tolist(), "atlas": base64.b64encode(buf.getvalue()).decode("ascii"),
+            "tile": atlas.tile, "colors": atlas.colors}
+
+
+def texture_window(atlas: Atlas, x0: int, y0: int, cols: int, rows: int, *, seed=0, hash: str = "long",
+                   tile_px: int | None = None) -> np.ndarray:
+    """The texture's window of ``cols x rows`` tiles with SW tile ``(x0, y0)``, drawn on the CPU.
+
+    Each tile (:func:`~tilesolve.constructive.stochastic.direct_corner`, the shader's tiles) is
+    its image in the atlas. With ``tile_px`` the atlas's tile (the default) these are the pixels
+    :class:`TextureMapper` and the studio's WebGL2 view draw (mip level 0, each pixel a texel's
+    centre); with fewer pixels a tile, each tile image is box-filtered to ``tile_px`` (the GPU
+    filters the atlas's mipmaps instead: the same tiles, colours within the filters' difference).
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(rows * tile_px, cols * tile_px, 4)`` uint8 RGBA, row 0 at the top.
+
+    Examples
+    --------
+    >>> ex = np.random.default_rng(0).integers(0, 256, (40, 40, 3), dtype=np.uint8)
+    >>> at = Atlas(corner_packing(2), synthesize_atlas(ex, corner_packing(2), 2, tile=8), 2)
+    >>> texture_window(at, -3, 5, 4, 2, seed=1).shape
+    (16, 32, 4)
+    """
+    from tilesolve.constructive.stochastic import direct_corner
+
+    t = atlas.tile
+    s = t if tile_px is None else check_int(tile_px, "tile size", 1)
+    if s > t:
+        raise InvalidProblem(f"a CPU texture draws at most one pixel a texel ({t} px a tile), got {s}")
+    tiles = direct_corner(x0, y0, cols, rows, colors=atlas.colors, seed=seed, hash=hash)
+    g = atlas.grid.shape[0]
+    where = atlas.where().astype(np.int64)
+    blocks = atlas.image.reshape(g, t, g, t, 4).transpose(0, 2, 1, 3, 4)  # (grid row from the top, column, t, t, 4)
+    images = blocks[g - 1 - where[:, 1], where[:, 0]]  # (C**4, t, t, 4): tile k's image
+    if s != t:
+        from PIL import Image
+
+        images = np.stack([np.asarray(Image.fromarray(im, "RGBA").resize((s, s), Image.BOX)) for im in images])
+    pic = images[np.asarray(tiles, dtype=np.int64)]  # (rows, cols, s, s, 4)
+    return np.ascontiguousarray(pic.transpose(0, 2, 1, 3, 4).reshape(rows * s, cols * s, 4))
