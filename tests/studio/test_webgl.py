@@ -312,3 +312,109 @@ def test_a_chosen_palette_colours_the_wall_view_in_both_paths(gl_page):
     finally:
         page.select_option("#palette-preset", index=0)
         page.uncheck("#view-webgl")
+
+
+# ------------------------------------------------------------------- the texture look
+#: Draw the texture of ``config`` (webgl_texture's dict) with picture SW tile (x0, y0) on a canvas
+#: of its own; read back the colours and each pixel's tile (the "ids" shader into an R32UI target).
+READ_TEXTURE = """([config, x0, y0, cellPx, w, h]) => {
+  const cv = document.createElement("canvas"); cv.width = w; cv.height = h;
+  const gl = cv.getContext("webgl2", { antialias: false, alpha: false, preserveDrawingBuffer: true });
+  const b64 = (a) => { const u = new Uint8Array(a.buffer); let s = "";
+                       for (let i = 0; i < u.length; i += 8192) s += String.fromCharCode(...u.subarray(i, i + 8192));
+                       return btoa(s); };
+  const tex = new studioWebGL.Texture(gl); tex.use(config);
+  tex.draw(x0, y0, 0, 0, cellPx, w, h);
+  const colour = new Uint8Array(w * h * 4); gl.bindFramebuffer(gl.FRAMEBUFFER, null);
+  gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, colour);
+  const t = gl.createTexture(); gl.bindTexture(gl.TEXTURE_2D, t); gl.texStorage2D(gl.TEXTURE_2D, 1, gl.R32UI, w, h);
+  const fbo = gl.createFramebuffer(); gl.bindFramebuffer(gl.FRAMEBUFFER, fbo);
+  gl.framebufferTexture2D(gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, t, 0);
+  tex.draw(x0, y0, 0, 0, cellPx, w, h, "ids", fbo);
+  const ids = new Uint32Array(w * h * 4); gl.bindFramebuffer(gl.FRAMEBUFFER, fbo);
+  gl.readPixels(0, 0, w, h, gl.RGBA_INTEGER, gl.UNSIGNED_INT, ids);
+  return { colour: b64(colour), ids: b64(ids), error: gl.getError() };
+}"""
+
+
+@pytest.fixture(scope="module")
+def texture_atlas():
+    """The studio's texture atlas of 3 colours, seed 3 (the texture views' example and tile)."""
+    from tilesolve.gpu.texture import Atlas
+    from tilesolve.studio.views import TEXTURE_TILE, texture_example
+
+    return Atlas.from_example(texture_example(), 3, tile=TEXTURE_TILE, seed=3)
+
+
+@pytest.mark.parametrize("origin", [(0, 0), (-37, 11), (HUGE, -HUGE)])
+def test_the_browser_draws_the_cpu_texture(gl_page, texture_atlas, origin):
+    # the texture look: at one texel a pixel (24 px a tile, mip level 0, texel centres) the
+    # browser's pixels are the CPU's (texture_window, the server's tiles) exactly; at any size
+    # every pixel's tile is the CPU's direct corner tiling (the integer hashes) exactly
+    from tilesolve.constructive.stochastic import direct_corner
+    from tilesolve.gpu.texture import texture_window, webgl_texture
+
+    config = webgl_texture(texture_atlas, seed=3)
+    cols, rows = 11, 6
+    doc = gl_page.evaluate(READ_TEXTURE, [config, str(origin[0]), str(origin[1]), 24, cols * 24, rows * 24])
+    assert doc["error"] == 0
+    colour = _array(doc, "colour", np.uint8, cols * 24, rows * 24)
+    cpu = texture_window(texture_atlas, origin[0], origin[1], cols, rows, seed=3)
+    differ = np.any(colour != cpu, axis=2)
+    print(f"\nWebGL2 texture vs the CPU's, {cols * 24}x{rows * 24} px: {np.count_nonzero(differ)} differ")
+    assert not differ.any()
+    tiles = direct_corner(origin[0], origin[1], 40, 17, colors=3, seed=3)
+    doc = gl_page.evaluate(READ_TEXTURE, [config, str(origin[0]), str(origin[1]), 7, 40 * 7, 17 * 7])
+    ids = _array(doc, "ids", np.uint32, 40 * 7, 17 * 7)[..., 0]
+    assert np.array_equal(ids, np.repeat(np.repeat(tiles, 7, 0), 7, 1))
+
+
+def _texture_view_at_24_px(page, box: bool) -> None:
+    """The stochastic family's view (corner tiles, 3 colours, seed 3) in the texture look at zoom 3:
+    24 px a tile, the server's level-0 tiles one pixel a pixel; ``box``: the "WebGL2" box ticked."""
+    page.select_option("#family", "stochastic")
+    page.select_option("#field-kind", "corner")
+    page.fill("#field-colors", "3")
+    page.dispatch_event("#field-colors", "change")
+    page.fill("#seed", "3")
+    page.dispatch_event("#seed", "change")
+    page.set_checked("#view-webgl", box)
+    page.check("#view-texture")
+    page.locator("#viewport").scroll_into_view_if_needed()
+    page.evaluate("Object.assign(studio.view, { x: -301, y: 97, zoom: 3 }); drawView()")
+
+
+def test_the_texture_view_is_the_same_pixels_from_webgl2_and_from_the_server(gl_page):
+    page = gl_page
+    try:
+        _texture_view_at_24_px(page, box=False)
+        assert page.is_visible("#view-texture-label") and page.evaluate("studio.view.look") == "texture"
+        page.wait_for_function(TILES_DRAWN)
+        assert page.evaluate("studio.view.level") == 0 and page.is_hidden("#view-gl")
+        tiles = _tiles_view(page)
+        page.check("#view-webgl")
+        page.wait_for_function(GL_DRAWN + " && studioWebGL.state.kind === 'texture'")
+        assert page.evaluate("studioWebGL.state.drawn.cellPx") == 24
+        gl = _gl_view(page)
+        assert gl.shape == tiles.shape
+        differ = np.any(gl != tiles, axis=2)
+        print(f"\nWebGL2 texture view vs the server's tiles, {gl.shape[1]}x{gl.shape[0]} px: "
+              f"{np.count_nonzero(differ)} differ")
+        assert not differ.any()
+        # a lost context: the server's texture tiles, the same pixels, until it is restored
+        page.evaluate("window.loseContext = studioWebGL.gl.getExtension('WEBGL_lose_context'); loseContext.loseContext()")
+        page.wait_for_function(f"studioWebGL.state.lost && {TILES_DRAWN}")
+        assert np.array_equal(_tiles_view(page), gl)
+        page.evaluate("loseContext.restoreContext()")
+        page.wait_for_function(f"!studioWebGL.state.lost && {GL_DRAWN} && studioWebGL.state.kind === 'texture'")
+        assert np.array_equal(_gl_view(page), gl)
+        # unticked "Texture": the family's own picture tiles, which have no shader
+        page.uncheck("#view-texture")
+        page.wait_for_function(TILES_DRAWN)
+        assert page.evaluate("studioWebGL.state.kind") is None and page.is_hidden("#view-gl")
+        assert not np.array_equal(_tiles_view(page), gl)
+    finally:
+        page.uncheck("#view-texture")
+        page.uncheck("#view-webgl")
+    page.select_option("#family", "board")
+    assert page.is_hidden("#view-texture-label")  # a wall has no texture look

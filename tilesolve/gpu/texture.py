@@ -887,7 +887,8 @@ def webgl_texture(atlas: Atlas, *, seed=0, hash: str = "long") -> dict:
         eq. 2.5, into an R32UI target); ``tables`` (the eight permutation tables, from which the
         page builds ``u_px`` and ``u_ym`` for each pass as :func:`row_table` does), ``perm`` and
         ``red`` (:func:`hash_tables`), ``where`` (:meth:`Atlas.where`), ``atlas`` (the atlas
-        image as base64 PNG, row 0 at the top), ``tile`` (texels a tile side), ``colors``.
+        image's RGBA bytes, row 0 at the top, base64: no image decoder between it and the
+        texture), ``atlas_size`` (its side in texels), ``tile`` (texels a tile side), ``colors``.
 
     Examples
     --------
@@ -898,17 +899,12 @@ def webgl_texture(atlas: Atlas, *, seed=0, hash: str = "long") -> dict:
     ('#version 300 es', 8, 8, 16)
     """
     import base64
-    import io
-
-    from PIL import Image
 
     tables, perm, red = hash_tables(atlas.colors, seed, hash)
-    buf = io.BytesIO()
-    Image.fromarray(atlas.image, "RGBA").save(buf, format="PNG")
     return {"vertex": _es(_VERTEX), "colour": _es(_FRAGMENT_DIRECT), "ids": _es(_FRAGMENT_IDS),
             "tables": [t.tolist() for t in tables], "perm": perm.tolist(), "red": red.tolist(),
-            "where": atlas.where().tolist(), "atlas": base64.b64encode(buf.getvalue()).decode("ascii"),
-            "tile": atlas.tile, "colors": atlas.colors}
+            "where": atlas.where().tolist(), "atlas": base64.b64encode(np.ascontiguousarray(atlas.image).tobytes()).decode("ascii"),
+            "atlas_size": int(atlas.image.shape[0]), "tile": atlas.tile, "colors": atlas.colors}
 
 
 def texture_window(atlas: Atlas, x0: int, y0: int, cols: int, rows: int, *, seed=0, hash: str = "long",

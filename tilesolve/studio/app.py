@@ -18,12 +18,13 @@ message>"}``):
                                     the last one when it has ended
 ``POST /api/jobs/{id}/cancel``      end a running solve
 ``GET /api/jobs/{id}/solution.json|picture.svg|picture.png``  the exports (the CLI's files)
-``GET /api/view/{family}.png?values=JSON&x=&y=&n=&palette=``  one n x n window of an infinite
-                                    procedural view (pan and zoom), x/y its bottom-left cell;
-                                    ``palette`` (``RRGGBB,...``, optional): the page's chosen colours
-``GET /api/webgl/{family}?values=JSON&palette=``  the shaders with which the page draws that
-                                    view itself (WebGL2; the procedural wall), in those colours,
-                                    or ``{"kind": null}``
+``GET /api/view/{family}.png?values=JSON&x=&y=&n=&palette=&look=``  one n x n window of an
+                                    infinite procedural view (pan and zoom), x/y its bottom-left
+                                    cell; ``palette`` (``RRGGBB,...``, optional): the page's chosen
+                                    colours; ``look``: ``picture`` (default) or ``texture``
+``GET /api/webgl/{family}?values=JSON&palette=&look=``  the shaders with which the page draws
+                                    that view itself (WebGL2: the procedural wall, in those colours;
+                                    the texture look), or ``{"kind": null}``
 
 The page sends values, never paths: no endpoint reads or writes a file named by a request.
 Only requests addressed to the server's own socket are answered, and only the studio's own
@@ -161,7 +162,13 @@ def _guard(handler):
 def _family_json(fam: family.Family) -> dict:
     return {"name": fam.name, "title": fam.title, "methods": list(fam.methods),
             "route_help": dict(fam.route_help), "fields": [f.public() for f in fam.form.fields],
-            "view": fam.form.window is not None, "pictures": list(fam.pictures)}
+            "view": fam.form.window is not None, "pictures": list(fam.pictures), "texture": _has_texture(fam.name)}
+
+
+@functools.lru_cache(maxsize=None)
+def _has_texture(name: str) -> bool:
+    """Whether a family's view has the texture look (:meth:`tilesolve.studio.views.Views.has_texture`)."""
+    return Views().has_texture(name)
 
 
 # ----------------------------------------------------------------------------- handlers
@@ -292,8 +299,11 @@ async def view(request: Request) -> Response:
     if not 1 <= n <= MAX_VIEW_CELLS:
         raise InvalidProblem(f"a view window is 1..{MAX_VIEW_CELLS} cells wide, got {n}")
     raw = _view_values(request)
-    data = await anyio.to_thread.run_sync(request.app.state.views.png, request.path_params["family"], raw, x, y, n,
-                                          _view_colours(request))
+    views, name = request.app.state.views, request.path_params["family"]
+    if _view_look(request) == "texture":
+        data = await anyio.to_thread.run_sync(views.texture_png, name, raw, x, y, n)
+    else:
+        data = await anyio.to_thread.run_sync(views.png, name, raw, x, y, n, _view_colours(request))
     return Response(data, media_type="image/png", headers={"Cache-Control": "max-age=3600"})
 
 
@@ -318,6 +328,16 @@ def _view_colours(request: Request) -> list[tuple[int, int, int]] | None:
     return out
 
 
+def _view_look(request: Request) -> str:
+    """How a view is drawn (``look``: :data:`tilesolve.studio.views.LOOKS`, ``picture`` by default)."""
+    from tilesolve.studio.views import LOOKS
+
+    look = request.query_params.get("look", "picture")
+    if look not in LOOKS:
+        raise InvalidProblem(f"look must be one of {', '.join(LOOKS)}, got {look[:20]!r}")
+    return look
+
+
 def _view_values(request: Request) -> str:
     """The form values (JSON text) of a view request."""
     raw = request.query_params.get("values", "{}")
@@ -328,8 +348,9 @@ def _view_values(request: Request) -> str:
 
 @_guard
 async def webgl(request: Request) -> Response:
-    return JSONResponse(request.app.state.views.webgl(request.path_params["family"], _view_values(request),
-                                                      _view_colours(request)))
+    doc = await anyio.to_thread.run_sync(request.app.state.views.webgl, request.path_params["family"],
+                                         _view_values(request), _view_colours(request), _view_look(request))
+    return JSONResponse(doc)
 
 
 # ----------------------------------------------------------------------------- the app

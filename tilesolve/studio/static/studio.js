@@ -821,12 +821,15 @@ function buildGallery() {
 }
 
 // ------------------------------------------------------------------ infinite view
+// The view of a corner tiling has a second look, "Texture" (the box shown for the families whose
+// view has it, `texture` in GET /api/families): the GPU path's corner-tile texture of the same
+// tiles, from the server's tiles or drawn here by WebGL2 as the wall is.
 // A canvas drawn from square tiles of the plane, VIEW_N << level cells each (coarser levels when
 // zoomed out); a tile not yet loaded shows the best loaded level over it, or a hatch, and the
 // loading sign counts what is on its way. Every tile is drawn at the same scale, edges rounded
 // to whole pixels, so no band differs and no gap opens.
 const view = studio.view = { x: 0, y: 0, zoom: 1, cache: new Map(), inflight: 0, values: "", gen: 0,
-                             missing: 0, rects: [], failed: 0, palette: "" };
+                             missing: 0, rects: [], failed: 0, palette: "", look: "picture" };
 const MAX_INFLIGHT = 4;
 
 function resetView() {
@@ -837,7 +840,9 @@ function resetView() {
   values.seed = values.seed === undefined ? 0 : values.seed;   // one seed for every window
   view.values = encodeURIComponent(JSON.stringify(values));
   view.palette = viewPalette();
-  if (window.studioWebGL) studioWebGL.configure(studio.fam.name, view.values, view.palette).then(() => requestAnimationFrame(drawView));
+  $("view-texture-label").hidden = !studio.fam.texture;
+  view.look = studio.fam.texture && $("view-texture").checked ? "texture" : "picture";
+  if (window.studioWebGL) studioWebGL.configure(studio.fam.name, view.values, view.palette, view.look).then(() => requestAnimationFrame(drawView));
   requestAnimationFrame(drawView);
 }
 
@@ -865,7 +870,7 @@ function fetchTile(t) {
     setTimeout(() => { pump(); drawView(); }, 300 * t.tries);
   };
   img.src = `/api/view/${studio.fam.name}.png?x=${t.i * n}&y=${-(t.j + 1) * n}&n=${n}&values=${view.values}` +
-            (view.palette ? `&palette=${view.palette}` : "");
+            (view.palette ? `&palette=${view.palette}` : "") + (view.look === "texture" ? "&look=texture" : "");
 }
 
 function pump() {
@@ -944,6 +949,7 @@ function drawView() {
 function setupView() {
   const vp = $("viewport");
   if (window.studioWebGL) studioWebGL.setup(resetView);
+  $("view-texture").addEventListener("change", resetView);
   let drag = null, pending = false;
   const redraw = () => { if (!pending) { pending = true; requestAnimationFrame(() => { pending = false; drawView(); }); } };
   vp.addEventListener("pointerdown", (e) => { drag = { x: e.clientX, y: e.clientY }; vp.style.cursor = "grabbing"; vp.setPointerCapture(e.pointerId); });

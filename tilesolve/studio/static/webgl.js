@@ -1,5 +1,8 @@
-// tilesolve studio: the infinite view of the procedural wall drawn on the page's own GPU by the
-// GPU path's shaders (tilesolve/gpu/wall.py, served as GLSL ES 3.00 by GET /api/webgl/{family}).
+// tilesolve studio: the infinite view of the procedural wall, and the texture look of a corner
+// tiling's view, drawn on the page's own GPU by the GPU path's shaders (tilesolve/gpu/wall.py and
+// tilesolve/gpu/texture.py, served as GLSL ES 3.00 by GET /api/webgl/{family}; the texture's
+// tiles are the CPU's direct corner tiling, hash for hash, and at one texel a pixel its pixels are
+// the server's texture tiles').
 // Their integer hashes are the CPU's (tilesolve/constructive/walls.py), so every cell's edge
 // colours, and with them every brick, are those of the server's wall; the shaders colour the
 // bricks as the server's view tiles do (the board pictures' palette, served with them as a
@@ -12,8 +15,9 @@
 // compile, and a zoomed-out frame (a cell a pixel) takes seconds more.
 "use strict";
 window.studioWebGL = (() => {
-  const state = { wall: null, seq: 0, pending: false, error: "", drawn: null, lost: false };
-  let made = null;                             // the one Wall of the page's context
+  // state.wall: what draws the view (a Wall or a Texture), null for the server's tiles
+  const state = { wall: null, seq: 0, pending: false, error: "", drawn: null, lost: false, kind: null };
+  let made = null, madeTexture = null;         // the one Wall and the one Texture of the page's context
 
   const mod = (a, n) => ((a % n) + n) % n;     // floor modulo (BigInt or Number)
   const words = (v) => { const u = BigInt.asUintN(64, v); return [Number(u & 0xFFFFFFFFn), Number(u >> 32n)]; };
@@ -137,6 +141,92 @@ window.studioWebGL = (() => {
     }
   }
 
+  // The corner-tile texture of the GPU path (TextureMapper of tilesolve/gpu/texture.py in one
+  // pass) on one WebGL2 context: the hash's tables (R32UI), the tiles' places in the packing
+  // (RG32UI), the atlas (RGBA8, mipmapped, wrapping as the packing does), and per pass the row
+  // tables of its tile columns and rows (RGBA32UI, built here as row_table builds them).
+  class Texture {
+    constructor(gl) {
+      this.gl = gl; this.config = null; this.programs = {}; this.textures = {};
+      gl.bindVertexArray(gl.createVertexArray());
+      gl.bindBuffer(gl.ARRAY_BUFFER, gl.createBuffer());
+      gl.bufferData(gl.ARRAY_BUFFER, new Float32Array([-1, -1, 1, -1, -1, 1, 1, 1]), gl.STATIC_DRAW);
+      gl.enableVertexAttribArray(0); gl.vertexAttribPointer(0, 2, gl.FLOAT, false, 0, 0);
+      this.vao = gl.getParameter(gl.VERTEX_ARRAY_BINDING);
+    }
+
+    use(config) {
+      const gl = this.gl, c = config;
+      for (const p of Object.values(this.programs)) gl.deleteProgram(p);
+      for (const t of Object.values(this.textures)) gl.deleteTexture(t);
+      const flat = (rows) => new Uint32Array(rows.flat(2));
+      const bytes = Uint8Array.from(atob(c.atlas), (ch) => ch.charCodeAt(0));
+      const n = c.atlas_size, up = new Uint8Array(bytes.length), row = 4 * n;
+      for (let y = 0; y < n; y++) up.set(bytes.subarray((n - 1 - y) * row, (n - y) * row), y * row);   // GL rows from the bottom
+      this.textures = {
+        perm: texture(gl, gl.R32UI, gl.RED_INTEGER, gl.UNSIGNED_INT, c.perm[0].length, 8, flat(c.perm)),
+        red: texture(gl, gl.R32UI, gl.RED_INTEGER, gl.UNSIGNED_INT, c.red.length, 1, new Uint32Array(c.red)),
+        where: texture(gl, gl.RG32UI, gl.RG_INTEGER, gl.UNSIGNED_INT, c.where.length, 1, flat(c.where)),
+        atlas: texture(gl, gl.RGBA8, gl.RGBA, gl.UNSIGNED_BYTE, n, n, up),
+      };
+      gl.generateMipmap(gl.TEXTURE_2D);                // the atlas, bound last
+      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.LINEAR_MIPMAP_LINEAR);
+      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.LINEAR);
+      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_S, gl.REPEAT);
+      gl.texParameteri(gl.TEXTURE_2D, gl.TEXTURE_WRAP_T, gl.REPEAT);
+      gl.bindTexture(gl.TEXTURE_2D, null);
+      this.config = c; this.programs = {};
+      this.program("colour");
+    }
+
+    program(kind) {
+      if (!this.programs[kind]) {
+        const gl = this.gl, p = link(gl, this.config.vertex, this.config[kind]);
+        const at = (name) => gl.getUniformLocation(p, name);
+        gl.useProgram(p);
+        ["u_perm", "u_px", "u_ym", "u_red", "u_where", "u_atlas"].forEach((name, unit) => gl.uniform1i(at(name), unit));
+        gl.uniform1ui(at("u_colors"), this.config.colors); gl.uniform1i(at("u_grid"), this.config.colors ** 2);
+        this.programs[kind] = p;
+      }
+      return this.programs[kind];
+    }
+
+    // (2, count, 4) row tables of tile columns (xAxis: P_i[(base + k) % N_i]) or rows ((base + k) % N_i).
+    rows(base, count, xAxis) {
+      const out = new Uint32Array(2 * count * 4);
+      this.config.tables.forEach((t, i) => {
+        const r = Number(mod(base, BigInt(t.length)));
+        for (let k = 0; k < count; k++) {
+          const res = (r + k) % t.length;
+          out[(i >> 2) * count * 4 + 4 * k + (i & 3)] = xAxis ? t[res] : res;
+        }
+      });
+      return texture(this.gl, this.gl.RGBA32UI, this.gl.RGBA_INTEGER, this.gl.UNSIGNED_INT, count, 2, out);
+    }
+
+    // Shade the pixels (ox, oy) + [0, w) x [0, h) of the picture whose SW tile is (x0, y0), tiles
+    // `cellPx` pixels a side, into `target` (null: the canvas) with the program `kind` ("colour",
+    // or "ids" into an R32UI target), as TextureMapper._pass does with two_pass=False.
+    draw(x0, y0, ox, oy, cellPx, w, h, kind = "colour", target = null) {
+      const gl = this.gl, p = this.program(kind), T = this.textures;
+      const first = [Math.floor(ox / cellPx), Math.floor(oy / cellPx)];
+      const count = [Math.floor((ox + w - 1) / cellPx) - first[0] + 1, Math.floor((oy + h - 1) / cellPx) - first[1] + 1];
+      const px = this.rows(BigInt(x0) + BigInt(first[0]), count[0] + 1, true);
+      const ym = this.rows(BigInt(y0) + BigInt(first[1]), count[1] + 1, false);
+      gl.bindVertexArray(this.vao);
+      gl.bindFramebuffer(gl.FRAMEBUFFER, target);
+      gl.viewport(0, 0, w, h);
+      gl.useProgram(p);
+      const loc = (name) => gl.getUniformLocation(p, name);
+      gl.uniform2i(loc("u_offset"), ox, oy); gl.uniform2i(loc("u_first"), first[0], first[1]);
+      gl.uniform1i(loc("u_tile_px"), cellPx); gl.uniform1f(loc("u_lod"), Math.log2(this.config.tile / cellPx));
+      [T.perm, px, ym, T.red, T.where, T.atlas].forEach((t, unit) => { gl.activeTexture(gl.TEXTURE0 + unit); gl.bindTexture(gl.TEXTURE_2D, t); });
+      gl.drawArrays(gl.TRIANGLE_STRIP, 0, 4);
+      for (let unit = 5; unit >= 0; unit--) { gl.activeTexture(gl.TEXTURE0 + unit); gl.bindTexture(gl.TEXTURE_2D, null); }
+      gl.deleteTexture(px); gl.deleteTexture(ym);
+    }
+  }
+
   // The canvas over the view's 2D canvas, and its context (null without WebGL2).
   function canvas() {
     let cv = document.getElementById("view-gl");
@@ -175,7 +265,7 @@ window.studioWebGL = (() => {
     if (!gl) return;
     canvas().addEventListener("webglcontextlost", (e) => {
       e.preventDefault();                      // ask the browser to restore it
-      state.lost = true; state.wall = made = null; state.pending = false;
+      state.lost = true; state.wall = made = madeTexture = null; state.pending = false;
       changed();
     });
     canvas().addEventListener("webglcontextrestored", () => { state.lost = false; changed(); });
@@ -184,20 +274,25 @@ window.studioWebGL = (() => {
   // The view of family `name` for the form values `values` (URL-encoded JSON) in the colours
   // `palette` (RRGGBB,...; "" for the pictures' own): fetch its shaders (if it has some) and
   // compile them. Resolves when known; until then draw() draws nothing.
-  async function configure(name, values, palette = "") {
+  async function configure(name, values, palette = "", look = "picture") {
     const seq = ++state.seq;
-    state.wall = null; state.error = ""; state.pending = false;
+    state.wall = null; state.error = ""; state.pending = false; state.kind = null;
     const box = document.getElementById("view-webgl");
     if (!gl || state.lost || (box && !box.checked)) return;
     state.pending = true;
     try {
-      const r = await fetch(`/api/webgl/${name}?values=${values}${palette ? `&palette=${palette}` : ""}`);
+      const r = await fetch(`/api/webgl/${name}?values=${values}${palette ? `&palette=${palette}` : ""}` +
+                            (look !== "picture" ? `&look=${look}` : ""));
       const doc = await r.json();
       if (seq !== state.seq || gl.isContextLost()) return;
       if (r.ok && doc.kind === "wall") {
         state.wall = made = made || new Wall(gl);
         state.wall.use(doc);
+      } else if (r.ok && doc.kind === "texture") {
+        state.wall = madeTexture = madeTexture || new Texture(gl);
+        state.wall.use(doc);
       }
+      if (state.wall) state.kind = doc.kind;
     } catch (e) {
       if (seq === state.seq) { state.error = e.message; state.wall = null; }
     } finally {
@@ -228,5 +323,5 @@ window.studioWebGL = (() => {
     return true;
   }
 
-  return { state, setup, configure, draw, gl, renderer, Wall };
+  return { state, setup, configure, draw, gl, renderer, Wall, Texture };
 })();
