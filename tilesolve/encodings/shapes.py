@@ -250,33 +250,34 @@ def encode_tiling(problem: ShapesProblem) -> TilingEncoding:
         found = placements_at(g, images, cells)
         places = [(s, c) for c, s in found.items() if set(c) <= region]
         index = {c: i for i, c in enumerate(cells)}
-
-        def cover(cells_):
-            return [index[c] for c in cells_]
+        covers = [[index[x] for x in c] for _, c in places]
     else:
         # Modulo the periods a placement is its image with the image's first cell on one of the
         # representatives: each is built once (not once per cell it covers).
+        # Each placement's cells are reduced once, and its cover read from them.
         reduce, reps = torus_reducer(g, problem.lattice)
-        seen, places = set(), []
+        index = {c: i for i, c in enumerate(reps)}
+        rep_types = [g.cell_type(r) for r in reps]
+        seen, places, covers = set(), [], []
         for s, img in images:
             x0, y0 = img[0]
-            for hx, hy in reps:
-                if g.cell_type((hx, hy)) != g.cell_type((x0, y0)):
+            t0 = g.cell_type((x0, y0))
+            offsets = [(x - x0, y - y0) for x, y in img]
+            for (hx, hy), t in zip(reps, rep_types):
+                if t != t0:
                     continue
-                c = tuple((x + hx - x0, y + hy - y0) for x, y in img)
-                red = tuple(sorted(reduce(x) for x in c))
+                c = tuple((hx + dx, hy + dy) for dx, dy in offsets)
+                reduced = [reduce(x) for x in c]
+                red = tuple(sorted(reduced))
                 if len(set(red)) == len(red) and (s, red) not in seen:
                     seen.add((s, red))
                     places.append((s, c))
-        index = {c: i for i, c in enumerate(reps)}
+                    covers.append([index[x] for x in reduced])
         cells = reps
-
-        def cover(cells_):
-            return [index[reduce(c)] for c in cells_]
     enc = TilingEncoding(problem, places)
     by_cell: list[list[int]] = [[] for _ in cells]
-    for i, (_, c) in enumerate(places):
-        for j in cover(c):
+    for i, cover in enumerate(covers):
+        for j in cover:
             by_cell[j].append(i + 1)
     top = len(places)
     for lits in by_cell:
