@@ -127,7 +127,6 @@ def census(grid_name: str, size: int, *, holes: bool = False, max_level: int = 3
     >>> [r.verdict for r in rows], n
     (['isohedral', 'isohedral'], 2)
     """
-    from tilesolve.engine.aperiodic import dispatch
     from tilesolve.progress import as_progress
 
     shapes = polyforms(grid_name, size, holes=holes)
@@ -148,8 +147,18 @@ def census(grid_name: str, size: int, *, holes: bool = False, max_level: int = 3
             task.advance()
             return False
 
-        if dispatch(functools.partial(_census_job, grid_name, todo, options), len(todo), run, take, lambda: None):
-            raise KeyboardInterrupt  # take never stops the census: dispatch stopped for Ctrl-C
+        job = functools.partial(_census_job, grid_name, todo, options)
+        if cluster is None and ((workers or 2) == 1 or len(todo) <= 1):
+            # here, as dispatch would run it, without importing the pool and Dask machinery
+            for j in range(len(todo)):
+                if run.deadline.expired():
+                    break
+                take(j, job(seed=j))
+        else:
+            from tilesolve.engine.aperiodic import dispatch
+
+            if dispatch(job, len(todo), run, take, lambda: None):
+                raise KeyboardInterrupt  # take never stops the census: dispatch stopped for Ctrl-C
     return [rows[i] for i in sorted(rows)], len(shapes)
 
 
