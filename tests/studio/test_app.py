@@ -477,3 +477,30 @@ def test_a_chosen_palette_colours_the_wall_views_tiles_and_shaders(client):
     for bad in ("12345", "GG0000", ",".join(["000000"] * 257)):
         r = client.get(f"/api/view/board.png?values={values}&x=0&y=0&n=8&palette={bad}")
         assert r.status_code == 400 and "palette" in r.json()["error"]
+
+
+def test_the_texture_look_of_a_corner_tilings_view(client):
+    import io
+
+    from PIL import Image
+
+    from tilesolve.gpu.texture import Atlas, texture_window
+    from tilesolve.studio.views import TEXTURE_TILE, texture_example
+
+    assert {f["name"]: f["texture"] for f in client.get("/api/families").json()["families"]}["stochastic"] is True
+    values = json.dumps({"seed": 5, "kind": "corner", "colors": 2})
+    r = client.get(f"/api/view/stochastic.png?values={values}&x=-40&y=7&n=32&look=texture")
+    assert r.status_code == 200
+    img = np.asarray(Image.open(io.BytesIO(r.content)).convert("RGBA"))
+    at = Atlas.from_example(texture_example(), 2, tile=TEXTURE_TILE, seed=5)
+    assert np.array_equal(img, texture_window(at, -40, 7, 32, 32, seed=5))  # one texel a pixel
+    r = client.get(f"/api/view/stochastic.png?values={values}&x=0&y=0&n=128&look=texture")
+    assert Image.open(io.BytesIO(r.content)).size == (1024, 1024)  # 8 px a tile when zoomed out
+    doc = client.get(f"/api/webgl/stochastic?values={values}&look=texture").json()
+    assert doc["kind"] == "texture" and doc["tile"] == TEXTURE_TILE and doc["colour"].startswith("#version 300 es\n")
+    for name, vals, message in [("board", {}, "texture look"), ("stochastic", {"kind": "wang"}, "texture look"),
+                                ("stochastic", {"kind": "corner", "colors": 6}, "at most 4 colours")]:
+        r = client.get(f"/api/view/{name}.png?values={json.dumps(vals)}&x=0&y=0&n=8&look=texture")
+        assert r.status_code == 400 and message in r.json()["error"]
+    r = client.get(f"/api/webgl/stochastic?values={values}&look=photo")
+    assert r.status_code == 400 and "look must be one of picture, texture" in r.json()["error"]

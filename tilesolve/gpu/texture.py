@@ -903,7 +903,8 @@ def webgl_texture(atlas: Atlas, *, seed=0, hash: str = "long") -> dict:
     tables, perm, red = hash_tables(atlas.colors, seed, hash)
     return {"vertex": _es(_VERTEX), "colour": _es(_FRAGMENT_DIRECT), "ids": _es(_FRAGMENT_IDS),
             "tables": [t.tolist() for t in tables], "perm": perm.tolist(), "red": red.tolist(),
-            "where": atlas.where().tolist(), "atlas": base64.b64encode(np.ascontiguousarray(atlas.image).tobytes()).decode("ascii"),
+            "where": atlas.where().tolist(),
+            "atlas": base64.b64encode(np.ascontiguousarray(atlas.image).tobytes()).decode("ascii"),
             "atlas_size": int(atlas.image.shape[0]), "tile": atlas.tile, "colors": atlas.colors}
 
 

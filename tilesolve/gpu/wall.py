@@ -28,13 +28,14 @@ Two looks (:data:`LOOKS`) colour the bricks. ``brick`` (the default) is 004's: m
 border, otherwise a red brick varied by a fourth hash stream of the brick id (004 Fig. 9 b),
 bevelled. ``board`` is the look of every other wall picture, the board pictures of
 :func:`tilesolve.io.board_png.brick_image` (the studio's view tiles among them), pixel for pixel
-at one sample a pixel: their palette, :func:`tilesolve.io.wall_png.brick_palette` (a colour per
-brick, dark mortar; its one home), as a 256 x 1 texture (``u_palette``), and their geometry:
-each edge at its position rounded to a whole pixel (half to even, kept inside the cell), mortar
-lines ``max(1, round(cell_px / 10))`` pixels wide, a brick's colour the bricks' one hash
-(:func:`tilesolve.model.brick_colour.brick_colour_index`) of its id. With several samples a pixel, each sample is shaded at its own position,
-against edges nudged 1/256 px from their exact place towards the rounded one (so that every
-pixel centre falls where the board picture puts it).
+at one sample a pixel: their palette, :func:`tilesolve.io.board_png.picture_palette` (a colour per
+brick, :func:`tilesolve.io.wall_png.brick_palette`'s or a palette chosen in the studio, dark
+mortar), as a 256 x 1 texture (``u_palette``), and their geometry: each edge at its position
+rounded to a whole pixel (half to even, kept inside the cell), mortar lines
+``max(1, round(cell_px / 10))`` pixels wide, a brick's colour the bricks' one hash
+(:func:`tilesolve.model.brick_colour.brick_colour_index`) of its id. With several samples a
+pixel, each sample is shaded at its own position, against edges nudged 1/256 px from their exact
+place towards the rounded one (so that every pixel centre falls where the board picture puts it).
 
 Passes
 ------

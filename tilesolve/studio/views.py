@@ -117,7 +117,8 @@ def recolour(data: bytes, colours) -> bytes:
         if entries[:N_BRICK_COLOURS] == brick_palette()[:N_BRICK_COLOURS]:
             new = picture_palette(colours)[:N_BRICK_COLOURS] + entries[N_BRICK_COLOURS:]
         else:
-            tiles = {tuple(int(tile_colour(k)[i:i + 2], 16) for i in (1, 3, 5)): colours[k] for k in range(len(colours))}
+            tiles = {tuple(int(tile_colour(k)[i:i + 2], 16) for i in (1, 3, 5)): colours[k]
+                     for k in range(len(colours))}
             new = [tiles.get(rgb, rgb) for rgb in entries]
         if new == entries:
             return data
@@ -230,7 +231,8 @@ class Views:
             from tilesolve.gpu.texture import webgl_texture
 
             colors, hash_ = _texture_source(fam, vals)
-            return {"kind": "texture", **webgl_texture(self._atlas(colors, vals["seed"]), seed=vals["seed"], hash=hash_)}
+            atlas = self._atlas(colors, vals["seed"])
+            return {"kind": "texture", **webgl_texture(atlas, seed=vals["seed"], hash=hash_)}
         problem, method, _ = fam.form.window(vals, Window(0, 0, 1, 1))
         if method != "procedural":
             return {"kind": None}
