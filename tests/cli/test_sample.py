@@ -180,10 +180,10 @@ def test_importance_spectrum_prints_the_table_and_draws(tmp_path):
             "1", "--svg", "s.svg", "--png", "s.png", "--periodogram", "p.png", cwd=tmp_path)
     assert r.returncode == 0, r.stderr
     rows = [ln.split() for ln in r.stdout.splitlines()[1:]]
-    assert [row[0] for row in rows] == ["penrose", "polyomino", "rejection"]
+    assert [row[0] for row in rows] == ["penrose", "polyomino", "uncorrected", "rejection"]
     peak = {row[0]: float(row[-2]) for row in rows}
-    assert peak["rejection"] < 30 < peak["polyomino"]  # white noise has no spikes; a raw tiling's lattice has
-    assert (tmp_path / "s.svg").read_text().count("<polyline") == 6
+    assert peak["rejection"] < 30 < peak["uncorrected"]  # white noise has no spikes; a raw tiling's lattice has
+    assert (tmp_path / "s.svg").read_text().count("<polyline") == 8
     for name in ("s.png", "p.png"):
         assert (tmp_path / name).read_bytes()[:4] == b"\x89PNG"
 

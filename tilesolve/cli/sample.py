@@ -387,9 +387,10 @@ def stipple(ctx, image, test_image, points, tile, lloyd, jitter, method, seed, o
     Penrose tiling's Robinson triangles (Ostromoukhov, Donohue, Jodoin 2004) or a self-similar
     polyomino (Ostromoukhov 2007) subdivided where the image needs more than one sample a tile,
     each tile's sample kept by a threshold on its structural index; or plain rejection sampling.
-    The papers' correction vectors are not tabulated: --jitter and --lloyd stand in for them (the
-    defaults, Penrose with both, draw the picture without the tilings' patterns; --no-jitter
-    --lloyd 0 shows the raw structure, `sample importance-spectrum` measures it). The samples are
+    The polyomino sampler without --jitter (X pentomino, chair) takes its learnt correction table
+    (Ostromoukhov 2007's offsets by structural index, rebuilt by this project); --jitter and
+    --lloyd are the other stand-ins (the defaults, Penrose with both, draw the picture without
+    the tilings' patterns; `sample importance-spectrum` measures them). The samples are
     checked before anything is written: inside the image, and the counts of 2 x 2 and 4 x 4
     blocks near their share of the image's darkness (exit 1 if not). Without IMAGE, a built-in
     radial ramp. The same seed gives the same files, byte for byte. A stipple file (-o OUT.json,
@@ -468,7 +469,8 @@ def importance_spectrum(ctx, image, test_image, points, tile, lloyd, jitter, run
     as the papers show it), the radially averaged power spectrum and anisotropy (Ulichney 1987)
     of --runs seeds, and the peak factor: the largest power of the averaged 2-D periodogram
     over its annulus' mean (about 10 for white noise; spikes of a tiling's structure give
-    hundreds). Prints a table.
+    hundreds). The polyomino sampler is shown with its learnt correction table and without it
+    (X pentomino, chair, unjittered). Prints a table.
 
     \b
     Examples:

@@ -33,10 +33,25 @@ vectors lookup table") and stated here in full:
   expected count of a region of uniform density ``D`` is then ``D`` times its area on average
   over the tiles (exactly per tile for equal children); the 2004 paper's Fibonacci number
   system plays this part for the Penrose triangles.
-* **Correction vectors** (learnt by Lloyd relaxation in both papers, stored per structural
-  index) are not tabulated: the samples stay at tile centroids. Two stand-ins: ``jitter`` (each
-  sample at a uniform random point of its tile: stratified sampling over the tiles) and
-  ``lloyd`` steps of density-weighted Lloyd relaxation (:func:`lloyd`) afterwards.
+* **Correction tables** (Ostromoukhov 2007: "the exact position of the sampling point within
+  the polyomino is determined according to a structural index, which indicates the
+  polyomino's local neighborhood; the variety of structural indices and associated sampling
+  point positions are computed during the offline optimization process, and tabulated"; "the
+  method allows both deterministic and pseudo-non-deterministic sampling"). The paper's
+  tables are not in the seeds; :func:`learn_corrections` rebuilds them
+  (``scripts/build_importance_corrections.py`` wrote the shipped file,
+  ``tilesolve/data/importance/polyomino-corrections.json``, its command and seed inside): the
+  sampler at constant densities, Lloyd-relaxed, the mean displacement of each sample in its
+  tile's frame by structural index (:func:`structural_index`: which of 8 sectors around it
+  hold a neighbour) and density bin, and the spread left around that mean. With
+  ``correct`` (the default of :class:`~tilesolve.model.importance.ImportanceProblem`; the X
+  pentomino and the chair), the sampler is the pseudo-non-deterministic variant: each tile's
+  children ranked in a seeded random order (the ordered ranks make the uniform case periodic
+  with a period of a few subdivisions, whatever the offsets), each sample moved by its
+  entry's mean and by Gaussian noise of its entry's spread (the means alone leave the leaf
+  lattice's peaks). Without it, the samples sit at tile centroids; ``jitter`` (each sample at
+  a uniform random point of its tile) and ``lloyd`` steps of density-weighted Lloyd
+  relaxation (:func:`lloyd`) are the other stand-ins.
 
 The density integral over a rep-4 polyomino is exact (its cells are squares: a summed-area
 table, bilinear between pixel corners); over a Penrose triangle it is the mean over its
@@ -59,10 +74,11 @@ import numpy as np
 
 from tilesolve._random import rng_from_seed
 from tilesolve.constructive import penrose, reptile
-from tilesolve.model.importance import DensityMap, ImportanceProblem
+from tilesolve.model.importance import CORRECTED_TILES, DensityMap, ImportanceProblem
 
-__all__ = ["CALIBRATE", "CALIBRATION_PASSES", "MassTable", "penrose_points", "polyomino_points", "rejection_points",
-           "lloyd", "sample"]
+__all__ = ["CALIBRATE", "CALIBRATION_PASSES", "CORRECTED_TILES", "MassTable", "CorrectionTable", "penrose_points",
+           "polyomino_points", "rejection_points", "lloyd", "sample", "structural_index", "load_corrections",
+           "voronoi_lloyd", "learn_corrections"]
 
 _PHI = (1 + 5**0.5) / 2
 #: The mean area of a Robinson triangle of legs 1 in a Penrose tiling (obtuse : acute = phi : 1).
@@ -124,19 +140,34 @@ def _ranks(parent_centre: np.ndarray, centres: np.ndarray, areas: np.ndarray) ->
     return ranks
 
 
-def _hierarchy(system, mass: MassTable, rng, max_levels: int, jitter: bool = False) -> np.ndarray:
+def _shuffled(rank: np.ndarray, parent: np.ndarray, rng) -> np.ndarray:
+    """The ranks ``1..k-1`` of each parent's children in a random order (rank 0, the child that
+    carries the parent's sample, kept)."""
+    key = np.where(rank == 0, -1.0, rng.random(len(rank)))
+    order = np.lexsort((key, parent))  # children grouped by parent, rank 0 first, the others shuffled
+    out = np.empty_like(rank)
+    start = np.r_[0, np.flatnonzero(np.diff(parent[order])) + 1]
+    pos = np.arange(len(rank)) - np.repeat(start, np.diff(np.r_[start, len(rank)]))
+    out[order] = pos
+    return out
+
+
+def _hierarchy(system, mass: MassTable, rng, max_levels: int, jitter: bool = False, shuffle: bool = False,
+               frames: bool = False):
     """The samples of the adaptive subdivision (the module docstring's rule), level by level.
 
     ``system`` gives ``roots()`` (a state), ``size(state)``, ``measure(state, mass)`` (each
     tile's mean density, the mean area of a tile of its level, its centroid), ``take(state,
-    which)``, ``uniform(state, rng)`` (a random point of each tile) and ``split(state, which)``
+    which)``, ``uniform(state, rng)`` (a random point of each tile), ``split(state, which)``
     (the children of the tiles ``which``: their state, parent positions in ``which``,
-    structural ranks, sibling counts)."""
+    structural ranks, sibling counts) and ``frame(state)`` (each tile's similarity, a ``(n, 2,
+    2)`` array). ``shuffle`` ranks each tile's children ``1..k-1`` in a random order. With
+    ``frames``, also the frame and the load (mean density times area) of each sample's tile."""
     state = system.roots()
     n = system.size(state)
     v = (rng.permutation(n) + rng.random()) / n
     lo, s = np.zeros(n), v.copy()  # root thresholds s / A
-    out = []
+    out, out_frames, out_loads = [], [], []
     for level in range(max_levels + 1):
         density, area, centre = system.measure(state, mass)
         inv = 1.0 / area
@@ -144,16 +175,24 @@ def _hierarchy(system, mass: MassTable, rng, max_levels: int, jitter: bool = Fal
         sub = density * area > 1.0 if level < max_levels else np.zeros(len(density), bool)
         emit = ~sub & (density > theta)
         out.append(system.uniform(system.take(state, emit), rng) if jitter else centre[emit])
+        if frames:
+            out_frames.append(np.asarray(system.frame(system.take(state, emit))))
+            out_loads.append((density * area)[emit])
         which = np.flatnonzero(sub)
         if not len(which):
             break
         state, parent, rank, k = system.split(state, which)
+        if shuffle:
+            rank = _shuffled(rank, parent, rng)
         p = which[parent]
         first = rank == 0
         lo = np.where(first, theta[p], inv[p])
         s = np.where(first, 0.0, (rank - 1 + v[p]) / np.maximum(k - 1, 1))
         v = (rank + v[p]) / k
-    return np.concatenate(out) if out else np.zeros((0, 2))
+    pts = np.concatenate(out) if out else np.zeros((0, 2))
+    if frames:
+        return pts, np.concatenate(out_frames), np.concatenate(out_loads)
+    return pts
 
 
 class _Penrose:
@@ -187,6 +226,10 @@ class _Penrose:
     @staticmethod
     def take(state, which):
         return tuple(x[which] for x in state)
+
+    def frame(self, state) -> np.ndarray:
+        """Not used: Penrose samples take no correction table."""
+        raise NotImplementedError
 
     def uniform(self, state, rng) -> np.ndarray:
         """A uniform random point of each triangle."""
@@ -264,6 +307,10 @@ class _Polyomino:
     def take(state, which):
         return state[0][which], state[1][which]
 
+    def frame(self, state) -> np.ndarray:
+        """The tile's similarity scaled to the tile's size: ``|det| =`` its area."""
+        return state[0] * np.sqrt(len(self.cells))
+
     def uniform(self, state, rng) -> np.ndarray:
         """A uniform random point of each tile (a random cell, a random point in it)."""
         lin, off = state
@@ -316,6 +363,13 @@ class _Cross:
     @staticmethod
     def take(state, which):
         return state[0][which], state[1]
+
+    def frame(self, state) -> np.ndarray:
+        """The tile's similarity: multiplication by its complex scale ``s / c^level``."""
+        z, level = state
+        s = self.scale / (2 + 1j) ** level
+        m = np.array([[s.real, -s.imag], [s.imag, s.real]])
+        return np.broadcast_to(m, (len(z), 2, 2))
 
     def uniform(self, state, rng) -> np.ndarray:
         """A uniform random point of each tile's X pentomino."""
@@ -375,20 +429,40 @@ def penrose_points(density: DensityMap, n: int, *, jitter: bool = False, seed=No
 
 
 def polyomino_points(density: DensityMap, n: int, *, tile: str = "chair", jitter: bool = False,
-                     seed=None) -> np.ndarray:
-    """About ``n`` samples of ``density`` by adaptive subdivision of a rep-4 polyomino (the
-    module docstring; Ostromoukhov 2007). A ``(m, 2)`` array."""
+                     correct: bool = False, seed=None) -> np.ndarray:
+    """About ``n`` samples of ``density`` by adaptive subdivision of a rep-4 polyomino or the X
+    pentomino (the module docstring; Ostromoukhov 2007). With ``correct`` (and no ``jitter``,
+    for a tile of :data:`CORRECTED_TILES`), the 2007 paper's pseudo-non-deterministic
+    variant: each tile's children ranked in a seeded random order and each sample displaced by
+    the learnt correction table (:func:`load_corrections`, :meth:`CorrectionTable.apply`).
+    A ``(m, 2)`` array."""
+    table = load_corrections(tile) if correct and not jitter and tile in CORRECTED_TILES else None
+    return _polyomino(density, n, tile, jitter, seed, shuffle=table is not None, table=table)
+
+
+def _polyomino(density: DensityMap, n: float, tile: str, jitter: bool, seed, *, shuffle: bool = False,
+               table: "CorrectionTable | None" = None, noise: bool = True) -> np.ndarray:
+    """:func:`polyomino_points` with its ingredients apart (``shuffle``: children ranked in a
+    random order; ``table``: the correction offsets; ``noise``: their learnt spread added)."""
     rng = rng_from_seed(seed)
     mass = MassTable(density, n)
+    system = _polyomino_system(density, tile, rng)
+    if table is None:
+        return _inside(_hierarchy(system, mass, rng, MAX_POLYOMINO_LEVELS, jitter, shuffle), density)
+    centre, frame, load = _hierarchy(system, mass, rng, MAX_POLYOMINO_LEVELS, False, shuffle, frames=True)
+    return _inside(table.apply(centre, frame, load, rng if noise else None), density)
+
+
+def _polyomino_system(density: DensityMap, tile: str, rng):
+    """The root tiles of the polyomino sampler over ``density``'s domain, turned and placed by ``rng``."""
     if tile == "x-pentomino":
-        return _inside(_hierarchy(_cross_roots(density, rng), mass, rng, MAX_POLYOMINO_LEVELS, jitter), density)
+        return _cross_roots(density, rng)
     side = 1.25  # the root's cell (0, 0) is a square of this side around the domain
     sym = reptile._symmetries("square")[int(rng.integers(8))].astype(np.float64) * side
     corner = np.minimum(np.minimum(sym @ [0, 0], sym @ [1, 1]), np.minimum(sym @ [1, 0], sym @ [0, 1]))
     slack = np.array([side - density.width, side - density.height])
     off = -corner - rng.random(2) * slack
-    system = _Polyomino(tile, sym, off)
-    return _inside(_hierarchy(system, mass, rng, MAX_POLYOMINO_LEVELS, jitter), density)
+    return _Polyomino(tile, sym, off)
 
 
 def rejection_points(density: DensityMap, n: int, *, seed=None) -> np.ndarray:
@@ -438,6 +512,182 @@ def lloyd(points: np.ndarray, density: DensityMap, steps: int, *, resolution: in
     return pts
 
 
+# --- Correction tables (Ostromoukhov 2007: structural indices, offsets learnt offline) --------------------
+
+#: The correction tables' file (its provenance inside: the command, the seed, the settings).
+CORRECTIONS_FILE = "polyomino-corrections.json"
+CORRECTIONS_FORMAT = "tilesolve/importance-corrections"
+#: The neighbourhood read by :func:`structural_index`: 8 sectors of 45 degrees within this
+#: radius (in units of the square root of the tile's area).
+SECTOR_RADIUS = 1.6
+SECTORS = 8
+
+
+def structural_index(centre: np.ndarray, frame: np.ndarray) -> np.ndarray:
+    """Each sample's structural index (Ostromoukhov 2007: "the polyomino's local
+    neighbourhood"): bit ``j`` set where another sample's centroid lies in sector ``j`` (45
+    degrees, sector 0 centred on the tile's own x axis) within :data:`SECTOR_RADIUS` of it,
+    measured in the tile's frame (``frame``: its similarity, ``|det|`` its area), so that the
+    index is the same for a turned or mirrored copy of a neighbourhood. 0..255. scipy's
+    KD-tree finds the neighbours."""
+    from scipy.spatial import cKDTree
+
+    if len(centre) < 2:
+        return np.zeros(len(centre), dtype=np.int64)
+    size = np.sqrt(np.abs(np.linalg.det(frame)))
+    k = min(12, len(centre) - 1)
+    dist, idx = cKDTree(centre).query(centre, k=k + 1, distance_upper_bound=SECTOR_RADIUS * float(size.max()))
+    ok = np.isfinite(dist[:, 1:])
+    idx = np.where(ok, idx[:, 1:], 0)
+    local = np.einsum("nij,nkj->nki", np.linalg.inv(frame), centre[idx] - centre[:, None])
+    ok &= np.hypot(local[..., 0], local[..., 1]) < SECTOR_RADIUS
+    sector = np.floor(np.arctan2(local[..., 1], local[..., 0]) / (2 * np.pi / SECTORS) + 0.5).astype(np.int64) % SECTORS
+    return np.bitwise_or.reduce(np.where(ok, np.left_shift(1, sector), 0), axis=1).astype(np.int64)
+
+
+def _density_bin(load: np.ndarray, k: int, bins: int) -> np.ndarray:
+    """The importance bin of each sample: its tile's load (mean density times area, in ``(1/k,
+    1]`` for a leaf of a subdivided parent) on a log scale, ``bins`` bins."""
+    t = 1.0 + np.log(np.clip(load, 1.0 / k, 1.0)) / np.log(k)
+    return np.minimum((t * bins).astype(np.int64), bins - 1)
+
+
+class CorrectionTable:
+    """Offsets of a polyomino's sample point by structural index and importance (Ostromoukhov
+    2007's "variety of structural indices and associated sampling point positions computed
+    during the offline optimization process, and tabulated"), learnt by :func:`learn_corrections`.
+
+    ``mean[index, bin]`` is the mean displacement of the samples by Lloyd relaxation, in the
+    tile's frame; ``spread[index, bin]`` the root mean square of what is left per axis (the
+    pseudo-non-deterministic part: added as seeded Gaussian noise); ``count`` the samples each
+    entry was learnt from (entries never seen stay 0)."""
+
+    def __init__(self, tile: str, children: int, mean: np.ndarray, spread: np.ndarray, count: np.ndarray,
+                 provenance: dict | None = None) -> None:
+        self.tile, self.children = tile, children
+        self.mean, self.spread, self.count = mean, spread, count
+        self.bins = mean.shape[1]
+        self.provenance = provenance or {}
+
+    def apply(self, centre: np.ndarray, frame: np.ndarray, load: np.ndarray, rng=None) -> np.ndarray:
+        """The samples at ``centre`` (their tiles' centroids) displaced by the table (and, with
+        ``rng``, by the learnt spread)."""
+        if not len(centre):
+            return centre
+        index, b = structural_index(centre, frame), _density_bin(load, self.children, self.bins)
+        off = self.mean[index, b]
+        if rng is not None:
+            off = off + self.spread[index, b][:, None] * rng.standard_normal((len(centre), 2))
+        return centre + np.einsum("nij,nj->ni", frame, off)
+
+    def to_dict(self) -> dict:
+        return {"format": CORRECTIONS_FORMAT, "version": 1, "tile": self.tile, "children": self.children,
+                "bins": self.bins, "sectors": SECTORS, "sector_radius": SECTOR_RADIUS,
+                "provenance": self.provenance,
+                "mean": np.round(self.mean, 5).tolist(), "spread": np.round(self.spread, 5).tolist(),
+                "count": self.count.astype(np.int64).tolist()}
+
+    @classmethod
+    def from_dict(cls, doc: dict) -> "CorrectionTable":
+        if doc.get("format") != CORRECTIONS_FORMAT or doc.get("version") != 1:
+            raise ValueError(f"not a {CORRECTIONS_FORMAT} version 1 table")
+        if doc.get("sectors") != SECTORS or doc.get("sector_radius") != SECTOR_RADIUS:
+            raise ValueError("the table was learnt with another structural index")
+        mean, spread = np.array(doc["mean"], dtype=np.float64), np.array(doc["spread"], dtype=np.float64)
+        count = np.array(doc["count"], dtype=np.int64)
+        if mean.shape != (1 << SECTORS, doc["bins"], 2) or spread.shape != mean.shape[:2] or count.shape != spread.shape:
+            raise ValueError("the table's arrays have the wrong shape")
+        return cls(doc["tile"], int(doc["children"]), mean, spread, count, doc.get("provenance"))
+
+
+@functools.lru_cache(maxsize=None)
+def _correction_file() -> dict:
+    import json
+    from importlib import resources
+
+    text = (resources.files("tilesolve") / "data" / "importance" / CORRECTIONS_FILE).read_text(encoding="utf-8")
+    return json.loads(text)
+
+
+@functools.lru_cache(maxsize=None)
+def load_corrections(tile: str) -> CorrectionTable:
+    """The shipped correction table of ``tile`` (``tilesolve/data/importance/``, built by
+    ``scripts/build_importance_corrections.py``; its provenance is in the file)."""
+    doc = _correction_file()
+    for t in doc["tables"]:
+        if t["tile"] == tile:
+            return CorrectionTable.from_dict(t)
+    raise KeyError(f"no correction table for {tile!r}")
+
+
+def voronoi_lloyd(points: np.ndarray, steps: int, movable: np.ndarray) -> np.ndarray:
+    """``steps`` of Lloyd relaxation (class notes §4.2.4.3): each ``movable`` point whose
+    Voronoi cell is bounded moves to the cell's centroid; the others stay (a frame of fixed
+    points around the region learnt from). The cells are scipy's (Qhull); each cell's centroid
+    is summed over the triangles from its site to its ridges (the cell is convex)."""
+    from scipy.spatial import Voronoi
+
+    x = np.array(points, dtype=np.float64)
+    n = len(x)
+    for _ in range(steps):
+        vor = Voronoi(x)
+        ridge, verts = vor.ridge_points, np.asarray(vor.ridge_vertices)
+        open_ = (verts < 0).any(axis=1)
+        bounded = np.ones(n, bool)
+        bounded[ridge[open_].ravel()] = False
+        ridge, verts = ridge[~open_], verts[~open_]
+        a, b = vor.vertices[verts[:, 0]], vor.vertices[verts[:, 1]]
+        area, cx, cy = np.zeros(n), np.zeros(n), np.zeros(n)
+        for side in (0, 1):
+            site = x[ridge[:, side]]
+            w = 0.5 * np.abs((a[:, 0] - site[:, 0]) * (b[:, 1] - site[:, 1]) - (a[:, 1] - site[:, 1]) * (b[:, 0] - site[:, 0]))
+            c = (site + a + b) / 3
+            area += np.bincount(ridge[:, side], w, n)
+            cx += np.bincount(ridge[:, side], w * c[:, 0], n)
+            cy += np.bincount(ridge[:, side], w * c[:, 1], n)
+        move = movable & bounded & (area > 0)
+        x[move, 0], x[move, 1] = cx[move] / area[move], cy[move] / area[move]
+    return x
+
+
+def learn_corrections(tile: str, *, runs: int, n_min: float, n_max: float, steps: int, bins: int,
+                      seed: int) -> CorrectionTable:
+    """Ostromoukhov 2007's offline step, reconstructed (the paper's tables are not in the seeds):
+    ``runs`` point sets of the sampler (children ranked in a random order, samples at their
+    tiles' centroids) on the unit square at constant densities drawn log-uniformly from
+    ``n_min..n_max`` samples, each relaxed by ``steps`` Lloyd steps (:func:`voronoi_lloyd`, a
+    frame of 3 spacings fixed at the border), and the displacement of every sample at least
+    ``steps + 6`` spacings inside recorded in its tile's frame under its structural index and
+    density bin. The table holds each entry's mean and the spread left around it."""
+    from tilesolve.model.importance import builtin_density
+
+    children = 5 if tile == "x-pentomino" else 4
+    rng = rng_from_seed(seed)
+    flat = builtin_density("flat", 16)
+    shape = (1 << SECTORS, bins)
+    total, sq, count = np.zeros(shape + (2,)), np.zeros(shape), np.zeros(shape)
+    for _ in range(runs):
+        n = float(np.exp(rng.uniform(np.log(n_min), np.log(n_max))))
+        run = rng_from_seed(int(rng.integers(1 << 62)))
+        system = _polyomino_system(flat, tile, run)
+        centre, frame, load = _hierarchy(system, MassTable(flat, n), run, MAX_POLYOMINO_LEVELS, False, True,
+                                         frames=True)
+        spacing = 1 / np.sqrt(n)
+        inside = lambda m: ((centre > m) & (centre < 1 - m)).all(axis=1)  # noqa: E731
+        moved = voronoi_lloyd(centre, steps, inside(3 * spacing))
+        keep = inside((steps + 6) * spacing)
+        local = np.linalg.solve(frame[keep], (moved - centre)[keep][..., None])[..., 0]
+        at = structural_index(centre, frame)[keep] * bins + _density_bin(load[keep], children, bins)
+        size = shape[0] * bins
+        for d in (0, 1):
+            total[..., d] += np.bincount(at, local[:, d], size).reshape(shape)
+        sq += np.bincount(at, (local**2).sum(axis=1), size).reshape(shape)
+        count += np.bincount(at, None, size).reshape(shape)
+    mean = total / np.maximum(count, 1)[..., None]
+    spread = np.sqrt(np.maximum(sq / np.maximum(count, 1) - (mean**2).sum(axis=-1), 0) / 2)
+    return CorrectionTable(tile, children, mean, spread, count)
+
+
 def sample(problem: ImportanceProblem, *, seed=None) -> np.ndarray:
     """The samples ``problem`` asks for: its method, then its Lloyd steps. A hierarchical
     sampler whose count is off by more than :data:`CALIBRATE` of the target runs again on the
@@ -452,7 +702,8 @@ def sample(problem: ImportanceProblem, *, seed=None) -> np.ndarray:
             return penrose_points(d, target, jitter=problem.jitter, seed=s)
     else:
         def run(target, s):
-            return polyomino_points(d, target, tile=problem.tile, jitter=problem.jitter, seed=s)
+            return polyomino_points(d, target, tile=problem.tile, jitter=problem.jitter, correct=problem.correct,
+                                    seed=s)
     s = int(rng_from_seed(seed).integers(1 << 62))
     target = float(n)
     best = pts = run(target, s)

@@ -16,7 +16,10 @@ route, ``sample``, runs the problem's sampler; its answer, a
   the papers show them): the radially averaged power and anisotropy (Ulichney 1987;
   :func:`tilesolve.verify.poisson.radial_spectrum`), the averaged 2-D periodogram and its
   *peak factor*, the largest power over the mean of its annulus (about 10 for white noise,
-  hundreds where a tiling's structure shows as spikes).
+  hundreds where a tiling's structure shows as spikes), also away from the main ring
+  (:func:`spectrum_measures`). The polyomino sampler appears twice: with its learnt correction
+  table (Ostromoukhov 2007; :class:`~tilesolve.constructive.importance.CorrectionTable`) and
+  without it.
 
 Examples
 --------
@@ -40,10 +43,14 @@ from tilesolve.model.importance import DensityMap, ImportanceProblem, builtin_de
 from tilesolve.model.solution import Solution, Status
 from tilesolve.verify.dappled import Violation
 
-__all__ = ["FAMILY", "stipple", "compare", "density_of", "VARIANTS", "sample_route", "stipple_violations"]
+__all__ = ["FAMILY", "stipple", "compare", "spectrum_measures", "density_of", "VARIANTS", "sample_route",
+           "stipple_violations"]
 
-#: The rows of :func:`compare`: label, method.
-VARIANTS = (("penrose", "penrose"), ("polyomino", "polyomino"), ("rejection", "rejection"))
+#: The rows of :func:`compare`: label, method, whether the correction table is asked for.
+VARIANTS = (("penrose", "penrose", False), ("polyomino", "polyomino", True),
+            ("uncorrected polyomino", "polyomino", False), ("rejection", "rejection", False))
+#: Annuli within this fraction of the main ring's radius are the ring (:func:`spectrum_measures`).
+RING_BAND = 0.2
 
 
 def stipple(problem: ImportanceProblem, *, seed: int | None = None) -> dict:
@@ -60,45 +67,62 @@ def stipple(problem: ImportanceProblem, *, seed: int | None = None) -> dict:
             "discrepancy": weighted_discrepancy(pts, values)}
 
 
-def _variant(problem: ImportanceProblem, method: str) -> ImportanceProblem:
+def _variant(problem: ImportanceProblem, method: str, correct: bool = True) -> ImportanceProblem:
     return ImportanceProblem(problem.density, problem.points, method, problem.tile,
-                             0 if method == "rejection" else problem.lloyd, problem.jitter)
+                             0 if method == "rejection" else problem.lloyd, problem.jitter, correct)
 
 
 def compare(problem: ImportanceProblem, *, seed: int | None = None, runs: int = 4,
             spectrum_points: int = 4096) -> list[dict]:
     """Every method of :data:`VARIANTS` on ``problem``'s image and settings (its ``method`` is
-    ignored; rejection takes no Lloyd steps), one row each: ``name``, ``points``, ``time_s``,
-    ``rate`` (points a second), ``discrepancy`` (on the image), ``violations``; and on a flat
-    image of ``spectrum_points`` samples, ``runs`` seeds averaged: ``frequency``, ``power``,
-    ``anisotropy`` (dB, and its mean ``anisotropy_db``), ``periodogram`` (2-D) and ``peak``
-    (the peak factor)."""
-    from tilesolve.verify.poisson import periodogram, radial_spectrum
-
+    ignored; rejection takes no Lloyd steps; the uncorrected polyomino row is left out where
+    the tile has no correction table or the samples are jittered), one row each: ``name``,
+    ``points``, ``time_s``, ``rate`` (points a second), ``discrepancy`` (on the image),
+    ``violations``; and on a flat image of ``spectrum_points`` samples, ``runs`` seeds averaged,
+    :func:`spectrum_measures`."""
     base = 0 if seed is None else seed
     flat = ImportanceProblem(builtin_density("flat", 64), spectrum_points, problem.method, problem.tile,
                              problem.lloyd, problem.jitter)
     k_max = int(min(3 * np.sqrt(spectrum_points), 256))
     rows = []
-    for name, method in VARIANTS:
-        one = stipple(_variant(problem, method), seed=base)
-        sets = [stipple(_variant(flat, method), seed=base + i)["points"] for i in range(runs)]
-        f, power, aniso = radial_spectrum(sets, 1.0, k_max=k_max)
-        grid = periodogram(sets, 1.0, k_max=k_max)
-        rows.append({"name": name if method != "polyomino" else f"polyomino ({problem.tile})",
+    for name, method, correct in VARIANTS:
+        p = _variant(problem, method, correct)
+        if name == "uncorrected polyomino" and not _variant(problem, method).corrected:
+            continue  # the same sampler as the row above
+        one = stipple(p, seed=base)
+        sets = [stipple(_variant(flat, method, correct), seed=base + i)["points"] for i in range(runs)]
+        rows.append({"name": name if name != "polyomino" else f"polyomino ({problem.tile})",
                      "points": len(one["points"]), "time_s": one["time_s"],
                      "rate": len(one["points"]) / max(one["time_s"], 1e-9), "discrepancy": one["discrepancy"],
-                     "violations": one["violations"], "frequency": f, "power": power, "anisotropy": aniso,
-                     "anisotropy_db": float(np.mean(aniso)), "periodogram": grid,
-                     "peak": _peak_factor(grid, power, k_max)})
+                     "violations": one["violations"], **spectrum_measures(sets, k_max)})
     return rows
 
 
-def _peak_factor(grid: np.ndarray, ring_mean: np.ndarray, k_max: int) -> float:
-    """The largest power of the periodogram over the mean of its annulus (annuli 2..k_max)."""
+def spectrum_measures(sets, k_max: int) -> dict:
+    """The spectra of point sets of the unit square (averaged over ``sets``): ``frequency``,
+    ``power``, ``anisotropy`` (dB; :func:`tilesolve.verify.poisson.radial_spectrum`, Ulichney
+    1987) and its mean ``anisotropy_db``, ``periodogram`` (2-D), ``ring`` (the frequency of the
+    largest radial power: the main ring of blue noise), ``peak`` (the peak factor: the largest
+    power of the periodogram over the mean of its annulus) and ``off_ring_peak`` (the same away
+    from the main ring: annuli more than :data:`RING_BAND` of its radius from it)."""
+    from tilesolve.verify.poisson import periodogram, radial_spectrum
+
+    f, power, aniso = radial_spectrum(sets, 1.0, k_max=k_max)
+    grid = periodogram(sets, 1.0, k_max=k_max)
+    ring = int(np.argmax(power[1:])) + 2  # annulus 1 (the domain's own window) left out
+    return {"frequency": f, "power": power, "anisotropy": aniso, "anisotropy_db": float(np.mean(aniso)),
+            "periodogram": grid, "ring": ring, "peak": _peak_factor(grid, power, k_max),
+            "off_ring_peak": _peak_factor(grid, power, k_max, away_from=ring)}
+
+
+def _peak_factor(grid: np.ndarray, ring_mean: np.ndarray, k_max: int, away_from: int | None = None) -> float:
+    """The largest power of the periodogram over the mean of its annulus (annuli 2..k_max; with
+    ``away_from``, those more than :data:`RING_BAND` of that annulus' radius from it)."""
     k = np.arange(-k_max, k_max + 1)
     ring = np.rint(np.hypot(*np.meshgrid(k, k, indexing="ij"))).astype(np.int64)
     keep = (ring >= 2) & (ring <= k_max)
+    if away_from is not None:
+        keep &= np.abs(ring - away_from) > RING_BAND * away_from
     return float((grid[keep] / ring_mean[ring[keep] - 1]).max())
 
 

@@ -15,7 +15,7 @@ Examples
 ((8, 8), (1.0, 1.0))
 >>> p = ImportanceProblem(d, 1000, "polyomino")
 >>> p.describe()
-'1,000 points, polyomino sampling (chair), gradient 8x8 pixels'
+'1,000 points, polyomino sampling (chair), corrected, gradient 8x8 pixels'
 """
 
 from __future__ import annotations
@@ -26,7 +26,7 @@ import numpy as np
 
 from tilesolve.errors import InvalidProblem
 
-__all__ = ["METHODS", "TILES", "TEST_IMAGES", "MAX_POINTS", "MAX_PIXELS", "DensityMap", "builtin_density",
+__all__ = ["METHODS", "TILES", "CORRECTED_TILES", "TEST_IMAGES", "MAX_POINTS", "MAX_PIXELS", "DensityMap", "builtin_density",
            "ImportanceProblem"]
 
 #: The samplers: Penrose (Ostromoukhov, Donohue, Jodoin 2004), polyomino (Ostromoukhov 2007) and
@@ -34,6 +34,10 @@ __all__ = ["METHODS", "TILES", "TEST_IMAGES", "MAX_POINTS", "MAX_PIXELS", "Densi
 METHODS = ("penrose", "polyomino", "rejection")
 #: Rep-tiles of the polyomino sampler (built-in rep-4 polyominoes of :mod:`tilesolve.constructive.reptile`).
 TILES = ("x-pentomino", "chair", "l-tetromino", "p-pentomino")
+#: The rep-tiles with a learnt correction table (``tilesolve/data/importance/``; Ostromoukhov
+#: 2007's offsets by structural index and importance, rebuilt by
+#: ``scripts/build_importance_corrections.py``).
+CORRECTED_TILES = ("x-pentomino", "chair")
 #: Built-in test images: a radial ramp (dark centre), a left-to-right gradient, a flat grey.
 TEST_IMAGES = ("radial", "gradient", "flat")
 #: Most samples one problem asks for (about 100 bytes of work a sample at peak).
@@ -126,11 +130,15 @@ class ImportanceProblem:
     tile : str
         The polyomino sampler's rep-tile (:data:`TILES`).
     lloyd : int
-        Density-weighted Lloyd steps applied to the samples afterwards (0..50; the papers'
-        correction vectors are learnt by Lloyd relaxation).
+        Density-weighted Lloyd steps applied to the samples afterwards (0..50).
     jitter : bool
         Penrose and polyomino: each sample at a uniform random point of its tile instead of its
-        centroid (stratified sampling over the tiles; it removes the tiling's spectral peaks).
+        centroid (stratified sampling over the tiles).
+    correct : bool
+        Polyomino, unjittered, a tile of :data:`CORRECTED_TILES`: the 2007 paper's
+        pseudo-non-deterministic sampling with its learnt correction table (children ranked in
+        a seeded random order; each sample displaced by the offset of its structural index and
+        importance). Ignored elsewhere (:attr:`corrected` says whether it applies).
     """
 
     density: DensityMap
@@ -139,6 +147,7 @@ class ImportanceProblem:
     tile: str = "chair"
     lloyd: int = 0
     jitter: bool = False
+    correct: bool = True
 
     def __post_init__(self) -> None:
         if self.method not in METHODS:
@@ -150,10 +159,18 @@ class ImportanceProblem:
                 raise InvalidProblem(f"{name} must be an integer, got {value!r}")
             if not lo <= value <= hi:
                 raise InvalidProblem(f"{name} must be in {lo:,}..{hi:,}, got {value:,}")
+        if not isinstance(self.correct, (bool, np.bool_)):
+            raise InvalidProblem(f"correct must be true or false, got {self.correct!r}")
+
+    @property
+    def corrected(self) -> bool:
+        """Whether the samples take the correction table (:attr:`correct` where it applies)."""
+        return bool(self.correct) and self.method == "polyomino" and not self.jitter and self.tile in CORRECTED_TILES
 
     def describe(self) -> str:
         what = {"penrose": "Penrose sampling", "polyomino": f"polyomino sampling ({self.tile})",
                 "rejection": "rejection sampling"}[self.method]
         more = (", jittered" if self.jitter and self.method != "rejection" else "") + \
+            (", corrected" if self.corrected else "") + \
             (f", {self.lloyd} Lloyd steps" if self.lloyd else "")
         return f"{self.points:,} points, {what}{more}, {self.density.caption()}"
