@@ -42,17 +42,24 @@ TEXTURE_MAX_COLORS = 4
 ATLAS_CACHE = 8
 
 
+#: The texture example's brick colours: four terracotta shades (with the board pictures' dark
+#: mortar the example reads as a wall, and so does its texture).
+TEXTURE_BRICKS = ((178, 74, 52), (150, 60, 44), (196, 98, 66), (128, 52, 40))
+
+
 def texture_example() -> np.ndarray:
-    """The example of the texture views: a 192 x 192 px board picture (:func:`tilesolve.io.board_png.brick_image`)
-    of the procedural wall's 16 x 16 cells at the origin (004; 3 colours, lines of at most 3, seed 1),
-    ``(192, 192, 3)`` uint8 RGB: bricks and dark mortar, which show a texture's seams at a glance."""
+    """The example of the texture views: a 192 x 192 px board picture (:func:`tilesolve.io.board_png.brick_image`,
+    8 px a cell, its bricks in :data:`TEXTURE_BRICKS`) of the procedural wall's 24 x 24 cells at the
+    origin (004; 3 colours, lines of at most 3, seed 1), ``(192, 192, 3)`` uint8 RGB. Its bricks are
+    small enough for a 24-texel tile to hold a few of them (:func:`tilesolve.gpu.texture.synthesis_scale`
+    is 1: the texture shows the example at its own size)."""
     from tilesolve.constructive.walls import wall_window
     from tilesolve.io.board_png import brick_image
     from tilesolve.model.board import Board, BoardProblem, WangTileSet
 
-    legs = wall_window(0, 0, 16, 16, colors=3, max_line=3, seed=1)
-    img = brick_image(BoardProblem(Board.rect(16, 16), WangTileSet.brick(3)), legs.reshape(-1, 4),
-                      window=Window(0, 0, 16, 16), scale=12)
+    legs = wall_window(0, 0, 24, 24, colors=3, max_line=3, seed=1)
+    img = brick_image(BoardProblem(Board.rect(24, 24), WangTileSet.brick(3)), legs.reshape(-1, 4),
+                      window=Window(0, 0, 24, 24), scale=8, colours=TEXTURE_BRICKS)
     return np.asarray(img.convert("RGB"))
 
 
