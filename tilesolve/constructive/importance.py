@@ -521,6 +521,7 @@ CORRECTIONS_FORMAT = "tilesolve/importance-corrections"
 #: radius (in units of the square root of the tile's area).
 SECTOR_RADIUS = 1.6
 SECTORS = 8
+_CHUNK = 1 << 16
 
 
 def structural_index(centre: np.ndarray, frame: np.ndarray) -> np.ndarray:
@@ -534,15 +535,20 @@ def structural_index(centre: np.ndarray, frame: np.ndarray) -> np.ndarray:
 
     if len(centre) < 2:
         return np.zeros(len(centre), dtype=np.int64)
-    size = np.sqrt(np.abs(np.linalg.det(frame)))
+    reach = SECTOR_RADIUS * float(np.sqrt(np.abs(np.linalg.det(frame))).max())
     k = min(12, len(centre) - 1)
-    dist, idx = cKDTree(centre).query(centre, k=k + 1, distance_upper_bound=SECTOR_RADIUS * float(size.max()))
-    ok = np.isfinite(dist[:, 1:])
-    idx = np.where(ok, idx[:, 1:], 0)
-    local = np.einsum("nij,nkj->nki", np.linalg.inv(frame), centre[idx] - centre[:, None])
-    ok &= np.hypot(local[..., 0], local[..., 1]) < SECTOR_RADIUS
-    sector = np.floor(np.arctan2(local[..., 1], local[..., 0]) / (2 * np.pi / SECTORS) + 0.5).astype(np.int64) % SECTORS
-    return np.bitwise_or.reduce(np.where(ok, np.left_shift(1, sector), 0), axis=1).astype(np.int64)
+    tree, inverse = cKDTree(centre), np.linalg.inv(frame)
+    out = np.empty(len(centre), dtype=np.int64)
+    for a in range(0, len(centre), _CHUNK):  # chunks: the neighbour arrays stay small
+        b = min(a + _CHUNK, len(centre))
+        dist, idx = tree.query(centre[a:b], k=k + 1, distance_upper_bound=reach)
+        ok = np.isfinite(dist[:, 1:])
+        idx = np.where(ok, idx[:, 1:], 0)
+        local = np.einsum("nij,nkj->nki", inverse[a:b], centre[idx] - centre[a:b, None])
+        ok &= np.hypot(local[..., 0], local[..., 1]) < SECTOR_RADIUS
+        sector = np.floor(np.arctan2(local[..., 1], local[..., 0]) / (2 * np.pi / SECTORS) + 0.5).astype(np.int64)
+        out[a:b] = np.bitwise_or.reduce(np.where(ok, np.left_shift(1, sector % SECTORS), 0), axis=1)
+    return out
 
 
 def _density_bin(load: np.ndarray, k: int, bins: int) -> np.ndarray:
