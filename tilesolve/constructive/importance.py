@@ -601,7 +601,7 @@ class CorrectionTable:
             raise ValueError("the table was learnt with another structural index")
         mean, spread = np.array(doc["mean"], dtype=np.float64), np.array(doc["spread"], dtype=np.float64)
         count = np.array(doc["count"], dtype=np.int64)
-        if mean.shape != (1 << SECTORS, doc["bins"], 2) or spread.shape != mean.shape[:2] or count.shape != spread.shape:
+        if mean.shape != (1 << SECTORS, doc["bins"], 2) or not spread.shape == count.shape == mean.shape[:2]:
             raise ValueError("the table's arrays have the wrong shape")
         return cls(doc["tile"], int(doc["children"]), mean, spread, count, doc.get("provenance"))
 
@@ -646,7 +646,8 @@ def voronoi_lloyd(points: np.ndarray, steps: int, movable: np.ndarray) -> np.nda
         area, cx, cy = np.zeros(n), np.zeros(n), np.zeros(n)
         for side in (0, 1):
             site = x[ridge[:, side]]
-            w = 0.5 * np.abs((a[:, 0] - site[:, 0]) * (b[:, 1] - site[:, 1]) - (a[:, 1] - site[:, 1]) * (b[:, 0] - site[:, 0]))
+            u, v = a - site, b - site
+            w = 0.5 * np.abs(u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0])
             c = (site + a + b) / 3
             area += np.bincount(ridge[:, side], w, n)
             cx += np.bincount(ridge[:, side], w * c[:, 0], n)

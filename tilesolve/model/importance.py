@@ -26,8 +26,8 @@ import numpy as np
 
 from tilesolve.errors import InvalidProblem
 
-__all__ = ["METHODS", "TILES", "CORRECTED_TILES", "TEST_IMAGES", "MAX_POINTS", "MAX_PIXELS", "DensityMap", "builtin_density",
-           "ImportanceProblem"]
+__all__ = ["METHODS", "TILES", "CORRECTED_TILES", "TEST_IMAGES", "MAX_POINTS", "MAX_PIXELS", "DensityMap",
+           "builtin_density", "ImportanceProblem"]
 
 #: The samplers: Penrose (Ostromoukhov, Donohue, Jodoin 2004), polyomino (Ostromoukhov 2007) and
 #: plain rejection sampling, the anchor.
