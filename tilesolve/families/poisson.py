@@ -127,12 +127,15 @@ def rederived_violations(problem: PoissonWindowProblem, answer: SeededWindow) ->
     with the file's, exactly (:func:`~tilesolve.verify.poisson.match_violations`)."""
     from tilesolve.constructive.poisson import corner_lattice
     from tilesolve.constructive.stochastic import stochastic_window
-    from tilesolve.verify.poisson import match_violations, placed_points, tileset_violations
+    from tilesolve.verify.poisson import match_violations, placed_points, tileset_violations, window_size_violations
 
     ts, w = problem.tileset, problem.window
     bad = tileset_violations(ts)
     if bad:
         return [Violation(v.kind, f"the file's tile set: {v.message}") for v in bad]
+    bad = window_size_violations(ts.tiles["interior"], w.width * w.height, len(answer.local))
+    if bad:  # before the lattice is coloured: a window larger than its file's points allow costs nothing
+        return bad
     grid = stochastic_window("corner", problem.tiling, (w.x0, w.y0, w.width, w.height), colors=ts.problem.colors,
                              seed=answer.seed, variant=problem.variant, hash=problem.hash)
     pts = placed_points(ts, corner_lattice(grid, ts.problem.colors))

@@ -123,6 +123,12 @@ def recursive_violations(problem: RecursiveProblem, answer: Any) -> list[Violati
     return [Violation("shape", "the answer is neither a recursive Wang tile set nor a window of points")]
 
 
+#: A window is sampled again for ``verify`` only while its candidate points are at most this many for
+#: each point of its file, plus :data:`REDERIVE_FREE`: a small file that names a vast window costs little.
+REDERIVE_PER_POINT = 256
+REDERIVE_FREE = 1 << 21
+
+
 def rederived_violations(problem: RecursiveWindowProblem, answer: SeededRecursiveWindow) -> list[Violation]:
     """A window file's claim that its points are the window of its set, density and seed: the
     set is checked (:func:`~tilesolve.verify.poisson_recursive.tileset_violations`), the window
@@ -139,6 +145,11 @@ def rederived_violations(problem: RecursiveWindowProblem, answer: SeededRecursiv
     bad = tileset_violations(problem.tileset)
     if bad:
         return [Violation(v.kind, f"the file's tile set: {v.message}") for v in bad]
+    p = problem.tileset.problem
+    candidates = sum(bw * bh * p.density_at(k) for k, (_, _, bw, bh) in enumerate(problem.boxes()))
+    if candidates > REDERIVE_PER_POINT * answer.n_points + REDERIVE_FREE:
+        return [Violation("size", f"NOT confirmed: sampling the window again builds about {candidates:,.0f} candidate "
+                                  f"points, too many for a file of {answer.n_points:,} points; it was not re-derived")]
     w = sample_window(problem, seed=answer.seed)
     return match_violations(np.column_stack([answer.local, answer.level, answer.rank]),
                             np.column_stack([w.local, w.level, w.rank]), f"the window of seed {answer.seed}")

@@ -121,13 +121,16 @@ def rederived_violations3(problem: PoissonSphereWindowProblem, answer: SeededBox
     import numpy as np
 
     from tilesolve.constructive.poisson_sphere import lattice_colors
-    from tilesolve.verify.poisson import match_violations
+    from tilesolve.verify.poisson import match_violations, window_size_violations
     from tilesolve.verify.poisson_sphere import placed_points3, tileset_violations3
 
     ts, box = problem.tileset, problem.box
     bad = tileset_violations3(ts)
     if bad:
         return [Violation(v.kind, f"the file's tile set: {v.message}") for v in bad]
+    bad = window_size_violations(ts.tiles["interior"], int(np.prod(box.size)), len(answer.local))
+    if bad:  # before the lattice is coloured: a box larger than its file's points allow costs nothing
+        return bad
     pts = placed_points3(ts, lattice_colors(box, ts.problem.colors, seed=answer.seed, hash=problem.hash))
     pts = pts[((pts >= 0) & (pts < np.array(box.size, dtype=np.float64))).all(axis=1)]
     return match_violations(answer.local, pts, f"the direct corner tiling of seed {answer.seed}")

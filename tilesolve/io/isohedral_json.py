@@ -15,8 +15,8 @@ of an isohedral tiling.
       "corners": [0, 17, ...],              # index of each tiling vertex in the outline
       "aspects": [[[a, b, c], [d, e, f]], ...],   # each aspect's rigid motion
       "translations": [[x, y], [x, y]],     # T1, T2
-      "placements": [[i, j, aspect], ...],  # the tiles that meet the region
-      "colours": [...], "counts": {...},
+      "placements": [[i, j, aspect], ...],  # the tiles whose bounding boxes meet the region, all of them
+      "colours": [...], "counts": {...},    # a colour per placement; tiles per colour ("colour 0": n, ...)
       "marking": null,                      # a marked type's: {"motif": [[[x, y], ...], ...],
                                             #   "symmetries": [[[a, b, c], [d, e, f]], ...], "marks": [...]}
       "status": "sat", "method": "template", "seed": null, "solver": null,
@@ -29,8 +29,10 @@ the motif onto it (:meth:`~tilesolve.model.isohedral.IsohedralTiling.mark_motion
 file has none; a marked type read from one fails verification (its tiles carry no marking).
 
 No time is recorded: the same command writes the same bytes. Readers refuse unknown fields and
-malformed values in one line naming the file and field; whether the geometry is a tiling of the
-stated type is the verifier's question (``tilesolve verify``).
+malformed values in one line naming the file and field, a ``type`` that is not a name, ``counts``
+that are not the colours' own, a version 1 file with a ``marking``, and a drawing's fields
+without its ``outline``; whether the geometry is a tiling of the stated type, and the drawing the
+whole region, is the verifier's question (``tilesolve verify``).
 
 Pictures: SVG (the prototile once, as a path in ``<defs>``, and one ``<use>`` per tile with its
 motion, clipped to the region: small files) and PNG (Pillow polygons), the region ``width x scale`` by
@@ -141,10 +143,14 @@ def tiling_from_dict(doc: dict, source: str) -> tuple[IsohedralProblem, Solution
     """Problem and solution of a document; one-line :class:`InvalidProblem` naming ``source`` and the field."""
     check_document(doc, source, {TILING_FORMAT: VERSIONS}, fields=_FIELDS,
                    required=("type", "params", "edges", "region", "scale"))
+    if not isinstance(doc["type"], str):
+        raise InvalidProblem(f"{source}: 'type' must be a type name such as 'IH41', got {doc['type']!r}")
     try:
-        number = parse_type(doc["type"]) if isinstance(doc["type"], str) else parse_type(str(doc["type"]))
+        number = parse_type(doc["type"])
     except InvalidProblem as exc:
         raise InvalidProblem(f"{source}: 'type': {exc}") from None
+    if doc["version"] < 2 and "marking" in doc:
+        raise InvalidProblem(f"{source}: 'marking' is a field of version 2 files; this file says version 1")
     t = isohedral_type(number)
     twin = f"IH{t.outline_of:02d}" if t.outline_of else None
     if doc.get("outline_of", twin) != twin:
@@ -176,7 +182,23 @@ def tiling_from_dict(doc: dict, source: str) -> tuple[IsohedralProblem, Solution
                                  "'colours' one per row")
         tiling = IsohedralTiling(number, outline, tuple(corners), aspects, trans, placed.astype(np.int64),
                                  colours.astype(np.int64), *_marking(doc.get("marking"), len(placed), source))
+        _check_counts(doc.get("counts"), colours, t.n_colours, source)
+    else:
+        drawn = sorted(set(doc) & {"corners", "aspects", "translations", "placements", "colours", "counts", "marking"})
+        if drawn:
+            raise InvalidProblem(f"{source}: {', '.join(map(repr, drawn))} without an 'outline': a drawing is "
+                                 "all of its fields or none")
     return problem, solution_from_provenance(doc, source, tiling, what="outline")
+
+
+def _check_counts(counts, colours: np.ndarray, n_colours: int, source: str) -> None:
+    """``counts`` (tiles per colour, a summary the writer adds) must be the colours' own; colours
+    outside the type's range are left to the verifier."""
+    if counts is None or not len(colours) or colours.min() < 0 or colours.max() >= n_colours:
+        return
+    have = {f"colour {c}": int(n) for c, n in enumerate(np.bincount(colours.astype(np.int64)))}
+    if counts != have:
+        raise InvalidProblem(f"{source}: 'counts' does not match 'colours': the tiles per colour are {have}")
 
 
 def _marking(value, n_tiles: int, source: str) -> tuple:

@@ -18,9 +18,13 @@ its problem:
    and the tiles' areas sum to the fundamental domain's, ``|det(T1, T2)|``. Then the sum of the
    tiles' winding numbers is the same on both sides of every chord, hence constant, and equal to
    the area ratio, 1: no overlap and no gap, in the torus and so in the plane.
-4. *The drawing.* The placed tiles are distinct, each meets the region (its bounding box, within
-   the length tolerance), a grid of points of the region each lies in a placed tile, and two
-   placed tiles that share a chord have different colours (from the colours' range).
+4. *The drawing.* The placed tiles are exactly the tiles of the plane that meet the region (by
+   their bounding boxes, as the file format states): each placed tile's box meets the region
+   grown by the length tolerance, none is placed twice, and every tile of the plane whose box
+   meets the region shrunk by it is placed (counted lattice row by lattice row, and looked up
+   exactly: a drawing with a tile deleted, or a region that claims more than is drawn, is
+   refused; with 3 the placed tiles then cover the region). Two placed tiles that share a chord
+   have different colours (from the colours' range).
 
 5. *The markings* of a marked type (Grünbaum and Shephard Fig. 6.2.5; the model's
    :class:`~tilesolve.model.isohedral.MarkedType`): the motif lies in the prototile, the stored
@@ -51,8 +55,6 @@ __all__ = ["tiling_violations", "REL_TOL"]
 REL_TOL = 1e-7
 #: The orders of the point groups of the wallpaper groups of the marked types.
 _POINT_GROUP_ORDER = {"pmm": 4, "cmm": 4, "p4m": 8, "p4g": 8, "p3m1": 6, "p31m": 6, "p6m": 12}
-#: Points of the region tested for cover, per side.
-_COVER_GRID = 9
 
 
 def _linear(coeffs: np.ndarray, params) -> np.ndarray:
@@ -269,61 +271,121 @@ def _drawing(problem: IsohedralProblem, tiling: IsohedralTiling, tiles: list[np.
         return [Violation("drawing", f"a placement names an aspect outside 0..{t.n_aspects - 1}")]
     if len(placed) and (colours.min() < 0 or colours.max() >= t.n_colours):
         return [Violation("drawing", f"a colour lies outside 0..{t.n_colours - 1}")]
-    lo = placed[:, :2].min(axis=0, initial=0) - 1
-    span = placed[:, :2].max(axis=0, initial=0) - lo + 2
-
-    def key(i, j, a):  # one integer per (i, j, aspect) near the placed ones
-        return ((i - lo[0]) * span[1] + (j - lo[1])) * t.n_aspects + a
-
-    keys = key(placed[:, 0], placed[:, 1], placed[:, 2])
-    order = np.argsort(keys, kind="stable")
-    if len(keys) and (np.diff(keys[order]) == 0).any():
-        return [Violation("drawing", "a tile is placed twice")]
-    out = []
     T = tiling.translations
     x0, y0, w, h = problem.region
     boxes = np.array([[p[:, 0].min(), p[:, 1].min(), p[:, 0].max(), p[:, 1].max()] for p in tiles])
     b = boxes[placed[:, 2]] + np.tile(placed[:, :2] @ T, 2)
     away = (b[:, 0] > x0 + w + tol) | (b[:, 2] < x0 - tol) | (b[:, 1] > y0 + h + tol) | (b[:, 3] < y0 - tol)
-    if away.any():
-        out.append(Violation("drawing", f"placed tile {int(np.argmax(away))} lies outside the region"))
+    if away.any():  # first: the lattice indices below are then those of tiles near the region
+        return [Violation("drawing", f"placed tile {int(np.argmax(away))} lies outside the region")]
+    index = _Rows(placed)
+    if index.duplicated:
+        return [Violation("drawing", "a tile is placed twice")]
+    missing = _missing(index, boxes, T, problem.region, tol)
+    if missing is not None:
+        return [missing]
+    out = []
     for a, a2, di, dj in sorted(links):
         mine = np.flatnonzero(placed[:, 2] == a)
-        want = key(placed[mine, 0] + di, placed[mine, 1] + dj, a2)
-        inside = (placed[mine, 0] + di >= lo[0]) & (placed[mine, 0] + di < lo[0] + span[0]) & \
-                 (placed[mine, 1] + dj >= lo[1]) & (placed[mine, 1] + dj < lo[1] + span[1])
-        pos = np.clip(np.searchsorted(keys[order], want), 0, max(len(keys) - 1, 0))
-        found = inside & (keys[order][pos] == want)
-        other = order[pos[found]]
-        clash = colours[mine[found]] == colours[other]
+        other = index.find(np.column_stack([placed[mine, 0] + di, placed[mine, 1] + dj, np.full(len(mine), a2)]))
+        found = other >= 0
+        clash = colours[mine[found]] == colours[other[found]]
         if clash.any():
             k = int(np.argmax(clash))
-            out.append(Violation("colour", f"placed tiles {int(mine[found][k])} and {int(other[k])} share an edge "
-                                           "and a colour"))
+            out.append(Violation("colour", f"placed tiles {int(mine[found][k])} and {int(other[found][k])} share an "
+                                           "edge and a colour"))
             return out
-    # Cover: each grid point of the region lies in some tile of the plane; that tile must be placed.
-    g = (np.arange(_COVER_GRID) + 0.5 + 0.0137) / (_COVER_GRID + 0.03)
-    pts = np.array([[x0 + u * w, y0 + v * h] for u in g for v in g])
-    covered = np.zeros(len(pts), bool)
-    inv = np.linalg.inv(T)
-    uv = pts @ inv
-    for a, p in enumerate(tiles):
-        box_uv = np.array([[boxes[a, u], boxes[a, v]] for u in (0, 2) for v in (1, 3)]) @ inv
-        first = np.floor(uv - box_uv.max(axis=0)).astype(np.int64) - 1  # the cells whose tile's box may hold a point
-        reach = np.ceil(box_uv.max(axis=0) - box_uv.min(axis=0)).astype(np.int64) + 3
-        di, dj = np.meshgrid(np.arange(reach[0]), np.arange(reach[1]), indexing="ij")
-        n = np.repeat(np.arange(len(pts)), di.size)
-        i, j = first[n, 0] + np.tile(di.ravel(), len(pts)), first[n, 1] + np.tile(dj.ravel(), len(pts))
-        ok = (i >= lo[0]) & (i < lo[0] + span[0]) & (j >= lo[1]) & (j < lo[1] + span[1])
-        want = key(i, j, a)
-        pos = np.clip(np.searchsorted(keys[order], want), 0, max(len(keys) - 1, 0))
-        ok &= keys[order][pos] == want
-        local = pts[n[ok]] - np.stack([i[ok], j[ok]], axis=1) @ T
-        covered[n[ok][_inside(local, p)]] = True
-    if not covered.all():
-        x, y = pts[np.argmin(covered)]
-        out.append(Violation("drawing", f"the point ({x:.6g}, {y:.6g}) of the region lies in no placed tile"))
     return out
+
+
+#: Most lattice rows (per aspect) the completeness check walks, and how many it takes at a time.
+_MAX_ROWS = 1 << 24
+_ROW_CHUNK = 1 << 14
+
+
+class _Rows:
+    """Integer rows (placed tiles i, j, aspect; centroid cells), sorted for exact look-up: no
+    arithmetic on the values, so no overflow or collision however large they are."""
+
+    def __init__(self, rows: np.ndarray):
+        rows = np.asarray(rows, dtype=np.int64)
+        self.width = rows.shape[1]
+        void = self._void(rows)
+        self.order = np.argsort(void, kind="stable")
+        self.sorted_rows = void[self.order]
+        self.duplicated = bool(len(rows) > 1 and (self.sorted_rows[1:] == self.sorted_rows[:-1]).any())
+
+    def _void(self, rows: np.ndarray) -> np.ndarray:
+        rows = np.ascontiguousarray(rows, dtype=np.int64).reshape(len(rows), self.width)
+        return rows.view(np.dtype((np.void, 8 * self.width))).ravel()
+
+    def find(self, rows: np.ndarray) -> np.ndarray:
+        """The index of each row among the rows given, or -1."""
+        if not len(self.sorted_rows) or not len(rows):
+            return np.full(len(rows), -1, np.int64)
+        want = self._void(rows)
+        pos = np.clip(np.searchsorted(self.sorted_rows, want), 0, len(self.sorted_rows) - 1)
+        return np.where(self.sorted_rows[pos] == want, self.order[pos], -1)
+
+
+def _missing(index: _Rows, boxes: np.ndarray, T: np.ndarray, region, tol: float) -> Violation | None:
+    """The drawing is the region's whole: every tile of the plane (cell i, j, aspect a) whose bounding
+    box meets the region shrunk by ``tol`` on every side must be placed (the format's "tiles that meet
+    the region"; the placed ones outside the region grown by ``tol`` are refused before).
+
+    The tiles that meet the region cover it, so they are at least its area over a tile's
+    (``|det T| / aspects``: the torus check summed the tiles' areas to ``|det T|``) and a file that
+    places fewer is refused unseen. Else, lattice row by lattice row ``i``, the cells ``j`` whose
+    shift ``i T1 + j T2`` puts the box inside the region's strip are an interval; they are counted
+    (more than the placed tiles: some is missing) and looked up.
+    """
+    x0, y0, w, h = region
+    n_placed = len(index.sorted_rows)
+    n_aspects = len(boxes)
+    det = abs(float(T[0, 0] * T[1, 1] - T[0, 1] * T[1, 0]))
+    least = w * h / (det / n_aspects)
+    if least > n_placed * (1 + 1e-6) + 1:
+        return Violation("drawing", f"the tiles that meet the region cover at least its area, {least:,.0f} tiles' "
+                                    f"worth, but the file places {n_placed:,}")
+    dx, dy = min(tol, w / 4), min(tol, h / 4)
+    X0, X1, Y0, Y1 = x0 + dx, x0 + w - dx, y0 + dy, y0 + h - dy
+    inv = np.linalg.inv(T)
+    total = 0
+    for a, (bx0, by0, bx1, by1) in enumerate(boxes.tolist()):
+        sx, sy = (X0 - bx1, X1 - bx0), (Y0 - by1, Y1 - by0)  # the shifts that put the box across the region
+        ij = np.array([[u, v] for u in sx for v in sy]) @ inv
+        i_lo, i_hi = int(np.floor(ij[:, 0].min())), int(np.ceil(ij[:, 0].max()))
+        if i_hi - i_lo > _MAX_ROWS:
+            return Violation("drawing", f"the region spans {i_hi - i_lo:,} lattice rows: too many to check")
+        for start in range(i_lo, i_hi + 1, _ROW_CHUNK):
+            i = np.arange(start, min(start + _ROW_CHUNK, i_hi + 1), dtype=np.int64)
+            lo, hi = np.full(len(i), -np.inf), np.full(len(i), np.inf)
+            for (c0, c1), t1, t2 in ((sx, T[0, 0], T[1, 0]), (sy, T[0, 1], T[1, 1])):
+                if t2 == 0:  # this coordinate of the shift does not depend on j
+                    lo[~((c0 < i * t1) & (i * t1 < c1))] = np.inf
+                    continue
+                e0, e1 = (c0 - i * t1) / t2, (c1 - i * t1) / t2
+                lo, hi = np.maximum(lo, np.minimum(e0, e1)), np.minimum(hi, np.maximum(e0, e1))
+            keep = lo < hi
+            i, j_lo, j_hi = i[keep], np.floor(lo[keep]).astype(np.int64), np.ceil(hi[keep]).astype(np.int64)
+            count = j_hi - j_lo + 1  # one more than the open interval's integers at each end, at most
+            if int(count.sum()) > n_placed - total + 2 * len(i) + _ROW_CHUNK:
+                return Violation("drawing", f"more tiles meet the region than the {n_placed:,} placed")
+            rows = np.repeat(i, count)
+            j = np.arange(int(count.sum()), dtype=np.int64) - np.repeat(np.cumsum(count) - count, count) \
+                + np.repeat(j_lo, count)
+            s = rows[:, None] * T[0] + j[:, None] * T[1]
+            meets = (s[:, 0] > sx[0]) & (s[:, 0] < sx[1]) & (s[:, 1] > sy[0]) & (s[:, 1] < sy[1])
+            rows, j = rows[meets], j[meets]
+            total += len(rows)
+            if total > n_placed:
+                return Violation("drawing", f"more tiles meet the region than the {n_placed:,} placed")
+            found = index.find(np.column_stack([rows, j, np.full(len(rows), a)]))
+            if (found < 0).any():
+                k = int(np.argmin(found))
+                return Violation("drawing", f"the tile of cell ({int(rows[k])}, {int(j[k])}), aspect {a}, meets the "
+                                            "region but is not placed")
+    return None
 
 
 def _motion(a: complex, b: complex, flip: bool):
@@ -424,23 +486,15 @@ def _linear_part(a: complex, flip: bool) -> np.ndarray:
 
 
 class _CentreKeys:
-    """Placed tiles by their centroid, on a grid of cells ``step`` wide (sorted integer keys)."""
+    """Placed tiles by their centroid, on a grid of cells ``step`` wide (exact rows: :class:`_Rows`)."""
 
     def __init__(self, centres: np.ndarray, step: float):
         self.step = step
-        self.keys = self._keys(centres)
-        self.order = np.argsort(self.keys, kind="stable")
-
-    def _keys(self, points: np.ndarray) -> np.ndarray:
-        ij = np.round(points / self.step).astype(np.int64)
-        return ij[:, 0] * np.int64(4_000_000_007) + ij[:, 1]
+        self.rows = _Rows(np.round(centres / step))
 
     def find(self, points: np.ndarray) -> np.ndarray:
         """The placed tile with each point as its centroid, or -1."""
-        want = self._keys(points)
-        pos = np.clip(np.searchsorted(self.keys[self.order], want), 0, max(len(self.keys) - 1, 0))
-        hit = self.keys[self.order][pos] == want
-        return np.where(hit, self.order[pos], -1)
+        return self.rows.find(np.round(points / self.step))
 
 
 def _point_group(t, verts: np.ndarray, syms: dict, keep: set) -> list[Violation]:

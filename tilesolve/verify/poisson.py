@@ -34,7 +34,7 @@ import numpy as np
 from tilesolve.model.poisson import PoissonTileSet, r_max
 from tilesolve.verify.dappled import Violation
 
-__all__ = ["point_violations", "tileset_violations", "placed_points", "match_violations", "min_distance", "relative_radius", "radial_spectrum",
+__all__ = ["point_violations", "tileset_violations", "placed_points", "match_violations", "window_size_violations", "min_distance", "relative_radius", "radial_spectrum",
            "periodogram"]
 
 #: Violations listed at most (the count is always given).
@@ -173,8 +173,10 @@ def match_violations(claimed, rebuilt, what: str) -> list[Violation]:
     """Every way the rows of ``claimed`` (points, with any further columns) differ from those of
     ``rebuilt``, compared exactly and as multisets: rows missing from ``claimed``, rows that are
     not among ``rebuilt`` (a row moved is both). ``what`` names where ``rebuilt`` came from."""
-    a, b = (np.ascontiguousarray(np.asarray(x, dtype=np.float64).reshape(len(x), -1)) for x in (claimed, rebuilt))
-    if a.shape == b.shape and np.array_equal(a[np.lexsort(a.T[::-1])], b[np.lexsort(b.T[::-1])]):
+    a, b = (np.asarray(x, dtype=np.float64) for x in (claimed, rebuilt))
+    width = next((x.shape[1] for x in (a, b) if x.ndim == 2 and x.size), 0)
+    a, b = (np.ascontiguousarray(x.reshape(len(x), -1) if x.size else x.reshape(len(x), width)) for x in (a, b))
+    if a.shape == b.shape and (not a.size or np.array_equal(a[np.lexsort(a.T[::-1])], b[np.lexsort(b.T[::-1])])):
         return []
     if a.shape[1] != b.shape[1]:
         return [Violation("seed", f"rows of {a.shape[1]} numbers, but {what} gives rows of {b.shape[1]}")]
@@ -191,6 +193,27 @@ def match_violations(claimed, rebuilt, what: str) -> list[Violation]:
     if not out:
         out.append(Violation("seed", f"{len(a):,} points in the file, {len(b):,} from {what}"))
     return out
+
+
+def window_size_violations(interior, cells: int, claimed: int) -> list[Violation]:
+    """Whether a window of ``cells`` lattice cells can hold the ``claimed`` points a file lists,
+    before they are re-derived (2-D or 3-D sets alike): each cell holds every point of its own
+    interior tile (``interior``: the set's interior tiles, whose regions lie inside the cell),
+    so a window of more cells than the file's points allow is refused unseen, and an absurd window
+    of a small file costs nothing. A set with an empty interior tile bounds nothing: its window
+    is re-derived only while it has few cells beside the file's points."""
+    least = min((len(t) for t in interior), default=0)
+    if cells * least > claimed:
+        return [Violation("seed", f"the window's {cells:,} cells hold at least {cells * least:,} points (every "
+                                  f"interior tile of the set holds {least} or more); the file holds {claimed:,}")]
+    if least == 0 and cells > 4 * claimed + _FEW_CELLS:
+        return [Violation("size", f"NOT confirmed: the set has an empty interior tile, so its window of {cells:,} "
+                                  f"cells is not bounded by the file's {claimed:,} points; it was not re-derived")]
+    return []
+
+
+#: Cells a window of a set with an empty interior tile may have beyond four for each point of its file.
+_FEW_CELLS = 1 << 16
 
 
 def tileset_violations(ts: PoissonTileSet, *, max_blocks: int = 4096, seed: int = 0) -> list[Violation]:
