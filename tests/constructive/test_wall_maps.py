@@ -6,7 +6,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from tilesolve.constructive.wall_maps import id_colour_index, wall_maps
+from tilesolve.constructive.wall_maps import wall_maps
+from tilesolve.model.brick_colour import brick_colour_index
 from tilesolve.constructive.walls import wall_window
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.svg_board import brick_ids
@@ -111,8 +112,8 @@ def test_compiled_pixels_equal_the_numpy_maps(win, kind, ppc):
 
 def test_id_colours_are_stable_and_spread():
     vx, vy = np.meshgrid(np.arange(-50, 50), np.arange(-50, 50))
-    a = id_colour_index(vx, vy, 254)
-    assert np.array_equal(a, id_colour_index(vx, vy, 254))
+    a = brick_colour_index(vx, vy, 254)
+    assert np.array_equal(a, brick_colour_index(vx, vy, 254))
     assert a.min() >= 0 and a.max() < 254
     assert len(np.unique(a)) > 240  # 10,000 vertices cover nearly every colour
     assert (a[:, 1:] != a[:, :-1]).mean() > 0.98  # neighbours differ

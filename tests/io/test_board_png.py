@@ -62,7 +62,8 @@ def test_the_board_picture_and_the_id_map_colour_each_brick_alike(origin):
     # one brick hash (tilesolve.model.brick_colour): a wall window's board picture gives every
     # brick the colour of the wall-map id map's brick (away from the edges, which the board
     # picture rounds to whole pixels)
-    from tilesolve.constructive.wall_maps import id_colour_index, wall_maps
+    from tilesolve.constructive.wall_maps import wall_maps
+    from tilesolve.model.brick_colour import brick_colour_index
     from tilesolve.constructive.walls import wall_window
     from tilesolve.io.wall_png import N_BRICK_COLOURS
 
@@ -73,4 +74,4 @@ def test_the_board_picture_and_the_id_map_colour_each_brick_alike(origin):
     m = wall_maps(halo, colors, S, origin=origin)
     inside = m.distance > 2.0 / S
     assert inside.mean() > 0.3
-    assert np.array_equal(img[inside], id_colour_index(m.vx, m.vy, N_BRICK_COLOURS)[inside])
+    assert np.array_equal(img[inside], brick_colour_index(m.vx, m.vy, N_BRICK_COLOURS)[inside])

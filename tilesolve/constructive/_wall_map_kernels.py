@@ -22,7 +22,7 @@ _M4 = np.uint64(0x94D049BB133111EB)
 
 @njit(cache=True)
 def colour_of_vertex(vx, vy, n):
-    """:func:`tilesolve.constructive.wall_maps.id_colour_index` of one vertex."""
+    """:func:`tilesolve.model.brick_colour.brick_colour_index` of one vertex."""
     z = np.uint64(vx) * _M1 ^ np.uint64(vy) * _M2
     z = (z ^ (z >> np.uint64(30))) * _M3
     z = (z ^ (z >> np.uint64(27))) * _M4

@@ -44,11 +44,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from tilesolve.errors import InvalidProblem
-# The brick colour hash has one home, shared with the board pictures (tilesolve.io.board_png):
-# id_colour_index is that function, under the name this module's callers use.
-from tilesolve.model.brick_colour import brick_colour_index as id_colour_index
 
-__all__ = ["WallMaps", "wall_maps", "id_colour_index", "MAPS"]
+__all__ = ["WallMaps", "wall_maps", "MAPS"]
 
 #: The maps :func:`wall_maps` computes, by the names the CLI uses (``--map``).
 MAPS = ("id", "distance", "uv")

@@ -97,11 +97,12 @@ def wall_map_pixels(legs_halo, kind: str, *, colors: int, ppc: int, origin: tupl
         map_band(legs, int(colors), int(ppc), int(origin[0]), int(origin[1]), ("id", "distance", "uv").index(kind),
                  N_BRICK_COLOURS, MORTAR, float(mortar_px), float(DISTANCE_FULL), out)
         return out if kind == "uv" else out[..., 0]
-    from tilesolve.constructive.wall_maps import id_colour_index, wall_maps
+    from tilesolve.constructive.wall_maps import wall_maps
+    from tilesolve.model.brick_colour import brick_colour_index
 
     m = wall_maps(legs, colors, ppc, origin=origin)
     if kind == "id":
-        return map_pixels("id", colour_index=id_colour_index(m.vx, m.vy, N_BRICK_COLOURS), distance=m.distance,
+        return map_pixels("id", colour_index=brick_colour_index(m.vx, m.vy, N_BRICK_COLOURS), distance=m.distance,
                           mortar_px=mortar_px, ppc=ppc)
     return map_pixels(kind, distance=m.distance, u=m.u, v=m.v)
 
