@@ -109,3 +109,15 @@ def test_a_dappled_png_lists_its_tiles_colours_like_its_svg(tmp_path):
     for k in range(3):  # a swatch of each tile's palette colour (index k + 1), outlined, under the picture
         assert (below == k + 1).sum() == 100
     assert (below == 255).sum() > 3 * 44  # outlines and the labels' ink
+
+
+@pytest.mark.parametrize("width", [120, 216, 333])
+def test_wrapped_captions_keep_their_right_margin(width):
+    """Lines are measured as they are drawn (no anti-aliasing): the packing's caption at 216 px
+    ran 7 px past its margin and was cut at the picture's edge (issue 22's clipped captions)."""
+    from tilesolve.io.png import caption_mask
+
+    lines = ["complete wang tile set over 3 colours (81 tiles) packed into a 9x9 torus (sat, seed 1)",
+             "witness: the square 12x12 tiled (sat, seed 1) " * 3, "W" * 80]
+    mask = caption_mask(lines, width)
+    assert mask.any() and not mask[:, :4].any() and not mask[:, -4:].any()

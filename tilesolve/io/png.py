@@ -68,19 +68,23 @@ def caption_mask(lines, width: int, *, font_px: int = 12) -> np.ndarray:
     except TypeError:  # Pillow before 10.1: its bitmap font, one size
         font = ImageFont.load_default()
     room = width - 8
+
+    def length(text: str) -> float:  # measured as drawn: mode "1" (unhinted lengths run up to 6% shorter)
+        return font.getlength(text, mode="1")
+
     wrapped: list[str] = []
     for line in lines:
         current = ""
         for word in line.split(" "):
             trial = f"{current} {word}" if current else word
-            if font.getlength(trial) <= room:
+            if length(trial) <= room:
                 current = trial
                 continue
             if current:
                 wrapped.append(current)
             current = ""
             for ch in word:  # a word wider than the picture: broken where it reaches the edge
-                if current and font.getlength(current + ch) > room:
+                if current and length(current + ch) > room:
                     wrapped.append(current)
                     current = ""
                 current += ch
