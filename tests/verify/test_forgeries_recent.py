@@ -131,6 +131,16 @@ SAMPLED = [
      lambda d: (d["window"].update(width=1400, height=1400), d.update(local=d["local"][:3], density_grid=None, level=0,
                                                                       density="level 0")), 1,
      "NOT confirmed: sampling the window again builds about"),
+    # labels shown in the verdict: a built-in test image's name, a recursive window's density label
+    ("stipple", "the density scaled under the name 'radial'",
+     lambda d: d.update(density=[[v / 2 for v in row] for row in d["density"]]), 2,
+     "names the built-in test image 'radial', but 'density' is not"),
+    ("stipple", "the image's name a number", lambda d: d.update(image=3), 2, "'image' must be the density's name"),
+    ("recursive", "the ramp's label changed", lambda d: d.update(density="ramp 16,999"), 1,
+     "says a ramp from 16 to 999 west to east"),
+    ("recursive", "a ramp's grid under a single density's label", lambda d: d.update(density="density 16"), 1,
+     "says a density of 16 everywhere"),
+    ("recursive", "the density's label a number", lambda d: d.update(density=5), 2, "'density' must be the density's"),
     # regressions: the seed binds the points
     ("poisson", "the seed changed", lambda d: d.update(seed=d["seed"] + 1), 1, "of seed 3 gives"),
     ("recursive", "a point's rank changed", lambda d: d["local"][0].__setitem__(3, d["local"][0][3] + 1e-9), 1,

@@ -140,7 +140,7 @@ def rederived_violations(problem: RecursiveWindowProblem, answer: SeededRecursiv
 
     from tilesolve.constructive.poisson_recursive import sample_window
     from tilesolve.verify.poisson import match_violations
-    from tilesolve.verify.poisson_recursive import tileset_violations
+    from tilesolve.verify.poisson_recursive import label_violations, tileset_violations
 
     bad = tileset_violations(problem.tileset)
     if bad:
@@ -152,7 +152,8 @@ def rederived_violations(problem: RecursiveWindowProblem, answer: SeededRecursiv
                                   f"points, too many for a file of {answer.n_points:,} points; it was not re-derived")]
     w = sample_window(problem, seed=answer.seed)
     return match_violations(np.column_stack([answer.local, answer.level, answer.rank]),
-                            np.column_stack([w.local, w.level, w.rank]), f"the window of seed {answer.seed}")
+                            np.column_stack([w.local, w.level, w.rank]), f"the window of seed {answer.seed}") \
+        + label_violations(problem.label, problem.density, problem.level)
 
 
 def picture_distance(w: RecursiveWindow) -> float:

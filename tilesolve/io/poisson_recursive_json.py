@@ -196,9 +196,11 @@ def window_from_dict(doc: dict, source: str = "<document>") -> tuple[RecursivePr
         return problem, Solution(Status.SAT, RecursiveWindow(*parts), method="window", seed=seed, window=window)
     tileset = embedded_set(doc, source, problem, set_from_dict)
     grid, label = _grid(doc.get("density_grid"), source), doc.get("density", "")
+    if not isinstance(label, str) or len(label) > 1000:
+        raise InvalidProblem(f"{source}: 'density' must be the density's label, a string (e.g. 'ramp 16,4096')")
     try:
-        wp = RecursiveWindowProblem(tileset, window, None if grid is not None else level, grid,
-                                    label if isinstance(label, str) else "", doc.get("hash", "long"))
+        wp = RecursiveWindowProblem(tileset, window, None if grid is not None else level, grid, label,
+                                    doc.get("hash", "long"))
     except InvalidProblem as exc:
         raise InvalidProblem(f"{source}: {exc}") from None
     if wp.level != level:

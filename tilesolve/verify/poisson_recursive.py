@@ -18,7 +18,9 @@ Written from the definitions, sharing no code with the builder
   points of that level in file order), levels and ranks are in range, and the points lie in
   the window.
 
->>> import numpy as np
+>>> import math
+
+import numpy as np
 >>> from tilesolve.model.poisson_recursive import RecursiveWindow
 >>> from tilesolve.model.window import Window
 >>> w = RecursiveWindow(Window(0, 0, 1, 1), np.array([[0.1, 0.1], [0.3, 0.1], [0.32, 0.1]]),
@@ -29,6 +31,8 @@ Written from the definitions, sharing no code with the builder
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from tilesolve.model.poisson_recursive import MAX_LEVEL, RecursiveTileSet, RecursiveWindow
@@ -36,7 +40,7 @@ from tilesolve.verify.dappled import Violation
 from tilesolve.verify.poisson import MAX_LISTED, point_violations
 from tilesolve.verify.poisson import tileset_violations as base_violations
 
-__all__ = ["tileset_violations", "rule_violations", "window_violations"]
+__all__ = ["tileset_violations", "rule_violations", "window_violations", "label_violations"]
 
 
 def rule_violations(rules: np.ndarray, colors: int) -> list[Violation]:
@@ -97,3 +101,51 @@ def window_violations(w: RecursiveWindow) -> list[Violation]:
         if len(out) >= MAX_LISTED:
             break
     return out
+
+
+def label_violations(label: str, grid, level: int) -> list[Violation]:
+    """Whether a window's density label (shown in ``verify``'s verdict) says what its density
+    grid holds (``None``: a window at one level), when it is one of the labels tilesolve writes:
+    ``level L`` (no grid, that level), ``density D`` (D everywhere), ``ramp D0,D1`` (one row
+    rising linearly from D0 to D1), ``image ..., up to D`` (nothing above D) or ``density up to D
+    a unit area`` (its largest value); any other label is the user's own words."""
+    grid = None if grid is None else np.atleast_2d(np.asarray(grid, dtype=np.float64))
+    def number(text: str) -> float | None:
+        try:
+            v = float(text)
+        except ValueError:
+            return None
+        return v if math.isfinite(v) else None
+
+    def fail(what: str) -> list[Violation]:
+        return [Violation("label", f"the density's label {label[:80]!r} says {what}, but the window's density "
+                                   f"{'is none (one level)' if grid is None else 'is another'}")]
+
+    words = label.split(" ")
+    if len(words) == 2 and words[0] == "level" and words[1].isdigit():
+        if grid is not None:
+            return fail(f"level {words[1]} and no density")
+        if int(words[1]) != level:
+            return [Violation("label", f"the density's label {label!r} says level {words[1]}, but the window's "
+                                       f"level is {level}")]
+        return []
+    if len(words) == 2 and words[0] == "density" and number(words[1]) is not None:
+        if grid is None or not np.allclose(grid, number(words[1]), rtol=1e-5, atol=0):
+            return fail(f"a density of {words[1]} everywhere")
+        return []
+    ends = words[1].split(",") if len(words) == 2 and words[0] == "ramp" else []
+    if len(ends) == 2 and None not in map(number, ends):
+        lo, hi = map(number, ends)
+        if grid is None or grid.shape[0] != 1 or not np.allclose(grid[0], np.linspace(lo, hi, grid.shape[1]),
+                                                                  rtol=1e-9, atol=1e-9 * max(abs(lo), abs(hi))):
+            return fail(f"a ramp from {lo:g} to {hi:g} west to east")
+        return []
+    if label.startswith("image ") and ", up to " in label:
+        top = number(label.rsplit(", up to ", 1)[1])
+        if top is not None and (grid is None or grid.max() > top * (1 + 1e-9)):
+            return fail(f"no density above {top:g}")
+    if label.startswith("density up to ") and label.endswith(" a unit area"):
+        top = number(label[len("density up to "):-len(" a unit area")])
+        if top is not None and (grid is None or not math.isclose(float(grid.max()), top, rel_tol=1e-5)):
+            return fail(f"a largest density of {top:g}")
+    return []
