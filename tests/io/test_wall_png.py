@@ -230,3 +230,23 @@ def test_a_histogram_of_one_seed_says_seed(tmp_path):
     two = run("wall-lines", "--method", "procedural", "--max-line", "2", "--size", "8x8", "--samples", "2",
               "--svg", "-", cwd=tmp_path)
     assert "seeds 0..1<" in two.stdout
+
+
+@pytest.mark.parametrize("columns", [1, 2])
+def test_a_charts_legend_stays_inside_its_width(columns):
+    """wall-lines' one-column chart (the default) put its three names in one row and cut the
+    last, 'wall (Kaji dappling)', at the picture's edge: the legend wraps instead."""
+    from tilesolve.io.histogram import Panel, chart_shapes
+    from tilesolve.io.svg import text_width
+
+    names = ["PD (procedural)", "NPD (Kaji cyclic dappling)", "wall (Kaji dappling)"]
+    panels = [Panel("vertical lines", ["1", "2"], [(n, [0.5, 0.5]) for n in names])] * 2
+    width, height, shapes = chart_shapes(panels, columns=columns, title="line lengths")
+    texts = {s[3]: s for s in shapes if s[0] == "text"}
+    for name in names:
+        _, x, y, _, anchor = texts[name]
+        assert anchor == "start" and x + text_width(name, 12) <= width - 8, (name, x, width)
+    legend_bottom = max(texts[n][2] for n in names)
+    plots = [s for s in shapes if s[0] == "rect" and s[2] > legend_bottom]
+    assert plots and min(s[2] for s in shapes if s[0] == "line") > legend_bottom  # the panels start below it
+    assert max(s[2] + s[4] for s in plots) <= height

@@ -15,6 +15,7 @@ from typing import Sequence
 
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.atomic import atomic_write
+from tilesolve.io.svg import text_width
 
 __all__ = ["Panel", "chart_shapes", "write_chart_svg", "write_chart_png"]
 
@@ -50,17 +51,22 @@ def chart_shapes(panels: Sequence[Panel], *, columns: int, title: str = "") -> t
     rows = -(-len(panels) // columns)
     names = [name for name, _ in panels[0].series]
     head = 28 if title else 0
-    legend_y = head + 8
     width = columns * (_PW + _PAD) + _PAD
-    height = legend_y + 22 + rows * (_PH + _PAD)
     shapes: list[tuple] = []
     if title:
         shapes.append(("text", width / 2, 20, title, "middle"))
-    x = _PAD
+    # the legend: a swatch and its name each, wrapped into as many rows as the width needs
+    # (one row ran past a one-column chart's edge: "wall (Kaji dappling)" was cut off)
+    x, y = _PAD, head + 8
     for k, name in enumerate(names):
-        shapes.append(("rect", x, legend_y + 2, 12, 12, PALETTE[k % len(PALETTE)]))
-        shapes.append(("text", x + 16, legend_y + 12, name, "start"))
-        x += 24 + 8 * len(name)
+        item = 16 + text_width(name, 12)
+        if x > _PAD and x + item > width - _PAD:
+            x, y = _PAD, y + 20
+        shapes.append(("rect", x, y + 2, 12, 12, PALETTE[k % len(PALETTE)]))
+        shapes.append(("text", x + 16, y + 12, name, "start"))
+        x += item + 16
+    legend_y = y
+    height = legend_y + 22 + rows * (_PH + _PAD)
     for p, panel in enumerate(panels):
         if len(panel.series) != len(names) or any(len(v) != len(panel.labels) for _, v in panel.series):
             raise InvalidProblem("every panel needs the same series, one value per label")
