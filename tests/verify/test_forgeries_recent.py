@@ -131,10 +131,7 @@ SAMPLED = [
      lambda d: (d["window"].update(width=1400, height=1400), d.update(local=d["local"][:3], density_grid=None, level=0,
                                                                       density="level 0")), 1,
      "NOT confirmed: sampling the window again builds about"),
-    # labels shown in the verdict: a built-in test image's name, a recursive window's density label
-    ("stipple", "the density scaled under the name 'radial'",
-     lambda d: d.update(density=[[v / 2 for v in row] for row in d["density"]]), 2,
-     "names the built-in test image 'radial', but 'density' is not"),
+    # labels shown in the verdict: the density's name, a recursive window's density label
     ("stipple", "the image's name a number", lambda d: d.update(image=3), 2, "'image' must be the density's name"),
     ("recursive", "the ramp's label changed", lambda d: d.update(density="ramp 16,999"), 1,
      "says a ramp from 16 to 999 west to east"),

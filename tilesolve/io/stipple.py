@@ -199,19 +199,6 @@ def _density(value, name, source: str) -> DensityMap:
         raise InvalidProblem(f"{source}: {exc}") from None
 
 
-def _check_test_image(name: str, values: np.ndarray, source: str) -> None:
-    """A density named after a built-in test image must be that image (the name is shown in
-    ``verify``'s verdict); other names (a picture's path) are the user's."""
-    from tilesolve.model.importance import TEST_IMAGES, builtin_density
-
-    if name not in TEST_IMAGES:
-        return
-    rows, cols = values.shape
-    if rows != cols or not np.allclose(builtin_density(name, rows).values, values, rtol=0, atol=1e-12):
-        raise InvalidProblem(f"{source}: 'image' names the built-in test image {name!r}, but 'density' is not "
-                             f"that image at {cols}x{rows} pixels")
-
-
 def stipple_from_dict(doc: dict, source: str = "<document>") -> tuple[ImportanceProblem, Solution]:
     """Read :func:`stipple_to_dict`'s document: the problem (its density embedded) and the
     :class:`Samples` with their seed; one-line errors naming ``source`` and the field."""
@@ -223,7 +210,6 @@ def stipple_from_dict(doc: dict, source: str = "<document>") -> tuple[Importance
     if not isinstance(name, str):
         raise InvalidProblem(f"{source}: 'image' must be the density's name, a string, got {name!r}")
     density = _density(doc["density"], name, source)
-    _check_test_image(name, density.values, source)
     try:
         problem = ImportanceProblem(density, doc["points"], doc["method"], doc.get("tile", "chair"),
                                     doc.get("lloyd", 0), doc.get("jitter", False))
