@@ -161,3 +161,39 @@ def test_points_compared_exactly_may_be_none():
     assert match_violations([], np.zeros((0, 2)), "x") == []
     assert "3 point(s) x gives are missing" in match_violations([], np.ones((3, 2)), "x")[0].message
     assert "are not among those" in match_violations(np.ones((2, 4)), np.zeros((0, 4)), "x")[0].message
+
+
+@pytest.fixture(scope="module")
+def squares(tmp_path_factory):
+    """A witness of the grams square search (Jeandel-Rao, squares up to 60)."""
+    folder = tmp_path_factory.mktemp("squares")
+    doc = _drawn(folder, "aperiodic", "check", "--builtin", "jeandel-rao", "--max-square", "60", "--square-search",
+                 "grams", "--seed", "1", "-o", "grams.json")
+    return folder, doc
+
+
+def _last_square(d) -> dict:
+    return d["squares"][-1]
+
+
+SQUARES = [
+    ("a tile of the witness changed",
+     lambda d: _last_square(d)["tiling"][5].__setitem__(5, (_last_square(d)["tiling"][5][5] + 1) % 11), 1,
+     "square 60x60: leg"),
+    ("the witness's board named larger", lambda d: _last_square(d).update(board="square 61x61"), 1,
+     "witness has shape (60, 60), expected (61, 61)"),
+    ("a larger square claimed", lambda d: d.update(largest_square=61), 1, "claimed without its witness"),
+    ("the verdict changed", lambda d: d.update(verdict="finite"), 1, "is not what the certificates give"),
+    # one certificate a board, as for the periods: a second could contradict the first
+    ("the witness listed twice", lambda d: d["squares"].append(json.loads(json.dumps(_last_square(d)))), 1,
+     "square 60x60: certified twice"),
+    # a built-in set's name (shown in the verdict) over another set
+    ("another built-in set's name", lambda d: d.update(name="kari-14"), 2,
+     "'name' is the built-in tile set 'kari-14', but 'tileset' is not that set"),
+]
+
+
+@pytest.mark.parametrize("name, forge, code, words", SQUARES, ids=[c[0] for c in SQUARES])
+def test_forged_square_witnesses_are_refused(squares, name, forge, code, words):
+    folder, doc = squares
+    verify_forgery(folder, doc, forge, code, words)

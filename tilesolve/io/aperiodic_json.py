@@ -118,6 +118,18 @@ def _certificate(d: Any, where: str, source: Any) -> Certificate:
         raise InvalidProblem(f"{source}: {where}: {exc}") from None
 
 
+def _check_builtin_name(name, tileset, source: Any) -> None:
+    """A report named after a built-in tile set (the name ``verify``'s verdict shows) must hold that
+    set, tile for tile; other names (a file's) are the user's."""
+    from tilesolve.io.builtin_tilesets import load, names
+
+    if name is None or name not in names():
+        return
+    builtin, _ = load(name)
+    if not np.array_equal(np.asarray(builtin.tiles), np.asarray(tileset.tiles)):
+        raise InvalidProblem(f"{source}: 'name' is the built-in tile set {name!r}, but 'tileset' is not that set")
+
+
 def report_from_dict(doc: dict, source: Any = "<document>") -> tuple[AperiodicProblem, Solution]:
     check_document(doc, source, {APERIODIC_REPORT: VERSIONS})
     extra = set(doc) - _KEYS
@@ -141,6 +153,7 @@ def report_from_dict(doc: dict, source: Any = "<document>") -> tuple[AperiodicPr
     name = doc.get("name")
     if name is not None and not isinstance(name, str):
         raise _fail(source, "name", "must be a string or null")
+    _check_builtin_name(name, tileset, source)
     try:
         problem = AperiodicProblem(tileset, _int(doc, "max_square", source), _int(doc, "max_period", source),
                                    doc["shears"], name)

@@ -67,9 +67,13 @@ def aperiodic_violations(problem: AperiodicProblem, report) -> list[Violation]:
     if not transducer and not witness and report.periods and [c.board for c in report.periods] != names:
         out.append(Violation("board", "the periods are not every lattice of this check, each once, in order "
                                       f"({len(report.periods)} certificates for {len(lattices)} lattices)"))
+    squares_seen: set[str] = set()
     for cert in report.squares:
         if parse_board_name(cert.board)[2] != -1:
             out.append(Violation("board", f"{cert.board}: not a square or rectangle"))
+        elif cert.board in squares_seen:  # one certificate a board: a second could contradict the first
+            out.append(Violation("board", f"{cert.board}: certified twice"))
+        squares_seen.add(cert.board)
     per = clauses_per_cell(len(problem.tileset))
     for cert in report.squares + report.periods:
         rows, cols, _ = parse_board_name(cert.board)
