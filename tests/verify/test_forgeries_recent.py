@@ -118,7 +118,12 @@ SAMPLED = [
     ("sphere", "every point deleted", lambda d: d.update(local=[]), 1, "hold at least 176 points"),
     ("recursive", "every point deleted", lambda d: d.update(local=[]), 1, "are missing from the file"),
     ("stipple", "every sample deleted", lambda d: d.update(samples=[]), 1, "0 points where 2,000 were asked for"),
-    ("poisson", "every tile of the set emptied", _empty_tiles, 1, "are not among those"),
+    # the set's stated shortfall is its tiles' own: emptied tiles cannot keep claiming N points a tile
+    ("poisson", "every tile of the set emptied", _empty_tiles, 1, "but its tiles lack 256"),
+    ("poisson", "the set's shortfall hidden", lambda d: d["tileset"].update(stats={"short": 0}), 1,
+     "the set states its cells lack 0 points in all (N = 16 a cell), but its tiles lack"),
+    ("recursive", "the base set's shortfall hidden", lambda d: d["tileset"]["base"].update(stats={"short": 0}), 1,
+     "the set states its cells lack 0 points"),
     # an absurd window named by a small file: refused before the lattice is coloured (it took 7.7 GB)
     ("poisson", "a 2048 x 2048 window of 3 points",
      lambda d: (d["window"].update(width=2048, height=2048), d.update(local=d["local"][:3])), 1, "hold at least"),

@@ -34,7 +34,8 @@ import numpy as np
 from tilesolve.model.poisson import PoissonTileSet, r_max
 from tilesolve.verify.dappled import Violation
 
-__all__ = ["point_violations", "tileset_violations", "placed_points", "match_violations", "window_size_violations", "min_distance", "relative_radius", "radial_spectrum",
+__all__ = ["point_violations", "tileset_violations", "placed_points", "match_violations", "window_size_violations", "cell_counts",
+           "shortfall_violations", "min_distance", "relative_radius", "radial_spectrum",
            "periodogram"]
 
 #: Violations listed at most (the count is always given).
@@ -216,6 +217,36 @@ def window_size_violations(interior, cells: int, claimed: int) -> list[Violation
 _FEW_CELLS = 1 << 16
 
 
+def cell_counts(ts: PoissonTileSet) -> np.ndarray:
+    """The points a unit cell of any tiling holds, for each colouring of its corners (eq. 2.5's
+    index ``((NE C + SE) C + SW) C + NW``): its interior tile and the parts of the corner and edge
+    tiles around it that fall inside ``[0, 1)^2``, placed from the regions' definition
+    (:func:`placed_points` on the cell's 2 x 2 lattice points)."""
+    c = ts.problem.colors
+    out = np.zeros(c**4, np.int64)
+    for k in range(c**4):
+        ne, se, sw, nw = k // c**3, k // c**2 % c, k // c % c, k % c
+        pts = placed_points(ts, np.array([[sw, se], [nw, ne]]))
+        out[k] = int(((pts >= 0) & (pts < 1)).all(axis=1).sum())
+    return out
+
+
+def shortfall_violations(ts: PoissonTileSet) -> list[Violation]:
+    """A set's stated shortfall (``stats["short"]``, the points its cells lack beside ``N`` a
+    cell, summed over the colourings; the build's own count, shown when the set is built) must be
+    the one its tiles give (:func:`cell_counts`): a set whose points were deleted cannot keep
+    claiming ``N`` points a tile. A set that states none (built in memory without stats) is not
+    held to one."""
+    if "short" not in ts.stats:
+        return []
+    stated = ts.stats["short"]
+    short = int(np.maximum(ts.problem.points - cell_counts(ts), 0).sum())
+    if isinstance(stated, bool) or not isinstance(stated, int) or stated != short:
+        return [Violation("short", f"the set states its cells lack {stated!r} points in all (N = "
+                                   f"{ts.problem.points} a cell), but its tiles lack {short:,}")]
+    return []
+
+
 def tileset_violations(ts: PoissonTileSet, *, max_blocks: int = 4096, seed: int = 0) -> list[Violation]:
     """Every way the tile set fails: a point outside its region, or two points of some tiling
     closer than the set's distance (see the module docstring)."""
@@ -231,6 +262,7 @@ def tileset_violations(ts: PoissonTileSet, *, max_blocks: int = 4096, seed: int 
                 out.append(Violation("region", f"{kind} tile {k}: {int(bad.sum())} points outside its region"))
     if out:
         return out[:MAX_LISTED]
+    out += shortfall_violations(ts)
     c = ts.problem.colors
     n_blocks = c**9
     if n_blocks <= max_blocks:
