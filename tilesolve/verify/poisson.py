@@ -34,9 +34,8 @@ import numpy as np
 from tilesolve.model.poisson import PoissonTileSet, r_max
 from tilesolve.verify.dappled import Violation
 
-__all__ = ["point_violations", "tileset_violations", "placed_points", "match_violations", "window_size_violations", "cell_counts",
-           "shortfall_violations", "min_distance", "relative_radius", "radial_spectrum",
-           "periodogram"]
+__all__ = ["point_violations", "tileset_violations", "placed_points", "match_violations", "window_size_violations",
+           "cell_counts", "shortfall_violations", "min_distance", "relative_radius", "radial_spectrum", "periodogram"]
 
 #: Violations listed at most (the count is always given).
 MAX_LISTED = 20
