@@ -21,7 +21,8 @@ about N points, ``--runs`` seeds, and measures the averaged periodogram (Ulichne
 
 Rows: the polyomino sampler (X pentomino, chair) uncorrected (samples at tile centroids) and
 corrected (the default), and for the X pentomino the correction's ingredients apart (children
-ranked in a random order alone; with the table's mean offsets but no spread); the anchors on
+ranked in a random order alone; with the table's mean offsets but no spread); Penrose sampling
+(Ostromoukhov 2004, unjittered), the sampler the 2007 paper improves on; the anchors on
 the same window in the same run: plain rejection sampling (uniform random points: white noise)
 and dart throwing (scipy's ``qmc.PoissonDisk``, Bridson, filling the square: blue noise). Writes the radial spectra
 (SVG and PNG, the project's spectrum plot) and the periodograms (PNG) to ``--out``.
@@ -80,6 +81,7 @@ def main() -> None:
         ("polyomino (x-pentomino), corrected", poly("x-pentomino", True), ("x-pentomino", True)),
         ("polyomino (chair), uncorrected", poly("chair", False), ("chair", False)),
         ("polyomino (chair), corrected", poly("chair", True), ("chair", True)),
+        ("penrose (Ostromoukhov 2004)", lambda s: sample(ImportanceProblem(flat, n, "penrose"), seed=s), "penrose"),
         ("rejection (white noise, anchor)", lambda s: sample(ImportanceProblem(flat, n, "rejection"), seed=s),
          None),
         ("dart throwing (scipy PoissonDisk, anchor)", dart, None),
@@ -98,7 +100,8 @@ def main() -> None:
         disc = float(np.mean([weighted_discrepancy(p, flat.values) for p in sets]))
         verified = ""
         if check:
-            p = ImportanceProblem(radial, 20_000, "polyomino", check[0], correct=check[1])
+            p = (ImportanceProblem(radial, 20_000, "penrose") if check == "penrose" else
+                 ImportanceProblem(radial, 20_000, "polyomino", check[0], correct=check[1]))
             bad = importance_violations(sample(p, seed=args.seed), radial.values, expected=20_000)
             verified = "ok" if not bad else f"{len(bad)} violations"
         measured[name] = m
