@@ -237,7 +237,7 @@ def stipple_doc(tmp_path_factory):
     assert v.returncode == 0 and v.stdout.startswith("ok: s.json is a valid point set of 800 points"), \
         v.stdout + v.stderr
     doc = json.loads((d / "s.json").read_text())
-    assert (doc["format"], doc["version"], doc["seed"], len(doc["density"])) == ("tilesolve/stipple", 1, 6, 256)
+    assert (doc["format"], doc["version"], doc["seed"], len(doc["density"])) == ("tilesolve/stipple", 2, 6, 256)
     assert (d / "s.svg").read_text().split(' d="', 1)[1].split('"', 1)[0].count("M") == len(doc["samples"])
     return d, doc
 

@@ -76,3 +76,42 @@ def test_a_stipple_file_round_trips_to_the_same_bytes():
     doc["density"] = [[1.0, 2.0], [3.0]]
     with pytest.raises(InvalidProblem, match="'density' must be equal rows"):
         stipple_from_dict(doc, "s.json")
+
+
+@pytest.mark.parametrize("correct", [True, False])
+def test_version_2_records_the_correction_table(correct):
+    import json
+
+    from tilesolve.io.stipple import Samples, dump, stipple_from_dict, stipple_to_dict
+    from tilesolve.model.importance import ImportanceProblem
+    from tilesolve.model.solution import Solution, Status
+
+    p = ImportanceProblem(builtin_density("radial", 8), 30, "polyomino", "x-pentomino", 0, False, correct)
+    assert p.corrected is correct
+    text = dump(stipple_to_dict(p, Solution(Status.SAT, Samples(np.array([[0.5, 0.5]])), seed=2)))
+    doc = json.loads(text)
+    assert (doc["version"], doc["correct"]) == (2, correct)
+    q, sol = stipple_from_dict(doc, "s.json")
+    assert (q.correct, q.corrected) == (correct, correct)
+    assert dump(stipple_to_dict(q, sol)) == text
+    doc.pop("correct")
+    with pytest.raises(InvalidProblem, match="missing field 'correct'"):
+        stipple_from_dict(doc, "s.json")
+    doc["correct"] = "yes"
+    with pytest.raises(InvalidProblem, match="'correct' must be true or false"):
+        stipple_from_dict(doc, "s.json")
+
+
+def test_version_1_is_read_without_the_correction_table():
+    """A version 1 file was written before the table: read as ``correct=False``; it has no
+    ``correct`` field to state."""
+    from tilesolve.io.stipple import stipple_from_dict
+
+    doc = {"format": "tilesolve/stipple", "version": 1, "method": "polyomino", "points": 30, "tile": "x-pentomino",
+           "lloyd": 0, "jitter": False, "seed": 2, "image": "flat", "density": [[1.0, 1.0], [1.0, 1.0]],
+           "samples": [[0.5, 0.5]]}
+    q, _ = stipple_from_dict(doc, "s.json")
+    assert (q.correct, q.corrected) == (False, False)
+    doc["correct"] = True
+    with pytest.raises(InvalidProblem, match="unknown field 'correct'"):
+        stipple_from_dict(doc, "s.json")

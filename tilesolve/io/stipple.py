@@ -8,12 +8,13 @@ periodogram pictures written (class notes Part V, stippling; Part IV, spectra).
 * :func:`write_periodograms_png`: 2-D periodograms side by side, log scale, the spectra in
   which a tiling's structure shows as peaks.
 * :func:`stipple_to_dict` / :func:`stipple_from_dict` / :func:`dump`: the samples as a file,
-  ``tilesolve/stipple`` (version 1), with everything they are made from::
+  ``tilesolve/stipple`` (version 2), with everything they are made from::
 
       {
-        "format": "tilesolve/stipple", "version": 1,
+        "format": "tilesolve/stipple", "version": 2,
         "method": "penrose", "points": 20000,       # the sampler, about how many samples
         "tile": "x-pentomino", "lloyd": 4, "jitter": true, "seed": 1,
+        "correct": true,                            # the polyomino correction table asked for
         "image": "radial",                          # the density's name, for people
         "density": [[v, ...], ...],                 # the density sampled: a value a pixel,
                                                     # rows from the top (darkness, 0 white)
@@ -22,7 +23,9 @@ periodogram pictures written (class notes Part V, stippling; Part IV, spectra).
 
   ``tilesolve verify`` checks the samples against the embedded density (counts of blocks,
   :func:`tilesolve.verify.importance.importance_violations`) and samples it again with the
-  seed: the file's samples must be those, exactly (:class:`Samples`).
+  seed: the file's samples must be those, exactly (:class:`Samples`). Version 1 (before the
+  polyomino sampler's correction table, Ostromoukhov 2007) has no ``correct`` and is read as
+  ``correct: false``, the sampler it was written by.
 
 >>> import numpy as np
 >>> from tilesolve.model.importance import builtin_density
@@ -51,8 +54,9 @@ __all__ = ["MAX_STIPPLE_POINTS", "FORMAT", "VERSIONS", "Samples", "read_density"
            "write_stipple", "write_periodograms_png", "stipple_to_dict", "stipple_from_dict", "dump"]
 
 FORMAT = "tilesolve/stipple"
-VERSIONS = frozenset({1})
-_KEYS = {"format", "version", "method", "points", "tile", "lloyd", "jitter", "seed", "image", "density", "samples"}
+VERSIONS = frozenset({1, 2})
+_KEYS_V1 = {"format", "version", "method", "points", "tile", "lloyd", "jitter", "seed", "image", "density", "samples"}
+_KEYS = _KEYS_V1 | {"correct"}
 
 
 @dataclass(frozen=True, eq=False)
@@ -180,8 +184,9 @@ def write_periodograms_png(path: str | os.PathLike, panels: list[tuple[str, np.n
 def stipple_to_dict(problem: ImportanceProblem, solution: Solution) -> dict:
     """The document of a stipple (``solution.tiling`` is the :class:`Samples`; the seed is the
     solution's)."""
-    return {"format": FORMAT, "version": 1, "method": problem.method, "points": problem.points, "tile": problem.tile,
-            "lloyd": problem.lloyd, "jitter": bool(problem.jitter), "seed": solution.seed,
+    return {"format": FORMAT, "version": 2, "method": problem.method, "points": problem.points, "tile": problem.tile,
+            "lloyd": problem.lloyd, "jitter": bool(problem.jitter), "correct": bool(problem.correct),
+            "seed": solution.seed,
             "image": problem.density.name, "density": problem.density.values,
             "samples": np.asarray(solution.tiling.points, dtype=np.float64).reshape(-1, 2)}
 
@@ -201,18 +206,23 @@ def _density(value, name, source: str) -> DensityMap:
 
 def stipple_from_dict(doc: dict, source: str = "<document>") -> tuple[ImportanceProblem, Solution]:
     """Read :func:`stipple_to_dict`'s document: the problem (its density embedded) and the
-    :class:`Samples` with their seed; one-line errors naming ``source`` and the field."""
-    check_document(doc, source, {FORMAT: VERSIONS}, fields=_KEYS,
-                   required=("method", "points", "density", "samples", "seed"))
-    if not isinstance(doc.get("jitter", False), bool):
-        raise InvalidProblem(f"{source}: 'jitter' must be true or false, got {doc['jitter']!r}")
+    :class:`Samples` with their seed; one-line errors naming ``source`` and the field. Version 1
+    has no ``correct`` field and is read as ``correct=False`` (it was sampled without the table);
+    version 2 states it."""
+    check_document(doc, source, {FORMAT: VERSIONS})
+    v1 = doc["version"] == 1
+    check_document(doc, source, {FORMAT: VERSIONS}, fields=_KEYS_V1 if v1 else _KEYS,
+                   required=("method", "points", "density", "samples", "seed") + (() if v1 else ("correct",)))
+    for key in ("jitter", "correct"):
+        if not isinstance(doc.get(key, False), bool):
+            raise InvalidProblem(f"{source}: '{key}' must be true or false, got {doc[key]!r}")
     name = doc.get("image", "image")
     if not isinstance(name, str):
         raise InvalidProblem(f"{source}: 'image' must be the density's name, a string, got {name!r}")
     density = _density(doc["density"], name, source)
     try:
         problem = ImportanceProblem(density, doc["points"], doc["method"], doc.get("tile", "chair"),
-                                    doc.get("lloyd", 0), doc.get("jitter", False))
+                                    doc.get("lloyd", 0), doc.get("jitter", False), doc.get("correct", False))
     except InvalidProblem as exc:
         raise InvalidProblem(f"{source}: {exc}") from None
     seed = read_seed(doc, source)
