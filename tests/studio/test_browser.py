@@ -528,3 +528,26 @@ def test_a_u_edge_stays_mirror_symmetric_while_dragged(page):
     assert len(r) in (3, 4) and np.allclose(r, np.column_stack([1 - r[::-1, 0], r[::-1, 1]]), atol=1e-9)
     wait_for_the_servers_edges(page)
     assert page.text_content("#error") == ""
+
+
+def test_ticking_texture_zooms_the_view_to_one_texel_a_pixel(page):
+    """At the view's first zoom (8 px a cell) the 24-texel texture tiles are shrunk 3 times, the
+    mortar lines fall between pixels and the wall reads as red noise; ticking "Texture" zooms in
+    to one texel a pixel about the view's centre, and never zooms out."""
+    pick(page, "stochastic")
+    page.locator("#viewport").scroll_into_view_if_needed()
+    view_settled(page)
+    assert page.evaluate("studio.view.zoom") == 1
+    box = page.locator("#viewport").bounding_box()
+    centre = page.evaluate(f"[studio.view.x + {box['width'] / 2} / studio.view.zoom, "
+                           f"studio.view.y + {box['height'] / 2} / studio.view.zoom]")
+    page.check("#view-texture")
+    assert page.evaluate("studio.view.look") == "texture" and page.evaluate("studio.view.zoom") == 3
+    after = page.evaluate(f"[studio.view.x + {box['width'] / 2} / 3, studio.view.y + {box['height'] / 2} / 3]")
+    assert after == pytest.approx(centre)
+    view_settled(page)
+    page.uncheck("#view-texture")
+    page.evaluate("Object.assign(studio.view, { zoom: 5 }); drawView()")
+    page.check("#view-texture")
+    assert page.evaluate("studio.view.zoom") == 5
+    page.uncheck("#view-texture")

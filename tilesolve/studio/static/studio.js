@@ -9,6 +9,7 @@ const studio = window.studio = { timings: {}, families: [], fam: null, extents: 
                                  job: null, result: null, palette: null, colours: null };
 const VIEW_N = 32, CELL = 8;           // view tiles: VIEW_N << level cells, CELL css px per cell at zoom 1
 const MAX_LEVEL = 2;                   // the server draws windows of at most 128 cells a side
+const TEXTURE_ZOOM = 24 / CELL;        // one texel a CSS px: the texture look's tiles are 24 texels (views.TEXTURE_TILE)
 const SWATCHES = 8;
 
 async function api(path, body) {
@@ -949,7 +950,15 @@ function drawView() {
 function setupView() {
   const vp = $("viewport");
   if (window.studioWebGL) studioWebGL.setup(resetView);
-  $("view-texture").addEventListener("change", resetView);
+  $("view-texture").addEventListener("change", () => {
+    // further out than one texel a pixel the texture's mortar lines (a texel or two) fall between pixels and
+    // its bricks read as red noise: ticking the box zooms in to that scale, about the view's centre
+    if ($("view-texture").checked && view.zoom < TEXTURE_ZOOM) {
+      const r = vp.getBoundingClientRect(), mx = r.width / 2, my = r.height / 2;
+      view.x += mx / view.zoom - mx / TEXTURE_ZOOM; view.y += my / view.zoom - my / TEXTURE_ZOOM; view.zoom = TEXTURE_ZOOM;
+    }
+    resetView();
+  });
   let drag = null, pending = false;
   const redraw = () => { if (!pending) { pending = true; requestAnimationFrame(() => { pending = false; drawView(); }); } };
   vp.addEventListener("pointerdown", (e) => { drag = { x: e.clientX, y: e.clientY }; vp.style.cursor = "grabbing"; vp.setPointerCapture(e.pointerId); });
