@@ -7,13 +7,15 @@ measure on a shared machine; each kernel called once before it is timed):
 * **penrose / polyomino (x-pentomino, chair) / rejection** on the built-in radial test image
   (256 x 256) at N samples (``sample`` of :mod:`tilesolve.constructive.importance`, the count
   calibration included), compared by throughput, points a second; the ratio is the sampler's
-  throughput over rejection sampling's at the same N;
-* **+ Lloyd 4**: the polyomino sampler with four density-weighted Lloyd steps (the papers'
-  correction vectors are not tabulated; this is their run-time stand-in);
+  throughput over rejection sampling's at the same N. The polyomino rows are unjittered and
+  take their learnt correction table (Ostromoukhov 2007; ``ImportanceProblem.correct``, on by
+  default for the X pentomino and the chair), its look-ups included;
+* **+ Lloyd 4**: the corrected X-pentomino sampler with four density-weighted Lloyd steps;
 * ``--command``: the whole ``tilesolve sample stipple --points 10000 -o out.svg --png
   out.png`` as a child process (imports, verification, the SVG and the PNG included), beside
-  the kernel with the same settings: the raw polyomino sampler, and the command's defaults
-  (Penrose, jitter, 4 Lloyd steps).
+  the kernel with the same settings: the raw polyomino sampler (``--no-correction --no-jitter
+  --lloyd 0``: the tiles' centroids), and the command's defaults (Penrose, jitter, 4 Lloyd
+  steps).
 
 Usage::
 
@@ -76,8 +78,8 @@ def main() -> None:
         script = os.path.join(os.path.dirname(sys.executable), "tilesolve")
         n = 10_000
         for label, p, flags in (
-                ("raw polyomino", ImportanceProblem(d, n, "polyomino", "x-pentomino"),
-                 ["--method", "polyomino", "--no-jitter", "--lloyd", "0"]),
+                ("raw polyomino", ImportanceProblem(d, n, "polyomino", "x-pentomino", correct=False),
+                 ["--method", "polyomino", "--no-correction", "--no-jitter", "--lloyd", "0"]),
                 ("defaults", ImportanceProblem(d, n, "penrose", lloyd=4, jitter=True), [])):
             kt, kcpu, _ = best(lambda: sample(p, seed=1), 1)
             with tempfile.TemporaryDirectory() as folder:

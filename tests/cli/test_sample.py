@@ -259,3 +259,48 @@ def stipple_doc(tmp_path_factory):
 ])
 def test_verify_re_checks_a_stipple_file(stipple_doc, forge, code, words):
     verify_forgery(*stipple_doc, forge, code, words)
+
+
+# --- the polyomino sampler's correction table (Ostromoukhov 2007): --no-correction, recorded in the file ---
+
+@pytest.fixture(scope="module")
+def corrected_docs(tmp_path_factory):
+    """The same unjittered X-pentomino stipple with its correction table and with --no-correction."""
+    d = tmp_path_factory.mktemp("corrected")
+    docs = {}
+    for name, more in (("on", []), ("off", ["--no-correction"])):
+        r = run("sample", "stipple", "--test-image", "gradient", "--method", "polyomino", "--no-jitter", "--lloyd",
+                "0", *more, "--points", "600", "--seed", "3", "-o", f"{name}.json", cwd=d)
+        assert r.returncode == 0, r.stderr
+        assert ("corrected" in r.stderr) is (name == "on"), r.stderr
+        docs[name] = json.loads((d / f"{name}.json").read_text())
+    return d, docs
+
+
+def test_no_correction_is_recorded_and_verifies(corrected_docs):
+    d, docs = corrected_docs
+    assert (docs["on"]["version"], docs["on"]["correct"], docs["off"]["correct"]) == (2, True, False)
+    assert docs["on"]["samples"] != docs["off"]["samples"]  # the table displaces the samples
+    for name in ("on", "off"):
+        v = run("verify", f"{name}.json", cwd=d)
+        assert v.returncode == 0 and v.stdout.startswith("ok: "), v.stdout + v.stderr
+
+
+def _as_version_1(doc):
+    doc.pop("correct")
+    doc["version"] = 1
+
+
+def test_a_version_1_file_verifies_without_the_table(corrected_docs):
+    """A version 1 file (written before the table) is sampled again without it: the
+    uncorrected samples verify, the corrected ones do not."""
+    d, docs = corrected_docs
+    verify_forgery(d, docs["off"], _as_version_1, 0, "ok: ")
+    verify_forgery(d, docs["on"], _as_version_1, 1, "polyomino sampling with seed 3")
+
+
+@pytest.mark.parametrize("name", ["on", "off"])
+def test_verify_finds_the_correction_flag_flipped(corrected_docs, name):
+    d, docs = corrected_docs
+    verify_forgery(d, docs[name], lambda doc: doc.update(correct=not doc["correct"]), 1,
+                   "polyomino sampling with seed 3")

@@ -372,6 +372,10 @@ def _with_density_options(command, lloyd: int, jitter: bool):
 @_density_options(lloyd=4, jitter=True)
 @click.option("--method", type=click.Choice(["penrose", "polyomino", "rejection"]), default="penrose",
               show_default=True, help="The sampler.")
+@click.option("--correction/--no-correction", default=True, show_default=True,
+              help="The polyomino sampler without --jitter (X pentomino, chair): displace each sample by its "
+                   "learnt correction table (Ostromoukhov 2007); --no-correction keeps the tiles' raw centroids, "
+                   "whose lattice shows in the spectrum.")
 @opt.seed_opt
 @click.option("-o", "--output", type=OutputFile("svg", "json", allow_dash=False), required=True,
               metavar="OUT.svg|OUT.json", help="Write the stippled picture (.svg) or the stipple file (.json: the "
@@ -381,15 +385,16 @@ def _with_density_options(command, lloyd: int, jitter: bool):
 @click.option("--csv", "csv_", type=OutputFile("csv", allow_dash=False), metavar="PTS.csv",
               help="Also the samples: x, y (y up, the image's longer side 1).")
 @click.pass_context
-def stipple(ctx, image, test_image, points, tile, lloyd, jitter, method, seed, output, svg, png, csv_) -> None:
+def stipple(ctx, image, test_image, points, tile, lloyd, jitter, method, correction, seed, output, svg, png,
+            csv_) -> None:
     """Stipple an image (class notes Part V): about N samples whose density follows the image's
     darkness (1 - grey / 255), drawn as dots sized by it. The samplers are hierarchical: a
     Penrose tiling's Robinson triangles (Ostromoukhov, Donohue, Jodoin 2004) or a self-similar
     polyomino (Ostromoukhov 2007) subdivided where the image needs more than one sample a tile,
     each tile's sample kept by a threshold on its structural index; or plain rejection sampling.
     The polyomino sampler without --jitter (X pentomino, chair) takes its learnt correction table
-    (Ostromoukhov 2007's offsets by structural index, rebuilt by this project); --jitter and
-    --lloyd are the other stand-ins (the defaults, Penrose with both, draw the picture without
+    (Ostromoukhov 2007's offsets by structural index, rebuilt by this project; --no-correction
+    leaves it out, the raw structure); --jitter and --lloyd are the other stand-ins (the defaults, Penrose with both, draw the picture without
     the tilings' patterns; `sample importance-spectrum` measures them). The samples are
     checked before anything is written: inside the image, and the counts of 2 x 2 and 4 x 4
     blocks near their share of the image's darkness (exit 1 if not). Without IMAGE, a built-in
@@ -402,7 +407,9 @@ def stipple(ctx, image, test_image, points, tile, lloyd, jitter, method, seed, o
     Examples:
       tilesolve sample stipple --points 3000 --seed 1 -o radial.svg
       tilesolve sample stipple --test-image gradient --points 3000 --seed 1 -o g.svg --png g.png
-      tilesolve sample stipple --method polyomino --no-jitter --lloyd 0 --points 3000 --seed 1 -o raw.svg --csv raw.csv
+      tilesolve sample stipple --method polyomino --no-jitter --lloyd 0 --points 3000 --seed 1 -o x.svg
+      tilesolve sample stipple --method polyomino --no-correction --no-jitter --lloyd 0 --points 3000 --seed 1 \\
+        -o raw.svg --csv raw.csv
       tilesolve sample stipple --test-image gradient --points 2000 --seed 1 -o g.json --svg g.svg
       tilesolve verify g.json
     """
@@ -417,7 +424,7 @@ def stipple(ctx, image, test_image, points, tile, lloyd, jitter, method, seed, o
     outs = Outputs(output, svg, png, csv_)
     if points > MAX_STIPPLE_POINTS:
         raise InvalidProblem(f"a stippled picture draws at most {MAX_STIPPLE_POINTS:,} points, not {points:,}")
-    problem = ImportanceProblem(density_of(image, test_image), points, method, tile, lloyd, jitter)
+    problem = ImportanceProblem(density_of(image, test_image), points, method, tile, lloyd, jitter, correction)
     seed = draw_seed() if seed is None else seed  # a stipple file records the seed it was sampled with
     r = run_stipple(problem, seed=seed)
     pts = r["points"]
