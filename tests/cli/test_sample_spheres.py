@@ -99,7 +99,9 @@ def box_doc(tmp_path_factory):
     """A box of a small valid C = 2 set, written and verified by the console script. The set
     (written here: building one takes seconds) has one point a tile, at its slot's middle
     moved along x by its index, so that tiles of other colours differ and every tiling keeps
-    its points 0.4 apart."""
+    its points 0.4 apart. It states its true shortfall: a unit cell holds the points of its
+    corner tile at its least corner, the three edge and three face tiles through that corner and
+    its interior tile, 8 of N = 100, under each of its 2^8 colourings."""
     from tilesolve.io.poisson_sphere_json import dump, tiles_to_dict
     from tilesolve.model.poisson_sphere import PoissonSphereTilesProblem, PoissonSphereTileSet
     from tilesolve.model.solution import Solution, Status
@@ -109,7 +111,7 @@ def box_doc(tmp_path_factory):
     middle = {"corner": (0, 0, 0), "xedge": (.5, 0, 0), "yedge": (0, .5, 0), "zedge": (0, 0, .5),
               "xface": (0, .5, .5), "yface": (.5, 0, .5), "zface": (.5, .5, 0), "interior": (.5, .5, .5)}
     ts = PoissonSphereTileSet(p, {k: [np.array([middle[k]]) + [0.05 * i / n, 0, 0] for i in range(n)]
-                                  for k, n in p.counts().items()}, seed=0)
+                                  for k, n in p.counts().items()}, seed=0, stats={"short": 2**8 * (100 - 8)})
     (d / "set.json").write_text(dump(tiles_to_dict(p, Solution(Status.SAT, ts, method="dart", seed=0))))
     r = run("sample", "poisson-spheres", "window", "set.json", "--region", "-2,5,1000000,3x2x2", "--seed", "4", "-o",
             "box.json", cwd=d)
@@ -142,6 +144,10 @@ def _moved(d):
                  "the file's tile set: corner tile 1: 1 points outside its region", marks=pytest.mark.slow),
     pytest.param(lambda d: d["tileset"]["tiles"]["interior"][7].append([0.5, 0.5, 0.55]), 1,
                  "the file's tile set: interior", marks=pytest.mark.slow),
+    # the set's stated shortfall is its tiles' own: 8 of N = 100 a cell is not N points a cell
+    pytest.param(lambda d: d["tileset"]["stats"].update(short=0), 1,
+                 "the file's tile set: the set states its cells lack 0 points in all (N = 100 a cell), but its tiles "
+                 "lack 23,552", marks=pytest.mark.slow),
     (_version_1, 1, "NOT confirmed"),
     (lambda d: d["tileset"].update(points=120), 2, "forged.json (tileset): 'distance' is"),
     (lambda d: d.update(rho=0.5, distance=None) or d.pop("distance"), 2, "but its tileset is"),

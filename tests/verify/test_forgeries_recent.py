@@ -123,6 +123,9 @@ SAMPLED = [
     ("poisson", "every tile of the set emptied", _empty_tiles, 1, "but its tiles lack 256"),
     ("poisson", "the set's shortfall hidden", lambda d: d["tileset"].update(stats={"short": 0}), 1,
      "the set states its cells lack 0 points in all (N = 16 a cell), but its tiles lack"),
+    ("sphere", "every tile of the set emptied", _empty_tiles, 1, "but its tiles lack 64"),
+    ("sphere", "a point of the set deleted, its shortfall kept", lambda d: d["tileset"]["tiles"]["interior"][0].pop(),
+     1, "the set states its cells lack 0 points in all (N = 64 a cell), but its tiles lack 1"),
     ("recursive", "the base set's shortfall hidden", lambda d: d["tileset"]["base"].update(stats={"short": 0}), 1,
      "the set states its cells lack 0 points"),
     # an absurd window named by a small file: refused before the lattice is coloured (it took 7.7 GB)

@@ -7,7 +7,8 @@ Two questions (:mod:`tilesolve.model.poisson_sphere`):
   :func:`tilesolve.constructive.poisson_sphere.build_tiles`), checked by
   :func:`tilesolve.verify.poisson_sphere.tileset_violations3` (every point in its region, every
   pair of nearby slots under every colouring of their lattice points for C <= 2, 4,096 random
-  colourings a pair above).
+  colourings a pair above; the stated shortfall, ``stats["short"]``, re-counted from the tiles
+  by :func:`~tilesolve.verify.poisson_sphere.shortfall_violations3`).
 * :class:`~tilesolve.model.poisson_sphere.PoissonSphereWindowProblem`: the points of a box of
   space tiled by the direct 3-D corner tiling; route ``window``, checked by
   :func:`tilesolve.verify.poisson_sphere.point_violations3` (a grid search). A box read from a

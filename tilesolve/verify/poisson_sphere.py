@@ -19,6 +19,10 @@ Written from the definitions, sharing no code with the builder
 * :func:`placed_points3`: the points a coloured lattice of corner cubes places, from the
   regions' definition (a box file's points are re-derived with it from its set and the lattice
   its seed colours, and compared exactly by :func:`tilesolve.verify.poisson.match_violations`).
+* :func:`cell_counts3`, :func:`shortfall_violations3`: the points a unit cell holds under each
+  colouring of its eight corners, counted from the same placement; a set's stated shortfall
+  (``stats["short"]``) must be the one its tiles give, so that a set cannot claim ``N`` points
+  a cell that its tiles do not hold.
 
 >>> import numpy as np
 >>> pts = np.array([[0.1, 0.1, 0.1], [0.3, 0.1, 0.1], [0.35, 0.12, 0.1]])
@@ -35,7 +39,8 @@ import numpy as np
 from tilesolve.model.poisson_sphere import PoissonSphereTileSet
 from tilesolve.verify.dappled import Violation
 
-__all__ = ["point_violations3", "tileset_violations3", "close_pairs3", "placed_points3"]
+__all__ = ["point_violations3", "tileset_violations3", "close_pairs3", "placed_points3", "cell_counts3",
+           "shortfall_violations3"]
 
 #: Violations listed at most (the count is always given).
 MAX_LISTED = 20
@@ -195,6 +200,46 @@ def placed_points3(ts: PoissonSphereTileSet, lat) -> np.ndarray:
     return np.concatenate(parts)
 
 
+def cell_counts3(ts: PoissonSphereTileSet) -> np.ndarray:
+    """The points the unit cell ``[0, 1)^3`` of any tiling holds, for each colouring of its eight
+    corners (index: the corners' colours as digits in :func:`_corners`' order, the interior
+    tile's index): every slot of the cell's 2 x 2 x 2 lattice carries the tile
+    :func:`placed_points3` gives it, and its points inside the cell are counted (§4.4.3: the
+    corner, edge and face tiles around the cell and its interior tile).
+
+    Each tile's points inside the cell are counted once for each place a slot of its kind takes
+    in the cell, and summed over the colourings with numpy (``C^8`` of them: 65,536 for C = 4).
+    """
+    c = ts.problem.colors
+    digits = (np.arange(c**8)[:, None] // c ** np.arange(7, -1, -1)[None, :]) % c  # corner (x, y, z) at 4x + 2y + z
+    total = np.zeros(c**8, np.int64)
+    for kind, spans in _SLOTS:
+        for off in itertools.product(*[(0,) if ax in spans else (0, 1) for ax in range(3)]):
+            index = np.zeros(c**8, np.int64)
+            for x, y, z in _corners(spans, off):
+                index = index * c + digits[:, 4 * x + 2 * y + z]
+            o = np.array(off, np.float64)
+            inside = np.array([int(((t + o >= 0) & (t + o < 1)).all(axis=1).sum()) for t in ts.tiles[kind]], np.int64)
+            total += inside[index]
+    return total
+
+
+def shortfall_violations3(ts: PoissonSphereTileSet) -> list[Violation]:
+    """A set's stated shortfall (``stats["short"]``: the points its cells lack beside ``N`` a
+    cell, summed over the ``C^8`` colourings; the build's own count, shown when the set is built)
+    must be the one its tiles give (:func:`cell_counts3`): a set whose points were deleted, or
+    whose shortfall was rewritten, cannot keep claiming ``N`` points a cell. A set that states
+    none (built in memory without stats) is not held to one."""
+    if "short" not in ts.stats:
+        return []
+    stated = ts.stats["short"]
+    short = int(np.maximum(ts.problem.points - cell_counts3(ts), 0).sum())
+    if isinstance(stated, bool) or not isinstance(stated, int) or stated != short:
+        return [Violation("short", f"the set states its cells lack {stated!r} points in all (N = "
+                                   f"{ts.problem.points} a cell), but its tiles lack {short:,}")]
+    return []
+
+
 def _gap(lo1, hi1, lo2, hi2) -> float:
     return float(np.linalg.norm(np.maximum(0.0, np.maximum(lo1 - hi2, lo2 - hi1))))
 
@@ -233,6 +278,7 @@ def tileset_violations3(ts: PoissonSphereTileSet, *, max_colourings: int = 4096,
                 out.append(Violation("region", f"{kind} tile {k}: {int(bad.sum())} points outside its region"))
     if out:
         return out[:MAX_LISTED]
+    out += shortfall_violations3(ts)
     c, d = ts.problem.colors, ts.problem.distance
     rng = np.random.default_rng(seed)
     for (k1, s1), (k2, s2, off) in _slot_pairs(regions, d):
