@@ -34,3 +34,22 @@ def test_compare_shows_the_polyomino_sampler_with_and_without_its_table():
     jittered = compare(ImportanceProblem(d, 500, "polyomino", "x-pentomino", jitter=True), seed=1, runs=1,
                        spectrum_points=256)
     assert [r["name"] for r in jittered] == ["penrose", "polyomino (x-pentomino)", "rejection"]  # no table applies
+
+
+def test_a_density_naming_a_test_image_must_be_that_image():
+    from tilesolve.families.importance import image_violations
+    from tilesolve.model.importance import DensityMap
+
+    d = builtin_density("radial", 16)
+    assert image_violations(d) == []
+    v = d.values.copy()
+    v[3, 4] *= 1 + 1e-12  # one pixel off in its last bits
+    for forged in (DensityMap(v, "radial"), DensityMap(d.values[:, :15], "radial"),
+                   DensityMap(d.values, "gradient")):
+        (found,) = image_violations(forged)
+        assert found.kind == "image" and f"test image {forged.name!r}" in found.message
+    assert image_violations(DensityMap(v, "radial.png")) == []  # a user's picture: only its counts are checked
+    p = ImportanceProblem(DensityMap(v, "radial"), 300, "rejection")
+    sol = solve(p, seed=1)  # a problem built in Python names its density as it likes
+    assert stipple_violations(p, sol.tiling) == []
+    assert [x.kind for x in stipple_violations(p, Samples(sol.tiling.points, 1))] == ["image"]  # a file's

@@ -39,12 +39,12 @@ import numpy as np
 from tilesolve.family import Codec, Demo, Family, RunOptions, register
 from tilesolve.families.sampling_forms import STIPPLE_FORM
 from tilesolve.io.stipple import FORMAT, VERSIONS, Samples, stipple_from_dict, stipple_to_dict
-from tilesolve.model.importance import DensityMap, ImportanceProblem, builtin_density
+from tilesolve.model.importance import TEST_IMAGES, DensityMap, ImportanceProblem, builtin_density
 from tilesolve.model.solution import Solution, Status
 from tilesolve.verify.dappled import Violation
 
 __all__ = ["FAMILY", "stipple", "compare", "spectrum_measures", "density_of", "VARIANTS", "sample_route",
-           "stipple_violations"]
+           "stipple_violations", "image_violations"]
 
 #: The rows of :func:`compare`: label, method, whether the correction table is asked for.
 VARIANTS = (("penrose", "penrose", False), ("polyomino", "polyomino", True),
@@ -157,12 +157,16 @@ def stipple_violations(problem: ImportanceProblem, answer: Any) -> list[Violatio
     inside the domain, the total and the counts of 2 x 2 and 4 x 4 blocks near their shares);
     samples that state a seed (a file's) are sampled again with it and compared exactly
     (:func:`tilesolve.verify.poisson.match_violations`): the sampling is the sampler's, it binds
-    the seed, while the counts are checked independently."""
+    the seed, while the counts are checked independently. In a file (samples that state a seed)
+    a density named after a built-in test image (:data:`~tilesolve.model.importance.TEST_IMAGES`)
+    must be that image, pixel for pixel (:func:`image_violations`); a problem built in Python may
+    name its own density as it likes."""
     from tilesolve.verify.importance import importance_violations
 
     if not isinstance(problem, ImportanceProblem) or not isinstance(answer, Samples):
         return [Violation("shape", "the answer is no set of samples of an importance problem")]
-    out = importance_violations(answer.points, problem.density.values, expected=problem.points)
+    out = image_violations(problem.density) if answer.seed is not None else []
+    out += importance_violations(answer.points, problem.density.values, expected=problem.points)
     if answer.seed is None or any(v.kind == "bounds" for v in out):
         return out
     from tilesolve.constructive.importance import sample
@@ -170,6 +174,21 @@ def stipple_violations(problem: ImportanceProblem, answer: Any) -> list[Violatio
 
     return out + match_violations(answer.points, sample(problem, seed=answer.seed),
                                   f"{problem.method} sampling with seed {answer.seed}")
+
+
+def image_violations(density: DensityMap) -> list[Violation]:
+    """A density that names a built-in test image (``radial``, ``gradient``, ``flat``) must equal
+    :func:`~tilesolve.model.importance.builtin_density` of that name at its size, exactly (a
+    stipple file's ``image`` is otherwise only a caption, and a file could claim the radial ramp
+    while embedding another density); other names are the user's pictures, not checked."""
+    if density.name not in TEST_IMAGES:
+        return []
+    rows, cols = density.values.shape
+    if rows == cols and np.array_equal(density.values, builtin_density(density.name, rows).values):
+        return []
+    return [Violation("image", f"the density ({cols} x {rows} pixels) is not the built-in test image "
+                               f"{density.name!r} it names ({density.name} at {rows} x {rows} pixels, "
+                               "tilesolve.model.importance.builtin_density)")]
 
 
 def auto_method(problem: ImportanceProblem) -> str:
