@@ -4,7 +4,8 @@ answer "ok", never crash, and never allocate for an absurd size named by a small
 
 The formats: isohedral drawings (``tilesolve/isohedral-tiling`` v2, with markings), the sampling
 window files that embed their tile set (Poisson disk windows, Poisson sphere boxes, recursive
-Wang windows, v2) and stipple files (``tilesolve/stipple`` v1). Each case is a class of forgery
+Wang windows, v2), stipple files (``tilesolve/stipple`` v1) and aperiodicity reports (square
+witnesses; version 2 bodies relabelled version 1). Each case is a class of forgery
 that `verify` once accepted or crashed on, or that guards the check that now catches it.
 """
 
@@ -207,3 +208,53 @@ SQUARES = [
 def test_forged_square_witnesses_are_refused(squares, name, forge, code, words):
     folder, doc = squares
     verify_forgery(folder, doc, forge, code, words)
+
+
+# --- aperiodic reports: version 1 states no verdict, and its status is "sat" whatever the verdict ---
+
+@pytest.fixture(scope="module")
+def report12(tmp_path_factory):
+    """A version 2 report: Jeandel-Rao's squares up to 12 (verdict open)."""
+    folder = tmp_path_factory.mktemp("report12")
+    doc = _drawn(folder, "aperiodic", "check", "--builtin", "jeandel-rao", "--max-square", "12", "--seed", "1", "-o",
+                 "r.json")
+    assert doc["version"] == 2 and doc["verdict"] == "open"
+    return folder, doc
+
+
+def _as_version_1(d, **changes):
+    d.update(version=1, **changes)
+    d.pop("verdict")
+
+
+RELABELLED = [
+    # a v2 body relabelled v1 kept its verdict word, which v1's reader ignored: 'periodic' was confirmed as valid
+    ("a version 2 body labelled version 1", lambda d: d.update(version=1), 2,
+     "'verdict' is not a field of a version 1 report"),
+    ("labelled version 1, its verdict forged", lambda d: d.update(version=1, verdict="periodic"), 2,
+     "'verdict' is not a field of a version 1 report"),
+    # v1's status is "sat" (or "unknown" for a stopped run) whatever the verdict; any other is checked
+    ("a version 1 report claiming unsat", lambda d: _as_version_1(d, status="unsat"), 1,
+     "status 'unsat' NOT confirmed: the aperiodicity report's certificates give 'sat'"),
+]
+
+
+@pytest.mark.parametrize("name, forge, code, words", RELABELLED, ids=[c[0] for c in RELABELLED])
+def test_reports_relabelled_version_1_are_refused(report12, name, forge, code, words):
+    folder, doc = report12
+    verify_forgery(folder, doc, forge, code, words)
+
+
+def test_a_version_1_report_verifies_to_the_same_verdict(report12):
+    # the body of a v2 report without its verdict is a v1 report: v1 and v2 differ only in that
+    # field (and v1's status, "sat" whatever the verdict); the tile set, certificates and
+    # conclusion mean the same, so verify's verdict, re-derived from the certificates, is the same
+    folder, doc = report12
+    v1 = json.loads(json.dumps(doc))
+    _as_version_1(v1)
+    (folder / "v1.json").write_text(json.dumps(v1))
+    (folder / "v2.json").write_text(json.dumps(doc))
+    r1, r2 = run("verify", "v1.json", cwd=folder), run("verify", "v2.json", cwd=folder)
+    assert r1.returncode == r2.returncode == 0, r1.stdout + r1.stderr
+    assert r1.stdout.startswith("ok: v1.json is a valid aperiodicity report") and "verdict open" in r1.stdout
+    assert r1.stdout.replace("v1.json", "v2.json") == r2.stdout

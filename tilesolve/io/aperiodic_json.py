@@ -31,8 +31,12 @@ and the board's name; a verdict taken from a sweep's cache says so (``"cached": 
 (``"cache_rejected"``). The verdict and the status are what the certificates give
 (:attr:`~tilesolve.model.aperiodic.AperiodicReport.verdict`, ``.status``); in a file they
 are claims, which ``tilesolve verify`` holds to the certificates (a file that says otherwise is
-false, exit 1). Version 1 (no ``verdict``; ``status`` ``"sat"`` whatever the verdict) is read
-with both taken from its certificates. Readers reject
+false, exit 1). Version 1 (no ``verdict``; ``status`` ``"sat"`` whatever the verdict, or
+``"unknown"`` for a run stopped before its report) is read with both taken from its
+certificates; a ``verdict`` in a version 1 file is refused (exit 2): v1 has none, so a version 2
+body relabelled version 1 would carry a verdict word nothing checks. A version 1 ``status``
+other than those two is a claim v1 never made and is held to the certificates like version 2's.
+Readers reject
 unknown fields and malformed values (a tile that is not four colours of the set, a ``colours``
 count other than the number of colours the tiles use, a tile written twice, a ``time_s`` that
 is not a duration, ...) with one line naming the file and field; the certificates' claims are
@@ -49,7 +53,7 @@ from tilesolve.errors import InvalidProblem
 from tilesolve.io.jsonio import check_document, check_time_s, provenance_to_dict, solution_from_provenance
 from tilesolve.io.tileset_json import compact_tileset
 from tilesolve.model.aperiodic import STATUSES, VERDICTS, AperiodicProblem, AperiodicReport, Certificate
-from tilesolve.model.solution import Solution
+from tilesolve.model.solution import Solution, Status
 
 __all__ = ["APERIODIC_REPORT", "VERSIONS", "report_to_dict", "report_from_dict", "certificate_to_dict"]
 
@@ -168,6 +172,9 @@ def report_from_dict(doc: dict, source: Any = "<document>") -> tuple[AperiodicPr
         if doc.get(key) is not None and not isinstance(doc[key], str):
             raise _fail(source, key, "must be a string")
     stated = None
+    if doc["version"] == 1 and "verdict" in doc:  # v1 states none: a v2 body relabelled v1 would go unchecked
+        raise _fail(source, "verdict", "is not a field of a version 1 report (version 2 states its verdict, and "
+                                       "verify holds it to the certificates)")
     if doc["version"] >= 2:
         stated = doc.get("verdict")
         if not isinstance(stated, str) or stated not in VERDICTS:
@@ -175,4 +182,6 @@ def report_from_dict(doc: dict, source: Any = "<document>") -> tuple[AperiodicPr
     report = AperiodicReport(certs["squares"], certs["periods"], _int(doc, "largest_square", source, optional=True),
                              doc.get("conclusion") or "", doc.get("literature"), stated)
     sol = solution_from_provenance(doc, source, report, what="report").replace(tiling=None, report=report)
-    return problem, sol if doc["version"] >= 2 else sol.replace(status=report.status)
+    if doc["version"] >= 2 or sol.status not in (Status.SAT, Status.UNKNOWN):  # claims v1 never made: checked
+        return problem, sol
+    return problem, sol.replace(status=report.status)
