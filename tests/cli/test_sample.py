@@ -155,8 +155,8 @@ def test_stipple_of_a_picture_follows_its_darkness(tmp_path):
 
 
 @pytest.mark.parametrize("args,message", [
-    (["missing.png"], "no such file"),
-    (["text.png"], "not a picture"),
+    (["missing.png"], "missing.png: no such file"),
+    (["text.png"], "text.png: not a readable image"),
     (["white.png"], "zero everywhere"),
     (["--points", "0"], "points must be in"),
     (["--points", "1000000000"], "at most"),

@@ -29,7 +29,7 @@ def test_transparent_pixels_are_white_paper(tmp_path):
 
 def test_bad_pictures_are_one_line_errors(tmp_path):
     (tmp_path / "x.png").write_text("not a picture")
-    with pytest.raises(InvalidProblem, match="not a picture"):
+    with pytest.raises(InvalidProblem, match="not a readable image"):
         read_density(tmp_path / "x.png")
     with pytest.raises(InvalidProblem, match="no such file"):
         read_density(tmp_path / "missing.png")

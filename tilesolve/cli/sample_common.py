@@ -9,7 +9,6 @@ import click
 from tilesolve.cli import options as opt
 from tilesolve.cli.common import say
 from tilesolve.cli.outputs import OutputFile, Outputs
-from tilesolve.errors import InvalidProblem
 
 __all__ = ["done", "write_set", "set_and_region", "hash_option", "point_outputs", "write_window", "read_image"]
 
@@ -83,14 +82,8 @@ def write_window(ctx, outs: Outputs, paths: tuple, problem, sol, write_points, d
 
 
 def read_image(path: str):
-    """An RGBA array of a picture file, or a one-line error."""
-    import numpy as np
-    from PIL import Image, UnidentifiedImageError
+    """An RGBA array of a picture file of at most 2**22 pixels, or a one-line error
+    (:func:`tilesolve.io.images.read_rgba`)."""
+    from tilesolve.io.images import read_rgba
 
-    try:
-        with Image.open(path) as img:
-            if img.width * img.height > 1 << 22:
-                raise InvalidProblem(f"{path}: the picture has more than {1 << 22:,} pixels")
-            return np.asarray(img.convert("RGBA"))
-    except (OSError, UnidentifiedImageError) as exc:
-        raise InvalidProblem(f"cannot read the picture {path}: {exc.__class__.__name__}") from None
+    return read_rgba(path, 1 << 22)

@@ -260,23 +260,11 @@ def check_atlas(colors, tile) -> tuple[int, int]:
 
 
 def read_example(path: str | os.PathLike) -> np.ndarray:
-    """The example image as ``(H, W, 4)`` uint8 RGBA; one-line :class:`InvalidProblem` when unreadable."""
-    from PIL import Image, UnidentifiedImageError
-    from PIL.Image import DecompressionBombError
+    """The example image as ``(H, W, 4)`` uint8 RGBA; one-line :class:`InvalidProblem` when unreadable
+    (:func:`tilesolve.io.images.read_rgba`)."""
+    from tilesolve.io.images import read_rgba
 
-    try:
-        with Image.open(path) as img:
-            return np.asarray(img.convert("RGBA"), dtype=np.uint8)
-    except FileNotFoundError:
-        raise InvalidProblem(f"{path}: no such example image") from None
-    except IsADirectoryError:
-        raise InvalidProblem(f"{path}: is a directory, not an image") from None
-    except PermissionError:
-        raise InvalidProblem(f"{path}: permission denied") from None
-    except DecompressionBombError:
-        raise InvalidProblem(f"{path}: the image has more pixels than Pillow's safety limit") from None
-    except (UnidentifiedImageError, OSError, ValueError, SyntaxError) as exc:
-        raise InvalidProblem(f"{path}: not a readable image ({' '.join(str(exc).split())[:120]})") from None
+    return read_rgba(path)
 
 
 def synthesize_atlas(example, grid, colors: int, *, tile: int = 64, seed: int = 0) -> np.ndarray:

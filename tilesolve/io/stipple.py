@@ -45,6 +45,7 @@ import numpy as np
 
 from tilesolve.errors import InvalidProblem
 from tilesolve.io.atomic import atomic_write
+from tilesolve.io.images import read_rgba
 from tilesolve.io.jsonio import check_document
 from tilesolve.io.poisson_json import read_points, read_seed
 from tilesolve.model.importance import MAX_PIXELS, MAX_POINTS, DensityMap, ImportanceProblem
@@ -74,26 +75,17 @@ _SIDE = 800  # pixels of the picture's longer side
 
 
 def read_density(path: str | os.PathLike) -> DensityMap:
-    """The darkness of a picture file as a density (one line of error for a file that is not a
-    readable picture, or one of more than :data:`~tilesolve.model.importance.MAX_PIXELS` pixels)."""
-    from PIL import Image, UnidentifiedImageError
+    """The darkness of a picture file as a density, transparent pixels white paper (one line of
+    error for a file that is not a readable picture, or one of more than
+    :data:`~tilesolve.model.importance.MAX_PIXELS` pixels: :func:`tilesolve.io.images.read_rgba`)."""
+    from PIL import Image
 
-    name = os.fspath(path)
-    try:
-        with Image.open(name) as img:
-            if img.width * img.height > MAX_PIXELS:
-                raise InvalidProblem(f"{name}: the image has {img.width * img.height:,} pixels; at most {MAX_PIXELS:,}")
-            if img.mode in ("RGBA", "LA", "PA") or (img.mode == "P" and "transparency" in img.info):
-                rgba = img.convert("RGBA")
-                white = Image.new("RGBA", rgba.size, (255, 255, 255, 255))
-                img = Image.alpha_composite(white, rgba)  # transparent pixels are white paper
-            grey = np.asarray(img.convert("L"), dtype=np.float64)
-    except FileNotFoundError:
-        raise InvalidProblem(f"cannot read the image {name}: no such file") from None
-    except (OSError, UnidentifiedImageError, ValueError) as exc:
-        raise InvalidProblem(f"cannot read the image {name}: not a picture Pillow reads "
-                             f"({exc.__class__.__name__})") from None
-    return DensityMap(1.0 - grey / 255.0, os.path.basename(name))
+    rgba = read_rgba(path, MAX_PIXELS)
+    img = Image.fromarray(rgba, "RGBA")
+    if (rgba[..., 3] < 255).any():
+        img = Image.alpha_composite(Image.new("RGBA", img.size, (255, 255, 255, 255)), img)
+    grey = np.asarray(img.convert("L"), dtype=np.float64)
+    return DensityMap(1.0 - grey / 255.0, os.path.basename(os.fspath(path)))
 
 
 def dot_radii(points: np.ndarray, density: DensityMap) -> np.ndarray:
