@@ -551,3 +551,32 @@ def test_ticking_texture_zooms_the_view_to_one_texel_a_pixel(page):
     page.check("#view-texture")
     assert page.evaluate("studio.view.zoom") == 5
     page.uncheck("#view-texture")
+
+
+@pytest.mark.parametrize("size, shown, other", [("8x6", "svg", "png"), ("60x50", "png", "svg")])
+def test_a_chosen_palette_colours_the_export_in_the_other_format_too(page, size, shown, other):
+    """The picture is shown as SVG (small) or PNG (large); its export in the other format is the
+    server's file recoloured in the page: no export keeps the pictures' own colours."""
+    import io
+
+    from PIL import Image
+
+    from tilesolve.io.svg import tile_colour
+
+    pick(page, "dappled")
+    fill(page, "size", size)
+    page.fill("#seed", "1")
+    assert solve(page)["picture"]["format"] == shown
+    page.select_option("#palette-preset", "viridis")
+    viridis = page.evaluate("studio.colours.slice(0, 2)")
+    own = [tile_colour(0).upper(), tile_colour(1).upper()]
+    with page.expect_download() as dl:
+        page.click(f"#export-{other}")
+    data = Path(dl.value.path()).read_bytes()
+    if other == "svg":
+        text = data.decode().upper()
+        assert all(c in text for c in viridis) and not any(f'FILL="{c}"' in text for c in own)
+    else:
+        pixels = {tuple(p) for p in np.asarray(Image.open(io.BytesIO(data)).convert("RGB")).reshape(-1, 3)}
+        assert {tuple(hex_rgb(c)) for c in viridis} <= pixels
+        assert not {tuple(hex_rgb(c)) for c in own} & pixels

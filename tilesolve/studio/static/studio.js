@@ -64,24 +64,17 @@ function rgbOf(hex) { const v = parseInt(hex.slice(1), 16); return [v >> 16 & 25
 
 // The picture in the chosen palette: an SVG's fills are swapped; a PNG is redrawn on a canvas
 // with its pixels mapped colour for colour.
-function recolourPicture() {
-  const res = studio.result, pic = $("picture");
-  if (!res || !res.picture) return;
-  const map = new Map(studio.palette.tiles.map((c, k) => [c.toUpperCase(), studio.colours[k]]));
-  if (res.picture.format === "svg") {
-    const svg = pic.querySelector("svg");
-    if (!svg) return;
-    for (const el of svg.querySelectorAll("[fill]")) {
-      const orig = el.dataset.fill || el.getAttribute("fill").toUpperCase();
-      if (!map.has(orig)) continue;
-      el.dataset.fill = orig; el.setAttribute("fill", map.get(orig));
-    }
-    return;
+const paletteMap = () => new Map(studio.palette.tiles.map((c, k) => [c.toUpperCase(), studio.colours[k]]));
+
+function recolourSvg(svg, map) {
+  for (const el of svg.querySelectorAll("[fill]")) {
+    const orig = el.dataset.fill || el.getAttribute("fill").toUpperCase();
+    if (!map.has(orig)) continue;
+    el.dataset.fill = orig; el.setAttribute("fill", map.get(orig));
   }
-  const img = studio.pictureImage;
-  if (!img) return;
-  let target = pic.querySelector("img, canvas");
-  if (!recoloured()) { if (target !== img) { pic.replaceChildren(img); } return; }
+}
+
+function recolouredCanvas(img, map) {
   const cv = document.createElement("canvas"); cv.width = img.naturalWidth; cv.height = img.naturalHeight;
   const ctx = cv.getContext("2d"); ctx.drawImage(img, 0, 0);
   const data = ctx.getImageData(0, 0, cv.width, cv.height), px = new Uint32Array(data.data.buffer);
@@ -92,18 +85,51 @@ function recolourPicture() {
   }
   for (let i = 0; i < px.length; i++) { const v = lut.get(px[i]); if (v !== undefined) px[i] = v; }
   ctx.putImageData(data, 0, 0);
+  return cv;
+}
+
+function recolourPicture() {
+  const res = studio.result, pic = $("picture");
+  if (!res || !res.picture) return;
+  if (res.picture.format === "svg") {
+    const svg = pic.querySelector("svg");
+    if (svg) recolourSvg(svg, paletteMap());
+    return;
+  }
+  const img = studio.pictureImage;
+  if (!img) return;
+  let target = pic.querySelector("img, canvas");
+  if (!recoloured()) { if (target !== img) { pic.replaceChildren(img); } return; }
+  const cv = recolouredCanvas(img, paletteMap());
   cv.setAttribute("aria-label", img.alt);
   pic.replaceChildren(cv);
 }
 
-// Exports of the picture in the chosen palette are made here; in the pictures' own palette
-// they are the server's files (the CLI's).
+// Exports of the picture in the chosen palette are made here: the shown picture itself, or, in the
+// other format, the server's file (the CLI's) recoloured the same way; in the pictures' own palette
+// they are the server's files.
 async function exportPicture(fmt, ev) {
-  if (!recoloured() || !studio.result || !studio.result.picture || studio.result.picture.format !== fmt) return;
+  if (!recoloured() || !studio.result || !studio.result.picture) return;
   ev.preventDefault();
-  const pic = $("picture");
-  const blob = fmt === "svg" ? new Blob([pic.querySelector("svg").outerHTML], { type: "image/svg+xml" })
-                             : await new Promise((ok) => pic.querySelector("canvas").toBlob(ok, "image/png"));
+  const pic = $("picture"), map = paletteMap();
+  let blob;
+  if (studio.result.picture.format === fmt) {
+    blob = fmt === "svg" ? new Blob([pic.querySelector("svg").outerHTML], { type: "image/svg+xml" })
+                         : await new Promise((ok) => pic.querySelector("canvas").toBlob(ok, "image/png"));
+  } else {
+    const r = await fetch($("export-" + fmt).href);
+    if (!r.ok) { showError(`export ${fmt}: ${r.status} ${(await r.text()).slice(0, 300)}`); return; }
+    if (fmt === "svg") {
+      const doc = new DOMParser().parseFromString(await r.text(), "image/svg+xml");
+      recolourSvg(doc.documentElement, map);
+      for (const el of doc.querySelectorAll("[data-fill]")) el.removeAttribute("data-fill");
+      blob = new Blob([new XMLSerializer().serializeToString(doc)], { type: "image/svg+xml" });
+    } else {
+      const img = new Image(), url = URL.createObjectURL(await r.blob());
+      img.src = url; await img.decode(); URL.revokeObjectURL(url);
+      blob = await new Promise((ok) => recolouredCanvas(img, map).toBlob(ok, "image/png"));
+    }
+  }
   const a = document.createElement("a"); a.href = URL.createObjectURL(blob);
   a.download = `${studio.result.family}-${studio.result.seed}.${fmt}`; a.click();
   setTimeout(() => URL.revokeObjectURL(a.href), 10000);
