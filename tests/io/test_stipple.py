@@ -20,6 +20,15 @@ def test_darkness_of_a_picture(tmp_path):
     assert (d.width, d.height) == (1.0, pytest.approx(4 / 6))
 
 
+def test_a_picture_named_like_a_built_in_image_keeps_its_own_name(tmp_path):
+    # verify holds a density named "radial" to the built-in radial image: a user's file that
+    # happens to be called radial must not take that name (its genuine stipple file would fail)
+    Image.fromarray(np.zeros((4, 4), np.uint8), "L").save(tmp_path / "radial", format="PNG")
+    assert read_density(tmp_path / "radial").name == "./radial"
+    Image.fromarray(np.zeros((4, 4), np.uint8), "L").save(tmp_path / "ramp.png")
+    assert read_density(tmp_path / "ramp.png").name == "ramp.png"
+
+
 def test_transparent_pixels_are_white_paper(tmp_path):
     a = np.zeros((2, 2, 4), np.uint8)
     a[0, 0] = (0, 0, 0, 255)  # one opaque black pixel; the others transparent black

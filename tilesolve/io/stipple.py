@@ -48,7 +48,7 @@ from tilesolve.io.atomic import atomic_write
 from tilesolve.io.images import read_rgba
 from tilesolve.io.jsonio import check_document
 from tilesolve.io.poisson_json import read_points, read_seed
-from tilesolve.model.importance import MAX_PIXELS, MAX_POINTS, DensityMap, ImportanceProblem
+from tilesolve.model.importance import MAX_PIXELS, MAX_POINTS, TEST_IMAGES, DensityMap, ImportanceProblem
 from tilesolve.model.solution import Solution, Status
 
 __all__ = ["MAX_STIPPLE_POINTS", "FORMAT", "VERSIONS", "Samples", "read_density", "dot_radii", "stipple_svg",
@@ -85,7 +85,10 @@ def read_density(path: str | os.PathLike) -> DensityMap:
     if (rgba[..., 3] < 255).any():
         img = Image.alpha_composite(Image.new("RGBA", img.size, (255, 255, 255, 255)), img)
     grey = np.asarray(img.convert("L"), dtype=np.float64)
-    return DensityMap(1.0 - grey / 255.0, os.path.basename(os.fspath(path)))
+    name = os.path.basename(os.fspath(path))
+    if name in TEST_IMAGES:  # a file named like a built-in image is not that image (verify checks those)
+        name = os.path.join(".", name)
+    return DensityMap(1.0 - grey / 255.0, name)
 
 
 def dot_radii(points: np.ndarray, density: DensityMap) -> np.ndarray:
