@@ -265,7 +265,7 @@ window.studioWebGL = (() => {
     if (!gl) return;
     canvas().addEventListener("webglcontextlost", (e) => {
       e.preventDefault();                      // ask the browser to restore it
-      state.lost = true; state.wall = made = madeTexture = null; state.pending = false;
+      state.lost = true; state.wall = made = madeTexture = null; state.pending = false; state.drawn = null;
       changed();
     });
     canvas().addEventListener("webglcontextrestored", () => { state.lost = false; changed(); });
@@ -305,7 +305,9 @@ window.studioWebGL = (() => {
   function draw(view, cell, w, h, dpr) {
     const cv = canvas(), box = document.getElementById("view-webgl"), note = document.getElementById("view-webgl-lost");
     if (note) note.hidden = !(state.lost && box && box.checked);
-    if (state.pending) return true;
+    // While the shaders load, the last WebGL2 picture stays; with none on show (the first one,
+    // or after a lost context) the server's tiles are drawn meanwhile.
+    if (state.pending) return cv.style.display === "block";
     if (!state.wall) { cv.style.display = "none"; return false; }
     const W = Math.round(w * dpr), H = Math.round(h * dpr);
     if (cv.width !== W || cv.height !== H) { cv.width = W; cv.height = H; }
