@@ -394,8 +394,9 @@ def stipple(ctx, image, test_image, points, tile, lloyd, jitter, method, correct
     each tile's sample kept by a threshold on its structural index; or plain rejection sampling.
     The polyomino sampler without --jitter (X pentomino, chair) takes its learnt correction table
     (Ostromoukhov 2007's offsets by structural index, rebuilt by this project; --no-correction
-    leaves it out, the raw structure); --jitter and --lloyd are the other stand-ins (the defaults, Penrose with both, draw the picture without
-    the tilings' patterns; `sample importance-spectrum` measures them). The samples are
+    leaves it out, the raw structure); --jitter and --lloyd are the other stand-ins (the
+    defaults, Penrose with both, draw the picture without the tilings' patterns; `sample
+    importance-spectrum` measures them). The samples are
     checked before anything is written: inside the image, and the counts of 2 x 2 and 4 x 4
     blocks near their share of the image's darkness (exit 1 if not). Without IMAGE, a built-in
     radial ramp. The same seed gives the same files, byte for byte. A stipple file (-o OUT.json,
@@ -408,8 +409,7 @@ def stipple(ctx, image, test_image, points, tile, lloyd, jitter, method, correct
       tilesolve sample stipple --points 3000 --seed 1 -o radial.svg
       tilesolve sample stipple --test-image gradient --points 3000 --seed 1 -o g.svg --png g.png
       tilesolve sample stipple --method polyomino --no-jitter --lloyd 0 --points 3000 --seed 1 -o x.svg
-      tilesolve sample stipple --method polyomino --no-correction --no-jitter --lloyd 0 --points 3000 --seed 1 \\
-        -o raw.svg --csv raw.csv
+      tilesolve sample stipple --method polyomino --no-correction --no-jitter --lloyd 0 -n 3000 -o raw.svg --csv raw.csv
       tilesolve sample stipple --test-image gradient --points 2000 --seed 1 -o g.json --svg g.svg
       tilesolve verify g.json
     """
