@@ -21,7 +21,7 @@ from tilesolve.cli.board_common import (
     svg_opt,
 )
 from tilesolve.cli.common import say
-from tilesolve.cli.outputs import Outputs
+from tilesolve.cli.outputs import Outputs, stop_if_interrupted
 from tilesolve.family import draw_seed, raise_if_interrupted
 
 __all__ = ["brick"]
@@ -166,6 +166,7 @@ def crosscheck(ctx, board_spec, colors, boundary, seed, time_limit, trials) -> N
     for i in range(trials):
         problem = _brick_problem(board_spec, colors, boundary, base + i)
         rep = facade.crosscheck(problem, seed=base + i, time_limit=time_limit)
+        stop_if_interrupted()
         ok &= rep.ok
         click.echo(f"trial {i + 1}/{trials} (seed {base + i}): {'ok' if rep.ok else 'FAILED'}")
         for line in rep.lines:

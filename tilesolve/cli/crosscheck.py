@@ -6,6 +6,7 @@ from __future__ import annotations
 import click
 
 from tilesolve.cli import options as opt
+from tilesolve.cli.outputs import stop_if_interrupted
 from tilesolve.family import draw_seed
 
 __all__ = ["crosscheck"]
@@ -34,6 +35,7 @@ def _sweep(ctx, trials: int, base: int, run_trial) -> None:
     ok = True
     for i in range(trials):
         label, rep = run_trial(i)
+        stop_if_interrupted()
         ok &= rep.ok
         click.echo(f"trial {i + 1}/{trials} ({label}): {'ok' if rep.ok else 'FAILED'}")
         for line in rep.lines:

@@ -6,7 +6,7 @@ import click
 
 from tilesolve.cli import options as opt
 from tilesolve.cli.common import build_problem, progress_wanted, say
-from tilesolve.cli.outputs import Outputs
+from tilesolve.cli.outputs import Outputs, stop_if_interrupted
 from tilesolve.errors import InvalidProblem
 from tilesolve.families.dappled import COUNT_METHODS, METHODS
 from tilesolve.family import draw_seed, raise_if_interrupted
@@ -209,6 +209,7 @@ def crosscheck(ctx, seed, time_limit, trials, **problem_kw) -> None:
     for i in range(trials):
         s = base + i
         report = facade.crosscheck(problem, seed=s, time_limit=time_limit)
+        stop_if_interrupted()
         ok &= bool(report.ok)
         click.echo(f"trial {i + 1}/{trials} (seed {s}): {'ok' if report.ok else 'FAILED'}")
         for line in report.lines:

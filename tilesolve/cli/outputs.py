@@ -35,7 +35,7 @@ from tilesolve.errors import InvalidProblem
 from tilesolve.io.atomic import commit_together, probe_writable
 
 __all__ = ["Outputs", "OutputFile", "check_suffix", "check_target", "sigterm_as_interrupt", "interruption",
-           "interrupt_received"]
+           "stop_if_interrupted", "interrupt_received"]
 
 _state = {"terminated": False, "interrupted": False, "pid": 0}
 
@@ -212,6 +212,14 @@ def interrupt_received() -> bool:
     consequence, not a bug: numpy, for one, turns a ``KeyboardInterrupt`` raised inside a
     structured-array comparison into a ``TypeError``."""
     return _state["interrupted"] or _state["terminated"]
+
+
+def stop_if_interrupted() -> None:
+    """Raise KeyboardInterrupt when Ctrl-C or SIGTERM reached this run: a loop of trials calls
+    it after each one, so a signal that a solver caught and turned into an answer (``unknown``,
+    or a failed check) ends the loop with exit 130 instead of being reported as a result."""
+    if interrupt_received():
+        raise KeyboardInterrupt
 
 
 def interruption() -> tuple[int, str]:

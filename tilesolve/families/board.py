@@ -229,7 +229,8 @@ def crosscheck(problem: BoardProblem, *, seed: int | None = None, time_limit: fl
             rep.add(not bad, f"{name}: sat, tiling verifies ({len(bad)} violations)")
             if name == "linear" and not bad:
                 enc = encode_wang(problem)
-                r = solve_cnf(enc.clauses, assumptions=enc.literals(sol.tiling))
+                # Ctrl-C inside this check is the interruption, not a failed check
+                r = raise_if_interrupted(solve_cnf(enc.clauses, assumptions=enc.literals(sol.tiling)))
                 rep.add(r.status is Status.SAT, "linear tiling satisfies the CNF encoding")
         else:
             rep.lines.append(f"     {name}: {sol.status.value}" + (f" ({sol.reason})" if sol.reason else ""))
