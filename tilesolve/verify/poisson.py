@@ -230,16 +230,17 @@ def cell_counts(ts: PoissonTileSet) -> np.ndarray:
     return out
 
 
-def shortfall_violations(ts: PoissonTileSet) -> list[Violation]:
+def shortfall_violations(ts, counts=cell_counts) -> list[Violation]:
     """A set's stated shortfall (``stats["short"]``, the points its cells lack beside ``N`` a
     cell, summed over the colourings; the build's own count, shown when the set is built) must be
-    the one its tiles give (:func:`cell_counts`): a set whose points were deleted cannot keep
-    claiming ``N`` points a tile. A set that states none (built in memory without stats) is not
-    held to one."""
+    the one its tiles give (``counts(ts)``, the points of a cell under each colouring:
+    :func:`cell_counts`, or the 3-D sets' ``cell_counts3``): a set whose points were deleted
+    cannot keep claiming ``N`` points a tile. A set that states none (built in memory without
+    stats) is not held to one."""
     if "short" not in ts.stats:
         return []
     stated = ts.stats["short"]
-    short = int(np.maximum(ts.problem.points - cell_counts(ts), 0).sum())
+    short = int(np.maximum(ts.problem.points - counts(ts), 0).sum())
     if isinstance(stated, bool) or not isinstance(stated, int) or stated != short:
         return [Violation("short", f"the set states its cells lack {stated!r} points in all (N = "
                                    f"{ts.problem.points} a cell), but its tiles lack {short:,}")]

@@ -19,8 +19,9 @@ Written from the definitions, sharing no code with the builder
 * :func:`placed_points3`: the points a coloured lattice of corner cubes places, from the
   regions' definition (a box file's points are re-derived with it from its set and the lattice
   its seed colours, and compared exactly by :func:`tilesolve.verify.poisson.match_violations`).
-* :func:`cell_counts3`, :func:`shortfall_violations3`: the points a unit cell holds under each
-  colouring of its eight corners, counted from the same placement; a set's stated shortfall
+* :func:`cell_counts3`: the points a unit cell holds under each colouring of its eight
+  corners, counted from the same placement; with it (the 2-D sets'
+  :func:`~tilesolve.verify.poisson.shortfall_violations`), a set's stated shortfall
   (``stats["short"]``) must be the one its tiles give, so that a set cannot claim ``N`` points
   a cell that its tiles do not hold.
 
@@ -38,9 +39,9 @@ import numpy as np
 
 from tilesolve.model.poisson_sphere import PoissonSphereTileSet
 from tilesolve.verify.dappled import Violation
+from tilesolve.verify.poisson import shortfall_violations
 
-__all__ = ["point_violations3", "tileset_violations3", "close_pairs3", "placed_points3", "cell_counts3",
-           "shortfall_violations3"]
+__all__ = ["point_violations3", "tileset_violations3", "close_pairs3", "placed_points3", "cell_counts3"]
 
 #: Violations listed at most (the count is always given).
 MAX_LISTED = 20
@@ -224,22 +225,6 @@ def cell_counts3(ts: PoissonSphereTileSet) -> np.ndarray:
     return total
 
 
-def shortfall_violations3(ts: PoissonSphereTileSet) -> list[Violation]:
-    """A set's stated shortfall (``stats["short"]``: the points its cells lack beside ``N`` a
-    cell, summed over the ``C^8`` colourings; the build's own count, shown when the set is built)
-    must be the one its tiles give (:func:`cell_counts3`): a set whose points were deleted, or
-    whose shortfall was rewritten, cannot keep claiming ``N`` points a cell. A set that states
-    none (built in memory without stats) is not held to one."""
-    if "short" not in ts.stats:
-        return []
-    stated = ts.stats["short"]
-    short = int(np.maximum(ts.problem.points - cell_counts3(ts), 0).sum())
-    if isinstance(stated, bool) or not isinstance(stated, int) or stated != short:
-        return [Violation("short", f"the set states its cells lack {stated!r} points in all (N = "
-                                   f"{ts.problem.points} a cell), but its tiles lack {short:,}")]
-    return []
-
-
 def _gap(lo1, hi1, lo2, hi2) -> float:
     return float(np.linalg.norm(np.maximum(0.0, np.maximum(lo1 - hi2, lo2 - hi1))))
 
@@ -278,7 +263,7 @@ def tileset_violations3(ts: PoissonSphereTileSet, *, max_colourings: int = 4096,
                 out.append(Violation("region", f"{kind} tile {k}: {int(bad.sum())} points outside its region"))
     if out:
         return out[:MAX_LISTED]
-    out += shortfall_violations3(ts)
+    out += shortfall_violations(ts, cell_counts3)
     c, d = ts.problem.colors, ts.problem.distance
     rng = np.random.default_rng(seed)
     for (k1, s1), (k2, s2, off) in _slot_pairs(regions, d):
