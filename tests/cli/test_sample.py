@@ -307,3 +307,12 @@ def test_verify_finds_the_correction_flag_flipped(corrected_docs, name):
     d, docs = corrected_docs
     verify_forgery(d, docs[name], lambda doc: doc.update(correct=not doc["correct"]), 1,
                    "polyomino sampling with seed 3")
+
+
+@pytest.mark.slow
+def test_the_largest_stipple_asked_for_is_drawn_even_when_the_sampler_overshoots(tmp_path):
+    # -n 200000 (the most a picture takes) gave 200,129 samples, which the picture writer refused
+    p = run("sample", "stipple", "--method", "polyomino", "--no-jitter", "--lloyd", "0", "-n", "200000", "--seed", "1",
+            "-o", "big.svg", cwd=tmp_path)
+    assert p.returncode == 0, p.stderr
+    assert (tmp_path / "big.svg").stat().st_size > 0
