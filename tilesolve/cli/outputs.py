@@ -37,7 +37,7 @@ from tilesolve.io.atomic import commit_together, probe_writable
 __all__ = ["Outputs", "OutputFile", "check_suffix", "check_target", "sigterm_as_interrupt", "interruption",
            "stop_if_interrupted", "interrupt_received"]
 
-_state = {"terminated": False, "interrupted": False, "pid": 0}
+_state = {"terminated": False, "interrupted": False, "pid": 0, "active": False}
 
 
 def check_target(path: str) -> None:
@@ -196,12 +196,14 @@ def sigterm_as_interrupt() -> Iterator[None]:
     except (ValueError, OSError, AttributeError):  # not the main thread, or no SIGTERM here
         yield
         return
+    _state["active"] = True
     previous_int = signal.getsignal(signal.SIGINT)
     if previous_int is signal.default_int_handler:  # an ignored Ctrl-C stays ignored
         signal.signal(signal.SIGINT, _on_sigint)
     try:
         yield
     finally:
+        _state["active"] = False  # a later run in this process starts with no signal received
         signal.signal(signal.SIGTERM, previous)
         if previous_int is signal.default_int_handler:
             signal.signal(signal.SIGINT, previous_int)
@@ -211,7 +213,7 @@ def interrupt_received() -> bool:
     """Whether Ctrl-C or SIGTERM reached this run. An exception that follows one is its
     consequence, not a bug: numpy, for one, turns a ``KeyboardInterrupt`` raised inside a
     structured-array comparison into a ``TypeError``."""
-    return _state["interrupted"] or _state["terminated"]
+    return _state["active"] and (_state["interrupted"] or _state["terminated"])
 
 
 def stop_if_interrupted() -> None:
