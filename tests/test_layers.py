@@ -6,7 +6,8 @@ edge) is read with :mod:`ast`, and each edge between tilesolve's layers must poi
 =============  =====================================================================
 layer          may import (besides itself and third-party packages)
 =============  =====================================================================
-base           ``tilesolve``, ``errors``, ``deadline``, ``_random``, ``_lazy``, ``inputs``, ``progress``: nothing
+base           ``tilesolve``, ``errors``, ``deadline``, ``_random``, ``_lazy``, ``_numba``, ``inputs``,
+               ``progress``: nothing
 model          base
 verify         base, model, and numpy only among third-party packages
 encodings      base, model
@@ -28,7 +29,7 @@ import pytest
 PACKAGE = Path(__file__).resolve().parents[1] / "tilesolve"
 
 BASE = {"tilesolve", "tilesolve.errors", "tilesolve.deadline", "tilesolve._random", "tilesolve._lazy", "tilesolve.progress",
-        "tilesolve.inputs"}
+        "tilesolve.inputs", "tilesolve._numba"}
 #: The facades: the family contract (the package ``tilesolve.family``), every module of ``tilesolve.families``
 #: (found from the package, so a new family needs no edit here) and the GPU path.
 FACADES = {"tilesolve.family", "tilesolve.families", "tilesolve.gpu"}

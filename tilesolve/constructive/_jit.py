@@ -104,7 +104,7 @@ class Kernels:
         return work >= self.threshold or self._plain_work >= self.threshold
 
     def _compile(self) -> types.SimpleNamespace:
-        import numba
+        from tilesolve._numba import numba
 
         ns = dict(self._namespace)
         module = ns["__name__"]

@@ -18,7 +18,8 @@ top, tile ``(x0 + col, y0 + h - 1 - row)``.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+
+from tilesolve._numba import njit
 
 #: FNV-1a 64-bit prime (Fowler, Noll, Vo).
 FNV_PRIME = 0x100000001B3

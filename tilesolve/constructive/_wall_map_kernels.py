@@ -9,7 +9,8 @@ pixel for pixel.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+
+from tilesolve._numba import njit
 
 #: ``kind`` codes of :func:`map_band`.
 KIND_ID, KIND_DISTANCE, KIND_UV = 0, 1, 2

@@ -69,9 +69,9 @@ from dataclasses import dataclass
 from functools import lru_cache
 from typing import Callable
 
-import numba as nb
 import numpy as np
 
+from tilesolve._numba import numba as nb
 from tilesolve.deadline import Deadline
 from tilesolve.errors import InvalidProblem, MethodNotApplicable
 from tilesolve.model.dappled import DappledProblem

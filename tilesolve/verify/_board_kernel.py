@@ -145,7 +145,7 @@ def compiled(n: int):
         if _numpy_cells < COMPILED_FROM:
             return None
         try:
-            import numba
+            from tilesolve._numba import numba
         except ImportError:  # pragma: no cover - numba is a dependency
             return None
         _COMPILED = numba.njit(cache=True, nogil=True)(grid_clean)

@@ -489,38 +489,9 @@ def _cache_may_hold_kernels() -> bool:
     return any(glob.glob(os.path.join(place, f"{stem}.*.nbi")) for place in places)
 
 
-def _numba_numpy_without_scipy() -> None:
-    """Import numba's numpy support without the scipy.linalg it probes for BLAS at import.
-
-    ``numba.np.arraymath`` tries ``import scipy.linalg.cython_blas`` when it loads, and
-    scipy.linalg's package costs more CPU than loading every cached kernel (a process that
-    checks one proof pays it at start-up; ``benchmarks/bench_heesch_sat.py`` measures it). The
-    kernels use no BLAS. While that one module loads (under :data:`_LOCK`), the probe fails at
-    once (a ``None`` in :data:`sys.modules` raises ModuleNotFoundError before any parent
-    package is imported); numba's flag is then set to what its probe would have found (scipy
-    installed), and a later kernel that uses linear algebra imports scipy when it compiles
-    (``numba.np.linalg.ensure_blas``), as before. Another numba's layout: its own import."""
-    key = "scipy.linalg.cython_blas"
-    if "numba.np.arraymath" in sys.modules or "scipy.linalg" in sys.modules or key in sys.modules:
-        return
-    import importlib.util
-
-    sys.modules[key] = None  # type: ignore[assignment]
-    try:
-        import numba.np.arraymath as arraymath
-    except ImportError:
-        return
-    finally:
-        if key in sys.modules and sys.modules[key] is None:
-            del sys.modules[key]
-    if getattr(arraymath, "_HAVE_BLAS", True) is False:
-        arraymath._HAVE_BLAS = importlib.util.find_spec("scipy") is not None
-
-
 def _compile() -> types.SimpleNamespace:
-    import numba
+    from tilesolve._numba import numba
 
-    _numba_numpy_without_scipy()
     ns = dict(vars(K))
     funcs = _kernel_funcs()
     for name, func in funcs.items():
