@@ -580,3 +580,31 @@ def test_a_chosen_palette_colours_the_export_in_the_other_format_too(page, size,
         pixels = {tuple(p) for p in np.asarray(Image.open(io.BytesIO(data)).convert("RGB")).reshape(-1, 3)}
         assert {tuple(hex_rgb(c)) for c in viridis} <= pixels
         assert not {tuple(hex_rgb(c)) for c in own} & pixels
+
+
+#: What a <select> needs to show its chosen option whole: the width Chromium gives a clone of it
+#: that holds only that option and is not squeezed by its row (text, padding, arrow and border).
+#: A select's own scrollWidth equals its clientWidth even when the text is cut, so it is no measure.
+_SELECT_FITS = """sel => [...sel.options].map((o, k) => {
+  sel.selectedIndex = k;
+  const clone = sel.cloneNode(false);
+  clone.removeAttribute("id");
+  clone.add(new Option(o.text, o.value));
+  clone.style.cssText = "position: absolute; visibility: hidden; width: auto; min-width: 0; max-width: none; flex: none";
+  sel.parentNode.appendChild(clone);
+  const need = clone.getBoundingClientRect().width;
+  clone.remove();
+  return { text: o.text, need, have: sel.getBoundingClientRect().width,
+           scroll: sel.scrollWidth, client: sel.clientWidth };
+})"""
+
+
+def test_every_palette_presets_name_shows_whole(page):
+    """The palette menu shows each preset's name whole when chosen ("Okabe–Ito (pictures' own)"
+    was cut after "(pictures'")."""
+    page.locator("#palette-preset").scroll_into_view_if_needed()
+    fits = page.eval_on_selector("#palette-preset", _SELECT_FITS)
+    assert [f["text"] for f in fits] == page.evaluate("Object.keys(PRESET_PALETTES)")
+    for f in fits:
+        assert f["scroll"] <= f["client"], f
+        assert f["need"] <= f["have"], f
