@@ -102,3 +102,23 @@ def test_the_studio_imports_no_private_module_of_a_lower_layer():
                         if n.startswith("tilesolve.") and not n.startswith("tilesolve.studio.")
                         and any(part.startswith("_") for part in n.split(".")) and _is_module(n)]
     assert not private, private
+
+
+def test_a_solve_whose_process_cannot_start_ends_as_an_error(monkeypatch):
+    """When no worker process can be started (fork refused, out of processes), the job does
+    not stay 'running' with no process: it ends as an error, and cancel and shutdown pass it by
+    (they once failed on the missing process)."""
+    from tilesolve.studio import jobs
+
+    pool = jobs.Jobs()
+
+    def refused():
+        raise OSError("Resource temporarily unavailable")
+
+    monkeypatch.setattr(pool, "_take", refused)
+    with pytest.raises(OSError):
+        pool.start("dappled", {}, "auto", None)
+    (job,) = pool._jobs.values()
+    assert (job.state, job.error) == ("error", "the solver process could not be started") and job.done.is_set()
+    assert pool.running() == 0 and pool.cancel(job.id) is job
+    pool.close()

@@ -255,7 +255,14 @@ class Jobs:
                 if old is None:
                     break
                 del self._jobs[old]
-        job.process, conn = self._take()
+        try:
+            job.process, conn = self._take()
+        except BaseException:  # no process to solve it: the job ends here, as an error
+            with self._lock:
+                job.finished = time.perf_counter()
+                job.state, job.error = "error", "the solver process could not be started"
+            job.done.set()
+            raise
         job.resident = _resident(job.process.pid)
         conn.send((family, values, method, time_limit))
         threading.Thread(target=self._wait, args=(job, conn), daemon=True).start()
