@@ -87,6 +87,28 @@ def test_the_grid_finds_a_close_pair_exactly_when_there_is_one(n, scale, d, seed
     assert found <= close and bool(found) == bool(close)
     if len(pts) >= 2:
         assert min_distance(pts) == pytest.approx(gaps[np.triu_indices(len(pts), 1)].min(), rel=1e-12, abs=1e-300)
+    assert np.array_equal(point_violations_pairs(pts, d, kernel=_compiled_scan()), point_violations_pairs(pts, d))
+
+
+def _compiled_scan():
+    """The compiled neighbour scan of the verifier's grid (used for large sets)."""
+    import importlib
+
+    from tilesolve.verify import _poisson_kernel
+
+    importlib.import_module("tilesolve._numba")  # the scan is compiled where numba is loaded
+
+    return _poisson_kernel.compiled(_poisson_kernel.COMPILED_FROM)
+
+
+def test_a_large_set_takes_the_compiled_scan_once_numba_is_loaded():
+    import sys
+
+    from tilesolve.verify import _poisson_kernel
+
+    assert _poisson_kernel.compiled(_poisson_kernel.COMPILED_FROM - 1) is None
+    assert (_poisson_kernel.compiled(_poisson_kernel.COMPILED_FROM) is None) == ("numba" not in sys.modules)
+    assert _compiled_scan() is not None
 
 
 def test_averaged_periodograms_of_white_noise_lose_anisotropy_as_ulichney_says():

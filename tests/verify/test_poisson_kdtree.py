@@ -2,7 +2,7 @@
 against scipy's KD-tree on whole windows of the corner tiles far from the origin (class notes
 §4.2.1, §4.3; issue 23 §1: "an independent verifier (a KD-tree over any window)").
 
-The verifier stays numpy only (the verifiers' rule, DESIGN.md); this checks that its grid finds
+This checks that its grid, by the numpy scan and by the compiled one of large sets, finds
 exactly the close pairs a KD-tree range query finds, on windows of thousands of points with
 pairs pushed together across tile seams, where a tiling's mistakes would be.
 """
@@ -15,6 +15,7 @@ from scipy.spatial import cKDTree
 
 from tilesolve.constructive.poisson import build_tiles, window_points
 from tilesolve.model.poisson import PoissonTilesProblem
+from tilesolve.verify import _poisson_kernel
 from tilesolve.verify.poisson import _close_pairs, point_violations
 
 
@@ -64,5 +65,6 @@ def test_the_grid_finds_the_kdtree_s_pairs_on_far_windows(ts, origin, seed):
     expected = _kdtree_pairs(bad, d)
     assert len(expected) >= 30
     assert np.array_equal(_close_pairs(bad, d), expected)
+    assert np.array_equal(_close_pairs(bad, d, kernel=_poisson_kernel.compiled(_poisson_kernel.COMPILED_FROM)), expected)
     found = point_violations(bad, d, w, h)
     assert found[-1].message.startswith(f"{len(expected):,} pairs in all are closer than")

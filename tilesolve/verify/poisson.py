@@ -4,9 +4,10 @@ Written from the definitions, sharing no code with the builder
 (:mod:`tilesolve.constructive.poisson`):
 
 * :func:`point_violations`: a point set is a Poisson disk distribution at distance ``d`` when
-  no two points are closer than ``d`` (§4.2.1); a grid of ``d x d`` cells (numpy only, the
-  verifiers' rule; it does what a KD-tree's range query would) finds every closer pair in any
-  window. Points must also lie in their window.
+  no two points are closer than ``d`` (§4.2.1); a grid of ``d x d`` cells (numpy, or for a
+  large set a compiled loop of its own, :mod:`tilesolve.verify._poisson_kernel`; it does what a
+  KD-tree's range query would) finds every closer pair in any window. Points must also lie in
+  their window.
 * :func:`tileset_violations`: every tile's points lie in its modified region (§4.3, figure
   4.3(b); :mod:`tilesolve.model.poisson`), and the tiles of *every* 2 x 2 block of cells are a
   Poisson disk distribution: any two points closer than ``d < 1/2`` lie in a common 2 x 2
@@ -32,6 +33,7 @@ import math
 import numpy as np
 
 from tilesolve.model.poisson import PoissonTileSet, r_max
+from tilesolve.verify import _poisson_kernel
 from tilesolve.verify.dappled import Violation
 
 __all__ = ["point_violations", "tileset_violations", "placed_points", "match_violations", "window_size_violations",
@@ -47,13 +49,15 @@ _CELL_MAX = 4
 _OFFSETS = ((0, 0), (1, 0), (-1, 1), (0, 1), (1, 1))
 
 
-def _close_pairs(points: np.ndarray, distance: float) -> np.ndarray:
+def _close_pairs(points: np.ndarray, distance: float, *, kernel=None) -> np.ndarray:
     """Every pair ``(i, j)``, ``i < j``, of ``points`` closer than ``distance``, sorted.
 
-    A uniform grid of cells of side ``distance`` (numpy only, as verifiers are): a close pair
-    lies in one cell or in two neighbouring ones. A cell of more than four points holds a close
-    pair by the pigeonhole principle; there the first five points are compared, so that a
-    file of many equal points costs no more than a valid one.
+    A uniform grid of cells of side ``distance``: a close pair lies in one cell or in two
+    neighbouring ones. A cell of more than four points holds a close pair by the pigeonhole
+    principle; there the first five points are compared, so that a file of many equal points
+    costs no more than a valid one. The neighbouring cells are scanned with numpy, or for a large
+    set by the compiled loop of :mod:`tilesolve.verify._poisson_kernel` (``kernel``: that loop,
+    or None to choose); either scan gives candidates, kept here by their exact distance.
     """
     n = len(points)
     if n < 2:
@@ -65,7 +69,27 @@ def _close_pairs(points: np.ndarray, distance: float) -> np.ndarray:
     skey = key[order]
     start = np.flatnonzero(np.r_[True, skey[1:] != skey[:-1]])  # runs of one cell in the sorted keys
     ukey, count = skey[start], np.diff(np.r_[start, n])
-    found = []
+    kernel = kernel or _poisson_kernel.compiled(n)
+    if kernel is not None:
+        sorted_pts = points[order]
+        x, y = np.ascontiguousarray(sorted_pts[:, 0]), np.ascontiguousarray(sorted_pts[:, 1])
+        room = np.zeros(0, np.int64)
+        total = kernel(x, y, ukey, start, count, rows, _CELL_MAX, distance, room, room)
+        i, j = np.empty(total, np.int64), np.empty(total, np.int64)
+        kernel(x, y, ukey, start, count, rows, _CELL_MAX, distance, i, j)
+        pairs = np.stack([order[i], order[j]], axis=1)
+    else:
+        pairs = _numpy_scan(points, distance, rows, order, skey, ukey, start, count)
+    pairs = np.sort(pairs, axis=1)
+    if len(pairs) == 0:
+        return pairs
+    gap = np.hypot(*(points[pairs[:, 0]] - points[pairs[:, 1]]).T)
+    return np.unique(pairs[gap < distance], axis=0).reshape(-1, 2)
+
+
+def _numpy_scan(points, distance, rows, order, skey, ukey, start, count) -> np.ndarray:
+    """The candidate pairs of :func:`_close_pairs`, by whole-array numpy operations."""
+    found = [np.zeros((0, 2), np.int64)]
     for c in np.flatnonzero(count > _CELL_MAX):  # pigeonhole: five points hold a close pair
         members = order[start[c]:start[c] + _CELL_MAX + 1]
         a, b = np.triu_indices(len(members), 1)
@@ -86,11 +110,7 @@ def _close_pairs(points: np.ndarray, distance: float) -> np.ndarray:
         gap = np.hypot(*(points[pi] - points[pj]).T)
         close = gap < distance
         found.append(np.stack([pi[close], pj[close]], axis=1))
-    pairs = np.sort(np.concatenate(found), axis=1)
-    if len(pairs) == 0:
-        return pairs
-    gap = np.hypot(*(points[pairs[:, 0]] - points[pairs[:, 1]]).T)
-    return np.unique(pairs[gap < distance], axis=0).reshape(-1, 2)
+    return np.concatenate(found)
 
 
 def point_violations(points, distance: float, width: float, height: float) -> list[Violation]:
