@@ -51,7 +51,7 @@ ALLOWED = {
 #: Third-party packages a verifier may use (DESIGN.md: "dependency-light (numpy only)"; numba
 #: compiles the board verifier's one-pass loop, written in the verifier from the definitions).
 VERIFY_THIRD_PARTY = {"numpy", "numba", "__future__", "dataclasses", "typing", "time", "math", "itertools",
-                      "collections", "hashlib", "os", "functools", "enum"}
+                      "collections", "hashlib", "os", "sys", "functools", "enum"}
 
 
 def layer_of(module: str) -> str | None:

@@ -150,12 +150,12 @@ def _rho_caption(w, asked: float) -> str:
     the window's points keep, measured on them, beside the set's parameter. The measure is a
     search of the points; a window too large to draw (the picture writer refuses it) is not
     measured."""
+    from tilesolve.families.poisson import achieved_rho
     from tilesolve.io.poisson_plots import MAX_PICTURE_POINTS
-    from tilesolve.verify.poisson import relative_radius
 
     if w.n_points < 2 or w.n_points > MAX_PICTURE_POINTS:
         return f"rho {asked:g} asked"
-    achieved = relative_radius(w.local, w.window.width * w.window.height)
+    achieved = achieved_rho(w)
     return f"rho = {achieved:.3f} achieved ({asked:g} asked)"
 
 

@@ -59,7 +59,7 @@ from tilesolve.model.window import Window
 from tilesolve.progress import Progress
 from tilesolve.verify.dappled import Violation
 
-__all__ = ["FAMILY", "SOLVERS", "solve", "dart", "window", "poisson_violations", "rederived_violations", "auto_method", "spectra", "objects"]
+__all__ = ["FAMILY", "SOLVERS", "solve", "dart", "window", "poisson_violations", "rederived_violations", "auto_method", "spectra", "achieved_rho", "objects"]
 
 
 def dart(problem: PoissonTilesProblem, run: RunOptions) -> Solution:
@@ -167,6 +167,15 @@ def spectra(ts: PoissonTileSet, size: int, *, seed: int | None = None, runs: int
         rows.append({"name": name, "points": len(sets[0]), "rho": min(relative_radius(s, size * size) for s in sets),
                      "frequency": f, "power": power, "anisotropy": aniso, "anisotropy_db": float(np.mean(aniso))})
     return rows
+
+
+def achieved_rho(w) -> float:
+    """The relative radius ``rho`` (eq. 4.3, class notes §4.2) that a window's points keep,
+    measured on them over the window's area (:func:`tilesolve.verify.poisson.relative_radius`):
+    what a picture's caption states beside the set's asked ``rho``."""
+    from tilesolve.verify.poisson import relative_radius
+
+    return relative_radius(w.local, w.window.width * w.window.height)
 
 
 def objects(ts: PoissonTileSet, window: Window, px: int, *, seed: int | None = None) -> dict:
