@@ -12,7 +12,7 @@ call first; CPU time is this process's, the better measure on a shared machine):
 * **build C = 4** (256 interior tiles, 292 in all), the same anchors;
 * **window of at least 10^6 points** (``window_points`` on 126 x 126 tiles, the direct corner
   tiling: 125 x 125 tiles hold 10^6 points less the interior tiles' shortfall), and its
-  verification (the numpy grid of ``point_violations``), against plain dart
+  verification (the grid of ``point_violations``), against plain dart
   throwing (Cook 1986; the project's own compiled kernel, one distance, until 2,000 darts in a
   row miss) on 10^5 points, and scipy's ``PoissonDisk`` at the same distance on 2 x 10^4
   (Bridson in Python, far slower); compared by throughput, points a second;
@@ -95,7 +95,7 @@ def main() -> None:
         f"{cpu:.2f} s")
     vt, vcpu, v = best(lambda: point_violations(w.local, ts.problem.distance, 126, 126), 1)
     assert v == [], v
-    row("  verify the window (numpy grid)", f"{n:,} points", vt, vcpu, float("nan"), f"{n / vcpu / 1e6:,.2f} Mpt/s", "", "")
+    row("  verify the window (grid)", f"{n:,} points", vt, vcpu, float("nan"), f"{n / vcpu / 1e6:,.2f} Mpt/s", "", "")
     m = 100_000
     side = math.sqrt(m / 64)
     dt, dcpu, dpts = best(lambda: dart_throwing(2 * m, ts.problem.distance / side, seed=3, patience=2000), 1)

@@ -7,7 +7,7 @@ call first; CPU time is this process's, the better measure on a shared machine):
   rules; the verification apart) against the slides' figure for Kopf et al.'s tile
   construction, "approx. 10 mins" (Part V);
 * **window of about 10^6 points at level 2** (16 x 16 tiles, every point of level 2) and its
-  verification (every level by the numpy grid), against **plain dart throwing** (Cook 1986;
+  verification (every level by the grid), against **plain dart throwing** (Cook 1986;
   the project's compiled kernel, one distance ``d_2`` on a torus of the same area, until
   1,000 darts in a row miss) asked for as many points, and against the slides' "6,000,000+
   points/s" (Part V); compared by throughput, points a CPU second;
@@ -88,7 +88,7 @@ def main() -> None:
         "slides: 6 Mpt/s", f"{n / window_cpu / SLIDES_RATE:.2f}")
     vt, vcpu, v = best(lambda: window_violations(w), 1)
     assert v == [], v
-    row("  verify every level (numpy grid)", f"{n:,} points", vt, vcpu, float("nan"), f"{n / vcpu / 1e6:,.2f} Mpt/s",
+    row("  verify every level (grid)", f"{n:,} points", vt, vcpu, float("nan"), f"{n / vcpu / 1e6:,.2f} Mpt/s",
         "", "")
     side = 16.0
     dt, dcpu, dpts = best(lambda: dart_throwing(n, p.distance_at(2) / side, seed=3, patience=1000), 1)

@@ -8,7 +8,7 @@ build first; CPU time is this process's, the better measure on a shared machine)
   against scipy's ``PoissonDisk(d=3)`` (Bridson) drawing points at the same distance and density
   (compared by throughput: scipy's is in Python and slow, so it draws 3,000 points);
 * **box of about 10^6 points** (``window_points`` on 20 x 20 x 20 cells, the direct 3-D corner
-  tiling with the long-period hash) and its verification (the numpy grid of
+  tiling with the long-period hash) and its verification (the grid of
   ``point_violations3``), against plain 3-D dart throwing (Cook 1986; the project's compiled
   kernel, one distance, until 2,000 darts in a row miss) on 10^5 points, and scipy's
   ``PoissonDisk(d=3)`` at the same distance; compared by throughput, points a second;
@@ -102,7 +102,7 @@ def main() -> None:
         "goal <= 2 s", f"{wcpu:.2f} s")
     vt, vcpu, v = best(lambda: point_violations3(w.local, p.distance, w.box.size), 1)
     assert v == [], v
-    row("  verify the box (numpy grid)", f"{n:,} points", vt, vcpu, float("nan"), f"{n / vcpu / 1e6:,.2f} Mpt/s", "", "")
+    row("  verify the box (grid)", f"{n:,} points", vt, vcpu, float("nan"), f"{n / vcpu / 1e6:,.2f} Mpt/s", "", "")
     m = 100_000
     side = (m / N) ** (1 / 3)
     dt, dcpu, dpts = best(lambda: dart_throwing3(2 * m, p.distance / side, seed=3, patience=2000), 1)

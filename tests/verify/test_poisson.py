@@ -141,3 +141,14 @@ def test_match_violations_finds_points_missing_added_and_moved():
     assert len(match_violations(moved, pts, "x")) == 2
     assert match_violations(np.vstack([pts, pts[:1]]), pts, "x")[0].message.startswith("1 point(s) of the file")
     assert match_violations(np.c_[pts, pts[:, :1]], pts, "x")[0].kind == "seed"
+
+
+def test_the_compiled_scan_makes_room_for_every_pair_of_a_forged_set():
+    """A lattice at 0.6 d: no cell is overfull, and every point has close neighbours, far more
+    pairs than the scan's first guess of room: it scans again with room for all."""
+    d = 1.0
+    g = np.arange(30) * 0.6 * d
+    pts = np.stack(np.meshgrid(g, g), axis=-1).reshape(-1, 2)
+    pairs = point_violations_pairs(pts, d)
+    assert len(pairs) > len(pts)
+    assert np.array_equal(point_violations_pairs(pts, d, kernel=_compiled_scan()), pairs)

@@ -26,6 +26,17 @@ def test_close_pairs_are_the_kdtree_s(scale, seed):
     pts = np.vstack([pts, pts[:40] + 1e-3])  # close pairs
     d = 0.08
     assert np.array_equal(close_pairs3(pts, d), _kdtree_pairs(pts, d))
+    assert np.array_equal(close_pairs3(pts, d, kernel=_compiled_scan()), _kdtree_pairs(pts, d))
+
+
+def _compiled_scan():
+    """The compiled neighbour scan of the verifiers' grids (used for large sets)."""
+    import importlib
+
+    from tilesolve.verify import _poisson_kernel
+
+    importlib.import_module("tilesolve._numba")  # the scan is compiled where numba is loaded
+    return _poisson_kernel.compiled(_poisson_kernel.COMPILED_FROM)
 
 
 def test_an_overfull_cell_is_cut_short():
@@ -34,6 +45,7 @@ def test_an_overfull_cell_is_cut_short():
     pts = np.vstack([np.zeros((1000, 3)), [[5.0, 5.0, 5.0]]])
     pairs = close_pairs3(pts, 0.1)
     assert len(pairs) == 36 and pairs.max() < 1000
+    assert np.array_equal(close_pairs3(pts, 0.1, kernel=_compiled_scan()), pairs)
 
 
 def test_point_violations3_messages():

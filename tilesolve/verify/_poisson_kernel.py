@@ -1,9 +1,10 @@
-"""The neighbour scan of the Poisson disk verifier's grid, compiled by numba.
+"""The neighbour scan of the Poisson disk and sphere verifiers' grids, compiled by numba.
 
-:func:`tilesolve.verify.poisson.point_violations` finds close pairs on a grid of cells of
-side ``d`` (class notes §4.2.1: no two points closer than ``d``): a close pair lies in one
-cell or in two neighbouring ones. Its numpy scan builds every candidate pair of neighbouring
-cells as arrays; this loop visits them in place, and is used where numba is already loaded
+:func:`tilesolve.verify.poisson.point_violations` and
+:func:`tilesolve.verify.poisson_sphere.point_violations3` find close pairs on a grid of cells
+of side ``d`` (class notes §4.2.1, §4.4: no two points closer than ``d``): a close pair lies in
+one cell or in two neighbouring ones. Their numpy scans build every candidate pair of
+neighbouring cells as arrays; this loop visits them in place, and is used where numba is already loaded
 (a command that built or re-derived the points has loaded it) and the set is large
 (:data:`COMPILED_FROM`). Both scans take the same sorted cells and report a superset of the
 close pairs, which the caller filters by the exact distance; a test checks that they agree.
@@ -16,7 +17,7 @@ import sys
 
 import numpy as np
 
-__all__ = ["COMPILED_FROM", "compiled", "scan"]
+__all__ = ["COMPILED_FROM", "compiled", "scan", "candidates"]
 
 #: Points from which the compiled scan is used, where numba is already loaded: below it the
 #: numpy scan costs less than loading the kernel from numba's cache.
@@ -25,22 +26,23 @@ COMPILED_FROM = 100_000
 _COMPILED = None
 
 
-def scan(x, y, ukey, start, count, rows, cell_max, distance, out_i, out_j):
-    """Candidate close pairs ``(i, j)`` of the points ``(x[i], y[i])``, numbered in cell order.
+def scan(pts, ukey, start, count, offsets, cell_max, distance, out_i, out_j):
+    """Candidate close pairs ``(i, j)`` of the points ``pts`` (``(n, dim)``, in cell order).
 
-    The cells are the sorted keys ``ukey`` (key ``cx * rows + cy``), the points of cell ``c``
-    are ``start[c] .. start[c] + count[c] - 1``. A cell of more than ``cell_max`` points holds
-    a close pair (pigeonhole); there its first ``cell_max + 1`` points are paired with one
-    another and with nothing else, as in the numpy scan. Other points are paired with those of
-    their own cell (``i < j``) and of the E, NW, N, NE cells (each pair of cells once) when
-    closer than ``distance`` give or take a rounding: the caller decides exactly. Writes up to
+    The cells are the sorted keys ``ukey``; the points of cell ``c`` are rows ``start[c] ..
+    start[c] + count[c] - 1``. ``offsets`` are the key offsets of the cell itself (first, 0) and
+    of the neighbours that come after it (each pair of cells once). A cell of more than
+    ``cell_max`` points holds a close pair (pigeonhole); there its first ``cell_max + 1`` points
+    are paired with one another and with nothing else, as in the numpy scans. Other points are
+    paired with those of their own cell (``i < j``) and of the neighbouring cells when closer
+    than ``distance`` give or take a rounding: the caller decides exactly. Writes up to
     ``len(out_i)`` pairs and returns how many there are (call again with room for all).
     """
     cap = out_i.shape[0]
+    dim = pts.shape[1]
     found = 0
     limit = distance * distance * (1.0 + 1e-9)
-    offsets = np.array([0, rows, 1 - rows, 1, rows + 1], np.int64)  # itself, E, NW, N, NE in keys
-    at = np.zeros(5, np.int64)  # per offset, the first cell whose key is not below the target
+    at = np.zeros(offsets.shape[0], np.int64)  # per offset, the first cell whose key is not below the target
     cells = ukey.shape[0]
     for c in range(cells):
         s, m = start[c], count[c]
@@ -52,7 +54,7 @@ def scan(x, y, ukey, start, count, rows, cell_max, distance, out_i, out_j):
                         out_j[found] = b
                     found += 1
             continue
-        for k in range(5):
+        for k in range(offsets.shape[0]):
             if k == 0:
                 t = c
             else:  # the targets grow with c: each offset's cell is found by a forward walk
@@ -68,14 +70,30 @@ def scan(x, y, ukey, start, count, rows, cell_max, distance, out_i, out_j):
                 for b in range(ts, ts + tm):
                     if k == 0 and b <= a:
                         continue
-                    dx = x[a] - x[b]
-                    dy = y[a] - y[b]
-                    if dx * dx + dy * dy < limit:
+                    gap = 0.0
+                    for d in range(dim):
+                        step = pts[a, d] - pts[b, d]
+                        gap += step * step
+                    if gap < limit:
                         if found < cap:
                             out_i[found] = a
                             out_j[found] = b
                         found += 1
     return found
+
+
+def candidates(kernel, points, order, ukey, start, count, offsets, cell_max, distance) -> np.ndarray:
+    """The candidate pairs of :func:`scan` (by ``kernel``, its compiled copy), numbered as
+    ``points`` are (``order`` sorts them by cell)."""
+    pts = np.ascontiguousarray(points[order])
+    offsets = np.asarray(offsets, np.int64)
+    room = len(points) // 16 + 64  # a valid set has no pair: one pass; a forged one may need two
+    while True:
+        i, j = np.empty(room, np.int64), np.empty(room, np.int64)
+        total = kernel(pts, ukey, start, count, offsets, cell_max, distance, i, j)
+        if total <= room:
+            return np.stack([order[i[:total]], order[j[:total]]], axis=1)
+        room = total
 
 
 def compiled(n: int):

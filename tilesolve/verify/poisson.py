@@ -71,13 +71,8 @@ def _close_pairs(points: np.ndarray, distance: float, *, kernel=None) -> np.ndar
     ukey, count = skey[start], np.diff(np.r_[start, n])
     kernel = kernel or _poisson_kernel.compiled(n)
     if kernel is not None:
-        sorted_pts = points[order]
-        x, y = np.ascontiguousarray(sorted_pts[:, 0]), np.ascontiguousarray(sorted_pts[:, 1])
-        room = np.zeros(0, np.int64)
-        total = kernel(x, y, ukey, start, count, rows, _CELL_MAX, distance, room, room)
-        i, j = np.empty(total, np.int64), np.empty(total, np.int64)
-        kernel(x, y, ukey, start, count, rows, _CELL_MAX, distance, i, j)
-        pairs = np.stack([order[i], order[j]], axis=1)
+        offsets = [dx * rows + dy for dx, dy in _OFFSETS]
+        pairs = _poisson_kernel.candidates(kernel, points, order, ukey, start, count, offsets, _CELL_MAX, distance)
     else:
         pairs = _numpy_scan(points, distance, rows, order, skey, ukey, start, count)
     pairs = np.sort(pairs, axis=1)

@@ -38,6 +38,7 @@ import itertools
 import numpy as np
 
 from tilesolve.model.poisson_sphere import PoissonSphereTileSet
+from tilesolve.verify import _poisson_kernel
 from tilesolve.verify.dappled import Violation
 from tilesolve.verify.poisson import shortfall_violations
 
@@ -53,11 +54,14 @@ _BATCH = 1024
 _OFFSETS = [(0, 0, 0)] + [o for o in itertools.product((-1, 0, 1), repeat=3) if o > (0, 0, 0)]
 
 
-def close_pairs3(points: np.ndarray, distance: float) -> np.ndarray:
+def close_pairs3(points: np.ndarray, distance: float, *, kernel=None) -> np.ndarray:
     """Every pair ``(i, j)``, ``i < j``, of 3-D ``points`` closer than ``distance``, sorted.
 
     A cell of more than eight points holds a close pair (pigeonhole); there its first nine
     points are compared, so that a file of many equal points costs no more than a valid one.
+    The neighbouring cells are scanned with numpy, or for a large set by the compiled loop of
+    :mod:`tilesolve.verify._poisson_kernel` (``kernel``: that loop, or None to choose); either
+    scan gives candidates, kept here by their exact distance.
     """
     n = len(points)
     if n < 2:
@@ -69,6 +73,11 @@ def close_pairs3(points: np.ndarray, distance: float) -> np.ndarray:
     skey = key[order]
     start = np.flatnonzero(np.r_[True, skey[1:] != skey[:-1]])
     ukey, count = skey[start], np.diff(np.r_[start, n])
+    kernel = kernel or _poisson_kernel.compiled(n)
+    if kernel is not None:
+        offsets = [(dx * dims[1] + dy) * dims[2] + dz for dx, dy, dz in _OFFSETS]
+        pairs = _poisson_kernel.candidates(kernel, points, order, ukey, start, count, offsets, _CELL_MAX, distance)
+        return _exact(points, pairs, distance)
     total = int(np.prod(dims))
     if total <= 16 * n + (1 << 22):  # a dense table of the cells: one lookup a point and offset
         slot = np.full(total, -1, np.int64)
@@ -99,7 +108,12 @@ def close_pairs3(points: np.ndarray, distance: float) -> np.ndarray:
         diff = sp[i] - sp[j]
         close = np.einsum("ij,ij->i", diff, diff) < reach
         found.append(np.stack([order[i[close]], order[j[close]]], axis=1))
-    pairs = np.sort(np.concatenate(found), axis=1)
+    return _exact(points, np.concatenate(found), distance)
+
+
+def _exact(points: np.ndarray, pairs: np.ndarray, distance: float) -> np.ndarray:
+    """The candidate ``pairs`` closer than ``distance``, each once, ``i < j``, sorted."""
+    pairs = np.sort(pairs, axis=1)
     if len(pairs) == 0:
         return pairs
     pairs = pairs[np.linalg.norm(points[pairs[:, 0]] - points[pairs[:, 1]], axis=1) < distance]
