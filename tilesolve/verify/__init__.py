@@ -1,4 +1,5 @@
-"""Independent checkers (numpy only; never import encodings or constructive code)."""
+"""Independent checkers (numpy, and numba for loops of their own; never import encodings or
+constructive code)."""
 
 from tilesolve._lazy import lazy_exports
 

@@ -4,7 +4,8 @@ Written from the definitions, sharing no code with the builder
 (:mod:`tilesolve.constructive.poisson_sphere`):
 
 * :func:`point_violations3`: points are a Poisson sphere distribution at distance ``d`` when no
-  two are closer than ``d`` (§4.4.1.1). A grid of ``d x d x d`` cells (numpy only) finds every
+  two are closer than ``d`` (§4.4.1.1). A grid of ``d x d x d`` cells (numpy, or the compiled scan of
+  :mod:`tilesolve.verify._poisson_kernel` for a large box) finds every
   closer pair: a close pair lies in one cell or two neighbouring ones (13 neighbours each, every
   pair of cells once). Points must also lie in their box.
 * :func:`tileset_violations3`: every tile's points lie in its modified region (§4.4.3;
