@@ -6,7 +6,8 @@ change"):
 1. timed: ``python -m pytest -q -m "not slow"`` in one process (no pytest-xdist workers); its wall
    time and test count are printed. Goal: under 3 minutes on a 2-core machine.
 2. under coverage.py, with ``[run] patch = subprocess`` so that the console-script runs of the CLI
-   tests are measured too. A module of ``tilesolve`` is covered when a line inside one of its
+   tests, and pytest-xdist's workers (this run uses every core when pytest-xdist is installed),
+   are measured too. A module of ``tilesolve`` is covered when a line inside one of its
    functions ran (importing it, as the doctest collection does for every module, is not enough).
    A module without functions of its own is covered when any line ran; numba kernels
    (``@njit``) are left out of the count, as coverage cannot see inside compiled code, and so is
@@ -27,6 +28,7 @@ from __future__ import annotations
 
 import argparse
 import ast
+import importlib.util
 import re
 import subprocess
 import sys
@@ -42,11 +44,11 @@ FAST = ["-m", "pytest", "-q", "-p", "no:cacheprovider", "-m", "not slow"]
 FORKSERVER_ONLY = {"tilesolve/studio/warm.py"}
 
 
-def _pytest(prefix: list[str], paths: list[str]) -> tuple[int, float, str]:
-    """Run the fast tier of ``paths`` (all when empty) under ``python *prefix``: exit code, wall
-    seconds, pytest's closing line."""
+def _pytest(prefix: list[str], paths: list[str], options: list[str] = ()) -> tuple[int, float, str]:
+    """Run the fast tier of ``paths`` (all when empty) under ``python *prefix``, with pytest's
+    ``options``: exit code, wall seconds, pytest's closing line."""
     start = time.perf_counter()
-    proc = subprocess.run([sys.executable, *prefix, *FAST, *paths], cwd=ROOT, capture_output=True, text=True)
+    proc = subprocess.run([sys.executable, *prefix, *FAST, *options, *paths], cwd=ROOT, capture_output=True, text=True)
     seconds = time.perf_counter() - start
     lines = [line for line in proc.stdout.splitlines() if line.strip()]
     closing = lines[-1].strip("= ") if lines else "(no output)"
@@ -94,7 +96,9 @@ def coverage_run(paths: list[str]) -> tuple[int, float, str, int, list[str]]:
         rc.write_text(f"[run]\nsource_pkgs = tilesolve\npatch = subprocess\nparallel = true\n"
                       f"data_file = {tmp}/.coverage\n\n[paths]\nsource =\n    {PACKAGE}\n"
                       f"    */site-packages/tilesolve\n")
-        code, seconds, closing = _pytest(["-m", "coverage", "run", f"--rcfile={rc}"], paths)
+        # On every core when pytest-xdist is there: its workers are subprocesses, measured too.
+        workers = ["-n", "auto", "--dist", "loadscope"] if importlib.util.find_spec("xdist") else []
+        code, seconds, closing = _pytest(["-m", "coverage", "run", f"--rcfile={rc}"], paths, workers)
         cov = Coverage(data_file=f"{tmp}/.coverage", config_file=str(rc))
         cov.combine()
         data = cov.get_data()
