@@ -94,3 +94,42 @@ def test_families_come_in_entry_point_order_whatever_was_imported_first():
     fresh = subprocess.run([sys.executable, "-c", code.split("\n", 1)[1]], capture_output=True, text=True,
                            check=True).stdout.split()
     assert late == fresh and late.index("packing") > late.index("board")
+
+
+_COMMANDS = """
+import json, sys
+from tilesolve.family import registry
+registry.SCAN_CACHE, registry.COMMAND_CACHE = {scan!r}, {commands!r}
+found = registry.commands()
+facades = sorted(m for m in sys.modules if m.startswith("tilesolve.families."))
+print(json.dumps([found, facades]))
+"""
+
+
+def test_the_families_commands_come_from_the_cache_without_importing_a_facade(tmp_path):
+    """`tilesolve sample` (a command not named like its family) loaded every facade to be found;
+    the second run reads the commands from the cache and imports none, with the same answer as
+    loading every family."""
+    code = _COMMANDS.format(scan=str(tmp_path / "entry_points.json"), commands=str(tmp_path / "commands.json"))
+    runs = [json.loads(subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                                      check=True).stdout) for _ in range(2)]
+    (first, loaded), (second, none) = runs
+    assert first == second and first == {t.split(":")[1]: t for f in registry.families() for t in f.commands}
+    assert {"sample", "wall", "pack", "dappled"} <= set(first)
+    assert "tilesolve.families.poisson" in loaded and none == []
+
+
+def test_a_changed_facade_is_loaded_again_for_its_commands(monkeypatch, tmp_path):
+    """A cache entry recorded for another version of a facade's file (here: another size) is not
+    used: the families are loaded and the cache rewritten with the file as it is."""
+    cache = tmp_path / "commands.json"
+    monkeypatch.setattr(registry, "COMMAND_CACHE", str(cache))
+    eps = registry._entry_points()
+    stale = {ep.value: {"source": [s[0], s[1] + 1, s[2]], "commands": ["tilesolve.cli.nowhere:gone"]}
+             for ep in eps for s in [registry._source(ep)]}
+    cache.write_text(json.dumps(stale))
+    monkeypatch.setattr(registry, "_REGISTRY", {})  # nothing loaded yet in this "process"
+    monkeypatch.setattr(registry, "_LOADED", False)
+    found = registry.commands()
+    assert "gone" not in found and "sample" in found
+    assert json.loads(cache.read_text())[eps[0].value]["source"] == registry._source(eps[0])

@@ -139,23 +139,16 @@ GENERIC = {
 
 
 def _family_command(name: str) -> str | None:
-    """The "module:attribute" of family command ``name``; a family named like the command
-    (``dappled``) is looked up alone, without loading the others."""
-    from tilesolve.errors import InvalidProblem
-    from tilesolve.family import get
-
-    try:
-        own = {t.split(":")[1]: t for t in get(name).commands}
-    except InvalidProblem:
-        own = {}
-    return own.get(name) or _family_commands().get(name)
+    """The "module:attribute" of family command ``name`` (from the registry's cache of the
+    families' commands: no facade is imported to find it)."""
+    return _family_commands().get(name)
 
 
 def _family_commands() -> dict[str, str]:
-    """Every family's commands, name -> "module:attribute" (loads the registry)."""
-    from tilesolve.family import families
+    """Every family's commands, name -> "module:attribute" (cached by the registry)."""
+    from tilesolve.family import commands
 
-    return {t.split(":")[1]: t for fam in families() for t in fam.commands}
+    return commands()
 
 
 @click.group(

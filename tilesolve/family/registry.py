@@ -26,6 +26,7 @@ __all__ = [
     "register",
     "unregister",
     "families",
+    "commands",
     "get",
     "family_of",
     "codec_of",
@@ -42,6 +43,8 @@ ENTRY_POINT_GROUP = "tilesolve.families"
 SCAN_CACHE = os.path.join(os.path.dirname(__file__), "__pycache__", "entry_points.json")
 #: How many ``sys.path`` lists the cache keeps a scan for (the oldest is dropped).
 _SCANS_KEPT = 8
+#: Each family's commands, cached (see :func:`commands`).
+COMMAND_CACHE = os.path.join(os.path.dirname(__file__), "__pycache__", "commands.json")
 
 _REGISTRY: dict[str, Family] = {}
 #: Each entry point's place in :func:`_entry_points` (by name): the order :func:`families`
@@ -116,10 +119,9 @@ def _entry_points() -> list[EntryPoint]:
     :data:`_SCANS_KEPT` ``sys.path`` lists (the console script's, ``python -c``'s, ...)."""
     path, key = json.dumps(sys.path), [_installed(entry) for entry in sys.path]
     try:
-        with open(SCAN_CACHE, encoding="utf-8") as fh:
-            scans = dict(json.load(fh))
-    except (OSError, ValueError, TypeError):
-        scans = {}  # no cache yet, or an unreadable one
+        scans = dict(_read_json(SCAN_CACHE, []))
+    except (ValueError, TypeError):
+        scans = {}  # an unreadable cache
     scan = scans.get(path)
     if isinstance(scan, dict) and scan.get("key") == key:
         return [EntryPoint(name, value) for name, value in scan["entry_points"]]
@@ -128,17 +130,7 @@ def _entry_points() -> list[EntryPoint]:
     found = sorted(EntryPoint(ep.name, ep.value) for ep in entry_points(group=ENTRY_POINT_GROUP))
     scans.pop(path, None)
     scans[path] = {"key": key, "entry_points": found}
-    tmp = f"{SCAN_CACHE}.{os.getpid()}.tmp"
-    try:
-        os.makedirs(os.path.dirname(SCAN_CACHE), exist_ok=True)
-        with open(tmp, "w", encoding="utf-8") as fh:
-            json.dump(list(scans.items())[-_SCANS_KEPT:], fh)
-        os.replace(tmp, SCAN_CACHE)
-    except OSError:  # a read-only installation: scanned every time
-        try:
-            os.remove(tmp)
-        except OSError:
-            pass
+    _write_json(SCAN_CACHE, list(scans.items())[-_SCANS_KEPT:])  # a read-only installation: scanned every time
     return found
 
 
@@ -168,6 +160,77 @@ def families() -> list[Family]:
     registered otherwise, in registration order."""
     _load_builtin()
     return sorted(_REGISTRY.values(), key=lambda f: _ORDER.get(f.name, len(_ORDER)))
+
+
+def commands() -> dict[str, str]:
+    """Every family's commands, name -> ``"module:attribute"`` (a command two families name is
+    the later family's, in the order of :func:`families`).
+
+    A command that is not named like its family (``sample``, ``wall``) would otherwise load every
+    facade to be found. The commands of the entry points' families are therefore cached
+    (:data:`COMMAND_CACHE`), each under its entry point and its facade's source file (path,
+    size, modification time): while every entry point's facade is unchanged, they are read from
+    there and no facade is imported; otherwise every family is loaded and the cache rewritten. A facade whose family is built in another file than
+    its entry point's module is not watched there: after editing that file, reinstall."""
+    eps = _entry_points()
+    cached = _read_json(COMMAND_CACHE, {})
+    cached = cached if isinstance(cached, dict) else {}
+    lists: list | None = []
+    for ep in eps:
+        fam = _REGISTRY.get(ep.name)
+        if fam is not None:
+            lists.append(list(fam.commands))
+            continue
+        hit = cached.get(ep.value)
+        if not isinstance(hit, dict) or hit.get("source") != _source(ep) or hit.get("source") is None:
+            lists = None
+            break
+        lists.append(hit["commands"])
+    if lists is None:
+        fams = families()
+        lists = [list(fam.commands) for fam in fams]
+        by_name = {fam.name: fam for fam in fams}
+        _write_json(COMMAND_CACHE, {ep.value: {"source": _source(ep), "commands": list(by_name[ep.name].commands)}
+                                    for ep in eps if ep.name in by_name})
+    else:
+        named = {ep.name for ep in eps}
+        lists += [list(fam.commands) for fam in _REGISTRY.values() if fam.name not in named]
+    return {t.split(":")[1]: t for targets in lists for t in targets}
+
+
+def _source(ep: EntryPoint) -> list | None:
+    """The entry point's module file, its size and modification time (ns); None if unknown."""
+    import importlib.util
+
+    try:
+        spec = importlib.util.find_spec(ep.value.partition(":")[0].strip())
+        st = os.stat(spec.origin)
+    except (ImportError, ValueError, AttributeError, TypeError, OSError):
+        return None
+    return [spec.origin, st.st_size, st.st_mtime_ns]
+
+
+def _read_json(path: str, default: Any) -> Any:
+    try:
+        with open(path, encoding="utf-8") as fh:
+            return json.load(fh)
+    except (OSError, ValueError):
+        return default
+
+
+def _write_json(path: str, value: Any) -> None:
+    """Write ``value`` to ``path`` whole or not at all (a read-only installation: not at all)."""
+    tmp = f"{path}.{os.getpid()}.tmp"
+    try:
+        os.makedirs(os.path.dirname(path), exist_ok=True)
+        with open(tmp, "w", encoding="utf-8") as fh:
+            json.dump(value, fh)
+        os.replace(tmp, path)
+    except OSError:
+        try:
+            os.remove(tmp)
+        except OSError:
+            pass
 
 
 def get(name: str) -> Family:
