@@ -6,7 +6,9 @@ alone costs more than a small command's whole solve. The cache holds while ``sys
 same and holds the same ``.dist-info`` (and ``.egg-info``) entries, each with the same
 modification time (installing, upgrading, reinstalling or removing a package writes or removes
 its own); otherwise the entry points are scanned again and the cache rewritten. Where the
-package's folder cannot be written they are scanned every time.
+package's folder cannot be written they are scanned every time. The families' commands are
+cached beside it (:func:`commands`), so that a command finds its module without importing the
+facades.
 """
 
 from __future__ import annotations
@@ -170,8 +172,9 @@ def commands() -> dict[str, str]:
     facade to be found. The commands of the entry points' families are therefore cached
     (:data:`COMMAND_CACHE`), each under its entry point and its facade's source file (path,
     size, modification time): while every entry point's facade is unchanged, they are read from
-    there and no facade is imported; otherwise every family is loaded and the cache rewritten. A facade whose family is built in another file than
-    its entry point's module is not watched there: after editing that file, reinstall."""
+    there and no facade is imported; otherwise every family is loaded and the cache rewritten.
+    A family built in another file than its entry point's module is not watched there: after
+    editing that file, reinstall."""
     eps = _entry_points()
     cached = _read_json(COMMAND_CACHE, {})
     cached = cached if isinstance(cached, dict) else {}
