@@ -107,6 +107,7 @@ def test_a_large_set_takes_the_compiled_scan_once_numba_is_loaded():
     from tilesolve.verify import _poisson_kernel
 
     assert _poisson_kernel.compiled(_poisson_kernel.COMPILED_FROM - 1) is None
+    assert _poisson_kernel.compiled(_poisson_kernel.COMPILED_FROM, 1e-170) is None  # its square underflows
     assert (_poisson_kernel.compiled(_poisson_kernel.COMPILED_FROM) is None) == ("numba" not in sys.modules)
     assert _compiled_scan() is not None
 

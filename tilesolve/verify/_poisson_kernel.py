@@ -96,11 +96,13 @@ def candidates(kernel, points, order, ukey, start, count, offsets, cell_max, dis
         room = total
 
 
-def compiled(n: int):
-    """:func:`scan` compiled, for ``n`` points: where numba is already loaded in this process
-    and ``n >= COMPILED_FROM``; None otherwise (then the numpy scan is cheaper)."""
+def compiled(n: int, distance: float = 1.0):
+    """:func:`scan` compiled, for ``n`` points at ``distance``: where numba is already loaded in
+    this process and ``n >= COMPILED_FROM``; None otherwise (then the numpy scan is cheaper), and
+    where ``distance`` squared would underflow or overflow (the scan compares squares; numpy's
+    scan, by ``hypot``, does not)."""
     global _COMPILED
-    if n < COMPILED_FROM or "numba" not in sys.modules:
+    if n < COMPILED_FROM or "numba" not in sys.modules or not 1e-150 < distance < 1e150:
         return None
     if _COMPILED is None:
         from tilesolve._numba import numba

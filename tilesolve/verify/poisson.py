@@ -69,7 +69,7 @@ def _close_pairs(points: np.ndarray, distance: float, *, kernel=None) -> np.ndar
     skey = key[order]
     start = np.flatnonzero(np.r_[True, skey[1:] != skey[:-1]])  # runs of one cell in the sorted keys
     ukey, count = skey[start], np.diff(np.r_[start, n])
-    kernel = kernel or _poisson_kernel.compiled(n)
+    kernel = kernel or _poisson_kernel.compiled(n, distance)
     if kernel is not None:
         offsets = [dx * rows + dy for dx, dy in _OFFSETS]
         pairs = _poisson_kernel.candidates(kernel, points, order, ukey, start, count, offsets, _CELL_MAX, distance)

@@ -4,10 +4,10 @@ Written from the definitions, sharing no code with the builder
 (:mod:`tilesolve.constructive.poisson_sphere`):
 
 * :func:`point_violations3`: points are a Poisson sphere distribution at distance ``d`` when no
-  two are closer than ``d`` (§4.4.1.1). A grid of ``d x d x d`` cells (numpy, or the compiled scan of
-  :mod:`tilesolve.verify._poisson_kernel` for a large box) finds every
-  closer pair: a close pair lies in one cell or two neighbouring ones (13 neighbours each, every
-  pair of cells once). Points must also lie in their box.
+  two are closer than ``d`` (§4.4.1.1). A grid of ``d x d x d`` cells (numpy, or the compiled
+  scan of :mod:`tilesolve.verify._poisson_kernel` for a large box) finds every closer pair: a
+  close pair lies in one cell or two neighbouring ones (13 neighbours each, every pair of cells
+  once). Points must also lie in their box.
 * :func:`tileset_violations3`: every tile's points lie in its modified region (§4.4.3;
   :mod:`tilesolve.model.poisson_sphere`), and no tiling of space brings two points closer than
   ``d``. Two points closer than ``d`` come from two *slots* (lattice points, edges, faces,
@@ -74,7 +74,7 @@ def close_pairs3(points: np.ndarray, distance: float, *, kernel=None) -> np.ndar
     skey = key[order]
     start = np.flatnonzero(np.r_[True, skey[1:] != skey[:-1]])
     ukey, count = skey[start], np.diff(np.r_[start, n])
-    kernel = kernel or _poisson_kernel.compiled(n)
+    kernel = kernel or _poisson_kernel.compiled(n, distance)
     if kernel is not None:
         offsets = [(dx * dims[1] + dy) * dims[2] + dz for dx, dy, dz in _OFFSETS]
         pairs = _poisson_kernel.candidates(kernel, points, order, ukey, start, count, offsets, _CELL_MAX, distance)
