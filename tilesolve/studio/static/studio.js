@@ -860,7 +860,9 @@ const view = studio.view = { x: 0, y: 0, zoom: 1, cache: new Map(), inflight: 0,
 const MAX_INFLIGHT = 4;
 
 function resetView() {
-  view.cache.clear(); view.gen++; view.inflight = 0; view.failed = 0;
+  // nothing of the new view is drawn until the next frame: no tile wanted yet (the old list
+  // would say "all drawn" meanwhile, and a pump would fetch tiles of the old view)
+  view.cache.clear(); view.gen++; view.inflight = 0; view.failed = 0; view.wanted = []; view.missing = 0;
   if (!studio.fam || !studio.fam.view) return;
   const values = Object.fromEntries(Object.entries(formValues()).filter(
     ([k]) => !studio.fam.fields.some(f => f.name === k && f.kind === "cells")));
