@@ -653,3 +653,29 @@ def test_workers_die_with_the_cli_process(sig):
                 os.kill(pid, signal.SIGKILL)
         cli.wait()
         cli.stderr.close()
+
+
+@pytest.mark.parametrize("sent", [0, 1, 2])
+def test_a_worker_whose_parent_vanishes_ends_without_a_word(sent):
+    """Ctrl-C can end the parent while its workers start or wait: a worker then finds its pipe
+    closed (before the path, before the task, or while waiting for a seed) and ends without a
+    traceback on the stderr it shares with the user's terminal (once seen as an EOFError
+    traceback under a census's "interrupted" line)."""
+    import multiprocessing
+    import pickle
+
+    from tilesolve.engine.portfolio import _BOOT
+
+    parent_end, child_end = multiprocessing.Pipe()
+    fd = child_end.fileno()
+    boot = _BOOT.format(fd=fd, ppid=os.getpid(), nice=0)
+    proc = subprocess.Popen([sys.executable, "-c", boot], pass_fds=(fd,), stdin=subprocess.DEVNULL,
+                            stderr=subprocess.PIPE, text=True)
+    child_end.close()
+    if sent >= 1:
+        parent_end.send(sys.path)
+    if sent >= 2:
+        parent_end.send((None, pickle.dumps(abs)))
+    parent_end.close()
+    _, err = proc.communicate(timeout=120)
+    assert err == "" and proc.returncode in (0, 1)

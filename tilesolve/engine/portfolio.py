@@ -614,9 +614,11 @@ def _unpack_exception(packed: tuple) -> BaseException:
 #: imports, which are part of its start-up cost), ignore Ctrl-C (the parent alone handles it,
 #: by terminating the workers, so no worker prints a KeyboardInterrupt traceback), take the
 #: parent's ``sys.path`` from the pipe (so the task's modules import as they do there), then
-#: hand over to :func:`_worker_main`.
-_BOOT = ("import os, signal, sys; os.nice({nice}); signal.signal(signal.SIGINT, signal.SIG_IGN); "
-         "from multiprocessing.connection import Connection; conn = Connection({fd}); sys.path[:] = conn.recv(); "
+#: hand over to :func:`_worker_main`. A parent gone before it sent the path (Ctrl-C while its
+#: workers start) ends the worker quietly: its stderr is the user's terminal.
+_BOOT = ("import os, signal, sys; os.nice({nice}); signal.signal(signal.SIGINT, signal.SIG_IGN)\n"
+         "from multiprocessing.connection import Connection; conn = Connection({fd})\n"
+         "try:\n    sys.path[:] = conn.recv()\nexcept (EOFError, OSError):\n    os._exit(1)\n"
          "from tilesolve.engine.portfolio import _worker_main; _worker_main(conn, {ppid})")
 
 #: ``PR_SET_PDEATHSIG`` of ``<linux/prctl.h>``: the signal a process gets when its parent dies.
@@ -692,9 +694,13 @@ def _load_task(blob: bytes, main: tuple[str, str] | None):
 
 
 def _worker_main(conn, ppid: int) -> None:
-    """A worker process: answer ``("done" | "error", seed, payload)`` for each seed received."""
+    """A worker process: answer ``("done" | "error", seed, payload)`` for each seed received;
+    return when the parent is gone (a closed pipe), without a word on the shared stderr."""
     _die_with_parent(ppid)
-    main, blob = conn.recv()
+    try:
+        main, blob = conn.recv()
+    except (EOFError, OSError):  # the parent is gone
+        return
     try:
         task, load_error = _load_task(blob, main), None
     except BaseException as exc:  # noqa: BLE001 - e.g. the task's module is not importable here
@@ -717,7 +723,10 @@ def _worker_main(conn, ppid: int) -> None:
             data = pickle.dumps(reply)
         except BaseException as exc:  # noqa: BLE001 - an unpicklable Solution is the task's bug
             data = pickle.dumps(("error", seed, _pack_exception(exc)))
-        conn.send_bytes(data)
+        try:
+            conn.send_bytes(data)
+        except OSError:  # the parent is gone
+            return
 
 
 @dataclass
