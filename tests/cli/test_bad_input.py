@@ -381,3 +381,14 @@ def test_every_command_is_swept(tmp_path):
         for sub in _commands((name,), tmp_path):
             path = f"{name} {sub}"  # a command, or a group whose commands are swept
             assert any(c == path or c.startswith(path + " ") for c in swept), f"add bad-input cases for `tilesolve {path}`"
+
+
+@pytest.mark.parametrize("name, what", [("pts.npy", "NumPy point file"), ("pts.csv", "CSV point file"),
+                                        ("t.png", "PNG picture"), ("t.svg", "SVG picture")])
+def test_verify_names_a_point_file_or_a_picture_and_the_file_it_reads(tmp_path, name, what):
+    """`verify pts.npy` said 'not a UTF-8 text file'; it now says what the file is and what
+    verify reads instead."""
+    (tmp_path / name).write_bytes(b"\x93NUMPY\x01\x00" if name.endswith(".npy") else b"x,y\n0.5,0.5\n")
+    line = one_line_error(run("verify", name, cwd=tmp_path))
+    assert line == (f"tilesolve: error: {name}: a {what} holds no problem to check it against; "
+                    f"tilesolve verify reads the JSON files tilesolve writes (-o NAME.json)")

@@ -238,9 +238,18 @@ def _verify_unsat(fam: Family, problem: Any, sol: Solution, source: str, proof_d
     return FileReport(0, (head,) + tuple(details))
 
 
+#: Suffixes of the files tilesolve writes beside its JSON (points, pictures), which verify cannot read.
+_NOT_VERIFIABLE = {".npy": "NumPy point file", ".csv": "CSV point file", ".png": "PNG picture", ".svg": "SVG picture"}
+
+
 def verify_file(path: str | os.PathLike, proof_dir: str | os.PathLike | None = None, *,
                 workers: int = 1, max_cnf: int = DEFAULT_MAX_CNF, progress: Progress | bool = False) -> FileReport:
-    """:func:`verify_document` on a file (one-line errors for unreadable or malformed files)."""
+    """:func:`verify_document` on a file (one-line errors for unreadable or malformed files;
+    a point set or a picture tilesolve wrote is named as such: only its JSON files verify)."""
     from tilesolve.io.jsonio import read_json
 
+    suffix = os.path.splitext(str(path))[1].lower()
+    if suffix in _NOT_VERIFIABLE:
+        raise InvalidProblem(f"{path}: a {_NOT_VERIFIABLE[suffix]} holds no problem to check it against; "
+                             f"tilesolve verify reads the JSON files tilesolve writes (-o NAME.json)")
     return verify_document(read_json(path), str(path), proof_dir, workers=workers, max_cnf=max_cnf, progress=progress)
