@@ -20,8 +20,8 @@ from tilesolve.cli.board_common import (
     solve_board,
     svg_opt,
 )
-from tilesolve.cli.common import say
-from tilesolve.cli.outputs import Outputs, stop_if_interrupted
+from tilesolve.cli.common import say, sweep_trials
+from tilesolve.cli.outputs import Outputs
 from tilesolve.family import draw_seed, raise_if_interrupted
 
 __all__ = ["brick"]
@@ -162,15 +162,10 @@ def crosscheck(ctx, board_spec, colors, boundary, seed, time_limit, trials) -> N
     from tilesolve.families import board as facade
 
     base = draw_seed() if seed is None else seed
-    ok = True
-    for i in range(trials):
+
+    def run_trial(i):
         problem = _brick_problem(board_spec, colors, boundary, base + i)
-        rep = facade.crosscheck(problem, seed=base + i, time_limit=time_limit)
-        stop_if_interrupted()
-        ok &= rep.ok
-        click.echo(f"trial {i + 1}/{trials} (seed {base + i}): {'ok' if rep.ok else 'FAILED'}")
-        for line in rep.lines:
-            click.echo(f"  {line}")
-    click.echo("crosscheck: all routes agree" if ok else "crosscheck: FAILED (see the FAIL lines above)")
-    ctx.exit(0 if ok else 1)
+        return f"seed {base + i}", facade.crosscheck(problem, seed=base + i, time_limit=time_limit)
+
+    sweep_trials(ctx, trials, run_trial, "crosscheck: all routes agree")
 

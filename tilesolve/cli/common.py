@@ -12,6 +12,7 @@ from tilesolve.io.units import big, human_bytes
 from tilesolve.progress import Progress, terminal
 
 __all__ = ["CliError", "usage_error", "build_problem", "check_writable", "say", "verbosity", "progress_wanted",
+           "sweep_trials",
            "split_conditions", "check_colors", "human_bytes", "big",
            "MAX_COMPLETE_TILES"]
 
@@ -145,3 +146,23 @@ def check_colors(kind: str, colors: int, colors_v: int | None = None) -> None:
             f"{big(colors)} colours: the complete {kind} tile set has {big(n)} tiles ({human_bytes(8 * n)} as int64 "
             f"indices, before any search); tilesolve builds up to {MAX_COMPLETE_TILES:,} tiles (C = 64)"
         )
+
+
+def sweep_trials(ctx: click.Context, trials: int, run_trial, agreed: str) -> None:
+    """The cross-check commands' loop: ``run_trial(i)`` gives ``(label, report)`` for trial
+    ``i``; each is printed with its lines as it comes, then ``agreed`` or the failure, and the
+    command exits 0 when every trial agrees, else 1. A trial during which Ctrl-C or SIGTERM
+    arrived ends the sweep as the interruption, whatever a route made of the signal (an
+    ``unknown``, a failed check): it is never reported as a result."""
+    from tilesolve.cli.outputs import stop_if_interrupted
+
+    ok = True
+    for i in range(trials):
+        label, rep = run_trial(i)
+        stop_if_interrupted()
+        ok &= bool(rep.ok)
+        click.echo(f"trial {i + 1}/{trials} ({label}): {'ok' if rep.ok else 'FAILED'}")
+        for line in rep.lines:
+            click.echo(f"  {line}")
+    click.echo(agreed if ok else "crosscheck: FAILED (see the FAIL lines above)")
+    ctx.exit(0 if ok else 1)

@@ -6,7 +6,7 @@ from __future__ import annotations
 import click
 
 from tilesolve.cli import options as opt
-from tilesolve.cli.outputs import stop_if_interrupted
+from tilesolve.cli.common import sweep_trials
 from tilesolve.family import draw_seed
 
 __all__ = ["crosscheck"]
@@ -29,20 +29,6 @@ def crosscheck() -> None:
     and that the SAT route solves the same window too (its tiling verified). Exit 0 when
     every trial agrees, 1 on any disagreement, 130 on Ctrl-C.
     """
-
-
-def _sweep(ctx, trials: int, base: int, run_trial) -> None:
-    ok = True
-    for i in range(trials):
-        label, rep = run_trial(i)
-        stop_if_interrupted()
-        ok &= rep.ok
-        click.echo(f"trial {i + 1}/{trials} ({label}): {'ok' if rep.ok else 'FAILED'}")
-        for line in rep.lines:
-            click.echo(f"  {line}")
-    click.echo(f"crosscheck: all {trials} windows agree (seed {base})" if ok
-               else "crosscheck: FAILED (see the FAIL lines above)")
-    ctx.exit(0 if ok else 1)
 
 
 @crosscheck.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP)
@@ -82,7 +68,7 @@ def wall(ctx, trials, seed, max_line, colors, max_size, time_limit) -> None:
         return label, crosscheck_wall_window(p["window"], colors=p["colors"], max_line=p["max_line"], seed=base + i,
                                              time_limit=time_limit)
 
-    _sweep(ctx, trials, base, run_trial)
+    sweep_trials(ctx, trials, run_trial, f"crosscheck: all {trials} windows agree (seed {base})")
 
 
 @crosscheck.command(context_settings=opt.CONTEXT_SETTINGS, epilog=opt.EXIT_HELP)
@@ -123,4 +109,4 @@ def tiling(ctx, trials, seed, kind, method, colors, max_size, time_limit) -> Non
                  f"window {win.width}x{win.height} at ({win.x0}, {win.y0})")
         return label, crosscheck_tiling_window(problem, method=route, seed=base + i, time_limit=time_limit)
 
-    _sweep(ctx, trials, base, run_trial)
+    sweep_trials(ctx, trials, run_trial, f"crosscheck: all {trials} windows agree (seed {base})")

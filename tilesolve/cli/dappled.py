@@ -5,8 +5,8 @@ from __future__ import annotations
 import click
 
 from tilesolve.cli import options as opt
-from tilesolve.cli.common import build_problem, progress_wanted, say
-from tilesolve.cli.outputs import Outputs, stop_if_interrupted
+from tilesolve.cli.common import build_problem, progress_wanted, say, sweep_trials
+from tilesolve.cli.outputs import Outputs
 from tilesolve.errors import InvalidProblem
 from tilesolve.families.dappled import COUNT_METHODS, METHODS
 from tilesolve.family import draw_seed, raise_if_interrupted
@@ -204,15 +204,9 @@ def crosscheck(ctx, seed, time_limit, trials, **problem_kw) -> None:
 
     problem = build_problem(**problem_kw)
     base = draw_seed() if seed is None else seed
-    ok = True
     click.echo(f"crosscheck: {problem.describe()}")
-    for i in range(trials):
-        s = base + i
-        report = facade.crosscheck(problem, seed=s, time_limit=time_limit)
-        stop_if_interrupted()
-        ok &= bool(report.ok)
-        click.echo(f"trial {i + 1}/{trials} (seed {s}): {'ok' if report.ok else 'FAILED'}")
-        for line in report.lines:
-            click.echo(f"  {line}")
-    click.echo("crosscheck: all routes agree" if ok else "crosscheck: FAILED (see the FAIL lines above)")
-    ctx.exit(0 if ok else 1)
+
+    def run_trial(i):
+        return f"seed {base + i}", facade.crosscheck(problem, seed=base + i, time_limit=time_limit)
+
+    sweep_trials(ctx, trials, run_trial, "crosscheck: all routes agree")
